@@ -1,0 +1,100 @@
+# lanetrace - one non-recursive Makefile for the three builds of one source:
+#   build/host  native (LT_COST_OFF, -O2 -march=native): the golden reference and the speed race
+#   build/sim   the same kernels with LT_COST_SIM, linked to sim/: cycle reports
+#   build/asan  host build with ASan + UBSan, used by the tests
+#   build/fw/<target>  freestanding firmware images for cm4, cm55, rv32 (QEMU)
+# Main targets: deps all run test firmware sim bench clean (see README.md).
+
+.SUFFIXES:
+.DELETE_ON_ERROR:
+SHELL := /bin/bash
+
+B := build
+CC ?= gcc
+WARN := -std=c99 -Wall -Wextra -Wpedantic -Werror -Wshadow -Wundef -Wstrict-prototypes \
+    -Wmissing-prototypes -Wcast-align -Wconversion
+# Float32 results are bit-identical across builds only without FMA contraction or fast-math.
+FPFLAGS := -ffp-contract=off -fno-fast-math
+INC := -Ifirmware/include -Isim -Ihost -Itests/unit -Itests/vectors
+HOST_CFLAGS := $(WARN) -Wdouble-promotion $(FPFLAGS) -O2 -g $(INC) -D_POSIX_C_SOURCE=200809L
+NATIVE_ARCH ?= -march=native
+
+CORE_SRCS := $(wildcard firmware/core/*.c)
+CORE_HDRS := $(wildcard firmware/include/lt/*.h firmware/include/lt/*.def firmware/core/*.inc)
+HOSTLIB_SRCS := host/lt_mesh.c host/lt_scene.c
+HOSTLIB_HDRS := $(wildcard host/*.h)
+SIM_SRCS := sim/lt_sim.c sim/lt_cache.c
+SIM_HDRS := $(wildcard sim/*.h sim/machines/*.def)
+UNIT_TESTS := port fx v16 isect
+VEC_SRCS := tests/vectors/lt_vec.c
+
+# ---- variants: CFLAGS per variant ------------------------------------------------------------
+CFLAGS_host := $(HOST_CFLAGS) $(NATIVE_ARCH) -DLT_COST_MODE=LT_COST_OFF
+CFLAGS_sim := $(HOST_CFLAGS) $(NATIVE_ARCH) -DLT_COST_MODE=LT_COST_SIM
+CFLAGS_asan := $(HOST_CFLAGS) -O1 -fsanitize=address,undefined -fno-sanitize-recover=all \
+    -fno-omit-frame-pointer -DLT_COST_MODE=LT_COST_OFF -DLT_CFG_ASSERT=1
+LDFLAGS_asan := -fsanitize=address,undefined
+LIBS_host := -lassimp -lm
+LIBS_sim := -lassimp -lcjson -lm
+LIBS_asan := -lassimp -lm
+VARIANTS := host sim asan
+
+all: $(B)/host/lt-trace $(B)/sim/lt-sim
+
+define variant_rules
+$(B)/$(1)/obj/%.o: %.c $(CORE_HDRS) $(HOSTLIB_HDRS) $(SIM_HDRS) Makefile
+	@mkdir -p $$(@D)
+	$(CC) $(CFLAGS_$(1)) -c $$< -o $$@
+$(1)_CORE_OBJS := $(CORE_SRCS:%.c=$(B)/$(1)/obj/%.o)
+$(1)_HOST_OBJS := $(HOSTLIB_SRCS:%.c=$(B)/$(1)/obj/%.o)
+$(1)_EXTRA_OBJS := $(if $(filter sim,$(1)),$(SIM_SRCS:%.c=$(B)/$(1)/obj/%.o))
+$(B)/$(1)/test_%: $(B)/$(1)/obj/tests/unit/test_%.o $$($(1)_CORE_OBJS) $$($(1)_EXTRA_OBJS)
+	$(CC) $(LDFLAGS_$(1)) -o $$@ $$^ -lcmocka $(LIBS_$(1))
+$(B)/$(1)/lt-vectors: $(B)/$(1)/obj/tests/vectors/vec_host.o $(B)/$(1)/obj/$(VEC_SRCS:.c=.o) \
+    $$($(1)_CORE_OBJS) $$($(1)_EXTRA_OBJS)
+	$(CC) $(LDFLAGS_$(1)) -o $$@ $$^ $(LIBS_$(1))
+endef
+$(foreach v,$(VARIANTS),$(eval $(call variant_rules,$(v))))
+
+$(B)/host/lt-trace: $(B)/host/obj/host/lt_trace_main.o $(host_CORE_OBJS) $(host_HOST_OBJS)
+	$(CC) -o $@ $^ $(LIBS_host)
+$(B)/sim/lt-sim: $(B)/sim/obj/host/lt_trace_main.o $(sim_CORE_OBJS) $(sim_HOST_OBJS) \
+    $(sim_EXTRA_OBJS)
+	$(CC) -o $@ $^ $(LIBS_sim)
+$(B)/sim/test_cache: $(B)/sim/obj/tests/unit/test_cache.o $(B)/sim/obj/sim/lt_cache.o
+	$(CC) -o $@ $^ -lcmocka
+
+sim: $(B)/sim/lt-sim
+
+# ---- firmware ----------------------------------------------------------------------------------
+include firmware/targets/targets.mk
+include sim/qemu/plugin.mk
+include firmware/firmware.mk
+
+# ---- deps, run, test, bench ----------------------------------------------------------------------
+deps:
+	@tools/deps.sh
+
+RUN_ARGS ?=
+run: deps
+	@$(MAKE) --no-print-directory all
+	@mkdir -p $(B)/run
+	$(B)/sim/lt-sim --json $(B)/run/report.json $(RUN_ARGS)
+
+TEST_BINS := $(foreach v,$(VARIANTS),$(UNIT_TESTS:%=$(B)/$(v)/test_%) $(B)/$(v)/lt-vectors) \
+    $(B)/sim/test_cache $(B)/host/lt-trace $(B)/sim/lt-sim
+
+test: deps
+	@$(MAKE) --no-print-directory test-build
+	@tests/run_tests.sh
+
+test-build: $(TEST_BINS) firmware $(PLUGIN_SO)
+
+bench: deps
+	@$(MAKE) --no-print-directory all firmware $(PLUGIN_SO)
+	@tests/bench/bench.sh
+
+clean:
+	rm -rf $(B)
+
+.PHONY: all sim deps run test test-build bench clean firmware

@@ -1,0 +1,269 @@
+/* lt_isect.c - instantiates the packet kernels of lt_isect.inc for each numeric path:
+ * s15.16 fixed point (exact int64 products) and IEEE float32. The traits below are the only
+ * place where the two paths differ. Builds: all; float32 only with LT_CFG_FLOAT32.
+ */
+#include "lt/lt_isect.h"
+
+/* ---- fixed point: s15.16 positions, s1.30 directions ---------------------------------------- */
+
+/* 1/d per lane: 2^46 / d_raw (s1.30 -> s15.16), half up, saturated; d == 0 gives +max. */
+static lt_vq16_t recip_q30(lt_vq30_t d)
+{
+    lt_vq16_t r;
+    int i;
+    LT_COST(VDIV, 1);
+    for (i = 0; i < LT_LANES; i++) {
+        if (d.l[i] == 0) {
+            r.l[i] = LT_Q16_MAX;
+        } else {
+            int64_t q = lt__div_round64((int64_t)1 << 46, d.l[i]);
+            LT_EVENT(SAT, q != (int64_t)lt__ssat32(q));
+            r.l[i] = lt__ssat32(q);
+        }
+    }
+    return r;
+}
+
+void lt_ray16_q16_setup(lt_ray16_q16_t *r)
+{
+    r->rx = recip_q30(r->dx);
+    r->ry = recip_q30(r->dy);
+    r->rz = recip_q30(r->dz);
+}
+
+/* a*b - c*d exactly in int64, then rounded by f bits to int32 (saturating). */
+LT_INLINE lt_vi32_t q_cross(lt_vi32_t a, lt_vi32_t b, lt_vi32_t c, lt_vi32_t d, unsigned f)
+{
+    return lt_vql_round_sat(lt_vql_sub_wrap(lt_vql_mul(a, b), lt_vql_mul(c, d)), f);
+}
+
+LT_INLINE lt_vql_t q_dot(lt_vi32_t ax, lt_vi32_t ay, lt_vi32_t az, lt_vi32_t bx, lt_vi32_t by,
+                         lt_vi32_t bz)
+{
+    return lt_vql_add_wrap(lt_vql_add_wrap(lt_vql_mul(ax, bx), lt_vql_mul(ay, by)),
+                           lt_vql_mul(az, bz));
+}
+
+/* pvec = d x e: s1.30 x s15.16 -> 46 fractional bits -> s15.16. */
+LT_INLINE lt_vq16_t q_cross_dp(lt_vq30_t a, lt_vq16_t b, lt_vq30_t c, lt_vq16_t d)
+{
+    lt_vi32_t w = q_cross(lt_vi32_from_q30(a), lt_vi32_from_q16(b), lt_vi32_from_q30(c),
+                          lt_vi32_from_q16(d), 30);
+    lt_vq16_t r;
+    int i;
+    for (i = 0; i < LT_LANES; i++)
+        r.l[i] = w.l[i];
+    return r;
+}
+
+/* det, u = s15.16 . s15.16 -> s31.32 exact (|inputs| <= 2^(GEOM+2) keeps the sum < 2^63). */
+LT_INLINE lt_vql_t q_dot_pp(lt_vq16_t ax, lt_vq16_t ay, lt_vq16_t az, lt_vq16_t bx, lt_vq16_t by,
+                            lt_vq16_t bz)
+{
+    return q_dot(lt_vi32_from_q16(ax), lt_vi32_from_q16(ay), lt_vi32_from_q16(az),
+                 lt_vi32_from_q16(bx), lt_vi32_from_q16(by), lt_vi32_from_q16(bz));
+}
+
+/* Fractional bits of qvec: s25.6 holds |tvec||e1| up to 2^25 square units (tvec up to the scene
+ * diagonal, 2^14, times e1 up to a scene-sized edge, 2^11) at a relative resolution far below the
+ * s15.16 rounding of t for any triangle bigger than a few units^2 of qvec. */
+#define QV_FRAC 6u
+LT_INLINE lt_vi32_t q_cross_pp(lt_vq16_t a, lt_vq16_t b, lt_vq16_t c, lt_vq16_t d)
+{
+    return q_cross(lt_vi32_from_q16(a), lt_vi32_from_q16(b), lt_vi32_from_q16(c),
+                   lt_vi32_from_q16(d), 32u - QV_FRAC);
+}
+
+/* v = d . qvec: s1.30 x s25.6 -> 36 fractional bits, floored to 32 to compare with det. */
+LT_INLINE lt_vql_t q_dot_dq(lt_vq30_t dx, lt_vq30_t dy, lt_vq30_t dz, lt_vi32_t qx, lt_vi32_t qy,
+                            lt_vi32_t qz)
+{
+    return lt_vql_asr(q_dot(lt_vi32_from_q30(dx), lt_vi32_from_q30(dy), lt_vi32_from_q30(dz), qx, qy,
+                            qz),
+                      30u + QV_FRAC - 32u);
+}
+
+/* tnum = e2 . qvec: s15.16 x s25.6 -> 22 fractional bits. */
+LT_INLINE lt_vql_t q_dot_pq(lt_vq16_t ex, lt_vq16_t ey, lt_vq16_t ez, lt_vi32_t qx, lt_vi32_t qy,
+                            lt_vi32_t qz)
+{
+    return q_dot(lt_vi32_from_q16(ex), lt_vi32_from_q16(ey), lt_vi32_from_q16(ez), qx, qy, qz);
+}
+
+/* t = tnum / det as s15.16 (tnum has 16 + QV_FRAC fractional bits, det 32, det > 0):
+ * t_raw = tnum * 2^S / det with S = 32 - QV_FRAC, half up. When tnum * 2^S would overflow, det is
+ * shifted down instead; det then still keeps >= 31 significant bits for any t inside the s15.16
+ * range, and larger t saturate. */
+#define TDIV_SHIFT (32u - QV_FRAC)
+static lt_vq16_t q_tdiv_m(lt_vq16_t src, lt_mask16_t k, lt_vql_t tnum, lt_vql_t det)
+{
+    int i;
+    LT_COST(VDIV, 1);
+    LT_UTIL(k);  
+    for (i = 0; i < LT_LANES; i++) {
+        int64_t n = tnum.l[i], d = det.l[i], q;
+        uint64_t an;
+        unsigned room, s;
+        if (!LT__ON(k, i))
+            continue;
+        an = n < 0 ? (uint64_t)0 - (uint64_t)n : (uint64_t)n;
+        room = lt__clz64(an) - 2u; /* a left shift by `room` keeps |n| < 2^62 */
+        s = room >= TDIV_SHIFT ? TDIV_SHIFT : room;
+        n = (int64_t)((uint64_t)n << s); /* via unsigned: left shift of a negative is UB in C99 */
+        if (s < TDIV_SHIFT)
+            d = lt__asr64(d, TDIV_SHIFT - s);
+        if (d == 0) {
+            LT_EVENT(SAT, 1);
+            src.l[i] = n >= 0 ? LT_Q16_MAX : LT_Q16_MIN;
+            continue;
+        }
+        q = lt__div_round64(n, d);
+        LT_EVENT(SAT, q != (int64_t)lt__ssat32(q));
+        src.l[i] = lt__ssat32(q);
+    }
+    return src;
+}
+
+#define LTN_FN(name) name##_q16
+#define LTN_T lt_q16_t
+#define LTN_V lt_vq16_t
+#define LTN_RAY lt_ray16_q16_t
+#define LTN_AABB lt_aabb_q16_t
+#define LTN_TRI lt_tri_q16_t
+#define LTN_QV lt_vi32_t
+#define LTN_W lt_vql_t
+#define LTN_TN lt_vql_t
+#define LTN_SET1 lt_vq16_set1
+#define LTN_SUB lt_vq16_sub_sat
+#define LTN_MULR lt_vq16_mul_sat
+#define LTN_MIN lt_vq16_min
+#define LTN_MAX lt_vq16_max
+#define LTN_BLEND lt_vq16_blend
+#define LTN_CMPLE_M lt_vq16_cmple_m
+#define LTN_CMPLT_M lt_vq16_cmplt_m
+#define LTN_CMPGT_M lt_vq16_cmpgt_m
+#define LTN_SADD lt__q16_add_sat
+#define LTN_CROSS_DP q_cross_dp
+#define LTN_DOT_PP q_dot_pp
+#define LTN_CROSS_PP q_cross_pp
+#define LTN_DOT_DQ q_dot_dq
+#define LTN_DOT_PQ q_dot_pq
+#define LTN_W_ADD lt_vql_add_wrap
+#define LTN_W_NEG_M(k, a) lt_vql_sub_wrap_m((a), (k), lt_vql_set1(0), (a))
+#define LTN_TN_NEG_M LTN_W_NEG_M
+#define LTN_W_CMPLT0(k, a) lt_vql_cmplt_m((k), (a), lt_vql_set1(0))
+#define LTN_W_CMPGT0(k, a) lt_vql_cmpgt_m((k), (a), lt_vql_set1(0))
+#define LTN_W_CMPGE0(k, a) lt_vql_cmpge_m((k), (a), lt_vql_set1(0))
+#define LTN_W_CMPLE_M lt_vql_cmple_m
+#define LTN_TDIV_M q_tdiv_m
+#include "lt_isect.inc"
+#undef LTN_FN
+#undef LTN_T
+#undef LTN_V
+#undef LTN_RAY
+#undef LTN_AABB
+#undef LTN_TRI
+#undef LTN_QV
+#undef LTN_W
+#undef LTN_TN
+#undef LTN_SET1
+#undef LTN_SUB
+#undef LTN_MULR
+#undef LTN_MIN
+#undef LTN_MAX
+#undef LTN_BLEND
+#undef LTN_CMPLE_M
+#undef LTN_CMPLT_M
+#undef LTN_CMPGT_M
+#undef LTN_SADD
+#undef LTN_CROSS_DP
+#undef LTN_DOT_PP
+#undef LTN_CROSS_PP
+#undef LTN_DOT_DQ
+#undef LTN_DOT_PQ
+#undef LTN_W_ADD
+#undef LTN_W_NEG_M
+#undef LTN_TN_NEG_M
+#undef LTN_W_CMPLT0
+#undef LTN_W_CMPGT0
+#undef LTN_W_CMPGE0
+#undef LTN_W_CMPLE_M
+#undef LTN_TDIV_M
+
+/* ---- float32 -------------------------------------------------------------------------------- */
+#if LT_CFG_FLOAT32
+
+static lt_vf32_t recip_f32(lt_vf32_t d)
+{
+    lt_vf32_t r;
+    int i;
+    LT_COST(FDIV, 1);
+    LT_COST(FCMP, 1);
+    LT_COST(VALU, 1);
+    for (i = 0; i < LT_LANES; i++) {
+        /* +-0 -> +-FLT_MAX (the sign bit of -0.0 is tested through 1/d = -inf) */
+        float q = 1.0f / d.l[i];
+        if (q > 3.40282347e38f)
+            q = 3.40282347e38f;
+        else if (q < -3.40282347e38f)
+            q = -3.40282347e38f;
+        r.l[i] = q;
+    }
+    return r;
+}
+
+void lt_ray16_f32_setup(lt_ray16_f32_t *r)
+{
+    r->rx = recip_f32(r->dx);
+    r->ry = recip_f32(r->dy);
+    r->rz = recip_f32(r->dz);
+}
+
+LT_INLINE lt_vf32_t f_cross(lt_vf32_t a, lt_vf32_t b, lt_vf32_t c, lt_vf32_t d)
+{
+    return lt_vf32_sub(lt_vf32_mul(a, b), lt_vf32_mul(c, d));
+}
+
+LT_INLINE lt_vf32_t f_dot(lt_vf32_t ax, lt_vf32_t ay, lt_vf32_t az, lt_vf32_t bx, lt_vf32_t by,
+                          lt_vf32_t bz)
+{
+    return lt_vf32_add(lt_vf32_add(lt_vf32_mul(ax, bx), lt_vf32_mul(ay, by)), lt_vf32_mul(az, bz));
+}
+
+LT_INLINE float f_sadd(float a, float b) { return a + b; }
+
+#define LTN_FN(name) name##_f32
+#define LTN_T float
+#define LTN_V lt_vf32_t
+#define LTN_RAY lt_ray16_f32_t
+#define LTN_AABB lt_aabb_f32_t
+#define LTN_TRI lt_tri_f32_t
+#define LTN_QV lt_vf32_t
+#define LTN_W lt_vf32_t
+#define LTN_TN lt_vf32_t
+#define LTN_SET1 lt_vf32_set1
+#define LTN_SUB lt_vf32_sub
+#define LTN_MULR lt_vf32_mul
+#define LTN_MIN lt_vf32_min
+#define LTN_MAX lt_vf32_max
+#define LTN_BLEND lt_vf32_blend
+#define LTN_CMPLE_M lt_vf32_cmple_m
+#define LTN_CMPLT_M lt_vf32_cmplt_m
+#define LTN_CMPGT_M lt_vf32_cmpgt_m
+#define LTN_SADD f_sadd
+#define LTN_CROSS_DP f_cross
+#define LTN_DOT_PP f_dot
+#define LTN_CROSS_PP f_cross
+#define LTN_DOT_DQ f_dot
+#define LTN_DOT_PQ f_dot
+#define LTN_W_ADD lt_vf32_add
+#define LTN_W_NEG_M(k, a) lt_vf32_neg_m((a), (k), (a))
+#define LTN_TN_NEG_M LTN_W_NEG_M
+#define LTN_W_CMPLT0(k, a) lt_vf32_cmplt_m((k), (a), lt_vf32_set1(0.0f))
+#define LTN_W_CMPGT0(k, a) lt_vf32_cmpgt_m((k), (a), lt_vf32_set1(0.0f))
+#define LTN_W_CMPGE0(k, a) lt_vf32_cmpge_m((k), (a), lt_vf32_set1(0.0f))
+#define LTN_W_CMPLE_M lt_vf32_cmple_m
+#define LTN_TDIV_M(src, k, n, d) lt_vf32_div_m((src), (k), (n), (d))
+#include "lt_isect.inc"
+
+#endif /* LT_CFG_FLOAT32 */

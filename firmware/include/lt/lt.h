@@ -1,0 +1,15 @@
+/* lt.h - umbrella header of the lanetrace core: formats, lane model, cost hook, kernels.
+ * Builds: all.
+ */
+#ifndef LT_H
+#define LT_H
+
+#include "lt_config.h"
+#include "lt_port.h"
+#include "lt_status.h"
+#include "lt_cost.h"
+#include "lt_fx.h"
+#include "lt_v16.h"
+#include "lt_isect.h"
+
+#endif /* LT_H */

@@ -1,0 +1,117 @@
+/* lt_isect.h - 16-ray packets against boxes and triangles: the Kay-Kajiya slab test (seeds/002) and
+ * the Moller-Trumbore ray/triangle test (seeds/004), in s15.16 fixed point and in float32, both
+ * compiled from one kernel source (firmware/core/lt_isect.inc). Also a flat "chunk" scene (boxes
+ * over runs of 16 triangles), the smallest structure that exercises both kernels end to end.
+ * Builds: all; float32 entry points only with LT_CFG_FLOAT32.
+ */
+#ifndef LT_ISECT_H
+#define LT_ISECT_H
+
+#include "lt_v16.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* A packet of 16 rays in fixed point. 16 x 64 B x 11 = 704 bytes, 4-byte aligned. */
+typedef struct lt_ray16_q16 {
+    lt_vq16_t ox, oy, oz;   /* origin, s15.16 world units (scene-scaled, |x| <= 2^LT_CFG_GEOM_MAX_LOG2) */
+    lt_vq30_t dx, dy, dz;   /* unit direction, s1.30 */
+    lt_vq16_t rx, ry, rz;   /* 1/d, s15.16, from lt_ray16_q16_setup; |d| < 2^-15 saturates to +-max */
+    lt_vq16_t tmin, tmax;   /* parametric interval, s15.16 (world units along the unit direction);
+                               tmax < LT_Q16_MAX; a hit shortens tmax */
+} lt_ray16_q16_t;
+LT_STATIC_ASSERT(sizeof(lt_ray16_q16_t) == 11 * 64, "ray packet is 11 lane vectors");
+
+/* Axis-aligned box, 24 bytes: lo <= hi per axis (a zero-thickness box is valid). */
+typedef struct lt_aabb_q16 {
+    lt_q16_t lo[3]; /* s15.16 */
+    lt_q16_t hi[3]; /* s15.16 */
+} lt_aabb_q16_t;
+LT_STATIC_ASSERT(sizeof(lt_aabb_q16_t) == 24, "aabb is 24 bytes");
+
+/* Triangle as vertex 0 and two edges, 36 bytes (Moller-Trumbore layout). */
+typedef struct lt_tri_q16 {
+    lt_q16_t v0[3]; /* s15.16, |v0| <= 2^LT_CFG_GEOM_MAX_LOG2 */
+    lt_q16_t e1[3]; /* v1 - v0, s15.16 */
+    lt_q16_t e2[3]; /* v2 - v0, s15.16 */
+} lt_tri_q16_t;
+LT_STATIC_ASSERT(sizeof(lt_tri_q16_t) == 36, "triangle is 36 bytes");
+
+/* Closest hit per lane: triangle id (-1 = none); its distance is the ray's tmax. 64 bytes. */
+typedef struct lt_hit16 {
+    lt_vi32_t id; /* triangle index, -1 for no hit */
+} lt_hit16_t;
+
+/* Compute rx, ry, rz = 1/d. Format: s1.30 -> s15.16 (2^46 / d_raw). Rounding: half up.
+ * Overflow: |d| < 2^-15 saturates to +-max (d == 0 gives +max). Cost: VDIV x3. */
+void lt_ray16_q16_setup(lt_ray16_q16_t *r);
+
+/* Slab test of the lanes in k against box b. Writes the entry distance max(tmin, near planes) to
+ * *tnear for hit lanes (others unchanged). A ray parallel to a slab hits iff its origin lies in the
+ * closed slab. Format: s15.16. Rounding: each t is (plane - o) * (1/d) rounded half up, so a box
+ * whose true interval is shorter than the bound in docs/numerics.md may be classified either way.
+ * Overflow: t saturates, which keeps the classification. Cost: VALU x18, VMUL x6, VCMP x1, SLOAD x6,
+ * VBCAST x6. Returns: the mask of lanes in k whose ray meets the box within [tmin, tmax]. */
+lt_mask16_t lt_slab16_q16(const lt_ray16_q16_t *r, lt_mask16_t k, const lt_aabb_q16_t *b,
+                          lt_vq16_t *tnear);
+
+/* Moller-Trumbore test of the lanes in k against one triangle, two-sided, edges inclusive. Lanes
+ * that hit at tmin < t < tmax get tmax = t and hit->id = id. Format: products kept exact in int64
+ * (q30 x q16 -> 46 bits, q16 x q16 -> 32 bits), qvec rounded to s25.6, t = num / det rounded half up
+ * to s15.16. Overflow: none for inputs within LT_CFG_GEOM_MAX_LOG2. Cost: see docs/numerics.md.
+ * Returns: the mask of lanes whose ray was shortened by this triangle. */
+lt_mask16_t lt_tri16_q16(lt_ray16_q16_t *r, lt_mask16_t k, const lt_tri_q16_t *tri, int32_t id,
+                         lt_hit16_t *hit);
+
+/* ---- flat chunk scene: one box per run of 16 triangles -------------------------------------- */
+
+#define LT_CHUNK_TRIS 16
+
+/* Number of chunk boxes for n triangles. */
+#define LT_CHUNK_COUNT(n) (((n) + LT_CHUNK_TRIS - 1) / LT_CHUNK_TRIS)
+
+/* Bounds of each run of 16 triangles into boxes[LT_CHUNK_COUNT(n)]. Cost: SALU per vertex (BUILD).
+ * Returns: LT_OK, or LT_E_ARG for NULL pointers or n == 0. */
+lt_status_t lt_chunks_build_q16(const lt_tri_q16_t *tris, uint32_t n, lt_aabb_q16_t *boxes);
+
+/* Closest hit of a packet against a chunk scene: slab test per chunk (TRAVERSE), triangle tests of
+ * the hit chunks (INTERSECT). hit->id is reset to -1 first. Returns: mask of lanes that hit. */
+lt_mask16_t lt_chunks_trace16_q16(const lt_tri_q16_t *tris, uint32_t n, const lt_aabb_q16_t *boxes,
+                                  lt_ray16_q16_t *r, lt_mask16_t k, lt_hit16_t *hit);
+
+#if LT_CFG_FLOAT32
+/* The same in float32: what a Larrabee-like machine would run. 704 bytes. */
+typedef struct lt_ray16_f32 {
+    lt_vf32_t ox, oy, oz;   /* origin, world units */
+    lt_vf32_t dx, dy, dz;   /* unit direction */
+    lt_vf32_t rx, ry, rz;   /* 1/d; d == +-0 gives +-FLT_MAX (never inf, so 0 * r is never NaN) */
+    lt_vf32_t tmin, tmax;   /* parametric interval */
+} lt_ray16_f32_t;
+
+typedef struct lt_aabb_f32 {
+    float lo[3];
+    float hi[3];
+} lt_aabb_f32_t;
+
+typedef struct lt_tri_f32 {
+    float v0[3];
+    float e1[3];
+    float e2[3];
+} lt_tri_f32_t;
+
+/* 1/d per lane, IEEE division; d == +-0 gives +-FLT_MAX. Cost: FDIV x3, FCMP x3, VALU x3. */
+void lt_ray16_f32_setup(lt_ray16_f32_t *r);
+lt_mask16_t lt_slab16_f32(const lt_ray16_f32_t *r, lt_mask16_t k, const lt_aabb_f32_t *b,
+                          lt_vf32_t *tnear);
+lt_mask16_t lt_tri16_f32(lt_ray16_f32_t *r, lt_mask16_t k, const lt_tri_f32_t *tri, int32_t id,
+                         lt_hit16_t *hit);
+lt_status_t lt_chunks_build_f32(const lt_tri_f32_t *tris, uint32_t n, lt_aabb_f32_t *boxes);
+lt_mask16_t lt_chunks_trace16_f32(const lt_tri_f32_t *tris, uint32_t n, const lt_aabb_f32_t *boxes,
+                                  lt_ray16_f32_t *r, lt_mask16_t k, lt_hit16_t *hit);
+#endif
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* LT_ISECT_H */

@@ -1,0 +1,457 @@
+/* lt_v16.h - the 16-lane SIMD model: lane vector types, 16-bit masks and lane ops.
+ * Every op is a plain C loop over 16 lanes (the reference; GCC auto-vectorises it on the host) that
+ * charges itself through the cost hook. Naming: lt_v<fmt>_<op>[_m|_z]: _m merges (inactive lanes keep
+ * src, LRBni {k} semantics), _z zeroes inactive lanes. Compares return lt_mask16_t (bit i = lane i).
+ * Builds: all. Float32 ops exist only with LT_CFG_FLOAT32.
+ */
+#ifndef LT_V16_H
+#define LT_V16_H
+
+#include <stdint.h>
+#include "lt_port.h"
+#include "lt_config.h"
+#include "lt_cost.h"
+#include "lt_fx.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define LT_LANES 16
+typedef uint16_t lt_mask16_t; /* bit i = lane i */
+#define LT_MASK_ALL ((lt_mask16_t)0xFFFFu)
+
+typedef struct { int32_t l[LT_LANES]; } lt_vq16_t;  /* 16 x s15.16, 64 bytes */
+typedef struct { int32_t l[LT_LANES]; } lt_vq30_t;  /* 16 x s1.30, 64 bytes */
+typedef struct { int32_t l[LT_LANES]; } lt_vi32_t;  /* 16 x int32 (indices, ids), 64 bytes */
+typedef struct { int64_t l[LT_LANES]; } lt_vql_t;   /* 16 x int64 wide accumulator, 128 bytes;
+                                                        fractional bits stated at each use */
+typedef struct { int16_t l[LT_LANES]; } lt_vh8_t;   /* 16 x s7.8, 32 bytes */
+#if LT_CFG_FLOAT32
+typedef struct { float l[LT_LANES]; } lt_vf32_t;    /* 16 x IEEE binary32, 64 bytes */
+#endif
+
+#define LT__ON(k, i) ((((unsigned)(k)) >> (i)) & 1u)
+
+/* ---- masks --------------------------------------------------------------------------------- */
+
+/* Mask queries. Format: 16-bit mask. Cost: MASK x1 each. */
+LT_INLINE int lt_mask16_any(lt_mask16_t k)
+{
+    LT_COST(MASK, 1);
+    return k != 0;
+}
+
+LT_INLINE int lt_mask16_all(lt_mask16_t k)
+{
+    LT_COST(MASK, 1);
+    return k == LT_MASK_ALL;
+}
+
+LT_INLINE unsigned lt_mask16_popcount(lt_mask16_t k)
+{
+    LT_COST(MASK, 1);
+    return lt__popcount32(k);
+}
+
+/* Index of the lowest set lane (bit-scan forward); 16 for an empty mask. Cost: MASK x1. */
+LT_INLINE unsigned lt_mask16_first(lt_mask16_t k)
+{
+    LT_COST(MASK, 1);
+    return k != 0 ? lt__ctz32(k) : 16u;
+}
+
+/* k with its lowest set lane cleared: iterate active lanes with
+ * for (m = k; m; m = lt_mask16_clear_first(m)) { i = lt_mask16_first(m); ... }. Cost: MASK x1. */
+LT_INLINE lt_mask16_t lt_mask16_clear_first(lt_mask16_t k)
+{
+    LT_COST(MASK, 1);
+    return (lt_mask16_t)(k & (k - 1u));
+}
+
+/* ---- generators: one body per op, three masking variants ------------------------------------ */
+
+/* Binary op r = f(a, b): plain, merge-masked (_m) and zero-masked (_z). */
+#define LT__V16_BIN(VT, name, op, f)                                                               \
+    LT_INLINE VT name(VT a, VT b)                                                                  \
+    {                                                                                              \
+        VT r;                                                                                      \
+        int i;                                                                                     \
+        LT_COST(op, 1);                                                                            \
+        for (i = 0; i < LT_LANES; i++)                                                             \
+            r.l[i] = f(a.l[i], b.l[i]);                                                            \
+        return r;                                                                                  \
+    }                                                                                              \
+    LT_INLINE VT name##_m(VT src, lt_mask16_t k, VT a, VT b)                                       \
+    {                                                                                              \
+        int i;                                                                                     \
+        LT_COST(op, 1);                                                                            \
+        LT_UTIL(k);                                                                                 \
+        for (i = 0; i < LT_LANES; i++)                                                             \
+            if (LT__ON(k, i))                                                                      \
+                src.l[i] = f(a.l[i], b.l[i]);                                                      \
+        return src;                                                                                \
+    }                                                                                              \
+    LT_INLINE VT name##_z(lt_mask16_t k, VT a, VT b)                                               \
+    {                                                                                              \
+        VT r;                                                                                      \
+        int i;                                                                                     \
+        LT_COST(op, 1);                                                                            \
+        LT_UTIL(k);                                                                                 \
+        for (i = 0; i < LT_LANES; i++)                                                             \
+            r.l[i] = 0;                                                                            \
+        for (i = 0; i < LT_LANES; i++)                                                             \
+            if (LT__ON(k, i))                                                                      \
+                r.l[i] = f(a.l[i], b.l[i]);                                                        \
+        return r;                                                                                  \
+    }
+
+/* Unary op r = f(a) in the same three variants. */
+#define LT__V16_UN(VT, name, op, f)                                                                \
+    LT_INLINE VT name(VT a)                                                                        \
+    {                                                                                              \
+        VT r;                                                                                      \
+        int i;                                                                                     \
+        LT_COST(op, 1);                                                                            \
+        for (i = 0; i < LT_LANES; i++)                                                             \
+            r.l[i] = f(a.l[i]);                                                                    \
+        return r;                                                                                  \
+    }                                                                                              \
+    LT_INLINE VT name##_m(VT src, lt_mask16_t k, VT a)                                             \
+    {                                                                                              \
+        int i;                                                                                     \
+        LT_COST(op, 1);                                                                            \
+        LT_UTIL(k);                                                                                 \
+        for (i = 0; i < LT_LANES; i++)                                                             \
+            if (LT__ON(k, i))                                                                      \
+                src.l[i] = f(a.l[i]);                                                              \
+        return src;                                                                                \
+    }                                                                                              \
+    LT_INLINE VT name##_z(lt_mask16_t k, VT a)                                                     \
+    {                                                                                              \
+        VT r;                                                                                      \
+        int i;                                                                                     \
+        LT_COST(op, 1);                                                                            \
+        LT_UTIL(k);                                                                                 \
+        for (i = 0; i < LT_LANES; i++)                                                             \
+            r.l[i] = 0;                                                                            \
+        for (i = 0; i < LT_LANES; i++)                                                             \
+            if (LT__ON(k, i))                                                                      \
+                r.l[i] = f(a.l[i]);                                                                \
+        return r;                                                                                  \
+    }
+
+/* Compare: mask of lanes where a OP b; the _m form compares only lanes in k (others give 0). */
+#define LT__V16_CMP(VT, name, op, rel)                                                             \
+    LT_INLINE lt_mask16_t name(VT a, VT b)                                                         \
+    {                                                                                              \
+        unsigned m = 0;                                                                            \
+        int i;                                                                                     \
+        LT_COST(op, 1);                                                                            \
+        for (i = 0; i < LT_LANES; i++)                                                             \
+            m |= (unsigned)(a.l[i] rel b.l[i]) << i;                                               \
+        return (lt_mask16_t)m;                                                                     \
+    }                                                                                              \
+    LT_INLINE lt_mask16_t name##_m(lt_mask16_t k, VT a, VT b)                                      \
+    {                                                                                              \
+        unsigned m = 0;                                                                            \
+        int i;                                                                                     \
+        LT_COST(op, 1);                                                                            \
+        LT_UTIL(k);                                                                                 \
+        for (i = 0; i < LT_LANES; i++)                                                             \
+            m |= (unsigned)(a.l[i] rel b.l[i]) << i;                                               \
+        return (lt_mask16_t)(m & k);                                                               \
+    }
+
+/* Broadcast, blend, load, store, gather and horizontal min/max for a lane type with element ET. */
+#define LT__V16_MOVE(VT, ET, pfx, valu, vred)                                                      \
+    LT_INLINE VT pfx##_set1(ET x)                                                                  \
+    {                                                                                              \
+        VT r;                                                                                      \
+        int i;                                                                                     \
+        LT_COST(VBCAST, 1);                                                                        \
+        for (i = 0; i < LT_LANES; i++)                                                             \
+            r.l[i] = x;                                                                            \
+        return r;                                                                                  \
+    }                                                                                              \
+    /* Lane i = b.l[i] where k has bit i, else a.l[i]. */                                          \
+    LT_INLINE VT pfx##_blend(lt_mask16_t k, VT a, VT b)                                            \
+    {                                                                                              \
+        int i;                                                                                     \
+        LT_COST(valu, 1);                                                                          \
+        LT_UTIL(k);                                                                                 \
+        for (i = 0; i < LT_LANES; i++)                                                             \
+            if (LT__ON(k, i))                                                                      \
+                a.l[i] = b.l[i];                                                                   \
+        return a;                                                                                  \
+    }                                                                                              \
+    LT_INLINE VT pfx##_load(const ET *p)                                                           \
+    {                                                                                              \
+        VT r;                                                                                      \
+        int i;                                                                                     \
+        LT_COST(VLOAD, 1);                                                                         \
+        LT_MEM(p, sizeof(VT), LT_MEM_READ);                                                        \
+        for (i = 0; i < LT_LANES; i++)                                                             \
+            r.l[i] = p[i];                                                                         \
+        return r;                                                                                  \
+    }                                                                                              \
+    LT_INLINE void pfx##_store(ET *p, VT a)                                                        \
+    {                                                                                              \
+        int i;                                                                                     \
+        LT_COST(VSTORE, 1);                                                                        \
+        LT_MEM(p, sizeof(VT), LT_MEM_WRITE);                                                       \
+        for (i = 0; i < LT_LANES; i++)                                                             \
+            p[i] = a.l[i];                                                                         \
+    }                                                                                              \
+    /* Store only the lanes in k; memory of inactive lanes is not touched. */                      \
+    LT_INLINE void pfx##_store_m(ET *p, lt_mask16_t k, VT a)                                       \
+    {                                                                                              \
+        int i;                                                                                     \
+        LT_COST(VSTORE, 1);                                                                        \
+        LT_UTIL(k);                                                                                 \
+        LT_MEM(p, sizeof(VT), LT_MEM_WRITE);                                                       \
+        for (i = 0; i < LT_LANES; i++)                                                             \
+            if (LT__ON(k, i))                                                                      \
+                p[i] = a.l[i];                                                                     \
+    }                                                                                              \
+    /* Lane i = base[idx.l[i]] for lanes in k; others keep src. One VGATHER and one memory        \
+     * access per active lane. */                                                                  \
+    LT_INLINE VT pfx##_gather_m(VT src, lt_mask16_t k, const ET *base, lt_vi32_t idx)              \
+    {                                                                                              \
+        int i;                                                                                     \
+        LT_COST(VGATHER, lt__popcount32(k));                                                       \
+        LT_UTIL(k);                                                                                 \
+        for (i = 0; i < LT_LANES; i++)                                                             \
+            if (LT__ON(k, i)) {                                                                    \
+                LT_MEM(&base[idx.l[i]], sizeof(ET), LT_MEM_READ);                                  \
+                src.l[i] = base[idx.l[i]];                                                         \
+            }                                                                                      \
+        return src;                                                                                \
+    }                                                                                              \
+    /* Minimum/maximum over the lanes in k; an empty k returns `none` (the caller's identity). */  \
+    LT_INLINE ET pfx##_hmin(lt_mask16_t k, VT a, ET none)                                          \
+    {                                                                                              \
+        int i;                                                                                     \
+        LT_COST(vred, 1);                                                                          \
+        for (i = 0; i < LT_LANES; i++)                                                             \
+            if (LT__ON(k, i) && a.l[i] < none)                                                     \
+                none = a.l[i];                                                                     \
+        return none;                                                                               \
+    }                                                                                              \
+    LT_INLINE ET pfx##_hmax(lt_mask16_t k, VT a, ET none)                                          \
+    {                                                                                              \
+        int i;                                                                                     \
+        LT_COST(vred, 1);                                                                          \
+        for (i = 0; i < LT_LANES; i++)                                                             \
+            if (LT__ON(k, i) && a.l[i] > none)                                                     \
+                none = a.l[i];                                                                     \
+        return none;                                                                               \
+    }
+
+/* ---- s15.16 lanes -------------------------------------------------------------------------- */
+/* Each op below has the scalar op's contract per lane (see lt_fx.h): Format s15.16, Rounding half up,
+ * Overflow saturates (_sat) or wraps (_wrap). Cost: one op of the class named. */
+LT__V16_MOVE(lt_vq16_t, int32_t, lt_vq16, VALU, VRED)
+LT__V16_BIN(lt_vq16_t, lt_vq16_add_sat, VALU, lt__q16_add_sat)
+LT__V16_BIN(lt_vq16_t, lt_vq16_sub_sat, VALU, lt__q16_sub_sat)
+LT__V16_BIN(lt_vq16_t, lt_vq16_add_wrap, VALU, lt__q16_add_wrap)
+LT__V16_BIN(lt_vq16_t, lt_vq16_sub_wrap, VALU, lt__q16_sub_wrap)
+LT__V16_BIN(lt_vq16_t, lt_vq16_min, VALU, lt__q16_min)
+LT__V16_BIN(lt_vq16_t, lt_vq16_max, VALU, lt__q16_max)
+LT__V16_BIN(lt_vq16_t, lt_vq16_mul_sat, VMUL, lt__q16_mul_sat)
+LT__V16_BIN(lt_vq16_t, lt_vq16_mul_sat_rd, VMUL, lt__q16_mul_sat_rd)
+LT__V16_BIN(lt_vq16_t, lt_vq16_div_sat, VDIV, lt__q16_div_sat)
+LT__V16_UN(lt_vq16_t, lt_vq16_abs_sat, VALU, lt__q16_abs_sat)
+LT__V16_UN(lt_vq16_t, lt_vq16_neg_sat, VALU, lt__q16_neg_sat)
+LT__V16_CMP(lt_vq16_t, lt_vq16_cmplt, VCMP, <)
+LT__V16_CMP(lt_vq16_t, lt_vq16_cmple, VCMP, <=)
+LT__V16_CMP(lt_vq16_t, lt_vq16_cmpgt, VCMP, >)
+LT__V16_CMP(lt_vq16_t, lt_vq16_cmpge, VCMP, >=)
+LT__V16_CMP(lt_vq16_t, lt_vq16_cmpeq, VCMP, ==)
+
+LT_INLINE lt_q16_t lt__q16_recip_sat(lt_q16_t x) { return lt__q16_div_sat(LT_Q16_ONE, x); }
+/* 1/x per lane. Format: s15.16 -> s15.16; x == 0 gives +max. Rounding: half up. Overflow: saturates.
+ * Cost: VDIV x1. */
+LT__V16_UN(lt_vq16_t, lt_vq16_recip_sat, VDIV, lt__q16_recip_sat)
+
+/* a * b per lane. Format: s15.16 x s1.30 -> s17.46 (exact) -> s15.16. Rounding: half up.
+ * Overflow: saturates. Cost: VMUL x1. */
+LT_INLINE lt_vq16_t lt_vq16_mul_q30_sat(lt_vq16_t a, lt_vq30_t b)
+{
+    int i;
+    LT_COST(VMUL, 1);
+    for (i = 0; i < LT_LANES; i++)
+        a.l[i] = lt__q16_mul_q30_sat(a.l[i], b.l[i]);
+    return a;
+}
+
+/* ---- s1.30 lanes --------------------------------------------------------------------------- */
+LT__V16_MOVE(lt_vq30_t, int32_t, lt_vq30, VALU, VRED)
+LT__V16_BIN(lt_vq30_t, lt_vq30_mul_sat, VMUL, lt__q30_mul_sat)
+
+/* s1.30 -> s15.16 per lane. Rounding: half up. Overflow: none. Cost: VCVT x1. */
+LT_INLINE lt_vq16_t lt_vq16_from_q30(lt_vq30_t a)
+{
+    lt_vq16_t r;
+    int i;
+    LT_COST(VCVT, 1);
+    for (i = 0; i < LT_LANES; i++)
+        r.l[i] = (int32_t)lt__asr64((int64_t)a.l[i] + 8192, 14);
+    return r;
+}
+
+/* ---- int32 lanes --------------------------------------------------------------------------- */
+LT_INLINE int32_t lt__i32_add_wrap(int32_t a, int32_t b) { return lt__wrap32((int64_t)a + b); }
+LT__V16_MOVE(lt_vi32_t, int32_t, lt_vi32, VALU, VRED)
+LT__V16_BIN(lt_vi32_t, lt_vi32_add_wrap, VALU, lt__i32_add_wrap)
+LT__V16_CMP(lt_vi32_t, lt_vi32_cmpeq, VCMP, ==)
+
+/* 0, 1, ..., 15. Cost: VALU x1. */
+LT_INLINE lt_vi32_t lt_vi32_iota(void)
+{
+    lt_vi32_t r;
+    int i;
+    LT_COST(VALU, 1);
+    for (i = 0; i < LT_LANES; i++)
+        r.l[i] = i;
+    return r;
+}
+
+/* ---- wide int64 lanes ---------------------------------------------------------------------- */
+/* Products and sums of products, kept exact. The fractional bit count is the caller's to track
+ * (q16 x q16 -> 32 bits, q16 x q30 -> 46 bits); sums are _wrap because the kernels bound their
+ * inputs so that no sum can overflow (docs/numerics.md). */
+LT_INLINE int64_t lt__l64_add_wrap(int64_t a, int64_t b) { return (int64_t)((uint64_t)a + (uint64_t)b); }
+LT_INLINE int64_t lt__l64_sub_wrap(int64_t a, int64_t b) { return (int64_t)((uint64_t)a - (uint64_t)b); }
+LT__V16_BIN(lt_vql_t, lt_vql_add_wrap, VMULW, lt__l64_add_wrap)
+LT__V16_BIN(lt_vql_t, lt_vql_sub_wrap, VMULW, lt__l64_sub_wrap)
+LT__V16_CMP(lt_vql_t, lt_vql_cmplt, VCMP, <)
+LT__V16_CMP(lt_vql_t, lt_vql_cmple, VCMP, <=)
+LT__V16_CMP(lt_vql_t, lt_vql_cmpgt, VCMP, >)
+LT__V16_CMP(lt_vql_t, lt_vql_cmpge, VCMP, >=)
+
+/* Exact product per lane. Format: int32 x int32 -> int64 (fractional bits add). Overflow: none.
+ * Cost: VMUL x1. */
+LT_INLINE lt_vql_t lt_vql_mul(lt_vi32_t a, lt_vi32_t b)
+{
+    lt_vql_t r;
+    int i;
+    LT_COST(VMUL, 1);
+    for (i = 0; i < LT_LANES; i++)
+        r.l[i] = lt__mul32x32_64(a.l[i], b.l[i]);
+    return r;
+}
+
+/* Round away f fractional bits (1..31), half up, and saturate to int32. Cost: VSHIFT x1. */
+LT_INLINE lt_vi32_t lt_vql_round_sat(lt_vql_t a, unsigned f)
+{
+    lt_vi32_t r;
+    int i;
+    LT_COST(VSHIFT, 1);
+    for (i = 0; i < LT_LANES; i++)
+        r.l[i] = lt__round_sat32(a.l[i], f);
+    return r;
+}
+
+/* Arithmetic right shift by s (0..63), rounding toward minus infinity. Cost: VSHIFT x1. */
+LT_INLINE lt_vql_t lt_vql_asr(lt_vql_t a, unsigned s)
+{
+    int i;
+    LT_COST(VSHIFT, 1);
+    for (i = 0; i < LT_LANES; i++)
+        a.l[i] = lt__asr64(a.l[i], s);
+    return a;
+}
+
+LT_INLINE lt_vql_t lt_vql_set1(int64_t x)
+{
+    lt_vql_t r;
+    int i;
+    LT_COST(VBCAST, 1);
+    for (i = 0; i < LT_LANES; i++)
+        r.l[i] = x;
+    return r;
+}
+
+/* Reinterpret s15.16 or s1.30 lanes as plain int32 lanes for lt_vql_mul (no cost: a register rename). */
+LT_INLINE lt_vi32_t lt_vi32_from_q16(lt_vq16_t a)
+{
+    lt_vi32_t r;
+    int i;
+    for (i = 0; i < LT_LANES; i++)
+        r.l[i] = a.l[i];
+    return r;
+}
+
+LT_INLINE lt_vi32_t lt_vi32_from_q30(lt_vq30_t a)
+{
+    lt_vi32_t r;
+    int i;
+    for (i = 0; i < LT_LANES; i++)
+        r.l[i] = a.l[i];
+    return r;
+}
+
+/* ---- s7.8 narrow lanes --------------------------------------------------------------------- */
+LT__V16_MOVE(lt_vh8_t, int16_t, lt_vh8, VALU, VRED)
+LT__V16_BIN(lt_vh8_t, lt_vh8_add_sat, VALU, lt__h8_add_sat)
+LT__V16_BIN(lt_vh8_t, lt_vh8_sub_sat, VALU, lt__h8_sub_sat)
+LT__V16_BIN(lt_vh8_t, lt_vh8_mul_sat, VMUL, lt__h8_mul_sat)
+LT__V16_CMP(lt_vh8_t, lt_vh8_cmplt, VCMP, <)
+LT__V16_CMP(lt_vh8_t, lt_vh8_cmple, VCMP, <=)
+
+/* s7.8 -> s15.16 per lane (exact) and back (half up, saturating). Cost: VCVT x1. */
+LT_INLINE lt_vq16_t lt_vq16_from_h8(lt_vh8_t a)
+{
+    lt_vq16_t r;
+    int i;
+    LT_COST(VCVT, 1);
+    for (i = 0; i < LT_LANES; i++)
+        r.l[i] = (int32_t)a.l[i] * 256;
+    return r;
+}
+
+LT_INLINE lt_vh8_t lt_vh8_from_q16_sat(lt_vq16_t a)
+{
+    lt_vh8_t r;
+    int i;
+    LT_COST(VCVT, 1);
+    for (i = 0; i < LT_LANES; i++)
+        r.l[i] = lt__h8_from_q16_sat(a.l[i]);
+    return r;
+}
+
+/* ---- float32 lanes ------------------------------------------------------------------------- */
+#if LT_CFG_FLOAT32
+/* IEEE binary32, round to nearest even, no contraction (builds use -ffp-contract=off), so results
+ * are bit-identical on every target. min/max return b when either input is NaN (a < b ? a : b). */
+LT_INLINE float lt__f32_add(float a, float b) { return a + b; }
+LT_INLINE float lt__f32_sub(float a, float b) { return a - b; }
+LT_INLINE float lt__f32_mul(float a, float b) { return a * b; }
+LT_INLINE float lt__f32_div(float a, float b) { return a / b; }
+LT_INLINE float lt__f32_min(float a, float b) { return a < b ? a : b; }
+LT_INLINE float lt__f32_max(float a, float b) { return a > b ? a : b; }
+LT_INLINE float lt__f32_rcp(float a) { return 1.0f / a; }
+LT_INLINE float lt__f32_abs(float a) { return a < 0.0f ? -a : a; }
+LT_INLINE float lt__f32_neg(float a) { return -a; }
+LT__V16_MOVE(lt_vf32_t, float, lt_vf32, FADD, VRED)
+LT__V16_BIN(lt_vf32_t, lt_vf32_add, FADD, lt__f32_add)
+LT__V16_BIN(lt_vf32_t, lt_vf32_sub, FADD, lt__f32_sub)
+LT__V16_BIN(lt_vf32_t, lt_vf32_mul, FMUL, lt__f32_mul)
+LT__V16_BIN(lt_vf32_t, lt_vf32_div, FDIV, lt__f32_div)
+LT__V16_BIN(lt_vf32_t, lt_vf32_min, FADD, lt__f32_min)
+LT__V16_BIN(lt_vf32_t, lt_vf32_max, FADD, lt__f32_max)
+LT__V16_UN(lt_vf32_t, lt_vf32_rcp, FDIV, lt__f32_rcp)
+LT__V16_UN(lt_vf32_t, lt_vf32_abs, FADD, lt__f32_abs)
+LT__V16_UN(lt_vf32_t, lt_vf32_neg, FADD, lt__f32_neg)
+LT__V16_CMP(lt_vf32_t, lt_vf32_cmplt, FCMP, <)
+LT__V16_CMP(lt_vf32_t, lt_vf32_cmple, FCMP, <=)
+LT__V16_CMP(lt_vf32_t, lt_vf32_cmpgt, FCMP, >)
+LT__V16_CMP(lt_vf32_t, lt_vf32_cmpge, FCMP, >=)
+LT__V16_CMP(lt_vf32_t, lt_vf32_cmpeq, FCMP, ==)
+#endif
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* LT_V16_H */

@@ -1,0 +1,69 @@
+/* lt_fw.h - the board API every lanetrace firmware program uses: UART output, exit, tick counter.
+ * Implemented per target under firmware/targets/{cortex-m,riscv}/; the target-independent output
+ * helpers live in common/lt_rt.c. Targets: cm4 (mps2-an386), cm55 (mps3-an547), rv32 (virt).
+ * Builds: freestanding firmware only (-ffreestanding -nostdlib, QEMU); see docs/firmware.md.
+ */
+#ifndef LT_FW_H
+#define LT_FW_H
+
+#include <stdint.h>
+#include "lt/lt_port.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Target name string ("cm4", "cm55", "rv32"), set by firmware/targets/targets.mk. */
+#ifndef LT_FW_TARGET_NAME
+#define LT_FW_TARGET_NAME "unknown"
+#endif
+
+/* Write one byte to the board UART (QEMU -serial stdio), waiting while the TX FIFO is full.
+ * No newline translation: "\n" goes out as a single LF. */
+void lt_fw_putc(int c);
+
+/* Write a NUL-terminated string; no newline is added. */
+void lt_fw_puts(const char *s);
+
+/* Write v in decimal, no padding, no sign ("0" .. "4294967295"). */
+void lt_fw_put_u32(uint32_t v);
+
+/* Write v as "0x" followed by exactly 8 lowercase hex digits (printf "0x%08x"). */
+void lt_fw_put_hex32(uint32_t v);
+
+/* Flush the UART and end the QEMU run with exit status code & 0xFF (0..255 pass through; the host
+ * sees only 8 bits anyway). Arm: semihosting SYS_EXIT_EXTENDED (0x20) with {0x20026, code}, which
+ * needs -semihosting-config enable=on. RISC-V: the sifive_test device at 0x100000. Never returns. */
+LT_NORETURN void lt_fw_exit(int code);
+
+/* Monotonic 64-bit tick count since reset, in virtual nanoseconds of QEMU's icount clock. Under
+ * `-icount shift=0` one guest instruction is exactly 1 ns, so this counts retired instructions and
+ * is identical from run to run; without -icount it follows wall time and is not reproducible.
+ *   rv32:  mcycle/mcycleh (QEMU derives it from icount), resolution 1 instruction.
+ *   Arm:   SysTick on the processor clock (CLKSOURCE = 1, 24-bit, reload 0xFFFFFF) scaled by
+ *          1e9 / LT_FW_SYSTICK_HZ; resolution 40 instructions on cm4 (25 MHz), 31.25 on cm55
+ *          (32 MHz). Wraps (every 2^24 clocks, ~0.5-0.7 s virtual) are counted by the SysTick
+ *          exception, so interrupts must stay enabled (PRIMASK = 0); with interrupts masked for
+ *          more than one wrap period, wraps are lost.
+ * Cost: a few tens of instructions (Arm: includes a 64-bit multiply). */
+uint64_t lt_fw_ticks(void);
+
+/* ---- target-internal (lt__fw_*): shared between the files of one target, not for programs ---- */
+
+/* Called by the start-up code before main: UART set-up and tick counter start. */
+void lt__fw_uart_init(void);
+void lt__fw_ticks_init(void);
+
+/* Wait until the UART has sent everything (called by lt_fw_exit). */
+void lt__fw_uart_flush(void);
+
+/* Arm only: the SysTick exception handler that extends the counter (cortex-m/ticks.c). */
+void lt__fw_systick_isr(void);
+
+/* The program entry the start-up code calls. */
+int main(void);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* LT_FW_H */

@@ -1,0 +1,411 @@
+/* lt_sim.c - counters, machine tables, cache hookup and cycle reports of the sim build.
+ * The kernels charge through lt_cost.h: LT_COST/LT_EVENT are inline increments of the current
+ * phase's counter row (lt__sim_cur), LT_MEM calls lt_sim_mem, which runs the cache model.
+ * Cycles = sum over op classes of count x issue cycles + memory stall cycles (cache latency beyond
+ * an L1 hit). Host only.
+ */
+#include "lt_sim.h"
+#include "lt_cache.h"
+
+#include <cjson/cJSON.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* ---- machine tables ------------------------------------------------------------------------ */
+
+#define LT_OP_COST(op, lat, iss) [LT_OP_##op] = (lat),
+static const uint16_t lrb16_lat[LT_OP__COUNT] = {
+#include "machines/lrb16.def"
+};
+static const uint16_t mcu_m4_lat[LT_OP__COUNT] = {
+#include "machines/mcu_m4.def"
+};
+#undef LT_OP_COST
+#define LT_OP_COST(op, lat, iss) [LT_OP_##op] = (iss),
+static const uint16_t lrb16_iss[LT_OP__COUNT] = {
+#include "machines/lrb16.def"
+};
+static const uint16_t mcu_m4_iss[LT_OP__COUNT] = {
+#include "machines/mcu_m4.def"
+};
+#undef LT_OP_COST
+/* Every op must have a cost in every table: count the entries of each .def. */
+#define LT_OP_COST(op, lat, iss) +1
+enum {
+    LRB16_N = 0
+#include "machines/lrb16.def"
+    ,
+    MCU_M4_N = 0
+#include "machines/mcu_m4.def"
+};
+#undef LT_OP_COST
+LT_STATIC_ASSERT((int)LRB16_N == (int)LT_OP__COUNT, "machines/lrb16.def must price every op in lt_ops.def");
+LT_STATIC_ASSERT((int)MCU_M4_N == (int)LT_OP__COUNT, "machines/mcu_m4.def must price every op in lt_ops.def");
+
+static lt_machine_t lrb16;
+static lt_machine_t mcu_m4;
+const lt_machine_t *const lt_sim_machines[] = {&lrb16, &mcu_m4, NULL};
+
+static void machines_fill(void)
+{
+    static int done;
+    if (done)
+        return;
+    done = 1;
+    lrb16.name = "lrb16";
+    lrb16.desc = "Larrabee-like core: 1 GHz, in-order, 16 lanes, L1 32 KiB 8-way, L2 256 KiB 8-way";
+    lrb16.clock_mhz = 1000;
+    lrb16.lanes = 16;
+    memcpy(lrb16.latency, lrb16_lat, sizeof lrb16_lat);
+    memcpy(lrb16.issue, lrb16_iss, sizeof lrb16_iss);
+    lrb16.l1 = "64:8:64";
+    lrb16.l2 = "512:8:64";
+    lrb16.l1_hit = 3;
+    lrb16.l2_hit = 14;
+    lrb16.mem = 150;
+    mcu_m4.name = "mcu-m4";
+    mcu_m4.desc = "Cortex-M4F-like MCU: 168 MHz, scalar (16-lane ops cost their loops), no data cache";
+    mcu_m4.clock_mhz = 168;
+    mcu_m4.lanes = 1;
+    memcpy(mcu_m4.latency, mcu_m4_lat, sizeof mcu_m4_lat);
+    memcpy(mcu_m4.issue, mcu_m4_iss, sizeof mcu_m4_iss);
+    /* SRAM with single-cycle access: modelled as a 1-line cache whose miss costs what a hit does */
+    mcu_m4.l1 = "1:1:4";
+    mcu_m4.l2 = NULL;
+    mcu_m4.l1_hit = 1;
+    mcu_m4.l2_hit = 1;
+    mcu_m4.mem = 1;
+}
+
+const lt_machine_t *lt_sim_machine_find(const char *name)
+{
+    int i;
+    machines_fill();
+    for (i = 0; lt_sim_machines[i] != NULL; i++)
+        if (strcmp(lt_sim_machines[i]->name, name) == 0)
+            return lt_sim_machines[i];
+    return NULL;
+}
+
+/* ---- state --------------------------------------------------------------------------------- */
+
+static uint64_t ctr[LT_PH__COUNT][LT_CTR__COUNT];
+static uint64_t memstall[LT_PH__COUNT];
+static lt_phase_t cur_phase = LT_PH_OTHER;
+uint64_t *lt__sim_cur = ctr[LT_PH_OTHER];
+
+static const lt_machine_t *mach;
+static lt_cache_t l1, l2;
+static int have_l1, have_l2;
+static char l1_spec[32], l2_spec[32];
+
+struct region {
+    uintptr_t lo, hi;
+    uint64_t sim_base;
+};
+static struct region regions[16];
+static int nregions;
+
+lt_phase_t lt_sim_phase(lt_phase_t ph)
+{
+    lt_phase_t prev = cur_phase;
+    cur_phase = ph;
+    lt__sim_cur = ctr[ph];
+    return prev;
+}
+
+void lt_sim_mem(const void *p, uint32_t bytes, int rw)
+{
+    uintptr_t a = (uintptr_t)p;
+    uint64_t addr = (uint64_t)a;
+    uint32_t cyc;
+    int i;
+    for (i = 0; i < nregions; i++) {
+        if (a >= regions[i].lo && a < regions[i].hi) {
+            addr = regions[i].sim_base + (uint64_t)(a - regions[i].lo);
+            break;
+        }
+    }
+    lt__sim_cur[LT_OP__COUNT + (rw ? LT_EV_MEM_WR : LT_EV_MEM_RD)] += bytes;
+    if (!have_l1)
+        return;
+    cyc = lt_cache_access(&l1, addr, bytes, rw);
+    if (cyc > mach->l1_hit)
+        memstall[cur_phase] += cyc - mach->l1_hit;
+}
+
+int lt_sim_region(const void *base, size_t bytes, uint64_t sim_base)
+{
+    if (nregions == (int)(sizeof regions / sizeof regions[0]))
+        return -1;
+    regions[nregions].lo = (uintptr_t)base;
+    regions[nregions].hi = (uintptr_t)base + bytes;
+    regions[nregions].sim_base = sim_base;
+    nregions++;
+    return 0;
+}
+
+void lt_sim_shutdown(void)
+{
+    if (have_l1)
+        lt_cache_free(&l1);
+    if (have_l2)
+        lt_cache_free(&l2);
+    have_l1 = have_l2 = 0;
+    nregions = 0;
+}
+
+void lt_sim_reset(void)
+{
+    memset(ctr, 0, sizeof ctr);
+    memset(memstall, 0, sizeof memstall);
+    lt_sim_phase(LT_PH_OTHER);
+    if (have_l1)
+        lt_cache_reset(&l1);
+    if (have_l2)
+        lt_cache_reset(&l2);
+}
+
+int lt_sim_init(const lt_machine_t *m, const char *l1s, const char *l2s, char *err, size_t errlen)
+{
+    lt_cache_cfg_t c1, c2;
+    machines_fill();
+    lt_sim_shutdown();
+    mach = m;
+    if (l1s == NULL)
+        l1s = m->l1;
+    if (l2s == NULL)
+        l2s = m->l2;
+    if (lt_cache_parse(l1s, &c1, err, errlen) != 0)
+        return -1;
+    if (l2s != NULL && lt_cache_parse(l2s, &c2, err, errlen) != 0)
+        return -1;
+    snprintf(l1_spec, sizeof l1_spec, "%s", l1s);
+    snprintf(l2_spec, sizeof l2_spec, "%s", l2s != NULL ? l2s : "none");
+    if (l2s != NULL) {
+        if (lt_cache_init(&l2, "L2", &c2, m->l2_hit, NULL, m->mem, err, errlen) != 0)
+            return -1;
+        have_l2 = 1;
+    }
+    if (lt_cache_init(&l1, "L1", &c1, m->l1_hit, have_l2 ? &l2 : NULL, have_l2 ? 0 : m->mem, err,
+                      errlen) != 0) {
+        lt_sim_shutdown();
+        return -1;
+    }
+    have_l1 = 1;
+    lt_sim_reset();
+    return 0;
+}
+
+/* ---- results ------------------------------------------------------------------------------- */
+
+static const char *const op_names[] = {
+#define LT_OP(name, unit, doc) #name,
+#define LT_EV(name, doc)
+#define LT_PH(name, doc)
+#include "lt/lt_ops.def"
+#undef LT_OP
+#undef LT_EV
+#undef LT_PH
+};
+static const char *const ev_names[] = {
+#define LT_OP(name, unit, doc)
+#define LT_EV(name, doc) #name,
+#define LT_PH(name, doc)
+#include "lt/lt_ops.def"
+#undef LT_OP
+#undef LT_EV
+#undef LT_PH
+};
+static const char *const ph_names[] = {
+#define LT_OP(name, unit, doc)
+#define LT_EV(name, doc)
+#define LT_PH(name, doc) #name,
+#include "lt/lt_ops.def"
+#undef LT_OP
+#undef LT_EV
+#undef LT_PH
+};
+
+const char *lt_sim_op_name(int op) { return op_names[op]; }
+const char *lt_sim_ev_name(int ev) { return ev_names[ev]; }
+const char *lt_sim_phase_name(int ph) { return ph_names[ph]; }
+
+void lt_sim_totals(lt_sim_totals_t *t)
+{
+    int p, o;
+    lt_cache_stats_t s;
+    memset(t, 0, sizeof *t);
+    memcpy(t->ctr, ctr, sizeof ctr);
+    for (p = 0; p < LT_PH__COUNT; p++) {
+        uint64_t c = memstall[p];
+        for (o = 0; o < LT_OP__COUNT; o++)
+            c += ctr[p][o] * mach->issue[o];
+        t->memstall[p] = memstall[p];
+        t->cycles[p] = c;
+        t->total_cycles += c;
+    }
+    if (have_l1) {
+        lt_cache_stats(&l1, &s);
+        t->l1_acc = s.accesses;
+        t->l1_hit = s.hits;
+    }
+    if (have_l2) {
+        lt_cache_stats(&l2, &s);
+        t->l2_acc = s.accesses;
+        t->l2_hit = s.hits;
+    }
+}
+
+static uint64_t ev_total(const lt_sim_totals_t *t, int ev)
+{
+    uint64_t s = 0;
+    int p;
+    for (p = 0; p < LT_PH__COUNT; p++)
+        s += t->ctr[p][LT_OP__COUNT + ev];
+    return s;
+}
+
+static double pct(uint64_t a, uint64_t b) { return b != 0 ? 100.0 * (double)a / (double)b : 0.0; }
+
+static double utilisation(const lt_sim_totals_t *t)
+{
+    uint64_t ops = ev_total(t, LT_EV_LANE_OPS);
+    return ops != 0 ? (double)ev_total(t, LT_EV_LANES_ON) / (16.0 * (double)ops) : 0.0;
+}
+
+void lt_sim_report_text(FILE *f, const char *title, uint64_t rays)
+{
+    lt_sim_totals_t t;
+    int p, o, e;
+    double secs;
+    lt_sim_totals(&t);
+    secs = (double)t.total_cycles / ((double)mach->clock_mhz * 1e6);
+    fprintf(f, "== cycle report: %s\n", title);
+    fprintf(f, "machine   %s (%s)\n", mach->name, mach->desc);
+    fprintf(f, "caches    L1 %s hit %u cy | L2 %s hit %u cy | memory %u cy\n", l1_spec,
+            mach->l1_hit, l2_spec, mach->l2_hit, mach->mem);
+    fprintf(f, "%-10s %16s %7s %14s\n", "phase", "cycles", "share", "mem stall");
+    for (p = 0; p < LT_PH__COUNT; p++) {
+        if (t.cycles[p] == 0)
+            continue;
+        fprintf(f, "%-10s %16llu %6.1f%% %14llu\n", ph_names[p], (unsigned long long)t.cycles[p],
+                pct(t.cycles[p], t.total_cycles), (unsigned long long)t.memstall[p]);
+    }
+    fprintf(f, "%-10s %16llu\n", "total", (unsigned long long)t.total_cycles);
+    fprintf(f, "%-10s %16s %16s %7s\n", "op class", "count", "cycles", "share");
+    for (o = 0; o < LT_OP__COUNT; o++) {
+        uint64_t n = 0;
+        for (p = 0; p < LT_PH__COUNT; p++)
+            n += t.ctr[p][o];
+        if (n == 0)
+            continue;
+        fprintf(f, "%-10s %16llu %16llu %6.1f%%\n", op_names[o], (unsigned long long)n,
+                (unsigned long long)(n * mach->issue[o]), pct(n * mach->issue[o], t.total_cycles));
+    }
+    fprintf(f, "events   ");
+    for (e = 0; e < LT_EV__COUNT; e++) {
+        if (e == LT_EV_LANES_ON || e == LT_EV_LANE_OPS)
+            continue;
+        fprintf(f, " %s=%llu", ev_names[e], (unsigned long long)ev_total(&t, e));
+    }
+    fprintf(f, "\n");
+    fprintf(f, "cache     L1 %llu accesses, %.2f%% hits | L2 %llu accesses, %.2f%% hits\n",
+            (unsigned long long)t.l1_acc, pct(t.l1_hit, t.l1_acc), (unsigned long long)t.l2_acc,
+            pct(t.l2_hit, t.l2_acc));
+    fprintf(f, "lanes     utilisation %.1f%% (active lanes / 16 over %llu masked lane ops)\n",
+            100.0 * utilisation(&t), (unsigned long long)ev_total(&t, LT_EV_LANE_OPS));
+    if (rays != 0)
+        fprintf(f, "rays      %llu rays, %.1f cycles/ray, %.2f Mrays/s at %u MHz\n",
+                (unsigned long long)rays, (double)t.total_cycles / (double)rays,
+                secs > 0 ? (double)rays / secs / 1e6 : 0.0, mach->clock_mhz);
+}
+
+char *lt_sim_report_json_string(const char *title, uint64_t rays, const char *extra_json)
+{
+    lt_sim_totals_t t;
+    cJSON *root, *ph, *ops, *evs, *cache;
+    char *s;
+    int p, o, e;
+    double secs;
+    lt_sim_totals(&t);
+    secs = (double)t.total_cycles / ((double)mach->clock_mhz * 1e6);
+    root = cJSON_CreateObject();
+    cJSON_AddStringToObject(root, "title", title);
+    cJSON_AddStringToObject(root, "machine", mach->name);
+    cJSON_AddNumberToObject(root, "clock_mhz", mach->clock_mhz);
+    cJSON_AddStringToObject(root, "l1", l1_spec);
+    cJSON_AddStringToObject(root, "l2", l2_spec);
+    cJSON_AddNumberToObject(root, "total_cycles", (double)t.total_cycles);
+    cJSON_AddNumberToObject(root, "rays", (double)rays);
+    cJSON_AddNumberToObject(root, "cycles_per_ray", rays ? (double)t.total_cycles / (double)rays : 0);
+    cJSON_AddNumberToObject(root, "mrays_per_s", rays && secs > 0 ? (double)rays / secs / 1e6 : 0);
+    cJSON_AddNumberToObject(root, "lane_utilisation", utilisation(&t));
+    ph = cJSON_AddObjectToObject(root, "phases");
+    for (p = 0; p < LT_PH__COUNT; p++) {
+        cJSON *x;
+        if (t.cycles[p] == 0)
+            continue;
+        x = cJSON_AddObjectToObject(ph, ph_names[p]);
+        cJSON_AddNumberToObject(x, "cycles", (double)t.cycles[p]);
+        cJSON_AddNumberToObject(x, "mem_stall", (double)t.memstall[p]);
+        for (o = 0; o < LT_OP__COUNT; o++)
+            if (t.ctr[p][o] != 0)
+                cJSON_AddNumberToObject(x, op_names[o], (double)t.ctr[p][o]);
+    }
+    ops = cJSON_AddObjectToObject(root, "ops");
+    for (o = 0; o < LT_OP__COUNT; o++) {
+        uint64_t n = 0;
+        for (p = 0; p < LT_PH__COUNT; p++)
+            n += t.ctr[p][o];
+        if (n != 0)
+            cJSON_AddNumberToObject(ops, op_names[o], (double)n);
+    }
+    evs = cJSON_AddObjectToObject(root, "events");
+    for (e = 0; e < LT_EV__COUNT; e++)
+        cJSON_AddNumberToObject(evs, ev_names[e], (double)ev_total(&t, e));
+    cache = cJSON_AddObjectToObject(root, "cache");
+    cJSON_AddNumberToObject(cache, "l1_accesses", (double)t.l1_acc);
+    cJSON_AddNumberToObject(cache, "l1_hits", (double)t.l1_hit);
+    cJSON_AddNumberToObject(cache, "l2_accesses", (double)t.l2_acc);
+    cJSON_AddNumberToObject(cache, "l2_hits", (double)t.l2_hit);
+    if (extra_json != NULL) {
+        cJSON *x = cJSON_Parse(extra_json), *it;
+        if (x != NULL) {
+            while ((it = x->child) != NULL) {
+                cJSON_DetachItemViaPointer(x, it);
+                cJSON_AddItemToObject(root, it->string, it);
+            }
+            cJSON_Delete(x);
+        }
+    }
+    s = cJSON_Print(root);
+    cJSON_Delete(root);
+    return s;
+}
+
+int lt_sim_report_json(const char *path, const char *title, uint64_t rays, const char *extra_json,
+                       char *err, size_t errlen)
+{
+    char tmp[4096];
+    char *s = lt_sim_report_json_string(title, rays, extra_json);
+    FILE *f;
+    if (s == NULL) {
+        snprintf(err, errlen, "%s: out of memory building the JSON report", path);
+        return -1;
+    }
+    /* write to a temporary name, then rename: a report is complete or absent */
+    snprintf(tmp, sizeof tmp, "%s.tmp", path);
+    f = fopen(tmp, "w");
+    if (f == NULL || fputs(s, f) < 0 || fputc('\n', f) == EOF || fclose(f) != 0) {
+        snprintf(err, errlen, "%s: cannot write the JSON report", tmp);
+        free(s);
+        return -1;
+    }
+    free(s);
+    if (rename(tmp, path) != 0) {
+        snprintf(err, errlen, "%s: cannot rename %s into place", path, tmp);
+        return -1;
+    }
+    return 0;
+}

@@ -1,0 +1,99 @@
+#!/usr/bin/env bash
+# run_tests.sh - everything `make test` checks, after `make test-build`: unit tests (host, sim,
+# asan), cross-target vectors (host = sim = asan = cm4 = cm55 = rv32 = golden), firmware under
+# QEMU, the QEMU plugin, the tracer CLIs (host = sim results, errors), shared scenes when present.
+# Ends with "N passed, N failed". Run from the repository root.
+set -uo pipefail
+B=build
+pass=0
+fail=0
+failed=()
+ok() { pass=$((pass + 1)); echo "PASS $1"; }
+ko() { fail=$((fail + 1)); failed+=("$1"); echo "FAIL $1"; }
+check() { # name, command...
+    local name=$1
+    shift
+    if "$@"; then ok "$name"; else ko "$name"; fi
+}
+
+echo "== unit tests (cmocka) per variant"
+for v in host sim asan; do
+    for t in port fx v16 isect; do
+        check "unit/$v/test_$t" "$B/$v/test_$t"
+    done
+done
+check "unit/sim/test_cache" "$B/sim/test_cache"
+
+echo "== cross-target vectors"
+golden=tests/golden/vectors.txt
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+for v in host sim asan; do
+    "$B/$v/lt-vectors" >"$tmp/$v.txt" 2>"$tmp/$v.err"
+    check "vectors/$v = golden" diff -u "$golden" "$tmp/$v.txt"
+done
+source <(make -s --no-print-directory -f tools/print_qemu.mk)
+for t in cm4 cm55 rv32; do
+    qvar="QEMU_$t"
+    timeout 120 ${!qvar} "$B/fw/$t/vectors.elf" >"$tmp/$t.txt" 2>"$tmp/$t.err"
+    rc=$?
+    check "vectors/$t exit 0 under QEMU (rc=$rc)" test "$rc" -eq 0
+    check "vectors/$t = golden (bit-exact)" diff -u "$golden" "$tmp/$t.txt"
+done
+timeout 120 $QEMU_rv32 "$B/fw/rv32/vectors-fixed.elf" >"$tmp/rv32x.txt" 2>/dev/null
+grep -v -e '_f32 ' -e '^groups' "$golden" >"$tmp/golden-fixed.txt"
+grep -v '^groups' "$tmp/rv32x.txt" >"$tmp/rv32x-body.txt"
+check "vectors/rv32 LT_CFG_FLOAT32=0 = golden fixed-point groups" diff -u "$tmp/golden-fixed.txt" "$tmp/rv32x-body.txt"
+n=$(grep -c cases "$golden")
+echo "   $n vector groups compared across host, sim, asan, cm4, cm55, rv32"
+
+echo "== QEMU instruction-count plugin"
+check "plugin/test_plugin.sh" sh sim/qemu/test_plugin.sh
+
+echo "== tracer CLIs on the bundled scene"
+"$B/host/lt-trace" --res 32 -q >"$tmp/native.txt" 2>&1
+check "lt-trace exits 0" test $? -eq 0
+"$B/sim/lt-sim" --res 32 --json "$tmp/r.json" >"$tmp/sim.txt" 2>&1
+check "lt-sim exits 0" test $? -eq 0
+for p in q16 f32; do
+    a=$(grep "result    $p" "$tmp/native.txt")
+    b=$(grep "result    $p" "$tmp/sim.txt")
+    check "result $p: host = sim ($a)" test -n "$a" -a "$a" = "$b"
+    check "report $p JSON written" test -s "$tmp/r.json.$p"
+done
+check "cycle report has phases, ops, cache, lanes" grep -q "lanes     utilisation" "$tmp/sim.txt"
+acc=$(grep "accuracy  q16" "$tmp/native.txt" | sed -E 's/.*same triangle ([0-9.]+)%.*/\1/')
+check "q16 same triangle as double on >= 99% of pixels ($acc%)" awk -v a="$acc" 'BEGIN{exit !(a >= 99.0)}'
+"$B/host/lt-trace" --scene /nonexistent.obj >"$tmp/e.txt" 2>&1
+rc=$?
+check "missing scene: exit 1 and names the file" bash -c "[ $rc -eq 1 ] && grep -q /nonexistent.obj '$tmp/e.txt'"
+"$B/host/lt-trace" --res 0 >"$tmp/e.txt" 2>&1
+check "bad --res: exit 2" test $? -eq 2
+"$B/sim/lt-sim" --machine z80 >"$tmp/e.txt" 2>&1
+check "unknown machine: exit 2" test $? -eq 2
+"$B/sim/lt-sim" --l1 63:8:64 >"$tmp/e.txt" 2>&1
+rc=$?
+check "bad cache spec: exit 2 and names it" bash -c "[ $rc -eq 2 ] && grep -q 63:8:64 '$tmp/e.txt'"
+printf 'v 0 0 0\nv 1 0 0\nf 1 2 9\n' >"$tmp/bad.obj"
+"$B/host/lt-trace" --scene "$tmp/bad.obj" >"$tmp/e.txt" 2>&1
+rc=$?
+check "malformed OBJ: exit 1, message names the file" bash -c "[ $rc -eq 1 ] && grep -q bad.obj '$tmp/e.txt'"
+
+echo "== shared scenes"
+shared=../shared/scenes
+if [ -f "$shared/bunny.obj" ]; then
+    "$B/host/lt-trace" --scene "$shared/bunny.obj" --res 32 -q >"$tmp/bunny.txt" 2>&1
+    acc=$(grep "accuracy  q16" "$tmp/bunny.txt" | sed -E 's/.*same triangle ([0-9.]+)%.*/\1/')
+    check "bunny.obj q16 same triangle as double ($acc%)" awk -v a="$acc" 'BEGIN{exit !(a >= 99.0)}'
+elif [ "${CI:-}" = "true" ]; then
+    ko "shared scenes missing under CI: $shared/bunny.obj"
+else
+    echo "SKIP shared scenes: $shared not found (a fresh clone has no ../shared)"
+fi
+
+echo
+if [ $fail -ne 0 ]; then
+    printf 'failed: %s\n' "${failed[@]}"
+fi
+echo "$pass passed, $fail failed"
+[ $fail -eq 0 ]

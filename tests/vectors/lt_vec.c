@@ -1,0 +1,487 @@
+/* lt_vec.c - cross-target test vectors (see lt_vec.h). Freestanding C99: no libc, no float in the
+ * fixed-point groups; the float32 groups exist with LT_CFG_FLOAT32 and hash IEEE bit patterns.
+ */
+#include "lt_vec.h"
+#include "lt/lt.h"
+
+#define N_RANDOM 600
+
+static uint32_t rng_state;
+
+static uint32_t rnd(void)
+{
+    uint32_t x = rng_state;
+    x ^= x << 13;
+    x ^= x >> 17;
+    x ^= x << 5;
+    rng_state = x;
+    return x;
+}
+
+static const int32_t extremes[] = {0, 1, -1, 2, -2, 0x7FFF, 0x8000, -0x8000, 0xFFFF, 0x10000,
+                                   -0x10000, 0x10001, 0x7FFFFFFF, (int32_t)0x80000000,
+                                   0x7FFFFFFE, -0x7FFFFFFF, 0x40000000, -0x40000000, 0x00018000,
+                                   -0x00018000};
+#define N_EXT ((int)(sizeof extremes / sizeof extremes[0]))
+
+/* input i of a stream: first the extremes, then random values of mixed magnitude */
+static int32_t input(int i)
+{
+    uint32_t r;
+    if (i < N_EXT)
+        return extremes[i];
+    r = rnd();
+    r >>= r & 31u;
+    /* negate in unsigned arithmetic: -INT32_MIN would overflow */
+    return (int32_t)((rng_state & 0x40u) ? 0u - r : r);
+}
+
+typedef struct hash {
+    uint32_t h, n;
+} hash_t;
+
+static void h_init(hash_t *h)
+{
+    h->h = 2166136261u;
+    h->n = 0;
+}
+
+static void h_u32(hash_t *h, uint32_t v)
+{
+    int i;
+    for (i = 0; i < 4; i++) {
+        h->h ^= (v >> (8 * i)) & 0xFFu;
+        h->h *= 16777619u;
+    }
+}
+
+static void h_case(hash_t *h, uint32_t v)
+{
+    h_u32(h, v);
+    h->n++;
+}
+
+static char *put_u32(char *p, uint32_t v)
+{
+    char t[10];
+    int n = 0;
+    do {
+        t[n++] = (char)('0' + v % 10u);
+        v /= 10u;
+    } while (v != 0);
+    while (n > 0)
+        *p++ = t[--n];
+    return p;
+}
+
+static void emit(void (*put)(const char *), const char *name, const hash_t *h)
+{
+    char line[96], *p = line;
+    const char *s = name;
+    int i;
+    while (*s != '\0')
+        *p++ = *s++;
+    while (p < line + 22)
+        *p++ = ' ';
+    p = put_u32(p, h->n);
+    *p++ = ' ';
+    *p++ = 'c';
+    *p++ = 'a';
+    *p++ = 's';
+    *p++ = 'e';
+    *p++ = 's';
+    *p++ = ' ';
+    *p++ = '0';
+    *p++ = 'x';
+    for (i = 7; i >= 0; i--)
+        *p++ = "0123456789abcdef"[(h->h >> (4 * i)) & 0xFu];
+    *p++ = '\n';
+    *p = '\0';
+    put(line);
+}
+
+typedef int32_t (*bin_fn)(int32_t, int32_t);
+typedef int32_t (*un_fn)(int32_t);
+
+static int32_t f_add_sat(int32_t a, int32_t b) { return lt_q16_add_sat(a, b); }
+static int32_t f_sub_sat(int32_t a, int32_t b) { return lt_q16_sub_sat(a, b); }
+static int32_t f_add_wrap(int32_t a, int32_t b) { return lt_q16_add_wrap(a, b); }
+static int32_t f_sub_wrap(int32_t a, int32_t b) { return lt_q16_sub_wrap(a, b); }
+static int32_t f_mul_sat(int32_t a, int32_t b) { return lt_q16_mul_sat(a, b); }
+static int32_t f_mul_rd(int32_t a, int32_t b) { return lt_q16_mul_sat_rd(a, b); }
+static int32_t f_mul_q30(int32_t a, int32_t b) { return lt_q16_mul_q30_sat(a, b); }
+static int32_t f_div_sat(int32_t a, int32_t b) { return lt_q16_div_sat(a, b); }
+static int32_t f_q30_mul(int32_t a, int32_t b) { return lt_q30_mul_sat(a, b); }
+static int32_t f_minmax(int32_t a, int32_t b)
+{
+    return lt_q16_min(a, b) ^ (lt_q16_max(a, b) * 3) ^ lt_q16_clamp(a, -0x30000, b | 1);
+}
+static int32_t f_h8(int32_t a, int32_t b)
+{
+    lt_h8_t x = lt_h8_from_q16_sat(a), y = lt_h8_from_q16_sat(b);
+    return (int32_t)lt_h8_add_sat(x, y) * 65536 + (int32_t)lt_h8_mul_sat(x, y) +
+           (int32_t)lt_h8_sub_sat(x, y) * 7 + lt_q16_from_h8(x);
+}
+static int32_t f_recip(int32_t a) { return lt_q16_recip_sat(a); }
+static int32_t f_sqrt(int32_t a) { return lt_q16_sqrt(a); }
+static int32_t f_rsqrt(int32_t a) { return lt_q16_rsqrt_sat(a); }
+static int32_t f_absneg(int32_t a) { return lt_q16_abs_sat(a) ^ (lt_q16_neg_sat(a) * 5); }
+static int32_t f_conv(int32_t a)
+{
+    return lt_q30_from_q16_sat(a) ^ lt_q16_from_q30(a) ^ (int32_t)lt_h14_from_q30_sat(a) ^
+           lt_q30_from_h14((lt_h14_t)a);
+}
+
+static void run_bin(void (*put)(const char *), const char *name, bin_fn f, uint32_t seed)
+{
+    hash_t h;
+    int i, j;
+    h_init(&h);
+    rng_state = seed;
+    for (i = 0; i < N_EXT; i++)
+        for (j = 0; j < N_EXT; j++)
+            h_case(&h, (uint32_t)f(extremes[i], extremes[j]));
+    for (i = 0; i < N_RANDOM; i++) {
+        int32_t a = input(N_EXT + i), b = input(N_EXT + i);
+        h_case(&h, (uint32_t)f(a, b));
+    }
+    emit(put, name, &h);
+}
+
+static void run_un(void (*put)(const char *), const char *name, un_fn f, uint32_t seed)
+{
+    hash_t h;
+    int i;
+    h_init(&h);
+    rng_state = seed;
+    for (i = 0; i < N_EXT + N_RANDOM; i++)
+        h_case(&h, (uint32_t)f(input(i)));
+    emit(put, name, &h);
+}
+
+static void run_vec3(void (*put)(const char *))
+{
+    hash_t h;
+    int i, j;
+    h_init(&h);
+    rng_state = 0x1234567u;
+    for (i = 0; i < N_RANDOM; i++) {
+        lt_q16_t a[3], b[3], c[3];
+        lt_q30_t u[3] = {0, 0, 0};
+        for (j = 0; j < 3; j++) {
+            a[j] = input(i < N_EXT ? i : N_EXT + i);
+            b[j] = (int32_t)(rnd() >> (rnd() & 15u)) - 0x7FFF;
+        }
+        lt_q16_cross3_sat(a, b, c);
+        h_case(&h, (uint32_t)lt_q16_dot3_sat(a, b));
+        h_case(&h, (uint32_t)(c[0] ^ (c[1] * 3) ^ (c[2] * 7)));
+        h_case(&h, (uint32_t)lt_q16_normalize3(a, u));
+        h_case(&h, (uint32_t)(u[0] ^ (u[1] * 3) ^ (u[2] * 7)));
+    }
+    emit(put, "q16_vec3", &h);
+}
+
+static lt_mask16_t rmask(int i)
+{
+    static const lt_mask16_t fixed[] = {0, 0xFFFF, 1, 0x8000, 0x5555, 0xAAAA};
+    return i < 6 ? fixed[i] : (lt_mask16_t)rnd();
+}
+
+static void h_vq16(hash_t *h, lt_vq16_t v)
+{
+    int i;
+    for (i = 0; i < LT_LANES; i++)
+        h_u32(h, (uint32_t)v.l[i]);
+    h->n++;
+}
+
+static void run_lanes(void (*put)(const char *))
+{
+    hash_t h;
+    int i, j;
+    static int32_t mem[LT_LANES];
+    h_init(&h);
+    rng_state = 0xC0FFEEu;
+    for (i = 0; i < 200; i++) {
+        lt_vq16_t a, b, s;
+        lt_vq30_t q;
+        lt_vi32_t idx;
+        lt_mask16_t k = rmask(i), m;
+        for (j = 0; j < LT_LANES; j++) {
+            a.l[j] = input(N_EXT + i);
+            b.l[j] = input(j < N_EXT ? j : N_EXT + j);
+            s.l[j] = (int32_t)rnd();
+            q.l[j] = (int32_t)rnd();
+            idx.l[j] = (int32_t)(rnd() & 15u);
+            mem[j] = (int32_t)rnd();
+        }
+        h_vq16(&h, lt_vq16_add_sat_m(s, k, a, b));
+        h_vq16(&h, lt_vq16_sub_sat_z(k, a, b));
+        h_vq16(&h, lt_vq16_mul_sat_m(s, k, a, b));
+        h_vq16(&h, lt_vq16_div_sat_z(k, a, b));
+        h_vq16(&h, lt_vq16_recip_sat_m(s, k, a));
+        h_vq16(&h, lt_vq16_min(a, b));
+        h_vq16(&h, lt_vq16_max_m(s, k, a, b));
+        h_vq16(&h, lt_vq16_abs_sat_z(k, a));
+        h_vq16(&h, lt_vq16_mul_q30_sat(a, q));
+        h_vq16(&h, lt_vq16_from_q30(q));
+        h_vq16(&h, lt_vq16_gather_m(s, k, mem, idx));
+        h_vq16(&h, lt_vq16_from_h8(lt_vh8_mul_sat(lt_vh8_from_q16_sat(a), lt_vh8_from_q16_sat(b))));
+        {
+            lt_vql_t w = lt_vql_sub_wrap(lt_vql_mul(lt_vi32_from_q16(a), lt_vi32_from_q30(q)),
+                                         lt_vql_mul(lt_vi32_from_q16(b), lt_vi32_from_q16(s)));
+            lt_vi32_t r = lt_vql_round_sat(w, 16);
+            for (j = 0; j < LT_LANES; j++)
+                h_u32(&h, (uint32_t)r.l[j]);
+        }
+        m = lt_vq16_cmplt_m(k, a, b);
+        h_case(&h, (uint32_t)m | ((uint32_t)lt_vq16_cmpge(a, b) << 16));
+        h_case(&h, (uint32_t)lt_vq16_hmin(k, a, LT_Q16_MAX) ^ (uint32_t)lt_vq16_hmax(k, b, LT_Q16_MIN));
+        h_case(&h, lt_mask16_popcount(k) * 256u + lt_mask16_first(k));
+    }
+    emit(put, "lanes", &h);
+}
+
+/* Random rays from a box corner region towards random boxes; origin/box coordinates within
+ * +-64 units, directions normalised in fixed point. */
+static void rand_ray_q16(lt_ray16_q16_t *r)
+{
+    int i;
+    for (i = 0; i < LT_LANES; i++) {
+        lt_q16_t o[3], d[3];
+        lt_q30_t u[3];
+        int a;
+        for (a = 0; a < 3; a++) {
+            o[a] = (int32_t)(rnd() & 0x7FFFFFu) - 0x400000;
+            d[a] = (int32_t)(rnd() & 0x1FFFFu) - 0x10000;
+        }
+        /* one lane in four gets an axis-parallel direction */
+        if ((i & 3) == 0)
+            d[rnd() % 3u] = 0;
+        if ((i & 3) == 0)
+            d[(rnd() % 3u)] = 0;
+        if (lt_q16_normalize3(d, u) != LT_OK) {
+            u[0] = LT_Q30_ONE;
+            u[1] = u[2] = 0;
+        }
+        r->ox.l[i] = o[0];
+        r->oy.l[i] = o[1];
+        r->oz.l[i] = o[2];
+        r->dx.l[i] = u[0];
+        r->dy.l[i] = u[1];
+        r->dz.l[i] = u[2];
+        r->tmin.l[i] = 0;
+        r->tmax.l[i] = 0x7FFFFFF;
+    }
+    lt_ray16_q16_setup(r);
+}
+
+#define N_MESH 48
+static lt_tri_q16_t mesh_q[N_MESH];
+static lt_aabb_q16_t boxes_q[LT_CHUNK_COUNT(N_MESH)];
+
+static void run_kernels_q16(void (*put)(const char *))
+{
+    hash_t h;
+    int i, j;
+    static lt_ray16_q16_t r;
+    h_init(&h);
+    rng_state = 0xBADC0DEu;
+    for (i = 0; i < 100; i++) {
+        lt_aabb_q16_t b;
+        lt_vq16_t tn = lt_vq16_set1(0);
+        lt_mask16_t k = rmask(i);
+        int a;
+        rand_ray_q16(&r);
+        for (a = 0; a < 3; a++) {
+            int32_t c = (int32_t)(rnd() & 0x3FFFFFu) - 0x200000;
+            int32_t w = (int32_t)(rnd() & 0x1FFFFFu) * (int32_t)((i % 7) != 0);
+            b.lo[a] = c - w;
+            b.hi[a] = c + w;
+        }
+        h_case(&h, lt_slab16_q16(&r, k, &b, &tn));
+        h_vq16(&h, tn);
+    }
+    emit(put, "slab16_q16", &h);
+
+    h_init(&h);
+    rng_state = 0x5EED5EEDu;
+    for (i = 0; i < N_MESH; i++) {
+        int a;
+        for (a = 0; a < 3; a++) {
+            mesh_q[i].v0[a] = (int32_t)(rnd() & 0x3FFFFFu) - 0x200000;
+            mesh_q[i].e1[a] = (int32_t)(rnd() & 0x7FFFFu) - 0x40000;
+            mesh_q[i].e2[a] = (i % 11 == 0) ? mesh_q[i].e1[a] * 2 /* zero area */
+                                            : (int32_t)(rnd() & 0x7FFFFu) - 0x40000;
+        }
+    }
+    for (i = 0; i < 60; i++) {
+        lt_hit16_t hit;
+        hit.id = lt_vi32_set1(-1);
+        rand_ray_q16(&r);
+        /* aim half of the lanes at triangle vertices and edge midpoints */
+        for (j = 0; j < LT_LANES; j += 2) {
+            const lt_tri_q16_t *t = &mesh_q[rnd() % N_MESH];
+            lt_q16_t d[3];
+            lt_q30_t u[3];
+            int a;
+            for (a = 0; a < 3; a++) {
+                lt_q16_t o = a == 0 ? r.ox.l[j] : (a == 1 ? r.oy.l[j] : r.oz.l[j]);
+                lt_q16_t p = t->v0[a] + ((j & 2) ? t->e1[a] / 2 : 0);
+                d[a] = p - o;
+            }
+            if (lt_q16_normalize3(d, u) == LT_OK) {
+                r.dx.l[j] = u[0];
+                r.dy.l[j] = u[1];
+                r.dz.l[j] = u[2];
+            }
+        }
+        lt_ray16_q16_setup(&r);
+        for (j = 0; j < N_MESH; j++)
+            h_case(&h, lt_tri16_q16(&r, LT_MASK_ALL, &mesh_q[j], j, &hit));
+        h_vq16(&h, r.tmax);
+        for (j = 0; j < LT_LANES; j++)
+            h_u32(&h, (uint32_t)hit.id.l[j]);
+    }
+    emit(put, "tri16_q16", &h);
+
+    h_init(&h);
+    h_case(&h, (uint32_t)lt_chunks_build_q16(mesh_q, N_MESH, boxes_q));
+    for (i = 0; i < (int)LT_CHUNK_COUNT(N_MESH); i++)
+        for (j = 0; j < 3; j++) {
+            h_u32(&h, (uint32_t)boxes_q[i].lo[j]);
+            h_u32(&h, (uint32_t)boxes_q[i].hi[j]);
+        }
+    rng_state = 0xFACADEu;
+    for (i = 0; i < 40; i++) {
+        lt_hit16_t hit;
+        rand_ray_q16(&r);
+        h_case(&h, lt_chunks_trace16_q16(mesh_q, N_MESH, boxes_q, &r, rmask(i), &hit));
+        for (j = 0; j < LT_LANES; j++)
+            h_u32(&h, (uint32_t)hit.id.l[j]);
+        h_vq16(&h, r.tmax);
+    }
+    emit(put, "chunks_q16", &h);
+}
+
+#if LT_CFG_FLOAT32
+static uint32_t fbits(float f)
+{
+    uint32_t u;
+    lt__memcpy(&u, &f, sizeof u);
+    return u;
+}
+
+static float rndf(float scale)
+{
+    /* exact: an integer in [-2^23, 2^23) times a power of two */
+    return (float)((int32_t)(rnd() & 0xFFFFFFu) - 0x800000) * scale;
+}
+
+static void run_f32(void (*put)(const char *))
+{
+    hash_t h;
+    int i, j;
+    static lt_ray16_f32_t r;
+    static lt_tri_f32_t tris[N_MESH];
+    static lt_aabb_f32_t bx[LT_CHUNK_COUNT(N_MESH)];
+    h_init(&h);
+    rng_state = 0xF10A7u;
+    for (i = 0; i < 200; i++) {
+        lt_vf32_t a, b, s, v[6];
+        lt_mask16_t k = rmask(i);
+        for (j = 0; j < LT_LANES; j++) {
+            a.l[j] = rndf(1.0f / 65536.0f);
+            b.l[j] = (j & 7) == 0 ? 0.0f : rndf(1.0f / 1024.0f);
+            s.l[j] = rndf(1.0f);
+        }
+        v[0] = lt_vf32_add_m(s, k, a, b);
+        v[1] = lt_vf32_mul_z(k, a, b);
+        v[2] = lt_vf32_div_m(s, k, a, b);
+        v[3] = lt_vf32_rcp(b);
+        v[4] = lt_vf32_min_m(s, k, a, b);
+        v[5] = lt_vf32_sub(lt_vf32_max(a, b), lt_vf32_abs(a));
+        for (j = 0; j < 6 * LT_LANES; j++)
+            h_u32(&h, fbits(v[j / LT_LANES].l[j % LT_LANES]));
+        h_case(&h, lt_vf32_cmple_m(k, a, b) | ((uint32_t)lt_vf32_cmpeq(a, b) << 16));
+    }
+    emit(put, "lanes_f32", &h);
+
+    h_init(&h);
+    rng_state = 0x7E57u;
+    for (i = 0; i < N_MESH; i++)
+        for (j = 0; j < 3; j++) {
+            tris[i].v0[j] = rndf(1.0f / 65536.0f);
+            tris[i].e1[j] = rndf(1.0f / 1048576.0f);
+            tris[i].e2[j] = (i % 11 == 0) ? tris[i].e1[j] * 2.0f : rndf(1.0f / 1048576.0f);
+        }
+    h_case(&h, (uint32_t)lt_chunks_build_f32(tris, N_MESH, bx));
+    for (i = 0; i < 40; i++) {
+        lt_hit16_t hit;
+        lt_aabb_f32_t b;
+        lt_vf32_t tn = lt_vf32_set1(0.0f);
+        for (j = 0; j < LT_LANES; j++) {
+            float d[3], l2;
+            int a;
+            for (a = 0; a < 3; a++)
+                d[a] = rndf(1.0f / 8388608.0f);
+            if ((j & 3) == 0)
+                d[j % 3] = 0.0f;
+            l2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+            if (l2 == 0.0f)
+                d[0] = l2 = 1.0f;
+            r.ox.l[j] = rndf(1.0f / 65536.0f);
+            r.oy.l[j] = rndf(1.0f / 65536.0f);
+            r.oz.l[j] = rndf(1.0f / 65536.0f);
+            /* unnormalised directions are fine for the hash: t is then in units of |d| */
+            r.dx.l[j] = d[0];
+            r.dy.l[j] = d[1];
+            r.dz.l[j] = d[2];
+            r.tmin.l[j] = 0.0f;
+            r.tmax.l[j] = 1e30f;
+        }
+        lt_ray16_f32_setup(&r);
+        for (j = 0; j < 3; j++) {
+            b.lo[j] = rndf(1.0f / 131072.0f);
+            b.hi[j] = b.lo[j] + (i % 5 ? 20.0f : 0.0f);
+        }
+        h_case(&h, lt_slab16_f32(&r, rmask(i), &b, &tn));
+        for (j = 0; j < LT_LANES; j++)
+            h_u32(&h, fbits(tn.l[j]));
+        h_case(&h, lt_chunks_trace16_f32(tris, N_MESH, bx, &r, rmask(i), &hit));
+        for (j = 0; j < LT_LANES; j++) {
+            h_u32(&h, (uint32_t)hit.id.l[j]);
+            h_u32(&h, fbits(r.tmax.l[j]));
+        }
+    }
+    emit(put, "kernels_f32", &h);
+}
+#endif
+
+int lt_vec_run(void (*put)(const char *line))
+{
+    int groups = 0;
+    run_bin(put, "q16_add_sat", f_add_sat, 1u), groups++;
+    run_bin(put, "q16_sub_sat", f_sub_sat, 2u), groups++;
+    run_bin(put, "q16_add_wrap", f_add_wrap, 3u), groups++;
+    run_bin(put, "q16_sub_wrap", f_sub_wrap, 4u), groups++;
+    run_bin(put, "q16_mul_sat", f_mul_sat, 5u), groups++;
+    run_bin(put, "q16_mul_sat_rd", f_mul_rd, 6u), groups++;
+    run_bin(put, "q16_mul_q30_sat", f_mul_q30, 7u), groups++;
+    run_bin(put, "q16_div_sat", f_div_sat, 8u), groups++;
+    run_bin(put, "q30_mul_sat", f_q30_mul, 9u), groups++;
+    run_bin(put, "q16_min_max_clamp", f_minmax, 10u), groups++;
+    run_bin(put, "h8_ops", f_h8, 11u), groups++;
+    run_un(put, "q16_recip_sat", f_recip, 12u), groups++;
+    run_un(put, "q16_sqrt", f_sqrt, 13u), groups++;
+    run_un(put, "q16_rsqrt_sat", f_rsqrt, 14u), groups++;
+    run_un(put, "q16_abs_neg_sat", f_absneg, 15u), groups++;
+    run_un(put, "q30_h14_conv", f_conv, 16u), groups++;
+    run_vec3(put), groups++;
+    run_lanes(put), groups++;
+    run_kernels_q16(put), groups += 3;
+#if LT_CFG_FLOAT32
+    run_f32(put), groups += 2;
+#endif
+    return groups;
+}
