@@ -16,7 +16,7 @@ WARN := -std=c99 -Wall -Wextra -Wpedantic -Werror -Wshadow -Wundef -Wstrict-prot
 # Float32 results are bit-identical across builds only without FMA contraction or fast-math.
 FPFLAGS := -ffp-contract=off -fno-fast-math
 INC := -Ifirmware/include -Isim -Ihost -Itests/unit -Itests/vectors
-HOST_CFLAGS := $(WARN) -Wdouble-promotion $(FPFLAGS) -O2 -g $(INC) -D_POSIX_C_SOURCE=200809L
+HOST_CFLAGS := $(WARN) -Wdouble-promotion $(FPFLAGS) -O2 -g -fno-var-tracking-assignments $(INC) -D_POSIX_C_SOURCE=200809L
 NATIVE_ARCH ?= -march=native
 
 CORE_SRCS := $(wildcard firmware/core/*.c)
@@ -44,7 +44,8 @@ all: $(B)/host/lt-trace $(B)/sim/lt-sim
 define variant_rules
 $(B)/$(1)/obj/%.o: %.c $(CORE_HDRS) $(HOSTLIB_HDRS) $(SIM_HDRS) Makefile
 	@mkdir -p $$(@D)
-	$(CC) $(CFLAGS_$(1)) -c $$< -o $$@
+	@echo "CC [$(1)] $$<"
+	@$(CC) $(CFLAGS_$(1)) -c $$< -o $$@
 $(1)_CORE_OBJS := $(CORE_SRCS:%.c=$(B)/$(1)/obj/%.o)
 $(1)_HOST_OBJS := $(HOSTLIB_SRCS:%.c=$(B)/$(1)/obj/%.o)
 $(1)_EXTRA_OBJS := $(if $(filter sim,$(1)),$(SIM_SRCS:%.c=$(B)/$(1)/obj/%.o))
@@ -63,6 +64,10 @@ $(B)/sim/lt-sim: $(B)/sim/obj/host/lt_trace_main.o $(sim_CORE_OBJS) $(sim_HOST_O
 	$(CC) -o $@ $^ $(LIBS_sim)
 $(B)/sim/test_cache: $(B)/sim/obj/tests/unit/test_cache.o $(B)/sim/obj/sim/lt_cache.o
 	$(CC) -o $@ $^ -lcmocka
+
+$(B)/sim/slab-model: $(B)/sim/obj/tests/bench/slab_model.o $(B)/sim/obj/tests/vectors/lt_slab_loop.o \
+    $(sim_CORE_OBJS) $(sim_EXTRA_OBJS)
+	$(CC) -o $@ $^ $(LIBS_sim)
 
 sim: $(B)/sim/lt-sim
 
@@ -91,7 +96,7 @@ test: deps
 test-build: $(TEST_BINS) firmware $(PLUGIN_SO)
 
 bench: deps
-	@$(MAKE) --no-print-directory all firmware $(PLUGIN_SO)
+	@$(MAKE) --no-print-directory all firmware $(PLUGIN_SO) $(B)/sim/slab-model
 	@tests/bench/bench.sh
 
 clean:

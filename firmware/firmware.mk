@@ -9,15 +9,18 @@ FW_CORE_SRCS := $(CORE_SRCS)
 FW_APP_SRCS := $(VEC_SRCS)
 
 define fw_rules
-$(B)/fw/$(1)/obj/%.o: %.c $(CORE_HDRS) $(FW_RT_DEPS) tests/vectors/lt_vec.h
+$(B)/fw/$(1)/obj/%.o: %.c $(CORE_HDRS) $(FW_RT_DEPS) tests/vectors/lt_vec.h tests/vectors/lt_slab_loop.h
 	@mkdir -p $$(@D)
-	$(CC_$(1)) $(FW_CFLAGS_COMMON) $(FPFLAGS) $(CFLAGS_$(1)) -Itests/vectors -DLT_COST_MODE=LT_COST_OFF -c $$< -o $$@
+	@echo "CC [$(1)] $$<"
+	@$(CC_$(1)) $(FW_CFLAGS_COMMON) $(FPFLAGS) $(CFLAGS_$(1)) -Itests/vectors -DLT_COST_MODE=LT_COST_OFF -c $$< -o $$@
 $(B)/fw/$(1)/obj/%.o: %.S $(FW_RT_DEPS)
 	@mkdir -p $$(@D)
-	$(CC_$(1)) $(CFLAGS_$(1)) -c $$< -o $$@
-$(B)/fw/$(1)/objx/%.o: %.c $(CORE_HDRS) $(FW_RT_DEPS) tests/vectors/lt_vec.h
+	@echo "AS [$(1)] $$<"
+	@$(CC_$(1)) $(CFLAGS_$(1)) -c $$< -o $$@
+$(B)/fw/$(1)/objx/%.o: %.c $(CORE_HDRS) $(FW_RT_DEPS) tests/vectors/lt_vec.h tests/vectors/lt_slab_loop.h
 	@mkdir -p $$(@D)
-	$(CC_$(1)) $(FW_CFLAGS_COMMON) $(FPFLAGS) $(CFLAGS_$(1)) -Itests/vectors -DLT_COST_MODE=LT_COST_OFF -DLT_CFG_FLOAT32=0 -c $$< -o $$@
+	@echo "CC [$(1)] $$<"
+	@$(CC_$(1)) $(FW_CFLAGS_COMMON) $(FPFLAGS) $(CFLAGS_$(1)) -Itests/vectors -DLT_COST_MODE=LT_COST_OFF -DLT_CFG_FLOAT32=0 -c $$< -o $$@
 fw_$(1)_RT := $(patsubst %.S,$(B)/fw/$(1)/obj/%.o,$(FW_RT_SRCS_$(1):%.c=$(B)/fw/$(1)/obj/%.o))
 fw_$(1)_CORE := $(FW_CORE_SRCS:%.c=$(B)/fw/$(1)/obj/%.o)
 $(B)/fw/$(1)/vectors.elf: $(B)/fw/$(1)/obj/tests/fw/fw_vectors.o $(B)/fw/$(1)/obj/tests/vectors/lt_vec.o \
@@ -26,7 +29,8 @@ $(B)/fw/$(1)/vectors.elf: $(B)/fw/$(1)/obj/tests/fw/fw_vectors.o $(B)/fw/$(1)/ob
 $(B)/fw/$(1)/vectors-fixed.elf: $(B)/fw/$(1)/objx/tests/fw/fw_vectors.o $(B)/fw/$(1)/objx/tests/vectors/lt_vec.o \
     $(FW_CORE_SRCS:%.c=$(B)/fw/$(1)/objx/%.o) $$(fw_$(1)_RT)
 	$(CC_$(1)) $(LDFLAGS_$(1)) -o $$@ $$^ $(LDLIBS_$(1))
-$(B)/fw/$(1)/slab.elf: $(B)/fw/$(1)/obj/tests/fw/fw_slab.o $$(fw_$(1)_CORE) $$(fw_$(1)_RT)
+$(B)/fw/$(1)/slab.elf: $(B)/fw/$(1)/obj/tests/fw/fw_slab.o $(B)/fw/$(1)/obj/tests/vectors/lt_slab_loop.o \
+    $$(fw_$(1)_CORE) $$(fw_$(1)_RT)
 	$(CC_$(1)) $(LDFLAGS_$(1)) -o $$@ $$^ $(LDLIBS_$(1))
 endef
 $(foreach t,$(FW_TARGETS),$(eval $(call fw_rules,$(t))))

@@ -76,22 +76,25 @@ lt_status_t lt_q16_normalize3(const lt_q16_t v[3], lt_q30_t out[3])
     }
     if (m == 0)
         return LT_E_ARG;
-    /* Scale so the largest component lies in [2^29, 2^30): normalisation is scale-free, and then
-     * len^2 < 3 * 2^60 fits uint64 and its root has >= 29 significant bits. */
+    /* Scale up (never down: a right shift would truncate) so the largest component lies in
+     * [2^30, 2^31]: normalisation is scale-free, len^2 <= 3 * 2^62 fits uint64, and the root
+     * s = floor(len) has >= 30 significant bits. */
     lz = lt__clz64(m);
     for (i = 0; i < 3; i++) {
         c[i] = (int64_t)v[i];
-        if (lz > 34u)
-            c[i] = (int64_t)((uint64_t)c[i] << (lz - 34u));
-        else if (lz < 34u)
-            c[i] = lt__asr64(c[i], 34u - lz);
+        if (lz > 33u)
+            c[i] = (int64_t)((uint64_t)c[i] << (lz - 33u));
         len2 += (uint64_t)(c[i] * c[i]);
     }
-    /* root with 1 more bit: sqrt(4 len2) = 2 len */
-    s = lt__isqrt64(len2 * 4u);
+    s = lt__isqrt64(len2);
     for (i = 0; i < 3; i++) {
-        /* c * 2^30 / len = c * 2^31 / (2 len); |c| < 2^30 keeps c * 2^31 < 2^61 */
-        int64_t q = lt__div_round64(c[i] * ((int64_t)1 << 31), (int64_t)s);
+        /* c * 2^30 / len with len in [s, s + 1) estimated as s + 1/2: c * 2^31 / (2s + 1), half up;
+         * |c| <= 2^31 keeps c * 2^31 <= 2^62 */
+        int64_t n = c[i] * ((int64_t)1 << 31), d = 2 * (int64_t)s + 1;
+        int64_t q = lt__divfloor64(n, d);
+        /* half up from the remainder: 2n + d (as lt__div_round64 does) could overflow here */
+        if (2 * (n - q * d) >= d)
+            q++;
         out[i] = lt__ssat32(q);
     }
     return LT_OK;

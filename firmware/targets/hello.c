@@ -86,7 +86,7 @@ int main(void)
     lt_fw_puts(data_word == 0x12345678u && bss_or == 0 ? "data/bss: ok\n" : "data/bss: BAD\n");
     lt_fw_puts(check_rt() ? "rt: ok\n" : "rt: BAD\n");
 
-    /* On Arm this faults (NOCP) unless the start-up code enabled the FPU; on rv32 it is soft-float. */
+    /* On Arm this faults (NOCP) unless start-up enabled the FPU; on rv32 it is soft-float. */
     f = f * 2.5f;
     lt_fw_puts("fpu: ");
     lt_fw_put_u32((uint32_t)(f * 100.0f));

@@ -6,10 +6,12 @@ include firmware/targets/targets.mk
 
 SMOKE_DIR := build/smoke
 SMOKE_CODES := 0 42 255
-SMOKE_SRC := $(FW_TGT_DIR)/hello.c
+# lt__memcpy/lt__memset live in the core (firmware/core/lt_mem.c); hello links that one file.
+SMOKE_SRC := $(FW_TGT_DIR)/hello.c firmware/core/lt_mem.c
 
 .PHONY: all
-all: $(foreach T,$(FW_TARGETS),$(SMOKE_DIR)/$(T)/hello.elf $(SMOKE_DIR)/$(T)/lt_rt.o \
+all: $(foreach T,$(FW_TARGETS),$(SMOKE_DIR)/$(T)/hello.elf \
+    $(SMOKE_DIR)/$(T)/lt_rt.o $(SMOKE_DIR)/$(T)/lt_mem.o \
     $(foreach N,$(SMOKE_CODES),$(SMOKE_DIR)/$(T)/exit$(N).elf))
 
 # $(1) = target, $(2) = image name, $(3) = extra flags
@@ -20,14 +22,16 @@ $(SMOKE_DIR)/$(1)/$(2).elf: $(SMOKE_SRC) $(FW_RT_SRCS_$(1)) $(FW_RT_DEPS) firmwa
 	    -Wl,-Map,$$(@:.elf=.map) -o $$@ $(SMOKE_SRC) $(FW_RT_SRCS_$(1)) $(LDLIBS_$(1))
 endef
 
-# The runtime alone, so smoke.sh can check its relocations (the images drop unused functions).
-define SMOKE_RT
-$(SMOKE_DIR)/$(1)/lt_rt.o: $(FW_TGT_DIR)/common/lt_rt.c $(FW_RT_DEPS) firmware/targets/smoke.mk
+# The memory functions alone, so smoke.sh can check their relocations (the images drop unused
+# functions). $(1) = target, $(2) = source.
+define SMOKE_OBJ
+$(SMOKE_DIR)/$(1)/$(basename $(notdir $(2))).o: $(2) $(FW_RT_DEPS) firmware/targets/smoke.mk
 	@mkdir -p $$(@D)
 	$(CC_$(1)) $(FW_CFLAGS_COMMON) $(CFLAGS_$(1)) -c -o $$@ $$<
 endef
 
-$(foreach T,$(FW_TARGETS),$(eval $(call SMOKE_RT,$(T))))
+$(foreach T,$(FW_TARGETS),$(eval $(call SMOKE_OBJ,$(T),$(FW_TGT_DIR)/common/lt_rt.c)) \
+    $(eval $(call SMOKE_OBJ,$(T),firmware/core/lt_mem.c)))
 $(foreach T,$(FW_TARGETS),$(eval $(call SMOKE_IMAGE,$(T),hello,)) \
     $(foreach N,$(SMOKE_CODES),$(eval $(call SMOKE_IMAGE,$(T),exit$(N),-DLT_FW_HELLO_RC=$(N)))))
 

@@ -33,7 +33,8 @@ LT_STATIC_ASSERT(LDBL_MANT_DIG >= 64, "references need a 64-bit long double sign
 #define I16_LO (-32768.0L)
 #define I16_HI 32767.0L
 
-typedef enum { R_EXACT, R_HALFUP, R_FLOOR } rmode_t;
+/* R_APPROX: any result within the bound (no rounding rule claimed beyond it). */
+typedef enum { R_EXACT, R_HALFUP, R_FLOOR, R_APPROX } rmode_t;
 
 /* Check one result against the real reference x (in raw units of the output). Out-of-range
  * references must give the clamped value exactly (counted as saturated, not as error); half-way
@@ -41,7 +42,7 @@ typedef enum { R_EXACT, R_HALFUP, R_FLOOR } rmode_t;
 static int check_val(ltt_stat_t *st, rmode_t m, long double x, long double lo, long double hi,
                      long double got)
 {
-    long double want = m == R_EXACT ? x : (m == R_HALFUP ? floorl(x + 0.5L) : floorl(x));
+    long double want = m == R_HALFUP ? floorl(x + 0.5L) : (m == R_FLOOR ? floorl(x) : x);
     if (want > hi || want < lo) {
         st->cases++;
         st->sat++;
@@ -59,6 +60,15 @@ static int check_val(ltt_stat_t *st, rmode_t m, long double x, long double lo, l
     if (m == R_FLOOR && got > x) /* floor: never above the exact value */
         return 0;
     return 1;
+}
+
+/* FNV-1a of an op name: a per-op seed that does not change when ops are added or reordered. */
+static uint64_t seed_of(const char *s)
+{
+    uint64_t h = 1469598103934665603u;
+    while (*s != '\0')
+        h = (h ^ (uint64_t)(unsigned char)*s++) * 1099511628211u;
+    return h;
 }
 
 /* ---- value generators ----------------------------------------------------------------------- */
@@ -88,8 +98,8 @@ static void rng_tie_pair(ltt_rng_t *r, unsigned f, int32_t *a, int32_t *b)
 {
     unsigned m = ltt_rng_below(r, f);         /* a carries 2^m, b carries 2^(f-1-m) */
     unsigned ma = 30u - m, mb = 30u - (f - 1u - m);
-    *a = (int32_t)((uint32_t)rng_odd(r, ltt_rng_below(r, ma) + 1u) << m);
-    *b = (int32_t)((uint32_t)rng_odd(r, ltt_rng_below(r, mb) + 1u) << (f - 1u - m));
+    *a = ltt_i32((uint32_t)rng_odd(r, ltt_rng_below(r, ma) + 1u) << m);
+    *b = ltt_i32((uint32_t)rng_odd(r, ltt_rng_below(r, mb) + 1u) << (f - 1u - m));
 }
 
 /* ---- binary ops ----------------------------------------------------------------------------- */
@@ -188,7 +198,7 @@ static void test_binop(void **state)
     unsigned i, n = ne * ne + N_RANDOM + nties;
     ltt_rng_t r;
     ltt_stat_t st;
-    ltt_rng_seed(&r, (uint64_t)(uintptr_t)op->name[4] * 977u + op->name[8]);
+    ltt_rng_seed(&r, seed_of(op->name));
     ltt_stat_init(&st, op->name, "ulp", op->bound);
     for (i = 0; i < n; i++) {
         int32_t a, b, got, want;
@@ -201,8 +211,8 @@ static void test_binop(void **state)
         } else if (op->tie_f != 0) {
             if (op->in16) { /* s7.8: a * b = odd * 2^7 with both in int16 */
                 unsigned m = ltt_rng_below(&r, 8);
-                a = (int32_t)((uint32_t)rng_odd(&r, 14u - m) << m);
-                b = (int32_t)((uint32_t)rng_odd(&r, 7u + m) << (7u - m));
+                a = ltt_i32((uint32_t)rng_odd(&r, 14u - m) << m);
+                b = ltt_i32((uint32_t)rng_odd(&r, 7u + m) << (7u - m));
             } else {
                 rng_tie_pair(&r, op->tie_f, &a, &b);
             }
@@ -310,7 +320,7 @@ static unop_t unops[] = {
       0, 0 },
     { "lt_q16_sqrt", w_lt_q16_sqrt, r_sqrt, s_sqrt, R_HALFUP, 0.5, I32_LO, I32_HI, 0, -16,
       1 << 18, 0, 0 },
-    { "lt_q16_rsqrt_sat", w_lt_q16_rsqrt_sat, r_rsqrt, s_rsqrt, R_HALFUP, 1.0, I32_LO, I32_HI, 0,
+    { "lt_q16_rsqrt_sat", w_lt_q16_rsqrt_sat, r_rsqrt, s_rsqrt, R_APPROX, 1.0, I32_LO, I32_HI, 0,
       -16, 1 << 18, 0, 1 },
     { "lt_q30_from_q16_sat", w_lt_q30_from_q16_sat, r_shl14, NULL, R_EXACT, 0, I32_LO, I32_HI, 0,
       -0x20010, 0x20010, 0, 0 },
@@ -336,7 +346,7 @@ static void test_unop(void **state)
     unsigned long n = nex + LTT_N_EDGES32 + nsweep + N_RANDOM_UN + (op->tie_f ? N_TIES : 0);
     ltt_rng_t r;
     ltt_stat_t st;
-    ltt_rng_seed(&r, (uint64_t)(uintptr_t)op->name[5] * 131u + op->name[9]);
+    ltt_rng_seed(&r, seed_of(op->name));
     ltt_stat_init(&st, op->name, "ulp", op->bound);
     for (i = 0; i < n; i++) {
         int32_t x, got, want;
@@ -443,7 +453,7 @@ static void test_dot3(void **state)
             a[0] = a[1] = a[2] = ltt_edges32[i / ne];
             b[0] = b[1] = b[2] = ltt_edges32[i % ne];
             if (i & 1u)
-                b[1] = -b[1] == INT32_MIN ? INT32_MAX : -b[1];
+                b[1] = b[1] == INT32_MIN ? INT32_MAX : -b[1];
         } else if (i < ne * ne + 3 * N_RANDOM) {
             rng_vec3(&r, a);
             rng_vec3(&r, b);
@@ -452,8 +462,8 @@ static void test_dot3(void **state)
             rng_tie_pair(&r, 16, &a[0], &b[0]);
             a[1] = ltt_rng_i32_wide(&r);
             a[2] = ltt_rng_i32_wide(&r);
-            b[1] = (int32_t)((uint32_t)lt__asr32(ltt_rng_i32(&r), 16u + ltt_rng_below(&r, 16)) << 16);
-            b[2] = (int32_t)((uint32_t)lt__asr32(ltt_rng_i32(&r), 16u + ltt_rng_below(&r, 16)) << 16);
+            b[1] = ltt_i32((uint32_t)lt__asr32(ltt_rng_i32(&r), 16u + ltt_rng_below(&r, 16)) << 16);
+            b[2] = ltt_i32((uint32_t)lt__asr32(ltt_rng_i32(&r), 16u + ltt_rng_below(&r, 16)) << 16);
         }
         got = lt_q16_dot3_sat(a, b);
         /* three 62-bit products and their sum (< 2^64) are exact in long double */
@@ -479,8 +489,12 @@ static void test_cross3(void **state)
         lt_q16_t a[3], b[3], out[4];
         if (i < ne * ne) {
             int32_t e = ltt_edges32[i / ne], f = ltt_edges32[i % ne];
-            a[0] = e; a[1] = f; a[2] = -e == INT32_MIN ? 0 : -e;
-            b[0] = f; b[1] = INT32_MIN; b[2] = e;
+            a[0] = e;
+            a[1] = f;
+            a[2] = e == INT32_MIN ? 0 : -e;
+            b[0] = f;
+            b[1] = INT32_MIN;
+            b[2] = e;
         } else if (i < ne * ne + 3 * N_RANDOM) {
             rng_vec3(&r, a);
             rng_vec3(&r, b);
@@ -490,7 +504,7 @@ static void test_cross3(void **state)
             a[0] = ltt_rng_i32_wide(&r);
             b[0] = ltt_rng_i32_wide(&r);
             a[2] = ltt_rng_i32_wide(&r);
-            b[1] = (int32_t)((uint32_t)lt__asr32(ltt_rng_i32(&r), 16u + ltt_rng_below(&r, 16)) << 16);
+            b[1] = ltt_i32((uint32_t)lt__asr32(ltt_rng_i32(&r), 16u + ltt_rng_below(&r, 16)) << 16);
         }
         out[3] = 0x5A5A5A5A;
         lt_q16_cross3_sat(a, b, out);
@@ -520,9 +534,14 @@ static void test_normalize3(void **state)
     (void)state;
     ltt_rng_seed(&r, 35);
     ltt_stat_init(&st, "lt_q16_normalize3", "ulp(s1.30)", 2.0);
+    /* Vectors a random search (tests/unit history) found to exceed the 2-ulp bound: INT32_MIN
+     * forces a 2-bit pre-shift whose floor drops up to 3/4 of a scaled unit from the companions. */
+    static const int32_t found[][3] = { { INT32_MIN, 259895087, -560678477 } };
+    unsigned nfound = (unsigned)(sizeof found / sizeof found[0]);
     /* every combination of the component list: axis vectors (unit, 1 ulp, max, min), tiny vectors
-     * (+-1 ulp components), huge vectors (max/min), huge with tiny companions, the zero vector */
-    for (i = 0; i < nc * nc * nc + 5 * N_RANDOM; i++) {
+     * (+-1 ulp components), huge vectors (max/min), huge with tiny companions, the zero vector;
+     * then the found vectors, random vectors, and INT32_MIN with companions = 3 mod 4 */
+    for (i = 0; i < nc * nc * nc + nfound + 6 * N_RANDOM; i++) {
         lt_q16_t v[3];
         lt_q30_t out[4] = { 0x5A5A5A5A, 0x5A5A5A5A, 0x5A5A5A5A, 0x5A5A5A5A };
         lt_status_t s;
@@ -531,16 +550,21 @@ static void test_normalize3(void **state)
             v[0] = comp[i % nc];
             v[1] = comp[i / nc % nc];
             v[2] = comp[i / nc / nc];
+        } else if (i < nc * nc * nc + nfound) {
+            memcpy(v, found[i - nc * nc * nc], sizeof v);
+        } else if (i % 3u == 0) {
+            v[0] = INT32_MIN;
+            v[1] = (int32_t)((uint32_t)lt__asr32(ltt_rng_i32(&r), 1u + ltt_rng_below(&r, 30)) | 3u);
+            v[2] = (int32_t)((uint32_t)lt__asr32(ltt_rng_i32(&r), 1u + ltt_rng_below(&r, 30)) | 3u);
         } else if (i & 1u) {
             rng_vec3(&r, v);
         } else {
             /* one big component (scale 2^0..2^31) with companions 0..30 bits smaller */
             unsigned e = ltt_rng_below(&r, 32);
-            for (c = 0; c < 3; c++)
-                v[c] = lt__asr32(ltt_rng_i32(&r), 31u - e + (c == 0 ? 0u : ltt_rng_below(&r, 31)) >
-                                                          31u
-                                                      ? 31u
-                                                      : 31u - e + (c == 0 ? 0u : ltt_rng_below(&r, 31)));
+            for (c = 0; c < 3; c++) {
+                unsigned sh = 31u - e + (c == 0 ? 0u : ltt_rng_below(&r, 31));
+                v[c] = lt__asr32(ltt_rng_i32(&r), sh > 31u ? 31u : sh);
+            }
         }
         s = lt_q16_normalize3(v, out);
         if (v[0] == 0 && v[1] == 0 && v[2] == 0) {
@@ -559,7 +583,7 @@ static void test_normalize3(void **state)
         len = sqrtl((long double)v[0] * v[0] + (long double)v[1] * v[1] + (long double)v[2] * v[2]);
         for (c = 0; c < 3; c++) {
             long double x = ldexpl((long double)v[c], 30) / len;
-            if (!check_val(&st, R_EXACT, x, I32_LO, I32_HI, (long double)out[c]))
+            if (!check_val(&st, R_APPROX, x, I32_LO, I32_HI, (long double)out[c]))
                 ltt_stat_fail(&st, "v=(%ld,%ld,%ld) out[%u]=%ld ref %.3Lf", (long)v[0], (long)v[1],
                               (long)v[2], c, (long)out[c], x);
         }

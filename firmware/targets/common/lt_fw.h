@@ -33,7 +33,8 @@ void lt_fw_put_hex32(uint32_t v);
 
 /* Flush the UART and end the QEMU run with exit status code & 0xFF (0..255 pass through; the host
  * sees only 8 bits anyway). Arm: semihosting SYS_EXIT_EXTENDED (0x20) with {0x20026, code}, which
- * needs -semihosting-config enable=on. RISC-V: the sifive_test device at 0x100000. Never returns. */
+ * needs -semihosting-config enable=on. RISC-V: the sifive_test device at 0x100000.
+ * Never returns. */
 LT_NORETURN void lt_fw_exit(int code);
 
 /* Monotonic 64-bit tick count since reset, in virtual nanoseconds of QEMU's icount clock. Under

@@ -1,0 +1,43 @@
+#!/usr/bin/env bash
+# bench.sh - benchmarks printed as ratios against a peer measured in the same run (make bench):
+#  1. the cost of counting: the same kernels on the same frames, native (LT_COST_OFF) vs counted
+#     (LT_COST_SIM, lrb16 with caches); target: counted <= 3x native;
+#  2. the scalar MCU model vs measured instructions: mcu-m4's predicted cycles for the slab-test loop
+#     vs the instructions QEMU's lt_icount plugin counts inside lt_slab16_q16 on Cortex-M4;
+#  3. the cycle report of the bundled scene on lrb16.
+# Run from the repository root after make all firmware build/sim/slab-model build/plugin/lt_icount.so.
+set -euo pipefail
+B=build
+SCENE=${BENCH_SCENE:-scenes/teapot.obj}
+RES=${BENCH_RES:-128}
+REP=${BENCH_REPEAT:-10}
+
+echo "== 1. cost of counting: $SCENE ${RES}x${RES}, $REP frames, median of 3 runs"
+median() { sort -g | sed -n 2p; }
+for p in q16 f32; do
+    nat=$(for i in 1 2 3; do "$B/host/lt-trace" --scene "$SCENE" --res "$RES" --repeat "$REP" --num $p --no-ref -q |
+        awk '/^time/{print $3}'; done | median)
+    cnt=$(for i in 1 2 3; do "$B/sim/lt-sim" --scene "$SCENE" --res "$RES" --repeat "$REP" --num $p --no-ref -q |
+        awk '/^time/{print $3}'; done | median)
+    awk -v p=$p -v n="$nat" -v c="$cnt" 'BEGIN{r=c/n; printf "%-4s native %8.2f ms  counted %8.2f ms  ratio %.2fx (target <= 3x: %s)\n", p, n, c, r, (r<=3)?"met":"NOT met"}'
+done
+
+echo "== 2. mcu-m4 model vs QEMU instruction count (lt_slab16_q16, 256 calls, Cortex-M4 mps2-an386)"
+source <(make -s --no-print-directory -f tools/print_qemu.mk)
+pred=$("$B/sim/slab-model" mcu-m4 256 | awk '{print $NF}')
+out=$(mktemp)
+timeout 60 $QEMU_cm4 "$B/fw/cm4/slab.elf" -plugin "$B/plugin/lt_icount.so,sym=lt_slab16_q16,out=$out" >/dev/null
+cnt=$(awk '/^icount sym lt_slab16_q16/{print $4}' "$out")
+rm -f "$out"
+awk -v p="$pred" -v c="$cnt" 'BEGIN{printf "predicted %d cycles, counted %d instructions, predicted/counted %.3f\n", p, c, p/c}'
+if [ -x "$B/sim/tri-model" ] && [ -f "$B/fw/cm4/tri.elf" ]; then
+    pred=$("$B/sim/tri-model" mcu-m4 | awk '{print $NF}')
+    out=$(mktemp)
+    timeout 60 $QEMU_cm4 "$B/fw/cm4/tri.elf" -plugin "$B/plugin/lt_icount.so,sym=lt_tri16_q16,out=$out" >/dev/null
+    cnt=$(awk '/^icount sym lt_tri16_q16/{print $4}' "$out")
+    rm -f "$out"
+    awk -v p="$pred" -v c="$cnt" 'BEGIN{printf "lt_tri16_q16: predicted %d cycles, counted %d instructions, predicted/counted %.3f\n", p, c, p/c}'
+fi
+
+echo "== 3. cycle report: bundled scene on lrb16"
+"$B/sim/lt-sim" --scene "$SCENE" --res "$RES" --json "$B/bench-report.json"

@@ -1,0 +1,32 @@
+/* tri_model.c - the mcu-m4 (or any) machine model's prediction for the ray-triangle loop that
+ * tests/fw/fw_tri.c runs under QEMU: prints predicted cycles for the lt_tri16_q16 calls.
+ * Sim build only. Usage: tri-model [machine] [calls]
+ */
+#include <stdio.h>
+#include <stdlib.h>
+#include "lt_sim.h"
+#include "lt_tri_loop.h"
+
+int main(int argc, char **argv)
+{
+    const char *mname = argc > 1 ? argv[1] : "mcu-m4";
+    int calls = argc > 2 ? atoi(argv[2]) : 256;
+    const lt_machine_t *m = lt_sim_machine_find(mname);
+    lt_sim_totals_t t;
+    char err[256];
+    uint32_t hits;
+    if (m == NULL || calls < 1) {
+        fprintf(stderr, "usage: tri-model [lrb16|mcu-m4] [calls >= 1]\n");
+        return 2;
+    }
+    if (lt_sim_init(m, NULL, NULL, err, sizeof err) != 0) {
+        fprintf(stderr, "%s\n", err);
+        return 1;
+    }
+    hits = lt_tri_loop(calls);
+    lt_sim_totals(&t);
+    printf("model %s tri calls %d lane hits %u predicted %llu\n", mname, calls, hits,
+           (unsigned long long)t.total_cycles);
+    lt_sim_shutdown();
+    return 0;
+}
