@@ -75,6 +75,7 @@ sim: $(B)/sim/lt-sim
 include firmware/targets/targets.mk
 include sim/qemu/plugin.mk
 include firmware/firmware.mk
+include firmware/opcal.mk
 
 # ---- deps, run, test, bench ----------------------------------------------------------------------
 deps:
@@ -96,7 +97,7 @@ test: deps
 test-build: $(TEST_BINS) firmware $(PLUGIN_SO)
 
 bench: deps
-	@$(MAKE) --no-print-directory all firmware $(PLUGIN_SO) $(B)/sim/slab-model
+	@$(MAKE) --no-print-directory all firmware opcal
 	@tests/bench/bench.sh
 
 clean:

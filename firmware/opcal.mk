@@ -1,6 +1,5 @@
-# opcal.mk - images and host predictors for calibrating sim/machines/mcu_m4.def (included nowhere;
-# use it on top of the Makefile, whose variables and firmware pattern rules it reuses):
-#   make -f Makefile -f firmware/opcal.mk opcal
+# opcal.mk - images and host predictors for calibrating sim/machines/mcu_m4.def (included by the
+# Makefile; `make opcal` builds them, `make bench` uses them):
 #   build/fw/cm4/opcal.elf  op-class microbenchmarks (tests/fw/fw_opcal.c)
 #   build/fw/cm4/tri.elf    the ray-triangle loop of tests/vectors/lt_tri_loop.c under QEMU
 #   build/sim/tri-model     the sim's prediction for the same loop (tests/bench/tri_model.c)

@@ -1,8 +1,8 @@
 /* lt_fx_float.h - host-only conversions between double and the fixed-point formats of lt_fx.h.
- * value = raw / 2^frac. double -> fixed rounds half up (floor(x * 2^frac + 1/2), the core's rule) and
- * saturates to the storage range; NaN converts to 0 (also reported by the _chk forms). fixed -> double
- * is exact for every format (all raws fit the 53-bit significand). Never included by firmware: the
- * core stays integer only. Builds: host, tests (C99 + <math.h>).
+ * value = raw / 2^frac. double -> fixed rounds half up (floor(x * 2^frac + 1/2), the core's rule)
+ * and saturates to the storage range; NaN converts to 0 (also reported by the _chk forms).
+ * fixed -> double is exact for every format (all raws fit the 53-bit significand).
+ * Never included by firmware: the core stays integer only. Builds: host, tests (C99 + <math.h>).
  */
 #ifndef LT_FX_FLOAT_H
 #define LT_FX_FLOAT_H
@@ -15,9 +15,9 @@
 extern "C" {
 #endif
 
-/* Round x * 2^frac half up and clamp to [lo, hi]; *sat (if not NULL) is set to 1 when the value was
- * clamped or NaN, else 0. x * 2^frac is exact (a power-of-two scale of a finite double within range),
- * and the +1/2 is exact too because the clamp is tested before it, while |x * 2^frac| < 2^52. */
+/* Round x * 2^frac half up and clamp to [lo, hi]; *sat (if not NULL) is set to 1 when the value
+ * was clamped or NaN, else 0. x * 2^frac is exact (a power-of-two scale of a finite double within
+ * range), and so is the + 1/2, because the clamp is tested first and |x * 2^frac| < 2^52. */
 static inline int64_t lt__fxf_from_double(double x, int frac, int64_t lo, int64_t hi, int *sat)
 {
     double v = ldexp(x, frac);

@@ -22,22 +22,23 @@ for p in q16 f32; do
     awk -v p=$p -v n="$nat" -v c="$cnt" 'BEGIN{r=c/n; printf "%-4s native %8.2f ms  counted %8.2f ms  ratio %.2fx (target <= 3x: %s)\n", p, n, c, r, (r<=3)?"met":"NOT met"}'
 done
 
-echo "== 2. mcu-m4 model vs QEMU instruction count (lt_slab16_q16, 256 calls, Cortex-M4 mps2-an386)"
+echo "== 2. mcu-m4 model vs QEMU instruction counts (Cortex-M4, mps2-an386, lt_icount plugin)"
 source <(make -s --no-print-directory -f tools/print_qemu.mk)
 pred=$("$B/sim/slab-model" mcu-m4 256 | awk '{print $NF}')
 out=$(mktemp)
 timeout 60 $QEMU_cm4 "$B/fw/cm4/slab.elf" -plugin "$B/plugin/lt_icount.so,sym=lt_slab16_q16,out=$out" >/dev/null
 cnt=$(awk '/^icount sym lt_slab16_q16/{print $4}' "$out")
 rm -f "$out"
-awk -v p="$pred" -v c="$cnt" 'BEGIN{printf "predicted %d cycles, counted %d instructions, predicted/counted %.3f\n", p, c, p/c}'
-if [ -x "$B/sim/tri-model" ] && [ -f "$B/fw/cm4/tri.elf" ]; then
-    pred=$("$B/sim/tri-model" mcu-m4 | awk '{print $NF}')
-    out=$(mktemp)
-    timeout 60 $QEMU_cm4 "$B/fw/cm4/tri.elf" -plugin "$B/plugin/lt_icount.so,sym=lt_tri16_q16,out=$out" >/dev/null
-    cnt=$(awk '/^icount sym lt_tri16_q16/{print $4}' "$out")
-    rm -f "$out"
-    awk -v p="$pred" -v c="$cnt" 'BEGIN{printf "lt_tri16_q16: predicted %d cycles, counted %d instructions, predicted/counted %.3f\n", p, c, p/c}'
-fi
+awk -v p="$pred" -v c="$cnt" 'BEGIN{printf "lt_slab16_q16 x256: predicted %d cycles, counted %d instructions, predicted/counted %.3f\n", p, c, p/c}'
+pred=$("$B/sim/tri-model" mcu-m4 | awk '{print $NF}')
+out=$(mktemp)
+# the triangle kernel's own instructions plus the helpers it calls (struct copies, 64-bit divides)
+syms="lt_tri16_q16 q_tdiv_m lt__memcpy memcpy __aeabi_ldivmod __udivmoddi4"
+timeout 60 $QEMU_cm4 "$B/fw/cm4/tri.elf" -plugin "$B/plugin/lt_icount.so,$(printf 'sym=%s,' $syms)out=$out" >/dev/null
+cnt=$(awk '/^icount sym/{s += $4} END{print s}' "$out")
+awk '/^icount sym/{printf "   %-16s %d\n", $3, $4}' "$out"
+rm -f "$out"
+awk -v p="$pred" -v c="$cnt" 'BEGIN{printf "lt_tri16_q16 (+helpers): predicted %d cycles, counted %d instructions, predicted/counted %.3f\n", p, c, p/c}'
 
 echo "== 3. cycle report: bundled scene on lrb16"
 "$B/sim/lt-sim" --scene "$SCENE" --res "$RES" --json "$B/bench-report.json"

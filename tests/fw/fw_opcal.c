@@ -27,6 +27,7 @@ void w_base_p2(void *r, const void *a);
 lt_mask16_t w_base_kp2(lt_mask16_t k, const void *a, const void *b);
 int32_t w_base_kp1(lt_mask16_t k, const void *a);
 void w_base_px(void *r, int32_t x);
+void w_base_pl(void *r, int64_t x);
 unsigned w_base_k(lt_mask16_t k);
 void w_base_pkpp(void *r, lt_mask16_t k, const void *base, const void *idx);
 lt_vq16_t w_base_byval(lt_vq16_t a, lt_vq16_t b);
@@ -48,6 +49,7 @@ W int32_t w_base_kp1(lt_mask16_t k, const void *a)
     return (int32_t)k;
 }
 W void w_base_px(void *r, int32_t x) { (void)r; (void)x; }
+W void w_base_pl(void *r, int64_t x) { (void)r; (void)x; }
 W unsigned w_base_k(lt_mask16_t k) { return k; }
 W void w_base_pkpp(void *r, lt_mask16_t k, const void *base, const void *idx)
 {
@@ -132,11 +134,17 @@ W int32_t w_vred(lt_mask16_t k, const lt_vq16_t *a) { return lt_vq16_hmin(k, *a,
 void w_vbcast(lt_vq16_t *r, int32_t x);
 W void w_vbcast(lt_vq16_t *r, int32_t x) { *r = lt_vq16_set1(x); }
 
+void w_vbcast_ql(lt_vql_t *r, int64_t x);
+W void w_vbcast_ql(lt_vql_t *r, int64_t x) { *r = lt_vql_set1(x); }
+
 void w_vload(lt_vq16_t *r, const int32_t *p);
 W void w_vload(lt_vq16_t *r, const int32_t *p) { *r = lt_vq16_load(p); }
 
 void w_vstore(int32_t *p, const lt_vq16_t *a);
 W void w_vstore(int32_t *p, const lt_vq16_t *a) { lt_vq16_store(p, *a); }
+
+unsigned w_mask_any(lt_mask16_t k);
+W unsigned w_mask_any(lt_mask16_t k) { return (unsigned)lt_mask16_any(k); }
 
 unsigned w_mask_popcount(lt_mask16_t k);
 W unsigned w_mask_popcount(lt_mask16_t k) { return lt_mask16_popcount(k); }
@@ -262,6 +270,7 @@ int main(void)
         sink += w_base_kp2(k, pa, pb);
         sink += (uint32_t)w_base_kp1(k, pa);
         w_base_px(pr, qa.l[0]);
+        w_base_pl(&lr, lb.l[0]);
         sink += w_base_k(k);
         w_base_pkpp(pr, k, table, &gidx);
         qr = w_base_byval(qa, qb);
@@ -305,6 +314,8 @@ int main(void)
             sink += (uint32_t)w_vred(k, pa);
         if (RUN(w_vbcast))
             w_vbcast(pr, qb.l[it & 15]);
+        if (RUN(w_vbcast_ql))
+            w_vbcast_ql(&lr, lb.l[it & 15]);
         if (RUN(w_fadd_add))
             w_fadd_add(&fr, &fa, &fb);
         if (RUN(w_fadd_min))
@@ -319,6 +330,8 @@ int main(void)
             w_vload(pr, mem);
         if (RUN(w_vstore))
             w_vstore(mem, pa);
+        if (RUN(w_mask_any))
+            sink += w_mask_any(k);
         if (RUN(w_mask_popcount))
             sink += w_mask_popcount(k);
         if (RUN(w_mask_first))

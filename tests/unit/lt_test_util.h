@@ -15,7 +15,7 @@
 
 #include "lt/lt_port.h"
 
-/* ---- PRNG: xorshift64* (Vigna), seeded through splitmix64 so any seed (even 0) works ---------- */
+/* ---- PRNG: xorshift64* (Vigna), seeded through splitmix64 so any seed (even 0) works --------- */
 
 typedef struct ltt_rng {
     uint64_t s; /* state, never 0 */
@@ -54,6 +54,10 @@ static inline int64_t ltt_i64(uint64_t u)
 static inline int32_t ltt_rng_i32(ltt_rng_t *r) { return ltt_i32(ltt_rng_u32(r)); }
 static inline int64_t ltt_rng_i64(ltt_rng_t *r) { return ltt_i64(ltt_rng_u64(r)); }
 
+/* Helpers that draw twice keep the draws in separate statements: C leaves the evaluation order of
+ * function arguments and operands unspecified, and a different order between builds (seen between
+ * -O2 and ASan builds) would change the case list. */
+
 /* Uniform in [0, n), n >= 1 (multiply-shift; bias < 2^-32, irrelevant here). */
 static inline uint32_t ltt_rng_below(ltt_rng_t *r, uint32_t n)
 {
@@ -65,6 +69,27 @@ static inline int32_t ltt_rng_range(ltt_rng_t *r, int32_t lo, int32_t hi)
 {
     uint64_t span = (uint64_t)((int64_t)hi - (int64_t)lo) + 1u;
     return (int32_t)((int64_t)lo + (int64_t)((ltt_rng_u64(r) >> 11) % span));
+}
+
+/* Random int32 shifted right (arithmetic) by lo + [0, n): magnitudes spread over powers of two. */
+static inline int32_t ltt_rng_i32_shr(ltt_rng_t *r, unsigned lo, unsigned n)
+{
+    unsigned s = lo + ltt_rng_below(r, n);
+    return lt__asr32(ltt_rng_i32(r), s);
+}
+
+/* Random int64 shifted right (arithmetic) by [0, n), n <= 64. */
+static inline int64_t ltt_rng_i64_shr(ltt_rng_t *r, unsigned n)
+{
+    unsigned s = ltt_rng_below(r, n);
+    return lt__asr64(ltt_rng_i64(r), s);
+}
+
+/* Random uint64 shifted right by [0, n), n <= 64. */
+static inline uint64_t ltt_rng_u64_shr(ltt_rng_t *r, unsigned n)
+{
+    unsigned s = ltt_rng_below(r, n);
+    return ltt_rng_u64(r) >> s;
 }
 
 /* Uniform double in [0, 1) with 53 random bits. */
@@ -112,7 +137,10 @@ static inline int32_t ltt_rng_i32_wide(ltt_rng_t *r)
     return (int32_t)(m & 0x7FFFFFFFu);
 }
 
-/* ---- mask pattern classes ---------------------------------------------------------------------- */
+/* ---- mask pattern classes -------------------------------------------------------------------- */
+
+/* Bit i of mask m as an int (0 or 1), computed in unsigned arithmetic. */
+#define LTT_ON(m, i) ((int)((((unsigned)(m)) >> (unsigned)(i)) & 1u))
 
 /* none, all, alternating x2, each single lane, then LTT_MASK_RANDOM random masks. */
 #define LTT_MASK_RANDOM 100
@@ -148,7 +176,7 @@ static inline const char *ltt_mask_class(unsigned idx)
     return "random";
 }
 
-/* ---- poison and tail guards -------------------------------------------------------------------- */
+/* ---- poison and tail guards ------------------------------------------------------------------ */
 
 #define LTT_POISON 0xA5u
 
@@ -164,7 +192,7 @@ static inline size_t ltt_touched(const void *p, size_t from, size_t to)
     return n;
 }
 
-/* ---- reports ----------------------------------------------------------------------------------- */
+/* ---- reports --------------------------------------------------------------------------------- */
 
 /* printf for report lines: everything a test prints goes through here, flushed, so the summaries
  * interleave correctly with cmocka's own output. */

@@ -64,7 +64,7 @@ static void test_asr64(void **state)
         if (i < ne)
             v = edge[i];
         else /* random magnitude class: shift a random value down by 0..63 */
-            v = lt__asr64(ltt_rng_i64(&r), ltt_rng_below(&r, 64));
+            v = ltt_rng_i64_shr(&r, 64);
         for (s = 0; s < 64; s++) {
             long double ref = floorl(ldexpl((long double)v, -(int)s));
             int64_t got = lt__asr64(v, s);
@@ -119,7 +119,7 @@ static uint64_t bit_case(unsigned i, ltt_rng_t *r)
         return (uint64_t)1 << (i - 2);
     if (i < 2 + 128)
         return ((uint64_t)2 << (i - 66)) - 1u;
-    return ltt_rng_u64(r) >> ltt_rng_below(r, 64);
+    return ltt_rng_u64_shr(r, 64);
 }
 
 static void test_bitcounts(void **state)
@@ -137,7 +137,8 @@ static void test_bitcounts(void **state)
             bad++;
         if (lt__ctz32(lo) != naive_ctz32(lo) || lt__ctz32(hi) != naive_ctz32(hi))
             bad++;
-        if (lt__popcount32(lo) != naive_popcount32(lo) || lt__popcount32(hi) != naive_popcount32(hi))
+        if (lt__popcount32(lo) != naive_popcount32(lo) ||
+            lt__popcount32(hi) != naive_popcount32(hi))
             bad++;
         if (bad != 0) {
             ltt_report("  FAIL bit counts at x=0x%016llx\n", (unsigned long long)x);
@@ -171,7 +172,7 @@ static void test_ssat_wrap(void **state)
     ltt_stat_init(&s16, "lt__ssat16", "", 0);
     ltt_stat_init(&w32, "lt__wrap32", "", 0);
     for (i = 0; i < ne + N_RANDOM; i++) {
-        int64_t v = i < ne ? edge[i] : lt__asr64(ltt_rng_i64(&r), ltt_rng_below(&r, 64));
+        int64_t v = i < ne ? edge[i] : ltt_rng_i64_shr(&r, 64);
         int32_t v32 = (int32_t)lt__ssat32(v); /* a valid int32 input for ssat16 */
         long double lv = (long double)v;
         long double want32 = lv > 2147483647.0L ? 2147483647.0L
@@ -241,8 +242,8 @@ static void test_divfloor64(void **state)
             a = edge[i / ne];
             b = edge[i % ne];
         } else {
-            a = lt__asr64(ltt_rng_i64(&r), ltt_rng_below(&r, 64));
-            b = lt__asr64(ltt_rng_i64(&r), ltt_rng_below(&r, 64));
+            a = ltt_rng_i64_shr(&r, 64);
+            b = ltt_rng_i64_shr(&r, 64);
         }
         /* b == 0 is outside the contract; INT64_MIN / -1 overflows int64 (undefined in C99,
          * and the quotient 2^63 has no int64 value): both are excluded from the domain. */
@@ -265,44 +266,58 @@ static void test_divfloor64(void **state)
 #define MEM_BUF 96
 #define MEM_GUARD 16
 
+/* 8-byte aligned storage, so offsets 0..7 give every alignment (the helpers take a word path when
+ * dst and src share 4-byte alignment and a byte path otherwise). */
+typedef union mem_buf {
+    uint64_t align;
+    unsigned char b[MEM_GUARD + MEM_BUF + MEM_GUARD];
+} mem_buf_t;
+
 static void test_memset_memcpy(void **state)
 {
-    unsigned char dst[MEM_GUARD + MEM_BUF + MEM_GUARD];
-    unsigned char src[MEM_BUF];
-    unsigned off, n, i, cases = 0, bad = 0;
+    mem_buf_t dbuf, sbuf;
+    unsigned char *dst = dbuf.b, *src = sbuf.b;
+    unsigned off, soff, n, i, cases = 0, bad = 0;
     (void)state;
-    for (i = 0; i < MEM_BUF; i++)
-        src[i] = (unsigned char)(i * 7u + 1u); /* never 0xA5 at any offset the checks read */
+    for (i = 0; i < sizeof sbuf.b; i++)
+        src[i] = (unsigned char)(i * 7u + 1u); /* never 0xA5 in the bytes copied */
     for (off = 0; off < 8; off++) {
         for (n = 0; n + off <= MEM_BUF - 8; n++) {
             unsigned char *d = dst + MEM_GUARD + off;
             void *ret;
             size_t head = MEM_GUARD + off, tail = head + n;
-            /* memset with a value that differs from the poison, then with the poison's complement */
-            ltt_poison(dst, sizeof dst);
+            /* memset with a value that differs from the poison */
+            ltt_poison(dst, sizeof dbuf.b);
             ret = lt__memset(d, 0x3C, n);
             cases++;
-            if (ret != d || ltt_touched(dst, 0, head) != 0 || ltt_touched(dst, tail, sizeof dst) != 0)
+            if (ret != d || ltt_touched(dst, 0, head) != 0 ||
+                ltt_touched(dst, tail, sizeof dbuf.b) != 0)
                 bad++;
             for (i = 0; i < n; i++)
                 bad += d[i] != 0x3C;
             /* c is converted to unsigned char: 0x15A must store 0x5A */
-            ltt_poison(dst, sizeof dst);
+            ltt_poison(dst, sizeof dbuf.b);
             (void)lt__memset(d, 0x15A, n);
+            cases++;
             for (i = 0; i < n; i++)
                 bad += d[i] != 0x5A;
-            bad += ltt_touched(dst, tail, sizeof dst) != 0;
-            /* memcpy */
-            ltt_poison(dst, sizeof dst);
-            ret = lt__memcpy(d, src + (off ^ 3u), n);
-            cases++;
-            if (ret != d || ltt_touched(dst, 0, head) != 0 || ltt_touched(dst, tail, sizeof dst) != 0)
-                bad++;
-            bad += memcmp(d, src + (off ^ 3u), n) != 0;
+            bad += ltt_touched(dst, 0, head) != 0 || ltt_touched(dst, tail, sizeof dbuf.b) != 0;
+            /* memcpy from every source alignment (same as dst: word path; others: byte path) */
+            for (soff = 0; soff < 8; soff++) {
+                const unsigned char *sp = src + soff;
+                ltt_poison(dst, sizeof dbuf.b);
+                ret = lt__memcpy(d, sp, n);
+                cases++;
+                if (ret != d || ltt_touched(dst, 0, head) != 0 ||
+                    ltt_touched(dst, tail, sizeof dbuf.b) != 0)
+                    bad++;
+                bad += memcmp(d, sp, n) != 0;
+            }
         }
     }
-    ltt_report("lt__memset/lt__memcpy: %u cases (8 offsets x lengths 0..%u), 0xA5 guards of %u B "
-               "each side, %u violations (bound 0)\n", cases, MEM_BUF - 8, MEM_GUARD, bad);
+    ltt_report("lt__memset/lt__memcpy: %u cases (8 dst x 8 src alignments x lengths 0..%u), 0xA5 "
+               "guards of %u B each side, %u violations (bound 0)\n", cases, MEM_BUF - 8,
+               MEM_GUARD, bad);
     assert_int_equal(bad, 0);
 }
 

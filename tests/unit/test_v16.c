@@ -22,7 +22,7 @@
 
 LT_STATIC_ASSERT(LDBL_MANT_DIG >= 64, "references need a 64-bit long double significand");
 
-#define N_REP 8 /* random input vector sets per family (each run under every mask) */
+#define N_REP 32 /* random input vector sets per family (each run under every mask) */
 
 static uint64_t seed_of(const char *s)
 {
@@ -45,6 +45,15 @@ static void note_bad(unsigned long *bad, const char *name, unsigned k, int lane)
         ltt_report("  FAIL %s: mask 0x%04x lane %d\n", name, k, lane);
 }
 
+/* The same with the lane's input(s), result and expected value (%g shows -0 and nan). */
+static void note_val(unsigned long *bad, const char *name, unsigned k, int lane, double a, double b,
+                     double got, double want)
+{
+    if ((*bad)++ < 4)
+        ltt_report("  FAIL %s: mask 0x%04x lane %d: inputs %.9g, %.9g: got %.9g, want %.9g\n", name,
+                   k, lane, a, b, got, want);
+}
+
 /* ---- lane generators ---------------------------------------------------------------------- */
 
 static int32_t gen_i32(ltt_rng_t *r)
@@ -54,20 +63,22 @@ static int32_t gen_i32(ltt_rng_t *r)
 
 static int16_t gen_i16(ltt_rng_t *r)
 {
-    static const int16_t e[] = { 0, 1, -1, 0x7F, 0x80, 0xFF, 0x100, -0x100, 0x7FFF, -0x8000, -0x7FFF };
+    static const int16_t e[] = { 0,      1,      -1,      0x7F,   0x80,  0xFF,
+                                 0x100,  -0x100, 0x7FFF,  -0x8000, -0x7FFF };
     if (ltt_rng_below(r, 4) == 0)
         return e[ltt_rng_below(r, (uint32_t)(sizeof e / sizeof e[0]))];
-    return (int16_t)lt__asr32(ltt_rng_i32(r), 16u + ltt_rng_below(r, 16));
+    return (int16_t)ltt_rng_i32_shr(r, 16, 16);
 }
 
 static int64_t gen_i64(ltt_rng_t *r)
 {
     static const int64_t e[] = { 0, 1, -1, INT64_MAX, INT64_MIN, (int64_t)1 << 62,
                                  -((int64_t)1 << 62), ((int64_t)1 << 62) + 1, INT32_MAX, INT32_MIN,
-                                 ((int64_t)INT32_MAX << 16) + 0x8000, (int64_t)INT32_MIN * 65536 - 1 };
+                                 ((int64_t)INT32_MAX << 16) + 0x8000,
+                                 (int64_t)INT32_MIN * 65536 - 1 };
     if (ltt_rng_below(r, 8) == 0)
         return e[ltt_rng_below(r, (uint32_t)(sizeof e / sizeof e[0]))];
-    return lt__asr64(ltt_rng_i64(r), ltt_rng_below(r, 64));
+    return ltt_rng_i64_shr(r, 64);
 }
 
 #define GEN_VEC(fn, VT, gen)                                                                       \
@@ -106,13 +117,14 @@ GEN_VEC(gen_vh8, lt_vh8_t, gen_i16)
             p = vfn(a, b);                                                                         \
             for (i = 0; i < LT_LANES; i++, lanes++)                                                \
                 if (!same(p.l[i], sref(a.l[i], b.l[i])))                                           \
-                    note_bad(&bad, #vfn, 0xFFFFu, i);                                              \
+                    note_val(&bad, #vfn, 0xFFFFu, i, (double)a.l[i], (double)b.l[i],               \
+                             (double)p.l[i], (double)sref(a.l[i], b.l[i]));                        \
             for (m = 0; m < nm; m++) {                                                             \
                 lt_mask16_t k = masks[m];                                                          \
                 VT rm = vfn##_m(src, k, a, b), rz = vfn##_z(k, a, b);                              \
                 for (i = 0; i < LT_LANES; i++, lanes += 2) {                                       \
                     ET want = sref(a.l[i], b.l[i]);                                                \
-                    int on = (int)((k >> i) & 1u);                                                 \
+                    int on = LTT_ON(k, i);                                                         \
                     if (!same(rm.l[i], on ? want : src.l[i]))                                      \
                         note_bad(&bad, #vfn "_m", k, i);                                           \
                     if (!same(rz.l[i], on ? want : (ET)0))                                         \
@@ -140,13 +152,14 @@ GEN_VEC(gen_vh8, lt_vh8_t, gen_i16)
             p = vfn(a);                                                                            \
             for (i = 0; i < LT_LANES; i++, lanes++)                                                \
                 if (!same(p.l[i], sref(a.l[i])))                                                   \
-                    note_bad(&bad, #vfn, 0xFFFFu, i);                                              \
+                    note_val(&bad, #vfn, 0xFFFFu, i, (double)a.l[i], 0.0, (double)p.l[i],          \
+                             (double)sref(a.l[i]));                                                \
             for (m = 0; m < nm; m++) {                                                             \
                 lt_mask16_t k = masks[m];                                                          \
                 VT rm = vfn##_m(src, k, a), rz = vfn##_z(k, a);                                    \
                 for (i = 0; i < LT_LANES; i++, lanes += 2) {                                       \
                     ET want = sref(a.l[i]);                                                        \
-                    int on = (int)((k >> i) & 1u);                                                 \
+                    int on = LTT_ON(k, i);                                                         \
                     if (!same(rm.l[i], on ? want : src.l[i]))                                      \
                         note_bad(&bad, #vfn "_m", k, i);                                           \
                     if (!same(rz.l[i], on ? want : (ET)0))                                         \
@@ -340,17 +353,17 @@ TEST_CMP(lt_vf32_cmpeq, lt_vf32_t, ==, gen_vf32)
                     idx.l[i] = ltt_rng_range(&r, -POOL, 2 * POOL - 1);                             \
                 p = pfx##_blend(k, a, b);                                                          \
                 for (i = 0; i < LT_LANES; i++, lanes++)                                            \
-                    if (!same(p.l[i], ((k >> i) & 1u) ? b.l[i] : a.l[i]))                          \
+                    if (!same(p.l[i], LTT_ON(k, i) ? b.l[i] : a.l[i]))                             \
                         note_bad(&bad, #pfx "_blend", k, i);                                       \
                 p = pfx##_gather_m(src, k, &pool[POOL], idx);                                      \
                 for (i = 0; i < LT_LANES; i++, lanes++)                                            \
-                    if (!same(p.l[i], ((k >> i) & 1u) ? pool[POOL + idx.l[i]] : src.l[i]))         \
+                    if (!same(p.l[i], LTT_ON(k, i) ? pool[POOL + idx.l[i]] : src.l[i]))            \
                         note_bad(&bad, #pfx "_gather_m", k, i);                                    \
                 ltt_poison(buf, sizeof buf);                                                       \
                 pfx##_store_m(&buf[GUARD], k, a);                                                  \
                 for (i = 0; i < LT_LANES; i++, lanes++) {                                          \
                     size_t o = (GUARD + (size_t)i) * sizeof(ET);                                   \
-                    if (((k >> i) & 1u) ? !same(buf[GUARD + i], a.l[i])                            \
+                    if (LTT_ON(k, i) ? !same(buf[GUARD + i], a.l[i])                               \
                                       : ltt_touched(buf, o, o + sizeof(ET)) != 0)                  \
                         note_bad(&bad, #pfx "_store_m", k, i);                                     \
                 }                                                                                  \
@@ -358,9 +371,9 @@ TEST_CMP(lt_vf32_cmpeq, lt_vf32_t, ==, gen_vf32)
                     ltt_touched(buf, (GUARD + LT_LANES) * sizeof(ET), sizeof buf) != 0)            \
                     note_bad(&bad, #pfx "_store_m guard", k, -1);                                  \
                 for (i = 0; i < LT_LANES; i++) {                                                   \
-                    if (((k >> i) & 1u) && a.l[i] < hmin)                                          \
+                    if (LTT_ON(k, i) && a.l[i] < hmin)                                             \
                         hmin = a.l[i];                                                             \
-                    if (((k >> i) & 1u) && a.l[i] > hmax)                                          \
+                    if (LTT_ON(k, i) && a.l[i] > hmax)                                             \
                         hmax = a.l[i];                                                             \
                 }                                                                                  \
                 lanes += 4;                                                                        \
@@ -416,7 +429,7 @@ static void test_mask_helpers(void **state)
         unsigned pop = 0, first = 16, visited = 0, last = 0, steps = 0, i;
         int ordered = 1;
         for (i = 0; i < 16; i++) {
-            if ((k >> i) & 1u) {
+            if LTT_ON(k, i) {
                 pop++;
                 if (first == 16)
                     first = i;

@@ -114,18 +114,23 @@ static int32_t f_div_sat(int32_t a, int32_t b) { return lt_q16_div_sat(a, b); }
 static int32_t f_q30_mul(int32_t a, int32_t b) { return lt_q30_mul_sat(a, b); }
 static int32_t f_minmax(int32_t a, int32_t b)
 {
-    return lt_q16_min(a, b) ^ (lt_q16_max(a, b) * 3) ^ lt_q16_clamp(a, -0x30000, b | 1);
+    /* results are mixed in unsigned arithmetic: signed overflow would be undefined */
+    return (int32_t)((uint32_t)lt_q16_min(a, b) ^ ((uint32_t)lt_q16_max(a, b) * 3u) ^
+                     (uint32_t)lt_q16_clamp(a, -0x30000, b | 1));
 }
 static int32_t f_h8(int32_t a, int32_t b)
 {
     lt_h8_t x = lt_h8_from_q16_sat(a), y = lt_h8_from_q16_sat(b);
-    return (int32_t)lt_h8_add_sat(x, y) * 65536 + (int32_t)lt_h8_mul_sat(x, y) +
-           (int32_t)lt_h8_sub_sat(x, y) * 7 + lt_q16_from_h8(x);
+    return (int32_t)((uint32_t)lt_h8_add_sat(x, y) * 65536u + (uint32_t)lt_h8_mul_sat(x, y) +
+                     (uint32_t)lt_h8_sub_sat(x, y) * 7u + (uint32_t)lt_q16_from_h8(x));
 }
 static int32_t f_recip(int32_t a) { return lt_q16_recip_sat(a); }
 static int32_t f_sqrt(int32_t a) { return lt_q16_sqrt(a); }
 static int32_t f_rsqrt(int32_t a) { return lt_q16_rsqrt_sat(a); }
-static int32_t f_absneg(int32_t a) { return lt_q16_abs_sat(a) ^ (lt_q16_neg_sat(a) * 5); }
+static int32_t f_absneg(int32_t a)
+{
+    return (int32_t)((uint32_t)lt_q16_abs_sat(a) ^ ((uint32_t)lt_q16_neg_sat(a) * 5u));
+}
 static int32_t f_conv(int32_t a)
 {
     return lt_q30_from_q16_sat(a) ^ lt_q16_from_q30(a) ^ (int32_t)lt_h14_from_q30_sat(a) ^
@@ -170,13 +175,14 @@ static void run_vec3(void (*put)(const char *))
         lt_q30_t u[3] = {0, 0, 0};
         for (j = 0; j < 3; j++) {
             a[j] = input(i < N_EXT ? i : N_EXT + i);
-            b[j] = (int32_t)(rnd() >> (rnd() & 15u)) - 0x7FFF;
+            uint32_t r1 = rnd(), r2 = rnd(); /* two statements: argument order is unspecified */
+            b[j] = (int32_t)(r1 >> (r2 & 15u)) - 0x7FFF;
         }
         lt_q16_cross3_sat(a, b, c);
         h_case(&h, (uint32_t)lt_q16_dot3_sat(a, b));
-        h_case(&h, (uint32_t)(c[0] ^ (c[1] * 3) ^ (c[2] * 7)));
+        h_case(&h, (uint32_t)c[0] ^ ((uint32_t)c[1] * 3u) ^ ((uint32_t)c[2] * 7u));
         h_case(&h, (uint32_t)lt_q16_normalize3(a, u));
-        h_case(&h, (uint32_t)(u[0] ^ (u[1] * 3) ^ (u[2] * 7)));
+        h_case(&h, (uint32_t)u[0] ^ ((uint32_t)u[1] * 3u) ^ ((uint32_t)u[2] * 7u));
     }
     emit(put, "q16_vec3", &h);
 }

@@ -20,8 +20,11 @@ typedef struct lt_ray16_q16 {
     lt_vq16_t rx, ry, rz;   /* 1/d, s15.16, from lt_ray16_q16_setup; |d| < 2^-15 saturates to +-max */
     lt_vq16_t tmin, tmax;   /* parametric interval, s15.16 (world units along the unit direction);
                                tmax < LT_Q16_MAX; a hit shortens tmax */
+    lt_mask16_t par[3];     /* per axis: lanes with d == 0 (parallel to the slabs), from setup */
+    lt_mask16_t rsat[3];    /* per axis: lanes with d != 0 whose 1/d saturated, from setup */
+    uint16_t pad_[2];       /* private: keeps the size a multiple of 16 */
 } lt_ray16_q16_t;
-LT_STATIC_ASSERT(sizeof(lt_ray16_q16_t) == 11 * 64, "ray packet is 11 lane vectors");
+LT_STATIC_ASSERT(sizeof(lt_ray16_q16_t) == 11 * 64 + 16, "ray packet is 11 lane vectors + masks");
 
 /* Axis-aligned box, 24 bytes: lo <= hi per axis (a zero-thickness box is valid). */
 typedef struct lt_aabb_q16 {
@@ -43,16 +46,19 @@ typedef struct lt_hit16 {
     lt_vi32_t id; /* triangle index, -1 for no hit */
 } lt_hit16_t;
 
-/* Compute rx, ry, rz = 1/d. Format: s1.30 -> s15.16 (2^46 / d_raw). Rounding: half up.
- * Overflow: |d| < 2^-15 saturates to +-max (d == 0 gives +max). Cost: VDIV x3. */
+/* Compute rx, ry, rz = 1/d and the par/rsat masks. Format: s1.30 -> s15.16 (2^46 / d_raw).
+ * Rounding: half up. Overflow: |d| < 2^-15 saturates to +-max (d == 0 gives +max) and is flagged in
+ * rsat (or par for d == 0), so the slab test can treat those lanes exactly. Cost: VDIV x3, VCMP x6. */
 void lt_ray16_q16_setup(lt_ray16_q16_t *r);
 
 /* Slab test of the lanes in k against box b. Writes the entry distance max(tmin, near planes) to
- * *tnear for hit lanes (others unchanged). A ray parallel to a slab hits iff its origin lies in the
- * closed slab. Format: s15.16. Rounding: each t is (plane - o) * (1/d) rounded half up, so a box
- * whose true interval is shorter than the bound in docs/numerics.md may be classified either way.
- * Overflow: t saturates, which keeps the classification. Cost: VALU x18, VMUL x6, VCMP x1, SLOAD x6,
- * VBCAST x6. Returns: the mask of lanes in k whose ray meets the box within [tmin, tmax]. */
+ * *tnear for hit lanes (others unchanged). A ray parallel to a slab (d == 0) meets it for all t iff
+ * its origin lies in the closed slab, and never otherwise. Format: s15.16. Rounding: each t is
+ * (plane - o) * (1/d) rounded half up, so a box whose true interval is shorter than the bound in
+ * docs/numerics.md may be classified either way. Overflow: lanes whose 1/d saturated compute
+ * t = (plane - o) / d by division instead (a rare path), so saturation keeps the classification.
+ * Cost: VALU x19, VMUL x6, VCMP x1, SLOAD x6, VBCAST x6, MASK x3; + VDIV, VALU per axis with
+ * flagged lanes. Returns: the mask of lanes in k whose ray meets the box within [tmin, tmax]. */
 lt_mask16_t lt_slab16_q16(const lt_ray16_q16_t *r, lt_mask16_t k, const lt_aabb_q16_t *b,
                           lt_vq16_t *tnear);
 
@@ -85,8 +91,11 @@ lt_mask16_t lt_chunks_trace16_q16(const lt_tri_q16_t *tris, uint32_t n, const lt
 typedef struct lt_ray16_f32 {
     lt_vf32_t ox, oy, oz;   /* origin, world units */
     lt_vf32_t dx, dy, dz;   /* unit direction */
-    lt_vf32_t rx, ry, rz;   /* 1/d; d == +-0 gives +-FLT_MAX (never inf, so 0 * r is never NaN) */
-    lt_vf32_t tmin, tmax;   /* parametric interval */
+    lt_vf32_t rx, ry, rz;   /* 1/d clamped to +-FLT_MAX (never inf, so 0 * r is never NaN) */
+    lt_vf32_t tmin, tmax;   /* parametric interval, tmax < FLT_MAX */
+    lt_mask16_t par[3];     /* per axis: lanes with d == +-0, from setup */
+    lt_mask16_t rsat[3];    /* always 0 in float32 (kept for the shared kernel source) */
+    uint16_t pad_[2];       /* private */
 } lt_ray16_f32_t;
 
 typedef struct lt_aabb_f32 {

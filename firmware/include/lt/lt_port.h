@@ -127,7 +127,7 @@ LT_INLINE int64_t lt__mul32x32_64(int32_t a, int32_t b)
     return (int64_t)a * (int64_t)b;
 }
 
-/* Floor division of 64-bit values, b != 0. C99 '/' truncates toward zero; this corrects it. */
+/* Floor division of 64-bit values, b != 0 and not (a == INT64_MIN and b == -1). C99 '/' truncates toward zero; this corrects it. */
 LT_INLINE int64_t lt__divfloor64(int64_t a, int64_t b)
 {
     int64_t q = a / b;

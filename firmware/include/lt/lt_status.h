@@ -18,7 +18,7 @@ typedef enum lt_status {
     LT_E_DEPTH = -5   /* a stack, tree or step limit was reached */
 } lt_status_t;
 
-/* Short English text for a status ("ok", "argument", ...); "" when LT_CFG_NO_STATUS_STRINGS.
+/* Short English text for a status ("ok", "invalid argument", ...); "" when LT_CFG_NO_STATUS_STRINGS.
  * Returns: a static string, never NULL. */
 const char *lt_status_str(lt_status_t s);
 

@@ -288,6 +288,7 @@ LT_INLINE lt_vq16_t lt_vq16_mul_q30_sat(lt_vq16_t a, lt_vq30_t b)
 /* ---- s1.30 lanes --------------------------------------------------------------------------- */
 LT__V16_MOVE(lt_vq30_t, int32_t, lt_vq30, VALU, VRED)
 LT__V16_BIN(lt_vq30_t, lt_vq30_mul_sat, VMUL, lt__q30_mul_sat)
+LT__V16_CMP(lt_vq30_t, lt_vq30_cmpeq, VCMP, ==)
 
 /* s1.30 -> s15.16 per lane. Rounding: half up. Overflow: none. Cost: VCVT x1. */
 LT_INLINE lt_vq16_t lt_vq16_from_q30(lt_vq30_t a)
@@ -432,7 +433,18 @@ LT_INLINE float lt__f32_div(float a, float b) { return a / b; }
 LT_INLINE float lt__f32_min(float a, float b) { return a < b ? a : b; }
 LT_INLINE float lt__f32_max(float a, float b) { return a > b ? a : b; }
 LT_INLINE float lt__f32_rcp(float a) { return 1.0f / a; }
-LT_INLINE float lt__f32_abs(float a) { return a < 0.0f ? -a : a; }
+/* |a| clears the sign bit (so |-0| = +0 and |-NaN| = +NaN, as fabsf); a union is C99's way to
+ * reinterpret the bits. */
+LT_INLINE float lt__f32_abs(float a)
+{
+    union {
+        float f;
+        uint32_t u;
+    } v;
+    v.f = a;
+    v.u &= 0x7FFFFFFFu;
+    return v.f;
+}
 LT_INLINE float lt__f32_neg(float a) { return -a; }
 LT__V16_MOVE(lt_vf32_t, float, lt_vf32, FADD, VRED)
 LT__V16_BIN(lt_vf32_t, lt_vf32_add, FADD, lt__f32_add)
