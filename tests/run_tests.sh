@@ -47,6 +47,9 @@ check "vectors/rv32 LT_CFG_FLOAT32=0 = golden fixed-point groups" diff -u "$tmp/
 n=$(grep -c cases "$golden")
 echo "   $n vector groups compared across host, sim, asan, cm4, cm55, rv32"
 
+echo "== firmware target smoke test (start-up, UART, exit codes, no libc)"
+check "firmware/targets/smoke.sh" firmware/targets/smoke.sh
+
 echo "== QEMU instruction-count plugin"
 check "plugin/test_plugin.sh" sh sim/qemu/test_plugin.sh
 
