@@ -9,23 +9,25 @@
 .DELETE_ON_ERROR:
 SHELL := /bin/bash
 
-B := build
+B ?= build
 CC ?= gcc
 WARN := -std=c99 -Wall -Wextra -Wpedantic -Werror -Wshadow -Wundef -Wstrict-prototypes \
     -Wmissing-prototypes -Wcast-align -Wconversion
 # Float32 results are bit-identical across builds only without FMA contraction or fast-math.
 FPFLAGS := -ffp-contract=off -fno-fast-math
-INC := -Ifirmware/include -Isim -Ihost -Itests/unit -Itests/vectors
+INC := -Ifirmware/include -Isim -Ihost -Itests/unit -Itests/vectors -I/usr/include/OpenEXR
 HOST_CFLAGS := $(WARN) -Wdouble-promotion $(FPFLAGS) -O2 -g -fno-var-tracking-assignments $(INC) -D_POSIX_C_SOURCE=200809L
 NATIVE_ARCH ?= -march=native
 
 CORE_SRCS := $(wildcard firmware/core/*.c)
 CORE_HDRS := $(wildcard firmware/include/lt/*.h firmware/include/lt/*.def firmware/core/*.inc)
-HOSTLIB_SRCS := host/lt_mesh.c host/lt_scene.c
+# host library: every host/*.c except program mains (*_main.c)
+HOSTLIB_SRCS := $(filter-out %_main.c,$(wildcard host/*.c))
 HOSTLIB_HDRS := $(wildcard host/*.h)
 SIM_SRCS := sim/lt_sim.c sim/lt_cache.c
 SIM_HDRS := $(wildcard sim/*.h sim/machines/*.def)
-UNIT_TESTS := port fx v16 isect
+# unit tests: tests/unit/test_<name>.c, built for every variant (test_cache is sim-only)
+UNIT_TESTS := $(filter-out cache,$(patsubst tests/unit/test_%.c,%,$(wildcard tests/unit/test_*.c)))
 VEC_SRCS := tests/vectors/lt_vec.c
 
 # ---- variants: CFLAGS per variant ------------------------------------------------------------
@@ -34,9 +36,11 @@ CFLAGS_sim := $(HOST_CFLAGS) $(NATIVE_ARCH) -DLT_COST_MODE=LT_COST_SIM
 CFLAGS_asan := $(HOST_CFLAGS) -O1 -fsanitize=address,undefined -fno-sanitize-recover=all \
     -fno-omit-frame-pointer -DLT_COST_MODE=LT_COST_OFF -DLT_CFG_ASSERT=1
 LDFLAGS_asan := -fsanitize=address,undefined
-LIBS_host := -lassimp -lm
-LIBS_sim := -lassimp -lcjson -lm
-LIBS_asan := -lassimp -lm
+# host-side libraries (Debian): assimp, cJSON, OpenEXR's C API (OpenEXRCore), libpng, zlib
+HOST_LIBS = -lassimp -lcjson -lOpenEXRCore-3_1 -lpng16 -lz -lm
+LIBS_host = $(HOST_LIBS)
+LIBS_sim = $(HOST_LIBS)
+LIBS_asan = $(HOST_LIBS)
 VARIANTS := host sim asan
 
 all: $(B)/host/lt-trace $(B)/sim/lt-sim
@@ -49,7 +53,8 @@ $(B)/$(1)/obj/%.o: %.c $(CORE_HDRS) $(HOSTLIB_HDRS) $(SIM_HDRS) Makefile
 $(1)_CORE_OBJS := $(CORE_SRCS:%.c=$(B)/$(1)/obj/%.o)
 $(1)_HOST_OBJS := $(HOSTLIB_SRCS:%.c=$(B)/$(1)/obj/%.o)
 $(1)_EXTRA_OBJS := $(if $(filter sim,$(1)),$(SIM_SRCS:%.c=$(B)/$(1)/obj/%.o))
-$(B)/$(1)/test_%: $(B)/$(1)/obj/tests/unit/test_%.o $$($(1)_CORE_OBJS) $$($(1)_EXTRA_OBJS)
+$(B)/$(1)/test_%: $(B)/$(1)/obj/tests/unit/test_%.o $$($(1)_CORE_OBJS) $$($(1)_HOST_OBJS) \
+    $$($(1)_EXTRA_OBJS)
 	$(CC) $(LDFLAGS_$(1)) -o $$@ $$^ -lcmocka $(LIBS_$(1))
 $(B)/$(1)/lt-vectors: $(B)/$(1)/obj/tests/vectors/vec_host.o $(B)/$(1)/obj/$(VEC_SRCS:.c=.o) \
     $$($(1)_CORE_OBJS) $$($(1)_EXTRA_OBJS)
@@ -76,6 +81,8 @@ include firmware/targets/targets.mk
 include sim/qemu/plugin.mk
 include firmware/firmware.mk
 include firmware/opcal.mk
+# feature fragments add their own programs and images (each documents what it builds)
+include $(sort $(wildcard host/*.mk tests/*.mk))
 
 # ---- deps, run, test, bench ----------------------------------------------------------------------
 deps:
@@ -88,11 +95,11 @@ run: deps
 	$(B)/sim/lt-sim --json $(B)/run/report.json $(RUN_ARGS)
 
 TEST_BINS := $(foreach v,$(VARIANTS),$(UNIT_TESTS:%=$(B)/$(v)/test_%) $(B)/$(v)/lt-vectors) \
-    $(B)/sim/test_cache $(B)/host/lt-trace $(B)/sim/lt-sim
+    $(B)/sim/test_cache $(B)/host/lt-trace $(B)/sim/lt-sim $(EXTRA_TEST_BINS)
 
 test: deps
 	@$(MAKE) --no-print-directory test-build
-	@tests/run_tests.sh
+	@B=$(B) UNIT_TESTS="$(UNIT_TESTS)" tests/run_tests.sh
 
 test-build: $(TEST_BINS) firmware $(PLUGIN_SO)
 

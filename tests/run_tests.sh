@@ -4,7 +4,8 @@
 # QEMU, the QEMU plugin, the tracer CLIs (host = sim results, errors), shared scenes when present.
 # Ends with "N passed, N failed". Run from the repository root.
 set -uo pipefail
-B=build
+B=${B:-build}
+UNIT_TESTS=${UNIT_TESTS:-port fx v16 isect}
 pass=0
 fail=0
 failed=()
@@ -18,7 +19,7 @@ check() { # name, command...
 
 echo "== unit tests (cmocka) per variant"
 for v in host sim asan; do
-    for t in port fx v16 isect; do
+    for t in $UNIT_TESTS; do
         check "unit/$v/test_$t" "$B/$v/test_$t"
     done
 done
@@ -81,6 +82,14 @@ printf 'v 0 0 0\nv 1 0 0\nf 1 2 9\n' >"$tmp/bad.obj"
 "$B/host/lt-trace" --scene "$tmp/bad.obj" >"$tmp/e.txt" 2>&1
 rc=$?
 check "malformed OBJ: exit 1, message names the file" bash -c "[ $rc -eq 1 ] && grep -q bad.obj '$tmp/e.txt'"
+
+# feature test scripts: each tests/run.d/*.sh is sourced and uses check/ok/ko and $B, $tmp
+for f in tests/run.d/*.sh; do
+    [ -f "$f" ] || continue
+    echo "== $(basename "$f" .sh)"
+    # shellcheck disable=SC1090
+    source "$f"
+done
 
 echo "== shared scenes"
 shared=../shared/scenes

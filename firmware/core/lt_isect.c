@@ -162,25 +162,10 @@ static lt_vq16_t q_tdiv_m(lt_vq16_t src, lt_mask16_t k, lt_vql_t tnum, lt_vql_t 
     return src;
 }
 
-#define LTN_FN(name) name##_q16
-#define LTN_T lt_q16_t
-#define LTN_V lt_vq16_t
-#define LTN_RAY lt_ray16_q16_t
-#define LTN_AABB lt_aabb_q16_t
-#define LTN_TRI lt_tri_q16_t
+#include "lt_traits_q16.h"
 #define LTN_QV lt_vi32_t
 #define LTN_W lt_vql_t
 #define LTN_TN lt_vql_t
-#define LTN_SET1 lt_vq16_set1
-#define LTN_SUB lt_vq16_sub_sat
-#define LTN_MULR lt_vq16_mul_sat
-#define LTN_MIN lt_vq16_min
-#define LTN_MAX lt_vq16_max
-#define LTN_BLEND lt_vq16_blend
-#define LTN_CMPLE_M lt_vq16_cmple_m
-#define LTN_CMPLT_M lt_vq16_cmplt_m
-#define LTN_CMPGT_M lt_vq16_cmpgt_m
-#define LTN_SADD lt__q16_add_sat
 #define LTN_CROSS_DP q_cross_dp
 #define LTN_DOT_PP q_dot_pp
 #define LTN_CROSS_PP q_cross_pp
@@ -196,25 +181,10 @@ static lt_vq16_t q_tdiv_m(lt_vq16_t src, lt_mask16_t k, lt_vql_t tnum, lt_vql_t 
 #define LTN_TDIV_M q_tdiv_m
 #define LTN_SLAB_FIX q_slab_fix
 #include "lt_isect.inc"
-#undef LTN_FN
-#undef LTN_T
-#undef LTN_V
-#undef LTN_RAY
-#undef LTN_AABB
-#undef LTN_TRI
+#include "lt_traits_undef.h"
 #undef LTN_QV
 #undef LTN_W
 #undef LTN_TN
-#undef LTN_SET1
-#undef LTN_SUB
-#undef LTN_MULR
-#undef LTN_MIN
-#undef LTN_MAX
-#undef LTN_BLEND
-#undef LTN_CMPLE_M
-#undef LTN_CMPLT_M
-#undef LTN_CMPGT_M
-#undef LTN_SADD
 #undef LTN_CROSS_DP
 #undef LTN_DOT_PP
 #undef LTN_CROSS_PP
@@ -295,27 +265,11 @@ LT_INLINE lt_vf32_t f_dot(lt_vf32_t ax, lt_vf32_t ay, lt_vf32_t az, lt_vf32_t bx
     return lt_vf32_add(lt_vf32_add(lt_vf32_mul(ax, bx), lt_vf32_mul(ay, by)), lt_vf32_mul(az, bz));
 }
 
-LT_INLINE float f_sadd(float a, float b) { return a + b; }
 
-#define LTN_FN(name) name##_f32
-#define LTN_T float
-#define LTN_V lt_vf32_t
-#define LTN_RAY lt_ray16_f32_t
-#define LTN_AABB lt_aabb_f32_t
-#define LTN_TRI lt_tri_f32_t
+#include "lt_traits_f32.h"
 #define LTN_QV lt_vf32_t
 #define LTN_W lt_vf32_t
 #define LTN_TN lt_vf32_t
-#define LTN_SET1 lt_vf32_set1
-#define LTN_SUB lt_vf32_sub
-#define LTN_MULR lt_vf32_mul
-#define LTN_MIN lt_vf32_min
-#define LTN_MAX lt_vf32_max
-#define LTN_BLEND lt_vf32_blend
-#define LTN_CMPLE_M lt_vf32_cmple_m
-#define LTN_CMPLT_M lt_vf32_cmplt_m
-#define LTN_CMPGT_M lt_vf32_cmpgt_m
-#define LTN_SADD f_sadd
 #define LTN_CROSS_DP f_cross
 #define LTN_DOT_PP f_dot
 #define LTN_CROSS_PP f_cross
