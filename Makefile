@@ -16,7 +16,8 @@ WARN := -std=c99 -Wall -Wextra -Wpedantic -Werror -Wshadow -Wundef -Wstrict-prot
 # Float32 results are bit-identical across builds only without FMA contraction or fast-math.
 FPFLAGS := -ffp-contract=off -fno-fast-math
 INC := -Ifirmware/include -Isim -Ihost -Itests/unit -Itests/vectors -I/usr/include/OpenEXR
-HOST_CFLAGS := $(WARN) -Wdouble-promotion $(FPFLAGS) -O2 -g -fno-var-tracking-assignments $(INC) -D_POSIX_C_SOURCE=200809L
+# -Wno-format-truncation: host messages are built with snprintf, whose truncation is the intent
+HOST_CFLAGS := $(WARN) -Wdouble-promotion -Wno-format-truncation $(FPFLAGS) -O2 -g -fno-var-tracking-assignments $(INC) -D_POSIX_C_SOURCE=200809L
 NATIVE_ARCH ?= -march=native
 
 CORE_SRCS := $(wildcard firmware/core/*.c)
@@ -43,7 +44,7 @@ LIBS_sim = $(HOST_LIBS)
 LIBS_asan = $(HOST_LIBS)
 VARIANTS := host sim asan
 
-all: $(B)/host/lt-trace $(B)/sim/lt-sim
+all: $(B)/sim/lanetrace $(B)/host/lanetrace-native
 
 define variant_rules
 $(B)/$(1)/obj/%.o: %.c $(CORE_HDRS) $(HOSTLIB_HDRS) $(SIM_HDRS) Makefile
@@ -62,9 +63,10 @@ $(B)/$(1)/lt-vectors: $(B)/$(1)/obj/tests/vectors/vec_host.o $(B)/$(1)/obj/$(VEC
 endef
 $(foreach v,$(VARIANTS),$(eval $(call variant_rules,$(v))))
 
-$(B)/host/lt-trace: $(B)/host/obj/host/lt_trace_main.o $(host_CORE_OBJS) $(host_HOST_OBJS)
+# the CLI: the simulator build (cycle reports) and the native build, from one source
+$(B)/host/lanetrace-native: $(B)/host/obj/host/lanetrace_main.o $(host_CORE_OBJS) $(host_HOST_OBJS)
 	$(CC) -o $@ $^ $(LIBS_host)
-$(B)/sim/lt-sim: $(B)/sim/obj/host/lt_trace_main.o $(sim_CORE_OBJS) $(sim_HOST_OBJS) \
+$(B)/sim/lanetrace: $(B)/sim/obj/host/lanetrace_main.o $(sim_CORE_OBJS) $(sim_HOST_OBJS) \
     $(sim_EXTRA_OBJS)
 	$(CC) -o $@ $^ $(LIBS_sim)
 $(B)/sim/test_cache: $(B)/sim/obj/tests/unit/test_cache.o $(B)/sim/obj/sim/lt_cache.o
@@ -74,7 +76,7 @@ $(B)/sim/slab-model: $(B)/sim/obj/tests/bench/slab_model.o $(B)/sim/obj/tests/ve
     $(sim_CORE_OBJS) $(sim_EXTRA_OBJS)
 	$(CC) -o $@ $^ $(LIBS_sim)
 
-sim: $(B)/sim/lt-sim
+sim: $(B)/sim/lanetrace
 
 # ---- firmware ----------------------------------------------------------------------------------
 include firmware/targets/targets.mk
@@ -92,10 +94,10 @@ RUN_ARGS ?=
 run: deps
 	@$(MAKE) --no-print-directory all
 	@mkdir -p $(B)/run
-	$(B)/sim/lt-sim --json $(B)/run/report.json $(RUN_ARGS)
+	$(B)/sim/lanetrace run scenes/teapot.json --report $(B)/run/report.json $(RUN_ARGS)
 
 TEST_BINS := $(foreach v,$(VARIANTS),$(UNIT_TESTS:%=$(B)/$(v)/test_%) $(B)/$(v)/lt-vectors) \
-    $(B)/sim/test_cache $(B)/host/lt-trace $(B)/sim/lt-sim $(EXTRA_TEST_BINS)
+    $(B)/sim/test_cache $(B)/host/lanetrace-native $(B)/sim/lanetrace $(EXTRA_TEST_BINS)
 
 test: deps
 	@$(MAKE) --no-print-directory test-build

@@ -102,6 +102,33 @@ void lt_camera_default(const lt_scene_t *s, uint32_t width, uint32_t height, lt_
     c->height = height;
 }
 
+int lt_camera_look(const lt_scene_t *s, const double eye[3], const double target[3],
+                   const double up[3], double fov_y_deg, uint32_t width, uint32_t height,
+                   lt_camera_t *c, char *err, size_t errlen)
+{
+    double lim = ldexp(1.0, LT_CFG_GEOM_MAX_LOG2);
+    int a;
+    for (a = 0; a < 3; a++) {
+        c->eye[a] = (eye[a] - s->center[a]) * s->scale;
+        c->fwd[a] = target[a] - eye[a];
+        if (fabs(c->eye[a]) > lim) {
+            snprintf(err, errlen,
+                     "camera eye is %.4g scene radii from the centre; the fixed-point range allows "
+                     "at most %.4g (LT_CFG_GEOM_MAX_LOG2 = %d)",
+                     fabs(c->eye[a]) / s->radius, lim / s->radius, LT_CFG_GEOM_MAX_LOG2);
+            return -1;
+        }
+    }
+    normalize(c->fwd);
+    cross(c->fwd, up, c->right);
+    normalize(c->right);
+    cross(c->right, c->fwd, c->up);
+    c->tan_half_fov = tan(0.5 * fov_y_deg * 3.14159265358979323846 / 180.0);
+    c->width = width;
+    c->height = height;
+    return 0;
+}
+
 void lt_camera_dir(const lt_camera_t *c, uint32_t x, uint32_t y, double d[3])
 {
     double aspect = (double)c->width / (double)c->height;

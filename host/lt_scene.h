@@ -39,6 +39,12 @@ typedef struct lt_camera {
  * normalize(0.45, 0.35, 1.0) at distance radius / tan(20 deg), 40 deg vertical field of view, +y up. */
 void lt_camera_default(const lt_scene_t *s, uint32_t width, uint32_t height, lt_camera_t *c);
 
+/* An explicit pinhole camera given in mesh file units (converted to the scaled space).
+ * Returns 0, or -1 with a message when the eye lies outside the core's geometry bound. */
+int lt_camera_look(const lt_scene_t *s, const double eye[3], const double target[3],
+                   const double up[3], double fov_y_deg, uint32_t width, uint32_t height,
+                   lt_camera_t *c, char *err, size_t errlen);
+
 /* Unit direction of the ray through the centre of pixel (x, y) (y down). */
 void lt_camera_dir(const lt_camera_t *c, uint32_t x, uint32_t y, double d[3]);
 

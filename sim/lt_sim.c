@@ -257,6 +257,22 @@ void lt_sim_totals(lt_sim_totals_t *t)
     }
 }
 
+uint64_t lt_sim_cycles_total(void)
+{
+    uint64_t c = 0;
+    int p, o;
+    if (mach == NULL)
+        return 0;
+    for (p = 0; p < LT_PH__COUNT; p++) {
+        c += memstall[p];
+        for (o = 0; o < LT_OP__COUNT; o++)
+            c += ctr[p][o] * mach->issue[o];
+    }
+    return c;
+}
+
+const lt_machine_t *lt_sim_machine(void) { return mach; }
+
 static uint64_t ev_total(const lt_sim_totals_t *t, int ev)
 {
     uint64_t s = 0;

@@ -71,4 +71,11 @@ int lt_sim_report_json(const char *path, const char *title, uint64_t rays, const
  * object string whose members are merged in. */
 char *lt_sim_report_json_string(const char *title, uint64_t rays, const char *extra_json);
 
+/* Total cycles charged so far (all phases): cheap enough to sample per packet for per-pixel cost
+ * images. */
+uint64_t lt_sim_cycles_total(void);
+
+/* The selected machine (NULL before lt_sim_init). */
+const lt_machine_t *lt_sim_machine(void);
+
 #endif /* LT_SIM_H */

@@ -54,11 +54,11 @@ check "firmware/targets/smoke.sh" firmware/targets/smoke.sh
 echo "== QEMU instruction-count plugin"
 check "plugin/test_plugin.sh" sh sim/qemu/test_plugin.sh
 
-echo "== tracer CLIs on the bundled scene"
-"$B/host/lt-trace" --res 32 -q >"$tmp/native.txt" 2>&1
-check "lt-trace exits 0" test $? -eq 0
-"$B/sim/lt-sim" --res 32 --json "$tmp/r.json" >"$tmp/sim.txt" 2>&1
-check "lt-sim exits 0" test $? -eq 0
+echo "== lanetrace on the bundled scene (native and simulator builds)"
+"$B/host/lanetrace-native" run scenes/teapot.json --res 32 >"$tmp/native.txt" 2>&1
+check "lanetrace-native run exits 0" test $? -eq 0
+"$B/sim/lanetrace" run scenes/teapot.json --res 32 --report "$tmp/r.json" >"$tmp/sim.txt" 2>&1
+check "lanetrace run (sim) exits 0" test $? -eq 0
 for p in q16 f32; do
     a=$(grep "result    $p" "$tmp/native.txt")
     b=$(grep "result    $p" "$tmp/sim.txt")
@@ -68,20 +68,6 @@ done
 check "cycle report has phases, ops, cache, lanes" grep -q "lanes     utilisation" "$tmp/sim.txt"
 acc=$(grep "accuracy  q16" "$tmp/native.txt" | sed -E 's/.*same triangle ([0-9.]+)%.*/\1/')
 check "q16 same triangle as double on >= 99% of pixels ($acc%)" awk -v a="$acc" 'BEGIN{exit !(a >= 99.0)}'
-"$B/host/lt-trace" --scene /nonexistent.obj >"$tmp/e.txt" 2>&1
-rc=$?
-check "missing scene: exit 1 and names the file" bash -c "[ $rc -eq 1 ] && grep -q /nonexistent.obj '$tmp/e.txt'"
-"$B/host/lt-trace" --res 0 >"$tmp/e.txt" 2>&1
-check "bad --res: exit 2" test $? -eq 2
-"$B/sim/lt-sim" --machine z80 >"$tmp/e.txt" 2>&1
-check "unknown machine: exit 2" test $? -eq 2
-"$B/sim/lt-sim" --l1 63:8:64 >"$tmp/e.txt" 2>&1
-rc=$?
-check "bad cache spec: exit 2 and names it" bash -c "[ $rc -eq 2 ] && grep -q 63:8:64 '$tmp/e.txt'"
-printf 'v 0 0 0\nv 1 0 0\nf 1 2 9\n' >"$tmp/bad.obj"
-"$B/host/lt-trace" --scene "$tmp/bad.obj" >"$tmp/e.txt" 2>&1
-rc=$?
-check "malformed OBJ: exit 1, message names the file" bash -c "[ $rc -eq 1 ] && grep -q bad.obj '$tmp/e.txt'"
 
 # feature test scripts: each tests/run.d/*.sh is sourced and uses check/ok/ko and $B, $tmp
 for f in tests/run.d/*.sh; do
@@ -94,7 +80,7 @@ done
 echo "== shared scenes"
 shared=../shared/scenes
 if [ -f "$shared/bunny.obj" ]; then
-    "$B/host/lt-trace" --scene "$shared/bunny.obj" --res 32 -q >"$tmp/bunny.txt" 2>&1
+    "$B/host/lanetrace-native" run --mesh "$shared/bunny.obj" --res 32 -q >"$tmp/bunny.txt" 2>&1
     acc=$(grep "accuracy  q16" "$tmp/bunny.txt" | sed -E 's/.*same triangle ([0-9.]+)%.*/\1/')
     check "bunny.obj q16 same triangle as double ($acc%)" awk -v a="$acc" 'BEGIN{exit !(a >= 99.0)}'
 elif [ "${CI:-}" = "true" ]; then

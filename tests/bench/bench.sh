@@ -15,9 +15,9 @@ REP=${BENCH_REPEAT:-10}
 echo "== 1. cost of counting: $SCENE ${RES}x${RES}, $REP frames, median of 3 runs"
 median() { sort -g | sed -n 2p; }
 for p in q16 f32; do
-    nat=$(for i in 1 2 3; do "$B/host/lt-trace" --scene "$SCENE" --res "$RES" --repeat "$REP" --num $p --no-ref -q |
+    nat=$(for i in 1 2 3; do "$B/host/lanetrace-native" run --mesh "$SCENE" --res "$RES" --repeat "$REP" --num $p --no-ref -q |
         awk '/^time/{print $3}'; done | median)
-    cnt=$(for i in 1 2 3; do "$B/sim/lt-sim" --scene "$SCENE" --res "$RES" --repeat "$REP" --num $p --no-ref -q |
+    cnt=$(for i in 1 2 3; do "$B/sim/lanetrace" run --mesh "$SCENE" --res "$RES" --repeat "$REP" --num $p --no-ref -q |
         awk '/^time/{print $3}'; done | median)
     awk -v p=$p -v n="$nat" -v c="$cnt" 'BEGIN{r=c/n; printf "%-4s native %8.2f ms  counted %8.2f ms  ratio %.2fx (target <= 3x: %s)\n", p, n, c, r, (r<=3)?"met":"NOT met"}'
 done
@@ -41,4 +41,4 @@ rm -f "$out"
 awk -v p="$pred" -v c="$cnt" 'BEGIN{printf "lt_tri16_q16 (+helpers): predicted %d cycles, counted %d instructions, predicted/counted %.3f\n", p, c, p/c}'
 
 echo "== 3. cycle report: bundled scene on lrb16"
-"$B/sim/lt-sim" --scene "$SCENE" --res "$RES" --json "$B/bench-report.json"
+"$B/sim/lanetrace" run --mesh "$SCENE" --res "$RES" --report "$B/bench-report.json"

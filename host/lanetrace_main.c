@@ -1,0 +1,797 @@
+/* lanetrace_main.c - the lanetrace command line: subcommands run, info, diff (docs/user-guide.md).
+ * Built twice from this source: build/sim/lanetrace (the kernels charged to a machine model: cycle
+ * reports) and build/host/lanetrace-native (LT_COST_OFF: native speed); `lanetrace run --native`
+ * hands over to the native build. Exit codes: 0 ok, 1 input or runtime error, 2 usage. Host only.
+ */
+#include "lt/lt.h"
+#include "lt_mesh.h"
+#include "lt_render.h"
+#include "lt_scene.h"
+#include "lt_scenefile.h"
+#if LT_COST_MODE == LT_COST_SIM
+#include "lt_sim.h"
+#endif
+
+#include <cjson/cJSON.h>
+#include <math.h>
+#include <signal.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include <unistd.h>
+
+#define EXIT_INPUT 1
+#define EXIT_USAGE 2
+
+static int quiet;
+static const char *prog = "lanetrace";
+
+/* ---- progress bar (stderr, only on a TTY, only after the first second) ------------------------ */
+
+static double t_start;
+
+static double now_s(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+static const char *progress_label = "";
+static int progress_shown;
+
+static void progress(double done)
+{
+    double el = now_s() - t_start;
+    int i, w = 30, fill;
+    if (quiet || !isatty(2) || el < 1.0)
+        return;
+    if (done > 1.0)
+        done = 1.0;
+    fill = (int)(done * w);
+    fprintf(stderr, "\r%-10s [", progress_label);
+    for (i = 0; i < w; i++)
+        fputc(i < fill ? '#' : ' ', stderr);
+    fprintf(stderr, "] %3.0f%% ETA %.1fs ", 100.0 * done, done > 0 ? el * (1.0 - done) / done : 0.0);
+    progress_shown = 1;
+}
+
+static void progress_begin(const char *label)
+{
+    progress_label = label;
+    t_start = now_s();
+    progress_shown = 0;
+}
+
+static void progress_end(void)
+{
+    if (progress_shown)
+        fprintf(stderr, "\r%60s\r", "");
+    progress_shown = 0;
+}
+
+/* ---- atomic outputs: a temporary name renamed into place; Ctrl-C removes the temporary ---------- */
+
+static char pending_tmp[1100]; /* the atomic write in progress */
+static char csv_tmp[1100];     /* the CSV being written row by row */
+
+static void on_signal(int sig)
+{
+    if (pending_tmp[0] != '\0')
+        unlink(pending_tmp);
+    if (csv_tmp[0] != '\0')
+        unlink(csv_tmp);
+    signal(sig, SIG_DFL);
+    raise(sig);
+}
+
+static int write_atomic(const char *path, const char *text, char *err, size_t errlen)
+{
+    FILE *f;
+    snprintf(pending_tmp, sizeof pending_tmp, "%s.tmp%ld", path, (long)getpid());
+    f = fopen(pending_tmp, "w");
+    if (f == NULL) {
+        snprintf(err, errlen, "%s: cannot create the output (directory missing or not writable)", path);
+        pending_tmp[0] = '\0';
+        return -1;
+    }
+    if (fputs(text, f) < 0 || fclose(f) != 0) {
+        snprintf(err, errlen, "%s: write failed (disk full?)", path);
+        unlink(pending_tmp);
+        pending_tmp[0] = '\0';
+        return -1;
+    }
+    if (rename(pending_tmp, path) != 0) {
+        snprintf(err, errlen, "%s: cannot rename the output into place", path);
+        unlink(pending_tmp);
+        pending_tmp[0] = '\0';
+        return -1;
+    }
+    pending_tmp[0] = '\0';
+    return 0;
+}
+
+/* ---- run ------------------------------------------------------------------------------------ */
+
+static void run_usage(FILE *f)
+{
+    fprintf(f,
+            "usage: %s run [SCENE.json] [options]\n"
+            "Trace primary rays of a scene in s15.16 and/or float32, print accuracy against a\n"
+            "double-precision reference and (simulator build) the cycle report.\n"
+            "  --mesh PATH        mesh file (overrides the scene's \"mesh\"; default scenes/teapot.obj)\n"
+            "  --res WxH|N        image size (1..%d per side)\n"
+            "  --num q16|f32|both numeric path\n"
+            "  --structure NAME   acceleration structure (chunks)\n"
+            "  --machine NAME     machine model: lrb16, mcu-m4\n"
+            "  --l1 S:W:B --l2 S:W:B  cache geometry overrides (sets:ways:line)\n"
+            "  --report PATH      write the report JSON (PATH.q16 / PATH.f32 with both paths)\n"
+            "  --csv PATH         write one CSV row per path\n"
+            "  --repeat N         trace the frame N times (timing)\n"
+            "  --no-ref           skip the reference and the accuracy figures\n"
+            "  --native           run the native build (no cycle model; wall-clock speed)\n"
+            "  --json             machine-readable JSON on stdout\n"
+            "  -q                 quiet: summary lines only\n",
+            prog, LT_SF_MAX_RES);
+}
+
+static int parse_res(const char *s, uint32_t *w, uint32_t *h)
+{
+    unsigned long a, b;
+    char *end;
+    a = strtoul(s, &end, 10);
+    b = a;
+    if (*end == 'x')
+        b = strtoul(end + 1, &end, 10);
+    if (*end != '\0' || a == 0 || b == 0 || a > LT_SF_MAX_RES || b > LT_SF_MAX_RES)
+        return -1;
+    *w = (uint32_t)a;
+    *h = (uint32_t)b;
+    return 0;
+}
+
+#if LT_COST_MODE == LT_COST_SIM
+static int exec_native(int argc, char **argv)
+{
+    char path[1200];
+    const char *slash = strrchr(argv[0], '/');
+    char **nargv = calloc((size_t)argc + 2, sizeof *nargv);
+    int i, n = 0;
+    if (nargv == NULL)
+        return EXIT_INPUT;
+    if (slash != NULL)
+        snprintf(path, sizeof path, "%.*s/../host/lanetrace-native", (int)(slash - argv[0]), argv[0]);
+    else
+        snprintf(path, sizeof path, "lanetrace-native");
+    nargv[n++] = path;
+    for (i = 1; i < argc; i++)
+        if (strcmp(argv[i], "--native") != 0)
+            nargv[n++] = argv[i];
+    nargv[n] = NULL;
+    execv(path, nargv);
+    fprintf(stderr, "%s: --native: cannot run %s (build it with `make all`)\n", prog, path);
+    free(nargv);
+    return EXIT_INPUT;
+}
+#endif
+
+static int cmd_run(int argc, char **argv)
+{
+    lt_scenefile_t sf;
+    lt_mesh_t mesh;
+    lt_scene_t sc;
+    lt_camera_t cam;
+    lt_frame_t ref, fr;
+    char err[1024];
+    int a, json = 0, repeat = 1, do_ref = 1, status = 0, path;
+    const char *scene_path = NULL, *mesh_over = NULL, *report = NULL, *csv = NULL;
+    cJSON *jout = cJSON_CreateArray();
+    FILE *csvf = NULL;
+
+    lt_sf_defaults(&sf);
+    for (a = 2; a < argc; a++) {
+        const char *o = argv[a], *v = a + 1 < argc ? argv[a + 1] : NULL;
+        if (strcmp(o, "--help") == 0 || strcmp(o, "-h") == 0) {
+            run_usage(stdout);
+            return 0;
+        }
+        if (strcmp(o, "--native") == 0) {
+#if LT_COST_MODE == LT_COST_SIM
+            return exec_native(argc, argv);
+#else
+            continue;
+#endif
+        }
+        if (strcmp(o, "-q") == 0) {
+            quiet = 1;
+            continue;
+        }
+        if (strcmp(o, "--json") == 0) {
+            json = 1;
+            quiet = 1;
+            continue;
+        }
+        if (strcmp(o, "--no-ref") == 0) {
+            do_ref = 0;
+            continue;
+        }
+        if (o[0] != '-') {
+            if (scene_path != NULL) {
+                fprintf(stderr, "%s run: more than one scene file ('%s', '%s')\n", prog,
+                        scene_path, o);
+                return EXIT_USAGE;
+            }
+            scene_path = o;
+            continue;
+        }
+        if (v == NULL) {
+            fprintf(stderr, "%s run: unknown option '%s' or missing value\n", prog, o);
+            run_usage(stderr);
+            return EXIT_USAGE;
+        }
+        a++;
+        if (strcmp(o, "--mesh") == 0) {
+            mesh_over = v;
+        } else if (strcmp(o, "--res") == 0) {
+            if (parse_res(v, &sf.width, &sf.height) != 0) {
+                fprintf(stderr, "%s run: --res %s: expected WxH or N, 1..%d\n", prog, v,
+                        LT_SF_MAX_RES);
+                return EXIT_USAGE;
+            }
+        } else if (strcmp(o, "--num") == 0) {
+            if (strcmp(v, "q16") == 0)
+                sf.numeric = LT_SF_NUM_Q16;
+            else if (strcmp(v, "f32") == 0)
+                sf.numeric = LT_SF_NUM_F32;
+            else if (strcmp(v, "both") == 0)
+                sf.numeric = LT_SF_NUM_BOTH;
+            else {
+                fprintf(stderr, "%s run: --num %s: expected q16, f32 or both\n", prog, v);
+                return EXIT_USAGE;
+            }
+        } else if (strcmp(o, "--structure") == 0) {
+            snprintf(sf.structure, sizeof sf.structure, "%s", v);
+        } else if (strcmp(o, "--machine") == 0) {
+            snprintf(sf.machine, sizeof sf.machine, "%s", v);
+        } else if (strcmp(o, "--l1") == 0) {
+            snprintf(sf.l1, sizeof sf.l1, "%s", v);
+        } else if (strcmp(o, "--l2") == 0) {
+            snprintf(sf.l2, sizeof sf.l2, "%s", v);
+        } else if (strcmp(o, "--report") == 0) {
+            report = v;
+        } else if (strcmp(o, "--csv") == 0) {
+            csv = v;
+        } else if (strcmp(o, "--repeat") == 0) {
+            repeat = atoi(v);
+            if (repeat < 1 || repeat > 100000) {
+                fprintf(stderr, "%s run: --repeat %s: expected 1..100000\n", prog, v);
+                return EXIT_USAGE;
+            }
+        } else {
+            fprintf(stderr, "%s run: unknown option '%s'\n", prog, o);
+            run_usage(stderr);
+            return EXIT_USAGE;
+        }
+    }
+    /* the scene file first, then the flags given on the command line override it */
+    if (scene_path != NULL) {
+        lt_scenefile_t fl = sf;
+        if (lt_sf_load(scene_path, &sf, err, sizeof err) != 0) {
+            fprintf(stderr, "%s\n", err);
+            return EXIT_INPUT;
+        }
+        for (a = 2; a < argc; a++) {
+            if (strcmp(argv[a], "--res") == 0) {
+                sf.width = fl.width;
+                sf.height = fl.height;
+            }
+            if (strcmp(argv[a], "--num") == 0)
+                sf.numeric = fl.numeric;
+            if (strcmp(argv[a], "--structure") == 0)
+                memcpy(sf.structure, fl.structure, sizeof sf.structure);
+            if (strcmp(argv[a], "--machine") == 0)
+                memcpy(sf.machine, fl.machine, sizeof sf.machine);
+            if (strcmp(argv[a], "--l1") == 0)
+                memcpy(sf.l1, fl.l1, sizeof sf.l1);
+            if (strcmp(argv[a], "--l2") == 0)
+                memcpy(sf.l2, fl.l2, sizeof sf.l2);
+        }
+    }
+    if (mesh_over != NULL)
+        snprintf(sf.mesh, sizeof sf.mesh, "%s", mesh_over);
+    if (sf.mesh[0] == '\0')
+        snprintf(sf.mesh, sizeof sf.mesh, "scenes/teapot.obj");
+    if (report == NULL && sf.out_report[0] != '\0')
+        report = sf.out_report;
+    if (csv == NULL && sf.out_csv[0] != '\0')
+        csv = sf.out_csv;
+#if LT_COST_MODE == LT_COST_SIM
+    {
+        const lt_machine_t *m = lt_sim_machine_find(sf.machine);
+        if (m == NULL) {
+            fprintf(stderr, "%s run: machine '%s' unknown (known: lrb16, mcu-m4)\n", prog,
+                    sf.machine);
+            return EXIT_USAGE;
+        }
+        if (lt_sim_init(m, sf.l1[0] ? sf.l1 : NULL, sf.l2[0] ? sf.l2 : NULL, err, sizeof err) != 0) {
+            fprintf(stderr, "%s run: %s\n", prog, err);
+            return EXIT_USAGE;
+        }
+    }
+#endif
+    if (lt_mesh_load(sf.mesh, &mesh, err, sizeof err) != 0) {
+        fprintf(stderr, "%s\n", err);
+        return EXIT_INPUT;
+    }
+    if (lt_scene_prepare(&mesh, &sc, err, sizeof err) != 0) {
+        fprintf(stderr, "%s: %s\n", sf.mesh, err);
+        lt_mesh_free(&mesh);
+        return EXIT_INPUT;
+    }
+    if (sf.has_camera) {
+        if (lt_camera_look(&sc, sf.eye, sf.target, sf.up, sf.fov_y_deg, sf.width, sf.height, &cam,
+                           err, sizeof err) != 0) {
+            fprintf(stderr, "%s: %s\n", sf.path[0] ? sf.path : sf.mesh, err);
+            lt_scene_free(&sc);
+            lt_mesh_free(&mesh);
+            return EXIT_INPUT;
+        }
+    } else {
+        lt_camera_default(&sc, sf.width, sf.height, &cam);
+    }
+    if (!quiet)
+        printf("scene     %s: %u triangles, scale %g (file units -> s15.16 units), radius %.1f, "
+               "%ux%u pixels, %u packets, structure %s\n",
+               sf.mesh, sc.ntris, sc.scale, sc.radius, sf.width, sf.height,
+               ((sf.width + 3) / 4) * ((sf.height + 3) / 4), sf.structure);
+    if (lt_frame_alloc(&ref, sf.width, sf.height, err, sizeof err) != 0 ||
+        lt_frame_alloc(&fr, sf.width, sf.height, err, sizeof err) != 0) {
+        fprintf(stderr, "%s\n", err);
+        return EXIT_INPUT;
+    }
+    if (do_ref) {
+        progress_begin("reference");
+        lt_render_reference(&sc, &cam, &ref, progress);
+        progress_end();
+    }
+    if (csv != NULL) {
+        snprintf(csv_tmp, sizeof csv_tmp, "%s.tmp%ld", csv, (long)getpid());
+        csvf = fopen(csv_tmp, "w");
+        if (csvf == NULL) {
+            fprintf(stderr, "%s: cannot create the CSV output\n", csv);
+            csv_tmp[0] = '\0';
+            status = EXIT_INPUT;
+            goto done;
+        }
+        fprintf(csvf, "scene,structure,path,machine,width,height,rays,total_cycles,cycles_per_ray,"
+                      "mrays_per_s_modelled,lane_utilisation,host_ms,same_triangle_pct,depth_rmse,"
+                      "depth_max_err\n");
+    }
+    for (path = 0; path < 2; path++) {
+        lt_accel_t *acc;
+        lt_accuracy_t ac;
+        const char *pname = path == 0 ? "q16" : "f32";
+        double t0, ms;
+        int rep;
+        cJSON *jr = NULL;
+        char extra[2048];
+        uint64_t rays = (uint64_t)sf.width * sf.height * (uint64_t)repeat;
+        if (!((unsigned)sf.numeric & (1u << path)))
+            continue;
+#if LT_COST_MODE == LT_COST_SIM
+        lt_sim_reset();
+#endif
+        acc = lt_accel_build(&sc, sf.structure, (lt_path_t)path, err, sizeof err);
+        if (acc == NULL) {
+            fprintf(stderr, "%s: %s\n", sf.path[0] ? sf.path : prog, err);
+            status = EXIT_INPUT;
+            break;
+        }
+        progress_begin(pname);
+        t0 = now_s();
+        for (rep = 0; rep < repeat; rep++)
+            lt_render_primary(&sc, acc, &cam, &fr, progress);
+        ms = 1e3 * (now_s() - t0);
+        progress_end();
+        lt_accel_free(acc);
+        memset(&ac, 0, sizeof ac);
+        if (do_ref)
+            lt_frame_compare(&fr, &ref, 1e-4 * sc.radius, &ac);
+        if (!json) {
+            printf("time      %-4s %.3f ms for %d frame(s) of %u rays (%s, %.2f Mrays/s host)\n",
+                   pname, ms, repeat, sf.width * sf.height,
+                   LT_COST_MODE == LT_COST_SIM ? "counted" : "native",
+                   (double)rays / (ms * 1e-3) / 1e6);
+            printf("result    %-4s hash 0x%08x\n", pname, lt_frame_hash(&fr));
+            if (do_ref)
+                printf("accuracy  %-4s vs double: same triangle %.3f%% of %u pixels, depth RMSE "
+                       "%.3g, max %.3g (scene radius %.1f), %.2f%% of common hits within 1e-4 "
+                       "radius\n",
+                       pname, 100.0 * ac.same_id / ac.pixels, ac.pixels, ac.rmse, ac.max_err,
+                       sc.radius, ac.both_hit ? 100.0 * ac.within_tol / ac.both_hit : 100.0);
+        }
+        {
+            /* run facts merged into the report; cJSON escapes the path */
+            cJSON *x = cJSON_CreateObject();
+            char *xs;
+            cJSON_AddStringToObject(x, "path", pname);
+            cJSON_AddStringToObject(x, "structure", sf.structure);
+            cJSON_AddStringToObject(x, "scene", sf.mesh);
+            cJSON_AddNumberToObject(x, "width", sf.width);
+            cJSON_AddNumberToObject(x, "height", sf.height);
+            cJSON_AddNumberToObject(x, "host_ms", ms);
+            cJSON_AddNumberToObject(x, "frame_hash", lt_frame_hash(&fr));
+            if (do_ref) {
+                cJSON *y = cJSON_AddObjectToObject(x, "accuracy");
+                cJSON_AddNumberToObject(y, "same_triangle_pct", 100.0 * ac.same_id / ac.pixels);
+                cJSON_AddNumberToObject(y, "depth_rmse", ac.rmse);
+                cJSON_AddNumberToObject(y, "depth_max_err", ac.max_err);
+                cJSON_AddNumberToObject(y, "scene_radius", sc.radius);
+            }
+            xs = cJSON_PrintUnformatted(x);
+            snprintf(extra, sizeof extra, "%s", xs != NULL ? xs : "{}");
+            free(xs);
+            cJSON_Delete(x);
+        }
+#if LT_COST_MODE == LT_COST_SIM
+        {
+            char title[512], *js;
+            snprintf(title, sizeof title, "%s %ux%u %s, %s, %d frame(s)", sf.mesh, sf.width,
+                     sf.height, pname, sf.structure, repeat);
+            if (!quiet) {
+                lt_sim_report_text(stdout, title, rays);
+            } else if (!json) {
+                lt_sim_totals_t tt;
+                lt_sim_totals(&tt);
+                printf("cycles    %-4s %llu total, %.1f cycles/ray on %s\n", pname,
+                       (unsigned long long)tt.total_cycles, (double)tt.total_cycles / (double)rays,
+                       sf.machine);
+            }
+            js = lt_sim_report_json_string(title, rays, extra);
+            jr = js != NULL ? cJSON_Parse(js) : NULL;
+            if (report != NULL && js != NULL) {
+                char p[1100];
+                snprintf(p, sizeof p, "%s%s%s", report, sf.numeric == LT_SF_NUM_BOTH ? "." : "",
+                         sf.numeric == LT_SF_NUM_BOTH ? pname : "");
+                if (write_atomic(p, js, err, sizeof err) != 0) {
+                    fprintf(stderr, "%s\n", err);
+                    status = EXIT_INPUT;
+                } else if (!quiet) {
+                    printf("report    %s\n", p);
+                }
+            }
+            free(js);
+        }
+#else
+        /* native build: the report holds the run facts and accuracy, no cycle counts */
+        jr = cJSON_Parse(extra);
+        if (report != NULL) {
+            char p[1100];
+            snprintf(p, sizeof p, "%s%s%s", report, sf.numeric == LT_SF_NUM_BOTH ? "." : "",
+                     sf.numeric == LT_SF_NUM_BOTH ? pname : "");
+            if (write_atomic(p, extra, err, sizeof err) != 0) {
+                fprintf(stderr, "%s\n", err);
+                status = EXIT_INPUT;
+            } else if (!quiet) {
+                printf("report    %s\n", p);
+            }
+        }
+#endif
+        if (csvf != NULL) {
+#if LT_COST_MODE == LT_COST_SIM
+            lt_sim_totals_t tt;
+            double util = 0.0;
+            lt_sim_totals(&tt);
+            if (jr != NULL && cJSON_GetObjectItem(jr, "lane_utilisation") != NULL)
+                util = cJSON_GetObjectItem(jr, "lane_utilisation")->valuedouble;
+            fprintf(csvf, "%s,%s,%s,%s,%u,%u,%llu,%llu,%.3f,%.4f,%.4f,%.3f,%.4f,%.6g,%.6g\n",
+                    sf.mesh, sf.structure, pname, sf.machine, sf.width, sf.height,
+                    (unsigned long long)rays, (unsigned long long)tt.total_cycles,
+                    (double)tt.total_cycles / (double)rays,
+                    (double)rays / ((double)tt.total_cycles / (lt_sim_machine()->clock_mhz * 1e6)) / 1e6,
+                    util, ms, do_ref ? 100.0 * ac.same_id / ac.pixels : 0.0, ac.rmse, ac.max_err);
+#else
+            fprintf(csvf, "%s,%s,%s,native,%u,%u,%llu,,,,,%.3f,%.4f,%.6g,%.6g\n", sf.mesh,
+                    sf.structure, pname, sf.width, sf.height, (unsigned long long)rays, ms,
+                    do_ref ? 100.0 * ac.same_id / ac.pixels : 0.0, ac.rmse, ac.max_err);
+#endif
+        }
+        if (jr != NULL)
+            cJSON_AddItemToArray(jout, jr);
+    }
+    if (csvf != NULL) {
+        if (fclose(csvf) != 0 || rename(csv_tmp, csv) != 0) {
+            fprintf(stderr, "%s: cannot write the CSV output\n", csv);
+            unlink(csv_tmp);
+            status = EXIT_INPUT;
+        } else if (!quiet) {
+            printf("csv       %s\n", csv);
+        }
+        csv_tmp[0] = '\0';
+    }
+    if (json) {
+        char *s = cJSON_Print(jout);
+        if (s != NULL)
+            puts(s);
+        free(s);
+    }
+done:
+    cJSON_Delete(jout);
+    lt_frame_free(&fr);
+    lt_frame_free(&ref);
+    lt_scene_free(&sc);
+    lt_mesh_free(&mesh);
+#if LT_COST_MODE == LT_COST_SIM
+    lt_sim_shutdown();
+#endif
+    return status;
+}
+
+/* ---- info ----------------------------------------------------------------------------------- */
+
+static int cmd_info(int argc, char **argv)
+{
+    lt_mesh_t m;
+    lt_scene_t sc;
+    char err[1024];
+    uint32_t i, zero = 0;
+    int json = 0, a;
+    const char *path = NULL;
+    for (a = 2; a < argc; a++) {
+        if (strcmp(argv[a], "--help") == 0 || strcmp(argv[a], "-h") == 0) {
+            printf("usage: %s info FILE [--json]\nDescribe a mesh: triangles, zero-area "
+                   "triangles, bounds, the fixed-point scale lanetrace picks.\n",
+                   prog);
+            return 0;
+        } else if (strcmp(argv[a], "--json") == 0) {
+            json = 1;
+        } else if (argv[a][0] == '-' || path != NULL) {
+            fprintf(stderr, "%s info: unexpected argument '%s'\n", prog, argv[a]);
+            return EXIT_USAGE;
+        } else {
+            path = argv[a];
+        }
+    }
+    if (path == NULL) {
+        fprintf(stderr, "%s info: a FILE is required\n", prog);
+        return EXIT_USAGE;
+    }
+    if (lt_mesh_load(path, &m, err, sizeof err) != 0) {
+        fprintf(stderr, "%s\n", err);
+        return EXIT_INPUT;
+    }
+    for (i = 0; i < m.ntris; i++) {
+        const double *v = &m.v[i * 9];
+        double e1[3], e2[3], c[3];
+        int k;
+        for (k = 0; k < 3; k++) {
+            e1[k] = v[3 + k] - v[k];
+            e2[k] = v[6 + k] - v[k];
+        }
+        c[0] = e1[1] * e2[2] - e1[2] * e2[1];
+        c[1] = e1[2] * e2[0] - e1[0] * e2[2];
+        c[2] = e1[0] * e2[1] - e1[1] * e2[0];
+        zero += c[0] == 0.0 && c[1] == 0.0 && c[2] == 0.0;
+    }
+    if (lt_scene_prepare(&m, &sc, err, sizeof err) != 0) {
+        fprintf(stderr, "%s: %s\n", path, err);
+        lt_mesh_free(&m);
+        return EXIT_INPUT;
+    }
+    if (json)
+        printf("{\"file\":\"%s\",\"triangles\":%u,\"zero_area\":%u,\"lo\":[%g,%g,%g],"
+               "\"hi\":[%g,%g,%g],\"scale\":%g,\"radius_scaled\":%g}\n",
+               path, m.ntris, zero, m.lo[0], m.lo[1], m.lo[2], m.hi[0], m.hi[1], m.hi[2],
+               sc.scale, sc.radius);
+    else
+        printf("%s: mesh, %u triangles (%u zero-area), bounds [%g %g %g] .. [%g %g %g]\n"
+               "fixed point: scale %g (a power of two), scene radius %.2f units of s15.16, "
+               "resolution %.3g file units\n",
+               path, m.ntris, zero, m.lo[0], m.lo[1], m.lo[2], m.hi[0], m.hi[1], m.hi[2], sc.scale,
+               sc.radius, 1.0 / 65536.0 / sc.scale);
+    lt_scene_free(&sc);
+    lt_mesh_free(&m);
+    return 0;
+}
+
+/* ---- diff ----------------------------------------------------------------------------------- */
+
+static cJSON *load_json(const char *path, char *err, size_t errlen)
+{
+    FILE *f = fopen(path, "rb");
+    char *buf;
+    long n;
+    cJSON *j;
+    if (f == NULL) {
+        snprintf(err, errlen, "%s: cannot open", path);
+        return NULL;
+    }
+    fseek(f, 0, SEEK_END);
+    n = ftell(f);
+    fseek(f, 0, SEEK_SET);
+    if (n < 0 || n > (64L << 20)) {
+        fclose(f);
+        snprintf(err, errlen, "%s: not a report (size %ld, limit 64 MiB)", path, n);
+        return NULL;
+    }
+    buf = malloc((size_t)n + 1);
+    if (buf == NULL || fread(buf, 1, (size_t)n, f) != (size_t)n) {
+        fclose(f);
+        free(buf);
+        snprintf(err, errlen, "%s: cannot read", path);
+        return NULL;
+    }
+    fclose(f);
+    buf[n] = '\0';
+    j = cJSON_Parse(buf);
+    free(buf);
+    if (j == NULL || !cJSON_IsObject(j)) {
+        cJSON_Delete(j);
+        snprintf(err, errlen, "%s: not a JSON report object", path);
+        return NULL;
+    }
+    return j;
+}
+
+/* Walk both reports' numeric members (nested objects flattened as a.b.c) and print changes. */
+static void diff_walk(const cJSON *a, const cJSON *b, const char *prefix, double threshold,
+                      cJSON *out, int *changed, int *total)
+{
+    const cJSON *x;
+    cJSON_ArrayForEach(x, a) {
+        char key[256];
+        const cJSON *y = cJSON_GetObjectItemCaseSensitive(b, x->string);
+        snprintf(key, sizeof key, "%s%s%s", prefix, *prefix ? "." : "", x->string);
+        if (cJSON_IsObject(x) && cJSON_IsObject(y)) {
+            diff_walk(x, y, key, threshold, out, changed, total);
+        } else if (cJSON_IsNumber(x)) {
+            double va = x->valuedouble, vb = cJSON_IsNumber(y) ? y->valuedouble : 0.0;
+            double rel = va != 0.0 ? 100.0 * (vb - va) / fabs(va) : (vb != 0.0 ? (double)INFINITY : 0.0);
+            (*total)++;
+            if (y == NULL || fabs(rel) > threshold) {
+                cJSON *row = cJSON_CreateObject();
+                (*changed)++;
+                cJSON_AddStringToObject(row, "counter", key);
+                cJSON_AddNumberToObject(row, "a", va);
+                if (y != NULL)
+                    cJSON_AddNumberToObject(row, "b", vb);
+                cJSON_AddNumberToObject(row, "delta", vb - va);
+                if (isfinite(rel))
+                    cJSON_AddNumberToObject(row, "pct", rel);
+                cJSON_AddItemToArray(out, row);
+            }
+        }
+    }
+    cJSON_ArrayForEach(x, b) {
+        char key[256];
+        snprintf(key, sizeof key, "%s%s%s", prefix, *prefix ? "." : "", x->string);
+        if (cJSON_IsNumber(x) && cJSON_GetObjectItemCaseSensitive(a, x->string) == NULL) {
+            cJSON *row = cJSON_CreateObject();
+            (*changed)++;
+            (*total)++;
+            cJSON_AddStringToObject(row, "counter", key);
+            cJSON_AddNumberToObject(row, "b", x->valuedouble);
+            cJSON_AddNumberToObject(row, "delta", x->valuedouble);
+            cJSON_AddItemToArray(out, row);
+        }
+    }
+}
+
+static int cmd_diff(int argc, char **argv)
+{
+    const char *pa = NULL, *pb = NULL;
+    double threshold = 0.0;
+    int json = 0, a, changed = 0, total = 0;
+    char err[1024];
+    cJSON *ja, *jb, *rows;
+    const cJSON *r;
+    for (a = 2; a < argc; a++) {
+        if (strcmp(argv[a], "--help") == 0 || strcmp(argv[a], "-h") == 0) {
+            printf("usage: %s diff A.json B.json [--threshold PCT] [--json]\nCompare two JSON "
+                   "reports: every numeric counter that moved by more than PCT%% (default 0).\n",
+                   prog);
+            return 0;
+        } else if (strcmp(argv[a], "--json") == 0) {
+            json = 1;
+        } else if (strcmp(argv[a], "--threshold") == 0 && a + 1 < argc) {
+            char *end;
+            threshold = strtod(argv[++a], &end);
+            if (*end != '\0' || !(threshold >= 0.0)) {
+                fprintf(stderr, "%s diff: --threshold %s: expected a percentage >= 0\n", prog,
+                        argv[a]);
+                return EXIT_USAGE;
+            }
+        } else if (argv[a][0] == '-') {
+            fprintf(stderr, "%s diff: unknown option '%s'\n", prog, argv[a]);
+            return EXIT_USAGE;
+        } else if (pa == NULL) {
+            pa = argv[a];
+        } else if (pb == NULL) {
+            pb = argv[a];
+        } else {
+            fprintf(stderr, "%s diff: more than two reports\n", prog);
+            return EXIT_USAGE;
+        }
+    }
+    if (pb == NULL) {
+        fprintf(stderr, "%s diff: two reports are required\n", prog);
+        return EXIT_USAGE;
+    }
+    if ((ja = load_json(pa, err, sizeof err)) == NULL ||
+        (jb = load_json(pb, err, sizeof err)) == NULL) {
+        fprintf(stderr, "%s\n", err);
+        return EXIT_INPUT;
+    }
+    rows = cJSON_CreateArray();
+    diff_walk(ja, jb, "", threshold, rows, &changed, &total);
+    if (json) {
+        char *s;
+        cJSON *o = cJSON_CreateObject();
+        cJSON_AddNumberToObject(o, "counters", total);
+        cJSON_AddNumberToObject(o, "changed", changed);
+        cJSON_AddItemToObject(o, "rows", rows);
+        s = cJSON_Print(o);
+        puts(s);
+        free(s);
+        cJSON_Delete(o);
+    } else {
+        printf("%-40s %16s %16s %14s %9s\n", "counter", "a", "b", "delta", "change");
+        cJSON_ArrayForEach(r, rows) {
+            const cJSON *va = cJSON_GetObjectItem(r, "a"), *vb = cJSON_GetObjectItem(r, "b");
+            const cJSON *p = cJSON_GetObjectItem(r, "pct");
+            char sa[32] = "-", sb[32] = "-", sp[32] = "new";
+            if (va)
+                snprintf(sa, sizeof sa, "%.6g", va->valuedouble);
+            if (vb)
+                snprintf(sb, sizeof sb, "%.6g", vb->valuedouble);
+            if (p)
+                snprintf(sp, sizeof sp, "%+.2f%%", p->valuedouble);
+            else if (va && !vb)
+                snprintf(sp, sizeof sp, "gone");
+            printf("%-40s %16s %16s %14.6g %9s\n", cJSON_GetObjectItem(r, "counter")->valuestring,
+                   sa, sb, cJSON_GetObjectItem(r, "delta")->valuedouble, sp);
+        }
+        printf("%d of %d counters changed (threshold %g%%)\n", changed, total, threshold);
+        cJSON_Delete(rows);
+    }
+    cJSON_Delete(ja);
+    cJSON_Delete(jb);
+    return 0;
+}
+
+/* ---- main ----------------------------------------------------------------------------------- */
+
+static void usage(FILE *f)
+{
+    fprintf(f,
+            "usage: %s COMMAND [options]   (%s build)\n"
+            "commands:\n"
+            "  run [SCENE.json]   trace a scene; accuracy and (sim build) the cycle report\n"
+            "  info FILE          describe a mesh file\n"
+            "  diff A.json B.json compare two JSON reports\n"
+            "  help               this text\n"
+            "Every command takes --help. Exit codes: 0 ok, 1 input or runtime error, 2 usage.\n",
+            prog, LT_COST_MODE == LT_COST_SIM ? "simulator" : "native");
+}
+
+int main(int argc, char **argv)
+{
+    signal(SIGINT, on_signal);
+    signal(SIGTERM, on_signal);
+    if (argc < 2 || strcmp(argv[1], "help") == 0 || strcmp(argv[1], "--help") == 0 ||
+        strcmp(argv[1], "-h") == 0) {
+        usage(argc < 2 ? stderr : stdout);
+        return argc < 2 ? EXIT_USAGE : 0;
+    }
+    if (strcmp(argv[1], "run") == 0)
+        return cmd_run(argc, argv);
+    if (strcmp(argv[1], "info") == 0)
+        return cmd_info(argc, argv);
+    if (strcmp(argv[1], "diff") == 0)
+        return cmd_diff(argc, argv);
+    fprintf(stderr, "%s: unknown command '%s'\n", prog, argv[1]);
+    usage(stderr);
+    return EXIT_USAGE;
+}

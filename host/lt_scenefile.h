@@ -1,0 +1,55 @@
+/* lt_scenefile.h - the lanetrace scene description: a small JSON file (read with cJSON) naming the
+ * mesh or depth file, camera, lights, resolution, structure, numeric configuration, machine model
+ * and outputs. Validated with precise errors (unknown key, wrong type, out-of-range value, missing
+ * file), each naming the file and the key path. docs/scene-format.md is the reference. Host only.
+ */
+#ifndef LT_SCENEFILE_H
+#define LT_SCENEFILE_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#define LT_SF_PATH_MAX 1024
+#define LT_SF_MAX_LIGHTS 8
+#define LT_SF_MAX_RES 8192
+
+typedef enum lt_sf_num { LT_SF_NUM_Q16 = 1, LT_SF_NUM_F32 = 2, LT_SF_NUM_BOTH = 3 } lt_sf_num_t;
+
+typedef struct lt_sf_light {
+    double position[3]; /* mesh file units */
+    double intensity;   /* >= 0 */
+} lt_sf_light_t;
+
+typedef struct lt_scenefile {
+    char path[LT_SF_PATH_MAX];     /* the scene file itself ("" when built from flags only) */
+    char mesh[LT_SF_PATH_MAX];     /* resolved path, "" if none */
+    char depth[LT_SF_PATH_MAX];    /* resolved path of a depth EXR, "" if none */
+    int has_camera;                /* 0: the default benchmark view */
+    double eye[3], target[3], up[3];
+    double fov_y_deg;              /* vertical field of view, (1, 179) */
+    uint32_t width, height;        /* 1..LT_SF_MAX_RES */
+    char structure[16];            /* "chunks" */
+    lt_sf_num_t numeric;
+    char machine[32];              /* "lrb16", "mcu-m4" */
+    char l1[32], l2[32];           /* cache overrides, "" = the machine's */
+    int nlights;
+    lt_sf_light_t lights[LT_SF_MAX_LIGHTS];
+    char out_report[LT_SF_PATH_MAX]; /* JSON cycle report, "" = none */
+    char out_csv[LT_SF_PATH_MAX];    /* one CSV row per numeric path, "" = none */
+} lt_scenefile_t;
+
+/* Defaults: no mesh, default camera, 128x128, "chunks", both paths, lrb16, no lights, no outputs. */
+void lt_sf_defaults(lt_scenefile_t *sf);
+
+/* Parse and validate a scene file; relative paths inside it are resolved against its directory.
+ * Returns 0, or -1 with a message in err naming the file, the key path and the rule broken. */
+int lt_sf_load(const char *path, lt_scenefile_t *sf, char *err, size_t errlen);
+
+/* The same from a string (name is used in messages, base_dir resolves relative paths). */
+int lt_sf_parse(const char *text, const char *name, const char *base_dir, lt_scenefile_t *sf,
+                char *err, size_t errlen);
+
+/* Structure names the tracer accepts (NULL-terminated). */
+extern const char *const lt_sf_structures[];
+
+#endif /* LT_SCENEFILE_H */

@@ -1,0 +1,62 @@
+# cli.sh - lanetrace command-line behaviour: help, exit codes, bad flags, missing and malformed
+# files, scene validation, unwritable outputs, diff and info. Sourced by tests/run_tests.sh.
+LT="$B/sim/lanetrace"
+expect() { # name, expected rc, pattern in output ("" = any), command...
+    local name=$1 want=$2 pat=$3
+    shift 3
+    "$@" >"$tmp/o.txt" 2>&1
+    local rc=$?
+    if [ "$rc" -eq "$want" ] && { [ -z "$pat" ] || grep -q -- "$pat" "$tmp/o.txt"; }; then
+        ok "$name (rc $rc)"
+    else
+        ko "$name (rc $rc, want $want; output: $(head -c 300 "$tmp/o.txt"))"
+    fi
+}
+expect "lanetrace --help" 0 "commands:" "$LT" --help
+expect "lanetrace without a command: usage" 2 "usage:" "$LT"
+expect "unknown command" 2 "unknown command" "$LT" frobnicate
+for c in run info diff; do
+    expect "lanetrace $c --help" 0 "usage: lanetrace $c" "$LT" $c --help
+done
+expect "run: unknown flag" 2 "unknown option" "$LT" run --frobnicate 1
+expect "run: bad --num" 2 "expected q16" "$LT" run --num q8
+expect "run: bad --res" 2 "expected WxH" "$LT" run --res 0
+expect "run: unknown machine" 2 "z80" "$LT" run --machine z80 --res 4
+expect "run: bad cache spec names it" 2 "63:8:64" "$LT" run --l1 63:8:64 --res 4
+expect "run: missing mesh names the file" 1 "/nonexistent.obj" "$LT" run --mesh /nonexistent.obj
+printf 'v 0 0 0\nv 1 0 0\nf 1 2 9\n' >"$tmp/bad.obj"
+expect "run: malformed OBJ names the file" 1 "bad.obj" "$LT" run --mesh "$tmp/bad.obj"
+expect "run: missing scene file" 1 "nope.json" "$LT" run "$tmp/nope.json"
+sc() { printf '%s\n' "$1" >"$tmp/s.json"; }
+sc '{"mesh": "'"$PWD"'/scenes/teapot.obj", "colour": 1}'
+expect "scene: unknown key named" 1 "unknown key 'colour'" "$LT" run "$tmp/s.json"
+sc '{"mesh": "'"$PWD"'/scenes/teapot.obj", "camera": {"eye": [0,0,5], "target": [0,0,0], "fov": 30}}'
+expect "scene: unknown nested key named with its path" 1 "camera.fov" "$LT" run "$tmp/s.json"
+sc '{"mesh": "'"$PWD"'/scenes/teapot.obj", "resolution": "big"}'
+expect "scene: wrong type" 1 "'resolution' must be" "$LT" run "$tmp/s.json"
+sc '{"mesh": "'"$PWD"'/scenes/teapot.obj", "resolution": [64, 9000]}'
+expect "scene: out of range" 1 "out of range" "$LT" run "$tmp/s.json"
+sc '{"mesh": "missing.obj"}'
+expect "scene: missing file resolved against the scene's folder" 1 "missing.obj' not found" "$LT" run "$tmp/s.json"
+sc '{"mesh": "'"$PWD"'/scenes/teapot.obj", "numeric": "q8"}'
+expect "scene: bad choice lists the choices" 1 "q16, f32, both" "$LT" run "$tmp/s.json"
+sc '{"mesh": "'"$PWD"'/scenes/teapot.obj",'
+expect "scene: broken JSON gives line and column" 1 "at line [0-9]*, column [0-9]*" "$LT" run "$tmp/s.json"
+sc '{"mesh": "'"$PWD"'/scenes/teapot.obj", "camera": {"eye": [0,0,5], "target": [0,0,5]}}'
+expect "scene: degenerate camera" 1 "no view direction" "$LT" run "$tmp/s.json"
+sc '{"mesh": "'"$PWD"'/scenes/teapot.obj", "camera": {"eye": [0,1,40], "target": [0,1,0], "fov_y_deg": 30}, "resolution": 16, "numeric": "q16"}'
+expect "scene: explicit camera traces" 0 "same triangle" "$LT" run "$tmp/s.json" -q
+expect "flags override the scene (--res)" 0 "of 64 rays" "$LT" run "$tmp/s.json" --res 8 -q
+expect "unwritable report: exit 1, names it" 1 "/nonexistent-dir/r.json" \
+    "$LT" run --res 4 --num q16 --report /nonexistent-dir/r.json -q
+check "no temporary left behind" bash -c "! ls /nonexistent-dir 2>/dev/null"
+"$LT" run --res 16 --num q16 --report "$tmp/a.json" --csv "$tmp/a.csv" -q >/dev/null 2>&1
+"$LT" run --res 16 --num q16 --machine mcu-m4 --report "$tmp/b.json" -q >/dev/null 2>&1
+check "csv written with header and one row" bash -c "[ \$(wc -l <'$tmp/a.csv') -eq 2 ] && head -1 '$tmp/a.csv' | grep -q total_cycles"
+expect "diff names moved counters" 0 "total_cycles" "$LT" diff "$tmp/a.json" "$tmp/b.json"
+expect "diff of a report with itself: nothing moved" 0 "^0 of" "$LT" diff "$tmp/a.json" "$tmp/a.json" --threshold 0
+expect "diff: missing report" 1 "nope.json" "$LT" diff "$tmp/a.json" "$tmp/nope.json"
+expect "diff --json" 0 '"changed"' "$LT" diff "$tmp/a.json" "$tmp/b.json" --json
+expect "info on a mesh" 0 "992 triangles" "$LT" info scenes/teapot.obj
+expect "info --json" 0 '"triangles":992' "$LT" info scenes/teapot.obj --json
+expect "run --native hands over to the native build" 0 "native" "$LT" run --native --res 8 --num f32
