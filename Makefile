@@ -109,7 +109,14 @@ bench: deps
 	@$(MAKE) --no-print-directory all firmware opcal
 	@tests/bench/bench.sh
 
+# CSV sweep -> PNG plots (gnuplot): cycles per phase, error vs cycles, lane utilisation
+plots: deps
+	@$(MAKE) --no-print-directory all
+	@mkdir -p $(B)/plots
+	@B=$(B) tools/plots/sweep.sh $(B)/plots/sweep.csv
+	@tools/plots/plots.sh $(B)/plots/sweep.csv $(B)/plots
+
 clean:
 	rm -rf $(B)
 
-.PHONY: all sim deps run test test-build bench clean firmware
+.PHONY: all sim deps run test test-build bench clean firmware plots

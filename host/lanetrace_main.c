@@ -367,7 +367,8 @@ static int cmd_run(int argc, char **argv)
         }
         fprintf(csvf, "scene,structure,path,machine,width,height,rays,total_cycles,cycles_per_ray,"
                       "mrays_per_s_modelled,lane_utilisation,host_ms,same_triangle_pct,depth_rmse,"
-                      "depth_max_err\n");
+                      "depth_max_err,cycles_build,cycles_setup,cycles_traverse,cycles_intersect,"
+                      "cycles_shade,l1_hit_pct\n");
     }
     for (path = 0; path < 2; path++) {
         lt_accel_t *acc;
@@ -486,14 +487,22 @@ static int cmd_run(int argc, char **argv)
             lt_sim_totals(&tt);
             if (jr != NULL && cJSON_GetObjectItem(jr, "lane_utilisation") != NULL)
                 util = cJSON_GetObjectItem(jr, "lane_utilisation")->valuedouble;
-            fprintf(csvf, "%s,%s,%s,%s,%u,%u,%llu,%llu,%.3f,%.4f,%.4f,%.3f,%.4f,%.6g,%.6g\n",
+            fprintf(csvf,
+                    "%s,%s,%s,%s,%u,%u,%llu,%llu,%.3f,%.4f,%.4f,%.3f,%.4f,%.6g,%.6g,%llu,%llu,"
+                    "%llu,%llu,%llu,%.3f\n",
                     sf.mesh, sf.structure, pname, sf.machine, sf.width, sf.height,
                     (unsigned long long)rays, (unsigned long long)tt.total_cycles,
                     (double)tt.total_cycles / (double)rays,
                     (double)rays / ((double)tt.total_cycles / (lt_sim_machine()->clock_mhz * 1e6)) / 1e6,
-                    util, ms, do_ref ? 100.0 * ac.same_id / ac.pixels : 0.0, ac.rmse, ac.max_err);
+                    util, ms, do_ref ? 100.0 * ac.same_id / ac.pixels : 0.0, ac.rmse, ac.max_err,
+                    (unsigned long long)tt.cycles[LT_PH_BUILD],
+                    (unsigned long long)tt.cycles[LT_PH_SETUP],
+                    (unsigned long long)tt.cycles[LT_PH_TRAVERSE],
+                    (unsigned long long)tt.cycles[LT_PH_INTERSECT],
+                    (unsigned long long)tt.cycles[LT_PH_SHADE],
+                    tt.l1_acc ? 100.0 * (double)tt.l1_hit / (double)tt.l1_acc : 0.0);
 #else
-            fprintf(csvf, "%s,%s,%s,native,%u,%u,%llu,,,,,%.3f,%.4f,%.6g,%.6g\n", sf.mesh,
+            fprintf(csvf, "%s,%s,%s,native,%u,%u,%llu,,,,,%.3f,%.4f,%.6g,%.6g,,,,,,\n", sf.mesh,
                     sf.structure, pname, sf.width, sf.height, (unsigned long long)rays, ms,
                     do_ref ? 100.0 * ac.same_id / ac.pixels : 0.0, ac.rmse, ac.max_err);
 #endif

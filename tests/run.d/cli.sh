@@ -60,3 +60,7 @@ expect "diff --json" 0 '"changed"' "$LT" diff "$tmp/a.json" "$tmp/b.json" --json
 expect "info on a mesh" 0 "992 triangles" "$LT" info scenes/teapot.obj
 expect "info --json" 0 '"triangles":992' "$LT" info scenes/teapot.obj --json
 expect "run --native hands over to the native build" 0 "native" "$LT" run --native --res 8 --num f32
+mkdir -p "$tmp/plots"
+B=$B SWEEP_RES=8 tools/plots/sweep.sh "$tmp/plots/sweep.csv" >/dev/null 2>&1 &&
+    tools/plots/plots.sh "$tmp/plots/sweep.csv" "$tmp/plots" >/dev/null 2>&1
+check "make plots pipeline: sweep CSV -> 4 PNG plots" bash -c "[ \$(ls '$tmp'/plots/*.png | wc -l) -eq 4 ]"
