@@ -106,7 +106,7 @@ test: deps
 test-build: $(TEST_BINS) firmware $(PLUGIN_SO)
 
 bench: deps
-	@$(MAKE) --no-print-directory all firmware opcal
+	@$(MAKE) --no-print-directory all firmware opcal $(B)/host/embree-race
 	@tests/bench/bench.sh
 
 # CSV sweep -> PNG plots (gnuplot): cycles per phase, error vs cycles, lane utilisation

@@ -616,7 +616,41 @@ static int target_of(const read_target_t *t, const char *name)
     return -1;
 }
 
-/* Read a flat (scanline or tiled) part into the data-window rasters of t. */
+/* One value of channel bytes p (little endian in the file), as float32 (HALF converts exactly). */
+static float raw_value(const uint8_t *p, uint16_t type)
+{
+    if (type == (uint16_t)EXR_PIXEL_HALF)
+        return lt_exr_half_to_float((uint16_t)(p[0] | (p[1] << 8)));
+    return f32_from_bits((uint32_t)p[0] | ((uint32_t)p[1] << 8) | ((uint32_t)p[2] << 16) |
+                         ((uint32_t)p[3] << 24));
+}
+
+/* Let the library read and decompress one chunk, without its unpack stage: OpenEXRCore 3.1.5
+ * chooses its 3- and 4-channel HALF->FLOAT unpackers by the part's channel count rather than by
+ * the channels asked for, and writes through NULL when only some are asked (seen on our own
+ * 3-channel files). The decompressed bytes have the file's canonical layout, walked by callers. */
+static exr_result_t decode_raw(exr_context_t ctx, int part, const exr_chunk_info_t *ci,
+                               exr_decode_pipeline_t *dec, int *inited)
+{
+    exr_result_t rv;
+    int c;
+    rv = *inited ? exr_decoding_update(ctx, part, ci, dec)
+                 : exr_decoding_initialize(ctx, part, ci, dec);
+    if (rv != EXR_ERR_SUCCESS)
+        return rv;
+    *inited = 1;
+    for (c = 0; c < dec->channel_count; c++)
+        dec->channels[c].decode_to_ptr = NULL;
+    rv = exr_decoding_choose_default_routines(ctx, part, dec);
+    dec->unpack_and_convert_fn = NULL;
+    if (rv == EXR_ERR_SUCCESS)
+        rv = exr_decoding_run(ctx, part, dec);
+    return rv;
+}
+
+/* Read a flat (scanline or tiled) part into the data-window rasters of t. A decompressed chunk
+ * holds, per line: per channel in file order: that line's values of the channel (subsampled
+ * channels only on lines y with y % y_sampling == 0, with their own width). */
 static int read_flat(exr_context_t ctx, int part, exr_storage_t st, const exr_attr_box2i_t *dw,
                      const read_target_t *t, exr_io_t *io, const char *path, char *err,
                      size_t errlen)
@@ -625,13 +659,17 @@ static int read_flat(exr_context_t ctx, int part, exr_storage_t st, const exr_at
     exr_chunk_info_t ci;
     exr_result_t rv = EXR_ERR_SUCCESS;
     int32_t W = dw->max.x - dw->min.x + 1, H = dw->max.y - dw->min.y + 1;
-    int32_t lines = 1, tw = 1, th = 1, ntx = 1, nty = 1, cx, cy, px, py;
-    int inited = 0, c, k, ok = 0;
+    int32_t lines = 1, tw = 1, th = 1, ntx = 1, nty = 1, cx, cy, px = dw->min.x, py = dw->min.y;
+    int32_t l, x;
+    int inited = 0, c, ok = 0;
     long chunk = 0;
+    const char *why = NULL;
 
     if (st == EXR_STORAGE_SCANLINE) {
         rv = exr_get_scanlines_per_chunk(ctx, part, &lines);
-        nty = rv == EXR_ERR_SUCCESS && lines > 0 ? (H + lines - 1) / lines : 0;
+        if (rv == EXR_ERR_SUCCESS && lines < 1)
+            rv = EXR_ERR_INVALID_ATTR;
+        nty = rv == EXR_ERR_SUCCESS ? (H + lines - 1) / lines : 0;
     } else {
         rv = exr_get_tile_sizes(ctx, part, 0, 0, &tw, &th);
         if (rv == EXR_ERR_SUCCESS && (tw < 1 || th < 1))
@@ -643,8 +681,10 @@ static int read_flat(exr_context_t ctx, int part, exr_storage_t st, const exr_at
         fail(err, errlen, "%s: part %d: bad chunk layout: %s", path, part, lib_text(io, rv));
         return -1;
     }
-    for (cy = 0; cy < nty; cy++) {
-        for (cx = 0; cx < ntx; cx++, chunk++) {
+    for (cy = 0; cy < nty && why == NULL; cy++) {
+        for (cx = 0; cx < ntx && why == NULL; cx++, chunk++) {
+            const uint8_t *buf;
+            size_t off = 0, total;
             if (st == EXR_STORAGE_SCANLINE) {
                 px = dw->min.x;
                 py = dw->min.y + cy * lines;
@@ -659,50 +699,48 @@ static int read_flat(exr_context_t ctx, int part, exr_storage_t st, const exr_at
                  ci.height > H - (py - dw->min.y)))
                 rv = EXR_ERR_CORRUPT_CHUNK;
             if (rv == EXR_ERR_SUCCESS)
-                rv = inited ? exr_decoding_update(ctx, part, &ci, &dec)
-                            : exr_decoding_initialize(ctx, part, &ci, &dec);
+                rv = decode_raw(ctx, part, &ci, &dec, &inited);
             if (rv != EXR_ERR_SUCCESS)
                 goto bad;
-            inited = 1;
-            for (c = 0; c < dec.channel_count; c++) {
-                exr_coding_channel_info_t *dc = &dec.channels[c];
-                k = target_of(t, dc->channel_name);
-                if (k < 0) {
-                    dc->decode_to_ptr = NULL;
-                    continue;
+            buf = (const uint8_t *)dec.unpacked_buffer;
+            total = buf != NULL ? (size_t)ci.unpacked_size : 0;
+            for (l = 0; l < ci.height && why == NULL; l++) {
+                int32_t yabs = py + l;
+                size_t row = (size_t)(py - dw->min.y + l) * (size_t)W + (size_t)(px - dw->min.x);
+                for (c = 0; c < dec.channel_count; c++) {
+                    const exr_coding_channel_info_t *dc = &dec.channels[c];
+                    int32_t ys = dc->y_samples > 1 ? dc->y_samples : 1;
+                    size_t bpe = (size_t)dc->bytes_per_element;
+                    size_t bytes = (size_t)(dc->width > 0 ? dc->width : 0) * bpe;
+                    int k;
+                    if (dc->height == 0 || ((yabs % ys) + ys) % ys != 0)
+                        continue;
+                    if (bytes > total - off) {
+                        why = "decompressed chunk shorter than its lines";
+                        break;
+                    }
+                    k = target_of(t, dc->channel_name);
+                    if (k >= 0) /* targets are 1x1 sampled: width == ci.width */
+                        for (x = 0; x < dc->width; x++)
+                            t->dst[k][row + (size_t)x] =
+                                raw_value(buf + off + (size_t)x * bpe, dc->data_type);
+                    off += bytes;
                 }
-                dc->decode_to_ptr =
-                    (uint8_t *)(t->dst[k] + (size_t)(py - dw->min.y) * (size_t)W +
-                                (size_t)(px - dw->min.x));
-                dc->user_pixel_stride = 4;
-                dc->user_line_stride = W * 4;
-                dc->user_data_type = (uint16_t)EXR_PIXEL_FLOAT;
-                dc->user_bytes_per_element = 4;
             }
-            rv = exr_decoding_choose_default_routines(ctx, part, &dec);
-            if (rv == EXR_ERR_SUCCESS)
-                rv = exr_decoding_run(ctx, part, &dec);
-            if (rv != EXR_ERR_SUCCESS)
-                goto bad;
         }
     }
-    ok = 1;
+    if (why == NULL)
+        ok = 1;
 bad:
-    if (!ok)
+    if (why != NULL)
+        fail(err, errlen, "%s: part %d: pixel chunk %ld (at x %d, y %d) corrupt: %s", path, part,
+             chunk - 1, (int)px, (int)py, why);
+    else if (!ok)
         fail(err, errlen, "%s: part %d: pixel chunk %ld (at x %d, y %d) unreadable (truncated or "
              "corrupt file?): %s", path, part, chunk, (int)px, (int)py, lib_text(io, rv));
     if (inited)
         (void)exr_decoding_destroy(ctx, &dec);
     return ok ? 0 : -1;
-}
-
-/* One deep sample of channel bytes p (little endian in the file), as float. */
-static float deep_value(const uint8_t *p, uint16_t type)
-{
-    if (type == (uint16_t)EXR_PIXEL_HALF)
-        return lt_exr_half_to_float((uint16_t)(p[0] | (p[1] << 8)));
-    return f32_from_bits((uint32_t)p[0] | ((uint32_t)p[1] << 8) | ((uint32_t)p[2] << 16) |
-                         ((uint32_t)p[3] << 24));
 }
 
 /* Read a deep scanline part: per pixel the sample with the least Z (NaN samples skipped; a pixel
@@ -738,24 +776,13 @@ static int read_deep(exr_context_t ctx, int part, const exr_attr_box2i_t *dw,
             (ci.width != W || ci.height < 1 || ci.height > H - (y - dw->min.y)))
             rv = EXR_ERR_CORRUPT_CHUNK;
         if (rv == EXR_ERR_SUCCESS)
-            rv = inited ? exr_decoding_update(ctx, part, &ci, &dec)
-                        : exr_decoding_initialize(ctx, part, &ci, &dec);
+            rv = decode_raw(ctx, part, &ci, &dec, &inited);
         if (rv != EXR_ERR_SUCCESS)
             break;
-        inited = 1;
         if (dec.channel_count > 64) {
             why = "more than 64 channels in a deep part";
             break;
         }
-        for (c = 0; c < dec.channel_count; c++)
-            dec.channels[c].decode_to_ptr = NULL;
-        rv = exr_decoding_choose_default_routines(ctx, part, &dec);
-        /* only read + decompress + sample table; the samples are walked below */
-        dec.unpack_and_convert_fn = NULL;
-        if (rv == EXR_ERR_SUCCESS)
-            rv = exr_decoding_run(ctx, part, &dec);
-        if (rv != EXR_ERR_SUCCESS)
-            break;
         buf = (const uint8_t *)dec.unpacked_buffer;
         counts = dec.sample_count_table;
         total = (size_t)ci.unpacked_size;
@@ -805,7 +832,7 @@ static int read_deep(exr_context_t ctx, int part, const exr_attr_box2i_t *dw,
                 if (s1 <= s0)
                     continue;
                 for (s = s0; s < s1; s++) {
-                    float v = deep_value(buf + chan_off[zi] +
+                    float v = raw_value(buf + chan_off[zi] +
                                              (size_t)s * (size_t)zc->bytes_per_element,
                                          zc->data_type);
                     if (isnan(v))
@@ -824,7 +851,7 @@ static int read_deep(exr_context_t ctx, int part, const exr_attr_box2i_t *dw,
                     if (chan_tgt[c] < 0)
                         continue;
                     t->dst[chan_tgt[c]][row + (size_t)x] =
-                        deep_value(buf + chan_off[c] + (size_t)best * (size_t)dc->bytes_per_element,
+                        raw_value(buf + chan_off[c] + (size_t)best * (size_t)dc->bytes_per_element,
                                    dc->data_type);
                 }
             }

@@ -40,5 +40,12 @@ awk '/^icount sym/{printf "   %-16s %d\n", $3, $4}' "$out"
 rm -f "$out"
 awk -v p="$pred" -v c="$cnt" 'BEGIN{printf "lt_tri16_q16 (+helpers): predicted %d cycles, counted %d instructions, predicted/counted %.3f\n", p, c, p/c}'
 
-echo "== 3. cycle report: bundled scene on lrb16"
+echo "== 3. race against Embree 3 (native build, single thread, same rays, 1024x1024)"
+STRUCT=${BENCH_STRUCTURE:-chunks}
+"$B/host/embree-race" --mesh "$SCENE" --res 1024 --runs 5 --structure "$STRUCT"
+if [ -f ../shared/scenes/bunny.obj ]; then
+    "$B/host/embree-race" --mesh ../shared/scenes/bunny.obj --res 1024 --runs 3 --structure "$STRUCT"
+fi
+
+echo "== 4. cycle report: bundled scene on lrb16"
 "$B/sim/lanetrace" run --mesh "$SCENE" --res "$RES" --report "$B/bench-report.json"
