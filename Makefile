@@ -15,7 +15,7 @@ WARN := -std=c99 -Wall -Wextra -Wpedantic -Werror -Wshadow -Wundef -Wstrict-prot
     -Wmissing-prototypes -Wcast-align -Wconversion
 # Float32 results are bit-identical across builds only without FMA contraction or fast-math.
 FPFLAGS := -ffp-contract=off -fno-fast-math
-INC := -Ifirmware/include -Isim -Ihost -Itests/unit -Itests/vectors -I/usr/include/OpenEXR
+INC := -Ifirmware/include -Isim -Ihost -Itests/unit -Itests/vectors -isystem /usr/include/OpenEXR
 # -Wno-format-truncation: host messages are built with snprintf, whose truncation is the intent
 HOST_CFLAGS := $(WARN) -Wdouble-promotion -Wno-format-truncation $(FPFLAGS) -O2 -g -fno-var-tracking-assignments $(INC) -D_POSIX_C_SOURCE=200809L
 NATIVE_ARCH ?= -march=native

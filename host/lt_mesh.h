@@ -1,5 +1,6 @@
-/* lt_mesh.h - triangle meshes loaded on the host through assimp's C API, in double precision.
- * Host only.
+/* lt_mesh.h - triangle meshes loaded on the host through assimp's C API, in double precision;
+ * gzip'd files (<name>.<ext>.gz) are unpacked in memory with zlib first, and OBJ text is checked
+ * line by line before assimp sees it. Host only; see docs/io.md.
  */
 #ifndef LT_MESH_H
 #define LT_MESH_H
@@ -7,8 +8,14 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* Upper bound of triangles a mesh may have (the core indexes triangles with int32). */
 #define LT_MESH_MAX_TRIS 16000000u
+/* Largest mesh file read into memory (OBJ text, a .gz file, or what a .gz unpacks to): 1 GiB. */
+#define LT_MESH_MAX_BYTES (1024u * 1024u * 1024u)
 
 typedef struct lt_mesh {
     double *v;       /* 9 doubles per triangle: v0 v1 v2, file units */
@@ -19,10 +26,21 @@ typedef struct lt_mesh {
 
 /* Load every triangle of every mesh in the file (OBJ with quads and negative indices, PLY, OFF,
  * glTF...) via assimp, triangulated, with node transforms applied. Zero-area triangles are kept.
- * Returns 0, or -1 with a message naming the file and the problem (unreadable, no triangles,
- * a non-finite vertex, more than LT_MESH_MAX_TRIS triangles). */
+ * "<name>.<ext>.gz" is gunzipped in memory (zlib; several gzip members allowed) and imported with
+ * <ext> as the format hint. OBJ text (plain or gzip'd) is checked first: NUL or control bytes
+ * (binary data), a "v" line with fewer than 3 numbers or a non-finite one, a face with fewer
+ * than 3 vertices, index 0, or a v/vt/vn index outside the vertices defined (negative indices:
+ * relative to those defined so far) are errors naming the line.
+ * Returns 0, or -1 with a message naming the file and the problem (unreadable, empty, corrupt or
+ * truncated gzip stream, an OBJ line as above, assimp's own error text, no triangles, a
+ * non-finite vertex, an out-of-range index, more than LT_MESH_MAX_TRIS triangles or more than
+ * LT_MESH_MAX_BYTES bytes). */
 int lt_mesh_load(const char *path, lt_mesh_t *m, char *err, size_t errlen);
 
 void lt_mesh_free(lt_mesh_t *m);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* LT_MESH_H */

@@ -1,0 +1,154 @@
+/* lt_exr.h - OpenEXR output of object-space renders (named FLOAT/HALF channels, multi-layer
+ * "layer<k>.Z" depth peels, R G B A) and input of depth buffers (flat scanline or tiled, HALF or
+ * FLOAT Z, multi-view, optional colour, deep files read front-most), through OpenEXR's C API
+ * (OpenEXRCore 3.1, Debian libopenexr-dev). Host only; see docs/io.md for formats and limits.
+ */
+#ifndef LT_EXR_H
+#define LT_EXR_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Largest data-window (and, when it is read, display-window) width or height accepted. */
+#define LT_EXR_MAX_DIM 16384
+/* Most channels one lt_exr_write call writes. */
+#define LT_EXR_MAX_CHANNELS 256
+/* Longest channel name in bytes (names over 31 bytes switch the file to EXR "long names"). */
+#define LT_EXR_MAX_NAME 255
+
+/* Storage type of a channel in the file; in memory every channel is float32. */
+typedef enum lt_exr_type {
+    LT_EXR_HALF = 1,  /* IEEE 754 binary16 */
+    LT_EXR_FLOAT = 2, /* IEEE 754 binary32 */
+    LT_EXR_UINT = 3   /* uint32 (only reported by lt_exr_probe; neither written nor read) */
+} lt_exr_type_t;
+
+/* Compression of a written file (all lossless). */
+typedef enum lt_exr_comp {
+    LT_EXR_COMP_ZIP = 0,  /* zlib, 16 scanlines per chunk (the default) */
+    LT_EXR_COMP_ZIPS = 1, /* zlib, 1 scanline per chunk */
+    LT_EXR_COMP_NONE = 2  /* uncompressed */
+} lt_exr_comp_t;
+
+/* One channel to write: 16 bytes on LP64. */
+typedef struct lt_exr_channel {
+    const char *name;   /* e.g. "Z", "layer3.Z", "R"; 1..LT_EXR_MAX_NAME bytes, unique per image */
+    lt_exr_type_t type; /* storage type in the file */
+    const float *data;  /* width * height values, row-major, row 0 = top row of the data window */
+} lt_exr_channel_t;
+
+/* An image to write: a data window of width x height pixels whose top-left pixel sits at (x0, y0)
+ * in the display window (0, 0)-(display_w - 1, display_h - 1). */
+typedef struct lt_exr_image {
+    int32_t width, height;            /* data window size, pixels, 1..LT_EXR_MAX_DIM */
+    int32_t x0, y0;                   /* data window origin, pixels (may be negative) */
+    int32_t display_w, display_h;     /* display window size; 0 = (x0 + width, y0 + height) */
+    int nchannels;                    /* 1..LT_EXR_MAX_CHANNELS */
+    const lt_exr_channel_t *channels; /* nchannels entries, any order (EXR sorts them) */
+    lt_exr_comp_t compression;        /* LT_EXR_COMP_ZIP unless set */
+} lt_exr_image_t;
+
+/* Write img to path as a single-part scanline EXR, atomically: the data goes to
+ * "<path>.tmp.<pid>" in the same directory, is fsync'ed, then renamed over path, so an interrupted
+ * run leaves either the previous file or the complete new one (plus, at worst, the temp file).
+ * Format: float32 in memory -> HALF or FLOAT per channel in the file.
+ * Range: any float, NaN and +-inf included. Rounding: HALF rounds to nearest, ties to even
+ * (subnormal halves included). Overflow: HALF saturates to +-inf beyond +-65504 (+-65520 rounds
+ * to inf as IEEE requires). Cost: host only, not charged.
+ * Returns: 0, or -1 with a message naming the path and the problem in err. */
+int lt_exr_write(const char *path, const lt_exr_image_t *img, char *err, size_t errlen);
+
+/* ---- reading --------------------------------------------------------------------------------- */
+
+/* Inclusive pixel box, EXR convention: (x0, y0)-(x1, y1). */
+typedef struct lt_exr_box {
+    int32_t x0, y0, x1, y1; /* pixels */
+} lt_exr_box_t;
+
+typedef enum lt_exr_window {
+    LT_EXR_WINDOW_DATA = 0,   /* return the data window (origin kept in x0, y0) */
+    LT_EXR_WINDOW_DISPLAY = 1 /* return the display window; pixels outside the data window = fill */
+} lt_exr_window_t;
+
+typedef enum lt_exr_deep {
+    LT_EXR_DEEP_REJECT = 0, /* a deep image is an error that says how to read it */
+    LT_EXR_DEEP_FRONT = 1   /* read the front-most sample (least Z) of each deep pixel */
+} lt_exr_deep_t;
+
+/* Reading options; LT_EXR_READ_OPTS_DEFAULT (or a NULL pointer) gives the defaults. */
+typedef struct lt_exr_read_opts {
+    lt_exr_window_t window; /* data window (default) or display window */
+    float fill;             /* depth outside the data window and of deep pixels with no sample */
+    int color;              /* 1: also read <layer>.R/G/B/A (absent ones stay NULL) */
+    lt_exr_deep_t deep;     /* what to do with deep images */
+} lt_exr_read_opts_t;
+
+#define LT_EXR_READ_OPTS_DEFAULT {LT_EXR_WINDOW_DATA, 0.0f, 0, LT_EXR_DEEP_REJECT}
+
+/* A depth buffer read from a file. Free with lt_exr_depth_free. */
+typedef struct lt_exr_depth {
+    int32_t width, height;        /* raster size, pixels */
+    int32_t x0, y0;               /* EXR pixel coordinates of raster element (0, 0) */
+    lt_exr_box_t data_window;     /* as stored in the file */
+    lt_exr_box_t display_window;  /* as stored in the file */
+    float *z;                     /* width * height depths, row-major, values as stored */
+    float *rgba[4];               /* R, G, B, A of the same layer, or NULL (absent, not asked) */
+    lt_exr_type_t z_type;         /* storage type of the depth channel in the file */
+    int part;                     /* index of the part read */
+    int deep;                     /* 1: a deep part, front-most sample per pixel */
+    uint64_t deep_samples;        /* deep parts: samples seen over the data window */
+    char channel[LT_EXR_MAX_NAME + 1]; /* name of the depth channel read */
+} lt_exr_depth_t;
+
+/* Read one depth channel. channel NULL picks, in this order: "Z"; "depth"; "<default view>.Z"
+ * (the first view of the multiView attribute); the only channel named "*.Z". A channel that is
+ * not in the file but names a view reads "<view>.Z" ("left" -> "left.Z"; the default view ->
+ * "Z"). Any other channel ("R", "layer2.Z") can be read the same way. Every part of a multi-part
+ * file is searched, the first match wins. Background values (0 or +inf, whatever the renderer
+ * wrote) and NaN are returned as stored: nothing is remapped.
+ * Format: HALF or FLOAT in the file -> float32 (HALF converts exactly). Range: any.
+ * Rounding: none. Overflow: none. Cost: host only, not charged.
+ * Returns: 0, or -1 with a message naming the path and the problem in err (a missing channel
+ * lists the views and depth channels found; a deep image says how to read it; subsampled, UINT,
+ * oversized or corrupt inputs name the limit). */
+int lt_exr_read_depth(const char *path, const char *channel, const lt_exr_read_opts_t *opts,
+                      lt_exr_depth_t *out, char *err, size_t errlen);
+
+/* Free what lt_exr_read_depth allocated (safe on a zeroed or already-freed struct).
+ * Cost: host only. */
+void lt_exr_depth_free(lt_exr_depth_t *d);
+
+/* What a file holds, for listings and checks. Channels past LT_EXR_PROBE_CHANNELS are counted but
+ * not named. 8.6 KiB; not for the stack of small threads. */
+#define LT_EXR_PROBE_CHANNELS 32
+typedef struct lt_exr_probe {
+    int parts;                    /* parts in the file */
+    int storage;                  /* part 0: 0 scanline, 1 tiled, 2 deep scanline, 3 deep tiled */
+    int compression;              /* part 0: EXR compression id (0 none, 2 ZIPS, 3 ZIP, ...) */
+    lt_exr_box_t data_window;     /* part 0 */
+    lt_exr_box_t display_window;  /* part 0 */
+    int nchannels;                /* channels of part 0 */
+    lt_exr_type_t type[LT_EXR_PROBE_CHANNELS];           /* storage type per channel */
+    char name[LT_EXR_PROBE_CHANNELS][LT_EXR_MAX_NAME + 1]; /* names, sorted as in the file */
+} lt_exr_probe_t;
+
+/* Read the header of part 0 (and the part count); no pixels. Cost: host only.
+ * Returns: 0, or -1 with a message naming the path and the problem in err. */
+int lt_exr_probe(const char *path, lt_exr_probe_t *info, char *err, size_t errlen);
+
+/* IEEE binary16 <-> binary32 as used by the writer (host helpers, exported for tests).
+ * Format: float32 -> binary16 bits. Range: any. Rounding: to nearest, ties to even.
+ * Overflow: to +-inf. NaN stays NaN (quiet, sign and top payload bits kept). Cost: none. */
+uint16_t lt_exr_half_from_float(float f);
+/* Format: binary16 bits -> float32. Range: any. Rounding: exact. Overflow: none. Cost: none. */
+float lt_exr_half_to_float(uint16_t h);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* LT_EXR_H */
