@@ -4,6 +4,8 @@
  * hands over to the native build. Exit codes: 0 ok, 1 input or runtime error, 2 usage. Host only.
  */
 #include "lt/lt.h"
+#include "lt_exr.h"
+#include "lt_heatmap.h"
 #include "lt_mesh.h"
 #include "lt_render.h"
 #include "lt_scene.h"
@@ -129,6 +131,10 @@ static void run_usage(FILE *f)
             "  --l1 S:W:B --l2 S:W:B  cache geometry overrides (sets:ways:line)\n"
             "  --report PATH      write the report JSON (PATH.q16 / PATH.f32 with both paths)\n"
             "  --csv PATH         write one CSV row per path\n"
+            "  --depth PATH.exr   write distance and triangle id per pixel (EXR, FLOAT channels\n"
+            "                     <path>.Z and <path>.id)\n"
+            "  --heatmap PREFIX   (sim build) per-pixel simulated cycles: PREFIX.<path>.png with a\n"
+            "                     legend and PREFIX.<path>.exr with the values\n"
             "  --repeat N         trace the frame N times (timing)\n"
             "  --no-ref           skip the reference and the accuracy figures\n"
             "  --native           run the native build (no cycle model; wall-clock speed)\n"
@@ -187,6 +193,8 @@ static int cmd_run(int argc, char **argv)
     char err[1024];
     int a, json = 0, repeat = 1, do_ref = 1, status = 0, path;
     const char *scene_path = NULL, *mesh_over = NULL, *report = NULL, *csv = NULL;
+    const char *depth_out = NULL, *heat_out = NULL;
+    float *zbuf[2] = {NULL, NULL}, *idbuf[2] = {NULL, NULL};
     cJSON *jout = cJSON_CreateArray();
     FILE *csvf = NULL;
 
@@ -263,6 +271,10 @@ static int cmd_run(int argc, char **argv)
             report = v;
         } else if (strcmp(o, "--csv") == 0) {
             csv = v;
+        } else if (strcmp(o, "--depth") == 0) {
+            depth_out = v;
+        } else if (strcmp(o, "--heatmap") == 0) {
+            heat_out = v;
         } else if (strcmp(o, "--repeat") == 0) {
             repeat = atoi(v);
             if (repeat < 1 || repeat > 100000) {
@@ -397,6 +409,46 @@ static int cmd_run(int argc, char **argv)
         ms = 1e3 * (now_s() - t0);
         progress_end();
         lt_accel_free(acc);
+        if (depth_out != NULL) {
+            size_t i, np = (size_t)sf.width * sf.height;
+            zbuf[path] = malloc(np * sizeof(float));
+            idbuf[path] = malloc(np * sizeof(float));
+            if (zbuf[path] == NULL || idbuf[path] == NULL) {
+                fprintf(stderr, "%s: out of memory for the depth output\n", depth_out);
+                status = EXIT_INPUT;
+                break;
+            }
+            /* misses: distance +inf, id -1 (ids up to 2^24 are exact in float) */
+            for (i = 0; i < np; i++) {
+                zbuf[path][i] = fr.id[i] >= 0 ? (float)fr.t[i] : (float)INFINITY;
+                idbuf[path][i] = (float)fr.id[i];
+            }
+        }
+#if LT_COST_MODE != LT_COST_SIM
+        if (heat_out != NULL && path == 0)
+            fprintf(stderr, "%s run: --heatmap needs the simulator build (build/sim/lanetrace); "
+                            "ignored\n", prog);
+#else
+        if (heat_out != NULL) {
+            char hp[1100];
+            lt_heatmap_opts_t ho = LT_HEATMAP_OPTS_DEFAULT;
+            snprintf(hp, sizeof hp, "%s.%s.png", heat_out, pname);
+            if (lt_heatmap_write_png(hp, fr.cost, (int32_t)sf.width, (int32_t)sf.height, &ho, err,
+                                     sizeof err) != 0) {
+                fprintf(stderr, "%s\n", err);
+                status = EXIT_INPUT;
+            } else {
+                if (!quiet)
+                    printf("heatmap   %s (simulated cycles per pixel)\n", hp);
+                snprintf(hp, sizeof hp, "%s.%s.exr", heat_out, pname);
+                if (lt_heatmap_write_exr(hp, fr.cost, (int32_t)sf.width, (int32_t)sf.height,
+                                         "cycles", err, sizeof err) != 0) {
+                    fprintf(stderr, "%s\n", err);
+                    status = EXIT_INPUT;
+                }
+            }
+        }
+#endif
         memset(&ac, 0, sizeof ac);
         if (do_ref)
             lt_frame_compare(&fr, &ref, 1e-4 * sc.radius, &ac);
@@ -510,6 +562,38 @@ static int cmd_run(int argc, char **argv)
         if (jr != NULL)
             cJSON_AddItemToArray(jout, jr);
     }
+    if (depth_out != NULL && status == 0) {
+        lt_exr_channel_t ch[4];
+        lt_exr_image_t im;
+        int nch = 0;
+        static const char *const zn[2] = {"q16.Z", "f32.Z"}, *const idn[2] = {"q16.id", "f32.id"};
+        for (path = 0; path < 2; path++) {
+            if (zbuf[path] == NULL)
+                continue;
+            ch[nch].name = zn[path];
+            ch[nch].type = LT_EXR_FLOAT;
+            ch[nch++].data = zbuf[path];
+            ch[nch].name = idn[path];
+            ch[nch].type = LT_EXR_FLOAT;
+            ch[nch++].data = idbuf[path];
+        }
+        memset(&im, 0, sizeof im);
+        im.width = (int32_t)sf.width;
+        im.height = (int32_t)sf.height;
+        im.nchannels = nch;
+        im.channels = ch;
+        im.compression = LT_EXR_COMP_ZIP;
+        if (lt_exr_write(depth_out, &im, err, sizeof err) != 0) {
+            fprintf(stderr, "%s\n", err);
+            status = EXIT_INPUT;
+        } else if (!quiet) {
+            printf("depth     %s (%d channels)\n", depth_out, nch);
+        }
+    }
+    for (path = 0; path < 2; path++) {
+        free(zbuf[path]);
+        free(idbuf[path]);
+    }
     if (csvf != NULL) {
         if (fclose(csvf) != 0 || rename(csv_tmp, csv) != 0) {
             fprintf(stderr, "%s: cannot write the CSV output\n", csv);
@@ -540,6 +624,71 @@ done:
 
 /* ---- info ----------------------------------------------------------------------------------- */
 
+/* EXR: the header (parts, storage, windows, channels) and statistics of the depth channel. */
+static int info_exr(const char *path, int json)
+{
+    static const char *const storage[] = {"scanline", "tiled", "deep scanline", "deep tiled"};
+    static const char *const types[] = {"?", "HALF", "FLOAT", "UINT"};
+    lt_exr_probe_t pr;
+    lt_exr_depth_t d;
+    lt_exr_read_opts_t ro = LT_EXR_READ_OPTS_DEFAULT;
+    char err[1024];
+    int c, have_depth;
+    double mn = INFINITY, mx = -INFINITY, sum = 0.0;
+    size_t k, n = 0, holes = 0;
+    if (lt_exr_probe(path, &pr, err, sizeof err) != 0) {
+        fprintf(stderr, "%s\n", err);
+        return EXIT_INPUT;
+    }
+    ro.deep = LT_EXR_DEEP_FRONT;
+    have_depth = lt_exr_read_depth(path, NULL, &ro, &d, err, sizeof err) == 0;
+    if (have_depth) {
+        for (k = 0; k < (size_t)d.width * (size_t)d.height; k++) {
+            double z = d.z[k];
+            if (!isfinite(z) || z <= 0.0) {
+                holes++;
+                continue;
+            }
+            n++;
+            sum += z;
+            mn = z < mn ? z : mn;
+            mx = z > mx ? z : mx;
+        }
+    }
+    if (json) {
+        printf("{\"file\":\"%s\",\"parts\":%d,\"storage\":\"%s\",\"data_window\":[%d,%d,%d,%d],"
+               "\"display_window\":[%d,%d,%d,%d],\"channels\":%d",
+               path, pr.parts, storage[pr.storage & 3], pr.data_window.x0, pr.data_window.y0,
+               pr.data_window.x1, pr.data_window.y1, pr.display_window.x0, pr.display_window.y0,
+               pr.display_window.x1, pr.display_window.y1, pr.nchannels);
+        if (have_depth)
+            printf(",\"depth\":{\"channel\":\"%s\",\"pixels\":%zu,\"holes\":%zu,\"min\":%g,"
+                   "\"max\":%g,\"mean\":%g}",
+                   d.channel, n, holes, n ? mn : 0.0, n ? mx : 0.0, n ? sum / (double)n : 0.0);
+        printf("}\n");
+    } else {
+        printf("%s: OpenEXR, %d part(s), %s, data window (%d,%d)-(%d,%d), display window "
+               "(%d,%d)-(%d,%d)\n",
+               path, pr.parts, storage[pr.storage & 3], pr.data_window.x0, pr.data_window.y0,
+               pr.data_window.x1, pr.data_window.y1, pr.display_window.x0, pr.display_window.y0,
+               pr.display_window.x1, pr.display_window.y1);
+        printf("channels  %d:", pr.nchannels);
+        for (c = 0; c < pr.nchannels && c < LT_EXR_PROBE_CHANNELS; c++)
+            printf(" %s(%s)", pr.name[c], types[pr.type[c] & 3]);
+        printf("\n");
+        if (have_depth)
+            printf("depth     %s%s: %zu pixels with depth, %zu holes (0, negative, NaN or inf), "
+                   "min %g max %g mean %g\n",
+                   d.channel, d.deep ? " (deep: front-most sample)" : "", n, holes,
+                   n ? mn : 0.0, n ? mx : 0.0, n ? sum / (double)n : 0.0);
+        else
+            printf("depth     none readable: %s\n", err);
+    }
+    if (have_depth)
+        lt_exr_depth_free(&d);
+    return 0;
+}
+
 static int cmd_info(int argc, char **argv)
 {
     lt_mesh_t m;
@@ -550,8 +699,9 @@ static int cmd_info(int argc, char **argv)
     const char *path = NULL;
     for (a = 2; a < argc; a++) {
         if (strcmp(argv[a], "--help") == 0 || strcmp(argv[a], "-h") == 0) {
-            printf("usage: %s info FILE [--json]\nDescribe a mesh: triangles, zero-area "
-                   "triangles, bounds, the fixed-point scale lanetrace picks.\n",
+            printf("usage: %s info FILE [--json]\nDescribe a mesh (triangles, zero-area "
+                   "triangles, bounds, the fixed-point scale lanetrace picks) or an EXR file\n"
+                   "(parts, windows, channels, depth statistics).\n",
                    prog);
             return 0;
         } else if (strcmp(argv[a], "--json") == 0) {
@@ -566,6 +716,11 @@ static int cmd_info(int argc, char **argv)
     if (path == NULL) {
         fprintf(stderr, "%s info: a FILE is required\n", prog);
         return EXIT_USAGE;
+    }
+    {
+        size_t l = strlen(path);
+        if (l > 4 && strcmp(path + l - 4, ".exr") == 0)
+            return info_exr(path, json);
     }
     if (lt_mesh_load(path, &m, err, sizeof err) != 0) {
         fprintf(stderr, "%s\n", err);
@@ -778,7 +933,7 @@ static void usage(FILE *f)
             "usage: %s COMMAND [options]   (%s build)\n"
             "commands:\n"
             "  run [SCENE.json]   trace a scene; accuracy and (sim build) the cycle report\n"
-            "  info FILE          describe a mesh file\n"
+            "  info FILE          describe a mesh or EXR file\n"
             "  diff A.json B.json compare two JSON reports\n"
             "  help               this text\n"
             "Every command takes --help. Exit codes: 0 ok, 1 input or runtime error, 2 usage.\n",

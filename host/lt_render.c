@@ -2,6 +2,7 @@
  * Host only; in sim builds (LT_COST_SIM) it samples the simulator's cycle total per packet.
  */
 #include "lt_render.h"
+#include "lt_fx_float.h"
 #if LT_COST_MODE == LT_COST_SIM
 #include "lt_sim.h"
 #endif
@@ -11,12 +12,23 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* Structure kinds behind the names of lt_accel_build. */
+enum { ACC_CHUNKS, ACC_BVH, ACC_BVHQ };
+
 struct lt_accel {
     lt_path_t path;
+    int kind;
     uint32_t n;
-    lt_aabb_q16_t *boxes_q;
+    lt_aabb_q16_t *boxes_q;  /* chunks */
     lt_aabb_f32_t *boxes_f;
+    void *arena;             /* bvh: the tree's arena (64-byte aligned) */
+    lt_bvh_t bvh;
+    void *qmem;              /* bvhq: quantised nodes */
+    lt_bvhq_t bvhq;
+    size_t bytes;            /* structure memory */
 };
+
+const char *const lt_render_structures[] = {"chunks", "bvh", "bvhq", NULL};
 
 int lt_frame_alloc(lt_frame_t *f, uint32_t w, uint32_t h, char *err, size_t errlen)
 {
@@ -43,14 +55,78 @@ void lt_frame_free(lt_frame_t *f)
     memset(f, 0, sizeof *f);
 }
 
+/* 64-byte aligned memory (a cache line: BVH sibling pairs share one); NULL on failure. */
+static void *alloc64(size_t bytes)
+{
+    void *p = NULL;
+    if (posix_memalign(&p, 64, bytes == 0 ? 64 : bytes) != 0)
+        return NULL;
+    return p;
+}
+
+static lt_accel_t *build_bvh(const lt_scene_t *s, lt_accel_t *a, int quantised, char *err,
+                             size_t errlen)
+{
+    lt_bvh_desc_t desc;
+    size_t bytes = 0;
+    lt_status_t st;
+    memset(&desc, 0, sizeof desc);
+    if (quantised && a->path != LT_PATH_Q16) {
+        snprintf(err, errlen, "structure 'bvhq' (quantised nodes) exists in s15.16 only");
+        return NULL;
+    }
+    st = lt_bvh_size(s->ntris, &desc, &bytes);
+    if (st == LT_OK) {
+        a->arena = alloc64(bytes);
+        if (a->arena == NULL)
+            st = LT_E_SPACE;
+    }
+    if (st == LT_OK)
+        st = a->path == LT_PATH_Q16 ? lt_bvh_build_q16(&a->bvh, &desc, s->tq, s->ntris, a->arena, bytes)
+                                    : lt_bvh_build_f32(&a->bvh, &desc, s->tf, s->ntris, a->arena, bytes);
+    if (st != LT_OK) {
+        snprintf(err, errlen, "building the BVH over %u triangles: %s", s->ntris, lt_status_str(st));
+        return NULL;
+    }
+    a->bytes = a->bvh.bytes;
+    if (quantised) {
+        size_t qb = 0;
+        st = lt_bvhq_size(&a->bvh, &qb);
+        if (st == LT_OK && (a->qmem = alloc64(qb)) == NULL)
+            st = LT_E_SPACE;
+        if (st == LT_OK)
+            st = lt_bvhq_build_q16(&a->bvhq, &a->bvh, a->qmem, qb);
+        if (st != LT_OK) {
+            snprintf(err, errlen, "quantising the BVH: %s", lt_status_str(st));
+            return NULL;
+        }
+        /* the quantised tree keeps its nodes plus the source tree's index array */
+        a->bytes = a->bvhq.bytes + (size_t)s->ntris * sizeof(uint32_t);
+    }
+#if LT_COST_MODE == LT_COST_SIM
+    lt_sim_region(a->arena, a->bvh.bytes, 0x20000000u);
+    if (quantised)
+        lt_sim_region(a->qmem, a->bvhq.bytes, 0x30000000u);
+#endif
+    return a;
+}
+
 lt_accel_t *lt_accel_build(const lt_scene_t *s, const char *structure, lt_path_t path, char *err,
                            size_t errlen)
 {
     lt_accel_t *a;
     size_t nb = LT_CHUNK_COUNT(s->ntris);
     lt_status_t st;
-    if (strcmp(structure, "chunks") != 0) {
-        snprintf(err, errlen, "structure '%s' is not available (available: chunks)", structure);
+    int kind;
+    if (strcmp(structure, "chunks") == 0)
+        kind = ACC_CHUNKS;
+    else if (strcmp(structure, "bvh") == 0)
+        kind = ACC_BVH;
+    else if (strcmp(structure, "bvhq") == 0)
+        kind = ACC_BVHQ;
+    else {
+        snprintf(err, errlen, "structure '%s' is not available (available: chunks, bvh, bvhq)",
+                 structure);
         return NULL;
     }
     a = calloc(1, sizeof *a);
@@ -59,23 +135,37 @@ lt_accel_t *lt_accel_build(const lt_scene_t *s, const char *structure, lt_path_t
         return NULL;
     }
     a->path = path;
+    a->kind = kind;
     a->n = s->ntris;
+#if LT_COST_MODE == LT_COST_SIM
+    if (path == LT_PATH_Q16)
+        lt_sim_region(s->tq, s->ntris * sizeof *s->tq, 0x10000000u);
+    else
+        lt_sim_region(s->tf, s->ntris * sizeof *s->tf, 0x10000000u);
+#endif
+    if (kind != ACC_CHUNKS) {
+        if (build_bvh(s, a, kind == ACC_BVHQ, err, errlen) == NULL) {
+            lt_accel_free(a);
+            return NULL;
+        }
+        return a;
+    }
     if (path == LT_PATH_Q16) {
         a->boxes_q = malloc(nb * sizeof *a->boxes_q);
 #if LT_COST_MODE == LT_COST_SIM
-        lt_sim_region(s->tq, s->ntris * sizeof *s->tq, 0x10000000u);
         if (a->boxes_q != NULL)
             lt_sim_region(a->boxes_q, nb * sizeof *a->boxes_q, 0x20000000u);
 #endif
         st = a->boxes_q ? lt_chunks_build_q16(s->tq, s->ntris, a->boxes_q) : LT_E_SPACE;
+        a->bytes = nb * sizeof *a->boxes_q;
     } else {
         a->boxes_f = malloc(nb * sizeof *a->boxes_f);
 #if LT_COST_MODE == LT_COST_SIM
-        lt_sim_region(s->tf, s->ntris * sizeof *s->tf, 0x10000000u);
         if (a->boxes_f != NULL)
             lt_sim_region(a->boxes_f, nb * sizeof *a->boxes_f, 0x20000000u);
 #endif
         st = a->boxes_f ? lt_chunks_build_f32(s->tf, s->ntris, a->boxes_f) : LT_E_SPACE;
+        a->bytes = nb * sizeof *a->boxes_f;
     }
     if (st != LT_OK) {
         snprintf(err, errlen, "building '%s': %s", structure, lt_status_str(st));
@@ -85,12 +175,16 @@ lt_accel_t *lt_accel_build(const lt_scene_t *s, const char *structure, lt_path_t
     return a;
 }
 
+size_t lt_accel_bytes(const lt_accel_t *a) { return a->bytes; }
+
 void lt_accel_free(lt_accel_t *a)
 {
     if (a == NULL)
         return;
     free(a->boxes_q);
     free(a->boxes_f);
+    free(a->arena);
+    free(a->qmem);
     free(a);
 }
 
@@ -101,6 +195,24 @@ static uint64_t cycles_now(void)
 #else
     return 0;
 #endif
+}
+
+/* Closest hit of one packet through the structure. */
+static void trace16(const lt_scene_t *s, const lt_accel_t *a, lt_ray16_q16_t *rq,
+                    lt_ray16_f32_t *rf, lt_mask16_t k, lt_hit16_t *hit)
+{
+    if (a->kind == ACC_CHUNKS) {
+        if (a->path == LT_PATH_Q16)
+            lt_chunks_trace16_q16(s->tq, a->n, a->boxes_q, rq, k, hit);
+        else
+            lt_chunks_trace16_f32(s->tf, a->n, a->boxes_f, rf, k, hit);
+    } else if (a->kind == ACC_BVHQ) {
+        (void)lt_bvhq_trace16_q16(&a->bvhq, s->tq, rq, k, hit);
+    } else if (a->path == LT_PATH_Q16) {
+        (void)lt_bvh_trace16_q16(&a->bvh, s->tq, rq, k, hit);
+    } else {
+        (void)lt_bvh_trace16_f32(&a->bvh, s->tf, rf, k, hit);
+    }
 }
 
 void lt_render_primary(const lt_scene_t *s, const lt_accel_t *a, const lt_camera_t *c,
@@ -121,10 +233,7 @@ void lt_render_primary(const lt_scene_t *s, const lt_accel_t *a, const lt_camera
                                        : lt_camera_packet_f32(c, tx, ty, &rf);
             LT_EVENT(RAYS, lt__popcount32(k));
             LT_PHASE_LEAVE(prev);
-            if (a->path == LT_PATH_Q16)
-                lt_chunks_trace16_q16(s->tq, a->n, a->boxes_q, &rq, k, &hit);
-            else
-                lt_chunks_trace16_f32(s->tf, a->n, a->boxes_f, &rf, k, &hit);
+            trace16(s, a, &rq, &rf, k, &hit);
             per = (float)(cycles_now() - c0) / (float)lt__popcount32(k);
             for (i = 0; i < LT_LANES; i++) {
                 uint32_t x = tx + (uint32_t)(i % 4), y = ty + (uint32_t)(i / 4);
@@ -197,4 +306,140 @@ uint32_t lt_frame_hash(const lt_frame_t *f)
         }
     }
     return h;
+}
+
+/* One primary ray per pixel (single-ray traversal, BVH structures only). */
+int lt_render_primary1(const lt_scene_t *s, const lt_accel_t *a, const lt_camera_t *c,
+                       lt_frame_t *f, char *err, size_t errlen)
+{
+    uint32_t x, y;
+    if (a->kind == ACC_CHUNKS) {
+        snprintf(err, errlen, "single rays need a BVH structure (bvh, bvhq)");
+        return -1;
+    }
+    for (y = 0; y < c->height; y++)
+        for (x = 0; x < c->width; x++) {
+            double d[3];
+            size_t p = (size_t)y * c->width + x;
+            int32_t id = -1;
+            int i;
+            lt_camera_dir(c, x, y, d);
+            if (a->path == LT_PATH_Q16) {
+                lt_ray1_q16_t r;
+                memset(&r, 0, sizeof r);
+                for (i = 0; i < 3; i++) {
+                    r.o[i] = lt_q16_from_double_sat(c->eye[i]);
+                    r.d[i] = lt_q30_from_double_sat(d[i]);
+                }
+                r.tmin = 0;
+                r.tmax = LT_Q16_MAX - 1;
+                lt_ray1_q16_setup(&r);
+                if (a->kind == ACC_BVHQ)
+                    (void)lt_bvhq_trace1_q16(&a->bvhq, s->tq, &r, &id);
+                else
+                    (void)lt_bvh_trace1_q16(&a->bvh, s->tq, &r, &id);
+                f->t[p] = (double)r.tmax / 65536.0;
+            } else {
+                lt_ray1_f32_t r;
+                memset(&r, 0, sizeof r);
+                for (i = 0; i < 3; i++) {
+                    r.o[i] = (float)c->eye[i];
+                    r.d[i] = (float)d[i];
+                }
+                r.tmin = 0.0f;
+                r.tmax = 3.0e38f;
+                lt_ray1_f32_setup(&r);
+                (void)lt_bvh_trace1_f32(&a->bvh, s->tf, &r, &id);
+                f->t[p] = (double)r.tmax;
+            }
+            f->id[p] = id;
+        }
+    return 0;
+}
+
+/* Shadow rays from each primary hit of f towards the light (scaled units), 16-ray packets over
+ * the same 4x4 tiles; origins offset by eps along the way to the light. */
+int lt_render_shadows(const lt_scene_t *s, const lt_accel_t *a, const lt_camera_t *c,
+                      const lt_frame_t *f, const double light[3], uint32_t *nrays,
+                      uint32_t *noccluded, uint8_t *occluded, char *err, size_t errlen)
+{
+    uint32_t tx, ty, n = 0, occ = 0;
+    double eps = 1e-4 * s->radius;
+    static lt_ray16_q16_t rq;
+    static lt_ray16_f32_t rf;
+    if (a->kind == ACC_CHUNKS) {
+        snprintf(err, errlen, "shadow rays need a BVH structure (bvh, bvhq)");
+        return -1;
+    }
+    for (ty = 0; ty < c->height; ty += 4)
+        for (tx = 0; tx < c->width; tx += 4) {
+            unsigned k = 0;
+            lt_mask16_t o = 0;
+            int i;
+            for (i = 0; i < LT_LANES; i++) {
+                uint32_t x = tx + (uint32_t)(i % 4), y = ty + (uint32_t)(i / 4);
+                double d[3], p[3], l2 = 0.0, len;
+                size_t q = (size_t)y * c->width + x;
+                int j;
+                if (x < c->width && y < c->height && f->id[q] >= 0) {
+                    lt_camera_dir(c, x, y, d);
+                    for (j = 0; j < 3; j++) {
+                        p[j] = c->eye[j] + f->t[q] * d[j];
+                        d[j] = light[j] - p[j];
+                        l2 += d[j] * d[j];
+                    }
+                    len = sqrt(l2);
+                    for (j = 0; j < 3; j++)
+                        d[j] /= len;
+                    k |= 1u << i;
+                } else {
+                    p[0] = p[1] = p[2] = 0.0;
+                    d[0] = 1.0;
+                    d[1] = d[2] = 0.0;
+                    len = 1.0;
+                }
+                if (a->path == LT_PATH_Q16) {
+                    rq.ox.l[i] = lt_q16_from_double_sat(p[0]);
+                    rq.oy.l[i] = lt_q16_from_double_sat(p[1]);
+                    rq.oz.l[i] = lt_q16_from_double_sat(p[2]);
+                    rq.dx.l[i] = lt_q30_from_double_sat(d[0]);
+                    rq.dy.l[i] = lt_q30_from_double_sat(d[1]);
+                    rq.dz.l[i] = lt_q30_from_double_sat(d[2]);
+                    rq.tmin.l[i] = lt_q16_from_double_sat(eps);
+                    rq.tmax.l[i] = lt_q16_from_double_sat(len - eps);
+                } else {
+                    rf.ox.l[i] = (float)p[0];
+                    rf.oy.l[i] = (float)p[1];
+                    rf.oz.l[i] = (float)p[2];
+                    rf.dx.l[i] = (float)d[0];
+                    rf.dy.l[i] = (float)d[1];
+                    rf.dz.l[i] = (float)d[2];
+                    rf.tmin.l[i] = (float)eps;
+                    rf.tmax.l[i] = (float)(len - eps);
+                }
+            }
+            if (k == 0)
+                continue;
+            if (a->path == LT_PATH_Q16) {
+                lt_ray16_q16_setup(&rq);
+                if (a->kind == ACC_BVHQ)
+                    (void)lt_bvhq_occluded16_q16(&a->bvhq, s->tq, &rq, (lt_mask16_t)k, &o);
+                else
+                    (void)lt_bvh_occluded16_q16(&a->bvh, s->tq, &rq, (lt_mask16_t)k, &o);
+            } else {
+                lt_ray16_f32_setup(&rf);
+                (void)lt_bvh_occluded16_f32(&a->bvh, s->tf, &rf, (lt_mask16_t)k, &o);
+            }
+            n += lt__popcount32(k);
+            occ += lt__popcount32(o);
+            if (occluded != NULL)
+                for (i = 0; i < LT_LANES; i++) {
+                    uint32_t x = tx + (uint32_t)(i % 4), y = ty + (uint32_t)(i / 4);
+                    if (x < c->width && y < c->height)
+                        occluded[(size_t)y * c->width + x] = (uint8_t)(((unsigned)o >> i) & 1u);
+                }
+        }
+    *nrays = n;
+    *noccluded = occ;
+    return 0;
 }

@@ -26,15 +26,35 @@ void lt_frame_free(lt_frame_t *f);
 /* The prepared acceleration structure for one path. Opaque to callers. */
 typedef struct lt_accel lt_accel_t;
 
-/* Build `structure` ("chunks") over the scene for a path. Returns NULL with a message on error. */
+/* Names of the structures lt_accel_build knows (NULL-terminated): "chunks" (a box per 16
+ * triangles), "bvh" (binned SAH, 32-byte nodes), "bvhq" (the same tree with 16-byte quantised
+ * nodes, s15.16 only). */
+extern const char *const lt_render_structures[];
+
+/* Build `structure` over the scene for a path. Returns NULL with a message on error. */
 lt_accel_t *lt_accel_build(const lt_scene_t *s, const char *structure, lt_path_t path, char *err,
                            size_t errlen);
 void lt_accel_free(lt_accel_t *a);
+
+/* Bytes of the built structure (nodes, indices, boxes; not the triangles). */
+size_t lt_accel_bytes(const lt_accel_t *a);
 
 /* Trace all primary rays of the camera into f (allocated to the camera size). progress (may be
  * NULL) is called with the fraction done. */
 void lt_render_primary(const lt_scene_t *s, const lt_accel_t *a, const lt_camera_t *c,
                        lt_frame_t *f, void (*progress)(double done));
+
+/* The same with one ray per pixel (single-ray traversal; BVH structures only).
+ * Returns 0, or -1 with a message. */
+int lt_render_primary1(const lt_scene_t *s, const lt_accel_t *a, const lt_camera_t *c,
+                       lt_frame_t *f, char *err, size_t errlen);
+
+/* Shadow rays (16-ray packets, any hit) from every primary hit of f to a point light given in
+ * scaled units; *nrays rays, *noccluded of them blocked; occluded (may be NULL) gets 0/1 per pixel.
+ * BVH structures only. Returns 0, or -1 with a message. */
+int lt_render_shadows(const lt_scene_t *s, const lt_accel_t *a, const lt_camera_t *c,
+                      const lt_frame_t *f, const double light[3], uint32_t *nrays,
+                      uint32_t *noccluded, uint8_t *occluded, char *err, size_t errlen);
 
 /* The double-precision reference frame (brute force, independent code). */
 void lt_render_reference(const lt_scene_t *s, const lt_camera_t *c, lt_frame_t *f,

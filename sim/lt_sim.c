@@ -331,10 +331,15 @@ void lt_sim_report_text(FILE *f, const char *title, uint64_t rays)
             pct(t.l2_hit, t.l2_acc));
     fprintf(f, "lanes     utilisation %.1f%% (active lanes / 16 over %llu masked lane ops)\n",
             100.0 * utilisation(&t), (unsigned long long)ev_total(&t, LT_EV_LANE_OPS));
-    if (rays != 0)
-        fprintf(f, "rays      %llu rays, %.1f cycles/ray, %.2f Mrays/s at %u MHz\n",
+    if (rays != 0) {
+        uint64_t tr = t.total_cycles - t.cycles[LT_PH_BUILD];
+        fprintf(f, "rays      %llu rays, %.1f cycles/ray, %.2f Mrays/s at %u MHz; without the "
+                   "build: %.1f cycles/ray, %.2f Mrays/s\n",
                 (unsigned long long)rays, (double)t.total_cycles / (double)rays,
-                secs > 0 ? (double)rays / secs / 1e6 : 0.0, mach->clock_mhz);
+                secs > 0 ? (double)rays / secs / 1e6 : 0.0, mach->clock_mhz,
+                (double)tr / (double)rays,
+                tr ? (double)rays / ((double)tr / ((double)mach->clock_mhz * 1e6)) / 1e6 : 0.0);
+    }
 }
 
 char *lt_sim_report_json_string(const char *title, uint64_t rays, const char *extra_json)
@@ -356,6 +361,8 @@ char *lt_sim_report_json_string(const char *title, uint64_t rays, const char *ex
     cJSON_AddNumberToObject(root, "rays", (double)rays);
     cJSON_AddNumberToObject(root, "cycles_per_ray", rays ? (double)t.total_cycles / (double)rays : 0);
     cJSON_AddNumberToObject(root, "mrays_per_s", rays && secs > 0 ? (double)rays / secs / 1e6 : 0);
+    cJSON_AddNumberToObject(root, "trace_cycles_per_ray",
+                            rays ? (double)(t.total_cycles - t.cycles[LT_PH_BUILD]) / (double)rays : 0);
     cJSON_AddNumberToObject(root, "lane_utilisation", utilisation(&t));
     ph = cJSON_AddObjectToObject(root, "phases");
     for (p = 0; p < LT_PH__COUNT; p++) {

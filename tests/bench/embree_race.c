@@ -154,7 +154,7 @@ static uint32_t embree_shadow16(race_t *r, uint32_t *nrays)
 
 int main(int argc, char **argv)
 {
-    const char *mesh_path = "scenes/teapot.obj", *structure = "chunks";
+    const char *mesh_path = "scenes/teapot.obj", *structure = "bvh";
     uint32_t res = 1024, i;
     int runs = 5, a, k;
     lt_mesh_t m;
@@ -165,7 +165,7 @@ int main(int argc, char **argv)
     RTCGeometry g;
     float *vb;
     unsigned *ib;
-    double t0, build_ms, times[16], e1, e16, es16, l_q[2];
+    double t0, build_ms, times[16], e1, e16, es16;
     uint32_t shadow_n = 0, occ = 0;
     lt_frame_t fr;
 
@@ -268,27 +268,55 @@ int main(int argc, char **argv)
            occ);
     for (a = 0; a < 2; a++) {
         lt_accel_t *acc;
-        uint32_t same = 0, hits = 0;
+        uint32_t same = 0, sn = 0, so = 0;
+        double lp, l1 = 0.0, ls = 0.0, lb;
+        double light[3] = {r.light[0], r.light[1], r.light[2]};
+        const char *name = a == 0 ? "s15.16 " : "float32";
+        t0 = now_s();
         acc = lt_accel_build(&sc, structure, (lt_path_t)a, err, sizeof err);
+        lb = 1e3 * (now_s() - t0);
         if (acc == NULL) {
             fprintf(stderr, "%s\n", err);
             return 1;
+        }
+        printf("lanetrace %s %s: build %.1f ms, %zu bytes\n", name, structure, lb,
+               lt_accel_bytes(acc));
+        if (strcmp(structure, "chunks") != 0) {
+            for (k = 0; k < runs; k++) {
+                t0 = now_s();
+                lt_render_primary1(&sc, acc, &r.cam, &fr, err, sizeof err);
+                times[k] = now_s() - t0;
+            }
+            l1 = (double)res * res / median(times, runs) / 1e6;
         }
         for (k = 0; k < runs; k++) {
             t0 = now_s();
             lt_render_primary(&sc, acc, &r.cam, &fr, NULL);
             times[k] = now_s() - t0;
         }
-        l_q[a] = (double)res * res / median(times, runs) / 1e6;
+        lp = (double)res * res / median(times, runs) / 1e6;
         for (i = 0; i < res * res; i++) {
             int eh = r.eid[i] != RTC_INVALID_GEOMETRY_ID;
-            hits += (uint32_t)eh;
             same += eh ? (fr.id[i] == (int32_t)r.eid[i]) : (fr.id[i] < 0);
         }
-        printf("lanetrace %s packets (%s)  %8.2f Mrays/s = %.3fx Embree rtcIntersect16; same "
+        if (strcmp(structure, "chunks") != 0) {
+            for (k = 0; k < runs; k++) {
+                t0 = now_s();
+                lt_render_shadows(&sc, acc, &r.cam, &fr, light, &sn, &so, NULL, err, sizeof err);
+                times[k] = now_s() - t0;
+            }
+            ls = (double)sn / median(times, runs) / 1e6;
+            printf("lanetrace %s single rays     %8.2f Mrays/s = %.3fx Embree rtcIntersect1\n",
+                   name, l1, l1 / e1);
+        }
+        printf("lanetrace %s 16-ray packets  %8.2f Mrays/s = %.3fx Embree rtcIntersect16; same "
                "triangle as Embree on %.3f%% of pixels\n",
-               a == 0 ? "s15.16 " : "float32", structure, l_q[a], l_q[a] / e16,
-               100.0 * same / (res * res));
+               name, lp, lp / e16, 100.0 * same / (res * res));
+        if (strcmp(structure, "chunks") != 0)
+            printf("lanetrace %s shadow packets  %8.2f Mrays/s = %.3fx Embree rtcOccluded16 "
+                   "(%u rays, %u occluded)\n",
+                   name, ls, ls / es16, sn, so);
+
         lt_accel_free(acc);
     }
     rtcReleaseScene(r.scene);

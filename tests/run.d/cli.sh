@@ -64,3 +64,26 @@ mkdir -p "$tmp/plots"
 B=$B SWEEP_RES=8 tools/plots/sweep.sh "$tmp/plots/sweep.csv" >/dev/null 2>&1 &&
     tools/plots/plots.sh "$tmp/plots/sweep.csv" "$tmp/plots" >/dev/null 2>&1
 check "make plots pipeline: sweep CSV -> 4 PNG plots" bash -c "[ \$(ls '$tmp'/plots/*.png | wc -l) -eq 4 ]"
+expect "run --depth writes an EXR with Z and id per path" 0 "" "$LT" run --res 16 --depth "$tmp/d.exr" -q
+expect "info on the depth EXR lists its channels" 0 "q16.Z(FLOAT)" "$LT" info "$tmp/d.exr"
+expect "run --heatmap writes PNG and EXR per path" 0 "" "$LT" run --res 16 --num q16 --heatmap "$tmp/h" -q
+check "heatmap files exist" test -s "$tmp/h.q16.png" -a -s "$tmp/h.q16.exr"
+expect "info on the heatmap EXR" 0 "cycles(FLOAT)" "$LT" info "$tmp/h.q16.exr"
+if [ -f ../shared/depth/beachball_singlepart.0001.exr ]; then
+    expect "info on the shared beachball EXR: 20 channels, Z stats" 0 "mean 9.385" \
+        "$LT" info ../shared/depth/beachball_singlepart.0001.exr
+    expect "info on the shared deep EXR: front-most sample" 0 "front-most" \
+        "$LT" info ../shared/depth/v2_LowResLeftView_Trunks_deep.exr
+elif [ "${CI:-}" = "true" ]; then
+    ko "shared depth files missing under CI"
+else
+    echo "SKIP info on shared EXR files: ../shared/depth not found"
+fi
+for st in bvh bvhq; do
+    nm=both; [ $st = bvhq ] && nm=q16
+    "$B/host/lanetrace-native" run --structure $st --num $nm --res 32 -q >"$tmp/n_$st.txt" 2>&1
+    "$LT" run --structure $st --num $nm --res 32 -q >"$tmp/s_$st.txt" 2>&1
+    a=$(grep "result    q16" "$tmp/n_$st.txt"); b=$(grep "result    q16" "$tmp/s_$st.txt")
+    c=$(grep "result    q16" "$tmp/native.txt")
+    check "structure $st: host = sim = chunks result ($a)" test -n "$a" -a "$a" = "$b" -a "$a" = "$c"
+done

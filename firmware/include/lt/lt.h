@@ -11,5 +11,6 @@
 #include "lt_fx.h"
 #include "lt_v16.h"
 #include "lt_isect.h"
+#include "lt_bvh.h"
 
 #endif /* LT_H */

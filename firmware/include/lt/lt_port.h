@@ -33,7 +33,13 @@ extern "C" {
 /* C99 compile-time assertion: a negative array size fails the build. */
 #define LT__CAT2(a, b) a##b
 #define LT__CAT(a, b) LT__CAT2(a, b)
+/* The typedef is named after __COUNTER__ where the compiler has it (GCC, Clang), so a header's and
+ * a source file's assertions on the same line number do not collide; else after __LINE__. */
+#ifdef __COUNTER__
+#define LT_STATIC_ASSERT(c, msg) typedef char LT__CAT(lt__static_assert_, __COUNTER__)[(c) ? 1 : -1]
+#else
 #define LT_STATIC_ASSERT(c, msg) typedef char LT__CAT(lt__static_assert_, __LINE__)[(c) ? 1 : -1]
+#endif
 
 /* Arithmetic right shift of a signed 32-bit value by s (0..31), rounding toward minus infinity.
  * C99 leaves >> of a negative value implementation-defined, so it is built from unsigned ops:
