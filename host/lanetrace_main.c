@@ -7,6 +7,7 @@
 #include "lt_exr.h"
 #include "lt_heatmap.h"
 #include "lt_mesh.h"
+#include "lt_png.h"
 #include "lt_render.h"
 #include "lt_scene.h"
 #include "lt_scenefile.h"
@@ -925,6 +926,364 @@ static int cmd_diff(int argc, char **argv)
     return 0;
 }
 
+
+/* ---- render --------------------------------------------------------------------------------- */
+
+static void render_usage(FILE *f)
+{
+    fprintf(f,
+            "usage: %s render [SCENE.json] --out PREFIX [options]\n"
+            "Render a mesh through a structure in one numeric path and write images:\n"
+            "  PREFIX.exr  FLOAT channels Z (distance), id, N.x N.y N.z (normal), R G B (shaded:\n"
+            "              one point light, hard shadows) and, with --layers K, layer0.Z ..\n"
+            "              layer<K-1>.Z (the first K surfaces along each primary ray)\n"
+            "  PREFIX.png  the shaded image; PREFIX.depth.png, PREFIX.normals.png, PREFIX.ids.png\n"
+            "  --mesh PATH  --res WxH|N  --num q16|f32 (default q16)  --structure bvh|bvhq|chunks\n"
+            "  --layers K   depth peels, 1..16 (default 1; needs bvh or bvhq)\n"
+            "  --light X,Y,Z  point light in mesh file units (default: the scene's first light,\n"
+            "               else centre + 2 radius normalize(-0.5, 1.5, 0.8))\n"
+            "  -q           quiet\n",
+            prog);
+}
+
+static uint8_t to8(double v)
+{
+    v = v < 0.0 ? 0.0 : (v > 1.0 ? 1.0 : v);
+    return (uint8_t)(255.0 * pow(v, 1.0 / 2.2) + 0.5);
+}
+
+static int cmd_render(int argc, char **argv)
+{
+    lt_scenefile_t sf;
+    lt_mesh_t mesh;
+    lt_scene_t sc;
+    lt_camera_t cam;
+    lt_frame_t fr, lay[16];
+    lt_accel_t *acc = NULL;
+    char err[1024], path[1200];
+    const char *scene_path = NULL, *mesh_over = NULL, *out = NULL, *structure = "bvh";
+    int a, layers = 1, l, status = 0, have_light = 0;
+    double light[3], lf[3];
+    lt_path_t np = LT_PATH_Q16;
+    uint32_t w = 0, h = 0, nshadow = 0, nocc = 0;
+    size_t i, n;
+    float *ch[10];
+    uint8_t *occ = NULL, *rgb = NULL;
+
+    lt_sf_defaults(&sf);
+    for (a = 2; a < argc; a++) {
+        const char *o = argv[a], *v = a + 1 < argc ? argv[a + 1] : NULL;
+        if (strcmp(o, "--help") == 0 || strcmp(o, "-h") == 0) {
+            render_usage(stdout);
+            return 0;
+        }
+        if (strcmp(o, "-q") == 0) {
+            quiet = 1;
+            continue;
+        }
+        if (o[0] != '-') {
+            scene_path = o;
+            continue;
+        }
+        if (v == NULL) {
+            fprintf(stderr, "%s render: unknown option '%s' or missing value\n", prog, o);
+            return EXIT_USAGE;
+        }
+        a++;
+        if (strcmp(o, "--mesh") == 0) {
+            mesh_over = v;
+        } else if (strcmp(o, "--out") == 0) {
+            out = v;
+        } else if (strcmp(o, "--res") == 0) {
+            if (parse_res(v, &w, &h) != 0) {
+                fprintf(stderr, "%s render: --res %s: expected WxH or N, 1..%d\n", prog, v,
+                        LT_SF_MAX_RES);
+                return EXIT_USAGE;
+            }
+        } else if (strcmp(o, "--num") == 0) {
+            if (strcmp(v, "q16") != 0 && strcmp(v, "f32") != 0) {
+                fprintf(stderr, "%s render: --num %s: expected q16 or f32\n", prog, v);
+                return EXIT_USAGE;
+            }
+            np = strcmp(v, "q16") == 0 ? LT_PATH_Q16 : LT_PATH_F32;
+        } else if (strcmp(o, "--structure") == 0) {
+            structure = v;
+        } else if (strcmp(o, "--layers") == 0) {
+            layers = atoi(v);
+            if (layers < 1 || layers > 16) {
+                fprintf(stderr, "%s render: --layers %s: expected 1..16\n", prog, v);
+                return EXIT_USAGE;
+            }
+        } else if (strcmp(o, "--light") == 0) {
+            if (sscanf(v, "%lf,%lf,%lf", &lf[0], &lf[1], &lf[2]) != 3 || !isfinite(lf[0]) ||
+                !isfinite(lf[1]) || !isfinite(lf[2])) {
+                fprintf(stderr, "%s render: --light %s: expected X,Y,Z\n", prog, v);
+                return EXIT_USAGE;
+            }
+            have_light = 1;
+        } else {
+            fprintf(stderr, "%s render: unknown option '%s'\n", prog, o);
+            render_usage(stderr);
+            return EXIT_USAGE;
+        }
+    }
+    if (out == NULL) {
+        fprintf(stderr, "%s render: --out PREFIX is required\n", prog);
+        return EXIT_USAGE;
+    }
+    if (scene_path != NULL && lt_sf_load(scene_path, &sf, err, sizeof err) != 0) {
+        fprintf(stderr, "%s\n", err);
+        return EXIT_INPUT;
+    }
+    if (w != 0) {
+        sf.width = w;
+        sf.height = h;
+    }
+    if (mesh_over != NULL)
+        snprintf(sf.mesh, sizeof sf.mesh, "%s", mesh_over);
+    if (sf.mesh[0] == '\0')
+        snprintf(sf.mesh, sizeof sf.mesh, "scenes/teapot.obj");
+    if (!have_light && sf.nlights > 0) {
+        memcpy(lf, sf.lights[0].position, sizeof lf);
+        have_light = 1;
+    }
+#if LT_COST_MODE == LT_COST_SIM
+    if (lt_sim_init(lt_sim_machine_find(sf.machine), NULL, NULL, err, sizeof err) != 0) {
+        fprintf(stderr, "%s\n", err);
+        return EXIT_USAGE;
+    }
+#endif
+    if (lt_mesh_load(sf.mesh, &mesh, err, sizeof err) != 0) {
+        fprintf(stderr, "%s\n", err);
+        return EXIT_INPUT;
+    }
+    if (lt_scene_prepare(&mesh, &sc, err, sizeof err) != 0) {
+        fprintf(stderr, "%s: %s\n", sf.mesh, err);
+        lt_mesh_free(&mesh);
+        return EXIT_INPUT;
+    }
+    if (sf.has_camera) {
+        if (lt_camera_look(&sc, sf.eye, sf.target, sf.up, sf.fov_y_deg, sf.width, sf.height, &cam,
+                           err, sizeof err) != 0) {
+            fprintf(stderr, "%s: %s\n", sf.path, err);
+            status = EXIT_INPUT;
+            goto done;
+        }
+    } else {
+        lt_camera_default(&sc, sf.width, sf.height, &cam);
+    }
+    if (have_light) {
+        for (a = 0; a < 3; a++)
+            light[a] = (lf[a] - sc.center[a]) * sc.scale;
+    } else {
+        double d[3] = {-0.5, 1.5, 0.8}, ln = sqrt(0.25 + 2.25 + 0.64);
+        for (a = 0; a < 3; a++)
+            light[a] = 2.0 * sc.radius * d[a] / ln;
+    }
+    for (a = 0; a < 3; a++) {
+        if (fabs(light[a]) > ldexp(1.0, LT_CFG_GEOM_MAX_LOG2)) {
+            fprintf(stderr, "%s render: the light lies outside the fixed-point range (|x| <= %g "
+                            "scaled units, %.3g scene radii)\n",
+                    prog, ldexp(1.0, LT_CFG_GEOM_MAX_LOG2), ldexp(1.0, LT_CFG_GEOM_MAX_LOG2) / sc.radius);
+            status = EXIT_INPUT;
+            goto done;
+        }
+    }
+    memset(lay, 0, sizeof lay);
+    memset(ch, 0, sizeof ch);
+    if (lt_frame_alloc(&fr, sf.width, sf.height, err, sizeof err) != 0) {
+        fprintf(stderr, "%s\n", err);
+        status = EXIT_INPUT;
+        goto done;
+    }
+    acc = lt_accel_build(&sc, structure, np, err, sizeof err);
+    if (acc == NULL) {
+        fprintf(stderr, "%s render: %s\n", prog, err);
+        status = EXIT_USAGE;
+        goto done;
+    }
+    progress_begin("render");
+    lt_render_primary(&sc, acc, &cam, &fr, progress);
+    progress_end();
+    n = (size_t)sf.width * sf.height;
+    occ = calloc(n, 1);
+    rgb = malloc(n * 3);
+    for (a = 0; a < 10; a++)
+        ch[a] = malloc(n * sizeof(float));
+    for (a = 0; a < 10; a++)
+        if (ch[a] == NULL || occ == NULL || rgb == NULL) {
+            fprintf(stderr, "%s render: out of memory for %ux%u images\n", prog, sf.width,
+                    sf.height);
+            status = EXIT_INPUT;
+            goto done;
+        }
+    if (strcmp(structure, "chunks") != 0 &&
+        lt_render_shadows(&sc, acc, &cam, &fr, light, &nshadow, &nocc, occ, err, sizeof err) != 0) {
+        fprintf(stderr, "%s render: %s\n", prog, err);
+        status = EXIT_INPUT;
+        goto done;
+    }
+    /* channels: Z id N.x N.y N.z R G B, then layer K.Z as needed */
+    for (i = 0; i < n; i++) {
+        uint32_t x = (uint32_t)(i % sf.width), y = (uint32_t)(i / sf.width);
+        int32_t id = fr.id[i];
+        double nrm[3] = {0, 0, 0}, d[3], shade = 0.0;
+        if (id >= 0) {
+            const double *v = &sc.vd[(size_t)id * 9];
+            double e1[3], e2[3], ln, p[3], L[3], ll;
+            int k;
+            for (k = 0; k < 3; k++) {
+                e1[k] = v[3 + k] - v[k];
+                e2[k] = v[6 + k] - v[k];
+            }
+            nrm[0] = e1[1] * e2[2] - e1[2] * e2[1];
+            nrm[1] = e1[2] * e2[0] - e1[0] * e2[2];
+            nrm[2] = e1[0] * e2[1] - e1[1] * e2[0];
+            ln = sqrt(nrm[0] * nrm[0] + nrm[1] * nrm[1] + nrm[2] * nrm[2]);
+            lt_camera_dir(&cam, x, y, d);
+            if (ln > 0.0) {
+                /* two-sided: the normal faces the camera */
+                double s1 = (nrm[0] * d[0] + nrm[1] * d[1] + nrm[2] * d[2]) > 0.0 ? -1.0 : 1.0;
+                for (k = 0; k < 3; k++)
+                    nrm[k] *= s1 / ln;
+            }
+            for (k = 0; k < 3; k++) {
+                p[k] = cam.eye[k] + fr.t[i] * d[k];
+                L[k] = light[k] - p[k];
+            }
+            ll = sqrt(L[0] * L[0] + L[1] * L[1] + L[2] * L[2]);
+            shade = 0.08 + (occ[i] ? 0.0
+                                   : 0.92 * fmax(0.0, (nrm[0] * L[0] + nrm[1] * L[1] + nrm[2] * L[2]) / ll));
+        }
+        ch[0][i] = id >= 0 ? (float)fr.t[i] : (float)INFINITY;
+        ch[1][i] = (float)id;
+        ch[2][i] = (float)nrm[0];
+        ch[3][i] = (float)nrm[1];
+        ch[4][i] = (float)nrm[2];
+        ch[5][i] = ch[6][i] = ch[7][i] = (float)shade;
+        rgb[3 * i] = rgb[3 * i + 1] = rgb[3 * i + 2] = id >= 0 ? to8(shade) : 24;
+    }
+    {
+        lt_exr_channel_t ec[8 + 16];
+        lt_exr_image_t im;
+        static const char *const names[8] = {"Z", "id", "N.x", "N.y", "N.z", "R", "G", "B"};
+        static char lname[16][16];
+        int nc = 0;
+        for (a = 0; a < 8; a++) {
+            ec[nc].name = names[a];
+            ec[nc].type = LT_EXR_FLOAT;
+            ec[nc++].data = ch[a];
+        }
+        /* depth peels: layer 0 is the primary hit */
+        for (l = 0; l < layers && layers > 1; l++) {
+            float *z = malloc(n * sizeof(float));
+            if (z == NULL || lt_frame_alloc(&lay[l], sf.width, sf.height, err, sizeof err) != 0) {
+                free(z);
+                fprintf(stderr, "%s render: out of memory for layer %d\n", prog, l);
+                status = EXIT_INPUT;
+                goto done;
+            }
+            if (l == 0) {
+                memcpy(lay[0].id, fr.id, n * sizeof *fr.id);
+                memcpy(lay[0].t, fr.t, n * sizeof *fr.t);
+            } else if (lt_render_peel(&sc, acc, &cam, &lay[l - 1], &lay[l], err, sizeof err) != 0) {
+                free(z);
+                fprintf(stderr, "%s render: %s\n", prog, err);
+                status = EXIT_USAGE;
+                goto done;
+            }
+            for (i = 0; i < n; i++)
+                z[i] = lay[l].id[i] >= 0 ? (float)lay[l].t[i] : (float)INFINITY;
+            snprintf(lname[l], sizeof lname[l], "layer%d.Z", l);
+            ec[nc].name = lname[l];
+            ec[nc].type = LT_EXR_FLOAT;
+            ec[nc++].data = z;
+        }
+        memset(&im, 0, sizeof im);
+        im.width = (int32_t)sf.width;
+        im.height = (int32_t)sf.height;
+        im.nchannels = nc;
+        im.channels = ec;
+        snprintf(path, sizeof path, "%s.exr", out);
+        if (lt_exr_write(path, &im, err, sizeof err) != 0) {
+            fprintf(stderr, "%s\n", err);
+            status = EXIT_INPUT;
+        } else if (!quiet) {
+            printf("exr       %s (%d channels%s)\n", path, nc, layers > 1 ? ", depth peels" : "");
+        }
+        for (a = 8; a < nc; a++)
+            free((void *)ec[a].data);
+        if (status != 0)
+            goto done;
+    }
+    snprintf(path, sizeof path, "%s.png", out);
+    if (lt_png_write(path, rgb, (int32_t)sf.width, (int32_t)sf.height, 3, 3 * sf.width, err,
+                     sizeof err) != 0) {
+        fprintf(stderr, "%s\n", err);
+        status = EXIT_INPUT;
+        goto done;
+    }
+    {
+        /* quick looks: depth (near bright), normals (0.5 + 0.5 n), ids (hashed colours) */
+        double zmin = INFINITY, zmax = 0.0;
+        static const char *const kinds[3] = {"depth", "normals", "ids"};
+        int kk;
+        for (i = 0; i < n; i++)
+            if (fr.id[i] >= 0) {
+                zmin = fmin(zmin, fr.t[i]);
+                zmax = fmax(zmax, fr.t[i]);
+            }
+        for (kk = 0; kk < 3; kk++) {
+            for (i = 0; i < n; i++) {
+                uint8_t *px = &rgb[3 * i];
+                if (fr.id[i] < 0) {
+                    px[0] = px[1] = px[2] = 0;
+                } else if (kk == 0) {
+                    double v = zmax > zmin ? 1.0 - (fr.t[i] - zmin) / (zmax - zmin) : 1.0;
+                    px[0] = px[1] = px[2] = (uint8_t)(40.0 + 215.0 * v);
+                } else if (kk == 1) {
+                    px[0] = (uint8_t)(127.5 + 127.0 * (double)ch[2][i]);
+                    px[1] = (uint8_t)(127.5 + 127.0 * (double)ch[3][i]);
+                    px[2] = (uint8_t)(127.5 + 127.0 * (double)ch[4][i]);
+                } else {
+                    uint32_t hsh = (uint32_t)fr.id[i] * 2654435761u;
+                    px[0] = (uint8_t)(64 + (hsh >> 24) % 192);
+                    px[1] = (uint8_t)(64 + (hsh >> 16) % 192);
+                    px[2] = (uint8_t)(64 + (hsh >> 8) % 192);
+                }
+            }
+            snprintf(path, sizeof path, "%s.%s.png", out, kinds[kk]);
+            if (lt_png_write(path, rgb, (int32_t)sf.width, (int32_t)sf.height, 3, 3 * sf.width,
+                             err, sizeof err) != 0) {
+                fprintf(stderr, "%s\n", err);
+                status = EXIT_INPUT;
+                goto done;
+            }
+        }
+    }
+    if (!quiet)
+        printf("png       %s.png (shaded), %s.depth.png, %s.normals.png, %s.ids.png; %u shadow "
+               "rays, %u occluded\n",
+               out, out, out, out, nshadow, nocc);
+done:
+    for (a = 0; a < 10; a++)
+        free(ch[a]);
+    for (l = 0; l < 16; l++)
+        if (lay[l].id != NULL)
+            lt_frame_free(&lay[l]);
+    free(occ);
+    free(rgb);
+    lt_accel_free(acc);
+    if (fr.id != NULL)
+        lt_frame_free(&fr);
+    lt_scene_free(&sc);
+    lt_mesh_free(&mesh);
+#if LT_COST_MODE == LT_COST_SIM
+    lt_sim_shutdown();
+#endif
+    return status;
+}
+
 /* ---- main ----------------------------------------------------------------------------------- */
 
 static void usage(FILE *f)
@@ -933,6 +1292,8 @@ static void usage(FILE *f)
             "usage: %s COMMAND [options]   (%s build)\n"
             "commands:\n"
             "  run [SCENE.json]   trace a scene; accuracy and (sim build) the cycle report\n"
+            "  render [SCENE.json] --out PREFIX  images: depth, normals, ids, shaded (hard\n"
+            "                     shadows), k-layer depth peels (EXR + PNG)\n"
             "  info FILE          describe a mesh or EXR file\n"
             "  diff A.json B.json compare two JSON reports\n"
             "  help               this text\n"
@@ -951,6 +1312,8 @@ int main(int argc, char **argv)
     }
     if (strcmp(argv[1], "run") == 0)
         return cmd_run(argc, argv);
+    if (strcmp(argv[1], "render") == 0)
+        return cmd_render(argc, argv);
     if (strcmp(argv[1], "info") == 0)
         return cmd_info(argc, argv);
     if (strcmp(argv[1], "diff") == 0)

@@ -443,3 +443,48 @@ int lt_render_shadows(const lt_scene_t *s, const lt_accel_t *a, const lt_camera_
     *noccluded = occ;
     return 0;
 }
+
+int lt_render_peel(const lt_scene_t *s, const lt_accel_t *a, const lt_camera_t *c,
+                   const lt_frame_t *prev, lt_frame_t *next, char *err, size_t errlen)
+{
+    uint32_t tx, ty;
+    static lt_ray16_q16_t rq;
+    static lt_ray16_f32_t rf;
+    if (a->kind == ACC_CHUNKS) {
+        snprintf(err, errlen, "depth peeling needs a BVH structure (bvh, bvhq)");
+        return -1;
+    }
+    for (ty = 0; ty < c->height; ty += 4)
+        for (tx = 0; tx < c->width; tx += 4) {
+            lt_hit16_t hit;
+            lt_mask16_t k, live = 0;
+            int i;
+            k = a->path == LT_PATH_Q16 ? lt_camera_packet_q16(c, tx, ty, &rq)
+                                       : lt_camera_packet_f32(c, tx, ty, &rf);
+            /* the next surface lies strictly beyond the previous hit: tmin = previous t */
+            for (i = 0; i < LT_LANES; i++) {
+                uint32_t x = tx + (uint32_t)(i % 4), y = ty + (uint32_t)(i / 4);
+                size_t p = (size_t)y * c->width + x;
+                if (((unsigned)k >> i & 1u) == 0 || prev->id[p] < 0)
+                    continue;
+                live = (lt_mask16_t)(live | (1u << i));
+                if (a->path == LT_PATH_Q16)
+                    rq.tmin.l[i] = lt_q16_from_double_sat(prev->t[p]);
+                else
+                    rf.tmin.l[i] = (float)prev->t[p];
+            }
+            hit.id = lt_vi32_set1(-1);
+            if (live != 0)
+                trace16(s, a, &rq, &rf, live, &hit);
+            for (i = 0; i < LT_LANES; i++) {
+                uint32_t x = tx + (uint32_t)(i % 4), y = ty + (uint32_t)(i / 4);
+                size_t p = (size_t)y * c->width + x;
+                if (((unsigned)k >> i & 1u) == 0)
+                    continue;
+                next->id[p] = ((unsigned)live >> i & 1u) ? hit.id.l[i] : -1;
+                next->t[p] = a->path == LT_PATH_Q16 ? (double)rq.tmax.l[i] / 65536.0
+                                                    : (double)rf.tmax.l[i];
+            }
+        }
+    return 0;
+}

@@ -56,6 +56,12 @@ int lt_render_shadows(const lt_scene_t *s, const lt_accel_t *a, const lt_camera_
                       const lt_frame_t *f, const double light[3], uint32_t *nrays,
                       uint32_t *noccluded, uint8_t *occluded, char *err, size_t errlen);
 
+/* The next depth layer: for every pixel that hit in prev, the first surface strictly beyond it
+ * (tmin = the previous distance); pixels without a previous hit get id -1. Coplanar duplicates
+ * at exactly the previous distance are skipped. BVH structures only. Returns 0 or -1. */
+int lt_render_peel(const lt_scene_t *s, const lt_accel_t *a, const lt_camera_t *c,
+                   const lt_frame_t *prev, lt_frame_t *next, char *err, size_t errlen);
+
 /* The double-precision reference frame (brute force, independent code). */
 void lt_render_reference(const lt_scene_t *s, const lt_camera_t *c, lt_frame_t *f,
                          void (*progress)(double done));

@@ -32,6 +32,18 @@
 #define LT_CFG_GEOM_MAX_LOG2 12
 #endif
 
+/* LT_CFG_WT_F64_FALLBACK: 1 makes the float32 watertight test recompute, in double, the edge
+ * functions of lanes where one of them came out exactly 0.0f (the paper's fallback; float x float
+ * products are exact in double, so the recomputed signs are exact), and test zero area exactly in
+ * double. 0 skips both for targets that must not link double (soft-float helpers): edge functions
+ * that round to 0.0f are then taken as 0 (a ray through such a point hits both neighbours, never
+ * neither, but vertices can leak in rare cases), and the zero-area test compares float products.
+ * The s15.16 path never uses floating point. Default 1. (Knob kept here until the lead moves it to
+ * lt_config.h.) */
+#ifndef LT_CFG_WT_F64_FALLBACK
+#define LT_CFG_WT_F64_FALLBACK 1
+#endif
+
 #if LT_CFG_ASSERT
 #ifndef LT_ASSERT
 #define LT_ASSERT(x) ((x) ? (void)0 : __builtin_trap())

@@ -1,0 +1,99 @@
+/* lt_wt.h - watertight 16-lane ray/triangle test: Woop, Benthin, Wald, "Watertight Ray/Triangle
+ * Intersection", JCGT 2(1) 2013 (translate, permute, shear, 2D edge functions), in s15.16 fixed
+ * point with EXACT integer edge functions and in float32 with the paper's double fallback, both
+ * compiled from one kernel source (firmware/core/lt_wt.inc). docs/watertight.md has the bit widths
+ * and the proof sketch. Builds: all; float32 entry points only with LT_CFG_FLOAT32.
+ */
+#ifndef LT_WT_H
+#define LT_WT_H
+
+#include "lt_isect.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+
+/* Per-packet shear constants of the watertight test, from lt_ray16_wt_setup_q16. 416 bytes,
+ * 4-byte aligned. Per lane: kz = the axis of largest |d| (ties prefer z, then y, then x),
+ * (kx, ky) = the next two axes in cyclic order, swapped when d[kz] < 0 so that the winding is
+ * kept. Recompute after changing a ray's origin or direction. */
+typedef struct lt_wt16_q16 {
+    lt_vq16_t ox, oy, oz;  /* origin permuted to (kx, ky, kz), s15.16 */
+    lt_vq30_t sx, sy, sz;  /* Sx = d[kx]/d[kz], Sy = d[ky]/d[kz] (|S| <= 1), Sz = 1/d[kz]
+                              (1 <= |Sz| < 2 for |d[kz]| > 1/2), s1.30, rounded half up */
+    lt_mask16_t kx[3];     /* kx[a]: lanes whose sheared x axis is world axis a */
+    lt_mask16_t ky[3];     /* ky[a]: lanes whose sheared y axis is world axis a */
+    lt_mask16_t kz[3];     /* kz[a]: lanes whose ray axis is world axis a */
+    lt_mask16_t bad;       /* lanes with |d[kz]| <= 1/2 (not a unit direction): never hit */
+    uint16_t pad_[6];      /* private: keeps the size a multiple of 16 */
+} lt_wt16_q16_t;
+LT_STATIC_ASSERT(sizeof(lt_wt16_q16_t) == 6 * 64 + 32, "wt setup is 6 lane vectors + masks");
+
+/* Permutation and shear constants of each lane of r (its origin and unit direction) into w.
+ * Format: s1.30 / s1.30 -> s1.30 (Sx, Sy: round(d * 2^30 / dz)), 2^60 / dz_raw (Sz).
+ * Range: unit directions; lanes whose largest |d| component is <= 1/2 are flagged in w->bad.
+ * Rounding: half up. Overflow: none for |d[kz]| > 1/2. Cost: VALU x16 (abs, permuting blends),
+ * VCMP x5, VDIV x3, VBCAST x1, MASK x23.
+ * Returns: the mask of lanes flagged bad (they never hit). */
+lt_mask16_t lt_ray16_wt_setup_q16(const lt_ray16_q16_t *r, lt_wt16_q16_t *w);
+
+/* Watertight test of the lanes in k against one triangle, two-sided, edges inclusive: the contract
+ * of lt_tri16_q16. Lanes that hit at tmin < t < tmax get tmax = t and hit->id = id; other lanes
+ * and inactive lanes are untouched. The vertices are v0, v0 + e1, v0 + e2 (saturating adds: exact
+ * for in-range data), so triangles that share a vertex must store it bit-identically.
+ * Format: vertex - origin in s15.16 (exact), sheared x/y = A[kx|ky] - round(S * A[kz]) and
+ * z = round(Sz * A[kz]) in s15.16 (s1.30 x s15.16 -> 46 fractional bits -> 16), edge functions
+ * U, V, W = 2D cross products of sheared x/y: s31.32 in int64, EXACT; det = U + V + W exact;
+ * T = U*Az + V*Bz + W*Cz exact in 128 bits (48 fractional bits); t = T / det.
+ * Range: |vertex|, |origin| <= 2^LT_CFG_GEOM_MAX_LOG2 (= 4096) per axis keeps every value above
+ * inside its format. Outside it results are defined (saturating / wrapping) but not meaningful.
+ * Rounding: t rounded half up from the exact quotient; t always lies between the vertices' z.
+ * Hit rule: U, V, W all >= 0 or all <= 0, det != 0, and the triangle's area is not exactly zero
+ * (e1 x e2 != 0, tested exactly): zero-area triangles never hit. No crack: a ray through a shared
+ * edge or vertex of triangles with bit-identical shared vertices hits at least one of them
+ * whenever it crosses the surface there (docs/watertight.md).
+ * Overflow: none in range. Cost (measured in the sim, docs/watertight.md): a packet whose
+ * active lanes share one axis permutation: SLOAD x9, SALU x15, SMUL x6 (vertices, zero-area
+ * test), BRANCH x1, MASK x27, VBCAST x10, VALU x15, VMUL x12, VMULW x5, VCMP x8; each further
+ * permutation in the packet adds up to VBCAST x9, VALU x9, MASK x3-9; a packet with a candidate
+ * lane adds VMUL x9, VMULW x10 (exact T), VDIV x2 (128/64 division), VCMP x2, VALU x2, VBCAST x1.
+ * Returns: the mask of lanes whose ray was shortened by this triangle. */
+lt_mask16_t lt_tri16_wt_q16(lt_ray16_q16_t *r, const lt_wt16_q16_t *w, lt_mask16_t k,
+                            const lt_tri_q16_t *tri, int32_t id, lt_hit16_t *hit);
+
+#if LT_CFG_FLOAT32
+/* Float32 twin of lt_wt16_q16_t (same layout rules). 416 bytes. */
+typedef struct lt_wt16_f32 {
+    lt_vf32_t ox, oy, oz;  /* origin permuted to (kx, ky, kz) */
+    lt_vf32_t sx, sy, sz;  /* Sx = d[kx]/d[kz], Sy = d[ky]/d[kz], Sz = 1/d[kz] (IEEE division) */
+    lt_mask16_t kx[3];     /* kx[a]: lanes whose sheared x axis is world axis a */
+    lt_mask16_t ky[3];     /* ky[a]: lanes whose sheared y axis is world axis a */
+    lt_mask16_t kz[3];     /* kz[a]: lanes whose ray axis is world axis a */
+    lt_mask16_t bad;       /* lanes with d == 0 or NaN: never hit */
+    uint16_t pad_[6];      /* private */
+} lt_wt16_f32_t;
+LT_STATIC_ASSERT(sizeof(lt_wt16_f32_t) == 6 * 64 + 32, "f32 wt setup is 6 lane vectors + masks");
+
+/* Float32 twin of lt_ray16_wt_setup_q16. Range: any finite nonzero direction (t is then in units
+ * of |d|). Rounding: IEEE. Cost: FADD x16, FCMP x5, FDIV x3, VBCAST x2, MASK x23.
+ * Returns: the mask of lanes flagged bad. */
+lt_mask16_t lt_ray16_wt_setup_f32(const lt_ray16_f32_t *r, lt_wt16_f32_t *w);
+
+/* Float32 twin of lt_tri16_wt_q16: the paper's test in IEEE binary32. An edge function that
+ * rounds to exactly 0.0f may have the wrong sign, so lanes with one are recomputed in double
+ * (LT_CFG_WT_F64_FALLBACK), which makes every edge sign exact; zero area is tested in double.
+ * Watertight when shared vertices reconstruct bit-identically (fl(v0 + e1) must give the same
+ * float vertex in every triangle that uses it: true when e1 = v1 - v0 was exact in float).
+ * Cost (one permutation, candidate lanes): SLOAD x9, SALU x15, SMUL x6, BRANCH x1, MASK x30,
+ * VBCAST x11, VALU x1, FADD x23, FMUL x18, FDIV x1, FCMP x13; + FMUL x6, FADD x3 for packets with
+ * a 0.0f edge function; mixed permutations as in the s15.16 test (FADD for the blends).
+ * Returns: the mask of lanes whose ray was shortened by this triangle. */
+lt_mask16_t lt_tri16_wt_f32(lt_ray16_f32_t *r, const lt_wt16_f32_t *w, lt_mask16_t k,
+                            const lt_tri_f32_t *tri, int32_t id, lt_hit16_t *hit);
+#endif
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* LT_WT_H */

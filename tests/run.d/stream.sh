@@ -1,0 +1,154 @@
+# stream.sh - the stream protocol of issue 6 (docs/stream.md), sourced by tests/run_tests.sh (uses
+# check/ok/ko, $B, $tmp). Fuzz corpus replay; the simulator as a device against a direct run of the
+# same scene (every counter, per frame); the firmware images under QEMU (cm4, cm55, rv32) through
+# a file, a pipe and QEMU's TCP serial, compared tile by tile with the simulator; determinism of
+# the device's drops; receiver errors; and the fault-injection matrix, where the receiver must
+# report exactly what the injector did.
+
+S=$tmp/stream
+mkdir -p "$S"
+# value of "key" in the one-key-per-line JSON that lt-stream and lt-faultinject write
+jget() { sed -n "s/^ *\"$1\": *\"\{0,1\}\([^\",]*\)\"\{0,1\},\{0,1\}\$/\1/p" "$2" | head -n 1; }
+
+echo "-- fuzz corpus and firmware symbols"
+check "fuzz-frame replays tests/fuzz/corpus/frame (ASan+UBSan)" \
+    "$B/asan/fuzz-frame" tests/fuzz/corpus/frame
+check "stream.elf images link no libc or simulator symbol" \
+    tools/check_fw.sh "$B/fw/cm4/stream.elf" "$B/fw/cm55/stream.elf" "$B/fw/rv32/stream.elf"
+
+echo "-- the simulator as a device vs a direct run"
+"$B/sim/lt-stream-dev" --out "$S/sim.bin" 2>"$S/sim.err"
+check "lt-stream-dev (mcu-m4) exits 0" test $? -eq 0
+"$B/sim/lt-stream-dev" --direct >"$S/direct.txt"
+"$B/host/lt-stream" --file "$S/sim.bin" --tiles "$S/sim.tiles" --json >"$S/sim.json"
+check "lt-stream on the sim stream: exit 0 (END, nothing lost, damaged, duplicated, reordered)" \
+    test $? -eq 0
+grep '^summary' "$S/sim.tiles" | sed 's/ dropped [0-9]*$//' >"$S/sim.sum"
+check "sim stream summaries = direct run, field by field (rays hits hash ticks cycles aabb aabb_rays tris tri_rays, $(wc -l <"$S/direct.txt") frames)" \
+    diff -u "$S/direct.txt" "$S/sim.sum"
+# the per-tile reports of each frame add up to its summary (no tile report was dropped here)
+awk '$1 == "tile" { k = $2; r[k] += $5; h[k] += $7; c[k] += $13; a[k] += $15; ar[k] += $17; t[k] += $19; tr[k] += $21; n[k]++ }
+     $1 == "summary" { k = $2; if (n[k] != $4 || r[k] != $6 || h[k] != $8 || c[k] != $14 || a[k] != $16 || ar[k] != $18 || t[k] != $20 || tr[k] != $22) bad++; m++ }
+     END { exit !(m > 0 && bad == 0) }' "$S/sim.tiles"
+check "sim tile reports add up to their frame summaries (rays, hits, cycles, box and triangle tests)" \
+    test $? -eq 0
+"$B/sim/lt-stream-dev" --machine lrb16 --out "$S/lrb.bin" 2>/dev/null
+"$B/host/lt-stream" --file "$S/lrb.bin" --json >"$S/lrb.json"
+rc=$?
+t=$(jget tiles "$S/lrb.json"); d=$(jget dev_dropped_tile "$S/lrb.json"); n=$(jget tiles_traced "$S/lrb.json")
+check "lrb16 device (faster than the link): drops $d of $n tile reports and says so; received $t + dropped $d = traced $n, link clean" \
+    test "$rc" -eq 0 -a "$d" -gt 0 -a $((t + d)) -eq "$n"
+
+echo "-- firmware under QEMU: file, pipe, TCP"
+source <(make -s --no-print-directory -f tools/print_qemu.mk)
+# tile and summary keys with the fields both devices know: rays, hits, hash
+fields() { awk '$1 == "tile" { print "tile", $2, $3, $5, $7, $9 } $1 == "summary" { print "summary", $2, $4, $6, $8, $10 }' "$1" | sort; }
+fields "$S/sim.tiles" >"$S/sim.keys"
+for t in cm4 cm55 rv32; do
+    qvar="QEMU_$t"
+    timeout 60 ${!qvar} "$B/fw/$t/stream.elf" >"$S/$t.bin" 2>"$S/$t.err" </dev/null
+    rc=$?
+    check "stream.elf/$t exits 0 under QEMU (rc=$rc)" test "$rc" -eq 0
+    "$B/host/lt-stream" --file "$S/$t.bin" --tiles "$S/$t.tiles" --json >"$S/$t.json"
+    rc=$?
+    check "lt-stream on the $t UART stream: exit 0 ($(jget valid "$S/$t.json") frames, clean)" \
+        test "$rc" -eq 0
+    fields "$S/$t.tiles" >"$S/$t.keys"
+    nt=$(grep -c '^tile' "$S/$t.keys")
+    nb=$(comm -12 "$S/$t.keys" "$S/sim.keys" | grep -c '^tile')
+    check "fw/$t: all $nt tile reports received equal the sim's (frame, tile, rays, hits, hash)" \
+        test "$nt" -gt 0 -a "$nt" -eq "$nb"
+    check "fw/$t: frame summaries equal the sim's (tiles, rays, hits, image hash)" \
+        diff <(grep '^summary' "$S/$t.keys") <(grep '^summary' "$S/sim.keys")
+    tr=$(jget tiles "$S/$t.json"); dr=$(jget dev_dropped_tile "$S/$t.json"); tt=$(jget tiles_traced "$S/$t.json")
+    check "fw/$t: tiles received $tr + reported dropped $dr = traced $tt; image frames dropped $(jget dev_dropped_image "$S/$t.json") and reported" \
+        test $((tr + dr)) -eq "$tt"
+    check "fw/$t: scene hash = sim's" test "$(jget scene_hash "$S/$t.json")" = "$(jget scene_hash "$S/sim.json")"
+done
+timeout 60 $QEMU_rv32 "$B/fw/rv32/stream.elf" </dev/null 2>/dev/null |
+    "$B/host/lt-stream" -q --json >"$S/pipe.json"
+st=("${PIPESTATUS[@]}")
+check "fw/rv32 piped into lt-stream: QEMU exit ${st[0]}, lt-stream exit ${st[1]}" \
+    test "${st[0]}" -eq 0 -a "${st[1]}" -eq 0
+printf '   measured (pipe, rv32): %s frames, %s bytes in %s s wall: %s frames/s, %s B/s; device link %s B/s budget\n' \
+    "$(jget valid "$S/pipe.json")" "$(jget bytes "$S/pipe.json")" "$(jget wall_s "$S/pipe.json")" \
+    "$(jget frames_per_s "$S/pipe.json")" "$(jget bytes_per_s "$S/pipe.json")" \
+    "$(jget link_bytes_per_s "$S/pipe.json")"
+port=$((20000 + RANDOM % 30000))
+while (exec 3<>"/dev/tcp/127.0.0.1/$port") 2>/dev/null; do port=$((port + 1)); done
+${QEMU_cm4/-serial stdio/-serial tcp:127.0.0.1:$port,server=on,wait=on} "$B/fw/cm4/stream.elf" \
+    </dev/null >/dev/null 2>"$S/tcp.err" &
+qpid=$!
+timeout 60 "$B/host/lt-stream" --tcp "127.0.0.1:$port" -q --tiles "$S/tcp.tiles" >"$S/tcp.txt"
+rc=$?
+wait $qpid
+qrc=$?
+# a second run of the same image: every record, ticks and drop points included, must be the same
+check "fw/cm4 over QEMU -serial tcp (port $port) into lt-stream --tcp: exit $rc, QEMU exit $qrc; records (ticks, drops) identical to the file run: deterministic under -icount" \
+    bash -c "[ $rc -eq 0 ] && [ $qrc -eq 0 ] && cmp -s '$S/tcp.tiles' '$S/cm4.tiles'"
+
+echo "-- receiver and tool errors"
+"$B/host/lt-stream" --hid 1209:0001 -q >"$S/e.txt" 2>&1
+rc=$?
+check "lt-stream --hid 1209:0001 with no device: exit 1, names it ($(head -n 1 "$S/e.txt" | cut -c 1-110))" \
+    bash -c "[ $rc -eq 1 ] && grep -q 1209:0001 '$S/e.txt'"
+"$B/host/lt-stream" --hid-path /dev/hidraw99 -q >"$S/e.txt" 2>&1
+rc=$?
+check "lt-stream --hid-path /dev/hidraw99: exit 1, names it" \
+    bash -c "[ $rc -eq 1 ] && grep -q /dev/hidraw99 '$S/e.txt'"
+"$B/host/lt-stream" --serial /dev/null -q >"$S/e.txt" 2>&1
+rc=$?
+check "lt-stream --serial /dev/null: exit 1, not a serial device" \
+    bash -c "[ $rc -eq 1 ] && grep -q 'not a serial device' '$S/e.txt'"
+"$B/host/lt-stream" --file /nonexistent.bin >"$S/e.txt" 2>&1
+rc=$?
+check "lt-stream --file /nonexistent.bin: exit 1, names it" \
+    bash -c "[ $rc -eq 1 ] && grep -q /nonexistent.bin '$S/e.txt'"
+"$B/host/lt-stream" --tcp >"$S/e.txt" 2>&1
+check "lt-stream --tcp without a value: exit 2" test $? -eq 2
+"$B/host/lt-faultinject" --rate 0.3 <"$S/sim.bin" >/dev/null 2>"$S/e.txt"
+rc=$?
+check "lt-faultinject --rate 0.3 (sum 1.5): exit 2 with the reason" \
+    bash -c "[ $rc -eq 2 ] && grep -q 'sum' '$S/e.txt'"
+"$B/sim/lt-stream-dev" --frames 0 >/dev/null 2>"$S/e.txt"
+check "lt-stream-dev --frames 0: exit 2" test $? -eq 2
+head -c 5000 /dev/urandom | "$B/host/lt-stream" -q --json >"$S/rand.json"
+rc=$?
+check "random bytes: lt-stream exit 1, all $(jget garbage_bytes "$S/rand.json") bytes reported as garbage, no HELLO" \
+    bash -c "[ $rc -eq 1 ] && [ \"$(jget garbage_bytes "$S/rand.json")\" = 5000 ] && [ \"$(jget have_hello "$S/rand.json")\" = 0 ]"
+script -qec "'$B/host/lt-stream' --file '$S/sim.bin'" /dev/null >"$S/tty.txt" 2>&1
+check "live line on a terminal (frames/s, bytes/s, rays/s, cycles/s)" \
+    grep -q 'fr/s.*kB/s.*rays/s.*cycles/s' "$S/tty.txt"
+
+echo "-- fault injection matrix (sim device, 16 frames; one fault at most per frame)"
+"$B/sim/lt-stream-dev" --frames 16 --image-from 8 --out "$S/long.bin" 2>/dev/null
+"$B/host/lt-faultinject" <"$S/long.bin" >"$S/f0.bin" 2>/dev/null
+check "rates 0: output identical to input" cmp -s "$S/long.bin" "$S/f0.bin"
+printf '   %-28s %4s | %5s %5s %5s %5s %5s | %5s %7s %5s %5s %7s %3s\n' "drop/corrupt/dup/reorder/trunc" \
+    seed drop corr dup reord trunc lost damaged dup reord garbage end
+for rates in "0.01 0 0 0 0" "0 0.01 0 0 0" "0 0 0.01 0 0" "0 0 0 0.01 0" "0 0 0 0 0.01" \
+    "0.01 0.01 0.01 0.01 0.01" "0.05 0.05 0.05 0.05 0.05" "0.1 0.1 0.1 0.1 0.1"; do
+    read -r r1 r2 r3 r4 r5 <<<"$rates"
+    for seed in 1 2 3; do
+        "$B/host/lt-faultinject" --drop "$r1" --corrupt "$r2" --dup "$r3" --reorder "$r4" \
+            --trunc "$r5" --seed "$seed" --json "$S/truth.json" -q <"$S/long.bin" >"$S/f.bin"
+        "$B/host/lt-stream" --file "$S/f.bin" -q --json >"$S/rx.json"
+        rc=$?
+        d=$(jget dropped "$S/truth.json"); c=$(jget corrupted "$S/truth.json")
+        u=$(jget duplicated "$S/truth.json"); o=$(jget reordered "$S/truth.json")
+        tr=$(jget truncated "$S/truth.json"); tail=$(jget tail_destroyed "$S/truth.json")
+        db=$(jget damaged_bytes "$S/truth.json")
+        lost=$(jget lost "$S/rx.json"); dmg=$(jget damaged "$S/rx.json")
+        rdup=$(jget duplicates "$S/rx.json"); rreo=$(jget reordered "$S/rx.json")
+        gb=$(jget garbage_bytes "$S/rx.json"); end=$(jget have_end "$S/rx.json")
+        sent=$(jget sent "$S/rx.json"); recv=$(jget received "$S/rx.json")
+        printf '   %-28s %4s | %5s %5s %5s %5s %5s | %5s %7s %5s %5s %7s %3s\n' "$rates" "$seed" \
+            "$d" "$c" "$u" "$o" "$tr" "$lost" "$dmg" "$rdup" "$rreo" "$gb" "$end"
+        faults=$((d + c + u + o + tr))
+        want_rc=$([ "$faults" -gt 0 ] && echo 1 || echo 0)
+        check "faults $rates seed $seed: lost $lost = $d+$c+$tr-$tail, dup $rdup = $u, reord $rreo = $o, garbage $gb = $db B, received+lost = sent, exit $rc" \
+            test "$lost" -eq $((d + c + tr - tail)) -a "$rdup" -eq "$u" -a "$rreo" -eq "$o" \
+            -a "$gb" -eq "$db" -a $((recv + lost)) -eq "$sent" -a "$dmg" -le $((c + tr)) \
+            -a "$end" -eq $([ "$tail" -eq 0 ] && echo 1 || echo 0) -a "$rc" -eq "$want_rc"
+    done
+done
