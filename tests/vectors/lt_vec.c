@@ -370,6 +370,77 @@ static void run_kernels_q16(void (*put)(const char *))
     emit(put, "chunks_q16", &h);
 }
 
+/* BVH over the 48-triangle mesh: the tree layout and packet, single-ray and any-hit traversals,
+ * and the watertight triangle test on the same rays. The arena is static (no heap here). */
+static uint64_t bvh_arena[4096];
+
+static void run_bvh_q16(void (*put)(const char *))
+{
+    hash_t h;
+    lt_bvh_t bvh;
+    lt_bvh_desc_t desc;
+    size_t bytes = 0;
+    int i, j;
+    static lt_ray16_q16_t r;
+    static lt_wt16_q16_t w;
+    h_init(&h);
+    lt__memset(&desc, 0, sizeof desc);
+    h_case(&h, (uint32_t)lt_bvh_size(N_MESH, &desc, &bytes));
+    h_case(&h, (uint32_t)bytes);
+    h_case(&h, (uint32_t)lt_bvh_build_q16(&bvh, &desc, mesh_q, N_MESH, bvh_arena, sizeof bvh_arena));
+    h_case(&h, bvh.nnodes * 65536u + bvh.depth * 256u + bvh.leaves);
+    for (i = 0; i < (int)bvh.nnodes; i++) {
+        const lt_bvh_node_q16_t *nd = &((const lt_bvh_node_q16_t *)bvh.nodes)[i];
+        for (j = 0; j < 3; j++) {
+            h_u32(&h, (uint32_t)nd->b.lo[j]);
+            h_u32(&h, (uint32_t)nd->b.hi[j]);
+        }
+        h_u32(&h, nd->left_first);
+        h_u32(&h, nd->count);
+    }
+    rng_state = 0xB1BB1Eu;
+    for (i = 0; i < 40; i++) {
+        lt_hit16_t hit;
+        lt_mask16_t occ = 0, k = rmask(i);
+        rand_ray_q16(&r);
+        h_case(&h, (uint32_t)lt_bvh_trace16_q16(&bvh, mesh_q, &r, k, &hit));
+        for (j = 0; j < LT_LANES; j++)
+            h_u32(&h, (uint32_t)hit.id.l[j]);
+        h_vq16(&h, r.tmax);
+        rand_ray_q16(&r);
+        h_case(&h, (uint32_t)lt_bvh_occluded16_q16(&bvh, mesh_q, &r, k, &occ));
+        h_case(&h, occ);
+        for (j = 0; j < LT_LANES; j++) {
+            lt_ray1_q16_t r1;
+            int32_t id = -1;
+            int a;
+            lt__memset(&r1, 0, sizeof r1);
+            r1.o[0] = r.ox.l[j];
+            r1.o[1] = r.oy.l[j];
+            r1.o[2] = r.oz.l[j];
+            r1.d[0] = r.dx.l[j];
+            r1.d[1] = r.dy.l[j];
+            r1.d[2] = r.dz.l[j];
+            r1.tmin = 0;
+            r1.tmax = 0x7FFFFFF;
+            lt_ray1_q16_setup(&r1);
+            h_case(&h, (uint32_t)lt_bvh_trace1_q16(&bvh, mesh_q, &r1, &id));
+            h_u32(&h, (uint32_t)id);
+            h_u32(&h, (uint32_t)r1.tmax);
+            for (a = 0; a < 3; a++)
+                h_u32(&h, (uint32_t)r1.rd[a]);
+        }
+        /* the watertight test on every triangle for a fresh packet */
+        rand_ray_q16(&r);
+        hit.id = lt_vi32_set1(-1);
+        h_case(&h, lt_ray16_wt_setup_q16(&r, &w));
+        for (j = 0; j < N_MESH; j++)
+            h_case(&h, lt_tri16_wt_q16(&r, &w, k, &mesh_q[j], j, &hit));
+        h_vq16(&h, r.tmax);
+    }
+    emit(put, "bvh_wt_q16", &h);
+}
+
 #if LT_CFG_FLOAT32
 static uint32_t fbits(float f)
 {
@@ -486,6 +557,7 @@ int lt_vec_run(void (*put)(const char *line))
     run_vec3(put), groups++;
     run_lanes(put), groups++;
     run_kernels_q16(put), groups += 3;
+    run_bvh_q16(put), groups++;
 #if LT_CFG_FLOAT32
     run_f32(put), groups += 2;
 #endif
