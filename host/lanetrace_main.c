@@ -135,7 +135,8 @@ static void run_usage(FILE *f)
             "  --depth PATH.exr   write distance and triangle id per pixel (EXR, FLOAT channels\n"
             "                     <path>.Z and <path>.id)\n"
             "  --heatmap PREFIX   (sim build) per-pixel simulated cycles: PREFIX.<path>.png with a\n"
-            "                     legend and PREFIX.<path>.exr with the values\n"
+            "                     legend and PREFIX.<path>.exr with the values; traversal steps:\n"
+            "                     PREFIX.<path>.steps.png / .steps.exr\n"
             "  --repeat N         trace the frame N times (timing)\n"
             "  --no-ref           skip the reference and the accuracy figures\n"
             "  --native           run the native build (no cycle model; wall-clock speed)\n"
@@ -446,6 +447,18 @@ static int cmd_run(int argc, char **argv)
                                          "cycles", err, sizeof err) != 0) {
                     fprintf(stderr, "%s\n", err);
                     status = EXIT_INPUT;
+                }
+                snprintf(hp, sizeof hp, "%s.%s.steps.png", heat_out, pname);
+                if (lt_heatmap_write_png(hp, fr.steps, (int32_t)sf.width, (int32_t)sf.height, &ho,
+                                         err, sizeof err) != 0 ||
+                    (snprintf(hp, sizeof hp, "%s.%s.steps.exr", heat_out, pname),
+                     lt_heatmap_write_exr(hp, fr.steps, (int32_t)sf.width, (int32_t)sf.height,
+                                          "steps", err, sizeof err)) != 0) {
+                    fprintf(stderr, "%s\n", err);
+                    status = EXIT_INPUT;
+                } else if (!quiet) {
+                    printf("heatmap   %s.%s.steps.png (traversal steps per pixel's packet)\n",
+                           heat_out, pname);
                 }
             }
         }
@@ -1284,6 +1297,33 @@ done:
     return status;
 }
 
+/* ---- stream: the receiver is its own program (host/lt_stream_main.c); hand over to it ---------- */
+
+static int cmd_stream(int argc, char **argv)
+{
+    char path[1200];
+    const char *slash = strrchr(argv[0], '/');
+    char **nargv = calloc((size_t)argc + 1, sizeof *nargv);
+    int i;
+    if (nargv == NULL)
+        return EXIT_INPUT;
+    /* the CLI lives in build/sim or build/host; lt-stream in build/host */
+    if (slash != NULL)
+        snprintf(path, sizeof path, "%.*s/../host/lt-stream", (int)(slash - argv[0]), argv[0]);
+    else
+        snprintf(path, sizeof path, "lt-stream");
+    nargv[0] = path;
+    for (i = 2; i < argc; i++)
+        nargv[i - 1] = argv[i];
+    nargv[argc - 1] = NULL;
+    execv(path, nargv);
+    if (slash == NULL)
+        execvp("lt-stream", nargv);
+    fprintf(stderr, "%s stream: cannot run %s (build it with `make test-build`)\n", prog, path);
+    free(nargv);
+    return EXIT_INPUT;
+}
+
 /* ---- main ----------------------------------------------------------------------------------- */
 
 static void usage(FILE *f)
@@ -1295,6 +1335,7 @@ static void usage(FILE *f)
             "  render [SCENE.json] --out PREFIX  images: depth, normals, ids, shaded (hard\n"
             "                     shadows), k-layer depth peels (EXR + PNG)\n"
             "  info FILE          describe a mesh or EXR file\n"
+            "  stream [SOURCE]    receive a device's report frames (see lt-stream --help)\n"
             "  diff A.json B.json compare two JSON reports\n"
             "  help               this text\n"
             "Every command takes --help. Exit codes: 0 ok, 1 input or runtime error, 2 usage.\n",
@@ -1312,6 +1353,8 @@ int main(int argc, char **argv)
     }
     if (strcmp(argv[1], "run") == 0)
         return cmd_run(argc, argv);
+    if (strcmp(argv[1], "stream") == 0)
+        return cmd_stream(argc, argv);
     if (strcmp(argv[1], "render") == 0)
         return cmd_render(argc, argv);
     if (strcmp(argv[1], "info") == 0)

@@ -39,7 +39,8 @@ int lt_frame_alloc(lt_frame_t *f, uint32_t w, uint32_t h, char *err, size_t errl
     f->id = malloc(n * sizeof *f->id);
     f->t = malloc(n * sizeof *f->t);
     f->cost = calloc(n, sizeof *f->cost);
-    if (f->id == NULL || f->t == NULL || f->cost == NULL) {
+    f->steps = calloc(n, sizeof *f->steps);
+    if (f->id == NULL || f->t == NULL || f->cost == NULL || f->steps == NULL) {
         lt_frame_free(f);
         snprintf(err, errlen, "out of memory for a %ux%u frame", w, h);
         return -1;
@@ -52,6 +53,7 @@ void lt_frame_free(lt_frame_t *f)
     free(f->id);
     free(f->t);
     free(f->cost);
+    free(f->steps);
     memset(f, 0, sizeof *f);
 }
 
@@ -197,6 +199,15 @@ static uint64_t cycles_now(void)
 #endif
 }
 
+static uint64_t nodes_now(void)
+{
+#if LT_COST_MODE == LT_COST_SIM
+    return lt_sim_event_total(LT_EV_NODES);
+#else
+    return 0;
+#endif
+}
+
 /* Closest hit of one packet through the structure. */
 static void trace16(const lt_scene_t *s, const lt_accel_t *a, lt_ray16_q16_t *rq,
                     lt_ray16_f32_t *rf, lt_mask16_t k, lt_hit16_t *hit)
@@ -225,8 +236,8 @@ void lt_render_primary(const lt_scene_t *s, const lt_accel_t *a, const lt_camera
         for (tx = 0; tx < c->width; tx += 4) {
             lt_hit16_t hit;
             lt_mask16_t k;
-            uint64_t c0 = cycles_now();
-            float per;
+            uint64_t c0 = cycles_now(), n0 = nodes_now();
+            float per, steps;
             int i;
             lt_phase_t prev = LT_PHASE_ENTER(SETUP);
             k = a->path == LT_PATH_Q16 ? lt_camera_packet_q16(c, tx, ty, &rq)
@@ -235,6 +246,7 @@ void lt_render_primary(const lt_scene_t *s, const lt_accel_t *a, const lt_camera
             LT_PHASE_LEAVE(prev);
             trace16(s, a, &rq, &rf, k, &hit);
             per = (float)(cycles_now() - c0) / (float)lt__popcount32(k);
+            steps = (float)(nodes_now() - n0);
             for (i = 0; i < LT_LANES; i++) {
                 uint32_t x = tx + (uint32_t)(i % 4), y = ty + (uint32_t)(i / 4);
                 size_t p = (size_t)y * c->width + x;
@@ -244,6 +256,7 @@ void lt_render_primary(const lt_scene_t *s, const lt_accel_t *a, const lt_camera
                 f->t[p] = a->path == LT_PATH_Q16 ? (double)rq.tmax.l[i] / 65536.0
                                                  : (double)rf.tmax.l[i];
                 f->cost[p] = per;
+                f->steps[p] = steps;
             }
         }
         if (progress != NULL)

@@ -17,6 +17,8 @@ typedef struct lt_frame {
     double *t;     /* hit distance in scaled scene units (meaningless where id < 0) */
     float *cost;   /* simulated cycles per pixel (the packet's cycles / its active lanes); 0 in
                       non-sim builds */
+    float *steps;  /* traversal steps per pixel: nodes (or chunks) its packet visited; 0 in
+                      non-sim builds */
 } lt_frame_t;
 
 /* Allocate (0) or fail (-1, message). */

@@ -273,6 +273,15 @@ uint64_t lt_sim_cycles_total(void)
 
 const lt_machine_t *lt_sim_machine(void) { return mach; }
 
+uint64_t lt_sim_event_total(int ev)
+{
+    uint64_t c = 0;
+    int p;
+    for (p = 0; p < LT_PH__COUNT; p++)
+        c += ctr[p][LT_OP__COUNT + ev];
+    return c;
+}
+
 static uint64_t ev_total(const lt_sim_totals_t *t, int ev)
 {
     uint64_t s = 0;

@@ -75,6 +75,9 @@ char *lt_sim_report_json_string(const char *title, uint64_t rays, const char *ex
  * images. */
 uint64_t lt_sim_cycles_total(void);
 
+/* Total of one event (LT_EV_*) over all phases so far. */
+uint64_t lt_sim_event_total(int ev);
+
 /* The selected machine (NULL before lt_sim_init). */
 const lt_machine_t *lt_sim_machine(void);
 

@@ -41,11 +41,13 @@ rm -f "$out"
 awk -v p="$pred" -v c="$cnt" 'BEGIN{printf "lt_tri16_q16 (+helpers): predicted %d cycles, counted %d instructions, predicted/counted %.3f\n", p, c, p/c}'
 
 echo "== 3. race against Embree 3 (native build, single thread, same rays, 1024x1024)"
-STRUCT=${BENCH_STRUCTURE:-chunks}
+STRUCT=${BENCH_STRUCTURE:-bvh}
 "$B/host/embree-race" --mesh "$SCENE" --res 1024 --runs 5 --structure "$STRUCT"
-if [ -f ../shared/scenes/bunny.obj ]; then
-    "$B/host/embree-race" --mesh ../shared/scenes/bunny.obj --res 1024 --runs 3 --structure "$STRUCT"
-fi
+for m in bunny.obj dragon_res3.obj sponza.obj; do
+    if [ -f "../shared/scenes/$m" ]; then
+        "$B/host/embree-race" --mesh "../shared/scenes/$m" --res 1024 --runs 3 --structure "$STRUCT"
+    fi
+done
 
 echo "== 4. cycle report: bundled scene on lrb16"
-"$B/sim/lanetrace" run --mesh "$SCENE" --res "$RES" --report "$B/bench-report.json"
+"$B/sim/lanetrace" run --mesh "$SCENE" --res "$RES" --structure "$STRUCT" --report "$B/bench-report.json"

@@ -67,7 +67,7 @@ check "make plots pipeline: sweep CSV -> 4 PNG plots" bash -c "[ \$(ls '$tmp'/pl
 expect "run --depth writes an EXR with Z and id per path" 0 "" "$LT" run --res 16 --depth "$tmp/d.exr" -q
 expect "info on the depth EXR lists its channels" 0 "q16.Z(FLOAT)" "$LT" info "$tmp/d.exr"
 expect "run --heatmap writes PNG and EXR per path" 0 "" "$LT" run --res 16 --num q16 --heatmap "$tmp/h" -q
-check "heatmap files exist" test -s "$tmp/h.q16.png" -a -s "$tmp/h.q16.exr"
+check "heatmap files exist (cycles and steps)" test -s "$tmp/h.q16.png" -a -s "$tmp/h.q16.exr" -a -s "$tmp/h.q16.steps.png"
 expect "info on the heatmap EXR" 0 "cycles(FLOAT)" "$LT" info "$tmp/h.q16.exr"
 if [ -f ../shared/depth/beachball_singlepart.0001.exr ]; then
     expect "info on the shared beachball EXR: 20 channels, Z stats" 0 "mean 9.385" \
