@@ -382,7 +382,8 @@ static int cmd_run(int argc, char **argv)
         fprintf(csvf, "scene,structure,path,machine,width,height,rays,total_cycles,cycles_per_ray,"
                       "mrays_per_s_modelled,lane_utilisation,host_ms,same_triangle_pct,depth_rmse,"
                       "depth_max_err,cycles_build,cycles_setup,cycles_traverse,cycles_intersect,"
-                      "cycles_shade,l1_hit_pct\n");
+                      "cycles_shade,l1_hit_pct,nodes_per_ray,aabb_tests_per_ray,tri_tests_per_ray,"
+                      "structure_bytes\n");
     }
     for (path = 0; path < 2; path++) {
         lt_accel_t *acc;
@@ -392,6 +393,7 @@ static int cmd_run(int argc, char **argv)
         int rep;
         cJSON *jr = NULL;
         char extra[2048];
+        size_t acc_bytes;
         uint64_t rays = (uint64_t)sf.width * sf.height * (uint64_t)repeat;
         if (!((unsigned)sf.numeric & (1u << path)))
             continue;
@@ -410,6 +412,7 @@ static int cmd_run(int argc, char **argv)
             lt_render_primary(&sc, acc, &cam, &fr, progress);
         ms = 1e3 * (now_s() - t0);
         progress_end();
+        acc_bytes = lt_accel_bytes(acc);
         lt_accel_free(acc);
         if (depth_out != NULL) {
             size_t i, np = (size_t)sf.width * sf.height;
@@ -490,6 +493,7 @@ static int cmd_run(int argc, char **argv)
             cJSON_AddNumberToObject(x, "height", sf.height);
             cJSON_AddNumberToObject(x, "host_ms", ms);
             cJSON_AddNumberToObject(x, "frame_hash", lt_frame_hash(&fr));
+            cJSON_AddNumberToObject(x, "structure_bytes", (double)acc_bytes);
             if (do_ref) {
                 cJSON *y = cJSON_AddObjectToObject(x, "accuracy");
                 cJSON_AddNumberToObject(y, "same_triangle_pct", 100.0 * ac.same_id / ac.pixels);
@@ -555,7 +559,7 @@ static int cmd_run(int argc, char **argv)
                 util = cJSON_GetObjectItem(jr, "lane_utilisation")->valuedouble;
             fprintf(csvf,
                     "%s,%s,%s,%s,%u,%u,%llu,%llu,%.3f,%.4f,%.4f,%.3f,%.4f,%.6g,%.6g,%llu,%llu,"
-                    "%llu,%llu,%llu,%.3f\n",
+                    "%llu,%llu,%llu,%.3f,%.3f,%.3f,%.3f,%zu\n",
                     sf.mesh, sf.structure, pname, sf.machine, sf.width, sf.height,
                     (unsigned long long)rays, (unsigned long long)tt.total_cycles,
                     (double)tt.total_cycles / (double)rays,
@@ -566,11 +570,14 @@ static int cmd_run(int argc, char **argv)
                     (unsigned long long)tt.cycles[LT_PH_TRAVERSE],
                     (unsigned long long)tt.cycles[LT_PH_INTERSECT],
                     (unsigned long long)tt.cycles[LT_PH_SHADE],
-                    tt.l1_acc ? 100.0 * (double)tt.l1_hit / (double)tt.l1_acc : 0.0);
+                    tt.l1_acc ? 100.0 * (double)tt.l1_hit / (double)tt.l1_acc : 0.0,
+                    (double)lt_sim_event_total(LT_EV_NODES) / (double)rays,
+                    (double)lt_sim_event_total(LT_EV_AABB_RAYS) / (double)rays,
+                    (double)lt_sim_event_total(LT_EV_TRI_RAYS) / (double)rays, acc_bytes);
 #else
-            fprintf(csvf, "%s,%s,%s,native,%u,%u,%llu,,,,,%.3f,%.4f,%.6g,%.6g,,,,,,\n", sf.mesh,
+            fprintf(csvf, "%s,%s,%s,native,%u,%u,%llu,,,,,%.3f,%.4f,%.6g,%.6g,,,,,,,,,,%zu\n", sf.mesh,
                     sf.structure, pname, sf.width, sf.height, (unsigned long long)rays, ms,
-                    do_ref ? 100.0 * ac.same_id / ac.pixels : 0.0, ac.rmse, ac.max_err);
+                    do_ref ? 100.0 * ac.same_id / ac.pixels : 0.0, ac.rmse, ac.max_err, acc_bytes);
 #endif
         }
         if (jr != NULL)

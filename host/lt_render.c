@@ -13,7 +13,7 @@
 #include <string.h>
 
 /* Structure kinds behind the names of lt_accel_build. */
-enum { ACC_CHUNKS, ACC_BVH, ACC_BVHQ };
+enum { ACC_CHUNKS, ACC_BVH, ACC_BVHQ, ACC_KD, ACC_GRID };
 
 struct lt_accel {
     lt_path_t path;
@@ -25,10 +25,15 @@ struct lt_accel {
     lt_bvh_t bvh;
     void *qmem;              /* bvhq: quantised nodes */
     lt_bvhq_t bvhq;
+    void *mem;               /* kd, grid: their arena */
+    lt_kd_q16_t kdq;
+    lt_kd_f32_t kdf;
+    lt_grid_q16_t gq;
+    lt_grid_f32_t gf;
     size_t bytes;            /* structure memory */
 };
 
-const char *const lt_render_structures[] = {"chunks", "bvh", "bvhq", NULL};
+const char *const lt_render_structures[] = {"chunks", "bvh", "bvhq", "kd", "grid", NULL};
 
 int lt_frame_alloc(lt_frame_t *f, uint32_t w, uint32_t h, char *err, size_t errlen)
 {
@@ -113,6 +118,44 @@ static lt_accel_t *build_bvh(const lt_scene_t *s, lt_accel_t *a, int quantised, 
     return a;
 }
 
+/* kd-tree or uniform grid: size query, arena, build (docs/kdtree-grid.md). */
+static lt_accel_t *build_kdgrid(const lt_scene_t *s, lt_accel_t *a, char *err, size_t errlen)
+{
+    size_t bytes = 0;
+    lt_status_t st;
+    if (a->kind == ACC_KD) {
+        lt_kd_params_t p;
+        lt_kd_params_default(&p);
+        st = lt_kd_size(s->ntris, &p, &bytes);
+        if (st == LT_OK && (a->mem = alloc64(bytes)) == NULL)
+            st = LT_E_SPACE;
+        if (st == LT_OK)
+            st = a->path == LT_PATH_Q16 ? lt_kd_build_q16(&a->kdq, s->tq, s->ntris, &p, a->mem, &bytes)
+                                        : lt_kd_build_f32(&a->kdf, s->tf, s->ntris, &p, a->mem, &bytes);
+        a->bytes = a->path == LT_PATH_Q16 ? a->kdq.bytes : a->kdf.bytes;
+    } else {
+        lt_grid_params_t p;
+        lt_grid_params_default(&p);
+        st = a->path == LT_PATH_Q16 ? lt_grid_size_q16(s->tq, s->ntris, &p, &bytes)
+                                    : lt_grid_size_f32(s->tf, s->ntris, &p, &bytes);
+        if (st == LT_OK && (a->mem = alloc64(bytes)) == NULL)
+            st = LT_E_SPACE;
+        if (st == LT_OK)
+            st = a->path == LT_PATH_Q16 ? lt_grid_build_q16(&a->gq, s->tq, s->ntris, &p, a->mem, &bytes)
+                                        : lt_grid_build_f32(&a->gf, s->tf, s->ntris, &p, a->mem, &bytes);
+        a->bytes = bytes;
+    }
+    if (st != LT_OK) {
+        snprintf(err, errlen, "building the %s over %u triangles: %s",
+                 a->kind == ACC_KD ? "kd-tree" : "grid", s->ntris, lt_status_str(st));
+        return NULL;
+    }
+#if LT_COST_MODE == LT_COST_SIM
+    lt_sim_region(a->mem, a->bytes, 0x20000000u);
+#endif
+    return a;
+}
+
 lt_accel_t *lt_accel_build(const lt_scene_t *s, const char *structure, lt_path_t path, char *err,
                            size_t errlen)
 {
@@ -126,8 +169,13 @@ lt_accel_t *lt_accel_build(const lt_scene_t *s, const char *structure, lt_path_t
         kind = ACC_BVH;
     else if (strcmp(structure, "bvhq") == 0)
         kind = ACC_BVHQ;
+    else if (strcmp(structure, "kd") == 0)
+        kind = ACC_KD;
+    else if (strcmp(structure, "grid") == 0)
+        kind = ACC_GRID;
     else {
-        snprintf(err, errlen, "structure '%s' is not available (available: chunks, bvh, bvhq)",
+        snprintf(err, errlen,
+                 "structure '%s' is not available (available: chunks, bvh, bvhq, kd, grid)",
                  structure);
         return NULL;
     }
@@ -145,6 +193,13 @@ lt_accel_t *lt_accel_build(const lt_scene_t *s, const char *structure, lt_path_t
     else
         lt_sim_region(s->tf, s->ntris * sizeof *s->tf, 0x10000000u);
 #endif
+    if (kind == ACC_KD || kind == ACC_GRID) {
+        if (build_kdgrid(s, a, err, errlen) == NULL) {
+            lt_accel_free(a);
+            return NULL;
+        }
+        return a;
+    }
     if (kind != ACC_CHUNKS) {
         if (build_bvh(s, a, kind == ACC_BVHQ, err, errlen) == NULL) {
             lt_accel_free(a);
@@ -187,6 +242,7 @@ void lt_accel_free(lt_accel_t *a)
     free(a->boxes_f);
     free(a->arena);
     free(a->qmem);
+    free(a->mem);
     free(a);
 }
 
@@ -217,6 +273,16 @@ static void trace16(const lt_scene_t *s, const lt_accel_t *a, lt_ray16_q16_t *rq
             lt_chunks_trace16_q16(s->tq, a->n, a->boxes_q, rq, k, hit);
         else
             lt_chunks_trace16_f32(s->tf, a->n, a->boxes_f, rf, k, hit);
+    } else if (a->kind == ACC_KD) {
+        if (a->path == LT_PATH_Q16)
+            (void)lt_kd_trace16_q16(&a->kdq, rq, k, hit);
+        else
+            (void)lt_kd_trace16_f32(&a->kdf, rf, k, hit);
+    } else if (a->kind == ACC_GRID) {
+        if (a->path == LT_PATH_Q16)
+            (void)lt_grid_trace16_q16(&a->gq, rq, k, hit);
+        else
+            (void)lt_grid_trace16_f32(&a->gf, rf, k, hit);
     } else if (a->kind == ACC_BVHQ) {
         (void)lt_bvhq_trace16_q16(&a->bvhq, s->tq, rq, k, hit);
     } else if (a->path == LT_PATH_Q16) {
@@ -326,7 +392,7 @@ int lt_render_primary1(const lt_scene_t *s, const lt_accel_t *a, const lt_camera
                        lt_frame_t *f, char *err, size_t errlen)
 {
     uint32_t x, y;
-    if (a->kind == ACC_CHUNKS) {
+    if (a->kind != ACC_BVH && a->kind != ACC_BVHQ) {
         snprintf(err, errlen, "single rays need a BVH structure (bvh, bvhq)");
         return -1;
     }
@@ -381,7 +447,7 @@ int lt_render_shadows(const lt_scene_t *s, const lt_accel_t *a, const lt_camera_
     static lt_ray16_q16_t rq;
     static lt_ray16_f32_t rf;
     if (a->kind == ACC_CHUNKS) {
-        snprintf(err, errlen, "shadow rays need a BVH structure (bvh, bvhq)");
+        snprintf(err, errlen, "shadow rays need a hierarchy (bvh, bvhq, kd, grid)");
         return -1;
     }
     for (ty = 0; ty < c->height; ty += 4)
@@ -433,7 +499,17 @@ int lt_render_shadows(const lt_scene_t *s, const lt_accel_t *a, const lt_camera_
             }
             if (k == 0)
                 continue;
-            if (a->path == LT_PATH_Q16) {
+            if (a->kind == ACC_KD || a->kind == ACC_GRID) {
+                if (a->path == LT_PATH_Q16) {
+                    lt_ray16_q16_setup(&rq);
+                    o = a->kind == ACC_KD ? lt_kd_occluded16_q16(&a->kdq, &rq, (lt_mask16_t)k)
+                                          : lt_grid_occluded16_q16(&a->gq, &rq, (lt_mask16_t)k);
+                } else {
+                    lt_ray16_f32_setup(&rf);
+                    o = a->kind == ACC_KD ? lt_kd_occluded16_f32(&a->kdf, &rf, (lt_mask16_t)k)
+                                          : lt_grid_occluded16_f32(&a->gf, &rf, (lt_mask16_t)k);
+                }
+            } else if (a->path == LT_PATH_Q16) {
                 lt_ray16_q16_setup(&rq);
                 if (a->kind == ACC_BVHQ)
                     (void)lt_bvhq_occluded16_q16(&a->bvhq, s->tq, &rq, (lt_mask16_t)k, &o);
@@ -464,7 +540,7 @@ int lt_render_peel(const lt_scene_t *s, const lt_accel_t *a, const lt_camera_t *
     static lt_ray16_q16_t rq;
     static lt_ray16_f32_t rf;
     if (a->kind == ACC_CHUNKS) {
-        snprintf(err, errlen, "depth peeling needs a BVH structure (bvh, bvhq)");
+        snprintf(err, errlen, "depth peeling needs a hierarchy (bvh, bvhq, kd, grid)");
         return -1;
     }
     for (ty = 0; ty < c->height; ty += 4)

@@ -11,7 +11,7 @@
 #include <string.h>
 #include <sys/stat.h>
 
-const char *const lt_sf_structures[] = {"chunks", "bvh", "bvhq", NULL};
+const char *const lt_sf_structures[] = {"chunks", "bvh", "bvhq", "kd", "grid", NULL};
 
 static const char *const machines[] = {"lrb16", "mcu-m4", NULL};
 

@@ -49,5 +49,8 @@ for m in bunny.obj dragon_res3.obj sponza.obj; do
     fi
 done
 
-echo "== 4. cycle report: bundled scene on lrb16"
+echo "== 4. structures: grid vs kd-tree vs BVH (lrb16, simulator, ${STRUCT_RES:-128}x${STRUCT_RES:-128})"
+B=$B tests/bench/structures.sh
+
+echo "== 5. cycle report: bundled scene on lrb16"
 "$B/sim/lanetrace" run --mesh "$SCENE" --res "$RES" --structure "$STRUCT" --report "$B/bench-report.json"

@@ -93,3 +93,9 @@ expect "render EXR has Z, normals, shaded and 3 layers" 0 "layer2.Z(FLOAT)" "$LT
 expect "render --layers with chunks: usage error" 2 "BVH" "$LT" render --res 8 --layers 2 --structure chunks --out "$tmp/rc"
 expect "render without --out: usage" 2 "--out" "$LT" render --res 8
 expect "render --help" 0 "usage: lanetrace render" "$LT" render --help
+for st in kd grid; do
+    "$LT" run --structure $st --res 32 -q >"$tmp/s_$st.txt" 2>&1
+    a=$(grep "result    q16" "$tmp/s_$st.txt"); c=$(grep "result    q16" "$tmp/native.txt")
+    check "structure $st (sim) = chunks result ($a)" test -n "$a" -a "$a" = "$c"
+done
+expect "render with the kd-tree and depth peels" 0 "depth peels" "$LT" render --structure kd --layers 2 --res 16 --out "$tmp/kdr"

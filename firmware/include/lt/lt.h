@@ -13,6 +13,8 @@
 #include "lt_isect.h"
 #include "lt_bvh.h"
 #include "lt_wt.h"
+#include "lt_kd.h"
+#include "lt_grid.h"
 #include "lt_stream.h"
 
 #endif /* LT_H */

@@ -1,0 +1,1552 @@
+/* test_grid.c - cmocka tests of the uniform grid (lt_grid.h) in s15.16 and float32: the exact
+ * size query and arena guards, the grid's invariants (each cell lists exactly the triangles
+ * whose bounding box touches it, sorted), and closest hits / occlusion of 16-ray packets by
+ * per-lane 3D-DDA against lt_chunks_trace16 (the same triangle kernel over a flat list, tested
+ * against double in test_isect.c), against the kd-tree (the two structures must agree), and for
+ * the bundled teapot and ../shared/scenes/bunny.obj against the double-precision brute force.
+ *
+ * Numeric bound (as test_kd.c): the grid and the reference run the same lt_tri16 kernel, so a
+ * triangle's t is bit-identical; they differ only in which triangles a lane tests before it
+ * stops. A lane stops when its hit lies at or before the cell's exit t, a boundary distance
+ * (boundary - o) x (1/d) off by at most 2^-17 (1 + |boundary - o|) in s15.16 (a few ulps of it in
+ * float32), and its entry cell is settled against the same boundary t values. A different id is
+ * accepted only if both hits are within e = 2^-16 (4 + L) (s15.16) or 2^-20 (4 + L) (float32),
+ * L = |origin|_inf + the scene's largest |coordinate|, plus both triangles' t bounds (the grid's
+ * hit re-tested alone), or if one side misses and the other side's triangle is neither a sure hit
+ * nor a sure miss in double within the kernel's bounds (an edge hit). >= 99.99% of camera rays
+ * must get the same id. Builds: host, sim (also prints per-ray counters on the lrb16 model), asan
+ * (fewer packets).
+ */
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <setjmp.h>
+#include <cmocka.h>
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "lt/lt_grid.h"
+#include "lt/lt_kd.h"
+#include "lt_fx_float.h"
+#include "lt_mesh.h"
+#include "lt_scene.h"
+#include "lt_test_util.h"
+#if LT_COST_MODE == LT_COST_SIM
+#include "lt_sim.h"
+#endif
+
+#define ULP16 (1.0 / 65536.0)
+
+/* Sanitizer builds run the same cases on fewer packets and smaller camera views (ASan + UBSan make
+ * the lane loops ~50x slower). */
+#if defined(__SANITIZE_ADDRESS__)
+#define NPACKETS 16
+#define CAM_SCALE 8
+#else
+#define NPACKETS 150
+#define CAM_SCALE 1
+#endif
+
+/* ---- meshes ------------------------------------------------------------------------------- */
+
+/* A triangle set in both paths plus its chunk boxes (the reference) and double bounds. */
+typedef struct mesh {
+    uint32_t n;
+    lt_tri_q16_t *tq;
+    lt_aabb_q16_t *bq;
+    double lo[3], hi[3]; /* bounds of the double vertices */
+    double bmax;         /* largest |coordinate| */
+#if LT_CFG_FLOAT32
+    lt_tri_f32_t *tf;
+    lt_aabb_f32_t *bf;
+#endif
+} mesh_t;
+
+/* Quantise as lt_scene_prepare does: s15.16 vertices, edges as differences; float32 v0 and edges
+ * from the float vertices. */
+static void mesh_init(mesh_t *m, const double *v, uint32_t n)
+{
+    uint32_t i, j, a, nb = LT_CHUNK_COUNT(n) + 1u;
+    memset(m, 0, sizeof *m);
+    m->n = n;
+    m->tq = calloc(n + 1u, sizeof *m->tq);
+    m->bq = calloc(nb, sizeof *m->bq);
+#if LT_CFG_FLOAT32
+    m->tf = calloc(n + 1u, sizeof *m->tf);
+    m->bf = calloc(nb, sizeof *m->bf);
+    assert_non_null(m->tf);
+    assert_non_null(m->bf);
+#endif
+    assert_non_null(m->tq);
+    assert_non_null(m->bq);
+    for (a = 0; a < 3; a++) {
+        m->lo[a] = n > 0 ? v[a] : 0.0;
+        m->hi[a] = m->lo[a];
+    }
+    for (i = 0; i < n; i++) {
+        lt_q16_t q[3][3];
+        for (j = 0; j < 3; j++)
+            for (a = 0; a < 3; a++) {
+                double c = v[i * 9 + j * 3 + a];
+                q[j][a] = lt_q16_from_double_sat(c);
+                m->lo[a] = c < m->lo[a] ? c : m->lo[a];
+                m->hi[a] = c > m->hi[a] ? c : m->hi[a];
+                m->bmax = fabs(c) > m->bmax ? fabs(c) : m->bmax;
+            }
+        for (a = 0; a < 3; a++) {
+            m->tq[i].v0[a] = q[0][a];
+            m->tq[i].e1[a] = q[1][a] - q[0][a];
+            m->tq[i].e2[a] = q[2][a] - q[0][a];
+#if LT_CFG_FLOAT32
+            {
+                float v0 = (float)v[i * 9 + a];
+                m->tf[i].v0[a] = v0;
+                m->tf[i].e1[a] = (float)v[i * 9 + 3 + a] - v0;
+                m->tf[i].e2[a] = (float)v[i * 9 + 6 + a] - v0;
+            }
+#endif
+        }
+    }
+    if (n > 0) {
+        assert_int_equal(lt_chunks_build_q16(m->tq, n, m->bq), LT_OK);
+#if LT_CFG_FLOAT32
+        assert_int_equal(lt_chunks_build_f32(m->tf, n, m->bf), LT_OK);
+#endif
+    }
+}
+
+static void mesh_free(mesh_t *m)
+{
+    free(m->tq);
+    free(m->bq);
+#if LT_CFG_FLOAT32
+    free(m->tf);
+    free(m->bf);
+#endif
+    memset(m, 0, sizeof *m);
+}
+
+static double dot3(const double a[3], const double b[3])
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+static void normalize(double d[3])
+{
+    double l = sqrt(dot3(d, d));
+    d[0] /= l;
+    d[1] /= l;
+    d[2] /= l;
+}
+
+static void rng_unit(ltt_rng_t *r, double d[3])
+{
+    do {
+        d[0] = ltt_rng_uniform(r, -1, 1);
+        d[1] = ltt_rng_uniform(r, -1, 1);
+        d[2] = ltt_rng_uniform(r, -1, 1);
+    } while (dot3(d, d) > 1.0 || dot3(d, d) < 1e-4);
+    normalize(d);
+}
+
+/* A triangle soup in [-s, s]^3 with edges of 0.05 s .. 0.4 s; every 13th triangle is collinear
+ * (zero area), every 29th is a single point, every 7th lies in an axis plane at a whole
+ * coordinate (a likely split position). Returns 9 doubles per triangle (malloc). */
+static double *gen_soup(ltt_rng_t *r, uint32_t n, double s)
+{
+    double *v = malloc((size_t)n * 9 * sizeof *v);
+    uint32_t i;
+    int a, j;
+    assert_non_null(v);
+    for (i = 0; i < n; i++) {
+        double *t = &v[i * 9], u1[3], u2[3], l1 = ltt_rng_uniform(r, 0.05, 0.4) * s;
+        double l2 = ltt_rng_uniform(r, 0.05, 0.4) * s;
+        rng_unit(r, u1);
+        rng_unit(r, u2);
+        for (a = 0; a < 3; a++) {
+            t[a] = ltt_rng_uniform(r, -s, s);
+            t[3 + a] = t[a] + l1 * u1[a];
+            t[6 + a] = t[a] + l2 * u2[a];
+        }
+        if (i % 13 == 5)
+            for (a = 0; a < 3; a++)
+                t[6 + a] = t[a] + 0.5 * (t[3 + a] - t[a]);
+        if (i % 29 == 3)
+            for (a = 0; a < 3; a++)
+                t[3 + a] = t[6 + a] = t[a];
+        if (i % 7 == 2) {
+            int ax = (int)ltt_rng_below(r, 3);
+            double c = floor(ltt_rng_uniform(r, -s, s));
+            for (j = 0; j < 3; j++)
+                t[j * 3 + ax] = c;
+        }
+    }
+    return v;
+}
+
+/* A height field of nx x nx quads over [-s, s]^2 (shared edges and vertices, so two triangles
+ * often hit at the same t) plus its four vertical walls. 2 nx^2 + 8 triangles. */
+static double *gen_terrain(ltt_rng_t *r, uint32_t nx, double s, uint32_t *n)
+{
+    double *h = malloc((size_t)(nx + 1) * (nx + 1) * sizeof *h), *v;
+    uint32_t i, j, k = 0, w;
+    assert_non_null(h);
+    *n = 2 * nx * nx + 8;
+    v = malloc((size_t)*n * 9 * sizeof *v);
+    assert_non_null(v);
+    for (i = 0; i <= nx; i++)
+        for (j = 0; j <= nx; j++)
+            h[i * (nx + 1) + j] = floor(ltt_rng_uniform(r, -0.2, 0.2) * s * 8) / 8;
+#define TV(ii, jj, o)                                                                               \
+    do {                                                                                           \
+        v[k * 9 + (o) * 3 + 0] = -s + 2 * s * (double)(ii) / nx;                                   \
+        v[k * 9 + (o) * 3 + 1] = -s + 2 * s * (double)(jj) / nx;                                   \
+        v[k * 9 + (o) * 3 + 2] = h[(ii) * (nx + 1) + (jj)];                                        \
+    } while (0)
+    for (i = 0; i < nx; i++)
+        for (j = 0; j < nx; j++) {
+            TV(i, j, 0);
+            TV(i + 1, j, 1);
+            TV(i + 1, j + 1, 2);
+            k++;
+            TV(i, j, 0);
+            TV(i + 1, j + 1, 1);
+            TV(i, j + 1, 2);
+            k++;
+        }
+#undef TV
+    for (w = 0; w < 4; w++) {
+        /* walls x = +-s and y = +-s from z = -s/2 to s/2 */
+        double c = (w & 1) ? s : -s, p[4][3];
+        int q, ax = (int)(w >> 1), o = 1 - ax;
+        for (q = 0; q < 4; q++) {
+            p[q][ax] = c;
+            p[q][o] = (q == 1 || q == 2) ? s : -s;
+            p[q][2] = q >= 2 ? s / 2 : -s / 2;
+        }
+        memcpy(&v[k * 9], p[0], sizeof p[0]);
+        memcpy(&v[k * 9 + 3], p[1], sizeof p[1]);
+        memcpy(&v[k * 9 + 6], p[2], sizeof p[2]);
+        k++;
+        memcpy(&v[k * 9], p[0], sizeof p[0]);
+        memcpy(&v[k * 9 + 3], p[2], sizeof p[2]);
+        memcpy(&v[k * 9 + 6], p[3], sizeof p[3]);
+        k++;
+    }
+    free(h);
+    return v;
+}
+
+/* ---- packets ------------------------------------------------------------------------------ */
+
+/* The same 16 rays in both paths, with their double origins (for the bound). */
+typedef struct pk {
+    lt_ray16_q16_t q;
+#if LT_CFG_FLOAT32
+    lt_ray16_f32_t f;
+#endif
+    double o[LT_LANES][3];
+    lt_mask16_t k;
+} pk_t;
+
+/* tmax <= 0 means "unbounded" (LT_Q16_MAX - 1, 3e38 as the camera uses). */
+static void pk_lane(pk_t *p, int i, const double o[3], const double d[3], double tmax)
+{
+    p->q.ox.l[i] = lt_q16_from_double_sat(o[0]);
+    p->q.oy.l[i] = lt_q16_from_double_sat(o[1]);
+    p->q.oz.l[i] = lt_q16_from_double_sat(o[2]);
+    p->q.dx.l[i] = lt_q30_from_double_sat(d[0]);
+    p->q.dy.l[i] = lt_q30_from_double_sat(d[1]);
+    p->q.dz.l[i] = lt_q30_from_double_sat(d[2]);
+    p->q.tmin.l[i] = 0;
+    p->q.tmax.l[i] = tmax > 0 ? lt_q16_from_double_sat(tmax) : LT_Q16_MAX - 1;
+#if LT_CFG_FLOAT32
+    p->f.ox.l[i] = (float)o[0];
+    p->f.oy.l[i] = (float)o[1];
+    p->f.oz.l[i] = (float)o[2];
+    p->f.dx.l[i] = (float)d[0];
+    p->f.dy.l[i] = (float)d[1];
+    p->f.dz.l[i] = (float)d[2];
+    p->f.tmin.l[i] = 0.0f;
+    p->f.tmax.l[i] = tmax > 0 ? (float)tmax : 3.0e38f;
+#endif
+    memcpy(p->o[i], o, sizeof p->o[i]);
+}
+
+static void pk_setup(pk_t *p)
+{
+    lt_ray16_q16_setup(&p->q);
+#if LT_CFG_FLOAT32
+    lt_ray16_f32_setup(&p->f);
+#endif
+}
+
+/* Split planes rays may start on: axis and position (double, exact for s15.16 positions). */
+typedef struct planes {
+    unsigned n;
+    int axis[64];
+    double pos[64];
+} planes_t;
+
+static const char *const lane_kind_names[] = {
+    "outside->scene", "inside", "axis-parallel", "missing the bounds", "parallel to a plane",
+    "on a split plane",
+};
+#define LANE_KINDS 6
+
+/* One packet. Coherent packets (1 in 3) share an origin outside and aim at a small region;
+ * mixed ones draw each lane's kind: from outside toward the scene, from inside in a random
+ * direction, exactly along an axis, away from the scene (missing its bounds), inside with one
+ * direction component exactly 0, or from a point exactly on one of the given split planes (in
+ * the plane, perpendicular to it, or random). 1 lane in 8 gets a finite tmax. kinds[] counts. */
+static void gen_packet(ltt_rng_t *r, const mesh_t *m, const planes_t *pl, pk_t *p,
+                       unsigned long kinds[LANE_KINDS])
+{
+    double c[3], ext = 0, o[3], d[3], tg[3];
+    int i, a, coherent = ltt_rng_below(r, 3) == 0;
+    for (a = 0; a < 3; a++) {
+        c[a] = 0.5 * (m->lo[a] + m->hi[a]);
+        ext = fmax(ext, m->hi[a] - m->lo[a]);
+    }
+    ext = fmax(ext, 1.0);
+    memset(p, 0, sizeof *p);
+    if (coherent) {
+        rng_unit(r, o);
+        for (a = 0; a < 3; a++) {
+            o[a] = c[a] + o[a] * 1.5 * ext;
+            tg[a] = c[a] + ltt_rng_uniform(r, -0.4, 0.4) * ext;
+        }
+    }
+    for (i = 0; i < LT_LANES; i++) {
+        unsigned kind = coherent ? 0u : ltt_rng_below(r, LANE_KINDS);
+        double tmax = ltt_rng_below(r, 8) == 0 ? ltt_rng_uniform(r, 0.1, 2.0) * ext : -1.0;
+        if (kind == 5 && (pl == NULL || pl->n == 0))
+            kind = 1;
+        kinds[kind]++;
+        if (coherent) {
+            for (a = 0; a < 3; a++)
+                d[a] = tg[a] + ltt_rng_uniform(r, -0.05, 0.05) * ext - o[a];
+            normalize(d);
+        } else {
+            for (a = 0; a < 3; a++)
+                o[a] = c[a] + ltt_rng_uniform(r, -0.5, 0.5) * (m->hi[a] - m->lo[a]);
+            rng_unit(r, d);
+            switch (kind) {
+            case 0:
+                rng_unit(r, o);
+                for (a = 0; a < 3; a++) {
+                    o[a] = c[a] + o[a] * 1.5 * ext;
+                    d[a] = c[a] + ltt_rng_uniform(r, -0.5, 0.5) * ext - o[a];
+                }
+                normalize(d);
+                break;
+            case 2:
+                d[0] = d[1] = d[2] = 0;
+                d[ltt_rng_below(r, 3)] = ltt_rng_below(r, 2) ? 1.0 : -1.0;
+                break;
+            case 3:
+                rng_unit(r, d);
+                for (a = 0; a < 3; a++)
+                    o[a] = c[a] + d[a] * 1.5 * ext;
+                break;
+            case 4:
+                d[ltt_rng_below(r, 3)] = 0;
+                normalize(d);
+                break;
+            case 5: {
+                unsigned j = ltt_rng_below(r, pl->n), w = ltt_rng_below(r, 3);
+                int ax = pl->axis[j];
+                o[ax] = pl->pos[j];
+                if (w == 0) {
+                    d[ax] = 0; /* in the plane */
+                    normalize(d);
+                } else if (w == 1) {
+                    d[0] = d[1] = d[2] = 0; /* perpendicular */
+                    d[ax] = ltt_rng_below(r, 2) ? 1.0 : -1.0;
+                }
+                break;
+            }
+            default:
+                break;
+            }
+        }
+        pk_lane(p, i, o, d, tmax);
+    }
+    p->k = (lt_mask16_t)(ltt_rng_below(r, 6) == 0 ? ltt_rng_u32(r) : 0xFFFFu);
+    pk_setup(p);
+}
+
+/* ---- structures under test and the reference ---------------------------------------------- */
+
+typedef struct acc {
+    const char *name;
+    const void *q, *f;
+    lt_mask16_t (*tq)(const void *, lt_ray16_q16_t *, lt_mask16_t, lt_hit16_t *);
+    lt_mask16_t (*oq)(const void *, lt_ray16_q16_t *, lt_mask16_t);
+#if LT_CFG_FLOAT32
+    lt_mask16_t (*tf)(const void *, lt_ray16_f32_t *, lt_mask16_t, lt_hit16_t *);
+    lt_mask16_t (*of)(const void *, lt_ray16_f32_t *, lt_mask16_t);
+#endif
+} acc_t;
+
+static lt_mask16_t kd_tq(const void *a, lt_ray16_q16_t *r, lt_mask16_t k, lt_hit16_t *h)
+{
+    return lt_kd_trace16_q16((const lt_kd_q16_t *)a, r, k, h);
+}
+static lt_mask16_t kd_oq(const void *a, lt_ray16_q16_t *r, lt_mask16_t k)
+{
+    return lt_kd_occluded16_q16((const lt_kd_q16_t *)a, r, k);
+}
+static lt_mask16_t ch_tq(const void *a, lt_ray16_q16_t *r, lt_mask16_t k, lt_hit16_t *h)
+{
+    const mesh_t *m = (const mesh_t *)a;
+    if (m->n == 0) {
+        h->id = lt_vi32_set1(-1);
+        return 0;
+    }
+    return lt_chunks_trace16_q16(m->tq, m->n, m->bq, r, k, h);
+}
+
+#if LT_CFG_FLOAT32
+static lt_mask16_t kd_tf(const void *a, lt_ray16_f32_t *r, lt_mask16_t k, lt_hit16_t *h)
+{
+    return lt_kd_trace16_f32((const lt_kd_f32_t *)a, r, k, h);
+}
+static lt_mask16_t kd_of(const void *a, lt_ray16_f32_t *r, lt_mask16_t k)
+{
+    return lt_kd_occluded16_f32((const lt_kd_f32_t *)a, r, k);
+}
+static lt_mask16_t ch_tf(const void *a, lt_ray16_f32_t *r, lt_mask16_t k, lt_hit16_t *h)
+{
+    const mesh_t *m = (const mesh_t *)a;
+    if (m->n == 0) {
+        h->id = lt_vi32_set1(-1);
+        return 0;
+    }
+    return lt_chunks_trace16_f32(m->tf, m->n, m->bf, r, k, h);
+}
+
+#endif
+
+static void acc_chunks(acc_t *a, const mesh_t *m)
+{
+    memset(a, 0, sizeof *a);
+    a->name = "chunks";
+    a->q = a->f = m;
+    a->tq = ch_tq;
+#if LT_CFG_FLOAT32
+    a->tf = ch_tf;
+#endif
+}
+
+/* Per-lane results of one packet. */
+typedef struct res16 {
+    int32_t id[LT_LANES];
+    double t[LT_LANES];
+    lt_mask16_t hit, occ;
+} res16_t;
+
+/* Trace and occlusion-test packet p with structure a in path f32 (0/1); a structure without an
+ * occlusion query (the chunks) reports its hit mask. Counts contract violations: returned mask !=
+ * lanes with an id, inactive or missing lanes whose tmax changed or whose id is not -1. */
+static unsigned long run(const acc_t *a, int f32, const pk_t *p, res16_t *o)
+{
+    unsigned long bad = 0;
+    lt_hit16_t h;
+    int i;
+    if (!f32) {
+        lt_ray16_q16_t r = p->q;
+        o->hit = a->tq(a->q, &r, p->k, &h);
+        for (i = 0; i < LT_LANES; i++) {
+            o->id[i] = h.id.l[i];
+            o->t[i] = lt_q16_to_double(r.tmax.l[i]);
+            if (o->id[i] < 0 && r.tmax.l[i] != p->q.tmax.l[i])
+                bad++;
+        }
+        r = p->q;
+        o->occ = a->oq != NULL ? a->oq(a->q, &r, p->k) : o->hit;
+    } else {
+#if LT_CFG_FLOAT32
+        lt_ray16_f32_t r = p->f;
+        o->hit = a->tf(a->f, &r, p->k, &h);
+        for (i = 0; i < LT_LANES; i++) {
+            o->id[i] = h.id.l[i];
+            o->t[i] = (double)r.tmax.l[i];
+            if (o->id[i] < 0 && r.tmax.l[i] != p->f.tmax.l[i])
+                bad++;
+        }
+        r = p->f;
+        o->occ = a->of != NULL ? a->of(a->f, &r, p->k) : o->hit;
+#endif
+    }
+    for (i = 0; i < LT_LANES; i++) {
+        if (LTT_ON(o->hit, i) != (o->id[i] >= 0))
+            bad++;
+        if (!LTT_ON(p->k, i) && o->id[i] != -1)
+            bad++;
+    }
+    return bad;
+}
+
+/* ---- double verdicts (test_isect.c's triangle bound) ---------------------------------------- */
+
+#define SQRT3 1.7320508075688772
+#define REL_F32 1e-5
+#define QV_FRAC 6 /* qvec fractional bits documented by lt_tri16_q16 (s25.6) */
+
+static void cross3(const double a[3], const double b[3], double r[3])
+{
+    r[0] = a[1] * b[2] - a[2] * b[1];
+    r[1] = a[2] * b[0] - a[0] * b[2];
+    r[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+static double norm3(const double a[3])
+{
+    return sqrt(dot3(a, a));
+}
+
+/* Moller-Trumbore in double on the kernel's own inputs, with each condition's margin and error
+ * bound (test_isect.c, file header): could the kernel hit (`hit` = 1) or miss (0) this triangle? */
+typedef struct verdict {
+    int sure_hit, sure_miss; /* the double answer holds beyond every error bound */
+    double t, tb;            /* double t and its bound */
+} verdict_t;
+
+static verdict_t verdict(const mesh_t *m, int f32, const pk_t *p, int i, int32_t id)
+{
+    double o[3], d[3], e1[3], e2[3], v0[3], pv[3], tv[3], q[3], det, u, w, tn, ddet, du, dv, dtn;
+    double tmin, tmax, dd, bb, ub, vb, mg[5], eb[5];
+    int a, k, ok = 1, fail = 0;
+    verdict_t v;
+    if (!f32) {
+        o[0] = lt_q16_to_double(p->q.ox.l[i]);
+        o[1] = lt_q16_to_double(p->q.oy.l[i]);
+        o[2] = lt_q16_to_double(p->q.oz.l[i]);
+        d[0] = lt_q30_to_double(p->q.dx.l[i]);
+        d[1] = lt_q30_to_double(p->q.dy.l[i]);
+        d[2] = lt_q30_to_double(p->q.dz.l[i]);
+        tmin = lt_q16_to_double(p->q.tmin.l[i]);
+        tmax = lt_q16_to_double(p->q.tmax.l[i]);
+        for (a = 0; a < 3; a++) {
+            v0[a] = lt_q16_to_double(m->tq[id].v0[a]);
+            e1[a] = lt_q16_to_double(m->tq[id].e1[a]);
+            e2[a] = lt_q16_to_double(m->tq[id].e2[a]);
+        }
+    } else {
+#if LT_CFG_FLOAT32
+        o[0] = (double)p->f.ox.l[i];
+        o[1] = (double)p->f.oy.l[i];
+        o[2] = (double)p->f.oz.l[i];
+        d[0] = (double)p->f.dx.l[i];
+        d[1] = (double)p->f.dy.l[i];
+        d[2] = (double)p->f.dz.l[i];
+        tmin = (double)p->f.tmin.l[i];
+        tmax = (double)p->f.tmax.l[i];
+        for (a = 0; a < 3; a++) {
+            v0[a] = (double)m->tf[id].v0[a];
+            e1[a] = (double)m->tf[id].e1[a];
+            e2[a] = (double)m->tf[id].e2[a];
+        }
+#else
+        memset(&v, 0, sizeof v);
+        return v;
+#endif
+    }
+    memset(&v, 0, sizeof v);
+    cross3(d, e2, pv);
+    det = dot3(e1, pv);
+    for (a = 0; a < 3; a++)
+        tv[a] = o[a] - v0[a];
+    u = dot3(tv, pv);
+    cross3(tv, e1, q);
+    w = dot3(d, q);
+    tn = dot3(e2, q);
+    if (!f32) {
+        ddet = norm3(e1) * SQRT3 * ldexp(1.0, -17);
+        du = norm3(tv) * SQRT3 * ldexp(1.0, -17);
+        dv = SQRT3 * ldexp(1.0, -(QV_FRAC + 1)) + ldexp(1.0, -32);
+        dtn = norm3(e2) * SQRT3 * ldexp(1.0, -(QV_FRAC + 1));
+    } else {
+        ddet = REL_F32 * norm3(e1) * norm3(e2);
+        du = REL_F32 * norm3(tv) * norm3(e2);
+        dv = REL_F32 * norm3(tv) * norm3(e1);
+        dtn = REL_F32 * norm3(tv) * norm3(e1) * norm3(e2);
+    }
+    if (fabs(det) <= 2.0 * ddet) {
+        v.t = HUGE_VAL;
+        v.tb = HUGE_VAL; /* the side is undecidable in this format: anything goes */
+        return v;
+    }
+    dd = fabs(det) - ddet;
+    ub = u / det;
+    vb = w / det;
+    v.t = tn / det;
+    bb = (du + dv + ddet * (1.0 + fabs(ub) + fabs(vb))) / dd;
+    v.tb = (dtn + fabs(v.t) * ddet) / dd +
+           (!f32 ? 0.5 * ULP16 + fabs(v.t) * ldexp(1.0, -30) : REL_F32 * fabs(v.t));
+    mg[0] = ub;
+    mg[1] = vb;
+    mg[2] = 1.0 - ub - vb;
+    mg[3] = v.t - tmin;
+    mg[4] = tmax - v.t;
+    eb[0] = eb[1] = eb[2] = bb;
+    eb[3] = eb[4] = v.tb;
+    for (k = 0; k < 5; k++) {
+        ok &= mg[k] > eb[k];     /* every condition holds with room to spare */
+        fail |= -mg[k] > eb[k];  /* some condition fails beyond its bound */
+    }
+    v.sure_hit = ok;
+    v.sure_miss = fail;
+    return v;
+}
+
+/* Comparison statistics of a structure against a reference. */
+typedef struct cmp {
+    unsigned long rays, hits, same, within, edge, bad, occ_bad, contract;
+    double max_dt, max_bound;
+} cmp_t;
+
+/* Plane rounding part of the bound: 2^-16 (4 + L) in s15.16, 2^-20 (4 + L) in float32. */
+static double lane_bound(int f32, const double o[3], double bmax)
+{
+    double l = fmax(fabs(o[0]), fmax(fabs(o[1]), fabs(o[2]))) + bmax;
+    return f32 ? ldexp(4.0 + l, -20) : ldexp(4.0 + l, -16);
+}
+
+/* Is triangle id hit by lane i of the packet at exactly t (re-tested alone)? */
+static int real_hit(const mesh_t *m, int f32, const pk_t *p, int i, int32_t id, double t)
+{
+    lt_hit16_t h;
+    h.id = lt_vi32_set1(-1);
+    if (!f32) {
+        lt_ray16_q16_t r = p->q;
+        if (lt_tri16_q16(&r, (lt_mask16_t)(1u << i), &m->tq[id], id, &h) == 0)
+            return 0;
+        return lt_q16_to_double(r.tmax.l[i]) == t;
+    }
+#if LT_CFG_FLOAT32
+    {
+        lt_ray16_f32_t r = p->f;
+        if (lt_tri16_f32(&r, (lt_mask16_t)(1u << i), &m->tf[id], id, &h) == 0)
+            return 0;
+        return (double)r.tmax.l[i] == t;
+    }
+#else
+    return 0;
+#endif
+}
+
+/* A lane's result against the reference's. Same id: t must be bit-identical (same kernel). A
+ * different id is explained in two ways only:
+ *  - "within": both hit, the structure's hit is real, and the two distances differ by at most the
+ *    plane bound plus both triangles' t bounds (which of two so close hits is first is numeric);
+ *  - "edge": one side has no hit, and the triangle the other side hit is one the double verdict
+ *    cannot call (neither a sure hit nor a sure miss within the kernel's bounds): a kernel hit
+ *    that pokes past an edge by less than its error may lie outside every node or cell holding
+ *    the triangle, or outside the reference's chunk box.
+ * Everything else is unexplained. */
+static void judge(cmp_t *c, const char *what, const mesh_t *m, int f32, const pk_t *p,
+                  const res16_t *s, const res16_t *ref)
+{
+    int i;
+    for (i = 0; i < LT_LANES; i++) {
+        double b = lane_bound(f32, p->o[i], m->bmax);
+        int32_t is = s->id[i], ir = ref->id[i];
+        if (!LTT_ON(p->k, i))
+            continue;
+        c->rays++;
+        c->hits += ir >= 0;
+        c->max_bound = fmax(c->max_bound, b);
+        if (LTT_ON(s->occ, i) != (ir >= 0) && LTT_ON(s->occ, i) != (is >= 0) &&
+            c->occ_bad++ < 4)
+            ltt_report("  FAIL %s occluded16: lane %d occluded %d, ids %d / reference %d\n", what,
+                       i, LTT_ON(s->occ, i), is, ir);
+        if (is == ir) {
+            c->same++;
+            if (is >= 0 && s->t[i] != ref->t[i] && c->bad++ < 6)
+                ltt_report("  FAIL %s: lane %d same id %d but t %.9g != %.9g\n", what, i, is,
+                           s->t[i], ref->t[i]);
+            continue;
+        }
+        if (is >= 0 && !real_hit(m, f32, p, i, is, s->t[i])) {
+            if (c->bad++ < 6)
+                ltt_report("  FAIL %s: lane %d id %d t %.9g is not what lt_tri16 gives alone\n",
+                           what, i, is, s->t[i]);
+            continue;
+        }
+        if (is >= 0 && ir >= 0) {
+            verdict_t vs = verdict(m, f32, p, i, is), vr = verdict(m, f32, p, i, ir);
+            double lim = b + vs.tb + vr.tb, dt = fabs(s->t[i] - ref->t[i]);
+            if (dt <= lim) {
+                c->within++;
+                c->max_dt = fmax(c->max_dt, dt);
+                continue;
+            }
+        } else {
+            verdict_t v = verdict(m, f32, p, i, is >= 0 ? is : ir);
+            if (!v.sure_hit && !v.sure_miss) {
+                c->edge++;
+                continue;
+            }
+        }
+        if (c->bad++ < 6)
+            ltt_report("  FAIL %s: lane %d o (%.6g %.6g %.6g) id %d t %.9g, reference id %d t "
+                       "%.9g (plane bound %.3g)\n",
+                       what, i, p->o[i][0], p->o[i][1], p->o[i][2], is, s->t[i], ir, ref->t[i],
+                       b);
+    }
+}
+
+static void cmp_print(const cmp_t *c, const char *what)
+{
+    ltt_report("%s: %lu rays (%lu hit), same id %lu (%.4f%%); differences: %lu with both hits "
+               "within the bound (plane <= %.3g + both triangles' t bounds; max |dt| %.3g), %lu "
+               "at an edge the kernel cannot call, %lu unexplained; %lu contract violations; "
+               "occluded16: %lu mismatches\n",
+               what, c->rays, c->hits, c->same,
+               c->rays ? 100.0 * (double)c->same / (double)c->rays : 100.0, c->within,
+               c->max_bound, c->max_dt, c->edge, c->bad, c->contract, c->occ_bad);
+}
+
+/* No unexplained difference, no contract violation; at least min_same of the rays with the same
+ * id (0.9999 for the scenes; the synthetic sets are built to be ambiguous: coplanar overlapping
+ * triangles, shared edges, rays lying in cell and node boundary planes). */
+static void cmp_assert(const cmp_t *c, double min_same)
+{
+    assert_int_equal(c->bad, 0);
+    assert_int_equal(c->occ_bad, 0);
+    assert_int_equal(c->contract, 0);
+    assert_true((double)c->same >= min_same * (double)c->rays);
+}
+
+/* ---- kd-tree specifics --------------------------------------------------------------------- */
+
+/* Build both paths into poisoned arenas of exactly lt_kd_size bytes plus a guard, checking the
+ * guard and the compaction. Returns the arenas (caller frees). */
+typedef struct kdpair {
+    lt_kd_q16_t q;
+    void *mq;
+    size_t bound;
+#if LT_CFG_FLOAT32
+    lt_kd_f32_t f;
+    void *mf;
+#endif
+} kdpair_t;
+
+#define GUARD 256
+
+static void kd_build_pair(kdpair_t *k, const mesh_t *m, const lt_kd_params_t *p)
+{
+    size_t sz, got;
+    assert_int_equal(lt_kd_size(m->n, p, &sz), LT_OK);
+    k->bound = sz;
+    k->mq = malloc(sz + GUARD);
+    assert_non_null(k->mq);
+    ltt_poison(k->mq, sz + GUARD);
+    got = sz;
+    assert_int_equal(lt_kd_build_q16(&k->q, m->tq, m->n, p, k->mq, &got), LT_OK);
+    assert_int_equal(ltt_touched(k->mq, sz, sz + GUARD), 0);
+    assert_true(got == k->q.bytes && got <= sz);
+    assert_true((const void *)k->q.nodes == k->mq);
+    assert_true((const char *)k->q.refs == (const char *)k->mq + (size_t)k->q.nnodes * 8u);
+#if LT_CFG_FLOAT32
+    k->mf = malloc(sz + GUARD);
+    assert_non_null(k->mf);
+    ltt_poison(k->mf, sz + GUARD);
+    got = sz;
+    assert_int_equal(lt_kd_build_f32(&k->f, m->tf, m->n, p, k->mf, &got), LT_OK);
+    assert_int_equal(ltt_touched(k->mf, sz, sz + GUARD), 0);
+    assert_true(got == k->f.bytes && got <= sz);
+#endif
+}
+
+static void kd_free_pair(kdpair_t *k)
+{
+    free(k->mq);
+#if LT_CFG_FLOAT32
+    free(k->mf);
+#endif
+}
+
+static void acc_kd(acc_t *a, const kdpair_t *k)
+{
+    memset(a, 0, sizeof *a);
+    a->name = "kd";
+    a->q = &k->q;
+    a->tq = kd_tq;
+    a->oq = kd_oq;
+#if LT_CFG_FLOAT32
+    a->f = &k->f;
+    a->tf = kd_tf;
+    a->of = kd_of;
+#endif
+}
+
+/* ---- grid specifics ------------------------------------------------------------------------- */
+
+typedef struct gpair {
+    lt_grid_q16_t q;
+    void *mq;
+    size_t size;
+#if LT_CFG_FLOAT32
+    lt_grid_f32_t f;
+    void *mf;
+    size_t fsize;
+#endif
+} gpair_t;
+
+/* Size query, then LT_E_SPACE one byte short (needed size written back, arena untouched), then
+ * the build into exactly that many bytes of a poisoned arena (guard untouched, bytes = size). */
+static void g_build_pair(gpair_t *g, const mesh_t *m, const lt_grid_params_t *p)
+{
+    size_t got;
+    assert_int_equal(lt_grid_size_q16(m->tq, m->n, p, &g->size), LT_OK);
+    g->mq = malloc(g->size + GUARD);
+    assert_non_null(g->mq);
+    ltt_poison(g->mq, g->size + GUARD);
+    got = g->size - 1;
+    assert_int_equal(lt_grid_build_q16(&g->q, m->tq, m->n, p, g->mq, &got), LT_E_SPACE);
+    assert_true(got == g->size);
+    assert_int_equal(ltt_touched(g->mq, 0, g->size + GUARD), 0);
+    got = g->size;
+    assert_int_equal(lt_grid_build_q16(&g->q, m->tq, m->n, p, g->mq, &got), LT_OK);
+    assert_true(got == g->size && g->q.bytes == g->size);
+    assert_int_equal(ltt_touched(g->mq, g->size, g->size + GUARD), 0);
+#if LT_CFG_FLOAT32
+    assert_int_equal(lt_grid_size_f32(m->tf, m->n, p, &g->fsize), LT_OK);
+    g->mf = malloc(g->fsize + GUARD);
+    assert_non_null(g->mf);
+    ltt_poison(g->mf, g->fsize + GUARD);
+    got = g->fsize - 1;
+    assert_int_equal(lt_grid_build_f32(&g->f, m->tf, m->n, p, g->mf, &got), LT_E_SPACE);
+    assert_true(got == g->fsize);
+    assert_int_equal(ltt_touched(g->mf, 0, g->fsize + GUARD), 0);
+    got = g->fsize;
+    assert_int_equal(lt_grid_build_f32(&g->f, m->tf, m->n, p, g->mf, &got), LT_OK);
+    assert_true(got == g->fsize && g->f.bytes == g->fsize);
+    assert_int_equal(ltt_touched(g->mf, g->fsize, g->fsize + GUARD), 0);
+#endif
+}
+
+static void g_free_pair(gpair_t *g)
+{
+    free(g->mq);
+#if LT_CFG_FLOAT32
+    free(g->mf);
+#endif
+}
+
+static lt_mask16_t g_tq(const void *a, lt_ray16_q16_t *r, lt_mask16_t k, lt_hit16_t *h)
+{
+    return lt_grid_trace16_q16((const lt_grid_q16_t *)a, r, k, h);
+}
+static lt_mask16_t g_oq(const void *a, lt_ray16_q16_t *r, lt_mask16_t k)
+{
+    return lt_grid_occluded16_q16((const lt_grid_q16_t *)a, r, k);
+}
+#if LT_CFG_FLOAT32
+static lt_mask16_t g_tf(const void *a, lt_ray16_f32_t *r, lt_mask16_t k, lt_hit16_t *h)
+{
+    return lt_grid_trace16_f32((const lt_grid_f32_t *)a, r, k, h);
+}
+static lt_mask16_t g_of(const void *a, lt_ray16_f32_t *r, lt_mask16_t k)
+{
+    return lt_grid_occluded16_f32((const lt_grid_f32_t *)a, r, k);
+}
+#endif
+
+static void acc_grid(acc_t *a, const gpair_t *g)
+{
+    memset(a, 0, sizeof *a);
+    a->name = "grid";
+    a->q = &g->q;
+    a->tq = g_tq;
+    a->oq = g_oq;
+#if LT_CFG_FLOAT32
+    a->f = &g->f;
+    a->tf = g_tf;
+    a->of = g_of;
+#endif
+}
+
+/* Grid invariants: resolution within [1, LT_GRID_MAX_RES] per axis and at most max(1, lambda n)
+ * cells, the grid box covering the scene, offsets rising to nrefs, and each cell listing exactly
+ * (and in increasing order) the triangles whose vertex bounds touch it, where along each axis a
+ * bound x lies in cell j = the largest j with boundary_j <= x (clamped to the grid), boundary_j
+ * being lo + j x cell as lt_grid.h defines it. */
+#define DEFINE_GRID_CHECK(SFX, G, TRI, T, BOUND)                                                   \
+    static void g_verify_##SFX(const G *g, const char *what, uint32_t q4)                          \
+    {                                                                                              \
+        unsigned long bad = 0, expect = 0;                                                         \
+        uint32_t t, c, a, *cnt = calloc(g->ncells + 1u, sizeof *cnt), *rg;                         \
+        uint64_t target = (uint64_t)g->ntris * q4 / 16u;                                           \
+        rg = malloc((size_t)(g->ntris + 1u) * 6u * sizeof *rg);                                    \
+        assert_non_null(cnt);                                                                      \
+        assert_non_null(rg);                                                                       \
+        for (a = 0; a < 3; a++)                                                                    \
+            bad += g->res[a] < 1 || g->res[a] > LT_GRID_MAX_RES || !(g->cell[a] > 0);              \
+        bad += g->ncells != g->res[0] * g->res[1] * g->res[2];                                     \
+        bad += g->ncells > (target < 1 ? 1 : target);                                              \
+        for (t = 0; t < g->ntris; t++) {                                                           \
+            const TRI *tr = &g->tris[t];                                                           \
+            uint64_t cells = 1;                                                                    \
+            for (a = 0; a < 3; a++) {                                                              \
+                T p0 = tr->v0[a], p1 = (T)(p0 + tr->e1[a]), p2 = (T)(p0 + tr->e2[a]);              \
+                T tl = p0 < p1 ? p0 : p1, th = p0 < p1 ? p1 : p0;                                  \
+                uint32_t j, lo = g->res[a], hi = 0;                                                \
+                tl = p2 < tl ? p2 : tl;                                                            \
+                th = p2 > th ? p2 : th;                                                            \
+                bad += tl < g->bounds.lo[a] || th > g->bounds.hi[a];                               \
+                for (j = 0; j < g->res[a]; j++) {                                                  \
+                    int in = (j == 0 || BOUND(g->bounds.lo[a], j, g->cell[a]) <= th) &&            \
+                             (j + 1 == g->res[a] || BOUND(g->bounds.lo[a], j + 1, g->cell[a]) > tl); \
+                    if (in) {                                                                      \
+                        lo = j < lo ? j : lo;                                                      \
+                        hi = j;                                                                    \
+                    }                                                                              \
+                }                                                                                  \
+                rg[t * 6 + a] = lo;                                                                \
+                rg[t * 6 + 3 + a] = hi;                                                            \
+                cells *= hi - lo + 1u;                                                             \
+            }                                                                                      \
+            expect += cells;                                                                       \
+            {                                                                                      \
+                uint32_t x, y, z;                                                                  \
+                for (z = rg[t * 6 + 2]; z <= rg[t * 6 + 5]; z++)                                   \
+                    for (y = rg[t * 6 + 1]; y <= rg[t * 6 + 4]; y++)                               \
+                        for (x = rg[t * 6 + 0]; x <= rg[t * 6 + 3]; x++)                           \
+                            cnt[x + g->res[0] * (y + g->res[1] * z)]++;                            \
+            }                                                                                      \
+        }                                                                                          \
+        bad += expect != g->nrefs || g->cells[0] != 0 || g->cells[g->ncells] != g->nrefs;          \
+        for (c = 0; c < g->ncells && bad == 0; c++) {                                              \
+            uint32_t x = c % g->res[0], y = (c / g->res[0]) % g->res[1];                           \
+            uint32_t z = c / (g->res[0] * g->res[1]), i;                                           \
+            if (g->cells[c + 1] < g->cells[c] || g->cells[c + 1] - g->cells[c] != cnt[c]) {        \
+                bad++;                                                                             \
+                break;                                                                             \
+            }                                                                                      \
+            for (i = g->cells[c]; i < g->cells[c + 1]; i++) {                                      \
+                uint32_t id = g->refs[i];                                                          \
+                if (id >= g->ntris || (i > g->cells[c] && id <= g->refs[i - 1]) ||                 \
+                    x < rg[id * 6] || x > rg[id * 6 + 3] || y < rg[id * 6 + 1] ||                  \
+                    y > rg[id * 6 + 4] || z < rg[id * 6 + 2] || z > rg[id * 6 + 5])               \
+                    bad++;                                                                         \
+            }                                                                                      \
+        }                                                                                          \
+        ltt_report("%s: %ux%ux%u = %u cells (target lambda n = %llu), %u refs (%.2f per "         \
+                   "triangle), %zu bytes, %lu invariant violations\n",                             \
+                   what, g->res[0], g->res[1], g->res[2], g->ncells,                               \
+                   (unsigned long long)(target < 1 ? 1 : target), g->nrefs,                        \
+                   g->ntris ? (double)g->nrefs / g->ntris : 0.0, g->bytes, bad);                   \
+        free(cnt);                                                                                 \
+        free(rg);                                                                                  \
+        assert_int_equal(bad, 0);                                                                  \
+    }
+
+#define Q_BOUND(lo, j, cs) ((int64_t)(lo) + (int64_t)(j) * (cs))
+DEFINE_GRID_CHECK(q16, lt_grid_q16_t, lt_tri_q16_t, lt_q16_t, Q_BOUND)
+#if LT_CFG_FLOAT32
+#define F_BOUND(lo, j, cs) ((lo) + (float)(j) * (cs))
+DEFINE_GRID_CHECK(f32, lt_grid_f32_t, lt_tri_f32_t, float, F_BOUND)
+#endif
+
+static uint32_t default_q4(void)
+{
+    lt_grid_params_t p;
+    lt_grid_params_default(&p);
+    return p.cells_per_tri_q4;
+}
+
+/* Up to 64 cell boundaries (q16 positions, exactly representable in both paths only where the
+ * float32 grid has the same boundary, so these mostly exercise the q16 path's exact boundaries). */
+static void g_planes(ltt_rng_t *r, const lt_grid_q16_t *g, planes_t *pl)
+{
+    unsigned i;
+    pl->n = 0;
+    for (i = 0; i < 64; i++) {
+        int a = (int)ltt_rng_below(r, 3);
+        uint32_t j = ltt_rng_below(r, g->res[a] + 1u);
+        pl->axis[pl->n] = a;
+        pl->pos[pl->n] = lt_q16_to_double((lt_q16_t)Q_BOUND(g->bounds.lo[a], j, g->cell[a]));
+        pl->n++;
+    }
+}
+
+/* ---- tests ---------------------------------------------------------------------------------- */
+
+static void test_grid_size_and_arena(void **state)
+{
+    lt_grid_params_t p, bad;
+    ltt_rng_t r;
+    double *v;
+    mesh_t m;
+    gpair_t gp;
+    size_t sz, got;
+    unsigned char *mem;
+    lt_grid_q16_t g;
+    (void)state;
+    ltt_rng_seed(&r, 0x67726964);
+    lt_grid_params_default(&p);
+    v = gen_soup(&r, 300, 50.0);
+    mesh_init(&m, v, 300);
+    g_build_pair(&gp, &m, &p);
+    assert_int_equal(lt_grid_size_q16(m.tq, m.n, NULL, &sz), LT_OK);
+    assert_true(sz == gp.size);
+    assert_true(sz == ((size_t)gp.q.ncells + 1 + gp.q.nrefs) * 4);
+    ltt_report("lt_grid_size_q16(300 tris, lambda %.2f) = %zu bytes = (%u cells + 1 + %u refs) x 4, "
+               "exact: size-1 -> LT_E_SPACE needing %zu with the arena untouched, size -> LT_OK "
+               "with the 0xA5 tail untouched\n",
+               p.cells_per_tri_q4 / 16.0, sz, gp.q.ncells, gp.q.nrefs, sz);
+    g_verify_q16(&gp.q, "grid q16 soup 300", p.cells_per_tri_q4);
+#if LT_CFG_FLOAT32
+    g_verify_f32(&gp.f, "grid f32 soup 300", p.cells_per_tri_q4);
+#endif
+    mem = malloc(sz + GUARD);
+    assert_non_null(mem);
+    got = 0;
+    assert_int_equal(lt_grid_build_q16(&g, m.tq, m.n, &p, NULL, &got), LT_E_SPACE);
+    assert_true(got == sz);
+    got = sz;
+    assert_int_equal(lt_grid_build_q16(NULL, m.tq, m.n, &p, mem, &got), LT_E_ARG);
+    assert_int_equal(lt_grid_build_q16(&g, NULL, m.n, &p, mem, &got), LT_E_ARG);
+    assert_int_equal(lt_grid_build_q16(&g, m.tq, m.n, &p, mem, NULL), LT_E_ARG);
+    assert_int_equal(lt_grid_build_q16(&g, m.tq, m.n, &p, mem + 1, &got), LT_E_ARG);
+    assert_int_equal(lt_grid_size_q16(m.tq, m.n, &p, NULL), LT_E_ARG);
+    assert_int_equal(lt_grid_size_q16(m.tq, LT_GRID_MAX_TRIS + 1u, &p, &got), LT_E_RANGE);
+    bad = p;
+    bad.cells_per_tri_q4 = 0;
+    assert_int_equal(lt_grid_size_q16(m.tq, m.n, &bad, &got), LT_E_ARG);
+    bad.cells_per_tri_q4 = 1025;
+    assert_int_equal(lt_grid_size_q16(m.tq, m.n, &bad, &got), LT_E_ARG);
+    {
+        lt_tri_q16_t t = m.tq[0];
+        t.e2[0] = (lt_q16_t)(((int64_t)1 << (LT_CFG_GEOM_MAX_LOG2 + 16)) - t.v0[0] + 1);
+        assert_int_equal(lt_grid_size_q16(&t, 1, &p, &got), LT_E_RANGE);
+    }
+#if LT_CFG_FLOAT32
+    {
+        lt_tri_f32_t t = m.tf[0];
+        t.v0[1] = (float)(0.0 * HUGE_VAL); /* NaN */
+        assert_int_equal(lt_grid_size_f32(&t, 1, &p, &got), LT_E_RANGE);
+    }
+#endif
+    ltt_report("lt_grid_build: NULL grid/tris/bytes and misaligned arena -> LT_E_ARG, NULL arena "
+               "-> LT_E_SPACE with the size; lambda 0 or > 64 -> LT_E_ARG; n > 2^24, a vertex "
+               "beyond 2^%d units or NaN -> LT_E_RANGE\n",
+               LT_CFG_GEOM_MAX_LOG2);
+    free(mem);
+    g_free_pair(&gp);
+    mesh_free(&m);
+    free(v);
+}
+
+/* Random meshes at three resolutions against the chunks and against the kd-tree. */
+static void test_grid_random(void **state)
+{
+    static const uint32_t q4s[] = {32, 1, 512};
+    ltt_rng_t r;
+    unsigned mi, ci, pk, f32;
+    (void)state;
+    ltt_rng_seed(&r, 0x67726965);
+    for (mi = 0; mi < 2; mi++) {
+        uint32_t n = 400;
+        double *v = mi == 0 ? gen_soup(&r, n, 60.0) : gen_terrain(&r, 12, 80.0, &n);
+        mesh_t m;
+        kdpair_t kp;
+        acc_t ak, ac, ag;
+        mesh_init(&m, v, n);
+        kd_build_pair(&kp, &m, NULL);
+        acc_kd(&ak, &kp);
+        acc_chunks(&ac, &m);
+        for (ci = 0; ci < sizeof q4s / sizeof q4s[0]; ci++) {
+            lt_grid_params_t p;
+            gpair_t gp;
+            planes_t pl;
+            cmp_t cq, cf, kq, kf;
+            unsigned long kinds[LANE_KINDS] = {0};
+            char what[160];
+            p.cells_per_tri_q4 = q4s[ci];
+            g_build_pair(&gp, &m, &p);
+            snprintf(what, sizeof what, "grid q16 %s (lambda %.4g)", mi ? "terrain" : "soup",
+                     q4s[ci] / 16.0);
+            g_verify_q16(&gp.q, what, q4s[ci]);
+#if LT_CFG_FLOAT32
+            snprintf(what, sizeof what, "grid f32 %s (lambda %.4g)", mi ? "terrain" : "soup",
+                     q4s[ci] / 16.0);
+            g_verify_f32(&gp.f, what, q4s[ci]);
+#endif
+            acc_grid(&ag, &gp);
+            g_planes(&r, &gp.q, &pl);
+            memset(&cq, 0, sizeof cq);
+            memset(&cf, 0, sizeof cf);
+            memset(&kq, 0, sizeof kq);
+            memset(&kf, 0, sizeof kf);
+            for (pk = 0; pk < NPACKETS; pk++) {
+                pk_t p16;
+                gen_packet(&r, &m, &pl, &p16, kinds);
+                for (f32 = 0; f32 < 2; f32++) {
+                    res16_t rs, rr, rk;
+#if !LT_CFG_FLOAT32
+                    if (f32)
+                        continue;
+#endif
+                    (f32 ? &cf : &cq)->contract += run(&ag, (int)f32, &p16, &rs);
+                    (void)run(&ac, (int)f32, &p16, &rr);
+                    (void)run(&ak, (int)f32, &p16, &rk);
+                    judge(f32 ? &cf : &cq, "grid", &m, (int)f32, &p16, &rs, &rr);
+                    judge(f32 ? &kf : &kq, "grid vs kd", &m, (int)f32, &p16, &rs, &rk);
+                }
+            }
+            snprintf(what, sizeof what, "lt_grid_trace16_q16 vs chunks, %s, lambda %.4g",
+                     mi ? "terrain 296 tris" : "soup 400 tris", q4s[ci] / 16.0);
+            cmp_print(&cq, what);
+            snprintf(what, sizeof what, "lt_grid_trace16_q16 vs lt_kd_trace16_q16, %s, lambda %.4g",
+                     mi ? "terrain 296 tris" : "soup 400 tris", q4s[ci] / 16.0);
+            cmp_print(&kq, what);
+            cmp_assert(&cq, 0.0);
+            cmp_assert(&kq, 0.0);
+#if LT_CFG_FLOAT32
+            snprintf(what, sizeof what, "lt_grid_trace16_f32 vs chunks, %s, lambda %.4g",
+                     mi ? "terrain 296 tris" : "soup 400 tris", q4s[ci] / 16.0);
+            cmp_print(&cf, what);
+            snprintf(what, sizeof what, "lt_grid_trace16_f32 vs lt_kd_trace16_f32, %s, lambda %.4g",
+                     mi ? "terrain 296 tris" : "soup 400 tris", q4s[ci] / 16.0);
+            cmp_print(&kf, what);
+            cmp_assert(&cf, 0.0);
+            cmp_assert(&kf, 0.0);
+#endif
+            if (ci == 0)
+                ltt_report("  lanes per kind: %s %lu, %s %lu, %s %lu, %s %lu, %s %lu, %s %lu "
+                           "(origins on %u cell boundaries)\n",
+                           lane_kind_names[0], kinds[0], lane_kind_names[1], kinds[1],
+                           lane_kind_names[2], kinds[2], lane_kind_names[3], kinds[3],
+                           lane_kind_names[4], kinds[4], lane_kind_names[5], kinds[5], pl.n);
+            g_free_pair(&gp);
+        }
+        kd_free_pair(&kp);
+        mesh_free(&m);
+        free(v);
+    }
+}
+
+/* Empty scene, one triangle, a flat scene (all triangles in z = 3), degenerate triangles. */
+static void test_grid_edge_cases(void **state)
+{
+    static const char *const names[] = {"empty scene (n = 0)", "single triangle",
+                                        "flat scene (48 triangles in z = 3)",
+                                        "40 degenerate triangles (no lane may hit)"};
+    ltt_rng_t r;
+    double v[9 * 48] = {0};
+    unsigned sc, pk, f32;
+    unsigned long kinds[LANE_KINDS] = {0};
+    (void)state;
+    ltt_rng_seed(&r, 0x67726966);
+    for (sc = 0; sc < 4; sc++) {
+        uint32_t n = sc == 0 ? 0u : (sc == 1 ? 1u : (sc == 2 ? 48u : 40u)), t;
+        mesh_t m;
+        gpair_t gp;
+        kdpair_t kp;
+        acc_t ag, ac, ak;
+        cmp_t c, ck;
+        char what[160];
+        int a;
+        for (t = 0; t < n; t++) {
+            double *q = &v[t * 9];
+            for (a = 0; a < 9; a++)
+                q[a] = ltt_rng_uniform(&r, -8, 8);
+            if (sc == 2)
+                q[2] = q[5] = q[8] = 3.0;
+            if (sc == 3) {
+                if (t % 3 == 0) {
+                    memcpy(&q[3], q, 3 * sizeof *q);
+                    memcpy(&q[6], q, 3 * sizeof *q);
+                } else if (t % 3 == 1) {
+                    for (a = 0; a < 3; a++)
+                        q[6 + a] = q[a] + 2.0 * (q[3 + a] - q[a]);
+                } else {
+                    memcpy(&q[6], &q[3], 3 * sizeof *q);
+                }
+            }
+        }
+        mesh_init(&m, v, n);
+        if (n == 0) {
+            m.lo[0] = m.lo[1] = m.lo[2] = -10;
+            m.hi[0] = m.hi[1] = m.hi[2] = 10;
+        }
+        g_build_pair(&gp, &m, NULL);
+        snprintf(what, sizeof what, "grid q16 %s", names[sc]);
+        g_verify_q16(&gp.q, what, default_q4());
+        kd_build_pair(&kp, &m, NULL);
+        acc_grid(&ag, &gp);
+        acc_chunks(&ac, &m);
+        acc_kd(&ak, &kp);
+        memset(&c, 0, sizeof c);
+        memset(&ck, 0, sizeof ck);
+        for (pk = 0; pk < NPACKETS; pk++) {
+            pk_t p;
+            res16_t rs, rr, rk;
+            gen_packet(&r, &m, NULL, &p, kinds);
+            for (f32 = 0; f32 < 2; f32++) {
+#if !LT_CFG_FLOAT32
+                if (f32)
+                    continue;
+#endif
+                c.contract += run(&ag, (int)f32, &p, &rs);
+                (void)run(&ac, (int)f32, &p, &rr);
+                ck.contract += run(&ak, (int)f32, &p, &rk);
+                judge(&c, "grid", &m, (int)f32, &p, &rs, &rr);
+                judge(&ck, "kd", &m, (int)f32, &p, &rk, &rr);
+                if (sc == 0 || sc == 3)
+                    c.contract += rs.hit != 0 || rs.occ != 0;
+            }
+        }
+        snprintf(what, sizeof what, "grid, %s (q16 + f32) vs chunks", names[sc]);
+        cmp_print(&c, what);
+        snprintf(what, sizeof what, "kd, %s (q16 + f32) vs chunks", names[sc]);
+        cmp_print(&ck, what);
+        cmp_assert(&c, 0.0);
+        cmp_assert(&ck, 0.0);
+        g_free_pair(&gp);
+        kd_free_pair(&kp);
+        mesh_free(&m);
+    }
+}
+
+/* Degenerate rays: a zero direction (every axis "parallel"), origins at the s15.16 extremes, and
+ * in float32 NaN and infinite components. Neither structure may hang or report a hit for them;
+ * the grid's step bound (res_x + res_y + res_z) is what guarantees termination. */
+static void test_degenerate_rays(void **state)
+{
+    ltt_rng_t r;
+    double *v;
+    mesh_t m;
+    gpair_t gp;
+    kdpair_t kp;
+    unsigned pk, i;
+    unsigned long hits = 0, calls = 0;
+    (void)state;
+    ltt_rng_seed(&r, 0x67726967);
+    v = gen_soup(&r, 200, 30.0);
+    mesh_init(&m, v, 200);
+    g_build_pair(&gp, &m, NULL);
+    kd_build_pair(&kp, &m, NULL);
+    for (pk = 0; pk < 40; pk++) {
+        lt_ray16_q16_t q, q2;
+        lt_hit16_t h;
+        memset(&q, 0, sizeof q);
+        for (i = 0; i < LT_LANES; i++) {
+            unsigned w = ltt_rng_below(&r, 3);
+            q.ox.l[i] = w == 0 ? LT_Q16_MAX : (w == 1 ? LT_Q16_MIN : lt_q16_from_double_sat(ltt_rng_uniform(&r, -30, 30)));
+            q.oy.l[i] = lt_q16_from_double_sat(ltt_rng_uniform(&r, -30, 30));
+            q.oz.l[i] = lt_q16_from_double_sat(ltt_rng_uniform(&r, -30, 30));
+            q.tmax.l[i] = LT_Q16_MAX - 1;
+        }
+        lt_ray16_q16_setup(&q);
+        q2 = q;
+        hits += lt__popcount32(lt_grid_trace16_q16(&gp.q, &q2, 0xFFFF, &h));
+        q2 = q;
+        hits += lt__popcount32(lt_grid_occluded16_q16(&gp.q, &q2, 0xFFFF));
+        q2 = q;
+        hits += lt__popcount32(lt_kd_trace16_q16(&kp.q, &q2, 0xFFFF, &h));
+        q2 = q;
+        hits += lt__popcount32(lt_kd_occluded16_q16(&kp.q, &q2, 0xFFFF));
+        calls += 4;
+#if LT_CFG_FLOAT32
+        {
+            lt_ray16_f32_t f, f2;
+            memset(&f, 0, sizeof f);
+            for (i = 0; i < LT_LANES; i++) {
+                unsigned w = ltt_rng_below(&r, 4);
+                float nan = (float)(0.0 * HUGE_VAL), inf = (float)HUGE_VAL;
+                f.ox.l[i] = (float)ltt_rng_uniform(&r, -30, 30);
+                f.oy.l[i] = (float)ltt_rng_uniform(&r, -30, 30);
+                f.oz.l[i] = (float)ltt_rng_uniform(&r, -30, 30);
+                if (w == 1)
+                    f.dx.l[i] = nan;
+                else if (w == 2)
+                    f.ox.l[i] = nan;
+                else if (w == 3)
+                    f.dy.l[i] = inf;
+                f.tmax.l[i] = 3.0e38f;
+            }
+            lt_ray16_f32_setup(&f);
+            f2 = f;
+            hits += lt__popcount32(lt_grid_trace16_f32(&gp.f, &f2, 0xFFFF, &h));
+            f2 = f;
+            hits += lt__popcount32(lt_grid_occluded16_f32(&gp.f, &f2, 0xFFFF));
+            f2 = f;
+            hits += lt__popcount32(lt_kd_trace16_f32(&kp.f, &f2, 0xFFFF, &h));
+            f2 = f;
+            hits += lt__popcount32(lt_kd_occluded16_f32(&kp.f, &f2, 0xFFFF));
+            calls += 4;
+        }
+#endif
+    }
+    ltt_report("degenerate rays (zero direction, origins at +-32768, f32 NaN/inf components): "
+               "%lu grid and kd trace/occluded calls returned, %lu lanes hit (expected 0)\n",
+               calls, hits);
+    assert_int_equal(hits, 0);
+    g_free_pair(&gp);
+    kd_free_pair(&kp);
+    mesh_free(&m);
+    free(v);
+}
+
+/* ---- scenes --------------------------------------------------------------------------------- */
+
+#if LT_COST_MODE == LT_COST_SIM
+static void ctr_begin(void)
+{
+    lt_sim_reset();
+}
+
+/* Sum of an event over all phases, and total modelled cycles. */
+static void ctr_end(uint64_t *nodes, uint64_t *tris, uint64_t *tri_rays, uint64_t *cycles)
+{
+    lt_sim_totals_t t;
+    int ph;
+    lt_sim_totals(&t);
+    *nodes = *tris = *tri_rays = 0;
+    for (ph = 0; ph < LT_PH__COUNT; ph++) {
+        *nodes += t.ctr[ph][LT_OP__COUNT + LT_EV_NODES];
+        *tris += t.ctr[ph][LT_OP__COUNT + LT_EV_TRIS];
+        *tri_rays += t.ctr[ph][LT_OP__COUNT + LT_EV_TRI_RAYS];
+    }
+    *cycles = t.total_cycles;
+}
+#endif
+
+/* Load a scene as the tracer does (lt_mesh_load + lt_scene_prepare). Returns 0, or -1 when the
+ * file is missing. */
+static int load_scene(const char *path, lt_scene_t *s, mesh_t *m)
+{
+    lt_mesh_t mesh;
+    char err[256];
+    if (lt_mesh_load(path, &mesh, err, sizeof err) != 0) {
+        ltt_report("  (%s)\n", err);
+        return -1;
+    }
+    assert_int_equal(lt_scene_prepare(&mesh, s, err, sizeof err), 0);
+    lt_mesh_free(&mesh);
+    mesh_init(m, s->vd, s->ntris);
+    return 0;
+}
+
+/* The camera's packets in both paths. */
+static lt_mask16_t cam_packet(const lt_camera_t *cam, uint32_t tx, uint32_t ty, pk_t *p)
+{
+    int i;
+    memset(p, 0, sizeof *p);
+    p->k = lt_camera_packet_q16(cam, tx, ty, &p->q);
+#if LT_CFG_FLOAT32
+    (void)lt_camera_packet_f32(cam, tx, ty, &p->f);
+#endif
+    for (i = 0; i < LT_LANES; i++)
+        memcpy(p->o[i], cam->eye, sizeof p->o[i]);
+    return p->k;
+}
+
+/* A whole camera view: the grid against the chunks, against the kd-tree and against the double
+ * brute force; per-ray counters in the sim build. */
+static void scene_run(const char *path, const char *name, uint32_t res, int bundled)
+{
+    lt_scene_t s;
+    mesh_t m;
+    gpair_t gp;
+    kdpair_t kp;
+    acc_t ag, ac, ak;
+    lt_camera_t cam;
+    cmp_t cq, cf, kq, kf;
+    uint32_t tx, ty, x, y;
+    unsigned long dsame[2] = {0, 0}, dn = 0;
+    char what[200];
+    int i;
+    if (load_scene(path, &s, &m) != 0) {
+        if (bundled) {
+            ltt_report("FAIL %s: the bundled %s is missing (run from the repository root)\n",
+                       name, path);
+            fail();
+        }
+        if (getenv("CI") != NULL && strcmp(getenv("CI"), "true") == 0) {
+            ltt_report("FAIL %s: %s missing under CI=true\n", name, path);
+            fail();
+        }
+        ltt_report("SKIP %s: %s not found (a fresh clone has no ../shared)\n", name, path);
+        return;
+    }
+    g_build_pair(&gp, &m, NULL);
+    snprintf(what, sizeof what, "grid q16 %s", name);
+    g_verify_q16(&gp.q, what, default_q4());
+#if LT_CFG_FLOAT32
+    snprintf(what, sizeof what, "grid f32 %s", name);
+    g_verify_f32(&gp.f, what, default_q4());
+#endif
+    ltt_report("grid %s build memory: lt_grid_size = exact arena q16 %zu bytes (%.1f per "
+               "triangle)",
+               name, gp.q.bytes, (double)gp.q.bytes / m.n);
+#if LT_CFG_FLOAT32
+    ltt_report(", f32 %zu bytes", gp.f.bytes);
+#endif
+    ltt_report("\n");
+    kd_build_pair(&kp, &m, NULL);
+    acc_grid(&ag, &gp);
+    acc_chunks(&ac, &m);
+    acc_kd(&ak, &kp);
+    lt_camera_default(&s, res, res, &cam);
+    memset(&cq, 0, sizeof cq);
+    memset(&cf, 0, sizeof cf);
+    memset(&kq, 0, sizeof kq);
+    memset(&kf, 0, sizeof kf);
+    for (ty = 0; ty < res; ty += 4)
+        for (tx = 0; tx < res; tx += 4) {
+            pk_t p;
+            res16_t rs[2], rr, rk;
+            unsigned f32;
+            (void)cam_packet(&cam, tx, ty, &p);
+            for (f32 = 0; f32 < 2; f32++) {
+#if !LT_CFG_FLOAT32
+                if (f32)
+                    continue;
+#endif
+                (f32 ? &cf : &cq)->contract += run(&ag, (int)f32, &p, &rs[f32]);
+                (void)run(&ac, (int)f32, &p, &rr);
+                (void)run(&ak, (int)f32, &p, &rk);
+                judge(f32 ? &cf : &cq, "grid scene", &m, (int)f32, &p, &rs[f32], &rr);
+                judge(f32 ? &kf : &kq, "grid vs kd scene", &m, (int)f32, &p, &rs[f32], &rk);
+            }
+            for (i = 0; i < LT_LANES; i++) {
+                double d[3], t;
+                int32_t id;
+                x = tx + (uint32_t)(i % 4);
+                y = ty + (uint32_t)(i / 4);
+                if (!LTT_ON(p.k, i) || (x % 2) != 0 || (y % 2) != 0)
+                    continue;
+                lt_camera_dir(&cam, x, y, d);
+                id = lt_ref_trace(&s, cam.eye, d, &t);
+                dn++;
+                dsame[0] += rs[0].id[i] == id;
+#if LT_CFG_FLOAT32
+                dsame[1] += rs[1].id[i] == id;
+#endif
+            }
+        }
+    snprintf(what, sizeof what, "lt_grid_trace16_q16 vs chunks, %s %ux%u camera", name, res, res);
+    cmp_print(&cq, what);
+    snprintf(what, sizeof what, "lt_grid_trace16_q16 vs lt_kd_trace16_q16, %s %ux%u camera", name,
+             res, res);
+    cmp_print(&kq, what);
+#if LT_CFG_FLOAT32
+    snprintf(what, sizeof what, "lt_grid_trace16_f32 vs chunks, %s %ux%u camera", name, res, res);
+    cmp_print(&cf, what);
+    snprintf(what, sizeof what, "lt_grid_trace16_f32 vs lt_kd_trace16_f32, %s %ux%u camera", name,
+             res, res);
+    cmp_print(&kf, what);
+#endif
+    ltt_report("grid %s vs double brute force (lt_ref_trace, %lu pixels): same triangle q16 "
+               "%.3f%%, f32 %.3f%%\n",
+               name, dn, 100.0 * (double)dsame[0] / (double)dn,
+               LT_CFG_FLOAT32 ? 100.0 * (double)dsame[1] / (double)dn : 0.0);
+    cmp_assert(&cq, 0.9999);
+    cmp_assert(&kq, 0.9999);
+#if LT_CFG_FLOAT32
+    cmp_assert(&cf, 0.9999);
+    cmp_assert(&kf, 0.9999);
+#endif
+    assert_true((double)dsame[0] >= 0.999 * (double)dn);
+#if LT_COST_MODE == LT_COST_SIM
+    {
+        uint64_t nd, tr, trr, cy, rays = 0, npk = 0, nd1, tr1, trr1, cy1;
+        unsigned f32;
+        char e2[128];
+        assert_int_equal(lt_sim_init(lt_sim_machine_find("lrb16"), NULL, NULL, e2, sizeof e2), 0);
+        for (f32 = 0; f32 < 2; f32++) {
+            rays = npk = 0;
+            ctr_begin();
+            for (ty = 0; ty < res; ty += 4)
+                for (tx = 0; tx < res; tx += 4) {
+                    pk_t p;
+                    lt_hit16_t h;
+                    (void)cam_packet(&cam, tx, ty, &p);
+                    rays += lt__popcount32(p.k);
+                    npk++;
+                    if (!f32)
+                        (void)lt_grid_trace16_q16(&gp.q, &p.q, p.k, &h);
+#if LT_CFG_FLOAT32
+                    else
+                        (void)lt_grid_trace16_f32(&gp.f, &p.f, p.k, &h);
+#endif
+                }
+            ctr_end(&nd, &tr, &trr, &cy);
+            ctr_begin();
+            for (ty = 0; ty < res; ty += 4)
+                for (tx = 0; tx < res; tx += 4) {
+                    pk_t p;
+                    lt_hit16_t h;
+                    (void)cam_packet(&cam, tx, ty, &p);
+                    for (i = 0; i < LT_LANES; i++) {
+                        pk_t q = p;
+                        if (!LTT_ON(p.k, i))
+                            continue;
+                        if (!f32)
+                            (void)lt_grid_trace16_q16(&gp.q, &q.q, (lt_mask16_t)(1u << i), &h);
+#if LT_CFG_FLOAT32
+                        else
+                            (void)lt_grid_trace16_f32(&gp.f, &q.f, (lt_mask16_t)(1u << i), &h);
+#endif
+                    }
+                }
+            ctr_end(&nd1, &tr1, &trr1, &cy1);
+            ltt_report("grid %s %s %ux%u (lrb16): packets: %.2f cells (lane groups) and %.2f "
+                       "triangle tests per packet, %.2f ray-triangle tests per ray, %.0f cycles "
+                       "per ray; rays alone: %.2f cells and %.2f triangle tests per ray, %.0f "
+                       "cycles per ray\n",
+                       name, f32 ? "f32" : "q16", res, res, (double)nd / (double)npk,
+                       (double)tr / (double)npk, (double)trr / (double)rays,
+                       (double)cy / (double)rays, (double)nd1 / (double)rays,
+                       (double)tr1 / (double)rays, (double)cy1 / (double)rays);
+#if !LT_CFG_FLOAT32
+            break;
+#endif
+        }
+        lt_sim_shutdown();
+    }
+#else
+    ltt_report("grid %s: per-ray cell and triangle-test counts are printed by the sim build "
+               "(build/sim/test_grid)\n",
+               name);
+#endif
+    g_free_pair(&gp);
+    kd_free_pair(&kp);
+    mesh_free(&m);
+    lt_scene_free(&s);
+}
+
+static void test_grid_teapot(void **state)
+{
+    (void)state;
+    scene_run("scenes/teapot.obj", "teapot", 256 / CAM_SCALE, 1);
+}
+
+static void test_grid_bunny(void **state)
+{
+    (void)state;
+    scene_run("../shared/scenes/bunny.obj", "bunny", 128 / CAM_SCALE, 0);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_grid_size_and_arena),
+        cmocka_unit_test(test_grid_random),
+        cmocka_unit_test(test_grid_edge_cases),
+        cmocka_unit_test(test_degenerate_rays),
+        cmocka_unit_test(test_grid_teapot),
+        cmocka_unit_test(test_grid_bunny),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
