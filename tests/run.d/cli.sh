@@ -90,7 +90,7 @@ done
 expect "render writes EXR + PNGs with depth peels" 0 "depth peels" "$LT" render --res 32 --layers 3 --out "$tmp/rd"
 check "render PNGs exist (shaded, depth, normals, ids)" bash -c "ls '$tmp'/rd.png '$tmp'/rd.depth.png '$tmp'/rd.normals.png '$tmp'/rd.ids.png >/dev/null"
 expect "render EXR has Z, normals, shaded and 3 layers" 0 "layer2.Z(FLOAT)" "$LT" info "$tmp/rd.exr"
-expect "render --layers with chunks: usage error" 2 "BVH" "$LT" render --res 8 --layers 2 --structure chunks --out "$tmp/rc"
+expect "render --layers with chunks: usage error" 2 "hierarchy" "$LT" render --res 8 --layers 2 --structure chunks --out "$tmp/rc"
 expect "render without --out: usage" 2 "--out" "$LT" render --res 8
 expect "render --help" 0 "usage: lanetrace render" "$LT" render --help
 for st in kd grid; do

@@ -15,6 +15,7 @@
 #include "lt_wt.h"
 #include "lt_kd.h"
 #include "lt_grid.h"
+#include "lt_qt.h"
 #include "lt_stream.h"
 
 #endif /* LT_H */
