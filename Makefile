@@ -56,25 +56,31 @@ $(1)_HOST_OBJS := $(HOSTLIB_SRCS:%.c=$(B)/$(1)/obj/%.o)
 $(1)_EXTRA_OBJS := $(if $(filter sim,$(1)),$(SIM_SRCS:%.c=$(B)/$(1)/obj/%.o))
 $(B)/$(1)/test_%: $(B)/$(1)/obj/tests/unit/test_%.o $$($(1)_CORE_OBJS) $$($(1)_HOST_OBJS) \
     $$($(1)_EXTRA_OBJS)
-	$(CC) $(LDFLAGS_$(1)) -o $$@ $$^ -lcmocka $(LIBS_$(1))
+	@echo "LD $$@"
+	@$(CC) $(LDFLAGS_$(1)) -o $$@ $$^ -lcmocka $(LIBS_$(1))
 $(B)/$(1)/lt-vectors: $(B)/$(1)/obj/tests/vectors/vec_host.o $(B)/$(1)/obj/$(VEC_SRCS:.c=.o) \
     $$($(1)_CORE_OBJS) $$($(1)_EXTRA_OBJS)
-	$(CC) $(LDFLAGS_$(1)) -o $$@ $$^ $(LIBS_$(1))
+	@echo "LD $$@"
+	@$(CC) $(LDFLAGS_$(1)) -o $$@ $$^ $(LIBS_$(1))
 endef
 $(foreach v,$(VARIANTS),$(eval $(call variant_rules,$(v))))
 
 # the CLI: the simulator build (cycle reports) and the native build, from one source
 $(B)/host/lanetrace-native: $(B)/host/obj/host/lanetrace_main.o $(host_CORE_OBJS) $(host_HOST_OBJS)
-	$(CC) -o $@ $^ $(LIBS_host)
+	@echo "LD $@"
+	@$(CC) -o $@ $^ $(LIBS_host)
 $(B)/sim/lanetrace: $(B)/sim/obj/host/lanetrace_main.o $(sim_CORE_OBJS) $(sim_HOST_OBJS) \
     $(sim_EXTRA_OBJS)
-	$(CC) -o $@ $^ $(LIBS_sim)
+	@echo "LD $@"
+	@$(CC) -o $@ $^ $(LIBS_sim)
 $(B)/sim/test_cache: $(B)/sim/obj/tests/unit/test_cache.o $(B)/sim/obj/sim/lt_cache.o
-	$(CC) -o $@ $^ -lcmocka
+	@echo "LD $@"
+	@$(CC) -o $@ $^ -lcmocka
 
 $(B)/sim/slab-model: $(B)/sim/obj/tests/bench/slab_model.o $(B)/sim/obj/tests/vectors/lt_slab_loop.o \
     $(sim_CORE_OBJS) $(sim_EXTRA_OBJS)
-	$(CC) -o $@ $^ $(LIBS_sim)
+	@echo "LD $@"
+	@$(CC) -o $@ $^ $(LIBS_sim)
 
 sim: $(B)/sim/lanetrace
 

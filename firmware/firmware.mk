@@ -25,13 +25,16 @@ fw_$(1)_RT := $(patsubst %.S,$(B)/fw/$(1)/obj/%.o,$(FW_RT_SRCS_$(1):%.c=$(B)/fw/
 fw_$(1)_CORE := $(FW_CORE_SRCS:%.c=$(B)/fw/$(1)/obj/%.o)
 $(B)/fw/$(1)/vectors.elf: $(B)/fw/$(1)/obj/tests/fw/fw_vectors.o $(B)/fw/$(1)/obj/tests/vectors/lt_vec.o \
     $$(fw_$(1)_CORE) $$(fw_$(1)_RT)
-	$(CC_$(1)) $(LDFLAGS_$(1)) -Wl,-Map=$$@.map -o $$@ $$^ $(LDLIBS_$(1))
+	@echo "LD $$@"
+	@$(CC_$(1)) $(LDFLAGS_$(1)) -Wl,-Map=$$@.map -o $$@ $$^ $(LDLIBS_$(1))
 $(B)/fw/$(1)/vectors-fixed.elf: $(B)/fw/$(1)/objx/tests/fw/fw_vectors.o $(B)/fw/$(1)/objx/tests/vectors/lt_vec.o \
     $(FW_CORE_SRCS:%.c=$(B)/fw/$(1)/objx/%.o) $$(fw_$(1)_RT)
-	$(CC_$(1)) $(LDFLAGS_$(1)) -o $$@ $$^ $(LDLIBS_$(1))
+	@echo "LD $$@"
+	@$(CC_$(1)) $(LDFLAGS_$(1)) -o $$@ $$^ $(LDLIBS_$(1))
 $(B)/fw/$(1)/slab.elf: $(B)/fw/$(1)/obj/tests/fw/fw_slab.o $(B)/fw/$(1)/obj/tests/vectors/lt_slab_loop.o \
     $$(fw_$(1)_CORE) $$(fw_$(1)_RT)
-	$(CC_$(1)) $(LDFLAGS_$(1)) -o $$@ $$^ $(LDLIBS_$(1))
+	@echo "LD $$@"
+	@$(CC_$(1)) $(LDFLAGS_$(1)) -o $$@ $$^ $(LDLIBS_$(1))
 endef
 $(foreach t,$(FW_TARGETS),$(eval $(call fw_rules,$(t))))
 

@@ -6,15 +6,18 @@
 # tests/bench/opcal.sh builds these and prints the calibration tables.
 
 $(B)/fw/cm4/opcal.elf: $(B)/fw/cm4/obj/tests/fw/fw_opcal.o $(fw_cm4_CORE) $(fw_cm4_RT)
-	$(CC_cm4) $(LDFLAGS_cm4) -o $@ $^ $(LDLIBS_cm4)
+	@echo "LD $@"
+	@$(CC_cm4) $(LDFLAGS_cm4) -o $@ $^ $(LDLIBS_cm4)
 
 $(B)/fw/cm4/tri.elf: $(B)/fw/cm4/obj/tests/fw/fw_tri.o $(B)/fw/cm4/obj/tests/vectors/lt_tri_loop.o \
     $(fw_cm4_CORE) $(fw_cm4_RT)
-	$(CC_cm4) $(LDFLAGS_cm4) -o $@ $^ $(LDLIBS_cm4)
+	@echo "LD $@"
+	@$(CC_cm4) $(LDFLAGS_cm4) -o $@ $^ $(LDLIBS_cm4)
 
 $(B)/sim/tri-model: $(B)/sim/obj/tests/bench/tri_model.o $(B)/sim/obj/tests/vectors/lt_tri_loop.o \
     $(sim_CORE_OBJS) $(sim_EXTRA_OBJS)
-	$(CC) -o $@ $^ $(LIBS_sim)
+	@echo "LD $@"
+	@$(CC) -o $@ $^ $(LIBS_sim)
 
 # the pattern rules do not know the loop header
 $(B)/fw/cm4/obj/tests/fw/fw_tri.o $(B)/fw/cm4/obj/tests/vectors/lt_tri_loop.o \

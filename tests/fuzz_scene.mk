@@ -3,7 +3,8 @@
 #   make fuzz-scene           libFuzzer for FUZZ_SECONDS when clang has -fsanitize=fuzzer
 $(B)/asan/fuzz-scene: $(B)/asan/obj/tests/fuzz/fuzz_scene.o $(B)/asan/obj/tests/fuzz/fuzz_main.o \
     $(B)/asan/obj/host/lt_scenefile.o
-	$(CC) $(LDFLAGS_asan) -o $@ $^ -lcjson
+	@echo "LD $@"
+	@$(CC) $(LDFLAGS_asan) -o $@ $^ -lcjson
 EXTRA_TEST_BINS += $(B)/asan/fuzz-scene
 FUZZ_CLANG ?= clang
 FUZZ_SECONDS ?= 60
