@@ -962,6 +962,7 @@ static void render_usage(FILE *f)
             "  --layers K   depth peels, 1..16 (default 1; needs bvh or bvhq)\n"
             "  --light X,Y,Z  point light in mesh file units (default: the scene's first light,\n"
             "               else centre + 2 radius normalize(-0.5, 1.5, 0.8))\n"
+            "  --json       print what was written as JSON on stdout\n"
             "  -q           quiet\n",
             prog);
 }
@@ -982,7 +983,7 @@ static int cmd_render(int argc, char **argv)
     lt_accel_t *acc = NULL;
     char err[1024], path[1200];
     const char *scene_path = NULL, *mesh_over = NULL, *out = NULL, *structure = "bvh";
-    int a, layers = 1, l, status = 0, have_light = 0;
+    int a, layers = 1, l, status = 0, have_light = 0, json = 0;
     double light[3], lf[3];
     lt_path_t np = LT_PATH_Q16;
     uint32_t w = 0, h = 0, nshadow = 0, nocc = 0;
@@ -999,6 +1000,10 @@ static int cmd_render(int argc, char **argv)
         }
         if (strcmp(o, "-q") == 0) {
             quiet = 1;
+            continue;
+        }
+        if (strcmp(o, "--json") == 0) {
+            json = quiet = 1;
             continue;
         }
         if (o[0] != '-') {
@@ -1285,6 +1290,28 @@ static int cmd_render(int argc, char **argv)
         printf("png       %s.png (shaded), %s.depth.png, %s.normals.png, %s.ids.png; %u shadow "
                "rays, %u occluded\n",
                out, out, out, out, nshadow, nocc);
+    if (json) {
+        cJSON *o = cJSON_CreateObject(), *files = cJSON_AddArrayToObject(o, "files");
+        static const char *const sfx[5] = {".exr", ".png", ".depth.png", ".normals.png", ".ids.png"};
+        char *js;
+        for (a = 0; a < 5; a++) {
+            snprintf(path, sizeof path, "%s%s", out, sfx[a]);
+            cJSON_AddItemToArray(files, cJSON_CreateString(path));
+        }
+        cJSON_AddStringToObject(o, "mesh", sf.mesh);
+        cJSON_AddStringToObject(o, "structure", structure);
+        cJSON_AddStringToObject(o, "path", np == LT_PATH_Q16 ? "q16" : "f32");
+        cJSON_AddNumberToObject(o, "width", sf.width);
+        cJSON_AddNumberToObject(o, "height", sf.height);
+        cJSON_AddNumberToObject(o, "layers", layers);
+        cJSON_AddNumberToObject(o, "shadow_rays", nshadow);
+        cJSON_AddNumberToObject(o, "occluded", nocc);
+        js = cJSON_Print(o);
+        if (js != NULL)
+            puts(js);
+        free(js);
+        cJSON_Delete(o);
+    }
 done:
     for (a = 0; a < 10; a++)
         free(ch[a]);

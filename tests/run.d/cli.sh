@@ -99,3 +99,4 @@ for st in kd grid; do
     check "structure $st (sim) = chunks result ($a)" test -n "$a" -a "$a" = "$c"
 done
 expect "render with the kd-tree and depth peels" 0 "depth peels" "$LT" render --structure kd --layers 2 --res 16 --out "$tmp/kdr"
+expect "render --json lists the files" 0 "\"shadow_rays\"" "$LT" render --res 8 --json --out "$tmp/rj"
