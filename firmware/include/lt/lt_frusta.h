@@ -1,0 +1,248 @@
+/* lt_frusta.h - soft shadows from a quad area light with multi-frusta tracing (Benthin & Wald,
+ * seeds/004): 16 shadow frusta traced in parallel through a BVH, one per lane, each frustum being
+ * the 16 shadow rays from one pixel's hit point to its 16 light samples (4x4 interleaved QMC sets,
+ * lt_qmc.h). Interval-arithmetic slab test, (node, frusta mask) stack, rays generated on demand
+ * inside leaves from the frustum's light corner and the set's delta vectors, back-face and
+ * corner-ray culling per triangle, optional corner-ray recomputation (CR). Also the 16-ray packet
+ * baseline (one pixel's 16 rays, any hit), the per-ray reference generator, the direct-light term
+ * and the 4x4 discontinuity filter. s15.16 and float32 from one source (lt_frusta.inc).
+ * In s15.16 the frustum visibility equals per-ray visibility of every sample bit for bit (the
+ * culling and box tests are conservative with proven margins; docs/frusta.md).
+ * Builds: all; float32 entry points only with LT_CFG_FLOAT32.
+ */
+#ifndef LT_FRUSTA_H
+#define LT_FRUSTA_H
+
+#include "lt_bvh.h"
+#include "lt_qmc.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define LT_FRUSTA_SAMPLES 16 /* shadow rays per frustum (one interleaved set) */
+#define LT_FRUSTA_SETS 16    /* sets; frustum lane f uses set f (lane f = pixel f of a 4x4 tile) */
+
+/* Sample numerators: sample coordinate u = su / LT_FRUSTA_GRID with su = 2 u8 + 1 (cell centre). */
+#define LT_FRUSTA_GRID 512
+/* s15.16 light edges must be multiples of LT_FRUSTA_GRID raw (2^-7 world units), so that every
+ * sample point c + (su eu + sv ev) / 512 is an exact s15.16 value and the rays are exact convex
+ * combinations of the corner rays (what makes corner-ray culling provably conservative). */
+
+/* Flags of the light (both paths). */
+#define LT_FRUSTA_BACKFACE 1u /* back-face culling: a triangle occludes only rays arriving at its
+                                 front (N = e1 x e2 facing the ray origin); packets and frusta */
+#define LT_FRUSTA_CORNER 2u   /* corner-ray culling of triangles per frustum (frusta only) */
+#define LT_FRUSTA_CR 4u       /* recompute the corner rays of partially occluded frusta after a
+                                 leaf in which one of their rays terminated (the paper's "CR") */
+
+#define LT_FRUSTA_END_SHIFT 10u /* default: rays stop 2^-10 of their length short of the light */
+
+/* Interval slab test margin, s15.16 raw in t units: a bound (plane - o) x round(1/d) is off the
+ * exact (plane - o) / d by at most |plane - o| 2^-17 + 1 ulp <= 2^(GEOM+1) 2^-17 units + 1 ulp;
+ * lower bounds are lowered and upper bounds raised by this much (docs/frusta.md). */
+#define LT_FRUSTA_BOX_MARGIN_Q16 (((lt_q16_t)1 << LT_CFG_GEOM_MAX_LOG2) + 8)
+
+/* ---- s15.16 ------------------------------------------------------------------------------- */
+
+/* A quad light, 44 bytes: points c + u eu + v ev, u, v in [0, 1]. */
+typedef struct lt_frusta_light_q16 {
+    lt_q16_t c[3];      /* corner, s15.16 world units, |c| and |c + eu + ev| <= 2^GEOM */
+    lt_q16_t eu[3];     /* edge u, s15.16, each a multiple of LT_FRUSTA_GRID raw (may be 0) */
+    lt_q16_t ev[3];     /* edge v, s15.16, as eu */
+    uint32_t flags;     /* LT_FRUSTA_BACKFACE | LT_FRUSTA_CORNER | LT_FRUSTA_CR */
+    uint32_t end_shift; /* rays end at t_end - t_end / 2^end_shift (1..30; 0 = default 10) */
+} lt_frusta_light_q16_t;
+LT_STATIC_ASSERT(sizeof(lt_frusta_light_q16_t) == 44, "q16 light is 44 bytes");
+
+/* Per-frame table of the light and its 16 x 16 samples, 6388 bytes (lanes: see fields).
+ * Built by lt_frusta_table_q16 from a light and an interleaved sample set. */
+typedef struct lt_frusta_table_q16 {
+    lt_vq16_t gx[LT_FRUSTA_SETS], gy[LT_FRUSTA_SETS], gz[LT_FRUSTA_SETS]; /* set s, lane j: delta of
+                                   sample j, (su eu + sv ev) / 512, s15.16 (exact) */
+    lt_vi32_t su[LT_FRUSTA_SETS], sv[LT_FRUSTA_SETS]; /* set s, lane j: numerators 1..511 */
+    lt_vq16_t gmin[3], gmax[3]; /* lane s: min / max over set s's deltas per axis, s15.16 */
+    lt_vq16_t kd[4][3];         /* lane s: deltas of the corners of set s's (u, v) bounding
+                                   rectangle: (umin,vmin) (umax,vmin) (umin,vmax) (umax,vmax) */
+    lt_q16_t ld[4][3];          /* deltas of the light's own corners: 0, eu, ev, eu + ev */
+    lt_q16_t c[3], eu[3], ev[3]; /* the light, s15.16 */
+    int32_t eu9[3], ev9[3];     /* eu / 512, ev / 512 (exact integers) */
+    uint32_t flags, end_shift;  /* from the light; end_shift resolved */
+} lt_frusta_table_q16_t;
+LT_STATIC_ASSERT(sizeof(lt_frusta_table_q16_t) == 6388, "q16 frusta table is 6388 bytes");
+
+/* 16 shadow frusta (lane f: the pixel whose hit point is its origin, using set f), 1824 bytes.
+ * Fill ox, oy, oz, call lt_frusta_setup16_q16, trace, read occl[]. */
+typedef struct lt_frusta16_q16 {
+    lt_vq16_t ox, oy, oz;           /* origins, s15.16 world units (|o| <= 2^GEOM) */
+    lt_vq16_t cx, cy, cz;           /* light corner c - o, s15.16 */
+    lt_vq16_t tmin, tmax;           /* ray interval in t units of the frustum's rays (s15.16) */
+    lt_vq16_t rlo[3], rhi[3];       /* reciprocals of the direction interval ends, s15.16 */
+    lt_vq30_t kx[4], ky[4], kz[4];  /* corner rays, s1.30 (recomputed under CR) */
+    lt_vi32_t shift;                /* L: direction = (light point - o) << L, s15.16 -> s1.30 */
+    lt_mask16_t alo[3], aup[3];     /* per axis: (lo - o) x rhi is a lower / an upper t bound */
+    lt_mask16_t blo[3], bup[3];     /* per axis: (hi - o) x rlo is a lower / an upper t bound */
+    lt_mask16_t active;             /* frusta with samples still unoccluded */
+    uint16_t live[LT_LANES];        /* per frustum: samples not yet occluded */
+    uint16_t occl[LT_LANES];        /* per frustum: occluded samples (the result) */
+    uint16_t pad_[3];               /* private */
+} lt_frusta16_q16_t;
+LT_STATIC_ASSERT(sizeof(lt_frusta16_q16_t) == 1824, "q16 frusta packet is 1824 bytes");
+
+/* Build the per-frame table. Format: s15.16 light, 0.8 sample cells -> exact s15.16 deltas.
+ * Range: |c|, |c + eu|, |c + ev|, |c + eu + ev| <= 2^GEOM; eu, ev multiples of 512 raw.
+ * Rounding: exact. Overflow: none in range. Cost: none charged (once per frame, SETUP).
+ * Returns: LT_OK, LT_E_ARG (NULL, edges not on the 512-raw grid, end_shift > 30, unknown flags),
+ * LT_E_RANGE (a light corner outside the geometry bound). */
+lt_status_t lt_frusta_table_q16(const lt_frusta_light_q16_t *light, const lt_qmc_sets_t *sets,
+                                lt_frusta_table_q16_t *tb);
+
+/* Set up the frusta of the lanes in k from F->ox/oy/oz: light corner, shift L (the largest L with
+ * every |(light corner - o) << L| < 2^30), t_end = 2^(30 - L) raw, tmin = 0, tmax = t_end -
+ * (t_end >> end_shift), direction intervals and reciprocals, corner rays; live = 0xFFFF, occl = 0.
+ * A lane whose origin lies outside the geometry bound is dropped (LT_E_RANGE); a lane whose rays
+ * all have zero length (origin on a zero-area light) is dropped as unoccluded.
+ * Format: s15.16 / s1.30. Rounding: exact except the reciprocals (half up). Overflow: none in
+ * range. Cost: SETUP phase; VALU, VSHIFT, VDIV x6, VCMP per call.
+ * Returns: LT_OK, LT_E_ARG (NULL), LT_E_RANGE (some lane dropped; the others are set up). */
+lt_status_t lt_frusta_setup16_q16(const lt_frusta_table_q16_t *tb, lt_mask16_t k,
+                                  lt_frusta16_q16_t *F);
+
+/* Multi-frusta traversal: any hit of every live sample of every active frustum; sets occl[f].
+ * Interval slab test of the 16 frusta per box (TRAVERSE, one AABB event per box), (node, mask)
+ * stack, near child first (hmin of entry distances). Leaves (INTERSECT): per triangle the sign of
+ * the kernel's tnum over the frusta (a hit needs tnum != 0; > 0 with BACKFACE), then, with CORNER,
+ * the kernel's edge functions at the four corner rays against proven margins; then per frustum
+ * with a surviving triangle (bit-scan), its 16 rays generated from the corner and the set's deltas
+ * and lt_tri16 on the live samples. Events: TRI_FETCH per triangle fetched per leaf visit,
+ * TRI_KEPT per triangle surviving culling for some frustum, CULL_BACK / CULL_CORNER per
+ * frustum-triangle pair culled, TRIS per 16-ray test.
+ * Format: as lt_slab16 / lt_tri16. Rounding: conservative (docs/frusta.md). Overflow: none.
+ * Returns: LT_OK, LT_E_ARG (NULL, a tree of the other path), LT_E_DEPTH (foreign tree too deep). */
+lt_status_t lt_frusta_occluded16_q16(const lt_bvh_t *bvh, const lt_tri_q16_t *tris,
+                                     const lt_frusta_table_q16_t *tb, lt_frusta16_q16_t *F);
+
+/* The 16 rays of one frustum as a packet (lane j = sample j of set s) from origin o: exactly the
+ * rays the frusta generate, with lt_ray16_q16_setup applied. *k = 0xFFFF, or 0 for zero-length
+ * rays. Format: s15.16 origin, s1.30 direction. Rounding: exact. Overflow: none in range.
+ * Cost: VALU, VSHIFT, VBCAST; the setup's VDIV x3. Returns: LT_OK, LT_E_ARG, LT_E_RANGE. */
+lt_status_t lt_frusta_rays16_q16(const lt_frusta_table_q16_t *tb, const lt_q16_t o[3],
+                                 unsigned set, lt_ray16_q16_t *r, lt_mask16_t *k);
+
+/* One of those rays as a single ray (sample j of set s from origin o), with lt_ray1_q16_setup
+ * applied; zero-length rays get tmax = 0 (never hit). The per-ray reference of the tests.
+ * Returns: LT_OK, LT_E_ARG, LT_E_RANGE. */
+lt_status_t lt_frusta_ray1_q16(const lt_frusta_table_q16_t *tb, const lt_q16_t o[3], unsigned set,
+                               unsigned j, lt_ray1_q16_t *r);
+
+/* Packet baseline: any hit of the lanes in k of a packet whose lanes share the origin o (one
+ * pixel's samples, from lt_frusta_rays16_q16), through a BVH, with early termination (the any-hit
+ * path of lt_bvh_occluded16_q16) and, with BACKFACE in flags, triangles facing away from o skipped
+ * (decided by the sign of the kernel's own tnum, so it equals per-ray culling of det < 0).
+ * Events: TRI_FETCH, TRI_KEPT, CULL_BACK. Without BACKFACE *occluded equals lt_bvh_occluded16_q16.
+ * Returns: as lt_bvh_occluded16_q16. */
+lt_status_t lt_frusta_packet_occluded16_q16(const lt_bvh_t *bvh, const lt_tri_q16_t *tris,
+                                            uint32_t flags, const lt_q16_t o[3],
+                                            lt_ray16_q16_t *r, lt_mask16_t k,
+                                            lt_mask16_t *occluded);
+
+/* Direct-light geometry term of 16 points toward the light centre m with unit normal nl:
+ * w = m - p, G = max(0, n.w) max(0, -nl.w) / |w|^2 (the cosines at both ends; no distance
+ * falloff, which keeps G in [0, 1]). Format: p s15.16, n and nl s1.30 unit -> G s15.16 in [0, 1];
+ * dots exact in int64, one division. Rounding: dots half up to s15.16, G half up. Overflow: none
+ * for |w| <= 2^(GEOM+1). Cost: VMUL x6, VMULW, VDIV x1 (SHADE phase is the caller's).
+ * Returns: mask of lanes of k with G > 0 (those need shadow rays). */
+lt_mask16_t lt_frusta_direct16_q16(const lt_vq16_t p[3], const lt_vq30_t n[3], const lt_q16_t m[3],
+                                   const lt_q30_t nl[3], lt_mask16_t k, lt_vq16_t *g);
+
+/* Discontinuity filter parameters (both paths use the same meaning). */
+typedef struct lt_frusta_filter_q16 {
+    lt_q16_t depth_rel; /* neighbour q joins pixel p iff |z_q - z_p| <= depth_rel x z_p (s15.16) */
+    lt_q30_t cos_min;   /* ... and n_p . n_q >= cos_min (s1.30) */
+} lt_frusta_filter_q16_t;
+
+/* 4x4 discontinuity filter (seeds/004 4.5) of row y, pixels x0 .. x0 + 15 (lanes): each output is
+ * the mean of e over the pixels q of the window x - 1 .. x + 2, y - 1 .. y + 2 (inside the image)
+ * that are valid (valid[q] != 0) and pass both thresholds against p; p itself always joins. Every
+ * 4x4 window holds each interleaved set once, so a pixel with all 16 neighbours joined averages
+ * all 256 samples. Invalid pixels output 0. Arrays are row-major w x h.
+ * Format: e, z s15.16, n s1.30 (unit) -> out s15.16. Rounding: mean half up. Overflow: none
+ * (sums of <= 16 values saturate; never for e in [0, 1]). Cost: FILTER phase; per window offset VLOAD x6, VMUL x3 and
+ * VMULW x2 (normal dot), VCMP x3, VALU x4; VMUL x1 and VDIV x1 per row segment. */
+void lt_frusta_filter16_q16(const lt_q16_t *e, const lt_q16_t *z, const lt_q30_t *nx,
+                            const lt_q30_t *ny, const lt_q30_t *nz, const uint8_t *valid,
+                            uint32_t w, uint32_t h, uint32_t x0, uint32_t y,
+                            const lt_frusta_filter_q16_t *par, lt_q16_t *out);
+
+/* ---- float32 ------------------------------------------------------------------------------ */
+#if LT_CFG_FLOAT32
+typedef struct lt_frusta_light_f32 {
+    float c[3], eu[3], ev[3]; /* corner and edges, world units (any edges) */
+    uint32_t flags;           /* as the q16 light */
+    uint32_t end_shift;       /* as the q16 light */
+} lt_frusta_light_f32_t;
+LT_STATIC_ASSERT(sizeof(lt_frusta_light_f32_t) == 44, "f32 light is 44 bytes");
+
+typedef struct lt_frusta_table_f32 {
+    lt_vf32_t gx[LT_FRUSTA_SETS], gy[LT_FRUSTA_SETS], gz[LT_FRUSTA_SETS]; /* deltas
+                                   (su/512) eu + (sv/512) ev, rounded to nearest */
+    lt_vi32_t su[LT_FRUSTA_SETS], sv[LT_FRUSTA_SETS]; /* numerators 1..511 */
+    lt_vf32_t gmin[3], gmax[3];  /* lane s: min / max of set s's deltas */
+    lt_vf32_t kd[4][3];          /* lane s: corner deltas of set s's bounding rectangle */
+    float ld[4][3];              /* the light's corner deltas */
+    float c[3], eu[3], ev[3];    /* the light */
+    int32_t unused_[6];          /* private (layout twin of the q16 table) */
+    uint32_t flags, end_shift;
+} lt_frusta_table_f32_t;
+LT_STATIC_ASSERT(sizeof(lt_frusta_table_f32_t) == 6388, "f32 frusta table is 6388 bytes");
+
+typedef struct lt_frusta16_f32 {
+    lt_vf32_t ox, oy, oz;
+    lt_vf32_t cx, cy, cz;
+    lt_vf32_t tmin, tmax;
+    lt_vf32_t rlo[3], rhi[3];
+    lt_vf32_t kx[4], ky[4], kz[4];
+    lt_vf32_t scale;                /* direction = (light point - o) x scale (a power of two) */
+    lt_mask16_t alo[3], aup[3];
+    lt_mask16_t blo[3], bup[3];
+    lt_mask16_t active;
+    uint16_t live[LT_LANES];
+    uint16_t occl[LT_LANES];
+    uint16_t pad_[3];
+} lt_frusta16_f32_t;
+LT_STATIC_ASSERT(sizeof(lt_frusta16_f32_t) == 1824, "f32 frusta packet is 1824 bytes");
+
+/* float32 twins of the functions above, from the same source. The margins are relative (2^-20 on
+ * box bounds, 2^-16 of the magnitude bound on edge functions) instead of proven; the tests check
+ * frusta = per-ray visibility on the same cases as s15.16. Returns: as the q16 functions
+ * (lt_frusta_table_f32: LT_E_ARG also for non-finite input). */
+lt_status_t lt_frusta_table_f32(const lt_frusta_light_f32_t *light, const lt_qmc_sets_t *sets,
+                                lt_frusta_table_f32_t *tb);
+lt_status_t lt_frusta_setup16_f32(const lt_frusta_table_f32_t *tb, lt_mask16_t k,
+                                  lt_frusta16_f32_t *F);
+lt_status_t lt_frusta_occluded16_f32(const lt_bvh_t *bvh, const lt_tri_f32_t *tris,
+                                     const lt_frusta_table_f32_t *tb, lt_frusta16_f32_t *F);
+lt_status_t lt_frusta_rays16_f32(const lt_frusta_table_f32_t *tb, const float o[3], unsigned set,
+                                 lt_ray16_f32_t *r, lt_mask16_t *k);
+lt_status_t lt_frusta_ray1_f32(const lt_frusta_table_f32_t *tb, const float o[3], unsigned set,
+                               unsigned j, lt_ray1_f32_t *r);
+lt_status_t lt_frusta_packet_occluded16_f32(const lt_bvh_t *bvh, const lt_tri_f32_t *tris,
+                                            uint32_t flags, const float o[3], lt_ray16_f32_t *r,
+                                            lt_mask16_t k, lt_mask16_t *occluded);
+lt_mask16_t lt_frusta_direct16_f32(const lt_vf32_t p[3], const lt_vf32_t n[3], const float m[3],
+                                   const float nl[3], lt_mask16_t k, lt_vf32_t *g);
+
+typedef struct lt_frusta_filter_f32 {
+    float depth_rel; /* as lt_frusta_filter_q16_t */
+    float cos_min;
+} lt_frusta_filter_f32_t;
+
+void lt_frusta_filter16_f32(const float *e, const float *z, const float *nx, const float *ny,
+                            const float *nz, const uint8_t *valid, uint32_t w, uint32_t h,
+                            uint32_t x0, uint32_t y, const lt_frusta_filter_f32_t *par, float *out);
+#endif
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* LT_FRUSTA_H */
