@@ -958,8 +958,11 @@ static void render_usage(FILE *f)
             "              one point light, hard shadows) and, with --layers K, layer0.Z ..\n"
             "              layer<K-1>.Z (the first K surfaces along each primary ray)\n"
             "  PREFIX.png  the shaded image; PREFIX.depth.png, PREFIX.normals.png, PREFIX.ids.png\n"
-            "  --mesh PATH  --res WxH|N  --num q16|f32 (default q16)  --structure bvh|bvhq|chunks\n"
-            "  --layers K   depth peels, 1..16 (default 1; needs bvh or bvhq)\n"
+            "  --mesh PATH  --res WxH|N  --num q16|f32 (default q16)\n"
+            "  --structure bvh|bvhq|kd|grid|chunks (default bvh; chunks: no shadows, no peels)\n"
+            "  --layers K   depth peels, 1..16 (default 1)\n"
+            "  --report PATH  (simulator build) write the cycle report of the whole render as JSON;\n"
+            "               the text report is printed unless -q or --json\n"
             "  --light X,Y,Z  point light in mesh file units (default: the scene's first light,\n"
             "               else centre + 2 radius normalize(-0.5, 1.5, 0.8))\n"
             "  --json       print what was written as JSON on stdout\n"
@@ -973,6 +976,15 @@ static uint8_t to8(double v)
     return (uint8_t)(255.0 * pow(v, 1.0 / 2.2) + 0.5);
 }
 
+static uint64_t count_hits(const lt_frame_t *f)
+{
+    size_t i, n = (size_t)f->width * f->height;
+    uint64_t c = 0;
+    for (i = 0; i < n; i++)
+        c += f->id[i] >= 0;
+    return c;
+}
+
 static int cmd_render(int argc, char **argv)
 {
     lt_scenefile_t sf;
@@ -983,6 +995,8 @@ static int cmd_render(int argc, char **argv)
     lt_accel_t *acc = NULL;
     char err[1024], path[1200];
     const char *scene_path = NULL, *mesh_over = NULL, *out = NULL, *structure = "bvh";
+    const char *report = NULL;
+    uint64_t nrays = 0;
     int a, layers = 1, l, status = 0, have_light = 0, json = 0;
     double light[3], lf[3];
     lt_path_t np = LT_PATH_Q16;
@@ -1019,6 +1033,8 @@ static int cmd_render(int argc, char **argv)
             mesh_over = v;
         } else if (strcmp(o, "--out") == 0) {
             out = v;
+        } else if (strcmp(o, "--report") == 0) {
+            report = v;
         } else if (strcmp(o, "--res") == 0) {
             if (parse_res(v, &w, &h) != 0) {
                 fprintf(stderr, "%s render: --res %s: expected WxH or N, 1..%d\n", prog, v,
@@ -1056,6 +1072,13 @@ static int cmd_render(int argc, char **argv)
         fprintf(stderr, "%s render: --out PREFIX is required\n", prog);
         return EXIT_USAGE;
     }
+#if LT_COST_MODE != LT_COST_SIM
+    if (report != NULL) {
+        fprintf(stderr, "%s render: --report needs the simulator build (build/sim/lanetrace); "
+                        "this is the native build\n", prog);
+        return EXIT_USAGE;
+    }
+#endif
     if (scene_path != NULL && lt_sf_load(scene_path, &sf, err, sizeof err) != 0) {
         fprintf(stderr, "%s\n", err);
         return EXIT_INPUT;
@@ -1211,7 +1234,8 @@ static int cmd_render(int argc, char **argv)
             if (l == 0) {
                 memcpy(lay[0].id, fr.id, n * sizeof *fr.id);
                 memcpy(lay[0].t, fr.t, n * sizeof *fr.t);
-            } else if (lt_render_peel(&sc, acc, &cam, &lay[l - 1], &lay[l], err, sizeof err) != 0) {
+            } else if ((nrays += count_hits(&lay[l - 1]), 0) ||
+                       lt_render_peel(&sc, acc, &cam, &lay[l - 1], &lay[l], err, sizeof err) != 0) {
                 free(z);
                 fprintf(stderr, "%s render: %s\n", prog, err);
                 status = EXIT_USAGE;
@@ -1241,6 +1265,31 @@ static int cmd_render(int argc, char **argv)
         if (status != 0)
             goto done;
     }
+    nrays += n + nshadow;
+#if LT_COST_MODE == LT_COST_SIM
+    {
+        /* every ray of the render: primary packets, shadow packets, peels (and the build) */
+        char title[1400], extra[256], *js;
+        snprintf(title, sizeof title, "render %s %ux%u %s, %s, %d layer(s), shadows", sf.mesh,
+                 sf.width, sf.height, np == LT_PATH_Q16 ? "q16" : "f32", structure, layers);
+        if (!quiet)
+            lt_sim_report_text(stdout, title, nrays);
+        snprintf(extra, sizeof extra, "{\"primary_rays\": %zu, \"shadow_rays\": %u, \"peel_rays\": %llu}",
+                 n, nshadow, (unsigned long long)(nrays - n - nshadow));
+        js = lt_sim_report_json_string(title, nrays, extra);
+        if (report != NULL) {
+            if (js == NULL || write_atomic(report, js, err, sizeof err) != 0) {
+                fprintf(stderr, "%s\n", js == NULL ? "render: out of memory for the report" : err);
+                free(js);
+                status = EXIT_INPUT;
+                goto done;
+            }
+            if (!quiet)
+                printf("report    %s\n", report);
+        }
+        free(js);
+    }
+#endif
     snprintf(path, sizeof path, "%s.png", out);
     if (lt_png_write(path, rgb, (int32_t)sf.width, (int32_t)sf.height, 3, 3 * sf.width, err,
                      sizeof err) != 0) {
@@ -1306,6 +1355,16 @@ static int cmd_render(int argc, char **argv)
         cJSON_AddNumberToObject(o, "layers", layers);
         cJSON_AddNumberToObject(o, "shadow_rays", nshadow);
         cJSON_AddNumberToObject(o, "occluded", nocc);
+        cJSON_AddNumberToObject(o, "rays", (double)nrays);
+#if LT_COST_MODE == LT_COST_SIM
+        {
+            lt_sim_totals_t tt;
+            lt_sim_totals(&tt);
+            cJSON_AddNumberToObject(o, "cycles", (double)tt.total_cycles);
+            if (report != NULL)
+                cJSON_AddStringToObject(o, "report", report);
+        }
+#endif
         js = cJSON_Print(o);
         if (js != NULL)
             puts(js);

@@ -100,3 +100,9 @@ for st in kd grid; do
 done
 expect "render with the kd-tree and depth peels" 0 "depth peels" "$LT" render --structure kd --layers 2 --res 16 --out "$tmp/kdr"
 expect "render --json lists the files" 0 "\"shadow_rays\"" "$LT" render --res 8 --json --out "$tmp/rj"
+expect "render (sim) prints the cycle report of primary, shadow and peel rays" 0 "cycles/ray" "$LT" render --structure grid --layers 2 --res 16 --out "$tmp/gr" --report "$tmp/gr.json"
+check "render --report JSON counts primary + shadow + peel rays" python3 -c "
+import json,sys; r=json.load(open('$tmp/gr.json')); x=r.get('extra', r)
+print('render report rays', r['rays'], 'primary', x['primary_rays'], 'shadow', x['shadow_rays'], 'peel', x['peel_rays'])
+sys.exit(0 if x['primary_rays']==256 and x['peel_rays']>0 and x['shadow_rays']>0 else 1)"
+expect "render --report in the native build: usage error" 2 "simulator build" "$B/host/lanetrace-native" render --res 8 --out "$tmp/rn" --report "$tmp/rn.json"
