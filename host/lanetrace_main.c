@@ -344,6 +344,12 @@ static int cmd_run(int argc, char **argv)
         lt_mesh_free(&mesh);
         return EXIT_INPUT;
     }
+    if (((unsigned)sf.numeric & (1u << LT_PATH_Q16)) && lt_scene_check_q16(&sc, sf.mesh, err, sizeof err) != 0) {
+        fprintf(stderr, "%s\n", err);
+        lt_scene_free(&sc);
+        lt_mesh_free(&mesh);
+        return EXIT_INPUT;
+    }
     if (sf.has_camera) {
         if (lt_camera_look(&sc, sf.eye, sf.target, sf.up, sf.fov_y_deg, sf.width, sf.height, &cam,
                            err, sizeof err) != 0) {
@@ -767,15 +773,23 @@ static int cmd_info(int argc, char **argv)
     }
     if (json)
         printf("{\"file\":\"%s\",\"triangles\":%u,\"zero_area\":%u,\"lo\":[%g,%g,%g],"
-               "\"hi\":[%g,%g,%g],\"scale\":%g,\"radius_scaled\":%g}\n",
+               "\"hi\":[%g,%g,%g],\"scale\":%g,\"radius_scaled\":%g,\"collapsed_q16\":%u,"
+               "\"q16_representable\":%s}\n",
                path, m.ntris, zero, m.lo[0], m.lo[1], m.lo[2], m.hi[0], m.hi[1], m.hi[2],
-               sc.scale, sc.radius);
+               sc.scale, sc.radius, sc.collapsed_q16,
+               lt_scene_check_q16(&sc, path, err, sizeof err) == 0 ? "true" : "false");
     else
         printf("%s: mesh, %u triangles (%u zero-area), bounds [%g %g %g] .. [%g %g %g]\n"
                "fixed point: scale %g (a power of two), scene radius %.2f units of s15.16, "
-               "resolution %.3g file units\n",
+               "resolution %.3g file units\n"
+               "s15.16: %u of %u non-degenerate triangles collapse to zero area (limit %.1f%%: %s), "
+               "shortest edge %.3g units\n",
                path, m.ntris, zero, m.lo[0], m.lo[1], m.lo[2], m.hi[0], m.hi[1], m.hi[2], sc.scale,
-               sc.radius, 1.0 / 65536.0 / sc.scale);
+               sc.radius, 1.0 / 65536.0 / sc.scale, sc.collapsed_q16, sc.nonzero,
+               LT_SCENE_MAX_COLLAPSED_PPM / 1e4,
+               lt_scene_check_q16(&sc, path, err, sizeof err) == 0 ? "representable"
+                                                                 : "NOT representable, float32 only",
+               sc.min_edge);
     lt_scene_free(&sc);
     lt_mesh_free(&m);
     return 0;
@@ -1005,6 +1019,9 @@ static int cmd_render(int argc, char **argv)
     float *ch[10];
     uint8_t *occ = NULL, *rgb = NULL;
 
+    memset(&fr, 0, sizeof fr);
+    memset(lay, 0, sizeof lay);
+    memset(ch, 0, sizeof ch);
     lt_sf_defaults(&sf);
     for (a = 2; a < argc; a++) {
         const char *o = argv[a], *v = a + 1 < argc ? argv[a + 1] : NULL;
@@ -1109,6 +1126,11 @@ static int cmd_render(int argc, char **argv)
         fprintf(stderr, "%s: %s\n", sf.mesh, err);
         lt_mesh_free(&mesh);
         return EXIT_INPUT;
+    }
+    if (np == LT_PATH_Q16 && lt_scene_check_q16(&sc, sf.mesh, err, sizeof err) != 0) {
+        fprintf(stderr, "%s\n", err);
+        status = EXIT_INPUT;
+        goto done;
     }
     if (sf.has_camera) {
         if (lt_camera_look(&sc, sf.eye, sf.target, sf.up, sf.fov_y_deg, sf.width, sf.height, &cam,

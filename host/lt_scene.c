@@ -46,6 +46,37 @@ int lt_scene_prepare(const lt_mesh_t *m, lt_scene_t *s, char *err, size_t errlen
                 s->vd[i * 9 + j * 3 + a] = c;
                 q[j][a] = lt_q16_from_double_sat(c);
             }
+        {
+            /* area in double (the file's geometry) and of the quantised vertices (exact) */
+            const double *v = &s->vd[i * 9];
+            double e1[3], e2[3], nx, ny, nz;
+            int64_t q1[3], q2[3];
+            for (a = 0; a < 3; a++) {
+                e1[a] = v[3 + a] - v[a];
+                e2[a] = v[6 + a] - v[a];
+                q1[a] = (int64_t)q[1][a] - q[0][a];
+                q2[a] = (int64_t)q[2][a] - q[0][a];
+            }
+            nx = e1[1] * e2[2] - e1[2] * e2[1];
+            ny = e1[2] * e2[0] - e1[0] * e2[2];
+            nz = e1[0] * e2[1] - e1[1] * e2[0];
+            if (nx != 0.0 || ny != 0.0 || nz != 0.0) {
+                double l[3];
+                s->nonzero++;
+                for (a = 0; a < 3; a++) {
+                    const double *p0 = &v[3 * a], *p1 = &v[3 * ((a + 1) % 3)];
+                    l[a] = sqrt((p1[0] - p0[0]) * (p1[0] - p0[0]) + (p1[1] - p0[1]) * (p1[1] - p0[1]) +
+                                (p1[2] - p0[2]) * (p1[2] - p0[2]));
+                    if (l[a] > 0.0 && (s->min_edge == 0.0 || l[a] < s->min_edge))
+                        s->min_edge = l[a];
+                }
+                /* every vertex lies within the radius, 2^LT_SCENE_RADIUS_LOG2 units = 2^26 raw:
+                   edges < 2^27 raw, products < 2^54, exact in int64 */
+                if (q1[1] * q2[2] == q1[2] * q2[1] && q1[2] * q2[0] == q1[0] * q2[2] &&
+                    q1[0] * q2[1] == q1[1] * q2[0])
+                    s->collapsed_q16++;
+            }
+        }
         for (a = 0; a < 3; a++) {
             float v0 = (float)s->vd[i * 9 + a];
             s->tq[i].v0[a] = q[0][a];
@@ -57,6 +88,20 @@ int lt_scene_prepare(const lt_mesh_t *m, lt_scene_t *s, char *err, size_t errlen
         }
     }
     return 0;
+}
+
+int lt_scene_check_q16(const lt_scene_t *s, const char *name, char *err, size_t errlen)
+{
+    if ((uint64_t)s->collapsed_q16 * 1000000u <= (uint64_t)s->nonzero * LT_SCENE_MAX_COLLAPSED_PPM)
+        return 0;
+    snprintf(err, errlen,
+             "%s: cannot be represented in s15.16: %u of %u triangles with non-zero area (%.3f%%) "
+             "collapse to zero area (limit %.1f%%); the scene is scaled by %g to a radius of %.0f "
+             "units, its shortest edge is %.3g units against a resolution of 2^-16 = 1.5e-05; "
+             "use the float32 path (--num f32) or split the scene",
+             name, s->collapsed_q16, s->nonzero, 100.0 * s->collapsed_q16 / (double)s->nonzero,
+             LT_SCENE_MAX_COLLAPSED_PPM / 1e4, s->scale, s->radius, s->min_edge);
+    return -1;
 }
 
 void lt_scene_free(lt_scene_t *s)

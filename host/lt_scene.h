@@ -17,15 +17,29 @@ typedef struct lt_scene {
     double center[3];      /* file units: the origin of the scaled space */
     double scale;          /* scaled = (file - center) * scale; a power of two */
     double radius;         /* half the bounding-box diagonal, scaled units */
+    uint32_t collapsed_q16; /* triangles of non-zero area whose s15.16 vertices span zero area */
+    uint32_t nonzero;       /* triangles of non-zero area (double, file geometry) */
+    double min_edge;        /* shortest non-zero edge of a non-degenerate triangle, scaled units */
 } lt_scene_t;
+
+/* The s15.16 path cannot represent a scene when more than this many parts per million of its
+ * non-degenerate triangles collapse to zero area on quantisation (they would vanish: holes in
+ * the image, silently). 1000 ppm = 0.1%. */
+#define LT_SCENE_MAX_COLLAPSED_PPM 1000u
 
 /* The scene radius is mapped to at most 2^(LT_CFG_GEOM_MAX_LOG2 - 2) units so that a camera at up
  * to 3x the radius from the centre stays within the core's geometry bound. */
 #define LT_SCENE_RADIUS_LOG2 (LT_CFG_GEOM_MAX_LOG2 - 2)
 
-/* Returns 0, or -1 with a message (degenerate bounds: all vertices equal; or a scale that would
- * push the scene's smallest feature below s15.16 resolution is reported as a warning only). */
+/* Returns 0, or -1 with a message (empty or non-finite bounds, out of memory). Also counts the
+ * triangles that s15.16 quantisation collapses (collapsed_q16) for lt_scene_check_q16. */
 int lt_scene_prepare(const lt_mesh_t *m, lt_scene_t *s, char *err, size_t errlen);
+
+/* Whether the s15.16 path can represent the prepared scene: 0, or -1 with a message naming
+ * `name`, the collapsed count and LT_SCENE_MAX_COLLAPSED_PPM (the scene's dynamic range exceeds
+ * s15.16: its extent is mapped to 2^LT_SCENE_RADIUS_LOG2 units and its smallest features fall
+ * below 2^-16 units). The float32 path has no such limit. */
+int lt_scene_check_q16(const lt_scene_t *s, const char *name, char *err, size_t errlen);
 void lt_scene_free(lt_scene_t *s);
 
 typedef struct lt_camera {

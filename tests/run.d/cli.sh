@@ -106,3 +106,15 @@ import json,sys; r=json.load(open('$tmp/gr.json')); x=r.get('extra', r)
 print('render report rays', r['rays'], 'primary', x['primary_rays'], 'shadow', x['shadow_rays'], 'peel', x['peel_rays'])
 sys.exit(0 if x['primary_rays']==256 and x['peel_rays']>0 and x['shadow_rays']>0 else 1)"
 expect "render --report in the native build: usage error" 2 "simulator build" "$B/host/lanetrace-native" render --res 8 --out "$tmp/rn" --report "$tmp/rn.json"
+# a scene whose dynamic range exceeds s15.16: one 2e6-unit triangle and ten 1e-3-unit ones
+{
+    echo "v -1000000 0 0"; echo "v 1000000 0 0"; echo "v 0 1000000 0"
+    for i in 0 1 2 3 4 5 6 7 8 9; do echo "v $i 0 1"; echo "v $i.001 0 1"; echo "v $i 0.001 1"; done
+    echo "f 1 2 3"
+    for i in 0 1 2 3 4 5 6 7 8 9; do b=$((4 + 3 * i)); echo "f $b $((b + 1)) $((b + 2))"; done
+} >"$tmp/wide.obj"
+expect "run: a scene s15.16 cannot represent is an input error naming the file and the limit" 1 "wide.obj: cannot be represented in s15.16: 10 of 11 triangles.*limit 0.1%" "$LT" run --mesh "$tmp/wide.obj" --res 8 -q
+expect "render: the same error for the s15.16 path" 1 "cannot be represented in s15.16" "$LT" render --mesh "$tmp/wide.obj" --res 8 --out "$tmp/wide"
+check "render: nothing written for the unrepresentable scene" test ! -e "$tmp/wide.exr"
+expect "run --num f32 traces the same scene" 0 "result    f32" "$LT" run --mesh "$tmp/wide.obj" --res 8 -q --num f32 --no-ref
+expect "info says which paths can represent a mesh" 0 "10 of 11 non-degenerate triangles collapse.*NOT representable" "$B/host/lanetrace-native" info "$tmp/wide.obj"
