@@ -43,7 +43,7 @@ awk -v p="$pred" -v c="$cnt" 'BEGIN{printf "lt_tri16_q16 (+helpers): predicted %
 echo "== 3. race against Embree 3 (native build, single thread, same rays, 1024x1024)"
 STRUCT=${BENCH_STRUCTURE:-bvh}
 "$B/host/embree-race" --mesh "$SCENE" --res 1024 --runs 5 --structure "$STRUCT"
-for m in bunny.obj dragon_res3.obj sponza.obj; do
+for m in bunny.obj dragon_res3.obj sponza.obj sibenik.obj conference.obj.gz CornellBox-Original.obj; do
     if [ -f "../shared/scenes/$m" ]; then
         "$B/host/embree-race" --mesh "../shared/scenes/$m" --res 1024 --runs 3 --structure "$STRUCT"
     fi

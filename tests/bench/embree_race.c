@@ -79,7 +79,13 @@ static void embree_primary16(race_t *r)
     for (ty = 0; ty < H; ty += 4)
         for (tx = 0; tx < W; tx += 4) {
             struct RTCRayHit16 rh;
-            int valid[16], l;
+            /* valid[] must be 64-byte aligned (Embree reads it with aligned vector loads): the union
+               takes the alignment of Embree's 64-byte aligned ray block */
+            union {
+                struct RTCRay16 align;
+                int v[16];
+            } vu;
+            int *valid = vu.v, l;
             memset(&rh, 0, sizeof rh);
             for (l = 0; l < 16; l++) {
                 uint32_t x = tx + (uint32_t)(l % 4), y = ty + (uint32_t)(l / 4);
@@ -119,7 +125,13 @@ static uint32_t embree_shadow16(race_t *r, uint32_t *nrays)
     for (ty = 0; ty < H; ty += 4)
         for (tx = 0; tx < W; tx += 4) {
             struct RTCRay16 ray;
-            int valid[16], l;
+            /* valid[] must be 64-byte aligned (Embree reads it with aligned vector loads): the union
+               takes the alignment of Embree's 64-byte aligned ray block */
+            union {
+                struct RTCRay16 align;
+                int v[16];
+            } vu;
+            int *valid = vu.v, l;
             memset(&ray, 0, sizeof ray);
             for (l = 0; l < 16; l++) {
                 uint32_t x = tx + (uint32_t)(l % 4), y = ty + (uint32_t)(l / 4), p = y * W + x;

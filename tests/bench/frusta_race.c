@@ -183,7 +183,13 @@ int main(int argc, char **argv)
             for (x = 0; x < res; x++) {
                 size_t q = (size_t)y * res + x;
                 struct RTCRay16 ray;
-                int valid[16], l;
+                /* valid[] must be 64-byte aligned (Embree reads it with aligned vector loads): the union
+               takes the alignment of Embree's 64-byte aligned ray block */
+            union {
+                struct RTCRay16 align;
+                int v[16];
+            } vu;
+            int *valid = vu.v, l;
                 unsigned s = (x & 3u) + 4u * (y & 3u), oc = 0;
                 if (!lit[q])
                     continue;

@@ -1,0 +1,303 @@
+/* lt_agree.c - hit agreement of the tracers with the double-precision reference on a real mesh,
+ * with every disagreement explained or reported (issue: "same triangle id for >= 99.99% of pixels,
+ * differences only at ties/edges").
+ *
+ * For each structure (grid, kd, bvh, bvhq) and numeric path (s15.16, float32) the benchmark view is
+ * traced with 16-ray packets and compared pixel by pixel with lt_render_reference (brute-force
+ * Moller-Trumbore in double, lowest id on equal t). A pixel whose triangle differs is re-examined in
+ * double on the exact camera ray:
+ *   m(X)  signed distance (scaled units) of the ray's point on triangle X's plane to X's border,
+ *         positive inside: the smallest barycentric times the matching altitude;
+ *   t(X)  the ray parameter of that point.
+ * With the tracer's triangle a and the reference's b (-1 = no hit), a difference is
+ *   TIE   both hit, a is a genuine hit (m(a) >= -delta) at the reference's depth
+ *         (|t(a) - t(b)| <= tau): coplanar duplicates or a shared edge/vertex at one depth;
+ *   EDGE  the ray passes within delta of the border of the triangle that one side missed or
+ *         wrongly hit: m(a) in [-delta, delta] when the tracer took a the reference did not take
+ *         first, m(b) <= delta when the tracer missed b;
+ *   UNEXPLAINED otherwise (a wrong hit far outside a triangle, a hit far behind the true one).
+ * delta is the path's bound on that border distance at the hit (delta_of below: quantisation of
+ * vertices, origins, directions and the kernel's rounded cross products, amplified by the grazing
+ * angle and by short edges); tau = 2^-12 + 2^-20 t is the depth tie tolerance.
+ * The three structures are also compared with each other per path (same id, same t bits).
+ *
+ * Usage: lt-agree MESH [--res N] [--min PCT] [--structures a,b,..]
+ * Exit 0 when every path of every structure has no unexplained difference and at least PCT% same
+ * triangle after counting ties as agreement (default 99.99); 1 otherwise or on an input error.
+ */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "lt_mesh.h"
+#include "lt_render.h"
+#include "lt_scene.h"
+
+typedef struct geo {
+    double t, m, cosv; /* ray parameter, signed border distance, |cos| ray vs normal */
+    double emin;       /* shortest edge */
+    int ok;            /* the ray meets the plane (not parallel) */
+} geo_t;
+
+static void tri_geo(const lt_scene_t *s, int32_t id, const double o[3], const double d[3], geo_t *g)
+{
+    const double *v = &s->vd[(size_t)id * 9];
+    double e1[3], e2[3], n[3], nn, dn, p[3], lam[3], area2;
+    int a;
+    memset(g, 0, sizeof *g);
+    for (a = 0; a < 3; a++) {
+        e1[a] = v[3 + a] - v[a];
+        e2[a] = v[6 + a] - v[a];
+    }
+    n[0] = e1[1] * e2[2] - e1[2] * e2[1];
+    n[1] = e1[2] * e2[0] - e1[0] * e2[2];
+    n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+    nn = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+    dn = n[0] * d[0] + n[1] * d[1] + n[2] * d[2];
+    if (nn == 0.0 || dn == 0.0) {
+        g->m = -HUGE_VAL;
+        return;
+    }
+    g->ok = 1;
+    g->cosv = fabs(dn) / sqrt(nn);
+    g->t = (n[0] * (v[0] - o[0]) + n[1] * (v[1] - o[1]) + n[2] * (v[2] - o[2])) / dn;
+    for (a = 0; a < 3; a++)
+        p[a] = o[a] + g->t * d[a];
+    /* barycentrics from sub-triangle areas signed along n: lam_i = n . ((v_j - p) x (v_k - p)) / nn */
+    for (a = 0; a < 3; a++) {
+        const double *vj = &v[3 * ((a + 1) % 3)], *vk = &v[3 * ((a + 2) % 3)];
+        double x[3], y[3], c[3];
+        int k;
+        for (k = 0; k < 3; k++) {
+            x[k] = vj[k] - p[k];
+            y[k] = vk[k] - p[k];
+        }
+        c[0] = x[1] * y[2] - x[2] * y[1];
+        c[1] = x[2] * y[0] - x[0] * y[2];
+        c[2] = x[0] * y[1] - x[1] * y[0];
+        lam[a] = (n[0] * c[0] + n[1] * c[1] + n[2] * c[2]) / nn;
+    }
+    /* distance to the edge opposite vertex i = lam_i * altitude_i = lam_i * |n| / |edge_i| */
+    area2 = sqrt(nn);
+    g->m = HUGE_VAL;
+    for (a = 0; a < 3; a++) {
+        const double *vj = &v[3 * ((a + 1) % 3)], *vk = &v[3 * ((a + 2) % 3)];
+        double el = sqrt((vk[0] - vj[0]) * (vk[0] - vj[0]) + (vk[1] - vj[1]) * (vk[1] - vj[1]) +
+                         (vk[2] - vj[2]) * (vk[2] - vj[2]));
+        double dist = el > 0.0 ? lam[a] * area2 / el : -HUGE_VAL;
+        if (a == 0 || el < g->emin)
+            g->emin = el;
+        if (dist < g->m)
+            g->m = dist;
+    }
+}
+
+/* The path's bound on the border distance error of a hit on triangle g at ray parameter t
+ * (scaled units), with c = max(|cos|, 2^-8):
+ *   s15.16:  (sqrt3 2^-16 + sqrt3 2^-30 t) / c     vertices and origin rounded to 2^-17 per axis,
+ *                                                  directions to 2^-31 per component
+ *          + sqrt3 2^-7 / (c emin)                 qvec rounded to s25.6 moves v by |d|_1 2^-7 of
+ *                                                  det = 2 area cos: a distance of that / (c emin)
+ *          + 3 t 2^-17 / (c emin)                  pvec rounded to s15.16 moves u by |tvec|_1 2^-17
+ *   float32: 2^-20 (2^11 + t) / c (1 + 1 / emin)   a few roundings of 2^-24 relative on coordinates
+ *                                                  up to 2^11 units
+ * The classification accepts border distances up to this bound; the largest ratio seen is printed. */
+static double delta_of(int path, const geo_t *g, double t)
+{
+    double c = fmax(g->ok ? g->cosv : 1.0, ldexp(1.0, -8)), e = g->emin > 0.0 ? g->emin : 1.0;
+    if (path == 0)
+        return (sqrt(3.0) * (ldexp(1.0, -16) + ldexp(t, -30))) / c +
+               (sqrt(3.0) * ldexp(1.0, -7) + 3.0 * ldexp(t, -17)) / (c * e);
+    return ldexp(ldexp(1.0, 11) + t, -20) / c * (1.0 + 1.0 / e);
+}
+
+typedef struct verdict {
+    uint32_t pixels, same, ties, ties_coplanar, edges, unexplained;
+    double max_rel_delta; /* largest |m| / delta among explained pixels */
+} verdict_t;
+
+static void classify(const lt_scene_t *s, const lt_camera_t *c, int path, const lt_frame_t *f,
+                     const lt_frame_t *ref, const char *label, verdict_t *v)
+{
+    uint32_t x, y;
+    int shown = 0;
+    memset(v, 0, sizeof *v);
+    for (y = 0; y < c->height; y++)
+        for (x = 0; x < c->width; x++) {
+            size_t p = (size_t)y * c->width + x;
+            int32_t a = f->id[p], b = ref->id[p];
+            double d[3], da = 0.0, db = 0.0, tau, t;
+            geo_t ga, gb;
+            int tie = 0, edge = 0;
+            v->pixels++;
+            if (a == b) {
+                v->same++;
+                continue;
+            }
+            lt_camera_dir(c, x, y, d);
+            memset(&ga, 0, sizeof ga);
+            memset(&gb, 0, sizeof gb);
+            if (a >= 0)
+                tri_geo(s, a, c->eye, d, &ga);
+            if (b >= 0)
+                tri_geo(s, b, c->eye, d, &gb);
+            t = b >= 0 ? ref->t[p] : (a >= 0 ? ga.t : 0.0);
+            if (a >= 0)
+                da = delta_of(path, &ga, t);
+            if (b >= 0)
+                db = delta_of(path, &gb, t);
+            /* depth tie: within the path's depth error (the larger of both triangles' bounds
+               times the cosine back to depth, at least 2^-12 + 2^-20 t) */
+            tau = ldexp(1.0, -12) + ldexp(1.0, -20) * fabs(t);
+            if (a >= 0 && b >= 0) {
+                if (ga.ok && ga.m >= -da && fabs(ga.t - ref->t[p]) <= tau)
+                    tie = 1;
+                else if (ga.ok && ga.m >= -da &&
+                         ((ga.t < ref->t[p] && ga.m <= da) || (ga.t > ref->t[p] && gb.m <= db)))
+                    edge = 1;
+            } else if (a >= 0) {
+                edge = ga.ok && ga.m >= -da && ga.m <= da;
+            } else {
+                edge = gb.m <= db;
+            }
+            if (tie) {
+                v->ties++;
+                /* the same plane (duplicate or coplanar faces): depths equal to 1e-9 relative */
+                v->ties_coplanar += fabs(ga.t - ref->t[p]) <= 1e-9 * fabs(t);
+                if (fabs(ga.m) / da > v->max_rel_delta && ga.m < 0.0)
+                    v->max_rel_delta = fabs(ga.m) / da;
+            } else if (edge) {
+                int use_a = a >= 0 && (b < 0 || ga.t < ref->t[p]);
+                double r = fabs(use_a ? ga.m : gb.m) / (use_a ? da : db);
+                v->edges++;
+                if (r > v->max_rel_delta)
+                    v->max_rel_delta = r;
+            } else {
+                v->unexplained++;
+                if (shown++ < 5)
+                    printf("  UNEXPLAINED %s pixel (%u,%u): tracer id %d (t %.9g, border %.3g, "
+                           "cos %.3g, bound %.3g), reference id %d (t %.9g, border %.3g, bound "
+                           "%.3g)\n",
+                           label, x, y, a, ga.t, ga.m, ga.cosv, da, b, b >= 0 ? ref->t[p] : 0.0,
+                           gb.m, db);
+            }
+        }
+}
+
+/* Whether name is one of the comma-separated words of list. */
+static int listed(const char *list, const char *name)
+{
+    size_t n = strlen(name);
+    while (*list != '\0') {
+        const char *e = strchr(list, ',');
+        size_t l = e != NULL ? (size_t)(e - list) : strlen(list);
+        if (l == n && strncmp(list, name, n) == 0)
+            return 1;
+        list += l + (e != NULL);
+    }
+    return 0;
+}
+
+int main(int argc, char **argv)
+{
+    static const char *const all[] = {"grid", "kd", "bvh", "bvhq"};
+    const char *mesh_path = NULL, *only = NULL;
+    uint32_t res = 128;
+    double min_pct = 99.99;
+    lt_mesh_t m;
+    lt_scene_t s;
+    lt_camera_t cam;
+    lt_frame_t ref, fr[4][2];
+    char err[1024];
+    int i, st, path, bad = 0, ran[4][2];
+
+    for (i = 1; i < argc; i++) {
+        if (strcmp(argv[i], "--res") == 0 && i + 1 < argc) {
+            res = (uint32_t)atoi(argv[++i]);
+        } else if (strcmp(argv[i], "--min") == 0 && i + 1 < argc) {
+            min_pct = atof(argv[++i]);
+        } else if (strcmp(argv[i], "--structures") == 0 && i + 1 < argc) {
+            only = argv[++i];
+        } else if (argv[i][0] != '-' && mesh_path == NULL) {
+            mesh_path = argv[i];
+        } else {
+            fprintf(stderr, "usage: lt-agree MESH [--res N] [--min PCT] [--structures a,b,..]\n");
+            return 2;
+        }
+    }
+    if (mesh_path == NULL || res < 4 || res > 4096) {
+        fprintf(stderr, "usage: lt-agree MESH [--res N (4..4096)] [--min PCT] [--structures a,b,..]\n");
+        return 2;
+    }
+    if (lt_mesh_load(mesh_path, &m, err, sizeof err) != 0) {
+        fprintf(stderr, "%s\n", err);
+        return 1;
+    }
+    if (lt_scene_prepare(&m, &s, err, sizeof err) != 0) {
+        fprintf(stderr, "%s: %s\n", mesh_path, err);
+        lt_mesh_free(&m);
+        return 1;
+    }
+    lt_camera_default(&s, res, res, &cam);
+    if (lt_frame_alloc(&ref, res, res, err, sizeof err) != 0) {
+        fprintf(stderr, "%s\n", err);
+        return 1;
+    }
+    lt_render_reference(&s, &cam, &ref, NULL);
+    memset(ran, 0, sizeof ran);
+    for (st = 0; st < 4; st++) {
+        if (only != NULL && !listed(only, all[st]))
+            continue;
+        for (path = 0; path < 2; path++) {
+            lt_accel_t *acc;
+            verdict_t v;
+            char label[64];
+            double pct;
+            const char *base;
+            if (st == 3 && path == 1)
+                continue; /* the quantised BVH is s15.16 only */
+            acc = lt_accel_build(&s, all[st], (lt_path_t)path, err, sizeof err);
+            if (acc == NULL || lt_frame_alloc(&fr[st][path], res, res, err, sizeof err) != 0) {
+                fprintf(stderr, "%s: %s\n", mesh_path, err);
+                return 1;
+            }
+            lt_render_primary(&s, acc, &cam, &fr[st][path], NULL);
+            lt_accel_free(acc);
+            ran[st][path] = 1;
+            snprintf(label, sizeof label, "%s %s", all[st], path ? "f32" : "q16");
+            classify(&s, &cam, path, &fr[st][path], &ref, label, &v);
+            pct = 100.0 * (v.same + v.ties) / v.pixels;
+            base = strrchr(mesh_path, '/') != NULL ? strrchr(mesh_path, '/') + 1 : mesh_path;
+            printf("agree %-26s %-5s %ux%u: same triangle %.3f%% of %u pixels, + %u ties (%u coplanar) = "
+                   "%.3f%%; %u edge, %u unexplained (border distances within %.3f of the bound)\n",
+                   base, label, res, res, 100.0 * v.same / v.pixels, v.pixels, v.ties,
+                   v.ties_coplanar, pct, v.edges, v.unexplained, v.max_rel_delta);
+            if (v.unexplained > 0 || pct < min_pct)
+                bad = 1;
+        }
+    }
+    /* the structures against each other, per path: same id and the same t bits */
+    for (path = 0; path < 2; path++) {
+        int first = -1;
+        for (st = 0; st < 4; st++) {
+            size_t p, n = (size_t)res * res, sid = 0, st_bits = 0;
+            if (!ran[st][path])
+                continue;
+            if (first < 0) {
+                first = st;
+                continue;
+            }
+            for (p = 0; p < n; p++) {
+                sid += fr[st][path].id[p] == fr[first][path].id[p];
+                st_bits += fr[st][path].id[p] == fr[first][path].id[p] &&
+                           (fr[st][path].id[p] < 0 || fr[st][path].t[p] == fr[first][path].t[p]);
+            }
+            printf("agree %s %s vs %s: same triangle %zu of %zu pixels, same triangle and t %zu\n",
+                   path ? "f32" : "q16", all[st], all[first], sid, n, st_bits);
+        }
+    }
+    printf("agree verdict: %s (no unexplained difference, >= %.2f%% same triangle or tie)\n",
+           bad ? "FAIL" : "ok", min_pct);
+    return bad;
+}
