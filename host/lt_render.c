@@ -392,9 +392,33 @@ int lt_render_primary1(const lt_scene_t *s, const lt_accel_t *a, const lt_camera
                        lt_frame_t *f, char *err, size_t errlen)
 {
     uint32_t x, y;
+    (void)err;
+    (void)errlen;
     if (a->kind != ACC_BVH && a->kind != ACC_BVHQ) {
-        snprintf(err, errlen, "single rays need a BVH structure (bvh, bvhq)");
-        return -1;
+        /* kd-tree, grid, chunks: no scalar traversal; each ray runs alone through the packet
+           kernel with a one-lane mask (what a 16-lane machine does with an incoherent ray:
+           1/16 lane utilisation). The tile's packet is set up once, its lanes traced one by one. */
+        static lt_ray16_q16_t rq;
+        static lt_ray16_f32_t rf;
+        uint32_t tx, ty;
+        for (ty = 0; ty < c->height; ty += 4)
+            for (tx = 0; tx < c->width; tx += 4) {
+                lt_mask16_t k = a->path == LT_PATH_Q16 ? lt_camera_packet_q16(c, tx, ty, &rq)
+                                                       : lt_camera_packet_f32(c, tx, ty, &rf);
+                int i;
+                LT_EVENT(RAYS, lt__popcount32(k));
+                for (i = 0; i < LT_LANES; i++) {
+                    lt_hit16_t hit;
+                    size_t p = (size_t)(ty + (uint32_t)(i / 4)) * c->width + tx + (uint32_t)(i % 4);
+                    if ((((unsigned)k >> i) & 1u) == 0)
+                        continue;
+                    trace16(s, a, &rq, &rf, (lt_mask16_t)(1u << i), &hit);
+                    f->id[p] = hit.id.l[i];
+                    f->t[p] = a->path == LT_PATH_Q16 ? (double)rq.tmax.l[i] / 65536.0
+                                                     : (double)rf.tmax.l[i];
+                }
+            }
+        return 0;
     }
     for (y = 0; y < c->height; y++)
         for (x = 0; x < c->width; x++) {

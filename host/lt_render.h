@@ -46,8 +46,9 @@ size_t lt_accel_bytes(const lt_accel_t *a);
 void lt_render_primary(const lt_scene_t *s, const lt_accel_t *a, const lt_camera_t *c,
                        lt_frame_t *f, void (*progress)(double done));
 
-/* The same with one ray per pixel (single-ray traversal; BVH structures only).
- * Returns 0, or -1 with a message. */
+/* The same with one ray per pixel: the scalar single-ray traversal for bvh and bvhq; the kd-tree,
+ * grid and chunks have no scalar kernel and trace each ray alone through their packet kernel
+ * with a one-lane mask. Returns 0 (the err arguments are kept for future structures). */
 int lt_render_primary1(const lt_scene_t *s, const lt_accel_t *a, const lt_camera_t *c,
                        lt_frame_t *f, char *err, size_t errlen);
 

@@ -19,7 +19,8 @@
  * delta is the path's bound on that border distance at the hit (delta_of below: quantisation of
  * vertices, origins, directions and the kernel's rounded cross products, amplified by the grazing
  * angle and by short edges); tau = 2^-12 + 2^-20 t is the depth tie tolerance.
- * The three structures are also compared with each other per path (same id, same t bits).
+ * The three structures are also compared with each other per path (same id, same t bits), and
+ * each one's single rays (lt_render_primary1) must equal its packet lanes bit for bit.
  *
  * Usage: lt-agree MESH [--res N] [--min PCT] [--structures a,b,..]
  * Exit 0 when every path of every structure has no unexplained difference and at least PCT% same
@@ -263,6 +264,28 @@ int main(int argc, char **argv)
                 return 1;
             }
             lt_render_primary(&s, acc, &cam, &fr[st][path], NULL);
+            {
+                /* single rays (scalar BVH kernels; one-lane packets elsewhere) = packet lanes */
+                lt_frame_t one;
+                size_t p, n = (size_t)res * res, same1 = 0, tie1 = 0;
+                if (lt_frame_alloc(&one, res, res, err, sizeof err) != 0 ||
+                    lt_render_primary1(&s, acc, &cam, &one, err, sizeof err) != 0) {
+                    fprintf(stderr, "%s: %s\n", mesh_path, err);
+                    return 1;
+                }
+                for (p = 0; p < n; p++) {
+                    int32_t i1 = one.id[p], ip = fr[st][path].id[p];
+                    same1 += i1 == ip && (i1 < 0 || one.t[p] == fr[st][path].t[p]);
+                    /* an exact tie: both hit at the same t bits, another traversal order */
+                    tie1 += i1 != ip && i1 >= 0 && ip >= 0 && one.t[p] == fr[st][path].t[p];
+                }
+                printf("agree %s %s single rays = 16-ray packets (triangle and t bits) on %zu of %zu "
+                       "pixels, %zu exact ties (same t, another of the tied triangles)\n",
+                       all[st], path ? "f32" : "q16", same1, n, tie1);
+                if (same1 + tie1 != n)
+                    bad = 1;
+                lt_frame_free(&one);
+            }
             lt_accel_free(acc);
             ran[st][path] = 1;
             snprintf(label, sizeof label, "%s %s", all[st], path ? "f32" : "q16");
