@@ -9,7 +9,7 @@ echo "== hit agreement with the double reference (lt-agree)"
 agree_one() { # mesh, resolution
     if "$B/host/lt-agree" "$1" --res "$2" >"$tmp/agree.txt" 2>&1; then
         grep "^agree .* q16 \|^agree .* f32 " "$tmp/agree.txt" | grep -v " vs " | sed 's/^/  /'
-        ok "agree $(basename "$1") ${2}x$2: $(grep -c ' ties (' "$tmp/agree.txt") structure/path runs, 0 unexplained, >= 99.99% same or tie"
+        ok "agree $(basename "$1") ${2}x$2: $(grep -c ' pixels, + ' "$tmp/agree.txt") structure/path runs, 0 unexplained, >= 99.99% same or tie"
     else
         sed 's/^/  /' "$tmp/agree.txt"
         ko "agree $(basename "$1") ${2}x$2"
