@@ -441,6 +441,60 @@ static void run_bvh_q16(void (*put)(const char *))
     emit(put, "bvh_wt_q16", &h);
 }
 
+/* kd-tree and uniform grid over the same mesh: sizes, the built arenas byte for byte, and the
+ * closest-hit and any-hit packet traversals on random rays with every mask class. */
+static uint32_t kd_arena[8192];
+static uint32_t grid_arena[8192];
+
+static void h_words(hash_t *h, const uint32_t *w, size_t bytes)
+{
+    size_t i;
+    for (i = 0; i < bytes / 4u; i++)
+        h_u32(h, w[i]);
+}
+
+static void run_kdgrid_q16(void (*put)(const char *))
+{
+    hash_t h;
+    lt_kd_q16_t kd;
+    lt_grid_q16_t g;
+    size_t kb = 0, gb = 0;
+    int i, j, pass;
+    static lt_ray16_q16_t r;
+    h_init(&h);
+    h_case(&h, (uint32_t)lt_kd_size(N_MESH, NULL, &kb));
+    h_case(&h, (uint32_t)kb);
+    kb = sizeof kd_arena;
+    h_case(&h, (uint32_t)lt_kd_build_q16(&kd, mesh_q, N_MESH, NULL, kd_arena, &kb));
+    h_case(&h, kd.nnodes * 65536u + kd.depth * 256u + kd.nleaves);
+    h_u32(&h, kd.nrefs);
+    h_words(&h, kd_arena, kd.bytes);
+    h_case(&h, (uint32_t)lt_grid_size_q16(mesh_q, N_MESH, NULL, &gb));
+    h_case(&h, (uint32_t)gb);
+    h_case(&h, (uint32_t)lt_grid_build_q16(&g, mesh_q, N_MESH, NULL, grid_arena, &gb));
+    h_case(&h, g.res[0] * 65536u + g.res[1] * 256u + g.res[2]);
+    for (j = 0; j < 3; j++)
+        h_u32(&h, (uint32_t)g.cell[j]);
+    h_words(&h, grid_arena, g.bytes);
+    rng_state = 0x6D1Du;
+    for (i = 0; i < 40; i++)
+        for (pass = 0; pass < 2; pass++) {
+            lt_hit16_t hit;
+            lt_mask16_t k = rmask(i);
+            rand_ray_q16(&r);
+            h_case(&h, pass == 0 ? lt_kd_trace16_q16(&kd, &r, k, &hit)
+                                 : lt_grid_trace16_q16(&g, &r, k, &hit));
+            for (j = 0; j < LT_LANES; j++)
+                h_u32(&h, (uint32_t)hit.id.l[j]);
+            h_vq16(&h, r.tmax);
+            rand_ray_q16(&r);
+            h_case(&h, pass == 0 ? lt_kd_occluded16_q16(&kd, &r, k)
+                                 : lt_grid_occluded16_q16(&g, &r, k));
+            h_vq16(&h, r.tmax);
+        }
+    emit(put, "kd_grid_q16", &h);
+}
+
 #if LT_CFG_FLOAT32
 static uint32_t fbits(float f)
 {
@@ -558,6 +612,7 @@ int lt_vec_run(void (*put)(const char *line))
     run_lanes(put), groups++;
     run_kernels_q16(put), groups += 3;
     run_bvh_q16(put), groups++;
+    run_kdgrid_q16(put), groups++;
 #if LT_CFG_FLOAT32
     run_f32(put), groups += 2;
 #endif
