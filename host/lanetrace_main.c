@@ -9,6 +9,7 @@
 #include "lt_mesh.h"
 #include "lt_png.h"
 #include "lt_render.h"
+#include "lt_reproject_cli.h"
 #include "lt_scene.h"
 #include "lt_scenefile.h"
 #if LT_COST_MODE == LT_COST_SIM
@@ -1439,6 +1440,18 @@ static int cmd_stream(int argc, char **argv)
     return EXIT_INPUT;
 }
 
+/* ---- reproject: view synthesis from a depth EXR (host/lt_reproject_cli.c) -------------------- */
+
+static int cmd_reproject(int argc, char **argv)
+{
+    lt_rp_cli_hooks_t h;
+    h.begin = progress_begin;
+    h.progress = progress;
+    h.end = progress_end;
+    h.quiet = &quiet;
+    return lt_rp_cli(argc, argv, prog, &h);
+}
+
 /* ---- main ----------------------------------------------------------------------------------- */
 
 static void usage(FILE *f)
@@ -1449,6 +1462,8 @@ static void usage(FILE *f)
             "  run [SCENE.json]   trace a scene; accuracy and (sim build) the cycle report\n"
             "  render [SCENE.json] --out PREFIX  images: depth, normals, ids, shaded (hard\n"
             "                     shadows), k-layer depth peels (EXR + PNG)\n"
+            "  reproject --depth FILE.exr  a new view of a depth image (screen-space quadtree,\n"
+            "                     inpainting; EXR + PNG + heatmaps; sim build: cycle report)\n"
             "  info FILE          describe a mesh or EXR file\n"
             "  stream [SOURCE]    receive a device's report frames (see lt-stream --help)\n"
             "  diff A.json B.json compare two JSON reports\n"
@@ -1474,6 +1489,8 @@ int main(int argc, char **argv)
         return cmd_render(argc, argv);
     if (strcmp(argv[1], "info") == 0)
         return cmd_info(argc, argv);
+    if (strcmp(argv[1], "reproject") == 0)
+        return cmd_reproject(argc, argv);
     if (strcmp(argv[1], "diff") == 0)
         return cmd_diff(argc, argv);
     fprintf(stderr, "%s: unknown command '%s'\n", prog, argv[1]);

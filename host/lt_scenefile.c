@@ -173,11 +173,68 @@ static int parse_camera(ctx_t *c, const cJSON *cam, lt_scenefile_t *sf)
     return 0;
 }
 
+/* "reproject": { "move": [x,y,z], "move_relative": bool, "rot": [yaw,pitch,roll],
+ * "encoding": "n64"|"n32"|"f32", "layers": K, "channel": "Z", "color": bool, "distance": bool } */
+static int parse_reproject(ctx_t *c, const cJSON *rp, lt_scenefile_t *sf)
+{
+    static const char *const keys[] = {"move", "move_relative", "rot", "encoding", "layers",
+                                       "channel", "color", "distance", NULL};
+    static const char *const encs[] = {"n64", "n32", "f32", NULL};
+    const cJSON *it;
+    double v;
+    if (!cJSON_IsObject(rp))
+        return fail(c, "'reproject' must be an object");
+    if (check_keys(c, rp, "reproject", keys) != 0)
+        return -1;
+    if ((it = cJSON_GetObjectItemCaseSensitive(rp, "move")) != NULL &&
+        get_vec3(c, it, "reproject.move", sf->rp_move) != 0)
+        return -1;
+    if ((it = cJSON_GetObjectItemCaseSensitive(rp, "rot")) != NULL) {
+        int i;
+        if (get_vec3(c, it, "reproject.rot", sf->rp_rot) != 0)
+            return -1;
+        for (i = 0; i < 3; i++)
+            if (fabs(sf->rp_rot[i]) > 180.0)
+                return fail(c, "'reproject.rot[%d]' = %g is out of range [-180, 180]", i,
+                            sf->rp_rot[i]);
+    }
+    if ((it = cJSON_GetObjectItemCaseSensitive(rp, "encoding")) != NULL &&
+        get_choice(c, it, "reproject.encoding", encs, sf->rp_encoding, sizeof sf->rp_encoding) != 0)
+        return -1;
+    if ((it = cJSON_GetObjectItemCaseSensitive(rp, "layers")) != NULL) {
+        if (get_number(c, it, "reproject.layers", 1, 16, &v) != 0)
+            return -1;
+        if (v != floor(v))
+            return fail(c, "'reproject.layers' must be a whole number");
+        sf->rp_layers = (uint32_t)v;
+    }
+    if ((it = cJSON_GetObjectItemCaseSensitive(rp, "channel")) != NULL &&
+        get_string(c, it, "reproject.channel", sf->rp_channel, sizeof sf->rp_channel) != 0)
+        return -1;
+    if ((it = cJSON_GetObjectItemCaseSensitive(rp, "move_relative")) != NULL) {
+        if (!cJSON_IsBool(it))
+            return fail(c, "'reproject.move_relative' must be true or false");
+        sf->rp_move_rel = cJSON_IsTrue(it);
+    }
+    if ((it = cJSON_GetObjectItemCaseSensitive(rp, "color")) != NULL) {
+        if (!cJSON_IsBool(it))
+            return fail(c, "'reproject.color' must be true or false");
+        sf->rp_color = cJSON_IsTrue(it);
+    }
+    if ((it = cJSON_GetObjectItemCaseSensitive(rp, "distance")) != NULL) {
+        if (!cJSON_IsBool(it))
+            return fail(c, "'reproject.distance' must be true or false");
+        sf->rp_distance = cJSON_IsTrue(it);
+    }
+    sf->has_reproject = 1;
+    return 0;
+}
+
 static int parse_root(ctx_t *c, const cJSON *root, lt_scenefile_t *sf)
 {
     static const char *const keys[] = {"lanetrace", "mesh",   "depth",   "camera",  "resolution",
                                        "structure", "numeric", "machine", "caches", "lights",
-                                       "outputs",   NULL};
+                                       "outputs",   "reproject", NULL};
     static const char *const cache_keys[] = {"l1", "l2", NULL};
     static const char *const light_keys[] = {"type", "position", "intensity", NULL};
     static const char *const out_keys[] = {"report", "csv", NULL};
@@ -282,6 +339,9 @@ static int parse_root(ctx_t *c, const cJSON *root, lt_scenefile_t *sf)
             sf->nlights++;
         }
     }
+    if ((it = cJSON_GetObjectItemCaseSensitive(root, "reproject")) != NULL &&
+        parse_reproject(c, it, sf) != 0)
+        return -1;
     if ((it = cJSON_GetObjectItemCaseSensitive(root, "outputs")) != NULL) {
         const cJSON *x;
         if (!cJSON_IsObject(it))

@@ -36,6 +36,17 @@ typedef struct lt_scenefile {
     lt_sf_light_t lights[LT_SF_MAX_LIGHTS];
     char out_report[LT_SF_PATH_MAX]; /* JSON cycle report, "" = none */
     char out_csv[LT_SF_PATH_MAX];    /* one CSV row per numeric path, "" = none */
+    /* "reproject": view synthesis from 'depth' (lanetrace reproject, docs/reproject.md) */
+    int has_reproject;               /* 1 when the object is present */
+    double rp_move[3];               /* target offset in source camera axes (x right, y down,
+                                        z forward); world units, or median depths if rp_move_rel */
+    int rp_move_rel;                 /* 1: rp_move is in units of the median source depth */
+    double rp_rot[3];                /* yaw, pitch, roll of the target, degrees */
+    char rp_encoding[8];             /* "n64", "n32", "f32" ("" = n64) */
+    uint32_t rp_layers;              /* depth peels layer0.Z .. (0 = one layer, 'channel') */
+    char rp_channel[64];             /* depth channel ("" = automatic) */
+    int rp_color;                    /* 1: read R G B */
+    int rp_distance;                 /* 1: depth values are distances along the pixel ray */
 } lt_scenefile_t;
 
 /* Defaults: no mesh, default camera, 128x128, "chunks", both paths, lrb16, no lights, no outputs. */

@@ -1,0 +1,118 @@
+/* lt_reproject.h - view synthesis by screen-space ray tracing (Widmer et al., seeds/000 section 5):
+ * a depth image (one or more layers, optional colour) seen by a source pinhole camera is turned
+ * into the screen-space quadtree (lt_qt.h), every pixel of a target camera is traced through it as
+ * a reprojected segment (lt_reproj.h), hits fetch the source colour, and holes (disocclusions,
+ * views outside the source, step bound) are filled by a background-biased pull-push inpainting.
+ * Per-pixel traversal steps and (sim build) simulated cycles are recorded. Host only (malloc,
+ * double); docs/reproject.md is the reference.
+ */
+#ifndef LT_REPROJECT_H
+#define LT_REPROJECT_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include "lt/lt_reproj.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define LT_RP_MAX_LAYERS 16
+
+/* Per-pixel class of the result (the EXR "hole" channel holds these values). */
+#define LT_RP_HIT 0        /* a surface of the source: colour fetched */
+#define LT_RP_BACKGROUND 1 /* the ray reached infinity over source background (holes): the source's
+                              background colour at the vanishing point, depth +inf; not a hole */
+#define LT_RP_DISOCCLUDED 2 /* went behind the deepest layer (LT_QT_OCCLUDED): unknown, inpainted */
+#define LT_RP_OUTSIDE 3    /* the ray leaves or never enters the source view: inpainted */
+#define LT_RP_UNKNOWN 4    /* the traversal step bound was reached: inpainted */
+#define LT_RP_CLASSES 5
+
+/* The source view. */
+typedef struct lt_rp_source {
+    uint32_t width, height, layers; /* pixels; 1..LT_RP_MAX_LAYERS layers, front to back */
+    const float *z;                 /* layers x height x width z-depths (along the optical axis,
+                                       world units); NaN, +-inf and <= 0 are background */
+    const float *rgb[LT_RP_MAX_LAYERS]; /* per layer height x width x 3 linear colour, or NULL:
+                                           such a layer is shown as grey = w (near bright) */
+    lt_reproj_cam_t cam;            /* the source camera (cam.width/height = width/height) */
+} lt_rp_source_t;
+
+typedef struct lt_rp_opts {
+    lt_qt_enc_t enc;      /* LT_QT_N64, LT_QT_N32 (s1.30 rays) or LT_QT_F32 (float32 rays) */
+    int bilinear;         /* 1: depth-aware bilinear colour fetch (default), 0: nearest pixel */
+    int inpaint;          /* 1: fill holes (default); 0: holes stay black with depth NaN */
+    uint32_t max_steps;   /* nodes per lane per layer, 0 = lt_qt_default_steps */
+    double z_near_dst;    /* target near plane (0 = rays start at the target camera centre) */
+    void (*progress)(double done); /* may be NULL */
+} lt_rp_opts_t;
+
+/* Fill o with the defaults above (n64, bilinear, inpaint). */
+void lt_rp_opts_default(lt_rp_opts_t *o);
+
+/* Figures of one run; cycles are 0 outside the sim build. */
+typedef struct lt_rp_stats {
+    uint64_t pixels;                    /* target pixels */
+    uint64_t cls[LT_RP_CLASSES];        /* pixels per class */
+    uint64_t rays;                      /* traced lanes (segment not empty) */
+    uint64_t nodes, aabb, planes;       /* sums over traced lanes */
+    uint32_t nodes_max, aabb_max, planes_max;
+    uint64_t packets;                   /* trace calls */
+    double zref;                        /* z_ref = 2^e used for w */
+    size_t qt_bytes;                    /* quadtree arena */
+    uint64_t qt_planes, qt_nodes;       /* plane nodes / all nodes of the quadtree */
+    uint64_t cyc_build, cyc_setup, cyc_trace, cyc_total; /* simulated cycles (sim build) */
+    uint64_t lanes_on, lane_ops;        /* utilisation events of setup + trace (sim build) */
+    double t_build, t_trace, t_shade, t_inpaint; /* wall seconds */
+} lt_rp_stats_t;
+
+/* The synthesised view. Free with lt_rp_result_free. */
+typedef struct lt_rp_result {
+    uint32_t width, height;
+    float *rgb;    /* width x height x 3, linear */
+    float *z;      /* target z-depth; +inf background; inpainted pixels carry the filled depth */
+    uint8_t *cls;  /* LT_RP_* per pixel (before inpainting) */
+    float *steps;  /* quadtree nodes visited per pixel (all layers); 0 for untraced pixels */
+    float *cycles; /* simulated cycles per pixel: its packet's setup + trace cycles over the
+                      packet's lanes on the image (sim build; 0 otherwise) */
+    float *sx, *sy; /* source position of each hit, pixels (NaN elsewhere) */
+    int32_t *layer; /* layer of each hit, -1 elsewhere */
+    lt_rp_stats_t st;
+} lt_rp_result_t;
+
+/* Synthesise the view of camera dst (dst->width x dst->height) from src. Returns 0, or -1 with a
+ * message naming the input and the limit in err (bad camera, image too large, no valid depth,
+ * out of memory, layers not front to back is not checked: layer k+1 must lie behind layer k). */
+int lt_rp_run(const lt_rp_source_t *src, const lt_reproj_cam_t *dst, const lt_rp_opts_t *o,
+              lt_rp_result_t *res, char *err, size_t errlen);
+void lt_rp_result_free(lt_rp_result_t *r);
+
+/* Background-biased pull-push inpainting of rgb (w x h x 3) and z (w x h) where valid[i] == 0:
+ * pull: each coarser pixel averages its valid children within 10% of their farthest depth
+ * (+inf counts as farthest); push: each hole takes the bilinear mix of the four nearest coarser
+ * pixels, again restricted to those within 10% of their farthest depth. Returns 0 or -1 (memory,
+ * or no valid pixel: then nothing changes). */
+int lt_rp_inpaint(float *rgb, float *z, const uint8_t *valid, uint32_t w, uint32_t h);
+
+/* A default camera for a depth image without one: horizontal field of view hfov_deg over the
+ * display window (disp_w x disp_h, 0 = the image itself), principal point at the display window's
+ * centre expressed in the image's pixels (the image's top-left pixel sits at (ox, oy) of the
+ * display window), at the origin looking down +z, y down. */
+void lt_rp_cam_default(uint32_t w, uint32_t h, int32_t disp_w, int32_t disp_h, int32_t ox,
+                       int32_t oy, double hfov_deg, lt_reproj_cam_t *c);
+
+/* dst = src moved by move (in src camera coordinates: x right, y down, z forward) and then
+ * rotated by yaw (about the camera y axis, + turns right), pitch (about x, + tilts up) and roll
+ * (about z), degrees; width/height/intrinsics copied. */
+void lt_rp_cam_move(const lt_reproj_cam_t *src, const double move[3], const double rot_deg[3],
+                    lt_reproj_cam_t *dst);
+
+/* Source position (x, y) in pixels and inverse depth w (= z_ref / z) -> depth of that point in
+ * camera dst. */
+double lt_rp_target_depth(const lt_reproj_cam_t *src, const lt_reproj_cam_t *dst, double zref,
+                          double x, double y, double w);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* LT_REPROJECT_H */

@@ -1,0 +1,32 @@
+/* lt_reproject_cli.h - the `lanetrace reproject` subcommand (view synthesis from a depth EXR,
+ * docs/reproject.md): option parsing, EXR input (depth layers, colour), cameras from flags or a
+ * scene file, lt_rp_run, outputs (EXR, PNG, heatmaps, cycle report text/JSON). Kept out of
+ * lanetrace_main.c, which dispatches to it and lends its progress bar. Host only.
+ */
+#ifndef LT_REPROJECT_CLI_H
+#define LT_REPROJECT_CLI_H
+
+#include <stdio.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* The CLI's progress bar (lanetrace_main.c) and its quiet flag. */
+typedef struct lt_rp_cli_hooks {
+    void (*begin)(const char *label);
+    void (*progress)(double done);
+    void (*end)(void);
+    int *quiet;
+} lt_rp_cli_hooks_t;
+
+/* argv[1] == "reproject". Returns the exit code: 0 ok, 1 input or runtime error, 2 usage. */
+int lt_rp_cli(int argc, char **argv, const char *prog, const lt_rp_cli_hooks_t *hooks);
+
+/* The --help text. */
+void lt_rp_cli_usage(const char *prog, FILE *f);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* LT_REPROJECT_CLI_H */
