@@ -154,8 +154,8 @@ static int cmp_double(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
-/* Grid-line crossing parameters in (t0, t1) plus both ends, sorted. */
-static size_t crossings(const lt_qt_ref_ray_t *r, double t0, double t1, double *ts, size_t cap)
+/* Grid-line crossing parameters in (t0, t1) plus both ends, sorted (lt_qt_ref.h). */
+size_t lt_qt_ref_crossings(const lt_qt_ref_ray_t *r, double t0, double t1, double *ts, size_t cap)
 {
     size_t n = 0;
     int a;
@@ -188,7 +188,7 @@ static void trace_layer(const lt_qt_ref_t *ref, uint32_t layer, const lt_qt_ref_
 {
     /* state: 1 in front, -1 behind, 0 unknown (the start of a deeper layer) */
     const lt_qt_ref_plane_t *pl = ref->planes + (size_t)layer * ref->width * ref->height;
-    size_t n = crossings(r, t0, t1, ts, cap), i;
+    size_t n = lt_qt_ref_crossings(r, t0, t1, ts, cap), i;
     res->hit = res->occ = 0;
     res->thit = res->tocc = t0;
     for (i = 0; i + 1 < n; i++) {
@@ -229,24 +229,18 @@ static void trace_layer(const lt_qt_ref_t *ref, uint32_t layer, const lt_qt_ref_
     }
 }
 
-void lt_qt_ref_trace(const lt_qt_ref_t *ref, const lt_qt_ref_ray_t *ray, lt_qt_ref_hit_t *hit)
+void lt_qt_ref_clip(uint32_t width, uint32_t height, const lt_qt_ref_ray_t *ray, double *t0,
+                    double *t1)
 {
-    double t0 = ray->tmin, t1 = ray->tmax, cand_t = 0.0;
-    int cand = -1, a;
-    uint32_t layer;
-    size_t cap = 2u * (ref->width + ref->height) + 8u;
-    double *ts;
-
-    hit->status = LT_QT_MISS;
-    hit->layer = -1;
-    hit->pixels = 0;
-    /* clip: image box per axis (half-open for a parallel ray), w >= 0 */
+    int a;
+    *t0 = ray->tmin;
+    *t1 = ray->tmax;
     for (a = 0; a < 2; a++) {
         double o = a ? ray->y : ray->x, d = a ? ray->dy : ray->dx;
-        double ext = a ? (double)ref->height : (double)ref->width;
+        double ext = a ? (double)height : (double)width;
         if (d == 0.0) {
             if (!(o >= 0.0 && o < ext))
-                t1 = -1.0;
+                *t1 = -1.0;
         } else {
             double ta = (0.0 - o) / d, tb = (ext - o) / d;
             if (ta > tb) {
@@ -254,14 +248,28 @@ void lt_qt_ref_trace(const lt_qt_ref_t *ref, const lt_qt_ref_ray_t *ray, lt_qt_r
                 ta = tb;
                 tb = s;
             }
-            if (ta > t0)
-                t0 = ta;
-            if (tb < t1)
-                t1 = tb;
+            if (ta > *t0)
+                *t0 = ta;
+            if (tb < *t1)
+                *t1 = tb;
         }
     }
-    if (ray->dw < 0.0 && ray->w / -ray->dw < t1)
-        t1 = ray->w / -ray->dw;
+    if (ray->dw < 0.0 && ray->w / -ray->dw < *t1)
+        *t1 = ray->w / -ray->dw;
+}
+
+void lt_qt_ref_trace(const lt_qt_ref_t *ref, const lt_qt_ref_ray_t *ray, lt_qt_ref_hit_t *hit)
+{
+    double t0, t1, cand_t = 0.0;
+    int cand = -1;
+    uint32_t layer;
+    size_t cap = 2u * (ref->width + ref->height) + 8u;
+    double *ts;
+
+    hit->status = LT_QT_MISS;
+    hit->layer = -1;
+    hit->pixels = 0;
+    lt_qt_ref_clip(ref->width, ref->height, ray, &t0, &t1);
     hit->t = t1;
     if (!(t0 < t1)) {
         hit->t = ray->tmax;

@@ -63,6 +63,15 @@ typedef struct lt_qt_ref_hit {
  * signs of f = w_ray - w_plane at both ends; then the same layer choice as lt_qt_trace16_*. */
 void lt_qt_ref_trace(const lt_qt_ref_t *ref, const lt_qt_ref_ray_t *ray, lt_qt_ref_hit_t *hit);
 
+/* The march's parts, shared with the screen-space baselines' references (tests/unit/
+ * lt_ssb_testlib.h). Clip: [*t0, *t1] = [tmin, tmax] cut to the image box per axis (half-open for
+ * a parallel ray, which outside it gets *t1 = -1) and to w >= 0; empty when !(*t0 < *t1). */
+void lt_qt_ref_clip(uint32_t width, uint32_t height, const lt_qt_ref_ray_t *ray, double *t0,
+                    double *t1);
+/* Grid-line crossing parameters in (t0, t1) plus both ends, sorted, into ts (at most cap
+ * entries; 2 (width + height) + 8 hold every crossing of a clipped ray). Returns the count. */
+size_t lt_qt_ref_crossings(const lt_qt_ref_ray_t *r, double t0, double t1, double *ts, size_t cap);
+
 #ifdef __cplusplus
 }
 #endif

@@ -170,44 +170,19 @@ static lt_vi32_t qi_msb(lt_mask16_t k, lt_vi32_t x)
     return r;
 }
 
-/* Node index off[L] + qy nx[L] + qx per lane in k (0 elsewhere). The level tables (<= 15 entries)
- * fit one register: two permutes, a multiply and two adds. Cost: VALU x4, VMUL x1. */
+/* Node index and the outside-the-grid test: lt_qt_grid.inc (shared with lt_hiz.c's cells). */
+#include "lt_qt_grid.inc"
+
 static lt_vi32_t qt_node_index(const lt_qt_t *qt, lt_mask16_t k, lt_vi32_t lvl, lt_vi32_t qx,
                                lt_vi32_t qy)
 {
-    lt_vi32_t r;
-    int i;
-    LT_COST(VALU, 4);
-    LT_COST(VMUL, 1);
-    LT_UTIL(k);
-    for (i = 0; i < LT_LANES; i++) {
-        r.l[i] = 0;
-        if (LT__ON(k, i)) {
-            uint32_t L = (uint32_t)lvl.l[i];
-            r.l[i] = (int32_t)(qt->off[L] + (uint32_t)qy.l[i] * qt->nx[L] + (uint32_t)qx.l[i]);
-        }
-    }
-    return r;
+    return lt__qtgrid_index(qt->off, qt->nx, qt->ny, qt->levels, k, lvl, qx, qy);
 }
 
-/* Lanes in k whose node (L, qx, qy) lies outside the level's grid. Cost: VALU x2, VCMP x4. */
 static lt_mask16_t qt_outside(const lt_qt_t *qt, lt_mask16_t k, lt_vi32_t lvl, lt_vi32_t qx,
                               lt_vi32_t qy)
 {
-    unsigned m = 0;
-    int i;
-    LT_COST(VALU, 2);
-    LT_COST(VCMP, 4);
-    LT_UTIL(k);
-    for (i = 0; i < LT_LANES; i++) {
-        if (LT__ON(k, i)) {
-            uint32_t L = (uint32_t)lvl.l[i];
-            if (qx.l[i] < 0 || qy.l[i] < 0 || (uint32_t)qx.l[i] >= qt->nx[L] ||
-                (uint32_t)qy.l[i] >= qt->ny[L])
-                m |= 1u << i;
-        }
-    }
-    return (lt_mask16_t)m;
+    return lt__qtgrid_outside(qt->nx, qt->ny, k, lvl, qx, qy);
 }
 
 /* ==== fixed point: s1.30 w and t, int64 wide values ============================================ */

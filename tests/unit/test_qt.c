@@ -25,6 +25,7 @@
 #include "lt_exr.h"
 #include "lt_fx_float.h"
 #include "lt_qt_ref.h"
+#include "lt_ssb_testlib.h"
 #include "lt_test_util.h"
 #if LT_COST_MODE == LT_COST_SIM
 #include "lt_sim.h"
@@ -42,144 +43,17 @@ static int32_t q_sext_test(uint32_t v, unsigned bits)
 
 /* ---- scenes: analytic w(x, y) per layer, sampled at pixel centres ------------------------------ */
 
-typedef struct scene scene_t;
-typedef double (*wfn_t)(const scene_t *s, int layer, double x, double y);
-
-struct scene {
-    const char *name;
-    uint32_t W, H, layers;
-    wfn_t fn;
-    double p[24];     /* scene parameters */
-    double *w;        /* layers x H x W samples (w units, 0 = hole) */
-    lt_q30_t *wq;     /* s1.30 input */
-    float *wf;        /* float input */
-    double *wqd, *wfd; /* exact doubles of wq and wf */
-};
-
-static double w_plane(const scene_t *s, int layer, double x, double y)
-{
-    (void)layer;
-    return s->p[0] + s->p[1] * x + s->p[2] * y;
-}
-
-/* pinhole camera: focal p[0] px, centre (W/2, H/2); background world plane p[1..4] (n, d) given as
- * w_bg = p[1] + p[2] x + p[3] y (a plane is linear in w); spheres (cx, cy, cz, r) from p[4]. */
-static double sphere_w(const scene_t *s, const double *sp, double x, double y, int back)
-{
-    double f = s->p[0], dx = (x - 0.5 * s->W) / f, dy = (y - 0.5 * s->H) / f, dz = 1.0;
-    double a = dx * dx + dy * dy + dz * dz, b = -2.0 * (dx * sp[0] + dy * sp[1] + dz * sp[2]);
-    double c = sp[0] * sp[0] + sp[1] * sp[1] + sp[2] * sp[2] - sp[3] * sp[3];
-    double disc = b * b - 4.0 * a * c, z;
-    if (disc < 0.0)
-        return -1.0;
-    z = back ? (-b + sqrt(disc)) / (2.0 * a) : (-b - sqrt(disc)) / (2.0 * a);
-    return 1.0 / z;
-}
-
-static double w_spheres(const scene_t *s, int layer, double x, double y)
-{
-    double best = s->p[1] + s->p[2] * x + s->p[3] * y, wz;
-    int i, n = (int)s->p[4];
-    if (layer != 0)
-        return 0.0;
-    for (i = 0; i < n; i++) {
-        wz = sphere_w(s, &s->p[5 + 4 * i], x, y, 0);
-        if (wz > best)
-            best = wz;
-    }
-    return best;
-}
-
-/* steps: a tilted floor with raised fronto-parallel blocks of three heights */
-static double w_steps(const scene_t *s, int layer, double x, double y)
-{
-    double base = 0.25 + 0.0004 * x + 0.0008 * y;
-    int bx = (int)floor(x / 16.0), by = (int)floor(y / 12.0);
-    (void)s;
-    (void)layer;
-    switch ((bx * 7 + by * 3) % 5) {
-    case 0:
-        return 0.55;
-    case 1:
-        return 0.7;
-    case 2:
-        return base + 0.1;
-    default:
-        return base;
-    }
-}
-
-/* checkerboard of two depths; layer 1 (if any) all holes */
-static double w_checker(const scene_t *s, int layer, double x, double y)
-{
-    (void)s;
-    if (layer != 0)
-        return 0.0;
-    return (((int)floor(x) + (int)floor(y)) & 1) ? 0.5 : 0.25;
-}
+/* The scene type, the plane, spheres, steps, checker, card and wave fields, sampling and the ray
+ * generators are tests/unit/lt_ssb_testlib.h's (shared with test_ssbase.c and ssbench.c). */
 
 /* depth bands: 8 vertical bands at depths 1e-3 .. 1e4 (w = 2^-10 / z), each gently tilted */
-static double w_bands(const scene_t *s, int layer, double x, double y)
+static double w_bands(const ss_scene_t *s, int layer, double x, double y)
 {
     int b = (int)floor(x / (s->W / 8.0));
     double z = pow(10.0, -3.0 + b);
     (void)layer;
     (void)y;
     return ldexp(1.0, -10) / z * (1.0 + 2e-4 * (x - (b + 0.5) * (s->W / 8.0)));
-}
-
-/* two layers: a card (w 0.8) in front of a tilted background; layer 1 holds the background behind
- * the card, holes elsewhere */
-static double w_card(const scene_t *s, int layer, double x, double y)
-{
-    int in = x >= s->p[0] && x < s->p[1] && y >= s->p[2] && y < s->p[3];
-    double bg = 0.3 + 0.0005 * x + 0.0002 * y;
-    if (layer == 0)
-        return in ? 0.8 : bg;
-    return in ? bg : 0.0;
-}
-
-/* smooth random field for small images */
-static double w_wave(const scene_t *s, int layer, double x, double y)
-{
-    (void)layer;
-    return 0.5 + s->p[0] * sin(0.3 * x + s->p[1]) + s->p[0] * cos(0.23 * y + s->p[2]);
-}
-
-static void scene_sample(scene_t *s)
-{
-    size_t n = (size_t)s->W * s->H * s->layers, i;
-    uint32_t k, x, y;
-    s->w = (double *)malloc(n * sizeof *s->w);
-    s->wq = (lt_q30_t *)malloc(n * sizeof *s->wq);
-    s->wf = (float *)malloc(n * sizeof *s->wf);
-    s->wqd = (double *)malloc(n * sizeof *s->wqd);
-    s->wfd = (double *)malloc(n * sizeof *s->wfd);
-    assert_non_null(s->w);
-    assert_non_null(s->wq);
-    assert_non_null(s->wf);
-    assert_non_null(s->wqd);
-    assert_non_null(s->wfd);
-    for (k = 0; k < s->layers; k++)
-        for (y = 0; y < s->H; y++)
-            for (x = 0; x < s->W; x++)
-                s->w[((size_t)k * s->H + y) * s->W + x] = s->fn(s, (int)k, x + 0.5, y + 0.5);
-    for (i = 0; i < n; i++) {
-        double v = s->w[i] > 0.0 ? s->w[i] : 0.0;
-        s->wq[i] = lt_q30_from_double_sat(v);
-        s->wf[i] = (float)v;
-        s->wqd[i] = s->wq[i] / Q30;
-        s->wfd[i] = (double)s->wf[i];
-    }
-}
-
-static void scene_free(scene_t *s)
-{
-    free(s->w);
-    free(s->wq);
-    free(s->wf);
-    free(s->wqd);
-    free(s->wfd);
 }
 
 /* ---- building ----------------------------------------------------------------------------- */
@@ -192,7 +66,7 @@ typedef struct built {
     int nfmt;
 } built_t;
 
-static void build_all(const scene_t *s, const lt_qt_params_t *p, built_t *b)
+static void build_all(const ss_scene_t *s, const lt_qt_params_t *p, built_t *b)
 {
     int f;
     lt_qt_params_t dp;
@@ -275,108 +149,33 @@ static uint32_t count_planes(const built_t *b, int f)
     return n;
 }
 
-/* double -> float through a volatile: GCC 12.2 at -O2 -march=native (AVX-512) SLP-vectorises
- * r = (float)d; e = (double)r into e = d, dropping the float rounding (reproduced in 20 lines,
- * -fno-tree-slp-vectorize avoids it), which made the exact copies of float rays differ by build. */
-static float f32_of(double v)
-{
-    volatile float f = (float)v;
-    return f;
-}
-
 /* ---- tracing sets of rays ------------------------------------------------------------------ */
-
-typedef struct res {
-    int status, layer, nodes, aabb, planes;
-    double t, w;
-} res_t;
 
 /* Trace n rays (double segments) through format f in packets of 16 (lane = index % 16).
  * exact[] receives the segments as the format represents them (for the reference). Returns the
  * lane utilisation: useful lane-steps / (16 x the packets' longest lane). */
 static double trace_set(const built_t *b, int f, const lt_qt_ref_ray_t *rays, size_t n,
-                        uint32_t max_steps, res_t *out, lt_qt_ref_ray_t *exact)
+                        uint32_t max_steps, ss_res_t *out, lt_qt_ref_ray_t *exact)
 {
     size_t p, i;
     double used = 0.0, slots = 0.0;
     for (p = 0; p < n; p += 16) {
-        lt_mask16_t k = 0;
+        size_t cnt = n - p < 16 ? n - p : 16;
+        lt_mask16_t k;
         int maxn = 0;
         if (f < 2) {
             lt_qray16_q30_t r;
             lt_qhit16_q30_t h;
-            memset(&r, 0, sizeof r);
-            for (i = 0; i < 16 && p + i < n; i++) {
-                const lt_qt_ref_ray_t *d = &rays[p + i];
-                int32_t x0 = lt_q16_from_double_sat(d->x), y0 = lt_q16_from_double_sat(d->y);
-                int32_t x1 = lt_q16_from_double_sat(d->x + d->dx);
-                int32_t y1 = lt_q16_from_double_sat(d->y + d->dy);
-                int32_t w0 = lt_q30_from_double_sat(d->w), w1 = lt_q30_from_double_sat(d->w + d->dw);
-                r.x.l[i] = x0;
-                r.y.l[i] = y0;
-                r.w.l[i] = w0;
-                r.dx.l[i] = lt__ssat32((int64_t)x1 - x0);
-                r.dy.l[i] = lt__ssat32((int64_t)y1 - y0);
-                r.dw.l[i] = lt__ssat32((int64_t)w1 - w0);
-                r.tmin.l[i] = lt_q30_from_double_sat(d->tmin);
-                r.tmax.l[i] = lt_q30_from_double_sat(d->tmax);
-                k = (lt_mask16_t)(k | (1u << i));
-                exact[p + i].x = x0 / 65536.0;
-                exact[p + i].y = y0 / 65536.0;
-                exact[p + i].w = w0 / Q30;
-                exact[p + i].dx = r.dx.l[i] / 65536.0;
-                exact[p + i].dy = r.dy.l[i] / 65536.0;
-                exact[p + i].dw = r.dw.l[i] / Q30;
-                exact[p + i].tmin = r.tmin.l[i] / Q30;
-                exact[p + i].tmax = r.tmax.l[i] / Q30;
-            }
+            k = ss_pack_q30(rays + p, cnt, &r, exact + p);
             assert_int_equal(lt_qt_trace16_q30(&b->qt[f], &r, k, max_steps, &h), LT_OK);
-            for (i = 0; i < 16 && p + i < n; i++) {
-                res_t *o = &out[p + i];
-                o->status = h.status.l[i];
-                o->layer = h.layer.l[i];
-                o->nodes = h.nodes.l[i];
-                o->aabb = h.aabb.l[i];
-                o->planes = h.planes.l[i];
-                o->t = h.t.l[i] / Q30;
-                o->w = h.w.l[i] / Q30;
-            }
+            ss_res_q30(&h, cnt, out + p);
         } else {
 #if LT_CFG_FLOAT32
             lt_qray16_f32_t r;
             lt_qhit16_f32_t h;
-            memset(&r, 0, sizeof r);
-            for (i = 0; i < 16 && p + i < n; i++) {
-                const lt_qt_ref_ray_t *d = &rays[p + i];
-                r.x.l[i] = f32_of(d->x);
-                r.y.l[i] = f32_of(d->y);
-                r.w.l[i] = f32_of(d->w);
-                r.dx.l[i] = f32_of(d->dx);
-                r.dy.l[i] = f32_of(d->dy);
-                r.dw.l[i] = f32_of(d->dw);
-                r.tmin.l[i] = f32_of(d->tmin);
-                r.tmax.l[i] = f32_of(d->tmax);
-                k = (lt_mask16_t)(k | (1u << i));
-                exact[p + i].x = (double)r.x.l[i];
-                exact[p + i].y = (double)r.y.l[i];
-                exact[p + i].w = (double)r.w.l[i];
-                exact[p + i].dx = (double)r.dx.l[i];
-                exact[p + i].dy = (double)r.dy.l[i];
-                exact[p + i].dw = (double)r.dw.l[i];
-                exact[p + i].tmin = (double)r.tmin.l[i];
-                exact[p + i].tmax = (double)r.tmax.l[i];
-            }
+            k = ss_pack_f32(rays + p, cnt, &r, exact + p);
             assert_int_equal(lt_qt_trace16_f32(&b->qt[f], &r, k, max_steps, &h), LT_OK);
-            for (i = 0; i < 16 && p + i < n; i++) {
-                res_t *o = &out[p + i];
-                o->status = h.status.l[i];
-                o->layer = h.layer.l[i];
-                o->nodes = h.nodes.l[i];
-                o->aabb = h.aabb.l[i];
-                o->planes = h.planes.l[i];
-                o->t = (double)h.t.l[i];
-                o->w = (double)h.w.l[i];
-            }
+            ss_res_f32(&h, cnt, out + p);
 #endif
         }
         for (i = 0; i < 16 && p + i < n; i++) {
@@ -406,7 +205,7 @@ typedef struct cmp {
 /* Same hit: same status and, for hits, the same layer and hit points within 1/2 pixel on screen;
  * for occlusions and misses, the same status. */
 static void compare(const built_t *b, int f, const lt_qt_ref_ray_t *rays, size_t n,
-                    uint32_t max_steps, cmp_t *c, res_t *out, lt_qt_ref_hit_t *refh)
+                    uint32_t max_steps, cmp_t *c, ss_res_t *out, lt_qt_ref_hit_t *refh)
 {
     lt_qt_ref_ray_t *ex = (lt_qt_ref_ray_t *)malloc(n * sizeof *ex);
     size_t i;
@@ -415,7 +214,7 @@ static void compare(const built_t *b, int f, const lt_qt_ref_ray_t *rays, size_t
     c->util = trace_set(b, f, rays, n, max_steps, out, ex);
     for (i = 0; i < n; i++) {
         lt_qt_ref_hit_t *h = &refh[i];
-        const res_t *o = &out[i];
+        const ss_res_t *o = &out[i];
         lt_qt_ref_trace(&b->ref[f == 2 ? 1 : 0], &ex[i], h);
         c->n++;
         c->sum_nodes += o->nodes;
@@ -466,79 +265,23 @@ static void print_cmp(const char *scene, int f, const cmp_t *c)
                100.0 * c->util);
 }
 
-/* A random unit direction without trigonometry: sin and cos of one angle may be fused into sincos
- * (rounded differently) depending on the compiler flags, which would give each build variant a
- * different ray set; rejection sampling and sqrt are exact IEEE. */
-static void rng_dir(ltt_rng_t *g, double *ux, double *uy)
-{
-    double x, y, n;
-    do {
-        x = ltt_rng_uniform(g, -1, 1);
-        y = ltt_rng_uniform(g, -1, 1);
-        n = x * x + y * y;
-    } while (n > 1.0 || n < 1e-6);
-    n = sqrt(n);
-    *ux = x / n;
-    *uy = y / n;
-}
-
 /* ---- rays ------------------------------------------------------------------------------------ */
 
-/* Coherent packets: a 4x4 tile of start pixels, one screen direction and w rate per packet; each
- * lane starts in front of its pixel's surface (w0 = w_true (1 + a)) and ends at w1 = w0 * r, so
- * the set holds hits, occlusions behind objects and misses. */
-static void gen_rays(const scene_t *s, ltt_rng_t *g, size_t n, int coherent, lt_qt_ref_ray_t *r)
+/* Coherent and random packets (lt_ssb_testlib.h's ss_gen_rays_in). The tile range is this file's
+ * own: W - 4 in uint32_t, which wraps to ~2^32 for images narrower than 4 px (likewise H), so
+ * that there every start lies past the image and clamps to W - 0.5; kept because it defines the
+ * ray sets (and printed figures) of test_small_images. */
+static void gen_rays(const ss_scene_t *s, ltt_rng_t *g, size_t n, int coherent, lt_qt_ref_ray_t *r)
 {
-    size_t p, i;
-    for (p = 0; p < n; p += 16) {
-        double tx = ltt_rng_uniform(g, 0, s->W - 4 > 0 ? s->W - 4 : 1);
-        double ty = ltt_rng_uniform(g, 0, s->H - 4 > 0 ? s->H - 4 : 1);
-        double ux, uy, len;
-        double a, q;
-        rng_dir(g, &ux, &uy);
-        len = ltt_rng_uniform(g, 4, 1.2 * s->W);
-        a = ltt_rng_uniform(g, 0.0005, 0.2);
-        q = ltt_rng_uniform(g, 0.2, 1.1);
-        for (i = 0; i < 16 && p + i < n; i++) {
-            lt_qt_ref_ray_t *d = &r[p + i];
-            double x, y, w0;
-            if (!coherent) {
-                tx = ltt_rng_uniform(g, 0, s->W - 4 > 0 ? s->W - 4 : 1);
-                ty = ltt_rng_uniform(g, 0, s->H - 4 > 0 ? s->H - 4 : 1);
-                rng_dir(g, &ux, &uy);
-                len = ltt_rng_uniform(g, 4, 1.2 * s->W);
-                a = ltt_rng_uniform(g, 0.0005, 0.2);
-                q = ltt_rng_uniform(g, 0.2, 1.1);
-            }
-            x = tx + (double)(i % 4) + ltt_rng_uniform(g, 0.05, 0.95);
-            y = ty + (double)(i / 4) + ltt_rng_uniform(g, 0.05, 0.95);
-            if (x >= s->W)
-                x = s->W - 0.5;
-            if (y >= s->H)
-                y = s->H - 0.5;
-            w0 = s->fn(s, 0, x, y);
-            if (w0 <= 0.0)
-                w0 = 0.3;
-            w0 *= 1.0 + a;
-            if (w0 > 1.9)
-                w0 = 1.9;
-            d->x = x;
-            d->y = y;
-            d->w = w0;
-            d->dx = len * ux;
-            d->dy = len * uy;
-            d->dw = w0 * q - w0;
-            d->tmin = 0.0;
-            d->tmax = 1.0;
-        }
-    }
+    double xr = s->W - 4 > 0 ? s->W - 4 : 1, yr = s->H - 4 > 0 ? s->H - 4 : 1;
+    ss_gen_rays_in(s, g, n, coherent, xr, yr, r);
 }
 
 /* ---- analytic ground truth: dense march on the true w(x, y) ------------------------------- */
 
 /* status / t of the first event: a sign change of f = w_ray - w_true; after bisection, a jump of
  * the surface across the final interval marks a discontinuity (occlusion), else a hit. */
-static int analytic(const scene_t *s, const lt_qt_ref_ray_t *r, double *t_out)
+static int analytic(const ss_scene_t *s, const lt_qt_ref_ray_t *r, double *t_out)
 {
     double t0 = r->tmin, t1 = r->tmax, len = hypot(r->dx, r->dy);
     int a, i, steps;
@@ -592,7 +335,7 @@ static int analytic(const scene_t *s, const lt_qt_ref_ray_t *r, double *t_out)
 }
 
 /* The segment's parameter range on the screen: [c0, c1] within [tmin, tmax]. */
-static void clip_t(const scene_t *s, const lt_qt_ref_ray_t *r, double *c0, double *c1)
+static void clip_t(const ss_scene_t *s, const lt_qt_ref_ray_t *r, double *c0, double *c1)
 {
     int a;
     *c0 = r->tmin;
@@ -626,16 +369,13 @@ static void test_size_query(void **state)
     (void)state;
     for (di = 0; di < sizeof dims / sizeof dims[0]; di++) {
         uint32_t W = dims[di][0], H = dims[di][1], layers = dims[di][2], L;
-        size_t n = (size_t)W * H * layers, i;
+        size_t n = (size_t)W * H * layers;
         lt_q30_t *w = (lt_q30_t *)malloc(n * sizeof *w);
         float *wf = (float *)malloc(n * sizeof *wf);
         uint64_t nodes = 0;
         assert_non_null(w);
         assert_non_null(wf);
-        for (i = 0; i < n; i++) {
-            w[i] = (lt_q30_t)(0x10000000 + (int32_t)((i * 7919u) % 65536u) * 64);
-            wf[i] = (float)(w[i] / Q30);
-        }
+        ss_size_test_w(w, wf, n);
         /* independent count: levels until 1x1 */
         for (L = 0;; L++) {
             uint32_t nx = (W + (1u << L) - 1u) >> L, ny = (H + (1u << L) - 1u) >> L;
@@ -734,13 +474,13 @@ static void test_plane_one_node(void **state)
     int si, f;
     (void)state;
     for (si = 0; si < 2; si++) {
-        scene_t s;
+        ss_scene_t s;
         built_t b;
         ltt_rng_t g;
         size_t n = 2048, i;
         lt_qt_ref_ray_t *rays = (lt_qt_ref_ray_t *)malloc(n * sizeof *rays);
         lt_qt_ref_ray_t *ex = (lt_qt_ref_ray_t *)malloc(n * sizeof *ex);
-        res_t *out = (res_t *)malloc(n * sizeof *out);
+        ss_res_t *out = (ss_res_t *)malloc(n * sizeof *out);
         assert_non_null(rays);
         assert_non_null(ex);
         assert_non_null(out);
@@ -749,21 +489,21 @@ static void test_plane_one_node(void **state)
         s.W = sz[si][0];
         s.H = sz[si][1];
         s.layers = 1;
-        s.fn = w_plane;
+        s.fn = ss_w_plane;
         s.p[0] = 0.45;
         s.p[1] = 2.1e-4;
         s.p[2] = -1.3e-4;
-        scene_sample(&s);
+        assert_int_equal(ss_scene_sample(&s), 0);
         build_all(&s, NULL, &b);
         ltt_rng_seed(&g, 100 + (uint64_t)si);
         /* segments from in front of the plane to behind it, crossing at a random pixel */
         for (i = 0; i < n; i++) {
             double xh = ltt_rng_uniform(&g, 0.5, s.W - 0.5), yh = ltt_rng_uniform(&g, 0.5, s.H - 0.5);
             double ux, uy, len, th, wh, dw;
-            rng_dir(&g, &ux, &uy);
+            ss_rng_dir(&g, &ux, &uy);
             len = ltt_rng_uniform(&g, 0, 40);
             th = ltt_rng_uniform(&g, 0.1, 0.9);
-            wh = w_plane(&s, 0, xh, yh);
+            wh = ss_w_plane(&s, 0, xh, yh);
             dw = -ltt_rng_uniform(&g, 0.001, 0.3);
             rays[i].dx = len * ux;
             rays[i].dy = len * uy;
@@ -816,7 +556,7 @@ static void test_plane_one_node(void **state)
                 }
                 for (c = 0; c < 4; c++) {
                     double x = (c & 1) ? s.W : 0.0, y = (c & 2) ? s.H : 0.0;
-                    double dv = C + Al * (x - xc) / S + Be * (y - yc) / S - w_plane(&s, 0, x, y);
+                    double dv = C + Al * (x - xc) / S + Be * (y - yc) / S - ss_w_plane(&s, 0, x, y);
                     if (fabs(dv) > eplane)
                         eplane = fabs(dv);
                 }
@@ -824,7 +564,7 @@ static void test_plane_one_node(void **state)
             for (i = 0; i < n; i++) {
                 const lt_qt_ref_ray_t *e = &ex[i];
                 double F1 = e->dw - s.p[1] * e->dx - s.p[2] * e->dy;
-                double F0 = e->w - w_plane(&s, 0, e->x, e->y), t = -F0 / F1;
+                double F0 = e->w - ss_w_plane(&s, 0, e->x, e->y), t = -F0 / F1;
                 double err, bound, ulp = f < 2 ? 1.0 / Q30 : ldexp(1.0, -24);
                 if (out[i].status != LT_QT_HIT) {
                     /* the stored plane may be crossed outside the segment when the true crossing
@@ -843,7 +583,7 @@ static void test_plane_one_node(void **state)
                 }
                 hits++;
                 /* distance of the hit point from the true surface, in w */
-                err = fabs(out[i].w - w_plane(&s, 0, e->x + out[i].t * e->dx,
+                err = fabs(out[i].w - ss_w_plane(&s, 0, e->x + out[i].t * e->dx,
                                               e->y + out[i].t * e->dy));
                 /* stored plane's deviation + evaluation (2 ulp) + t rounding (2 ulp of t) */
                 bound = eplane + 2.0 * ulp + 2.0 * ulp * fabs(F1) +
@@ -872,7 +612,7 @@ static void test_plane_one_node(void **state)
             assert_int_equal(bad, 0);
         }
         built_free(&b);
-        scene_free(&s);
+        ss_scene_free(&s);
         free(rays);
         free(ex);
         free(out);
@@ -881,18 +621,18 @@ static void test_plane_one_node(void **state)
 
 /* Steps and spheres: every format against the reference (same model, exact inputs) and against
  * the analytic surface (the model's own error: pixel planes, lambda rules, merges, formats). */
-static void run_scene(scene_t *s, size_t n, uint64_t seed, double min_same)
+static void run_scene(ss_scene_t *s, size_t n, uint64_t seed, double min_same)
 {
     built_t b;
     ltt_rng_t g;
     lt_qt_ref_ray_t *rays = (lt_qt_ref_ray_t *)malloc(n * sizeof *rays);
-    res_t *out = (res_t *)malloc(n * sizeof *out);
+    ss_res_t *out = (ss_res_t *)malloc(n * sizeof *out);
     lt_qt_ref_hit_t *refh = (lt_qt_ref_hit_t *)malloc(n * sizeof *refh);
     int f, coh;
     assert_non_null(rays);
     assert_non_null(out);
     assert_non_null(refh);
-    scene_sample(s);
+    assert_int_equal(ss_scene_sample(s), 0);
     build_all(s, NULL, &b);
     for (coh = 1; coh >= 0; coh--) {
         ltt_rng_seed(&g, seed + (uint64_t)coh);
@@ -933,7 +673,7 @@ static void run_scene(scene_t *s, size_t n, uint64_t seed, double min_same)
         ltt_report("%s %s: %u of %u nodes are planes, %zu bytes\n", s->name, fmt_name[f],
                    count_planes(&b, f), b.qt[f].layer_nodes, b.bytes[f]);
     built_free(&b);
-    scene_free(s);
+    ss_scene_free(s);
     free(rays);
     free(out);
     free(refh);
@@ -941,27 +681,27 @@ static void run_scene(scene_t *s, size_t n, uint64_t seed, double min_same)
 
 static void test_steps(void **state)
 {
-    scene_t s;
+    ss_scene_t s;
     (void)state;
     memset(&s, 0, sizeof s);
     s.name = "steps";
     s.W = 160;
     s.H = 96;
     s.layers = 1;
-    s.fn = w_steps;
+    s.fn = ss_w_steps;
     run_scene(&s, 4096, 7, 99.0);
 }
 
 static void test_spheres(void **state)
 {
-    scene_t s;
+    ss_scene_t s;
     (void)state;
     memset(&s, 0, sizeof s);
     s.name = "spheres";
     s.W = 160;
     s.H = 120;
     s.layers = 1;
-    s.fn = w_spheres;
+    s.fn = ss_w_spheres;
     s.p[0] = 140.0;                     /* focal length, pixels */
     s.p[1] = 0.12;                      /* background plane w = p1 + p2 x + p3 y */
     s.p[2] = 0.0002;
@@ -977,11 +717,11 @@ static void test_spheres(void **state)
  * all holes) so that lanes keep walking layer 0 after their first occlusion. */
 static void test_checkerboard_bound(void **state)
 {
-    scene_t s;
+    ss_scene_t s;
     built_t b;
     size_t n = 256, i, unk_small = 0, same = 0;
     lt_qt_ref_ray_t *rays, *ex;
-    res_t *out;
+    ss_res_t *out;
     lt_qt_ref_hit_t *refh;
     ltt_rng_t g;
     int f, maxn = 0;
@@ -993,12 +733,12 @@ static void test_checkerboard_bound(void **state)
     s.W = 64;
     s.H = 64;
     s.layers = 2;
-    s.fn = w_checker;
-    scene_sample(&s);
+    s.fn = ss_w_checker;
+    assert_int_equal(ss_scene_sample(&s), 0);
     build_all(&s, NULL, &b);
     rays = (lt_qt_ref_ray_t *)malloc(n * sizeof *rays);
     ex = (lt_qt_ref_ray_t *)malloc(n * sizeof *ex);
-    out = (res_t *)malloc(n * sizeof *out);
+    out = (ss_res_t *)malloc(n * sizeof *out);
     refh = (lt_qt_ref_hit_t *)malloc(n * sizeof *refh);
     assert_non_null(rays);
     assert_non_null(ex);
@@ -1006,20 +746,7 @@ static void test_checkerboard_bound(void **state)
     assert_non_null(refh);
     ltt_rng_seed(&g, 5);
     /* long rays at w between the two depths: they overlap every box and never cross a plane */
-    for (i = 0; i < n; i++) {
-        double ux, uy;
-        rng_dir(&g, &ux, &uy);
-        rays[i].x = 32.0 + 0.5 + ltt_rng_uniform(&g, -1, 1);
-        rays[i].y = 32.0 + 0.5 + ltt_rng_uniform(&g, -1, 1);
-        rays[i].dx = 64.0 * ux;
-        rays[i].dy = 64.0 * uy;
-        if (i % 8 == 0)
-            rays[i].dy = 0.0; /* axis-parallel */
-        rays[i].w = 0.375;
-        rays[i].dw = 0.0;
-        rays[i].tmin = 0.0;
-        rays[i].tmax = 1.0;
-    }
+    ss_gen_checker_rays(&g, n, rays);
     for (f = 0; f < b.nfmt; f++) {
         cmp_t c;
         bound = lt_qt_default_steps(&b.qt[f]);
@@ -1048,7 +775,7 @@ static void test_checkerboard_bound(void **state)
         assert_true(unk_small > 0);
     }
     built_free(&b);
-    scene_free(&s);
+    ss_scene_free(&s);
     free(rays);
     free(ex);
     free(out);
@@ -1059,11 +786,11 @@ static void test_checkerboard_bound(void **state)
  * motion), leaving or entering the screen, reaching w = 0, and invalid ones. */
 static void test_edge_rays(void **state)
 {
-    scene_t s;
+    ss_scene_t s;
     built_t b;
-    enum { N = 16 * 12 };
+    enum { N = SS_EDGE_N };
     lt_qt_ref_ray_t rays[N];
-    res_t out[N];
+    ss_res_t out[N];
     lt_qt_ref_hit_t refh[N];
     ltt_rng_t g;
     size_t i;
@@ -1074,104 +801,14 @@ static void test_edge_rays(void **state)
     s.W = 48;
     s.H = 40;
     s.layers = 1;
-    s.fn = w_plane;
+    s.fn = ss_w_plane;
     s.p[0] = 0.4;
     s.p[1] = 3e-4;
     s.p[2] = 2e-4;
-    scene_sample(&s);
+    assert_int_equal(ss_scene_sample(&s), 0);
     build_all(&s, NULL, &b);
     ltt_rng_seed(&g, 21);
-    for (i = 0; i < N; i++) {
-        lt_qt_ref_ray_t *r = &rays[i];
-        double x = ltt_rng_uniform(&g, 0.5, s.W - 0.5), y = ltt_rng_uniform(&g, 0.5, s.H - 0.5);
-        double wsurf = w_plane(&s, 0, x, y);
-        r->tmin = 0.0;
-        r->tmax = 1.0;
-        r->x = x;
-        r->y = y;
-        switch (i / 16) {
-        case 0: /* grazing: along the plane's gradient with a w rate that matches it to 1e-3 */
-            r->dx = ltt_rng_uniform(&g, -40, 40);
-            r->dy = ltt_rng_uniform(&g, -40, 40);
-            r->w = wsurf + 1e-6;
-            r->dw = (s.p[1] * r->dx + s.p[2] * r->dy) * (1.0 - ltt_rng_uniform(&g, 1e-4, 1e-2));
-            break;
-        case 1: /* parallel to x */
-            r->dx = ltt_rng_uniform(&g, -60, 60);
-            r->dy = 0.0;
-            r->w = wsurf + 0.01;
-            r->dw = -0.03;
-            break;
-        case 2: /* parallel to y */
-            r->dx = 0.0;
-            r->dy = ltt_rng_uniform(&g, -60, 60);
-            r->w = wsurf + 0.01;
-            r->dw = -0.03;
-            break;
-        case 3: /* a point on the screen: only w changes */
-            r->dx = r->dy = 0.0;
-            r->w = wsurf + 0.05;
-            r->dw = -0.1;
-            break;
-        case 4: /* leaving the screen in front of the plane */
-            r->dx = s.W * 3.0;
-            r->dy = ltt_rng_uniform(&g, -5, 5);
-            r->w = 0.9;
-            r->dw = -0.1;
-            break;
-        case 5: /* entering from outside, then hitting */
-            r->x = -30.0;
-            r->dx = s.W + 60.0;
-            r->dy = ltt_rng_uniform(&g, -10, 10);
-            r->w = 0.6;
-            r->dw = -0.4;
-            break;
-        case 6: /* reaching w = 0 (infinity) on the screen: clipped there */
-            r->dx = ltt_rng_uniform(&g, -10, 10);
-            r->dy = ltt_rng_uniform(&g, -10, 10);
-            r->w = wsurf + 0.3;
-            r->dw = -3.0 * r->w;
-            r->tmax = 1.0;
-            break;
-        case 7: /* exactly on pixel edges and corners, diagonal */
-            r->x = floor(x);
-            r->y = floor(y);
-            r->dx = 16.0;
-            r->dy = (i & 1) ? 16.0 : -16.0;
-            r->w = wsurf + 0.01;
-            r->dw = -0.05;
-            break;
-        case 8: /* starting behind the surface (the ray is occluded from its start) */
-            r->dx = ltt_rng_uniform(&g, -10, 10);
-            r->dy = ltt_rng_uniform(&g, -10, 10);
-            r->w = wsurf - 0.01;
-            r->dw = -0.01;
-            break;
-        case 9: /* tmin / tmax sub-range */
-            r->dx = ltt_rng_uniform(&g, -30, 30);
-            r->dy = ltt_rng_uniform(&g, -30, 30);
-            r->w = wsurf + 0.02;
-            r->dw = -0.06;
-            r->tmin = 0.1;
-            r->tmax = 0.3;
-            break;
-        case 10: /* outside the image entirely */
-            r->x = -20.0;
-            r->y = -20.0;
-            r->dx = -10.0;
-            r->dy = 3.0;
-            r->w = 0.5;
-            r->dw = -0.2;
-            break;
-        default: /* long rays across the whole screen */
-            r->x = -0.0;
-            r->dx = s.W;
-            r->dy = ltt_rng_uniform(&g, -(double)s.H, (double)s.H);
-            r->w = 0.8;
-            r->dw = -0.6;
-            break;
-        }
-    }
+    ss_gen_edge_rays(&s, &g, rays);
     for (f = 0; f < b.nfmt; f++) {
         cmp_t c;
         size_t cls[12] = {0};
@@ -1204,19 +841,7 @@ static void test_edge_rays(void **state)
     {
         lt_qray16_q30_t r;
         lt_qhit16_q30_t h;
-        memset(&r, 0, sizeof r);
-        for (i = 0; i < 16; i++) {
-            r.x.l[i] = 10 << 16;
-            r.y.l[i] = 10 << 16;
-            r.w.l[i] = 1 << 29;
-            r.dx.l[i] = 5 << 16;
-            r.tmax.l[i] = 1 << 30;
-        }
-        r.x.l[0] = (int32_t)((1 << 14) + 1) << 16;   /* |x| > 2^14 */
-        r.w.l[1] = -1;                               /* w < 0 */
-        r.tmin.l[2] = 1 << 29, r.tmax.l[2] = 1 << 28; /* tmin > tmax */
-        r.tmax.l[3] = (1 << 30) + 1;                  /* tmax > 1 */
-        r.dx.l[4] = (int32_t)0x7FFF0000;              /* end beyond 2^14 */
+        ss_bad_rays_q30(&r);
         assert_int_equal(lt_qt_trace16_q30(&b.qt[0], &r, 0xFFFF, 0, &h), LT_OK);
         for (i = 0; i < 5; i++)
             assert_int_equal(h.status.l[i], LT_QT_BADRAY);
@@ -1227,17 +852,17 @@ static void test_edge_rays(void **state)
                    "LT_QT_BADRAY per lane, other lanes traced; NULL quadtree -> LT_E_ARG\n");
     }
     built_free(&b);
-    scene_free(&s);
+    ss_scene_free(&s);
 }
 
 /* Depths from 1e-3 to 1e4 (w = 2^-10 / z from ~1 down to ~1e-7): relative depth error per band. */
 static void test_depth_range(void **state)
 {
-    scene_t s;
+    ss_scene_t s;
     built_t b;
     enum { PER = 64 };
     lt_qt_ref_ray_t rays[8 * PER], ex[8 * PER];
-    res_t out[8 * PER];
+    ss_res_t out[8 * PER];
     ltt_rng_t g;
     int f, band;
     size_t i;
@@ -1248,7 +873,7 @@ static void test_depth_range(void **state)
     s.H = 16;
     s.layers = 1;
     s.fn = w_bands;
-    scene_sample(&s);
+    assert_int_equal(ss_scene_sample(&s), 0);
     build_all(&s, NULL, &b);
     ltt_rng_seed(&g, 33);
     for (i = 0; i < 8 * PER; i++) {
@@ -1304,7 +929,7 @@ static void test_depth_range(void **state)
         assert_true(hits >= (size_t)(8 * PER * 9 / 10));
     }
     built_free(&b);
-    scene_free(&s);
+    ss_scene_free(&s);
 }
 
 /* 1x1, 1xN, Nx1 and non-power-of-two images against the reference. */
@@ -1315,23 +940,23 @@ static void test_small_images(void **state)
     int f;
     (void)state;
     for (di = 0; di < sizeof dims / sizeof dims[0]; di++) {
-        scene_t s;
+        ss_scene_t s;
         built_t b;
         ltt_rng_t g;
         size_t n = 256;
         lt_qt_ref_ray_t rays[256];
-        res_t out[256];
+        ss_res_t out[256];
         lt_qt_ref_hit_t refh[256];
         memset(&s, 0, sizeof s);
         s.name = "wave";
         s.W = dims[di][0];
         s.H = dims[di][1];
         s.layers = 1;
-        s.fn = w_wave;
+        s.fn = ss_w_wave;
         s.p[0] = 0.002;
         s.p[1] = 0.3 * (double)di;
         s.p[2] = 0.7;
-        scene_sample(&s);
+        assert_int_equal(ss_scene_sample(&s), 0);
         build_all(&s, NULL, &b);
         ltt_rng_seed(&g, 40 + di);
         gen_rays(&s, &g, n, 0, rays);
@@ -1346,7 +971,7 @@ static void test_small_images(void **state)
                 assert_true(c.same_status * 100 >= c.n * 98);
         }
         built_free(&b);
-        scene_free(&s);
+        ss_scene_free(&s);
     }
 }
 
@@ -1354,15 +979,15 @@ static void test_small_images(void **state)
  * conversion; rays over holes miss, rays that meet valid pixels agree with the reference. */
 static void test_holes(void **state)
 {
-    uint32_t W = 64, H = 48, x, y;
-    size_t n = (size_t)W * H, holes, nrays = 512, i, over_holes = 0, miss_holes = 0;
+    uint32_t W = 64, H = 48;
+    size_t n = (size_t)W * H, holes, hc[2], nrays = 512, i, over_holes = 0, miss_holes = 0;
     float *z = (float *)malloc(n * sizeof *z);
-    scene_t s;
+    ss_scene_t s;
     built_t b;
     int e, f;
     ltt_rng_t g;
     lt_qt_ref_ray_t *rays = (lt_qt_ref_ray_t *)malloc(nrays * sizeof *rays);
-    res_t *out = (res_t *)malloc(nrays * sizeof *out);
+    ss_res_t *out = (ss_res_t *)malloc(nrays * sizeof *out);
     lt_qt_ref_hit_t *refh = (lt_qt_ref_hit_t *)malloc(nrays * sizeof *refh);
     (void)state;
     assert_non_null(z);
@@ -1370,50 +995,19 @@ static void test_holes(void **state)
     assert_non_null(out);
     assert_non_null(refh);
     /* a disc of depth 2..3 over a background of holes of every kind */
-    for (y = 0; y < H; y++) {
-        for (x = 0; x < W; x++) {
-            double dx = x + 0.5 - 32.0, dy = y + 0.5 - 24.0;
-            float v;
-            if (dx * dx + dy * dy < 18.0 * 18.0)
-                v = (float)(2.0 + 0.01 * dx + 0.02 * dy);
-            else
-                v = (x + y) % 3 == 0 ? NAN : ((x + y) % 3 == 1 ? INFINITY : 0.0f);
-            z[y * W + x] = v;
-        }
-    }
-    z[5] = -INFINITY;
-    z[6] = -1.0f;
-    assert_int_equal(lt_qt_zref_exp(z, n, &e), 0);
+    ss_holes_depth(z, W, H);
     memset(&s, 0, sizeof s);
     s.name = "holes";
     s.W = W;
     s.H = H;
-    s.layers = 1;
-    s.fn = w_wave; /* not sampled: the buffers come from the conversion below */
-    s.w = (double *)malloc(n * sizeof *s.w);
-    s.wq = (lt_q30_t *)malloc(n * sizeof *s.wq);
-    s.wf = (float *)malloc(n * sizeof *s.wf);
-    s.wqd = (double *)malloc(n * sizeof *s.wqd);
-    s.wfd = (double *)malloc(n * sizeof *s.wfd);
-    holes = lt_qt_w_from_depth_q30(z, n, e, s.wq);
-    assert_int_equal(lt_qt_w_from_depth_f32(z, n, e, s.wf), holes);
-    for (i = 0; i < n; i++) {
-        s.wqd[i] = s.wq[i] / Q30;
-        s.wfd[i] = (double)s.wf[i];
-        s.w[i] = s.wqd[i];
-    }
+    /* not sampled: the buffers come from the conversion (hole counts of both paths) */
+    assert_int_equal(ss_scene_from_depth(&s, z, hc), 0);
+    e = s.zexp;
+    holes = hc[0];
+    assert_int_equal(hc[1], holes);
     build_all(&s, NULL, &b);
     ltt_rng_seed(&g, 51);
-    for (i = 0; i < nrays; i++) {
-        rays[i].x = ltt_rng_uniform(&g, 0.5, W - 0.5);
-        rays[i].y = ltt_rng_uniform(&g, 0.5, H - 0.5);
-        rays[i].dx = ltt_rng_uniform(&g, -30, 30);
-        rays[i].dy = ltt_rng_uniform(&g, -30, 30);
-        rays[i].w = ltt_rng_uniform(&g, 0.3, 0.6);
-        rays[i].dw = -ltt_rng_uniform(&g, 0.0, 1.2); /* some reach w = 0 on the screen */
-        rays[i].tmin = 0.0;
-        rays[i].tmax = 1.0;
-    }
+    ss_gen_holes_rays(&g, W, H, nrays, rays);
     for (f = 0; f < b.nfmt; f++) {
         cmp_t c;
         compare(&b, f, rays, nrays, 0, &c, out, refh);
@@ -1441,7 +1035,7 @@ static void test_holes(void **state)
     }
     assert_true(holes == n - 1018 || holes > n / 2);
     built_free(&b);
-    scene_free(&s);
+    ss_scene_free(&s);
     free(z);
     free(rays);
     free(out);
@@ -1451,11 +1045,11 @@ static void test_holes(void **state)
 /* Two layers: a ray that passes behind the card in layer 0 finds the background in layer 1. */
 static void test_two_layers(void **state)
 {
-    scene_t s;
+    ss_scene_t s;
     built_t b;
     size_t n = 2048, i;
     lt_qt_ref_ray_t *rays = (lt_qt_ref_ray_t *)malloc(n * sizeof *rays);
-    res_t *out = (res_t *)malloc(n * sizeof *out);
+    ss_res_t *out = (ss_res_t *)malloc(n * sizeof *out);
     lt_qt_ref_hit_t *refh = (lt_qt_ref_hit_t *)malloc(n * sizeof *refh);
     ltt_rng_t g;
     int f;
@@ -1468,9 +1062,9 @@ static void test_two_layers(void **state)
     s.W = 96;
     s.H = 64;
     s.layers = 2;
-    s.fn = w_card;
+    s.fn = ss_w_card;
     s.p[0] = 30, s.p[1] = 60, s.p[2] = 16, s.p[3] = 48;
-    scene_sample(&s);
+    assert_int_equal(ss_scene_sample(&s), 0);
     build_all(&s, NULL, &b);
     /* ray 0: from the left in front of the background, under the card's w, descending onto the
      * background behind the card (x 45, y 32) */
@@ -1512,7 +1106,7 @@ static void test_two_layers(void **state)
             assert_true(c.same_status * 100 >= c.n * 99);
     }
     built_free(&b);
-    scene_free(&s);
+    ss_scene_free(&s);
     free(rays);
     free(out);
     free(refh);
@@ -1522,7 +1116,7 @@ static void test_two_layers(void **state)
  * result as in a full packet. */
 static void test_lanes(void **state)
 {
-    scene_t s;
+    ss_scene_t s;
     built_t b;
     uint16_t masks[LTT_MASK_COUNT];
     unsigned nm, mi, i, checked = 0;
@@ -1536,8 +1130,8 @@ static void test_lanes(void **state)
     s.W = 64;
     s.H = 48;
     s.layers = 1;
-    s.fn = w_steps;
-    scene_sample(&s);
+    s.fn = ss_w_steps;
+    assert_int_equal(ss_scene_sample(&s), 0);
     build_all(&s, NULL, &b);
     ltt_rng_seed(&g, 71);
     gen_rays(&s, &g, 16, 0, rays);
@@ -1563,13 +1157,7 @@ static void test_lanes(void **state)
                 assert_int_equal(h.w.l[i], full.w.l[i]);
                 assert_int_equal(h.nodes.l[i], full.nodes.l[i]);
             } else {
-                assert_int_equal(ltt_touched(&h.status.l[i], 0, 4), 0);
-                assert_int_equal(ltt_touched(&h.t.l[i], 0, 4), 0);
-                assert_int_equal(ltt_touched(&h.w.l[i], 0, 4), 0);
-                assert_int_equal(ltt_touched(&h.layer.l[i], 0, 4), 0);
-                assert_int_equal(ltt_touched(&h.nodes.l[i], 0, 4), 0);
-                assert_int_equal(ltt_touched(&h.aabb.l[i], 0, 4), 0);
-                assert_int_equal(ltt_touched(&h.planes.l[i], 0, 4), 0);
+                ss_assert_untouched_q30(&h, i);
             }
             checked++;
         }
@@ -1578,19 +1166,19 @@ static void test_lanes(void **state)
                "active lanes = full-packet results, inactive lanes untouched (%u lane checks)\n",
                nm, checked);
     built_free(&b);
-    scene_free(&s);
+    ss_scene_free(&s);
 }
 
 #if LT_COST_MODE == LT_COST_SIM
 /* Sim only: the events and lane utilisation the cost hook saw for one traced scene. */
 static void test_sim_counts(void **state)
 {
-    scene_t s;
+    ss_scene_t s;
     built_t b;
     size_t n = 1024;
     lt_qt_ref_ray_t *rays = (lt_qt_ref_ray_t *)malloc(n * sizeof *rays);
     lt_qt_ref_ray_t *ex = (lt_qt_ref_ray_t *)malloc(n * sizeof *ex);
-    res_t *out = (res_t *)malloc(n * sizeof *out);
+    ss_res_t *out = (ss_res_t *)malloc(n * sizeof *out);
     lt_sim_totals_t *t = (lt_sim_totals_t *)malloc(sizeof *t);
     ltt_rng_t g;
     int f;
@@ -1603,8 +1191,8 @@ static void test_sim_counts(void **state)
     s.W = 160;
     s.H = 96;
     s.layers = 1;
-    s.fn = w_steps;
-    scene_sample(&s);
+    s.fn = ss_w_steps;
+    assert_int_equal(ss_scene_sample(&s), 0);
     ltt_rng_seed(&g, 81);
     gen_rays(&s, &g, n, 1, rays);
     for (f = 0; f < (LT_CFG_FLOAT32 ? 3 : 2); f++) {
@@ -1648,7 +1236,7 @@ static void test_sim_counts(void **state)
         built_free(&b);
     }
     lt_sim_shutdown();
-    scene_free(&s);
+    ss_scene_free(&s);
     free(rays);
     free(ex);
     free(out);
@@ -1660,72 +1248,33 @@ static void test_sim_counts(void **state)
 static void test_exr_beachball(void **state)
 {
     const char *path = "../shared/depth/beachball_singlepart.0001.exr";
-    lt_exr_read_opts_t o = LT_EXR_READ_OPTS_DEFAULT;
     lt_exr_depth_t d;
-    char err[256];
-    scene_t s;
+    ss_scene_t s;
     built_t b;
-    size_t n, i, nr = 2048;
+    size_t nr = 2048;
     int e, f;
     ltt_rng_t g;
     lt_qt_ref_ray_t *rays;
-    res_t *out;
+    ss_res_t *out;
     lt_qt_ref_hit_t *refh;
-    FILE *fp = fopen(path, "rb");
     (void)state;
-    if (fp == NULL) {
-        const char *ci = getenv("CI");
-        ltt_report("beachball: %s missing, skipped\n", path);
-        if (ci != NULL && strcmp(ci, "true") == 0)
-            fail_msg("CI=true and %s is missing", path);
+    if (!ss_shared_depth(path, &d))
         return;
-    }
-    fclose(fp);
-    memset(&d, 0, sizeof d);
-    if (lt_exr_read_depth(path, NULL, &o, &d, err, sizeof err) != 0)
-        fail_msg("%s", err);
-    n = (size_t)d.width * (size_t)d.height;
-    assert_int_equal(lt_qt_zref_exp(d.z, n, &e), 0);
     memset(&s, 0, sizeof s);
     s.name = "beachball";
     s.W = (uint32_t)d.width;
     s.H = (uint32_t)d.height;
-    s.layers = 1;
-    s.fn = w_wave;
-    s.w = (double *)malloc(n * sizeof *s.w);
-    s.wq = (lt_q30_t *)malloc(n * sizeof *s.wq);
-    s.wf = (float *)malloc(n * sizeof *s.wf);
-    s.wqd = (double *)malloc(n * sizeof *s.wqd);
-    s.wfd = (double *)malloc(n * sizeof *s.wfd);
-    (void)lt_qt_w_from_depth_q30(d.z, n, e, s.wq);
-    (void)lt_qt_w_from_depth_f32(d.z, n, e, s.wf);
-    for (i = 0; i < n; i++) {
-        s.wqd[i] = s.wq[i] / Q30;
-        s.wfd[i] = (double)s.wf[i];
-        s.w[i] = s.wqd[i];
-    }
+    assert_int_equal(ss_scene_from_depth(&s, d.z, NULL), 0);
+    e = s.zexp;
     build_all(&s, NULL, &b);
     rays = (lt_qt_ref_ray_t *)malloc(nr * sizeof *rays);
-    out = (res_t *)malloc(nr * sizeof *out);
+    out = (ss_res_t *)malloc(nr * sizeof *out);
     refh = (lt_qt_ref_hit_t *)malloc(nr * sizeof *refh);
+    assert_non_null(rays);
+    assert_non_null(out);
+    assert_non_null(refh);
     ltt_rng_seed(&g, 91);
-    /* gen_rays samples w through s.fn: use the buffer instead */
-    for (i = 0; i < nr; i++) {
-        uint32_t x = ltt_rng_below(&g, s.W), y = ltt_rng_below(&g, s.H);
-        double w0 = s.wqd[(size_t)y * s.W + x], ux, uy, len;
-        rng_dir(&g, &ux, &uy);
-        len = ltt_rng_uniform(&g, 4, 0.5 * s.W);
-        if (w0 <= 0.0)
-            w0 = 0.5;
-        rays[i].x = x + 0.5;
-        rays[i].y = y + 0.5;
-        rays[i].w = w0 * 1.01;
-        rays[i].dx = len * ux;
-        rays[i].dy = len * uy;
-        rays[i].dw = -w0 * ltt_rng_uniform(&g, 0.0, 0.8);
-        rays[i].tmin = 0.0;
-        rays[i].tmax = 1.0;
-    }
+    ss_gen_buffer_rays(&s, &g, nr, rays);
     for (f = 0; f < b.nfmt; f++) {
         cmp_t c;
         char name[96];
@@ -1738,7 +1287,7 @@ static void test_exr_beachball(void **state)
             assert_true(c.same_status * 100 >= c.n * 97);
     }
     built_free(&b);
-    scene_free(&s);
+    ss_scene_free(&s);
     lt_exr_depth_free(&d);
     free(rays);
     free(out);
