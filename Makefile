@@ -117,7 +117,8 @@ test: deps
 test-build: $(TEST_BINS) firmware $(PLUGIN_SO)
 
 bench: deps
-	@$(MAKE) --no-print-directory all firmware opcal $(B)/host/embree-race
+	@$(MAKE) --no-print-directory all firmware opcal $(B)/host/embree-race $(B)/sim/ssbench \
+	    $(B)/sim/lanetrace-shadows
 	@tests/bench/bench.sh
 
 # CSV sweep -> PNG plots (gnuplot): cycles per phase, error vs cycles, lane utilisation

@@ -1,7 +1,8 @@
 /* lt_shadows_main.c - lanetrace-shadows: soft shadows of a quad area light with 16 samples per
- * pixel, by multi-frusta tracing (S-Frusta) and by 16-ray packets (S-Packet), after 16-ray primary
- * packets (P-Packet); shading, 4x4 discontinuity filter, 256-sample reference and quality, PNGs,
- * and the Table-1-style comparison of seeds/004. Built twice from this source:
+ * pixel, by multi-frusta tracing (S-Frusta) and by 16-ray packets (S-Packet), after primary
+ * visibility by 16-ray packets (P-Packet) and by primary frusta (P-Frusta; S-Frusta uses them as
+ * the paper does, S-Packet the packets); shading, 4x4 discontinuity filter, 256-sample reference
+ * and quality, PNGs, and the Table-1-style comparison of seeds/004. Built twice from this source:
  * build/sim/lanetrace-shadows (every lane op charged to a machine model: counts and cycles per
  * stage) and build/host/lanetrace-shadows-native (native timing). Exit codes: 0 ok, 1 input or
  * runtime error (including frusta != packet visibility), 2 usage. Host only; docs/frusta.md.
@@ -27,7 +28,12 @@ static void usage(FILE *f)
             "  --res N            image N x N (default 128; multiples of 4 keep tiles full)\n"
             "  --num q16|f32      numeric path (default q16)\n"
             "  --leaf N           frusta BVH leaf size (max_leaf N, min_leaf N/2; default 8)\n"
-            "  --cull LIST        culling: any of b (back-face), c (corner rays), r (CR), or none\n"
+            "  --cull LIST        shadow culling: any of b (back-face), c (corner rays), r (CR),\n"
+            "                     or none (default bcr)\n"
+            "  --prim packet|frusta|both  primary method(s) (default both: P-Packet feeds\n"
+            "                     S-Packet and P-Frusta S-Frusta; with one, both S rows use it)\n"
+            "  --pcull LIST       primary culling: b (back faces, both methods), c (corner rays),\n"
+            "                     r (corner rays through the on-image pixels), or none\n"
             "                     (default bcr)\n"
             "  --qmc lp|hammersley  sample set (default lp)\n"
             "  --light X,Y,Z,S    square light (normal -y) centred at X,Y,Z of side S, file units\n"
@@ -120,8 +126,10 @@ int main(int argc, char **argv)
     double light_c[3] = {0, 0, 0}, light_s = 0, eye[3], target[3], fov = 60, tol = 0.05;
     double up[3] = {0, 1, 0};
     lt_ss_opts_t o;
-    int num_f32 = 0, cull_set = 0, filter_vis = 0;
+    int num_f32 = 0, cull_set = 0, filter_vis = 0, run_pp = 1, run_pf = 1;
     uint32_t leaf = 8, flags = LT_FRUSTA_BACKFACE | LT_FRUSTA_CORNER | LT_FRUSTA_CR;
+    uint32_t pflags = LT_FRUSTA_BACKFACE | LT_FRUSTA_CORNER | LT_FRUSTA_CR;
+    uint32_t hash_pp = 0, hash_pf = 0;
     lt_qmc_kind_t qmc = LT_QMC_LP;
     double depth_rel = 0.05, cos_min = 0.9;
     lt_ss_view_t view;
@@ -133,7 +141,7 @@ int main(int argc, char **argv)
     lt_softshadow_t *ss;
     lt_ss_counts_t cnt;
     char err[512];
-    stage_t sp, sshp, sshf, sshade, sfilt, tot_p, tot_f;
+    stage_t sp, spf, sshp, sshf, sshade, sfilt, tot_p, tot_f, tot_fo;
     double t0;
     int run_fr, run_pk, rc = 0;
 
@@ -197,6 +205,32 @@ int main(int argc, char **argv)
                         return EXIT_USAGE;
                     }
                 }
+        } else if (strcmp(a, "--pcull") == 0) {
+            const char *c;
+            NEED();
+            pflags = 0;
+            if (strcmp(v, "none") != 0)
+                for (c = v; *c != '\0'; c++) {
+                    if (*c == 'b')
+                        pflags |= LT_FRUSTA_BACKFACE;
+                    else if (*c == 'c')
+                        pflags |= LT_FRUSTA_CORNER;
+                    else if (*c == 'r')
+                        pflags |= LT_FRUSTA_CR;
+                    else {
+                        fprintf(stderr, "lanetrace-shadows: --pcull %s: letters b, c, r or none\n",
+                                v);
+                        return EXIT_USAGE;
+                    }
+                }
+        } else if (strcmp(a, "--prim") == 0) {
+            NEED();
+            if (strcmp(v, "packet") != 0 && strcmp(v, "frusta") != 0 && strcmp(v, "both") != 0) {
+                fprintf(stderr, "lanetrace-shadows: --prim %s: need packet, frusta or both\n", v);
+                return EXIT_USAGE;
+            }
+            run_pp = strcmp(v, "frusta") != 0;
+            run_pf = strcmp(v, "packet") != 0;
         } else if (strcmp(a, "--qmc") == 0) {
             NEED();
             if (strcmp(v, "lp") == 0)
@@ -375,6 +409,7 @@ int main(int argc, char **argv)
     o.depth_rel = depth_rel;
     o.cos_min = cos_min;
     o.filter_vis = filter_vis;
+    o.pflags = pflags;
     ss = lt_ss_create(&sc, &cam, &light, &o, err, sizeof err);
     if (ss == NULL) {
         fprintf(stderr, "lanetrace-shadows: %s\n", err);
@@ -386,29 +421,55 @@ int main(int argc, char **argv)
     if (!quiet)
         printf("scene     %s: %u triangles%s, radius %.1f units (scale %g), %ux%u, %s, light "
                "%.3g x %.3g units at (%.1f, %.1f, %.1f), frusta leaf %u, culling %s%s%s%s, "
-               "%s samples\n",
+               "primary culling %s%s%s%s, %s samples\n",
                mesh_path, sc.ntris, ground ? " (with ground quad)" : "", sc.radius, sc.scale, res,
                res, num_f32 ? "float32" : "s15.16", light.eu[0], light.ev[2],
                light.c[0] + 0.5 * light.eu[0], light.c[1], light.c[2] + 0.5 * light.ev[2], leaf,
                flags == 0 ? "none" : "", flags & LT_FRUSTA_BACKFACE ? "b" : "",
                flags & LT_FRUSTA_CORNER ? "c" : "", flags & LT_FRUSTA_CR ? "r" : "",
+               pflags == 0 ? "none" : "", pflags & LT_FRUSTA_BACKFACE ? "b" : "",
+               pflags & LT_FRUSTA_CORNER ? "c" : "", pflags & LT_FRUSTA_CR ? "r" : "",
                qmc == LT_QMC_LP ? "Larcher-Pillichshammer" : "Hammersley");
-    /* stages, each measured alone */
-    stage_begin();
-    t0 = now_s();
-    lt_ss_primary(ss);
-    stage_end(&sp, "P-Packet (+shad)", t0);
+    /* stages, each measured alone: P-Packet then S-Packet on its hit points, P-Frusta then
+     * S-Frusta on its hit points (the same points when the two primary methods agree) */
+    memset(&sp, 0, sizeof sp);
+    memset(&spf, 0, sizeof spf);
     memset(&sshp, 0, sizeof sshp);
     memset(&sshf, 0, sizeof sshf);
-    if (run_pk) {
+    if (run_pp) {
         stage_begin();
         t0 = now_s();
-        lt_ss_shadows_packet(ss);
-        stage_end(&sshp, "S-Packet shadows", t0);
+        lt_ss_primary(ss);
+        stage_end(&sp, "P-Packet (+shad)", t0);
+        hash_pp = lt_ss_primary_hash(ss);
 #if LT_COST_MODE == LT_COST_SIM
         if (report)
-            lt_sim_report_text(stdout, "S-Packet shadow stage", 0);
+            lt_sim_report_text(stdout, "P-Packet primary stage", 0);
 #endif
+    }
+    for (i = 0; i < 2; i++) {
+        /* S-Packet right after P-Packet (or, without P-Packet, after P-Frusta) */
+        if (run_pk && (i == 0) == (run_pp != 0)) {
+            stage_begin();
+            t0 = now_s();
+            lt_ss_shadows_packet(ss);
+            stage_end(&sshp, "S-Packet shadows", t0);
+#if LT_COST_MODE == LT_COST_SIM
+            if (report)
+                lt_sim_report_text(stdout, "S-Packet shadow stage", 0);
+#endif
+        }
+        if (i == 0 && run_pf) {
+            stage_begin();
+            t0 = now_s();
+            lt_ss_primary_frusta(ss);
+            stage_end(&spf, "P-Frusta (+shad)", t0);
+            hash_pf = lt_ss_primary_hash(ss);
+#if LT_COST_MODE == LT_COST_SIM
+            if (report)
+                lt_sim_report_text(stdout, "P-Frusta primary stage", 0);
+#endif
+        }
     }
     if (run_fr) {
         stage_begin();
@@ -439,10 +500,33 @@ int main(int argc, char **argv)
            (unsigned long long)cnt.primary_rays, (unsigned long long)cnt.hits,
            (unsigned long long)cnt.lit, (unsigned long long)cnt.shadow_rays,
            (unsigned long long)cnt.occluded, (unsigned long long)cnt.partial);
+    if (run_pp && run_pf) {
+        printf("check     P-Frusta = P-Packet closest hit on %llu of %llu pixels (%llu differ); "
+               "primary hash P-Packet %08x, P-Frusta %08x\n",
+               (unsigned long long)(cnt.pixels - cnt.prim_mismatch), (unsigned long long)cnt.pixels,
+               (unsigned long long)cnt.prim_mismatch, hash_pp, hash_pf);
+        if (cnt.prim_mismatch != 0) {
+            lt_ss_audit_t au;
+            lt_ss_primary_audit(ss, &au);
+            printf("audit     %llu differing primary rays re-traced by brute force: %llu explained "
+                   "by spurious kernel hits (not genuine: off the triangle's padded box or t), %llu "
+                   "errors; brute force = P-Packet on %llu, = P-Frusta on %llu\n",
+                   (unsigned long long)au.samples, (unsigned long long)au.spurious,
+                   (unsigned long long)au.errors, (unsigned long long)au.ref[0],
+                   (unsigned long long)au.ref[1]);
+            if (au.errors != 0)
+                rc = EXIT_INPUT;
+        }
+    }
     if (run_fr && run_pk) {
-        printf("check     frusta = packet visibility on %llu of %llu pixels (%llu differ)\n",
-               (unsigned long long)(cnt.pixels - cnt.mismatch), (unsigned long long)cnt.pixels,
+        printf("check     frusta = packet visibility on %llu of %llu pixels (%llu differ)",
+               (unsigned long long)(cnt.pixels - cnt.shadow_skipped - cnt.mismatch),
+               (unsigned long long)(cnt.pixels - cnt.shadow_skipped),
                (unsigned long long)cnt.mismatch);
+        if (cnt.shadow_skipped != 0)
+            printf("; %llu pixels whose primary hits differ left out",
+                   (unsigned long long)cnt.shadow_skipped);
+        printf("\n");
         if (cnt.mismatch != 0) {
             lt_ss_audit_t au;
             lt_ss_audit(ss, &au);
@@ -456,82 +540,118 @@ int main(int argc, char **argv)
     }
     printf("result    %s hash %08x\n", num_f32 ? "f32" : "q16", lt_ss_hash(ss));
 
-    /* totals: the paper's S rows include primary rays, shading and filtering */
-    tot_p = sp;
+    /* totals: the paper's S rows include primary rays, shading and filtering; S-Packet on
+     * P-Packet primaries, S-Frusta on P-Frusta primaries (each on the other when only one ran),
+     * and S-Frusta on P-Packet primaries (the previous table's combination) */
+    tot_p = run_pp ? sp : spf;
     stage_add(&tot_p, &sshp);
     stage_add(&tot_p, &sshade);
     stage_add(&tot_p, &sfilt);
-    tot_f = sp;
+    tot_f = run_pf ? spf : sp;
     stage_add(&tot_f, &sshf);
     stage_add(&tot_f, &sshade);
     stage_add(&tot_f, &sfilt);
+    tot_fo = sp;
+    stage_add(&tot_fo, &sshf);
+    stage_add(&tot_fo, &sshade);
+    stage_add(&tot_fo, &sfilt);
 #if LT_COST_MODE == LT_COST_SIM
     {
         const lt_machine_t *mm = lt_sim_machine();
         double mhz = (double)mm->clock_mhz;
-        const stage_t *rows[4];
-        const char *names[4] = {"P-Packet (+shad)", "S-Packet", "S-Frusta", "S shadows only:"};
-        int r;
+        const stage_t *rows[5];
+        const char *names[5] = {"P-Packet (+shad)", "P-Frusta (+shad)", "S-Packet", "S-Frusta",
+                                "S-Frusta/P-Packet"};
+        int r, show[5];
         rows[0] = &sp;
-        rows[1] = &tot_p;
-        rows[2] = &tot_f;
-        printf("\nTable 1 (simulated, %s at %.0f MHz, one core; S rows include primary rays, "
-               "shading and filtering as in the paper)\n", mm->name, mhz);
-        printf("%-18s %21s %10s %10s %12s %8s  %s\n", "", "#tris (+culling)", "#AABB", "#isec",
+        rows[1] = &spf;
+        rows[2] = &tot_p;
+        rows[3] = &tot_f;
+        rows[4] = &tot_fo;
+        show[0] = run_pp;
+        show[1] = run_pf;
+        show[2] = run_pk;
+        show[3] = run_fr;
+        show[4] = run_fr && run_pp && run_pf;
+        printf("\nTable 1 (simulated, %s at %.0f MHz, one core; P rows: cycles without shading "
+               "(with it), as the paper's; S rows include primary rays, shading and filtering as "
+               "in the paper)\n", mm->name, mhz);
+        printf("%-18s %21s %10s %10s %22s %8s  %s\n", "", "#tris (+culling)", "#AABB", "#isec",
                "cycles", "lanes", "cycles: setup/traverse/intersect/shade/filter");
-        for (r = 0; r < 3; r++) {
-            const stage_t *s = rows[r];
-            uint64_t fetch = s->ev[LT_EV_TRI_FETCH], kept = s->ev[LT_EV_TRI_KEPT];
-            if ((r == 1 && !run_pk) || (r == 2 && !run_fr))
+        for (r = 0; r < 5; r++) {
+            const stage_t *st = rows[r];
+            char cyc[64];
+            if (!show[r])
                 continue;
-            if (r == 0)
-                fetch = kept = s->ev[LT_EV_TRIS];
-            else {
-                /* primary packets test every triangle they fetch (no culling) */
-                fetch += sp.ev[LT_EV_TRIS];
-                kept += sp.ev[LT_EV_TRIS];
-            }
-            printf("%-18s %9.0fK / %8.0fK %9.0fK %9.0fK %11.2fM %7.1f%%  %.1fM/%.1fM/%.1fM/%.1fM/"
+            if (r < 2)
+                snprintf(cyc, sizeof cyc, "%.2fM (%.2fM)",
+                         (double)(st->cycles - st->cyc[LT_PH_SHADE]) / 1e6,
+                         (double)st->cycles / 1e6);
+            else
+                snprintf(cyc, sizeof cyc, "%.2fM", (double)st->cycles / 1e6);
+            printf("%-18s %9.0fK / %8.0fK %9.0fK %9.0fK %22s %7.1f%%  %.1fM/%.1fM/%.1fM/%.1fM/"
                    "%.1fM\n",
-                   names[r], k_(fetch), k_(kept), k_(s->ev[LT_EV_AABB]), k_(s->ev[LT_EV_TRIS]),
-                   (double)s->cycles / 1e6,
-                   100.0 * ratio(s->ev[LT_EV_LANES_ON], 16u * s->ev[LT_EV_LANE_OPS]),
-                   (double)s->cyc[LT_PH_SETUP] / 1e6, (double)s->cyc[LT_PH_TRAVERSE] / 1e6,
-                   (double)s->cyc[LT_PH_INTERSECT] / 1e6, (double)s->cyc[LT_PH_SHADE] / 1e6,
-                   (double)s->cyc[LT_PH_FILTER] / 1e6);
+                   names[r], k_(st->ev[LT_EV_TRI_FETCH]), k_(st->ev[LT_EV_TRI_KEPT]),
+                   k_(st->ev[LT_EV_AABB]), k_(st->ev[LT_EV_TRIS]), cyc,
+                   100.0 * ratio(st->ev[LT_EV_LANES_ON], 16u * st->ev[LT_EV_LANE_OPS]),
+                   (double)st->cyc[LT_PH_SETUP] / 1e6, (double)st->cyc[LT_PH_TRAVERSE] / 1e6,
+                   (double)st->cyc[LT_PH_INTERSECT] / 1e6, (double)st->cyc[LT_PH_SHADE] / 1e6,
+                   (double)st->cyc[LT_PH_FILTER] / 1e6);
+            if (r == 1 && run_pp) {
+                char red[64];
+                snprintf(red, sizeof red, "%.2fx (%.2fx)",
+                         ratio(sp.cycles - sp.cyc[LT_PH_SHADE], spf.cycles - spf.cyc[LT_PH_SHADE]),
+                         ratio(sp.cycles, spf.cycles));
+                printf("%-18s %8.2fx / %7.2fx %9.2fx %9.2fx %22s            (paper: 1.45-2.3x / "
+                       "2.98-9.5x, 11.8-21x, 1.67-3.1x, 3.42-7.83x (2.98-6.09x))\n",
+                       "P Reduction", ratio(sp.ev[LT_EV_TRI_FETCH], spf.ev[LT_EV_TRI_FETCH]),
+                       ratio(sp.ev[LT_EV_TRI_KEPT], spf.ev[LT_EV_TRI_KEPT]),
+                       ratio(sp.ev[LT_EV_AABB], spf.ev[LT_EV_AABB]),
+                       ratio(sp.ev[LT_EV_TRIS], spf.ev[LT_EV_TRIS]), red);
+            }
+            if ((r == 3 && run_pk) || (r == 4 && run_pk)) {
+                const stage_t *fr = rows[r];
+                printf("%-18s %8.2fx / %7.2fx %9.2fx %9.2fx %21.2fx            %s\n",
+                       r == 3 ? "S Reduction" : "  reduction", ratio(tot_p.ev[LT_EV_TRI_FETCH],
+                                                                     fr->ev[LT_EV_TRI_FETCH]),
+                       ratio(tot_p.ev[LT_EV_TRI_KEPT], fr->ev[LT_EV_TRI_KEPT]),
+                       ratio(tot_p.ev[LT_EV_AABB], fr->ev[LT_EV_AABB]),
+                       ratio(tot_p.ev[LT_EV_TRIS], fr->ev[LT_EV_TRIS]),
+                       ratio(tot_p.cycles, fr->cycles),
+                       r == 3 ? "(paper: 1.89-3.67x / 4.96-10.06x, 14.1-23.8x, 1.01-1.44x, "
+                                "3.94-6.11x)"
+                              : "(S-Frusta on P-Packet primaries, the previous combination)");
+            }
         }
-        if (run_pk && run_fr) {
-            uint64_t fp = tot_p.ev[LT_EV_TRI_FETCH] + sp.ev[LT_EV_TRIS];
-            uint64_t ff = tot_f.ev[LT_EV_TRI_FETCH] + sp.ev[LT_EV_TRIS];
-            uint64_t kp = tot_p.ev[LT_EV_TRI_KEPT] + sp.ev[LT_EV_TRIS];
-            uint64_t kf = tot_f.ev[LT_EV_TRI_KEPT] + sp.ev[LT_EV_TRIS];
-            printf("%-18s %8.2fx / %7.2fx %9.2fx %9.2fx %11.2fx            (paper: 1.89-3.67x / "
-                   "4.96-10.06x, 14.1-23.8x, 1.01-1.44x, 3.94-6.11x)\n",
-                   "Reduction", ratio(fp, ff), ratio(kp, kf),
-                   ratio(tot_p.ev[LT_EV_AABB], tot_f.ev[LT_EV_AABB]),
-                   ratio(tot_p.ev[LT_EV_TRIS], tot_f.ev[LT_EV_TRIS]),
-                   ratio(tot_p.cycles, tot_f.cycles));
-            printf("%-18s %8.2fx / %7.2fx %9.2fx %9.2fx %11.2fx            (shadow stage alone: "
+        if (run_pk && run_fr)
+            printf("%-18s %8.2fx / %7.2fx %9.2fx %9.2fx %21.2fx            (shadow stage alone: "
                    "S-Packet %.2fM vs S-Frusta %.2fM cycles)\n",
-                   names[3], ratio(sshp.ev[LT_EV_TRI_FETCH], sshf.ev[LT_EV_TRI_FETCH]),
+                   "S shadows only:", ratio(sshp.ev[LT_EV_TRI_FETCH], sshf.ev[LT_EV_TRI_FETCH]),
                    ratio(sshp.ev[LT_EV_TRI_KEPT], sshf.ev[LT_EV_TRI_KEPT]),
                    ratio(sshp.ev[LT_EV_AABB], sshf.ev[LT_EV_AABB]),
                    ratio(sshp.ev[LT_EV_TRIS], sshf.ev[LT_EV_TRIS]), ratio(sshp.cycles, sshf.cycles),
                    (double)sshp.cycles / 1e6, (double)sshf.cycles / 1e6);
-        }
         if (run_pk && run_fr)
             printf("why       fewer cycles saved than the paper: the s15.16 kernels keep products "
                    "in int64 (VMUL/VMULW cost 2 on lrb16), so MFT's extra intersection and culling "
                    "work is dearer than in float (try --num f32); both S rows carry the same "
-                   "P-Packet, shade and filter cycles; frusta wider than the occluders' triangles "
+                   "shade and filter cycles; frusta wider than the occluders' triangles "
                    "(large lights, fine meshes) cull little (docs/frusta.md)\n");
-        printf("P-Frusta           not implemented (primary rays use 16-ray packets in both "
-               "columns; paper: 3.42-7.83x fewer cycles, 11.8-21x fewer AABB tests)\n");
-        printf("stages    P-Packet %.2fM, shade %.2fM, filter %.2fM cycles (%.1f cycles/pixel); "
-               "culled pairs: packet back-face %.0fK; frusta back-face %.0fK, corner %.0fK\n",
-               (double)sp.cycles / 1e6, (double)sshade.cycles / 1e6, (double)sfilt.cycles / 1e6,
-               ratio(sfilt.cycles, cnt.pixels), k_(sshp.ev[LT_EV_CULL_BACK]),
+        printf("stages    P-Packet %.2fM, P-Frusta %.2fM, shade %.2fM, filter %.2fM cycles (%.1f "
+               "cycles/pixel); culled pairs: P-Packet back-face %.0fK; P-Frusta back-face %.0fK, "
+               "corner %.0fK; S-Packet back-face %.0fK; S-Frusta back-face %.0fK, corner %.0fK\n",
+               (double)sp.cycles / 1e6, (double)spf.cycles / 1e6, (double)sshade.cycles / 1e6,
+               (double)sfilt.cycles / 1e6, ratio(sfilt.cycles, cnt.pixels),
+               k_(sp.ev[LT_EV_CULL_BACK]), k_(spf.ev[LT_EV_CULL_BACK]),
+               k_(spf.ev[LT_EV_CULL_CORNER]), k_(sshp.ev[LT_EV_CULL_BACK]),
                k_(sshf.ev[LT_EV_CULL_BACK]), k_(sshf.ev[LT_EV_CULL_CORNER]));
+        if (run_pp || run_pf)
+            printf("speed     primary rays per simulated %.0f MHz core: P-Packet %.1f Mrays/s "
+                   "(%.1f with shading), P-Frusta %.1f Mrays/s (%.1f with shading)\n", mhz,
+                   ratio(cnt.primary_rays, sp.cycles - sp.cyc[LT_PH_SHADE]) * mhz,
+                   ratio(cnt.primary_rays, sp.cycles) * mhz,
+                   ratio(cnt.primary_rays, spf.cycles - spf.cyc[LT_PH_SHADE]) * mhz,
+                   ratio(cnt.primary_rays, spf.cycles) * mhz);
         if (run_fr)
             printf("speed     S-Frusta: %.1f Mrays/s per simulated %.0f MHz core (primary + shadow "
                    "rays over all stages); shadow stage alone %.1f Mrays/s\n",
@@ -544,7 +664,13 @@ int main(int argc, char **argv)
                    ratio(cnt.shadow_rays, sshp.cycles) * mhz);
     }
 #else
-    printf("native    P-Packet %.3f s", sp.seconds);
+    (void)tot_fo;
+    if (run_pp)
+        printf("native    P-Packet %.3f s (%.2f Mrays/s with shading)", sp.seconds,
+               (double)cnt.primary_rays / sp.seconds / 1e6);
+    if (run_pf)
+        printf("%s P-Frusta %.3f s (%.2f Mrays/s with shading)", run_pp ? "," : "native   ",
+               spf.seconds, (double)cnt.primary_rays / spf.seconds / 1e6);
     if (run_pk)
         printf(", S-Packet shadows %.3f s (%.2f Mrays/s)", sshp.seconds,
                (double)cnt.shadow_rays / sshp.seconds / 1e6);
@@ -555,6 +681,9 @@ int main(int argc, char **argv)
     if (run_pk && run_fr)
         printf("native    S-Frusta / S-Packet shadow speed-up %.2fx\n",
                sshp.seconds / sshf.seconds);
+    if (run_pp && run_pf)
+        printf("native    P-Frusta / P-Packet primary speed-up %.2fx (with shading)\n",
+               sp.seconds / spf.seconds);
 #endif
     if (!no_ref) {
         lt_ss_quality_t q;

@@ -1,7 +1,8 @@
-/* lt_softshadow.c - soft shadows from a quad light by multi-frusta tracing or 16-ray packets, the
- * shading and filtering of seeds/004 4.5, the 256-sample reference and quality metrics, on the
- * core's kernels (lt_frusta.h, lt_bvh.h). Every per-pixel stage runs lane ops, so the sim build
- * charges it to its phase (SETUP, TRAVERSE, INTERSECT, SHADE, FILTER). Host only.
+/* lt_softshadow.c - soft shadows from a quad light by multi-frusta tracing or 16-ray packets, after
+ * primary visibility by 16-ray packets or primary frusta from one linear camera, the shading and
+ * filtering of seeds/004 4.5, the 256-sample reference, quality metrics and brute-force audits,
+ * on the core's kernels (lt_frusta.h, lt_bvh.h). Every per-pixel stage runs lane ops, so the sim
+ * build charges it to its phase (SETUP, TRAVERSE, INTERSECT, SHADE, FILTER). Host only.
  */
 #include "lt_softshadow.h"
 #include "lt_fx_float.h"
@@ -41,6 +42,11 @@ struct lt_softshadow {
     uint8_t *valid, *lit;
     uint16_t *occ[2];
     int have[2], last;
+    lt_frusta_vtable_q16_t *vtq; /* the linear camera of both primary methods */
+    lt_frusta_vtable_f32_t *vtf;
+    int32_t *pid[2];             /* per pixel: closest-hit id of P-Packet (0) / P-Frusta (1) */
+    uint32_t *pt[2];             /* ... and the bits of its t */
+    int have_prim[2];
     double *vref;
     lt_ss_counts_t cnt;
 };
@@ -81,6 +87,7 @@ void lt_ss_opts_default(const lt_scene_t *s, lt_ss_opts_t *o)
     o->path = LT_PATH_Q16;
     o->leaf = 8;
     o->flags = LT_FRUSTA_BACKFACE | LT_FRUSTA_CORNER | LT_FRUSTA_CR;
+    o->pflags = LT_FRUSTA_BACKFACE | LT_FRUSTA_CORNER | LT_FRUSTA_CR;
     o->qmc = LT_QMC_LP;
     o->depth_rel = 0.05;
     o->cos_min = 0.9;
@@ -144,6 +151,66 @@ int lt_ss_add_ground(lt_mesh_t *m, double grow, char *err, size_t errlen)
     return 0;
 }
 
+int lt_ss_pview(const lt_camera_t *c, uint32_t flags, lt_frusta_view_q16_t *vq,
+                lt_frusta_view_f32_t *vf, char *err, size_t errlen)
+{
+    double aspect = (double)c->width / (double)c->height, th = c->tan_half_fov;
+    double u0 = (1.0 / (double)c->width - 1.0) * th * aspect, du = 2.0 * th * aspect / c->width;
+    double v0 = (1.0 - 1.0 / (double)c->height) * th, dv = -2.0 * th / c->height;
+    double d0[3], dx[3], dy[3], m = 0.0, s, lim = ldexp(1.0, LT_CFG_GEOM_MAX_LOG2);
+    uint32_t w4 = (c->width + 3u) & ~3u, h4 = (c->height + 3u) & ~3u;
+    int a, j, e;
+    for (a = 0; a < 3; a++) {
+        d0[a] = c->fwd[a] + u0 * c->right[a] + v0 * c->up[a];
+        dx[a] = du * c->right[a];
+        dy[a] = dv * c->up[a];
+        if (fabs(c->eye[a]) > lim) {
+            snprintf(err, errlen, "camera eye %.4g (axis %d) lies outside the fixed-point range "
+                     "+-%.4g (LT_CFG_GEOM_MAX_LOG2 = %d)", c->eye[a], a, lim,
+                     LT_CFG_GEOM_MAX_LOG2);
+            return -1;
+        }
+    }
+    /* the directions are affine in (x, y): their largest component is at a corner pixel */
+    for (j = 0; j < 4; j++)
+        for (a = 0; a < 3; a++) {
+            double v = d0[a] + ((j & 1) ? (double)(w4 - 1u) : 0.0) * dx[a] +
+                       ((j & 2) ? (double)(h4 - 1u) : 0.0) * dy[a];
+            m = fabs(v) > m ? fabs(v) : m;
+        }
+    if (!(m > 0.0) || !(m < 1e30)) {
+        snprintf(err, errlen, "degenerate camera (largest direction component %g)", m);
+        return -1;
+    }
+    frexp(m / 0.75, &e); /* m / 0.75 < 2^e */
+    s = ldexp(1.0, -e);
+    for (a = 0; a < 3; a++) {
+        if (vq != NULL) {
+            vq->o[a] = lt_q16_from_double_sat(c->eye[a]);
+            vq->d0[a] = (lt_q30_t)floor(d0[a] * s * 1073741824.0 + 0.5);
+            vq->dx[a] = (lt_q30_t)floor(dx[a] * s * 1073741824.0 + 0.5);
+            vq->dy[a] = (lt_q30_t)floor(dy[a] * s * 1073741824.0 + 0.5);
+        }
+        if (vf != NULL) {
+            vf->o[a] = (float)c->eye[a];
+            vf->d0[a] = (float)(floor(d0[a] * s * 8388608.0 + 0.5) / 8388608.0);
+            vf->dx[a] = (float)(floor(dx[a] * s * 8388608.0 + 0.5) / 8388608.0);
+            vf->dy[a] = (float)(floor(dy[a] * s * 8388608.0 + 0.5) / 8388608.0);
+        }
+    }
+    if (vq != NULL) {
+        vq->width = c->width;
+        vq->height = c->height;
+        vq->flags = flags;
+    }
+    if (vf != NULL) {
+        vf->width = c->width;
+        vf->height = c->height;
+        vf->flags = flags;
+    }
+    return 0;
+}
+
 static void *alloc64(size_t bytes)
 {
     void *p = NULL;
@@ -203,6 +270,12 @@ void lt_ss_free(lt_softshadow_t *ss)
     free(ss->occ[0]);
     free(ss->occ[1]);
     free(ss->vref);
+    free(ss->vtq);
+    free(ss->vtf);
+    for (a = 0; a < 2; a++) {
+        free(ss->pid[a]);
+        free(ss->pt[a]);
+    }
     free(ss);
 }
 
@@ -289,6 +362,14 @@ lt_softshadow_t *lt_ss_create(const lt_scene_t *s, const lt_camera_t *cam, const
     ss->valid = alloc64(n), ss->lit = alloc64(n);
     ss->occ[0] = alloc64(n * 2), ss->occ[1] = alloc64(n * 2);
     ss->vref = calloc(n + 1, sizeof(double));
+    ss->vtq = alloc64(sizeof *ss->vtq);
+    ss->vtf = alloc64(sizeof *ss->vtf);
+    for (a = 0; a < 2; a++) {
+        ss->pid[a] = calloc(n + 1, sizeof(int32_t));
+        ss->pt[a] = calloc(n + 1, sizeof(uint32_t));
+        fail |= ss->pid[a] == NULL || ss->pt[a] == NULL;
+    }
+    fail |= ss->vtq == NULL || ss->vtf == NULL;
     fail |= ss->tbq == NULL || ss->tbf == NULL || ss->tnq == NULL || ss->tnf == NULL ||
             ss->id == NULL || ss->zq == NULL || ss->gq == NULL || ss->eq == NULL ||
             ss->efq == NULL || ss->erq == NULL || ss->efrq == NULL || ss->zf == NULL ||
@@ -347,6 +428,26 @@ lt_softshadow_t *lt_ss_create(const lt_scene_t *s, const lt_camera_t *cam, const
         lt_ss_free(ss);
         return NULL;
     }
+    /* the linear camera shared by P-Packet and P-Frusta */
+    {
+        lt_frusta_view_q16_t vq;
+        lt_frusta_view_f32_t vf;
+        if (lt_ss_pview(cam, o->pflags, &vq, &vf, err, errlen) != 0) {
+            lt_ss_free(ss);
+            return NULL;
+        }
+        st = lt_frusta_vtable_q16(&vq, ss->vtq);
+        if (st == LT_OK)
+            st = lt_frusta_vtable_f32(&vf, ss->vtf);
+        if (st != LT_OK) {
+            snprintf(err, errlen, "primary view table (%ux%u, flags %u): %s (the directions must "
+                     "stay below 1 per axis, the eye within the geometry bound, the size within "
+                     "LT_FRUSTA_PMAX_DIM %u)", cam->width, cam->height, o->pflags,
+                     lt_status_str(st), LT_FRUSTA_PMAX_DIM);
+            lt_ss_free(ss);
+            return NULL;
+        }
+    }
 #if LT_COST_MODE == LT_COST_SIM
     if (o->path == LT_PATH_Q16) {
         region(s->tq, s->ntris * sizeof *s->tq, 0);
@@ -364,6 +465,10 @@ lt_softshadow_t *lt_ss_create(const lt_scene_t *s, const lt_camera_t *cam, const
     region(ss->adeep, ss->deep.bytes, 1);
     region(ss->ashal, ss->shal.bytes, 2);
     region(ss->valid, n, 11);
+    if (o->path == LT_PATH_Q16)
+        region(ss->vtq, sizeof *ss->vtq, 12);
+    else
+        region(ss->vtf, sizeof *ss->vtf, 12);
 #endif
     return ss;
 }
@@ -390,35 +495,32 @@ static lt_vq30_t as30(lt_vq16_t a)
     return r;
 }
 
-static void primary_q16(lt_softshadow_t *ss, uint32_t tx, uint32_t ty)
+/* Shading of one 4x4 tile from its primary rays and closest hits (SHADE): hit point o + t d, the
+ * triangle's normal (a gather) turned toward the eye, the shadow origin lifted by eps along it,
+ * and the direct term; the same code after P-Packet and P-Frusta. */
+static void shade_tile_q16(lt_softshadow_t *ss, uint32_t tx, uint32_t ty, const lt_ray16_q16_t *r,
+                           const lt_hit16_t *hit, lt_mask16_t k)
 {
-    static lt_ray16_q16_t r;
-    lt_hit16_t hit;
-    lt_mask16_t k, hm = 0, lm;
+    lt_mask16_t hm, lm;
     lt_vq30_t n[3];
     lt_vq16_t p[3], g, eps = lt_vq16_set1(lt_q16_from_double_sat(ss->o.eps));
     lt_vi32_t idx;
     lt_vql_t dn;
-    lt_phase_t prev = LT_PHASE_ENTER(SETUP);
+    lt_phase_t prev = LT_PHASE_ENTER(SHADE);
     int i, a;
-    k = lt_camera_packet_q16(&ss->cam, tx, ty, &r);
-    LT_EVENT(RAYS, lt__popcount32(k));
-    LT_PHASE_LEAVE(prev);
-    (void)lt_bvh_trace16_q16(&ss->deep, ss->s->tq, &r, k, &hit);
-    ss->cnt.primary_rays += lt__popcount32(k);
-    prev = LT_PHASE_ENTER(SHADE);
-    hm = (lt_mask16_t)(k & ~lt_vi32_cmpeq(hit.id, lt_vi32_set1(-1)));
+    hm = (lt_mask16_t)(k & ~lt_vi32_cmpeq(hit->id, lt_vi32_set1(-1)));
     /* hit point, the triangle's normal turned toward the eye, the origin lifted by eps */
-    p[0] = lt_vq16_add_sat(r.ox, lt_vq16_mul_q30_sat(r.tmax, r.dx));
-    p[1] = lt_vq16_add_sat(r.oy, lt_vq16_mul_q30_sat(r.tmax, r.dy));
-    p[2] = lt_vq16_add_sat(r.oz, lt_vq16_mul_q30_sat(r.tmax, r.dz));
-    idx = lt_vi32_add_wrap(lt_vi32_add_wrap(hit.id, hit.id), hit.id);
+    p[0] = lt_vq16_add_sat(r->ox, lt_vq16_mul_q30_sat(r->tmax, r->dx));
+    p[1] = lt_vq16_add_sat(r->oy, lt_vq16_mul_q30_sat(r->tmax, r->dy));
+    p[2] = lt_vq16_add_sat(r->oz, lt_vq16_mul_q30_sat(r->tmax, r->dz));
+    idx = lt_vi32_add_wrap(lt_vi32_add_wrap(hit->id, hit->id), hit->id);
     for (a = 0; a < 3; a++) {
         n[a] = lt_vq30_gather_m(lt_vq30_set1(0), hm, ss->tnq + a, idx);
     }
-    dn = lt_vql_add_wrap(lt_vql_add_wrap(lt_vql_mul(lt_vi32_from_q30(n[0]), lt_vi32_from_q30(r.dx)),
-                                         lt_vql_mul(lt_vi32_from_q30(n[1]), lt_vi32_from_q30(r.dy))),
-                         lt_vql_mul(lt_vi32_from_q30(n[2]), lt_vi32_from_q30(r.dz)));
+    dn = lt_vql_add_wrap(
+        lt_vql_add_wrap(lt_vql_mul(lt_vi32_from_q30(n[0]), lt_vi32_from_q30(r->dx)),
+                        lt_vql_mul(lt_vi32_from_q30(n[1]), lt_vi32_from_q30(r->dy))),
+        lt_vql_mul(lt_vi32_from_q30(n[2]), lt_vi32_from_q30(r->dz)));
     {
         lt_mask16_t back = lt_vql_cmpgt_m(hm, dn, lt_vql_set1(0));
         for (a = 0; a < 3; a++) {
@@ -432,10 +534,10 @@ static void primary_q16(lt_softshadow_t *ss, uint32_t tx, uint32_t ty)
         size_t q = pix(ss, tx, ty, i);
         if (q == (size_t)-1)
             continue;
-        ss->id[q] = hit.id.l[i];
+        ss->id[q] = hit->id.l[i];
         ss->valid[q] = (uint8_t)(((unsigned)hm >> i) & 1u);
         ss->lit[q] = (uint8_t)(((unsigned)lm >> i) & 1u);
-        ss->zq[q] = r.tmax.l[i];
+        ss->zq[q] = r->tmax.l[i];
         ss->gq[q] = (((unsigned)lm >> i) & 1u) ? g.l[i] : 0;
         for (a = 0; a < 3; a++) {
             ss->oq[a][q] = p[a].l[i];
@@ -445,30 +547,23 @@ static void primary_q16(lt_softshadow_t *ss, uint32_t tx, uint32_t ty)
     LT_PHASE_LEAVE(prev);
 }
 
-static void primary_f32(lt_softshadow_t *ss, uint32_t tx, uint32_t ty)
+static void shade_tile_f32(lt_softshadow_t *ss, uint32_t tx, uint32_t ty, const lt_ray16_f32_t *r,
+                           const lt_hit16_t *hit, lt_mask16_t k)
 {
-    static lt_ray16_f32_t r;
-    lt_hit16_t hit;
-    lt_mask16_t k, hm, lm, back;
+    lt_mask16_t hm, lm, back;
     lt_vf32_t n[3], p[3], g, dn, eps = lt_vf32_set1((float)ss->o.eps);
     lt_vi32_t idx;
-    lt_phase_t prev = LT_PHASE_ENTER(SETUP);
+    lt_phase_t prev = LT_PHASE_ENTER(SHADE);
     int i, a;
-    k = lt_camera_packet_f32(&ss->cam, tx, ty, &r);
-    LT_EVENT(RAYS, lt__popcount32(k));
-    LT_PHASE_LEAVE(prev);
-    (void)lt_bvh_trace16_f32(&ss->deep, ss->s->tf, &r, k, &hit);
-    ss->cnt.primary_rays += lt__popcount32(k);
-    prev = LT_PHASE_ENTER(SHADE);
-    hm = (lt_mask16_t)(k & ~lt_vi32_cmpeq(hit.id, lt_vi32_set1(-1)));
-    p[0] = lt_vf32_add(r.ox, lt_vf32_mul(r.tmax, r.dx));
-    p[1] = lt_vf32_add(r.oy, lt_vf32_mul(r.tmax, r.dy));
-    p[2] = lt_vf32_add(r.oz, lt_vf32_mul(r.tmax, r.dz));
-    idx = lt_vi32_add_wrap(lt_vi32_add_wrap(hit.id, hit.id), hit.id);
+    hm = (lt_mask16_t)(k & ~lt_vi32_cmpeq(hit->id, lt_vi32_set1(-1)));
+    p[0] = lt_vf32_add(r->ox, lt_vf32_mul(r->tmax, r->dx));
+    p[1] = lt_vf32_add(r->oy, lt_vf32_mul(r->tmax, r->dy));
+    p[2] = lt_vf32_add(r->oz, lt_vf32_mul(r->tmax, r->dz));
+    idx = lt_vi32_add_wrap(lt_vi32_add_wrap(hit->id, hit->id), hit->id);
     for (a = 0; a < 3; a++)
         n[a] = lt_vf32_gather_m(lt_vf32_set1(0.0f), hm, ss->tnf + a, idx);
-    dn = lt_vf32_add(lt_vf32_add(lt_vf32_mul(n[0], r.dx), lt_vf32_mul(n[1], r.dy)),
-                     lt_vf32_mul(n[2], r.dz));
+    dn = lt_vf32_add(lt_vf32_add(lt_vf32_mul(n[0], r->dx), lt_vf32_mul(n[1], r->dy)),
+                     lt_vf32_mul(n[2], r->dz));
     back = lt_vf32_cmpgt_m(hm, dn, lt_vf32_set1(0.0f));
     for (a = 0; a < 3; a++) {
         n[a] = lt_vf32_neg_m(n[a], back, n[a]);
@@ -480,10 +575,10 @@ static void primary_f32(lt_softshadow_t *ss, uint32_t tx, uint32_t ty)
         size_t q = pix(ss, tx, ty, i);
         if (q == (size_t)-1)
             continue;
-        ss->id[q] = hit.id.l[i];
+        ss->id[q] = hit->id.l[i];
         ss->valid[q] = (uint8_t)(((unsigned)hm >> i) & 1u);
         ss->lit[q] = (uint8_t)(((unsigned)lm >> i) & 1u);
-        ss->zf[q] = r.tmax.l[i];
+        ss->zf[q] = r->tmax.l[i];
         ss->gf[q] = (((unsigned)lm >> i) & 1u) ? g.l[i] : 0.0f;
         for (a = 0; a < 3; a++) {
             ss->of[a][q] = p[a].l[i];
@@ -493,10 +588,76 @@ static void primary_f32(lt_softshadow_t *ss, uint32_t tx, uint32_t ty)
     LT_PHASE_LEAVE(prev);
 }
 
+/* Keep one primary method's answer per pixel (id and t bits) for the P-Packet / P-Frusta check;
+ * host bookkeeping, not charged. */
+static void keep_prim(lt_softshadow_t *ss, int which, uint32_t tx, uint32_t ty,
+                      const lt_hit16_t *hit, const void *tmax)
+{
+    int i;
+    for (i = 0; i < LT_LANES; i++) {
+        size_t q = pix(ss, tx, ty, i);
+        if (q == (size_t)-1)
+            continue;
+        ss->pid[which][q] = hit->id.l[i];
+        memcpy(&ss->pt[which][q], (const char *)tmax + 4 * (size_t)i, 4);
+    }
+}
+
+/* P-Packet: the tile's 16 camera rays (the linear camera shared with the frusta) as one packet,
+ * closest hit through the deep tree, then shading. */
+static void primary_q16(lt_softshadow_t *ss, uint32_t tx, uint32_t ty)
+{
+    static lt_ray16_q16_t r;
+    lt_hit16_t hit;
+    lt_mask16_t k = 0;
+    lt_phase_t prev = LT_PHASE_ENTER(SETUP);
+    (void)lt_frusta_prays16_q16(ss->vtq, tx, ty, &r, &k);
+    LT_EVENT(RAYS, lt__popcount32(k));
+    LT_PHASE_LEAVE(prev);
+    (void)lt_frusta_packet_trace16_q16(&ss->deep, ss->s->tq, ss->o.pflags, ss->vtq->o, &r, k,
+                                       &hit);
+    ss->cnt.primary_rays += lt__popcount32(k);
+    keep_prim(ss, 0, tx, ty, &hit, r.tmax.l);
+    shade_tile_q16(ss, tx, ty, &r, &hit, k);
+}
+
+static void primary_f32(lt_softshadow_t *ss, uint32_t tx, uint32_t ty)
+{
+    static lt_ray16_f32_t r;
+    lt_hit16_t hit;
+    lt_mask16_t k = 0;
+    lt_phase_t prev = LT_PHASE_ENTER(SETUP);
+    (void)lt_frusta_prays16_f32(ss->vtf, tx, ty, &r, &k);
+    LT_EVENT(RAYS, lt__popcount32(k));
+    LT_PHASE_LEAVE(prev);
+    (void)lt_frusta_packet_trace16_f32(&ss->deep, ss->s->tf, ss->o.pflags, ss->vtf->o, &r, k,
+                                       &hit);
+    ss->cnt.primary_rays += lt__popcount32(k);
+    keep_prim(ss, 0, tx, ty, &hit, r.tmax.l);
+    shade_tile_f32(ss, tx, ty, &r, &hit, k);
+}
+
+static void primary_counts(lt_softshadow_t *ss, int which)
+{
+    size_t i;
+    ss->cnt.pixels = ss->n;
+    ss->cnt.hits = ss->cnt.lit = 0;
+    for (i = 0; i < ss->n; i++) {
+        ss->cnt.hits += ss->valid[i];
+        ss->cnt.lit += ss->lit[i];
+    }
+    ss->cnt.shadow_rays = 16u * ss->cnt.lit;
+    ss->have_prim[which] = 1;
+    if (ss->have_prim[0] && ss->have_prim[1]) {
+        ss->cnt.prim_mismatch = 0;
+        for (i = 0; i < ss->n; i++)
+            ss->cnt.prim_mismatch += ss->pid[0][i] != ss->pid[1][i] || ss->pt[0][i] != ss->pt[1][i];
+    }
+}
+
 void lt_ss_primary(lt_softshadow_t *ss)
 {
     uint32_t tx, ty;
-    size_t i;
     ss->cnt.primary_rays = 0;
     for (ty = 0; ty < ss->h; ty += 4)
         for (tx = 0; tx < ss->w; tx += 4) {
@@ -505,13 +666,119 @@ void lt_ss_primary(lt_softshadow_t *ss)
             else
                 primary_f32(ss, tx, ty);
         }
-    ss->cnt.pixels = ss->n;
-    ss->cnt.hits = ss->cnt.lit = 0;
-    for (i = 0; i < ss->n; i++) {
-        ss->cnt.hits += ss->valid[i];
-        ss->cnt.lit += ss->lit[i];
+    primary_counts(ss, 0);
+}
+
+/* P-Frusta: 16 frusta (the 4x4 tiles of a 16x16 block) through the shallow tree, then each tile
+ * shaded from its frustum's hits (its rays regenerated from ray 0 and the deltas: 3 broadcasts
+ * and 3 adds, charged to SHADE). */
+void lt_ss_primary_frusta(lt_softshadow_t *ss)
+{
+    static lt_frusta_prim16_q16_t Pq;
+    static lt_frusta_prim16_f32_t Pf;
+    uint32_t bx, by, f;
+    ss->cnt.primary_rays = 0;
+    for (by = 0; by < ss->h; by += 16)
+        for (bx = 0; bx < ss->w; bx += 16) {
+            lt_mask16_t act;
+            if (ss->o.path == LT_PATH_Q16) {
+                (void)lt_frusta_psetup16_q16(ss->vtq, bx, by, &Pq);
+                (void)lt_frusta_trace16_q16(&ss->shal, ss->s->tq, ss->vtq, &Pq);
+                act = Pq.active;
+            } else {
+                (void)lt_frusta_psetup16_f32(ss->vtf, bx, by, &Pf);
+                (void)lt_frusta_trace16_f32(&ss->shal, ss->s->tf, ss->vtf, &Pf);
+                act = Pf.active;
+            }
+            for (f = 0; f < LT_LANES; f++) {
+                uint32_t tx = bx + 4u * (f & 3u), ty = by + 4u * (f >> 2);
+                lt_hit16_t hit;
+                if (((unsigned)act >> f & 1u) == 0)
+                    continue;
+                if (ss->o.path == LT_PATH_Q16) {
+                    static lt_ray16_q16_t r;
+                    lt_vq16_t d[3];
+                    lt_phase_t prev = LT_PHASE_ENTER(SHADE);
+                    const lt_vq30_t *g[3];
+                    int a;
+                    g[0] = &ss->vtq->gx, g[1] = &ss->vtq->gy, g[2] = &ss->vtq->gz;
+                    for (a = 0; a < 3; a++) {
+                        const lt_vq30_t *c = a == 0 ? &Pq.cx : (a == 1 ? &Pq.cy : &Pq.cz);
+                        d[a] = lt_vq16_add_wrap(lt_vq16_set1(c->l[f]), as16(*g[a]));
+                    }
+                    r.ox = lt_vq16_set1(ss->vtq->o[0]);
+                    r.oy = lt_vq16_set1(ss->vtq->o[1]);
+                    r.oz = lt_vq16_set1(ss->vtq->o[2]);
+                    r.dx = as30(d[0]), r.dy = as30(d[1]), r.dz = as30(d[2]);
+                    r.tmax = Pq.t[f];
+                    hit.id = Pq.id[f];
+                    LT_PHASE_LEAVE(prev);
+                    keep_prim(ss, 1, tx, ty, &hit, r.tmax.l);
+                    shade_tile_q16(ss, tx, ty, &r, &hit, Pq.live[f]);
+                    ss->cnt.primary_rays += lt__popcount32(Pq.live[f]);
+                } else {
+                    static lt_ray16_f32_t r;
+                    lt_phase_t prev = LT_PHASE_ENTER(SHADE);
+                    r.ox = lt_vf32_set1(ss->vtf->o[0]);
+                    r.oy = lt_vf32_set1(ss->vtf->o[1]);
+                    r.oz = lt_vf32_set1(ss->vtf->o[2]);
+                    r.dx = lt_vf32_add(lt_vf32_set1(Pf.cx.l[f]), ss->vtf->gx);
+                    r.dy = lt_vf32_add(lt_vf32_set1(Pf.cy.l[f]), ss->vtf->gy);
+                    r.dz = lt_vf32_add(lt_vf32_set1(Pf.cz.l[f]), ss->vtf->gz);
+                    r.tmax = Pf.t[f];
+                    hit.id = Pf.id[f];
+                    LT_PHASE_LEAVE(prev);
+                    keep_prim(ss, 1, tx, ty, &hit, r.tmax.l);
+                    shade_tile_f32(ss, tx, ty, &r, &hit, Pf.live[f]);
+                    ss->cnt.primary_rays += lt__popcount32(Pf.live[f]);
+                }
+            }
+            /* tiles of the block with no frustum (off the image) have no pixels to shade */
+        }
+    primary_counts(ss, 1);
+}
+
+uint32_t lt_ss_primary_hash(const lt_softshadow_t *ss)
+{
+    uint32_t h = 2166136261u;
+    size_t q;
+    for (q = 0; q < ss->n; q++) {
+        uint32_t v[9];
+        unsigned char b[36];
+        int j, a;
+        v[0] = (uint32_t)ss->id[q];
+        v[1] = ss->valid[q] | (uint32_t)ss->lit[q] << 1;
+        if (ss->o.path == LT_PATH_Q16) {
+            v[2] = (uint32_t)ss->zq[q];
+            v[3] = (uint32_t)ss->gq[q];
+            for (a = 0; a < 3; a++) {
+                v[4 + a] = (uint32_t)ss->oq[a][q];
+            }
+            v[7] = (uint32_t)ss->nq[0][q] ^ ((uint32_t)ss->nq[1][q] << 1) ^
+                   ((uint32_t)ss->nq[2][q] << 2);
+        } else {
+            memcpy(&v[2], &ss->zf[q], 4);
+            memcpy(&v[3], &ss->gf[q], 4);
+            for (a = 0; a < 3; a++)
+                memcpy(&v[4 + a], &ss->of[a][q], 4);
+            memcpy(&v[7], &ss->nf[0][q], 4);
+        }
+        v[8] = (uint32_t)q;
+        memcpy(b, v, 36);
+        for (j = 0; j < 36; j++) {
+            h ^= b[j];
+            h *= 16777619u;
+        }
     }
-    ss->cnt.shadow_rays = 16u * ss->cnt.lit;
+    return h;
+}
+
+/* Pixel q's primary hit differs between P-Packet and P-Frusta (both ran): its two shadow results
+ * start from different points and are not compared. */
+static int prim_differs(const lt_softshadow_t *ss, size_t q)
+{
+    return ss->have_prim[0] && ss->have_prim[1] &&
+           (ss->pid[0][q] != ss->pid[1][q] || ss->pt[0][q] != ss->pt[1][q]);
 }
 
 static void count_occ(lt_softshadow_t *ss, int which)
@@ -526,9 +793,13 @@ static void count_occ(lt_softshadow_t *ss, int which)
     ss->have[which] = 1;
     ss->last = which;
     if (ss->have[0] && ss->have[1]) {
-        ss->cnt.mismatch = 0;
-        for (i = 0; i < ss->n; i++)
-            ss->cnt.mismatch += ss->occ[0][i] != ss->occ[1][i];
+        ss->cnt.mismatch = ss->cnt.shadow_skipped = 0;
+        for (i = 0; i < ss->n; i++) {
+            if (prim_differs(ss, i))
+                ss->cnt.shadow_skipped++;
+            else
+                ss->cnt.mismatch += ss->occ[0][i] != ss->occ[1][i];
+        }
     }
 }
 
@@ -1001,6 +1272,151 @@ static void brute1(const lt_softshadow_t *ss, size_t q, unsigned set, unsigned j
     }
 }
 
+/* A primary kernel hit at t is genuine when the exact ray crosses the triangle's plane within a
+ * quarter of the BVH pad of t, inside the triangle's box padded by that much (docs/frusta.md: both
+ * primary traversals provably find those). */
+static int pgenuine(const double o[3], const double d[3], double tk, const double v[9])
+{
+    double q = (double)LT_BVH_PAD_Q16 / 65536.0 / 4.0, e1[3], e2[3], n[3], den, t;
+    int a, j;
+    for (a = 0; a < 3; a++) {
+        e1[a] = v[3 + a] - v[a];
+        e2[a] = v[6 + a] - v[a];
+    }
+    n[0] = e1[1] * e2[2] - e1[2] * e2[1];
+    n[1] = e1[2] * e2[0] - e1[0] * e2[2];
+    n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+    den = d[0] * n[0] + d[1] * n[1] + d[2] * n[2];
+    if (den == 0.0)
+        return 0;
+    t = ((v[0] - o[0]) * n[0] + (v[1] - o[1]) * n[1] + (v[2] - o[2]) * n[2]) / den;
+    if (!(t > 0.0) || fabs(t - tk) > q)
+        return 0;
+    for (a = 0; a < 3; a++) {
+        double x = o[a] + t * d[a], lo = v[a], hi = v[a];
+        for (j = 1; j < 3; j++) {
+            lo = v[3 * j + a] < lo ? v[3 * j + a] : lo;
+            hi = v[3 * j + a] > hi ? v[3 * j + a] : hi;
+        }
+        if (x < lo - q || x > hi + q)
+            return 0;
+    }
+    return 1;
+}
+
+/* A primary answer (id, t) is right for pixel (x, y) when it is a kernel hit of the pixel's ray (or
+ * a miss) and no kernel hit before it in (t, id) order is genuine. With ref != NULL also the
+ * brute-force closest hit's id (the first smallest kernel t). */
+static int prim_right(const lt_softshadow_t *ss, uint32_t x, uint32_t y, int32_t id, uint32_t tbits,
+                      int32_t *ref)
+{
+    double o[3], d[3], v[9];
+    uint32_t i;
+    int a, cull = (ss->o.pflags & LT_FRUSTA_BACKFACE) != 0;
+    if (ss->o.path == LT_PATH_Q16) {
+        lt_ray1_q16_t r;
+        lt_q16_t t, rt = 0;
+        memcpy(&t, &tbits, 4);
+        if (lt_frusta_pray1_q16(ss->vtq, x, y, &r) != LT_OK)
+            return 0;
+        for (a = 0; a < 3; a++) {
+            o[a] = (double)r.o[a] / 65536.0;
+            d[a] = (double)r.d[a] / 1073741824.0;
+        }
+        for (i = 0; i < ss->s->ntris; i++) {
+            lt_ray1_q16_t rr = r;
+            const lt_tri_q16_t *tr = &ss->s->tq[i];
+            int hit = lt_tri1_q16(&rr, tr);
+            if (hit && cull) {
+                int64_t p0 = lt__round_sat32((int64_t)r.d[1] * tr->e2[2] -
+                                                 (int64_t)r.d[2] * tr->e2[1], 30);
+                int64_t p1 = lt__round_sat32((int64_t)r.d[2] * tr->e2[0] -
+                                                 (int64_t)r.d[0] * tr->e2[2], 30);
+                int64_t p2 = lt__round_sat32((int64_t)r.d[0] * tr->e2[1] -
+                                                 (int64_t)r.d[1] * tr->e2[0], 30);
+                hit = tr->e1[0] * p0 + tr->e1[1] * p1 + tr->e1[2] * p2 > 0;
+            }
+            if (hit && ref != NULL && (*ref < 0 || rr.tmax < rt)) {
+                *ref = (int32_t)i;
+                rt = rr.tmax;
+            }
+            if ((int32_t)i == id && (!hit || rr.tmax != t))
+                return 0; /* the answer is not a kernel hit of this ray */
+            if (!hit || (id >= 0 && (rr.tmax > t || (rr.tmax == t && (int32_t)i >= id))))
+                continue;
+            for (a = 0; a < 3; a++) {
+                v[a] = (double)tr->v0[a] / 65536.0;
+                v[3 + a] = (double)((int64_t)tr->v0[a] + tr->e1[a]) / 65536.0;
+                v[6 + a] = (double)((int64_t)tr->v0[a] + tr->e2[a]) / 65536.0;
+            }
+            if (pgenuine(o, d, (double)rr.tmax / 65536.0, v))
+                return 0; /* a genuine hit before the answer was missed */
+        }
+    } else {
+        lt_ray1_f32_t r;
+        float t, rt = 0.0f;
+        memcpy(&t, &tbits, 4);
+        if (lt_frusta_pray1_f32(ss->vtf, x, y, &r) != LT_OK)
+            return 0;
+        for (a = 0; a < 3; a++) {
+            o[a] = (double)r.o[a];
+            d[a] = (double)r.d[a];
+        }
+        for (i = 0; i < ss->s->ntris; i++) {
+            lt_ray1_f32_t rr = r;
+            const lt_tri_f32_t *tr = &ss->s->tf[i];
+            int hit = lt_tri1_f32(&rr, tr);
+            if (hit && cull) {
+                float px = r.d[1] * tr->e2[2] - r.d[2] * tr->e2[1];
+                float py = r.d[2] * tr->e2[0] - r.d[0] * tr->e2[2];
+                float pz = r.d[0] * tr->e2[1] - r.d[1] * tr->e2[0];
+                hit = (tr->e1[0] * px + tr->e1[1] * py) + tr->e1[2] * pz > 0.0f;
+            }
+            if (hit && ref != NULL && (*ref < 0 || rr.tmax < rt)) {
+                *ref = (int32_t)i;
+                rt = rr.tmax;
+            }
+            if ((int32_t)i == id && (!hit || rr.tmax != t))
+                return 0;
+            if (!hit || (id >= 0 && (rr.tmax > t || (rr.tmax == t && (int32_t)i >= id))))
+                continue;
+            for (a = 0; a < 3; a++) {
+                v[a] = (double)tr->v0[a];
+                v[3 + a] = (double)tr->v0[a] + (double)tr->e1[a];
+                v[6 + a] = (double)tr->v0[a] + (double)tr->e2[a];
+            }
+            if (pgenuine(o, d, (double)rr.tmax, v))
+                return 0;
+        }
+    }
+    return 1;
+}
+
+void lt_ss_primary_audit(const lt_softshadow_t *ss, lt_ss_audit_t *au)
+{
+    uint32_t x, y;
+    memset(au, 0, sizeof *au);
+    if (!ss->have_prim[0] || !ss->have_prim[1])
+        return;
+    for (y = 0; y < ss->h; y++)
+        for (x = 0; x < ss->w; x++) {
+            size_t q = (size_t)y * ss->w + x;
+            int m, ok = 1;
+            if (ss->pid[0][q] == ss->pid[1][q] && ss->pt[0][q] == ss->pt[1][q])
+                continue;
+            au->samples++;
+            for (m = 0; m < 2; m++) {
+                int32_t ref = -1;
+                ok &= prim_right(ss, x, y, ss->pid[m][q], ss->pt[m][q], &ref);
+                au->ref[m] += ref == ss->pid[m][q];
+            }
+            if (ok)
+                au->spurious++;
+            else
+                au->errors++;
+        }
+}
+
 void lt_ss_audit(const lt_softshadow_t *ss, lt_ss_audit_t *au)
 {
     uint32_t x, y;
@@ -1011,6 +1427,8 @@ void lt_ss_audit(const lt_softshadow_t *ss, lt_ss_audit_t *au)
         for (x = 0; x < ss->w; x++) {
             size_t q = (size_t)y * ss->w + x;
             unsigned diff = (unsigned)(ss->occ[0][q] ^ ss->occ[1][q]), j;
+            if (prim_differs(ss, q))
+                continue; /* different shadow origins: not comparable */
             for (j = 0; j < 16; j++) {
                 int any, gen, m, ok = 1;
                 if (((diff >> j) & 1u) == 0)

@@ -1,5 +1,6 @@
 /* lt_softshadow.h - the soft-shadow renderer of seeds/004 on the core's kernels: primary
- * visibility (16-ray packets over 4x4 tiles), hit points and normals, the direct term toward a
+ * visibility (16-ray packets over 4x4 tiles: P-Packet, or 16 frusta per 16x16 block: P-Frusta,
+ * from one linear camera), hit points and normals, the direct term toward a
  * quad area light's centre, soft-shadow visibility with 16 samples per pixel either by
  * multi-frusta tracing (one frustum per pixel, 16 per tile: S-Frusta) or by 16-ray packets (one
  * per pixel: S-Packet), shading with fractional visibility, the 4x4 discontinuity filter, a
@@ -31,10 +32,15 @@ typedef struct lt_ss_opts {
     double eps;          /* shadow-ray origin offset along the normal, scaled units */
     int filter_vis;      /* 0: filter the irradiance E = G V (seeds/004); 1: filter the visibility
                             V and multiply by the unfiltered direct term G afterwards */
+    uint32_t pflags;     /* primary rays (both methods): LT_FRUSTA_BACKFACE (cull back faces; the
+                            packets skip them per triangle too), LT_FRUSTA_CORNER and LT_FRUSTA_CR
+                            (P-Frusta only) */
 } lt_ss_opts_t;
 
-/* Defaults: q16, leaf 8, all three culling flags, LP samples, no scramble, depth 5%, cos 0.9
- * (25.8 deg), eps = 2^-12 of the scene radius (rounded to a power of two). */
+/* Defaults: q16, leaf 8, all three culling flags for shadows and for primary rays (the paper's
+ * setting; pflags = LT_FRUSTA_CORNER | LT_FRUSTA_CR keeps primary rays two-sided, as
+ * lt_bvh_trace16), LP samples, no scramble, depth 5%, cos 0.9 (25.8 deg), eps = 2^-12 of the scene
+ * radius (rounded to a power of two). */
 void lt_ss_opts_default(const lt_scene_t *s, lt_ss_opts_t *o);
 
 /* A horizontal square light (normal -y) of side `size` centred at `centre`, both in mesh file
@@ -60,6 +66,15 @@ typedef struct lt_ss_view {
 /* Returns 1 and fills v when the base name of mesh_path has a view, else 0. */
 int lt_ss_view_for(const char *mesh_path, lt_ss_view_t *v);
 
+/* The linear-camera views of a pinhole camera for primary frusta and their packet baseline
+ * (lt_frusta_view_*): pixel (x, y) gets the direction fwd + u(x) right + v(y) up of
+ * lt_camera_dir (not normalised: d0 + x dx + y dy), scaled by a power of two so that every
+ * component stays below 0.75 over the 4x4 tiles touching the image, then rounded to s1.30 raw
+ * (q16) and to multiples of 2^-23 (f32, so the float generator is exact). Either output may be
+ * NULL. Returns 0, or -1 with a message (eye outside the fixed-point range, degenerate camera). */
+int lt_ss_pview(const lt_camera_t *c, uint32_t flags, lt_frusta_view_q16_t *vq,
+                lt_frusta_view_f32_t *vf, char *err, size_t errlen);
+
 typedef struct lt_softshadow lt_softshadow_t;
 
 /* Build both trees (the default deep one for packets, the shallow one for frusta), the sample
@@ -69,11 +84,15 @@ lt_softshadow_t *lt_ss_create(const lt_scene_t *s, const lt_camera_t *cam, const
                               const lt_ss_opts_t *o, char *err, size_t errlen);
 void lt_ss_free(lt_softshadow_t *ss);
 
-/* Stages. primary: P-Packet traversal, hit points, normals, origins, direct term (SHADE).
+/* Stages. primary: P-Packet traversal (16-ray packets of 4x4 tiles, deep tree, closest hit),
+ * hit points, normals, origins, direct term (SHADE). primary_frusta: the same by P-Frusta (16
+ * frusta of 4x4 rays per 16x16 block, shallow tree); both trace the same rays (the linear camera
+ * of lt_ss_pview), and each keeps its answer per pixel for lt_ss_counts' prim_mismatch.
  * shadows_frusta / shadows_packet: 16 samples per lit pixel. shade: E = G x visible fraction of
  * the given result. filter: 4x4 discontinuity filter of E. reference: 256 samples per pixel by
  * packets (all 16 sets), E_ref = G x visible fraction. */
 void lt_ss_primary(lt_softshadow_t *ss);
+void lt_ss_primary_frusta(lt_softshadow_t *ss);
 void lt_ss_shadows_frusta(lt_softshadow_t *ss);
 void lt_ss_shadows_packet(lt_softshadow_t *ss);
 #define LT_SS_FRUSTA 0
@@ -91,6 +110,9 @@ typedef struct lt_ss_counts {
     uint64_t occluded;      /* shadow rays occluded (of the last shadow stage) */
     uint64_t partial;       /* lit pixels with 1..15 occluded samples */
     uint64_t mismatch;      /* pixels where frusta and packet visibility differ (both run) */
+    uint64_t prim_mismatch; /* pixels where P-Frusta and P-Packet differ in id or t (both run) */
+    uint64_t shadow_skipped; /* pixels left out of `mismatch` and the audit: their primary hits
+                                differ, so S-Packet and S-Frusta started from different points */
 } lt_ss_counts_t;
 
 void lt_ss_counts(const lt_softshadow_t *ss, lt_ss_counts_t *c);
@@ -118,7 +140,8 @@ int lt_ss_write_png(const lt_softshadow_t *ss, const char *path, int which, char
  * across the host and sim builds. */
 uint32_t lt_ss_hash(const lt_softshadow_t *ss);
 
-/* Audit of the samples where frusta and packet visibility differ (both stages run): each such
+/* Audit of the samples where frusta and packet visibility differ (both stages run; pixels whose
+ * primary hits differ are left out, see shadow_skipped): each such
  * sample is re-traced by brute force with the single-ray kernel over every triangle. A kernel hit
  * is "genuine" when the exact ray meets the triangle's plane inside the triangle's box padded by
  * LT_BVH_PAD_Q16 (what a box-pruning traversal must find) and "spurious" otherwise (a grazing ray
@@ -129,9 +152,20 @@ typedef struct lt_ss_audit {
     uint64_t samples;  /* differing samples */
     uint64_t spurious; /* of those, explained by spurious kernel hits only */
     uint64_t errors;   /* of those, a method is wrong */
+    uint64_t ref[2];   /* primary audit: of those, P-Packet (0) / P-Frusta (1) equal to the
+                          brute-force closest hit (the other method pruned a non-genuine hit) */
 } lt_ss_audit_t;
 
 void lt_ss_audit(const lt_softshadow_t *ss, lt_ss_audit_t *a);
+
+/* The same for primary rays: each pixel where P-Frusta and P-Packet differ is re-traced by brute
+ * force; a method is right when its answer is a kernel hit of the ray (or a miss) and every
+ * kernel hit before it in (t, id) order is spurious. */
+void lt_ss_primary_audit(const lt_softshadow_t *ss, lt_ss_audit_t *a);
+
+/* FNV-1a over the primary buffers of the last primary stage (id, valid, lit, t, G, shadow
+ * origin, normal per pixel): P-Frusta and P-Packet give the same value when their images agree. */
+uint32_t lt_ss_primary_hash(const lt_softshadow_t *ss);
 
 /* Per-pixel occlusion bits of the frusta / packet stage (NULL before it ran), w x h. */
 const uint16_t *lt_ss_occlusion(const lt_softshadow_t *ss, int which);

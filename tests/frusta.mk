@@ -14,6 +14,8 @@ $(B)/host/lanetrace-shadows-native: $(B)/host/obj/host/lt_shadows_main.o $(host_
 $(B)/host/frusta-race: $(B)/host/obj/tests/bench/frusta_race.o $(host_CORE_OBJS) $(host_HOST_OBJS)
 	$(CC) -o $@ $^ $(LIBS_host) -lembree3
 frusta: $(B)/sim/lanetrace-shadows $(B)/host/lanetrace-shadows-native $(B)/host/frusta-race
+# `make bench` prints the frusta Table 1 (tests/bench/bench.sh step 6)
+bench: $(B)/sim/lanetrace-shadows
 EXTRA_TEST_BINS += $(B)/sim/lanetrace-shadows $(B)/host/lanetrace-shadows-native \
     $(B)/host/frusta-race
 .PHONY: frusta

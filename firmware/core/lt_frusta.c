@@ -2,7 +2,9 @@
  * for s15.16 (exact integer rays, proven margins) and float32 (relative margins), and holds what
  * differs between the two paths: the per-frame tables, the direction scaling, reciprocals, the
  * triangle-kernel arithmetic replicated for culling (bit-identical to lt_isect.c's lane math, which
- * tests/unit/test_frusta.c checks) and the margins. Builds: all; float32 only with LT_CFG_FLOAT32.
+ * tests/unit/test_frusta.c checks) and the margins; for primary frusta the eye's scalar terms, the
+ * exact linear camera (s1.30 integer directions; float32 on a 2^-23 grid) and its lane helpers.
+ * Builds: all; float32 only with LT_CFG_FLOAT32.
  */
 #include "lt/lt_frusta.h"
 
@@ -446,6 +448,155 @@ static lt_vq16_t q_loadx(const int32_t *row, int64_t x0, uint32_t w, lt_mask16_t
     return r;
 }
 
+
+/* ---- primary frusta, s15.16: the eye's scalar terms and s1.30 direction lanes --------------- */
+
+/* The kernel's origin-only terms for rays from one eye, as scalars: tvec = o - v0, qvec = tvec x
+ * e1 rounded to s25.6 and tnum = e2 . qvec, the lane arithmetic of lt_tri16_q16 (so broadcasting
+ * them gives exactly the kernel's lanes). Cost: SMUL x9, SALU x12. */
+typedef struct {
+    int32_t t[3];  /* tvec, s15.16 */
+    int32_t q[3];  /* qvec, s25.6 */
+    int64_t tnum;  /* e2 . qvec, 22 fractional bits */
+} q_stq_t;
+
+static void q_ptq1(const lt_q16_t o[3], const lt_tri_q16_t *tri, q_stq_t *s)
+{
+    unsigned a;
+    for (a = 0; a < 3; a++)
+        s->t[a] = lt__q16_sub_sat(o[a], tri->v0[a]);
+    s->q[0] = lt__round_sat32(lt__l64_sub_wrap(lt__mul32x32_64(s->t[1], tri->e1[2]),
+                                               lt__mul32x32_64(s->t[2], tri->e1[1])),
+                              32u - QV_FRAC);
+    s->q[1] = lt__round_sat32(lt__l64_sub_wrap(lt__mul32x32_64(s->t[2], tri->e1[0]),
+                                               lt__mul32x32_64(s->t[0], tri->e1[2])),
+                              32u - QV_FRAC);
+    s->q[2] = lt__round_sat32(lt__l64_sub_wrap(lt__mul32x32_64(s->t[0], tri->e1[1]),
+                                               lt__mul32x32_64(s->t[1], tri->e1[0])),
+                              32u - QV_FRAC);
+    s->tnum = lt__l64_add_wrap(lt__l64_add_wrap(lt__mul32x32_64(tri->e2[0], s->q[0]),
+                                                lt__mul32x32_64(tri->e2[1], s->q[1])),
+                               lt__mul32x32_64(tri->e2[2], s->q[2]));
+    LT_COST(SMUL, 9);
+    LT_COST(SALU, 12);
+}
+
+/* The u edge's normal e2 x tvec rounded to s25.6 (fr_cull's per-lane normal, as a scalar).
+ * Returns 1 if a component saturated (no error bound: the caller skips corner culling).
+ * Cost: SMUL x6, SALU x6. */
+static int q_pnrm1(const lt_tri_q16_t *tri, const int32_t t[3], int32_t n[3])
+{
+    unsigned a;
+    int sat = 0;
+    n[0] = lt__round_sat32(lt__l64_sub_wrap(lt__mul32x32_64(tri->e2[1], t[2]),
+                                            lt__mul32x32_64(tri->e2[2], t[1])),
+                           32u - QV_FRAC);
+    n[1] = lt__round_sat32(lt__l64_sub_wrap(lt__mul32x32_64(tri->e2[2], t[0]),
+                                            lt__mul32x32_64(tri->e2[0], t[2])),
+                           32u - QV_FRAC);
+    n[2] = lt__round_sat32(lt__l64_sub_wrap(lt__mul32x32_64(tri->e2[0], t[1]),
+                                            lt__mul32x32_64(tri->e2[1], t[0])),
+                           32u - QV_FRAC);
+    for (a = 0; a < 3; a++)
+        sat |= n[a] == INT32_MAX || n[a] == INT32_MIN;
+    LT_COST(SMUL, 6);
+    LT_COST(SALU, 6);
+    return sat;
+}
+
+/* Whether the broadcast e2 x e1 (q_tri_a) saturated in any component. Cost: SALU x3. */
+static int q_asat(lt_vi32_t ax, lt_vi32_t ay, lt_vi32_t az)
+{
+    LT_COST(SALU, 3);
+    return ax.l[0] == INT32_MAX || ax.l[0] == INT32_MIN || ay.l[0] == INT32_MAX ||
+           ay.l[0] == INT32_MIN || az.l[0] == INT32_MAX || az.l[0] == INT32_MIN;
+}
+
+/* q_margins for one tvec (common eye), scalars: mu = 8 |tvec|_1 + C1 / 2 + 16, mw = 8 (|e1|_1 +
+ * |tvec|_1) + C1 + 32, and V's 0 / 15, in the forms' 36 fractional bits (exact int64).
+ * Cost: SALU x8. */
+static void q_pmarg1(const int32_t t[3], const lt_tri_q16_t *tri, int64_t *mu, int64_t *mw,
+                     int64_t *mvp, int64_t *mvn)
+{
+    int64_t t1 = 0, e1 = 0;
+    unsigned a;
+    for (a = 0; a < 3; a++) {
+        t1 += t[a] < 0 ? -(int64_t)t[a] : (int64_t)t[a];
+        e1 += tri->e1[a] < 0 ? -(int64_t)tri->e1[a] : (int64_t)tri->e1[a];
+    }
+    *mu = 8 * t1 + ((int64_t)3 << 29) + 16;
+    *mw = 8 * (e1 + t1) + ((int64_t)3 << 30) + 32;
+    *mvp = 0;
+    *mvn = 15;
+    LT_COST(SALU, 8);
+}
+
+/* Direction component of pixel (x, y): d0 + x dx + y dy, exact in int64 (in range by the view
+ * table's check), s1.30 raw. */
+LT_INLINE int32_t q_pbase1(const lt_frusta_vtable_q16_t *vt, uint32_t x, uint32_t y, unsigned a)
+{
+    return lt__wrap32((int64_t)vt->d0[a] + (int64_t)x * vt->dx[a] + (int64_t)y * vt->dy[a]);
+}
+
+/* q_pbase1 per lane for tile coordinates x, y (lanes). Cost: VMUL x2, VMULW x2, VCVT x1. */
+static lt_vq30_t q_pbasev(const lt_frusta_vtable_q16_t *vt, lt_vi32_t x, lt_vi32_t y, unsigned a)
+{
+    lt_vq30_t r;
+    int i;
+    LT_COST(VMUL, 2);
+    LT_COST(VMULW, 2);
+    LT_COST(VCVT, 1);
+    for (i = 0; i < LT_LANES; i++)
+        r.l[i] = q_pbase1(vt, (uint32_t)x.l[i], (uint32_t)y.l[i], a);
+    return r;
+}
+
+/* |d0 + x dx + y dy| < 2^30 raw, exactly. */
+static int q_pdir_ok(const lt_frusta_vtable_q16_t *vt, uint32_t x, uint32_t y, unsigned a)
+{
+    int64_t v = (int64_t)vt->d0[a] + (int64_t)x * vt->dx[a] + (int64_t)y * vt->dy[a];
+    return v < ((int64_t)1 << 30) && v > -((int64_t)1 << 30);
+}
+
+LT_INLINE int32_t q_pdelta(const lt_frusta_vtable_q16_t *vt, uint32_t jx, uint32_t jy, unsigned a)
+{
+    return lt__wrap32((int64_t)jx * vt->dx[a] + (int64_t)jy * vt->dy[a]);
+}
+
+/* s1.30 lanes: add (exact: the sums are pixel directions, in range), min, max, sign tests. */
+static lt_vq30_t q_dadd(lt_vq30_t a, lt_vq30_t b)
+{
+    int i;
+    LT_COST(VALU, 1);
+    for (i = 0; i < LT_LANES; i++)
+        a.l[i] = lt__wrap32((int64_t)a.l[i] + b.l[i]);
+    return a;
+}
+
+static lt_vq30_t q_dminmax(lt_vq30_t a, lt_vq30_t b, int want_max)
+{
+    int i;
+    LT_COST(VALU, 1);
+    for (i = 0; i < LT_LANES; i++)
+        a.l[i] = (want_max ? b.l[i] > a.l[i] : b.l[i] < a.l[i]) ? b.l[i] : a.l[i];
+    return a;
+}
+
+/* Lanes of k with a rel 0: rel = 0 (>=), 1 (<=), 2 (<), 3 (>). Cost: VCMP x1. */
+static lt_mask16_t q_dcmp0(lt_mask16_t k, lt_vq30_t a, int rel)
+{
+    unsigned m = 0;
+    int i;
+    LT_COST(VCMP, 1);
+    for (i = 0; i < LT_LANES; i++) {
+        int32_t v = a.l[i];
+        int on = rel == 0 ? v >= 0 : (rel == 1 ? v <= 0 : (rel == 2 ? v < 0 : v > 0));
+        if (LT__ON(k, i) && on)
+            m |= 1u << i;
+    }
+    return (lt_mask16_t)m;
+}
+
 #include "lt_traits_q16.h"
 #define LTN_VD lt_vq30_t
 #define LTN_NT lt_q30_t
@@ -522,6 +673,34 @@ static lt_vq16_t q_loadx(const int32_t *row, int64_t x0, uint32_t w, lt_mask16_t
 #define LTN_RAY1SETUP lt_ray1_q16_setup
 #define LTN_ADD_M lt_vq16_add_sat_m
 #define LTN_STORE_M lt_vq16_store_m
+#define LTN_PVIEW lt_frusta_view_q16_t
+#define LTN_PVT lt_frusta_vtable_q16_t
+#define LTN_PFR lt_frusta_prim16_q16_t
+#define LTN_SQV int32_t
+#define LTN_SW int64_t
+#define LTN_STQ q_stq_t
+#define LTN_PTQ1 q_ptq1
+#define LTN_SW_SIGN(x) (((x) > 0) - ((x) < 0))
+#define LTN_SW_NEG(x) lt__l64_sub_wrap(0, (x))
+#define LTN_PNRM1 q_pnrm1
+#define LTN_ASAT q_asat
+#define LTN_PMARG1 q_pmarg1
+#define LTN_PBASE1 q_pbase1
+#define LTN_PBASEV q_pbasev
+#define LTN_PDIR_OK q_pdir_ok
+#define LTN_PDELTA q_pdelta
+#define LTN_PFINITE(x) ((void)(x), 1)
+#define LTN_PTMAX0 (LT_Q16_MAX - 1)
+#define LTN_DADD q_dadd
+#define LTN_DSADD(a, b) lt__wrap32((int64_t)(a) + (b))
+#define LTN_DMIN(a, b) q_dminmax((a), (b), 0)
+#define LTN_DMAX(a, b) q_dminmax((a), (b), 1)
+#define LTN_DCMPGE0(k, a) q_dcmp0((k), (a), 0)
+#define LTN_DCMPLE0(k, a) q_dcmp0((k), (a), 1)
+#define LTN_DCMPLT0(k, a) q_dcmp0((k), (a), 2)
+#define LTN_DCMPGT0(k, a) q_dcmp0((k), (a), 3)
+#define LTN_CMPEQ_M lt_vq16_cmpeq_m
+#define LTN_NEXTUP_M(src, k, a) lt_vq16_add_sat_m((src), (k), (a), lt_vq16_set1(1))
 LT_INLINE lt_vq30_t lt__frusta_q30_of(lt_vq16_t a)
 {
     lt_vq30_t r;
@@ -607,6 +786,34 @@ LT_INLINE lt_vq30_t lt__frusta_q30_of(lt_vq16_t a)
 #undef LTN_RAY1SETUP
 #undef LTN_ADD_M
 #undef LTN_STORE_M
+#undef LTN_PVIEW
+#undef LTN_PVT
+#undef LTN_PFR
+#undef LTN_SQV
+#undef LTN_SW
+#undef LTN_STQ
+#undef LTN_PTQ1
+#undef LTN_SW_SIGN
+#undef LTN_SW_NEG
+#undef LTN_PNRM1
+#undef LTN_ASAT
+#undef LTN_PMARG1
+#undef LTN_PBASE1
+#undef LTN_PBASEV
+#undef LTN_PDIR_OK
+#undef LTN_PDELTA
+#undef LTN_PFINITE
+#undef LTN_PTMAX0
+#undef LTN_DADD
+#undef LTN_DSADD
+#undef LTN_DMIN
+#undef LTN_DMAX
+#undef LTN_DCMPGE0
+#undef LTN_DCMPLE0
+#undef LTN_DCMPLT0
+#undef LTN_DCMPGT0
+#undef LTN_CMPEQ_M
+#undef LTN_NEXTUP_M
 
 /* ---- float32 -------------------------------------------------------------------------------- */
 #if LT_CFG_FLOAT32
@@ -868,6 +1075,103 @@ static lt_vf32_t f_loadx(const float *row, int64_t x0, uint32_t w, lt_mask16_t *
     return r;
 }
 
+
+/* ---- primary frusta, float32 ---------------------------------------------------------------- */
+
+typedef struct {
+    float t[3];  /* tvec */
+    float q[3];  /* qvec */
+    float tnum;  /* e2 . qvec */
+} f_stq_t;
+
+/* The kernel's eye terms as scalars, the operations of lt_tri16_f32 in the same order. */
+static void f_ptq1(const float o[3], const lt_tri_f32_t *tri, f_stq_t *s)
+{
+    unsigned a;
+    for (a = 0; a < 3; a++)
+        s->t[a] = o[a] - tri->v0[a];
+    s->q[0] = s->t[1] * tri->e1[2] - s->t[2] * tri->e1[1];
+    s->q[1] = s->t[2] * tri->e1[0] - s->t[0] * tri->e1[2];
+    s->q[2] = s->t[0] * tri->e1[1] - s->t[1] * tri->e1[0];
+    s->tnum = (tri->e2[0] * s->q[0] + tri->e2[1] * s->q[1]) + tri->e2[2] * s->q[2];
+    LT_COST(SMUL, 9);
+    LT_COST(SALU, 12);
+}
+
+static int f_pnrm1(const lt_tri_f32_t *tri, const float t[3], float n[3])
+{
+    n[0] = tri->e2[1] * t[2] - tri->e2[2] * t[1];
+    n[1] = tri->e2[2] * t[0] - tri->e2[0] * t[2];
+    n[2] = tri->e2[0] * t[1] - tri->e2[1] * t[0];
+    LT_COST(SMUL, 6);
+    LT_COST(SALU, 3);
+    return 0;
+}
+
+/* f_margins for one tvec, scalars. */
+static void f_pmarg1(const float t[3], const lt_tri_f32_t *tri, float *mu, float *mw, float *mvp,
+                     float *mvn)
+{
+    float t1 = lt__f32_abs(t[0]) + lt__f32_abs(t[1]) + lt__f32_abs(t[2]);
+    float e1 = lt__f32_abs(tri->e1[0]) + lt__f32_abs(tri->e1[1]) + lt__f32_abs(tri->e1[2]);
+    float e2 = lt__f32_abs(tri->e2[0]) + lt__f32_abs(tri->e2[1]) + lt__f32_abs(tri->e2[2]);
+    LT_COST(SALU, 12);
+    *mu = t1 * (e2 * 0x1p-15f);
+    *mvp = t1 * (e1 * 0x1p-15f);
+    *mvn = *mvp;
+    *mw = (*mu + *mvp) + e1 * e2 * 0x1p-15f;
+}
+
+/* Direction component of pixel (x, y) as (d0 + x dx) + y dy: the same float operations wherever a
+ * tile's ray 0 is formed, so every path gets the same bits. */
+LT_INLINE float f_pbase1(const lt_frusta_vtable_f32_t *vt, uint32_t x, uint32_t y, unsigned a)
+{
+    return (vt->d0[a] + (float)x * vt->dx[a]) + (float)y * vt->dy[a];
+}
+
+static lt_vf32_t f_pbasev(const lt_frusta_vtable_f32_t *vt, lt_vi32_t x, lt_vi32_t y, unsigned a)
+{
+    lt_vf32_t r;
+    int i;
+    LT_COST(VCVT, 2);
+    LT_COST(FMUL, 2);
+    LT_COST(FADD, 2);
+    for (i = 0; i < LT_LANES; i++)
+        r.l[i] = f_pbase1(vt, (uint32_t)x.l[i], (uint32_t)y.l[i], a);
+    return r;
+}
+
+/* The direction the generator forms for pixel (x, y) is finite with |.| < 1 (gx.. set first). */
+static int f_pdir_ok(const lt_frusta_vtable_f32_t *vt, uint32_t x, uint32_t y, unsigned a)
+{
+    const lt_vf32_t *g = a == 0 ? &vt->gx : (a == 1 ? &vt->gy : &vt->gz);
+    float v = f_pbase1(vt, x & ~3u, y & ~3u, a) + g->l[(x & 3u) + 4u * (y & 3u)];
+    return v < 1.0f && v > -1.0f;
+}
+
+LT_INLINE float f_pdelta(const lt_frusta_vtable_f32_t *vt, uint32_t jx, uint32_t jy, unsigned a)
+{
+    return (float)jx * vt->dx[a] + (float)jy * vt->dy[a];
+}
+
+/* t one ulp up for lanes of k (a >= 0: the next float). Cost: VALU x1. */
+static lt_vf32_t f_nextup_m(lt_vf32_t src, lt_mask16_t k, lt_vf32_t a)
+{
+    int i;
+    LT_COST(VALU, 1);
+    for (i = 0; i < LT_LANES; i++)
+        if (LT__ON(k, i)) {
+            union {
+                float f;
+                uint32_t u;
+            } v;
+            v.f = a.l[i];
+            v.u += 1u;
+            src.l[i] = v.f;
+        }
+    return src;
+}
+
 #include "lt_traits_f32.h"
 #define LTN_VD lt_vf32_t
 #define LTN_NT float
@@ -945,6 +1249,34 @@ static lt_vf32_t f_loadx(const float *row, int64_t x0, uint32_t w, lt_mask16_t *
 #define LTN_RAY1SETUP lt_ray1_f32_setup
 #define LTN_ADD_M lt_vf32_add_m
 #define LTN_STORE_M lt_vf32_store_m
+#define LTN_PVIEW lt_frusta_view_f32_t
+#define LTN_PVT lt_frusta_vtable_f32_t
+#define LTN_PFR lt_frusta_prim16_f32_t
+#define LTN_SQV float
+#define LTN_SW float
+#define LTN_STQ f_stq_t
+#define LTN_PTQ1 f_ptq1
+#define LTN_SW_SIGN(x) (((x) > 0.0f) - ((x) < 0.0f))
+#define LTN_SW_NEG(x) (-(x))
+#define LTN_PNRM1 f_pnrm1
+#define LTN_ASAT(ax, ay, az) ((void)(ax), (void)(ay), (void)(az), 0)
+#define LTN_PMARG1 f_pmarg1
+#define LTN_PBASE1 f_pbase1
+#define LTN_PBASEV f_pbasev
+#define LTN_PDIR_OK f_pdir_ok
+#define LTN_PDELTA f_pdelta
+#define LTN_PFINITE f_finite
+#define LTN_PTMAX0 3.0e38f
+#define LTN_DADD lt_vf32_add
+#define LTN_DSADD(a, b) ((a) + (b))
+#define LTN_DMIN lt_vf32_min
+#define LTN_DMAX lt_vf32_max
+#define LTN_DCMPGE0(k, a) lt_vf32_cmpge_m((k), (a), lt_vf32_set1(0.0f))
+#define LTN_DCMPLE0(k, a) lt_vf32_cmple_m((k), (a), lt_vf32_set1(0.0f))
+#define LTN_DCMPLT0(k, a) lt_vf32_cmplt_m((k), (a), lt_vf32_set1(0.0f))
+#define LTN_DCMPGT0(k, a) lt_vf32_cmpgt_m((k), (a), lt_vf32_set1(0.0f))
+#define LTN_CMPEQ_M lt_vf32_cmpeq_m
+#define LTN_NEXTUP_M f_nextup_m
 #include "lt_frusta.inc"
 
 #endif /* LT_CFG_FLOAT32 */

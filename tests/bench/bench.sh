@@ -4,7 +4,9 @@
 #     (LT_COST_SIM, lrb16 with caches); target: counted <= 3x native;
 #  2. the scalar MCU model vs measured instructions: mcu-m4's predicted cycles for the slab-test loop
 #     vs the instructions QEMU's lt_icount plugin counts inside lt_slab16_q16 on Cortex-M4;
-#  3. the cycle report of the bundled scene on lrb16.
+#  3. the cycle report of the bundled scene on lrb16;
+#  7. the multi-frusta Table 1 (docs/frusta.md): P-Packet vs P-Frusta and S-Packet vs S-Frusta in
+#     the simulator on Sibenik at 1024x1024 (~20 s), the bundled teapot at 256x256 without ../shared.
 # Run from the repository root after make all firmware build/sim/slab-model build/plugin/lt_icount.so.
 set -euo pipefail
 B=build
@@ -54,3 +56,12 @@ B=$B tests/bench/structures.sh
 
 echo "== 5. cycle report: bundled scene on lrb16"
 "$B/sim/lanetrace" run --mesh "$SCENE" --res "$RES" --structure "$STRUCT" --report "$B/bench-report.json"
+echo "== 6. screen-space baselines: quadtree vs DDA vs Hi-Z, same rays (lrb16, simulator; docs/ss-baselines.md)"; "$B/sim/ssbench"
+
+echo "== 7. multi-frusta Table 1: primary and soft-shadow frusta vs 16-ray packets (lrb16 simulator)"
+if [ -f ../shared/scenes/sibenik.obj ]; then
+    "$B/sim/lanetrace-shadows" --mesh ../shared/scenes/sibenik.obj --res "${FRUSTA_RES:-1024}" --no-ref
+else
+    echo "(../shared missing: the bundled teapot instead of Sibenik)"
+    "$B/sim/lanetrace-shadows" --mesh "$SCENE" --res "${FRUSTA_RES:-256}" --no-ref
+fi

@@ -5,7 +5,9 @@
  * combination, both BVH shapes; exact in s15.16, checked in float32. Also the ray generator (rays
  * end exactly on their sample points), argument errors, the direct-light term against double, the
  * discontinuity filter's property, a tile hash that host and sim builds must print identically,
- * and the bunny (shared data) with a ground plane. Builds: host, sim, asan.
+ * and the bunny (shared data) with a ground plane. Primary frusta (P-Frusta) and their packet
+ * baseline against the per-ray closest hit (t and id, ties included) on random scenes and
+ * cameras, constructed edge cases, the empty scene and the bunny. Builds: host, sim, asan.
  */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -21,6 +23,7 @@
 #include "lt_fx_float.h"
 #include "lt_mesh.h"
 #include "lt_scene.h"
+#include "lt_softshadow.h"
 #include "lt_test_util.h"
 #include "lt_frusta_tile.h"
 #if LT_COST_MODE == LT_COST_SIM
@@ -948,6 +951,737 @@ static void test_bunny(void **state)
     tally_assert(&t);
 }
 
+/* ---- primary frusta (P-Frusta) ------------------------------------------------------------- */
+
+/* Brute-force closest hit of one primary ray: the single-ray kernel over every triangle in index
+ * order (strict t < tmax, so among equal t the smallest id), hits with det <= 0 dropped under
+ * back-face culling. */
+static void pref1_q16(const tscene_t *s, const lt_ray1_q16_t *r0, uint32_t flags, int32_t *id,
+                      lt_q16_t *t)
+{
+    lt_ray1_q16_t cur = *r0;
+    uint32_t i;
+    *id = -1;
+    for (i = 0; i < s->n; i++) {
+        lt_ray1_q16_t rr = cur;
+        if (lt_tri1_q16(&rr, &s->tq[i]) &&
+            ((flags & LT_FRUSTA_BACKFACE) == 0 || det_sign_q16(r0, &s->tq[i]) > 0)) {
+            cur = rr;
+            *id = (int32_t)i;
+        }
+    }
+    *t = cur.tmax;
+}
+
+static void pref1_f32(const tscene_t *s, const lt_ray1_f32_t *r0, uint32_t flags, int32_t *id,
+                      float *t)
+{
+    lt_ray1_f32_t cur = *r0;
+    uint32_t i;
+    *id = -1;
+    for (i = 0; i < s->n; i++) {
+        lt_ray1_f32_t rr = cur;
+        if (lt_tri1_f32(&rr, &s->tf[i]) &&
+            ((flags & LT_FRUSTA_BACKFACE) == 0 || det_sign_f32(r0, &s->tf[i]) > 0)) {
+            cur = rr;
+            *id = (int32_t)i;
+        }
+    }
+    *t = cur.tmax;
+}
+
+typedef struct ptally {
+    unsigned long rays, hits, ties, bad_fr, bad_pk, bad_bvh, bvh_ties, bad_gen;
+    unsigned long f32_rays, bad_f32, bad_f32_pk, blocks, partial_tiles, spurious, spurious_f32;
+} ptally_t;
+
+static int ptie_q16(const tscene_t *s, const lt_ray1_q16_t *r1, int32_t id, lt_q16_t t);
+
+/* A kernel hit at t of the ray o + s d is genuine when the exact ray meets the triangle's plane
+ * at a parameter s within `pad` of t, inside the triangle's box padded by `pad` (a quarter of the
+ * BVH's pad): every box-pruning traversal provably finds those (docs/frusta.md). */
+static int pgenuine(const double o[3], const double d[3], const double v[9], double pad, double tk)
+{
+    double e1[3], e2[3], n[3], den, t;
+    int a, j;
+    for (a = 0; a < 3; a++) {
+        e1[a] = v[3 + a] - v[a];
+        e2[a] = v[6 + a] - v[a];
+    }
+    n[0] = e1[1] * e2[2] - e1[2] * e2[1];
+    n[1] = e1[2] * e2[0] - e1[0] * e2[2];
+    n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+    den = d[0] * n[0] + d[1] * n[1] + d[2] * n[2];
+    if (den == 0.0)
+        return 0;
+    t = ((v[0] - o[0]) * n[0] + (v[1] - o[1]) * n[1] + (v[2] - o[2]) * n[2]) / den;
+    if (!(t > 0.0) || fabs(t - tk) > pad)
+        return 0;
+    for (a = 0; a < 3; a++) {
+        double x = o[a] + t * d[a], lo = v[a], hi = v[a];
+        for (j = 1; j < 3; j++) {
+            lo = v[3 * j + a] < lo ? v[3 * j + a] : lo;
+            hi = v[3 * j + a] > hi ? v[3 * j + a] : hi;
+        }
+        if (x < lo - pad || x > hi + pad)
+            return 0;
+    }
+    return 1;
+}
+
+/* Whether a closest-hit answer (id, t) that differs from the reference is still right: it is a
+ * kernel hit of the ray (or a miss), and every kernel hit before it in (t, id) order is not
+ * genuine. Returns 1 if so. */
+static int pexcused_q16(const tscene_t *s, const lt_ray1_q16_t *r1, uint32_t flags, int32_t id,
+                        lt_q16_t t)
+{
+    double o[3], d[3], v[9];
+    uint32_t i;
+    unsigned a;
+    if (id >= 0 && (!ptie_q16(s, r1, id, t) ||
+                    ((flags & LT_FRUSTA_BACKFACE) != 0 && det_sign_q16(r1, &s->tq[id]) <= 0)))
+        return 0;
+    for (a = 0; a < 3; a++) {
+        o[a] = (double)r1->o[a] / 65536.0;
+        d[a] = (double)r1->d[a] / 1073741824.0;
+    }
+    for (i = 0; i < s->n; i++) {
+        lt_ray1_q16_t rr = *r1;
+        const lt_tri_q16_t *tr = &s->tq[i];
+        if (!lt_tri1_q16(&rr, tr) ||
+            ((flags & LT_FRUSTA_BACKFACE) != 0 && det_sign_q16(r1, tr) <= 0))
+            continue;
+        if (id >= 0 && (rr.tmax > t || (rr.tmax == t && (int32_t)i >= id)))
+            continue;
+        for (a = 0; a < 3; a++) {
+            v[a] = (double)tr->v0[a] / 65536.0;
+            v[3 + a] = (double)((int64_t)tr->v0[a] + tr->e1[a]) / 65536.0;
+            v[6 + a] = (double)((int64_t)tr->v0[a] + tr->e2[a]) / 65536.0;
+        }
+        if (pgenuine(o, d, v, (double)LT_BVH_PAD_Q16 / 65536.0 / 4.0,
+                     (double)rr.tmax / 65536.0))
+            return 0;
+    }
+    return 1;
+}
+
+static int pexcused_f32(const tscene_t *s, const lt_ray1_f32_t *r1, uint32_t flags, int32_t id,
+                        float t)
+{
+    double o[3], d[3], v[9], pad = 0.0;
+    uint32_t i;
+    unsigned a;
+    if (id >= 0) {
+        lt_ray1_f32_t rr = *r1;
+        if ((uint32_t)id >= s->n || !lt_tri1_f32(&rr, &s->tf[id]) || rr.tmax != t ||
+            ((flags & LT_FRUSTA_BACKFACE) != 0 && det_sign_f32(r1, &s->tf[id]) <= 0))
+            return 0;
+    }
+    /* the float BVH pads by 2^-18 of the largest coordinate */
+    for (i = 0; i < s->n; i++)
+        for (a = 0; a < 3; a++) {
+            double c = fabs((double)s->tf[i].v0[a]) + fabs((double)s->tf[i].e1[a]) +
+                       fabs((double)s->tf[i].e2[a]);
+            pad = c > pad ? c : pad;
+        }
+    pad = ldexp(pad, -20); /* a quarter of the float BVH's pad */
+    for (a = 0; a < 3; a++) {
+        o[a] = (double)r1->o[a];
+        d[a] = (double)r1->d[a];
+    }
+    for (i = 0; i < s->n; i++) {
+        lt_ray1_f32_t rr = *r1;
+        const lt_tri_f32_t *tr = &s->tf[i];
+        if (!lt_tri1_f32(&rr, tr) ||
+            ((flags & LT_FRUSTA_BACKFACE) != 0 && det_sign_f32(r1, tr) <= 0))
+            continue;
+        if (id >= 0 && (rr.tmax > t || (rr.tmax == t && (int32_t)i >= id)))
+            continue;
+        for (a = 0; a < 3; a++) {
+            v[a] = (double)tr->v0[a];
+            v[3 + a] = (double)tr->v0[a] + (double)tr->e1[a];
+            v[6 + a] = (double)tr->v0[a] + (double)tr->e2[a];
+        }
+        if (pgenuine(o, d, v, pad, (double)rr.tmax))
+            return 0;
+    }
+    return 1;
+}
+
+#define PMAXW 64
+#define PMAXH 48
+
+/* Reference per pixel for both culling settings (index 0: two-sided, 1: back-face culled). */
+typedef struct pref {
+    int32_t idq[2][PMAXH][PMAXW], idf[2][PMAXH][PMAXW];
+    lt_q16_t tq[2][PMAXH][PMAXW];
+    float tf[2][PMAXH][PMAXW];
+    unsigned ties; /* pixels where another triangle gives the same t as the winner (q16) */
+} pref_t;
+
+static void pref_fill(const tscene_t *s, const lt_frusta_vtable_q16_t *vq,
+                      const lt_frusta_vtable_f32_t *vf, pref_t *R)
+{
+    uint32_t x, y;
+    int c;
+    R->ties = 0;
+    for (y = 0; y < vq->height; y++)
+        for (x = 0; x < vq->width; x++) {
+            lt_ray1_q16_t r1;
+            lt_ray1_f32_t r1f;
+            uint32_t i;
+            assert_int_equal(lt_frusta_pray1_q16(vq, x, y, &r1), LT_OK);
+            assert_int_equal(lt_frusta_pray1_f32(vf, x, y, &r1f), LT_OK);
+            for (c = 0; c < 2; c++) {
+                uint32_t fl = c != 0 ? LT_FRUSTA_BACKFACE : 0u;
+                pref1_q16(s, &r1, fl, &R->idq[c][y][x], &R->tq[c][y][x]);
+                pref1_f32(s, &r1f, fl, &R->idf[c][y][x], &R->tf[c][y][x]);
+            }
+            /* count exact ties of the two-sided winner (another triangle, the same t) */
+            if (R->idq[0][y][x] >= 0)
+                for (i = 0; i < s->n; i++) {
+                    lt_ray1_q16_t rr = r1;
+                    if ((int32_t)i != R->idq[0][y][x] && lt_tri1_q16(&rr, &s->tq[i]) &&
+                        rr.tmax == R->tq[0][y][x]) {
+                        R->ties++;
+                        break;
+                    }
+                }
+        }
+}
+
+/* One triangle alone gives t to the ray (a tie partner of the reference's winner). */
+static int ptie_q16(const tscene_t *s, const lt_ray1_q16_t *r1, int32_t id, lt_q16_t t)
+{
+    lt_ray1_q16_t rr = *r1;
+    return id >= 0 && (uint32_t)id < s->n && lt_tri1_q16(&rr, &s->tq[id]) && rr.tmax == t;
+}
+
+/* P-Frusta (shallow tree), P-Packet (deep tree) and, two-sided, lt_bvh_trace16 against the
+ * brute-force reference on every pixel of the view, s15.16 and float32; also checks that the
+ * packet lanes and single rays are the same rays. Blocks cover the image and one block past it. */
+static void pcompare(const tscene_t *s, const tbvh_t *shal, const tbvh_t *deep,
+                     const lt_frusta_view_q16_t *v, const lt_frusta_view_f32_t *vfl,
+                     const pref_t *R, ptally_t *T, const char *what)
+{
+    static lt_frusta_prim16_q16_t P;
+    static lt_frusta_prim16_f32_t Pf;
+    lt_frusta_vtable_q16_t vt;
+    lt_frusta_vtable_f32_t vtf;
+    uint32_t bx, by, f, j;
+    int c = (v->flags & LT_FRUSTA_BACKFACE) != 0;
+
+    assert_int_equal(lt_frusta_vtable_q16(v, &vt), LT_OK);
+    assert_int_equal(lt_frusta_vtable_f32(vfl, &vtf), LT_OK);
+    for (by = 0; by < v->height + 16u; by += 16)
+        for (bx = 0; bx < v->width + 16u; bx += 16) {
+            assert_int_equal(lt_frusta_psetup16_q16(&vt, bx, by, &P), LT_OK);
+            assert_int_equal(lt_frusta_trace16_q16(&shal->q, s->tq, &vt, &P), LT_OK);
+            assert_int_equal(lt_frusta_psetup16_f32(&vtf, bx, by, &Pf), LT_OK);
+            assert_int_equal(lt_frusta_trace16_f32(&shal->f, s->tf, &vtf, &Pf), LT_OK);
+            assert_int_equal(P.active, Pf.active);
+            T->blocks++;
+            for (f = 0; f < 16; f++) {
+                uint32_t tx = bx + 4u * (f & 3u), ty = by + 4u * (f >> 2);
+                lt_ray16_q16_t pr, br;
+                lt_ray16_f32_t prf;
+                lt_hit16_t ph, bh, phf;
+                lt_mask16_t k, kf;
+                if (P.live[f] == 0) {
+                    assert_true(tx >= v->width || ty >= v->height);
+                    continue;
+                }
+                T->partial_tiles += P.live[f] != 0xFFFFu;
+                assert_int_equal(lt_frusta_prays16_q16(&vt, tx, ty, &pr, &k), LT_OK);
+                assert_int_equal(k, P.live[f]);
+                br = pr;
+                assert_int_equal(lt_frusta_packet_trace16_q16(&deep->q, s->tq, v->flags, vt.o,
+                                                              &pr, k, &ph),
+                                 LT_OK);
+                if (!c)
+                    assert_int_equal(lt_bvh_trace16_q16(&deep->q, s->tq, &br, k, &bh), LT_OK);
+                assert_int_equal(lt_frusta_prays16_f32(&vtf, tx, ty, &prf, &kf), LT_OK);
+                assert_int_equal(kf, k);
+                assert_int_equal(lt_frusta_packet_trace16_f32(&deep->f, s->tf, v->flags, vtf.o,
+                                                              &prf, kf, &phf),
+                                 LT_OK);
+                for (j = 0; j < 16; j++) {
+                    uint32_t x = tx + (j & 3u), y = ty + (j >> 2);
+                    lt_ray1_q16_t r1;
+                    lt_ray1_f32_t r1f;
+                    int32_t rid, ridf;
+                    lt_q16_t rt;
+                    float rtf;
+                    if (((unsigned)k >> j & 1u) == 0)
+                        continue;
+                    rid = R->idq[c][y][x];
+                    rt = R->tq[c][y][x];
+                    ridf = R->idf[c][y][x];
+                    rtf = R->tf[c][y][x];
+                    assert_int_equal(lt_frusta_pray1_q16(&vt, x, y, &r1), LT_OK);
+                    assert_int_equal(lt_frusta_pray1_f32(&vtf, x, y, &r1f), LT_OK);
+                    /* the packet lane, the single ray and the frusta's generator: the same ray */
+                    T->bad_gen += r1.d[0] != br.dx.l[j] || r1.d[1] != br.dy.l[j] ||
+                                  r1.d[2] != br.dz.l[j] ||
+                                  memcmp(&r1f.d[0], &prf.dx.l[j], 4) != 0 ||
+                                  memcmp(&r1f.d[1], &prf.dy.l[j], 4) != 0 ||
+                                  memcmp(&r1f.d[2], &prf.dz.l[j], 4) != 0;
+                    T->rays++;
+                    T->f32_rays++;
+                    T->hits += rid >= 0;
+                    if ((P.id[f].l[j] != rid || P.t[f].l[j] != rt) &&
+                        pexcused_q16(s, &r1, v->flags, P.id[f].l[j], P.t[f].l[j]))
+                        T->spurious++;
+                    else if (P.id[f].l[j] != rid || P.t[f].l[j] != rt) {
+                        if (T->bad_fr++ < 6)
+                            printf("  FAIL %s P-Frusta: pixel (%u,%u) flags %u id %d t %d, "
+                                   "per-ray %d t %d\n", what, x, y, v->flags, P.id[f].l[j],
+                                   P.t[f].l[j], rid, rt);
+                    }
+                    if ((ph.id.l[j] != rid || pr.tmax.l[j] != rt) &&
+                        pexcused_q16(s, &r1, v->flags, ph.id.l[j], pr.tmax.l[j]))
+                        T->spurious++;
+                    else if (ph.id.l[j] != rid || pr.tmax.l[j] != rt) {
+                        if (T->bad_pk++ < 6)
+                            printf("  FAIL %s P-Packet: pixel (%u,%u) id %d t %d, per-ray %d t "
+                                   "%d\n", what, x, y, ph.id.l[j], pr.tmax.l[j], rid, rt);
+                    }
+                    if (!c) {
+                        /* lt_bvh: the same t; the same id up to exact ties */
+                        if ((br.tmax.l[j] != rt ||
+                             (bh.id.l[j] != rid && !ptie_q16(s, &r1, bh.id.l[j], rt))) &&
+                            !pexcused_q16(s, &r1, 0, bh.id.l[j], br.tmax.l[j])) {
+                            if (T->bad_bvh++ < 6)
+                                printf("  FAIL %s lt_bvh_trace16: pixel (%u,%u) id %d t %d, "
+                                       "per-ray %d t %d\n", what, x, y, bh.id.l[j],
+                                       br.tmax.l[j], rid, rt);
+                        }
+                        T->bvh_ties += bh.id.l[j] != rid && br.tmax.l[j] == rt;
+                    }
+                    if ((Pf.id[f].l[j] != ridf || memcmp(&Pf.t[f].l[j], &rtf, 4) != 0) &&
+                        pexcused_f32(s, &r1f, v->flags, Pf.id[f].l[j], Pf.t[f].l[j]))
+                        T->spurious_f32++;
+                    else if (Pf.id[f].l[j] != ridf || memcmp(&Pf.t[f].l[j], &rtf, 4) != 0) {
+                        if (T->bad_f32++ < 6)
+                            printf("  FAIL %s P-Frusta f32: pixel (%u,%u) id %d t %g, per-ray "
+                                   "%d t %g\n", what, x, y, Pf.id[f].l[j],
+                                   (double)Pf.t[f].l[j], ridf, (double)rtf);
+                    }
+                    if ((phf.id.l[j] != ridf || memcmp(&prf.tmax.l[j], &rtf, 4) != 0) &&
+                        pexcused_f32(s, &r1f, v->flags, phf.id.l[j], prf.tmax.l[j]))
+                        T->spurious_f32++;
+                    else if (phf.id.l[j] != ridf || memcmp(&prf.tmax.l[j], &rtf, 4) != 0) {
+                        if (T->bad_f32_pk++ < 6)
+                            printf("  FAIL %s P-Packet f32: pixel (%u,%u) id %d vs %d\n", what,
+                                   x, y, phf.id.l[j], ridf);
+                    }
+                }
+            }
+        }
+}
+
+static void ptally_print(const char *name, const ptally_t *t, unsigned long ties)
+{
+    ltt_report("%s: %lu blocks, %lu rays (%lu hits, %lu exact ties, %lu partial tiles): "
+               "P-Frusta != per-ray closest hit %lu, P-Packet != per-ray %lu, lt_bvh_trace16 t != "
+               "per-ray %lu (ids differ only at ties: %lu), generator mismatches %lu (bound 0); "
+               "f32 %lu rays, P-Frusta %lu, P-Packet %lu mismatches (bound 0); differences "
+               "explained by reference hits that are not genuine (off the padded box or t): q16 %lu, "
+               "f32 %lu\n",
+               name, t->blocks, t->rays, t->hits, ties, t->partial_tiles, t->bad_fr, t->bad_pk,
+               t->bad_bvh, t->bvh_ties, t->bad_gen, t->f32_rays, t->bad_f32, t->bad_f32_pk,
+               t->spurious, t->spurious_f32);
+}
+
+static void ptally_assert(const ptally_t *t)
+{
+    assert_int_equal(t->bad_fr, 0);
+    assert_int_equal(t->bad_pk, 0);
+    assert_int_equal(t->bad_bvh, 0);
+    assert_int_equal(t->bad_gen, 0);
+    assert_int_equal(t->bad_f32, 0);
+    assert_int_equal(t->bad_f32_pk, 0);
+}
+
+/* A pinhole camera in scene units (the renderer's lt_camera_t), both views via lt_ss_pview. */
+static void pcam(const double eye[3], const double target[3], double fov, uint32_t w, uint32_t h,
+                 uint32_t flags, lt_frusta_view_q16_t *vq, lt_frusta_view_f32_t *vf)
+{
+    lt_camera_t c;
+    double up[3] = {0.0, 1.0, 0.0}, len;
+    char err[128];
+    int a;
+    memset(&c, 0, sizeof c);
+    for (a = 0; a < 3; a++) {
+        c.eye[a] = eye[a];
+        c.fwd[a] = target[a] - eye[a];
+    }
+    len = sqrt(c.fwd[0] * c.fwd[0] + c.fwd[1] * c.fwd[1] + c.fwd[2] * c.fwd[2]);
+    for (a = 0; a < 3; a++)
+        c.fwd[a] /= len;
+    if (fabs(c.fwd[1]) > 0.99)
+        up[0] = 1.0, up[1] = 0.0;
+    c.right[0] = c.fwd[1] * up[2] - c.fwd[2] * up[1];
+    c.right[1] = c.fwd[2] * up[0] - c.fwd[0] * up[2];
+    c.right[2] = c.fwd[0] * up[1] - c.fwd[1] * up[0];
+    len = sqrt(c.right[0] * c.right[0] + c.right[1] * c.right[1] + c.right[2] * c.right[2]);
+    for (a = 0; a < 3; a++)
+        c.right[a] /= len;
+    c.up[0] = c.right[1] * c.fwd[2] - c.right[2] * c.fwd[1];
+    c.up[1] = c.right[2] * c.fwd[0] - c.right[0] * c.fwd[2];
+    c.up[2] = c.right[0] * c.fwd[1] - c.right[1] * c.fwd[0];
+    c.tan_half_fov = tan(0.5 * fov * 3.14159265358979323846 / 180.0);
+    c.width = w;
+    c.height = h;
+    assert_int_equal(lt_ss_pview(&c, flags, vq, vf, err, sizeof err), 0);
+}
+
+/* Every flag set over one view, with both references computed once. */
+static void pcompare_all(const tscene_t *s, const tbvh_t *shal, const tbvh_t *deep,
+                         lt_frusta_view_q16_t *vq, lt_frusta_view_f32_t *vf, ptally_t *T,
+                         unsigned long *ties, const char *what)
+{
+    static pref_t R;
+    lt_frusta_vtable_q16_t vt;
+    lt_frusta_vtable_f32_t vtf;
+    unsigned fl;
+    assert_true(vq->width <= PMAXW && vq->height <= PMAXH);
+    vq->flags = vf->flags = 0;
+    assert_int_equal(lt_frusta_vtable_q16(vq, &vt), LT_OK);
+    assert_int_equal(lt_frusta_vtable_f32(vf, &vtf), LT_OK);
+    pref_fill(s, &vt, &vtf, &R);
+    *ties += R.ties;
+    for (fl = 0; fl < NFLAGS; fl++) {
+        vq->flags = vf->flags = g_flagsets[fl];
+        pcompare(s, shal, deep, vq, vf, &R, T, what);
+    }
+}
+
+#if LT_COST_MODE == LT_COST_SIM
+/* Event totals of the simulator so far (all phases). */
+static void sim_events(uint64_t ev[LT_EV__COUNT])
+{
+    lt_sim_totals_t tot;
+    unsigned e, ph;
+    lt_sim_totals(&tot);
+    for (e = 0; e < LT_EV__COUNT; e++)
+        for (ev[e] = 0, ph = 0; ph < LT_PH__COUNT; ph++)
+            ev[e] += tot.ctr[ph][LT_OP__COUNT + e];
+}
+#endif
+
+static void test_primary_random(void **state)
+{
+    ptally_t t;
+    unsigned long ties = 0;
+    ltt_rng_t r;
+    unsigned sc, cam;
+#if LT_COST_MODE == LT_COST_SIM
+    uint64_t ev0[LT_EV__COUNT];
+    sim_events(ev0);
+#endif
+    (void)state;
+    memset(&t, 0, sizeof t);
+    ltt_rng_seed(&r, 4242);
+    for (sc = 0; sc < 6; sc++) {
+        static tscene_t s;
+        tbvh_t shal, deep;
+        unsigned n = 150u + 150u * sc;
+        double size = sc % 3 == 0 ? 8.0 : (sc % 3 == 1 ? 30.0 : 80.0);
+        random_scene(&r, &s, n, size);
+        build(&s, sc & 1u ? 16 : 8, sc & 1u ? 8 : 4, &shal);
+        build(&s, 4, 1, &deep);
+        for (cam = 0; cam < 2; cam++) {
+            lt_frusta_view_q16_t vq;
+            lt_frusta_view_f32_t vf;
+            double eye[3], tgt[3], fov = ltt_rng_uniform(&r, 20.0, 100.0);
+            uint32_t w = 17u + ltt_rng_below(&r, 24), h = 13u + ltt_rng_below(&r, 20);
+            /* outside looking in, or inside the blockers (triangles behind the eye too) */
+            double d = cam == 0 ? 500.0 : 30.0;
+            eye[0] = ltt_rng_uniform(&r, -d, d);
+            eye[1] = ltt_rng_uniform(&r, cam == 0 ? 150.0 : -50.0, cam == 0 ? 400.0 : 50.0);
+            eye[2] = ltt_rng_uniform(&r, -d, d);
+            tgt[0] = ltt_rng_uniform(&r, -60, 60);
+            tgt[1] = ltt_rng_uniform(&r, -60, 60);
+            tgt[2] = ltt_rng_uniform(&r, -60, 60);
+            pcam(eye, tgt, fov, w, h, 0, &vq, &vf);
+            pcompare_all(&s, &shal, &deep, &vq, &vf, &t, &ties, "random");
+        }
+        unbuild(&shal);
+        unbuild(&deep);
+    }
+    ptally_print("primary random scenes (6 scenes, 2 cameras each, 6 flag sets, leaf 8 and 16)",
+                 &t, ties);
+#if LT_COST_MODE == LT_COST_SIM
+    {
+        /* the equality is only worth something if the culling removed pairs (this test alone;
+         * the brute-force reference fetches no triangles) */
+        uint64_t ev[LT_EV__COUNT];
+        unsigned e;
+        sim_events(ev);
+        for (e = 0; e < LT_EV__COUNT; e++)
+            ev[e] -= ev0[e];
+        ltt_report("  sim events of the primary traces: TRI_FETCH %llu TRI_KEPT %llu CULL_BACK %llu "
+                   "CULL_CORNER %llu\n",
+                   (unsigned long long)ev[LT_EV_TRI_FETCH], (unsigned long long)ev[LT_EV_TRI_KEPT],
+                   (unsigned long long)ev[LT_EV_CULL_BACK],
+                   (unsigned long long)ev[LT_EV_CULL_CORNER]);
+        assert_true(ev[LT_EV_CULL_CORNER] > 1000u);
+        assert_true(ev[LT_EV_CULL_BACK] > 1000u);
+    }
+#endif
+    assert_true(t.hits > 1000);
+    ptally_assert(&t);
+}
+
+/* A view whose directions are multiples of 2^-16 units (2^14 raw s1.30 and 2^-23 in float), so
+ * points o + 2^k d are exact s15.16 values: vertices and edges can be put exactly on rays. */
+static void pgrid_view(int32_t eye[3], lt_frusta_view_q16_t *vq, lt_frusta_view_f32_t *vf,
+                       uint32_t w, uint32_t h, int axis_parallel)
+{
+    unsigned a;
+    for (a = 0; a < 3; a++)
+        vq->o[a] = eye[a];
+    /* looking down -y; x across, z down the image; axis_parallel: column w/2 and row h/2 have
+     * exactly zero x / z components */
+    vq->dx[0] = 3 << 20, vq->dx[1] = axis_parallel ? 0 : 1 << 14, vq->dx[2] = 0;
+    vq->dy[0] = axis_parallel ? 0 : -(1 << 15), vq->dy[1] = 0, vq->dy[2] = 3 << 20;
+    vq->d0[0] = -(int32_t)(w / 2) * vq->dx[0] + (axis_parallel ? 0 : 5 << 14);
+    vq->d0[1] = -(1 << 29);
+    vq->d0[2] = -(int32_t)(h / 2) * vq->dy[2] + (axis_parallel ? 0 : 3 << 14);
+    vq->width = w;
+    vq->height = h;
+    vq->flags = 0;
+    for (a = 0; a < 3; a++) {
+        vf->o[a] = (float)eye[a] / 65536.0f;
+        vf->d0[a] = (float)vq->d0[a] / 1073741824.0f;
+        vf->dx[a] = (float)vq->dx[a] / 1073741824.0f;
+        vf->dy[a] = (float)vq->dy[a] / 1073741824.0f;
+    }
+    vf->width = w;
+    vf->height = h;
+    vf->flags = 0;
+}
+
+/* The point at parameter 2^k on pixel (x, y)'s ray of a grid view (exact). */
+static void pon_ray(const lt_frusta_view_q16_t *v, uint32_t x, uint32_t y, unsigned k,
+                    int32_t p[3])
+{
+    unsigned a;
+    for (a = 0; a < 3; a++) {
+        int64_t d = (int64_t)v->d0[a] + (int64_t)x * v->dx[a] + (int64_t)y * v->dy[a];
+        p[a] = (int32_t)(v->o[a] + (d >> 14) * ((int64_t)1 << k));
+    }
+}
+
+static void test_primary_edges(void **state)
+{
+    static tscene_t s;
+    ptally_t t;
+    unsigned long ties = 0;
+    lt_frusta_view_q16_t vq;
+    lt_frusta_view_f32_t vf;
+    int32_t eye[3] = {3 * U, 150 * U, -2 * U};
+    ltt_rng_t r;
+    uint32_t i, w = 37, h = 23;
+    tbvh_t shal, deep;
+    (void)state;
+    memset(&t, 0, sizeof t);
+    ltt_rng_seed(&r, 7);
+    /* (1) vertices on rays, edges along rays, edges shared by two triangles through ray points
+     * (ties at equal t), duplicated triangles (a tie on every pixel they cover), tiny triangles
+     * around a ray point, axis-aligned triangles whose box faces hold ray points */
+    pgrid_view(eye, &vq, &vf, w, h, 0);
+    s.n = 0;
+    for (i = 0; i < 40; i++) {
+        uint32_t x = ltt_rng_below(&r, w), y = ltt_rng_below(&r, h);
+        unsigned k = 7u + ltt_rng_below(&r, 2), a;
+        int32_t p[3], b[3], c[3], q[3];
+        pon_ray(&vq, x, y, k, p);
+        for (a = 0; a < 3; a++)
+            b[a] = c[a] = q[a] = p[a];
+        switch (i % 6) {
+        case 0: /* vertex on the ray */
+            b[0] += 5 * U;
+            c[2] += 4 * U;
+            c[1] += 2 * U;
+            add_tri(&s, p, b, c);
+            break;
+        case 1: /* edge along the ray */
+            pon_ray(&vq, x, y, k + 1u, b);
+            c[0] += 3 * U;
+            add_tri(&s, p, b, c);
+            break;
+        case 2: /* two triangles sharing an edge through two pixels' ray points */
+            pon_ray(&vq, (x + 3u) % w, (y + 2u) % h, k, b);
+            c[0] += 6 * U, c[2] -= 6 * U;
+            q[0] -= 6 * U, q[2] += 6 * U;
+            add_tri(&s, p, b, c);
+            add_tri(&s, b, p, q);
+            break;
+        case 3: /* a duplicate: an exact tie wherever it is hit */
+            b[0] += 7 * U;
+            c[2] += 7 * U;
+            add_tri(&s, p, b, c);
+            add_tri(&s, p, b, c);
+            break;
+        case 4: /* tiny triangle around the ray point */
+            p[0] -= 1;
+            b[0] += 1;
+            c[2] += 1;
+            add_tri(&s, p, b, c);
+            break;
+        default: /* axis-aligned (plane y = const) through the ray point */
+            p[0] -= 2 * U;
+            b[0] += 3 * U;
+            c[2] += 4 * U;
+            add_tri(&s, p, b, c);
+            break;
+        }
+    }
+    /* (2) grazing: a triangle in a plane through the eye (tnum == 0: never hit), one nearly so */
+    {
+        int32_t a0[3], a1[3], a2[3];
+        pon_ray(&vq, 4, 4, 6, a0);
+        pon_ray(&vq, 30, 4, 6, a1);
+        pon_ray(&vq, 4, 4, 8, a2);
+        add_tri(&s, a0, a1, a2);
+        a2[1] += 1;
+        add_tri(&s, a0, a1, a2);
+    }
+    build(&s, 8, 4, &shal);
+    build(&s, 4, 1, &deep);
+    pcompare_all(&s, &shal, &deep, &vq, &vf, &t, &ties, "edges");
+    unbuild(&shal);
+    build(&s, 1, 1, &shal);
+    pcompare_all(&s, &shal, &deep, &vq, &vf, &t, &ties, "edges leaf 1");
+    unbuild(&shal);
+    unbuild(&deep);
+    /* (3) axis-parallel rays (zero direction components on a column and a row) over a random
+     * scene, partly off the image (37 x 23: partial tiles and blocks) */
+    random_scene(&r, &s, 400, 20.0);
+    pgrid_view(eye, &vq, &vf, w, h, 1);
+    build(&s, 8, 4, &shal);
+    build(&s, 4, 1, &deep);
+    pcompare_all(&s, &shal, &deep, &vq, &vf, &t, &ties, "axis-parallel");
+    unbuild(&shal);
+    unbuild(&deep);
+    /* (4) the empty scene */
+    s.n = 0;
+    build(&s, 8, 4, &shal);
+    build(&s, 4, 1, &deep);
+    pcompare_all(&s, &shal, &deep, &vq, &vf, &t, &ties, "empty");
+    unbuild(&shal);
+    unbuild(&deep);
+    ptally_print("primary edge cases (vertices and edges on rays, shared edges and duplicates "
+                 "(ties), tiny and axis-aligned triangles, a plane through the eye, axis-parallel "
+                 "rays, 37 x 23 with partial tiles, the empty scene)", &t, ties);
+    assert_true(ties > 20);
+    assert_true(t.partial_tiles > 20);
+    ptally_assert(&t);
+}
+
+/* Argument and range checks of the primary entry points. */
+static void test_primary_args(void **state)
+{
+    lt_frusta_view_q16_t v;
+    lt_frusta_vtable_q16_t vt;
+    lt_frusta_view_f32_t vf;
+    lt_frusta_vtable_f32_t vtf;
+    static lt_frusta_prim16_q16_t P;
+    lt_ray16_q16_t pr;
+    lt_ray1_q16_t r1;
+    lt_mask16_t k;
+    int32_t eye[3] = {0, 0, 0};
+    unsigned n = 0;
+    (void)state;
+    pgrid_view(eye, &v, &vf, 20, 20, 0);
+    assert_int_equal(lt_frusta_vtable_q16(&v, &vt), LT_OK);
+    assert_int_equal(lt_frusta_vtable_f32(&vf, &vtf), LT_OK);
+    assert_int_equal(lt_frusta_vtable_q16(NULL, &vt), LT_E_ARG), n++;
+    v.flags = 8u;
+    assert_int_equal(lt_frusta_vtable_q16(&v, &vt), LT_E_ARG), n++;
+    v.flags = 0u;
+    v.width = 0;
+    assert_int_equal(lt_frusta_vtable_q16(&v, &vt), LT_E_ARG), n++;
+    v.width = LT_FRUSTA_PMAX_DIM + 1u;
+    assert_int_equal(lt_frusta_vtable_q16(&v, &vt), LT_E_ARG), n++;
+    v.width = 20;
+    v.o[1] = (int32_t)(((int64_t)1 << (LT_CFG_GEOM_MAX_LOG2 + 16)) + 1);
+    assert_int_equal(lt_frusta_vtable_q16(&v, &vt), LT_E_RANGE), n++;
+    v.o[1] = 0;
+    /* pixel (19, 19) would need |d| >= 1 */
+    v.dx[0] = 1 << 27;
+    assert_int_equal(lt_frusta_vtable_q16(&v, &vt), LT_E_RANGE), n++;
+    vf.dx[0] = 1.0f / 8.0f;
+    assert_int_equal(lt_frusta_vtable_f32(&vf, &vtf), LT_E_RANGE), n++;
+    vf.dx[0] = 0.0f / 0.0f;
+    assert_int_equal(lt_frusta_vtable_f32(&vf, &vtf), LT_E_ARG), n++;
+    assert_int_equal(lt_frusta_psetup16_q16(&vt, 2, 0, &P), LT_E_ARG), n++;
+    assert_int_equal(lt_frusta_psetup16_q16(NULL, 0, 0, &P), LT_E_ARG), n++;
+    assert_int_equal(lt_frusta_prays16_q16(&vt, 0, 5, &pr, &k), LT_E_ARG), n++;
+    assert_int_equal(lt_frusta_pray1_q16(&vt, 20, 0, &r1), LT_E_ARG), n++;
+    assert_int_equal(lt_frusta_trace16_q16(NULL, NULL, &vt, &P), LT_E_ARG), n++;
+    /* a block entirely off the image: nothing active, the trace returns at once */
+    assert_int_equal(lt_frusta_psetup16_q16(&vt, 32, 0, &P), LT_OK);
+    assert_int_equal(P.active, 0);
+    ltt_report("primary frusta arguments: %u rejected as documented (NULL, flags, size, eye and "
+               "direction range, unaligned tiles and blocks, pixels off the image)\n", n);
+}
+
+/* The bunny on a ground plane seen by the default benchmark camera: every pixel's closest hit
+ * by P-Frusta and P-Packet against the per-ray reference (shared data). */
+static void test_primary_bunny(void **state)
+{
+    const char *root = getenv("LT_SHARED");
+    char path[1024], err[256];
+    lt_mesh_t m;
+    lt_scene_t sc;
+    static tscene_t s;
+    ptally_t t;
+    unsigned long ties = 0;
+    tbvh_t shal, deep;
+    lt_camera_t cam;
+    lt_frusta_view_q16_t vq;
+    lt_frusta_view_f32_t vf;
+    uint32_t i;
+    unsigned a;
+    (void)state;
+    snprintf(path, sizeof path, "%s/scenes/bunny.obj", root != NULL ? root : "../shared");
+    if (lt_mesh_load(path, &m, err, sizeof err) != 0) {
+        assert_int_equal(shared_missing(path), 0);
+        return;
+    }
+    assert_int_equal(lt_ss_add_ground(&m, 0.6, err, sizeof err), 0);
+    assert_int_equal(lt_scene_prepare(&m, &sc, err, sizeof err), 0);
+    assert_true(sc.ntris <= MAXT);
+    memset(&t, 0, sizeof t);
+    s.n = 0;
+    for (i = 0; i < sc.ntris; i++) {
+        int32_t p[3][3];
+        unsigned v;
+        for (v = 0; v < 3; v++)
+            for (a = 0; a < 3; a++)
+                p[v][a] = sc.tq[i].v0[a] + (v == 1 ? sc.tq[i].e1[a] : v == 2 ? sc.tq[i].e2[a] : 0);
+        add_tri(&s, p[0], p[1], p[2]);
+    }
+    build(&s, 8, 4, &shal);
+    build(&s, 4, 1, &deep);
+    lt_camera_default(&sc, PMAXW, PMAXH, &cam);
+    cam.tan_half_fov *= 0.5; /* zoom in: the bunny and its shadow fill most of the view */
+    assert_int_equal(lt_ss_pview(&cam, 0, &vq, &vf, err, sizeof err), 0);
+    pcompare_all(&s, &shal, &deep, &vq, &vf, &t, &ties, "bunny");
+    unbuild(&shal);
+    unbuild(&deep);
+    lt_scene_free(&sc);
+    lt_mesh_free(&m);
+    ptally_print("primary bunny + ground (3678 triangles, default camera zoomed 2x, 64 x 48, "
+                 "6 flag sets)",
+                 &t, ties);
+    assert_true(t.hits > 5000);
+    ptally_assert(&t);
+}
+
 static int setup_sets(void **state)
 {
     (void)state;
@@ -971,6 +1705,10 @@ int main(void)
         cmocka_unit_test(test_filter),
         cmocka_unit_test(test_tile_hash),
         cmocka_unit_test(test_bunny),
+        cmocka_unit_test(test_primary_args),
+        cmocka_unit_test(test_primary_random),
+        cmocka_unit_test(test_primary_edges),
+        cmocka_unit_test(test_primary_bunny),
     };
     return cmocka_run_group_tests(tests, setup_sets, NULL);
 }

@@ -2,7 +2,9 @@
  * asan) and the firmware image tests/fw/fw_frusta.c (cm4, cm55, rv32 under QEMU), so that one
  * hash proves every build traces the same shadow tiles bit for bit: 300 triangles from an integer
  * PRNG, BVH leaf 8, a 48 x 48 unit light on the 2^-7 grid, LP sample sets, 4 tiles of 16 frusta
- * per flag set (none, b, c, bc, cr, bcr). Header only (static functions); freestanding.
+ * per flag set (none, b, c, bc, cr, bcr); plus primary frusta (P-Frusta) and their packet
+ * baseline (P-Packet) on a 22 x 18 view of the same scene (4 blocks, partial tiles) per flag set,
+ * closest-hit t and id of every pixel. Header only (static functions); freestanding.
  */
 #ifndef LT_FRUSTA_TILE_H
 #define LT_FRUSTA_TILE_H
@@ -72,8 +74,73 @@ static void ltft_light(lt_frusta_light_q16_t *l, uint32_t flags)
     l->end_shift = 0;
 }
 
-/* Hash of the occlusion bits of every frustum of 4 tiles x 6 flag sets, s15.16. Returns 0 on a
- * setup error (never for this fixed input). */
+
+/* The primary view: eye below the blockers looking up (+y), 22 x 18 pixels; directions in s1.30
+ * raw, multiples of 128 (= 2^-23, so the float32 view is the same rays exactly), below 2^30 over
+ * the 24 x 20 pixels of the tiles touching the image. */
+static void ltft_view_q16(lt_frusta_view_q16_t *v, uint32_t flags)
+{
+    v->o[0] = 3 * 65536;
+    v->o[1] = -100 * 65536;
+    v->o[2] = -2 * 65536;
+    v->d0[0] = -587202560;
+    v->d0[1] = 536870912;
+    v->d0[2] = -486539264;
+    v->dx[0] = 50331648;
+    v->dx[1] = 128000;
+    v->dx[2] = 0;
+    v->dy[0] = 38400;
+    v->dy[1] = 0;
+    v->dy[2] = 50331648;
+    v->width = 22;
+    v->height = 18;
+    v->flags = flags;
+}
+
+/* Closest hits of every pixel by P-Frusta (4 blocks of 16 frusta) and by P-Packet (one packet per
+ * 4x4 tile) into the hash, s15.16. Returns 0 on an error. */
+static uint32_t ltft_prim_q16(uint32_t h, const lt_bvh_t *bvh)
+{
+    static lt_frusta_prim16_q16_t P;
+    static lt_frusta_vtable_q16_t vt;
+    static lt_ray16_q16_t r;
+    lt_frusta_view_q16_t v;
+    lt_hit16_t hit;
+    lt_mask16_t k;
+    unsigned fl, b, f, j;
+    for (fl = 0; fl < 6; fl++) {
+        ltft_view_q16(&v, ltft_flags[fl]);
+        if (lt_frusta_vtable_q16(&v, &vt) != LT_OK)
+            return 0;
+        for (b = 0; b < 4; b++) {
+            if (lt_frusta_psetup16_q16(&vt, 16u * (b & 1u), 16u * (b >> 1), &P) != LT_OK ||
+                lt_frusta_trace16_q16(bvh, ltft_tq, &vt, &P) != LT_OK)
+                return 0;
+            for (f = 0; f < 16; f++)
+                for (j = 0; j < 16; j++)
+                    if (((unsigned)P.live[f] >> j) & 1u) {
+                        h = ltft_fnv(h, (uint32_t)P.t[f].l[j]);
+                        h = ltft_fnv(h, (uint32_t)P.id[f].l[j]);
+                    }
+        }
+        for (b = 0; b < 30; b++) {
+            uint32_t tx = 4u * (b % 6u), ty = 4u * (b / 6u);
+            if (lt_frusta_prays16_q16(&vt, tx, ty, &r, &k) != LT_OK ||
+                lt_frusta_packet_trace16_q16(bvh, ltft_tq, v.flags, vt.o, &r, k, &hit) != LT_OK)
+                return 0;
+            for (j = 0; j < 16; j++)
+                if (((unsigned)k >> j) & 1u) {
+                    h = ltft_fnv(h, (uint32_t)r.tmax.l[j]);
+                    h = ltft_fnv(h, (uint32_t)hit.id.l[j]);
+                }
+        }
+    }
+    return h;
+}
+
+/* Hash of the occlusion bits of every frustum of 4 tiles x 6 flag sets and of the primary
+ * closest hits (ltft_prim_q16), s15.16. Returns 0 on a setup error (never for this fixed
+ * input). */
 static uint32_t ltft_hash_q16(void)
 {
     static lt_frusta_table_q16_t tb;
@@ -113,10 +180,66 @@ static uint32_t ltft_hash_q16(void)
                 h = ltft_fnv(h, F.occl[f]);
         }
     }
-    return h;
+    return ltft_prim_q16(h, &bvh);
 }
 
 #if LT_CFG_FLOAT32
+/* ltft_prim_q16 in float32 (the view converted exactly). */
+static uint32_t ltft_prim_f32(uint32_t h, const lt_bvh_t *bvh, const lt_tri_f32_t *tris)
+{
+    static lt_frusta_prim16_f32_t P;
+    static lt_frusta_vtable_f32_t vt;
+    static lt_ray16_f32_t r;
+    lt_frusta_view_q16_t vq;
+    lt_frusta_view_f32_t v;
+    lt_hit16_t hit;
+    lt_mask16_t k;
+    unsigned fl, b, f, j, a;
+    union {
+        float f;
+        uint32_t u;
+    } c;
+    for (fl = 0; fl < 6; fl++) {
+        ltft_view_q16(&vq, ltft_flags[fl]);
+        for (a = 0; a < 3; a++) {
+            v.o[a] = (float)vq.o[a] / 65536.0f;
+            v.d0[a] = (float)vq.d0[a] / 1073741824.0f;
+            v.dx[a] = (float)vq.dx[a] / 1073741824.0f;
+            v.dy[a] = (float)vq.dy[a] / 1073741824.0f;
+        }
+        v.width = vq.width;
+        v.height = vq.height;
+        v.flags = vq.flags;
+        if (lt_frusta_vtable_f32(&v, &vt) != LT_OK)
+            return 0;
+        for (b = 0; b < 4; b++) {
+            if (lt_frusta_psetup16_f32(&vt, 16u * (b & 1u), 16u * (b >> 1), &P) != LT_OK ||
+                lt_frusta_trace16_f32(bvh, tris, &vt, &P) != LT_OK)
+                return 0;
+            for (f = 0; f < 16; f++)
+                for (j = 0; j < 16; j++)
+                    if (((unsigned)P.live[f] >> j) & 1u) {
+                        c.f = P.t[f].l[j];
+                        h = ltft_fnv(h, c.u);
+                        h = ltft_fnv(h, (uint32_t)P.id[f].l[j]);
+                    }
+        }
+        for (b = 0; b < 30; b++) {
+            uint32_t tx = 4u * (b % 6u), ty = 4u * (b / 6u);
+            if (lt_frusta_prays16_f32(&vt, tx, ty, &r, &k) != LT_OK ||
+                lt_frusta_packet_trace16_f32(bvh, tris, v.flags, vt.o, &r, k, &hit) != LT_OK)
+                return 0;
+            for (j = 0; j < 16; j++)
+                if (((unsigned)k >> j) & 1u) {
+                    c.f = r.tmax.l[j];
+                    h = ltft_fnv(h, c.u);
+                    h = ltft_fnv(h, (uint32_t)hit.id.l[j]);
+                }
+        }
+    }
+    return h;
+}
+
 static lt_tri_f32_t ltft_tf[LTFT_TRIS];
 static uint64_t ltft_arena_f[LTFT_ARENA / 8];
 
@@ -174,7 +297,7 @@ static uint32_t ltft_hash_f32(void)
                 h = ltft_fnv(h, F.occl[f]);
         }
     }
-    return h;
+    return ltft_prim_f32(h, &bvh, ltft_tf);
 }
 #endif
 

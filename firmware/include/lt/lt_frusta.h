@@ -8,6 +8,8 @@
  * and the 4x4 discontinuity filter. s15.16 and float32 from one source (lt_frusta.inc).
  * In s15.16 the frustum visibility equals per-ray visibility of every sample bit for bit (the
  * culling and box tests are conservative with proven margins; docs/frusta.md).
+ * Also primary visibility with frusta (P-Frusta): 16 frusta of 4x4 camera rays each (a 16x16
+ * pixel block) from a common eye, closest hit, and its 16-ray packet baseline (P-Packet).
  * Builds: all; float32 entry points only with LT_CFG_FLOAT32.
  */
 #ifndef LT_FRUSTA_H
@@ -174,6 +176,126 @@ void lt_frusta_filter16_q16(const lt_q16_t *e, const lt_q16_t *z, const lt_q30_t
                             uint32_t w, uint32_t h, uint32_t x0, uint32_t y,
                             const lt_frusta_filter_q16_t *par, lt_q16_t *out);
 
+/* ---- primary visibility with frusta (P-Frusta) -------------------------------------------- */
+
+/* Primary frusta (seeds/004 Appendix A, "common origin"): one frustum per 4x4 pixel tile, 16 frusta
+ * per call = the 4 x 4 tiles of a 16 x 16 pixel block (lane f: tile (f & 3, f >> 2) of the block;
+ * ray j of a tile: pixel (j & 3, j >> 2) of the tile). Every ray starts at the eye, and pixel
+ * (x, y) has the direction d0 + x dx + y dy: a linear pinhole camera in exact integer (s1.30)
+ * arithmetic, so every ray of a tile is an exact convex (bilinear) combination of the tile's four
+ * corner rays and the packet baseline, the per-ray reference and the frusta trace the very same
+ * rays. Closest hit, per ray: the smallest t, and among equal t the smallest triangle id (what
+ * the single-ray kernel over every triangle in index order returns). */
+#define LT_FRUSTA_PMAX_DIM 16384u /* largest image width / height of a view */
+
+/* A linear pinhole view, 60 bytes. Pixel (x, y), 0 <= x < width, 0 <= y < height: ray from o with
+ * direction d0 + x dx + y dy (not unit length; t is in units of |d|). */
+typedef struct lt_frusta_view_q16 {
+    lt_q16_t o[3];         /* eye, s15.16 world units, |o| <= 2^GEOM */
+    lt_q30_t d0[3];        /* direction of pixel (0, 0), s1.30 raw */
+    lt_q30_t dx[3], dy[3]; /* direction step per pixel in x and in y, s1.30 raw */
+    uint32_t width;        /* image width in pixels, 1..LT_FRUSTA_PMAX_DIM */
+    uint32_t height;       /* image height in pixels, 1..LT_FRUSTA_PMAX_DIM */
+    uint32_t flags;        /* LT_FRUSTA_BACKFACE | LT_FRUSTA_CORNER | LT_FRUSTA_CR (see below) */
+} lt_frusta_view_q16_t;
+LT_STATIC_ASSERT(sizeof(lt_frusta_view_q16_t) == 60, "q16 view is 60 bytes");
+
+/* Per-frame table of a view, 256 bytes: the ray deltas inside a tile and the view itself. */
+typedef struct lt_frusta_vtable_q16 {
+    lt_vq30_t gx, gy, gz;   /* lane j: (j & 3) dx + (j >> 2) dy, s1.30 raw (ray j minus ray 0) */
+    lt_q16_t o[3];          /* the view's eye */
+    lt_q30_t d0[3], dx[3], dy[3]; /* the view's directions */
+    uint32_t width, height; /* the view's image size */
+    uint32_t flags;         /* the view's flags */
+    uint32_t pad_;          /* private */
+} lt_frusta_vtable_q16_t;
+LT_STATIC_ASSERT(sizeof(lt_frusta_vtable_q16_t) == 256, "q16 view table is 256 bytes");
+
+/* 16 primary frusta (a 16 x 16 pixel block), 3592 bytes: set up by lt_frusta_psetup16_q16,
+ * traced by lt_frusta_trace16_q16, results in t[] and id[]. */
+typedef struct lt_frusta_prim16_q16 {
+    lt_vq30_t cx, cy, cz;          /* lane f: direction of ray 0 of tile f, s1.30 raw */
+    lt_vq16_t tmin, tmax;          /* lane f: t interval of the frustum; tmax = the farthest
+                                      current hit among its live rays (shrinks during the trace) */
+    lt_vq16_t rlo[3], rhi[3];      /* reciprocals of the direction interval ends, s15.16 */
+    lt_vq30_t kx[4], ky[4], kz[4]; /* corner rays, s1.30 raw (rays of the tile's corner pixels) */
+    lt_vq16_t t[LT_LANES];         /* frustum f, lane j: nearest hit of ray j, s15.16 in units of
+                                      |d| (LT_Q16_MAX - 1: none) */
+    lt_vi32_t id[LT_LANES];        /* frustum f, lane j: triangle id of that hit, -1 for none */
+    lt_mask16_t alo[3], aup[3];    /* per axis: (lo - o) x rhi is a lower / an upper t bound */
+    lt_mask16_t blo[3], bup[3];    /* per axis: (hi - o) x rlo is a lower / an upper t bound */
+    lt_mask16_t active;            /* frusta with a pixel on the image */
+    uint16_t live[LT_LANES];       /* per frustum: rays whose pixel lies on the image */
+    uint16_t pad_[3];              /* private */
+    uint32_t bx, by;               /* top-left pixel of the block */
+} lt_frusta_prim16_q16_t;
+LT_STATIC_ASSERT(sizeof(lt_frusta_prim16_q16_t) == 3592, "q16 primary frusta are 3592 bytes");
+
+/* Check a view and build its table. Every direction the frusta may use (all pixels of the 4x4
+ * tiles that touch the image) must have each component in (-2^30, 2^30) raw, i.e. |d| < 1 per
+ * axis: checked exactly at the four corner pixels (the directions are affine in x, y).
+ * Format: s15.16 eye, s1.30 raw directions. Rounding: exact (int64). Overflow: none.
+ * Cost: none charged (once per frame). Returns: LT_OK, LT_E_ARG (NULL, unknown flags, width or
+ * height 0 or above LT_FRUSTA_PMAX_DIM), LT_E_RANGE (eye outside the geometry bound, a direction
+ * component out of range). */
+lt_status_t lt_frusta_vtable_q16(const lt_frusta_view_q16_t *view, lt_frusta_vtable_q16_t *vt);
+
+/* Set up the 16 frusta of the 16 x 16 block whose top-left pixel is (bx, by) (multiples of 4):
+ * live rays = pixels on the image, active = frusta with a live ray, tmin = 0, tmax = t[] =
+ * LT_Q16_MAX - 1, id[] = -1; corner rays through the tile's corner pixels, or, with
+ * LT_FRUSTA_CR, through the corners of the bounding rectangle of the live pixels (the paper's CR
+ * applied to the only event that removes primary rays: the image border); direction intervals
+ * per axis = min / max over the corner rays (exact), and their reciprocals.
+ * Format: s1.30 directions, s15.16 reciprocals. Rounding: exact except the reciprocals (half up).
+ * Overflow: none. Cost: SETUP phase; VMUL, VALU, VCMP, VDIV x6 per call.
+ * Returns: LT_OK, LT_E_ARG (NULL, bx or by not a multiple of 4). */
+lt_status_t lt_frusta_psetup16_q16(const lt_frusta_vtable_q16_t *vt, uint32_t bx, uint32_t by,
+                                   lt_frusta_prim16_q16_t *P);
+
+/* Multi-frusta closest hit of every live ray of the 16 frusta: interval slab test with the common
+ * origin (the box planes minus the eye are scalars, TRAVERSE, one AABB event per box), clipped to
+ * each frustum's [tmin, tmax]; a (node, frusta mask, nearest entry t) stack, near child first; a
+ * popped entry keeps only frusta whose tmax still reaches its entry distance. Leaves (INTERSECT),
+ * triangle by triangle: the origin-only terms of the kernel (tvec, qvec, tnum) once as scalars; a
+ * hit needs det of tnum's sign, so tnum == 0 culls the triangle for all frusta, and with
+ * LT_FRUSTA_BACKFACE tnum < 0 does (exactly per-ray det <= 0 culling, decided once: all rays
+ * share the eye); with LT_FRUSTA_CORNER the kernel's edge functions at the four corner rays of
+ * all 16 frusta against proven margins; then per surviving frustum (bit-scan) its 16 rays
+ * generated (ray 0 + the table's deltas) and tested with lt_tri16's arithmetic; a ray takes a hit
+ * with t < its t, or t equal and a smaller id. After the leaf, frusta that took a hit set tmax to
+ * the largest t of their live rays. Events: as lt_frusta_occluded16_q16 (TRI_FETCH, TRI_KEPT,
+ * CULL_BACK, CULL_CORNER per frustum-triangle pair, TRIS per 16-ray test).
+ * Format: as lt_slab16 / lt_tri16. Rounding: conservative (docs/frusta.md). Overflow: none.
+ * Returns: LT_OK, LT_E_ARG (NULL, a tree of the other path), LT_E_DEPTH (foreign tree too deep). */
+lt_status_t lt_frusta_trace16_q16(const lt_bvh_t *bvh, const lt_tri_q16_t *tris,
+                                  const lt_frusta_vtable_q16_t *vt, lt_frusta_prim16_q16_t *P);
+
+/* The 16 rays of the tile whose top-left pixel is (tx, ty) (multiples of 4) as a packet (lane j:
+ * pixel (tx + (j & 3), ty + (j >> 2))): exactly the rays the frusta generate, tmin = 0, tmax =
+ * LT_Q16_MAX - 1, lt_ray16_q16_setup applied; *k = lanes whose pixel lies on the image.
+ * Format: s15.16 origin, s1.30 direction. Rounding: exact. Cost: VBCAST, VALU, the setup's VDIV x3.
+ * Returns: LT_OK, LT_E_ARG (NULL, tx or ty not a multiple of 4). */
+lt_status_t lt_frusta_prays16_q16(const lt_frusta_vtable_q16_t *vt, uint32_t tx, uint32_t ty,
+                                  lt_ray16_q16_t *r, lt_mask16_t *k);
+
+/* Pixel (x, y)'s ray as a single ray (the same bits as its packet lane), lt_ray1_q16_setup
+ * applied: the per-ray reference of the tests. Returns: LT_OK, LT_E_ARG (NULL, off the image). */
+lt_status_t lt_frusta_pray1_q16(const lt_frusta_vtable_q16_t *vt, uint32_t x, uint32_t y,
+                                lt_ray1_q16_t *r);
+
+/* Packet baseline for primary rays (P-Packet): closest hit of the lanes in k of a packet whose
+ * lanes share the origin o, through a BVH, with the ordered traversal of lt_bvh_trace16_q16 and
+ * lt_tri16_q16 per triangle; with LT_FRUSTA_BACKFACE in flags a triangle facing away from o
+ * (the scalar sign of the kernel's tnum <= 0) is skipped for the whole packet; a lane takes a hit
+ * with t < tmax, or t == tmax and a smaller id than its current one (for that triangle tmax is
+ * raised by one ulp around the kernel call), so ties resolve as in the per-ray reference.
+ * hit->id = triangle or -1, r->tmax = its t. Without BACKFACE: the same t as lt_bvh_trace16_q16
+ * bit for bit, and the same id except where two triangles give the same t.
+ * Events: TRI_FETCH, TRI_KEPT, CULL_BACK. Returns: as lt_bvh_trace16_q16. */
+lt_status_t lt_frusta_packet_trace16_q16(const lt_bvh_t *bvh, const lt_tri_q16_t *tris,
+                                         uint32_t flags, const lt_q16_t o[3], lt_ray16_q16_t *r,
+                                         lt_mask16_t k, lt_hit16_t *hit);
+
 /* ---- float32 ------------------------------------------------------------------------------ */
 #if LT_CFG_FLOAT32
 typedef struct lt_frusta_light_f32 {
@@ -231,6 +353,61 @@ lt_status_t lt_frusta_packet_occluded16_f32(const lt_bvh_t *bvh, const lt_tri_f3
                                             lt_mask16_t k, lt_mask16_t *occluded);
 lt_mask16_t lt_frusta_direct16_f32(const lt_vf32_t p[3], const lt_vf32_t n[3], const float m[3],
                                    const float nl[3], lt_mask16_t k, lt_vf32_t *g);
+
+/* Primary frusta in float32: directions d0 + x dx + y dy evaluated as ((d0 + x dx) + y dy) + g_j,
+ * the same operations in the frusta, the packets and the single rays (so the same bits); exact,
+ * and then every ray a convex combination of its corner rays, when d0, dx, dy are multiples of
+ * 2^-23 and every component stays below 1 (the renderer snaps them so). */
+typedef struct lt_frusta_view_f32 {
+    float o[3];            /* eye */
+    float d0[3];           /* direction of pixel (0, 0) */
+    float dx[3], dy[3];    /* steps per pixel */
+    uint32_t width, height; /* 1..LT_FRUSTA_PMAX_DIM */
+    uint32_t flags;        /* as the q16 view */
+} lt_frusta_view_f32_t;
+LT_STATIC_ASSERT(sizeof(lt_frusta_view_f32_t) == 60, "f32 view is 60 bytes");
+
+typedef struct lt_frusta_vtable_f32 {
+    lt_vf32_t gx, gy, gz;   /* lane j: (j & 3) dx + (j >> 2) dy */
+    float o[3];
+    float d0[3], dx[3], dy[3];
+    uint32_t width, height;
+    uint32_t flags;
+    uint32_t pad_;
+} lt_frusta_vtable_f32_t;
+LT_STATIC_ASSERT(sizeof(lt_frusta_vtable_f32_t) == 256, "f32 view table is 256 bytes");
+
+typedef struct lt_frusta_prim16_f32 {
+    lt_vf32_t cx, cy, cz;
+    lt_vf32_t tmin, tmax;
+    lt_vf32_t rlo[3], rhi[3];
+    lt_vf32_t kx[4], ky[4], kz[4];
+    lt_vf32_t t[LT_LANES];         /* nearest hit per ray (3.0e38: none) */
+    lt_vi32_t id[LT_LANES];
+    lt_mask16_t alo[3], aup[3];
+    lt_mask16_t blo[3], bup[3];
+    lt_mask16_t active;
+    uint16_t live[LT_LANES];
+    uint16_t pad_[3];
+    uint32_t bx, by;
+} lt_frusta_prim16_f32_t;
+LT_STATIC_ASSERT(sizeof(lt_frusta_prim16_f32_t) == 3592, "f32 primary frusta are 3592 bytes");
+
+/* float32 twins of the primary-frusta functions (relative margins as for shadows; the tests
+ * check frusta = per-ray closest hit on the same cases as s15.16). lt_frusta_vtable_f32 also
+ * returns LT_E_ARG for non-finite input and LT_E_RANGE for |d| >= 1. */
+lt_status_t lt_frusta_vtable_f32(const lt_frusta_view_f32_t *view, lt_frusta_vtable_f32_t *vt);
+lt_status_t lt_frusta_psetup16_f32(const lt_frusta_vtable_f32_t *vt, uint32_t bx, uint32_t by,
+                                   lt_frusta_prim16_f32_t *P);
+lt_status_t lt_frusta_trace16_f32(const lt_bvh_t *bvh, const lt_tri_f32_t *tris,
+                                  const lt_frusta_vtable_f32_t *vt, lt_frusta_prim16_f32_t *P);
+lt_status_t lt_frusta_prays16_f32(const lt_frusta_vtable_f32_t *vt, uint32_t tx, uint32_t ty,
+                                  lt_ray16_f32_t *r, lt_mask16_t *k);
+lt_status_t lt_frusta_pray1_f32(const lt_frusta_vtable_f32_t *vt, uint32_t x, uint32_t y,
+                                lt_ray1_f32_t *r);
+lt_status_t lt_frusta_packet_trace16_f32(const lt_bvh_t *bvh, const lt_tri_f32_t *tris,
+                                         uint32_t flags, const float o[3], lt_ray16_f32_t *r,
+                                         lt_mask16_t k, lt_hit16_t *hit);
 
 typedef struct lt_frusta_filter_f32 {
     float depth_rel; /* as lt_frusta_filter_q16_t */
