@@ -326,16 +326,17 @@ LT_INLINE lt_vql_t q_ldot(lt_vq30_t dx, lt_vq30_t dy, lt_vq30_t dz, lt_vi32_t nx
 }
 
 /* Lanes whose edge normal (or the triangle's e2 x e1) saturated its s25.6 range. */
-static lt_mask16_t q_nsat(lt_vi32_t nx, lt_vi32_t ny, lt_vi32_t nz, lt_vi32_t ax)
+static lt_mask16_t q_nsat(lt_vi32_t nx, lt_vi32_t ny, lt_vi32_t nz, lt_vi32_t ax, lt_vi32_t ay,
+                          lt_vi32_t az)
 {
     unsigned m = 0;
     int i;
     LT_COST(VCMP, 2);
     for (i = 0; i < LT_LANES; i++) {
-        int32_t v[4];
+        int32_t v[6];
         int j;
-        v[0] = nx.l[i], v[1] = ny.l[i], v[2] = nz.l[i], v[3] = ax.l[i];
-        for (j = 0; j < 4; j++)
+        v[0] = nx.l[i], v[1] = ny.l[i], v[2] = nz.l[i], v[3] = ax.l[i], v[4] = ay.l[i], v[5] = az.l[i];
+        for (j = 0; j < 6; j++)
             if (v[j] == INT32_MAX || v[j] == INT32_MIN)
                 m |= 1u << i;
     }
@@ -1225,7 +1226,8 @@ static lt_vf32_t f_nextup_m(lt_vf32_t src, lt_mask16_t k, lt_vf32_t a)
 #define LTN_TRI_A f_tri_a
 #define LTN_LDOT f_dot
 #define LTN_LINEAR_CORNERS 0
-#define LTN_NSAT(nx, ny, nz, ax) ((void)(nx), (void)(ny), (void)(nz), (void)(ax), (lt_mask16_t)0)
+#define LTN_NSAT(nx, ny, nz, ax, ay, az)                                                          \
+    ((void)(nx), (void)(ny), (void)(nz), (void)(ax), (void)(ay), (void)(az), (lt_mask16_t)0)
 #define LTN_W_CMPGT0(k, a) lt_vf32_cmpgt_m((k), (a), lt_vf32_set1(0.0f))
 #define LTN_W_CMPLT0(k, a) lt_vf32_cmplt_m((k), (a), lt_vf32_set1(0.0f))
 #define LTN_MARGINS f_margins
