@@ -178,92 +178,9 @@ LT_INLINE lt_mask16_t q_rsat(lt_vq16_t r)
 #define Q_LOWER(x) lt_vq16_sub_sat((x), lt_vq16_set1(LT_FRUSTA_BOX_MARGIN_Q16))
 #define Q_UPPER(x) lt_vq16_add_sat((x), lt_vq16_set1(LT_FRUSTA_BOX_MARGIN_Q16))
 
-/* The lane arithmetic of lt_tri16_q16 (lt_isect.c), replicated operation for operation so that
- * culling evaluates exactly the kernel's tnum, det, u and v (tests/unit/test_frusta.c compares). */
-LT_INLINE lt_vi32_t q_cross(lt_vi32_t a, lt_vi32_t b, lt_vi32_t c, lt_vi32_t d, unsigned f)
-{
-    return lt_vql_round_sat(lt_vql_sub_wrap(lt_vql_mul(a, b), lt_vql_mul(c, d)), f);
-}
-
-LT_INLINE lt_vql_t q_dot(lt_vi32_t ax, lt_vi32_t ay, lt_vi32_t az, lt_vi32_t bx, lt_vi32_t by,
-                         lt_vi32_t bz)
-{
-    return lt_vql_add_wrap(lt_vql_add_wrap(lt_vql_mul(ax, bx), lt_vql_mul(ay, by)),
-                           lt_vql_mul(az, bz));
-}
-
-/* pvec = d x e: s1.30 x s15.16 -> 46 fractional bits -> s15.16 */
-LT_INLINE lt_vq16_t q_cross_dp(lt_vq30_t a, lt_vq16_t b, lt_vq30_t c, lt_vq16_t d)
-{
-    lt_vi32_t w = q_cross(lt_vi32_from_q30(a), lt_vi32_from_q16(b), lt_vi32_from_q30(c),
-                          lt_vi32_from_q16(d), 30);
-    lt_vq16_t r;
-    int i;
-    for (i = 0; i < LT_LANES; i++)
-        r.l[i] = w.l[i];
-    return r;
-}
-
-LT_INLINE lt_vql_t q_dot_pp(lt_vq16_t ax, lt_vq16_t ay, lt_vq16_t az, lt_vq16_t bx, lt_vq16_t by,
-                            lt_vq16_t bz)
-{
-    return q_dot(lt_vi32_from_q16(ax), lt_vi32_from_q16(ay), lt_vi32_from_q16(az),
-                 lt_vi32_from_q16(bx), lt_vi32_from_q16(by), lt_vi32_from_q16(bz));
-}
-
-#define QV_FRAC 6u /* qvec in s25.6, as lt_isect.c */
-LT_INLINE lt_vi32_t q_cross_pp(lt_vq16_t a, lt_vq16_t b, lt_vq16_t c, lt_vq16_t d)
-{
-    return q_cross(lt_vi32_from_q16(a), lt_vi32_from_q16(b), lt_vi32_from_q16(c),
-                   lt_vi32_from_q16(d), 32u - QV_FRAC);
-}
-
-LT_INLINE lt_vql_t q_dot_dq(lt_vq30_t dx, lt_vq30_t dy, lt_vq30_t dz, lt_vi32_t qx, lt_vi32_t qy,
-                            lt_vi32_t qz)
-{
-    return lt_vql_asr(q_dot(lt_vi32_from_q30(dx), lt_vi32_from_q30(dy), lt_vi32_from_q30(dz), qx, qy,
-                            qz),
-                      30u + QV_FRAC - 32u);
-}
-
-LT_INLINE lt_vql_t q_dot_pq(lt_vq16_t ex, lt_vq16_t ey, lt_vq16_t ez, lt_vi32_t qx, lt_vi32_t qy,
-                            lt_vi32_t qz)
-{
-    return q_dot(lt_vi32_from_q16(ex), lt_vi32_from_q16(ey), lt_vi32_from_q16(ez), qx, qy, qz);
-}
-
-/* t = tnum / det in s15.16, lane for lane the division of lt_tri16_q16 (lt_isect.c q_tdiv_m):
- * tnum pre-shifted by up to 26 bits, det shifted down when tnum has no room, half up, saturating;
- * det == 0 after the shift saturates toward tnum's sign. */
-#define Q_TDIV_SHIFT (32u - QV_FRAC)
-static lt_vq16_t q_tdiv_m(lt_vq16_t src, lt_mask16_t k, lt_vql_t tnum, lt_vql_t det)
-{
-    int i;
-    LT_COST(VDIV, 1);
-    LT_UTIL(k);
-    for (i = 0; i < LT_LANES; i++) {
-        int64_t n = tnum.l[i], d = det.l[i], q;
-        uint64_t an;
-        unsigned room, s;
-        if (!LT__ON(k, i))
-            continue;
-        an = n < 0 ? (uint64_t)0 - (uint64_t)n : (uint64_t)n;
-        room = lt__clz64(an) - 2u;
-        s = room >= Q_TDIV_SHIFT ? Q_TDIV_SHIFT : room;
-        n = (int64_t)((uint64_t)n << s); /* via unsigned: left shift of a negative is UB in C99 */
-        if (s < Q_TDIV_SHIFT)
-            d = lt__asr64(d, Q_TDIV_SHIFT - s);
-        if (d == 0) {
-            LT_EVENT(SAT, 1);
-            src.l[i] = n >= 0 ? LT_Q16_MAX : LT_Q16_MIN;
-            continue;
-        }
-        q = lt__div_round64(n, d);
-        LT_EVENT(SAT, q != (int64_t)lt__ssat32(q));
-        src.l[i] = lt__ssat32(q);
-    }
-    return src;
-}
+/* the lane arithmetic of lt_tri16_q16, shared with lt_isect.c so culling evaluates exactly the
+ * kernel's tnum, det, u and v (tests/unit/test_frusta.c compares) */
+#include "lt_isect_q16.inc"
 
 /* int32 lanes widened to int64 lanes (a sign extension). Cost: VCVT x1. */
 static lt_vql_t q_widen(lt_vq16_t a)
