@@ -105,7 +105,7 @@ run: deps
 	$(B)/host/lanetrace-native render scenes/teapot.json --res 96 --layers 2 --out $(B)/run/teapot -q
 	$(B)/sim/lanetrace reproject scenes/teapot.json --depth $(B)/run/teapot.exr --layers 2 --color \
 	    --move-rel 0.08,0,0 --rot -3,0,0 --out $(B)/run/teapot-reproj.exr --png $(B)/run/teapot-reproj.png \
-	    --heat-cycles $(B)/run/teapot-reproj-cycles.png --report $(B)/run/reproj-report.json
+	    --heat-cycles $(B)/run/teapot-reproj-cycles.png --report $(B)/run/reproj-report.json --truth
 
 TEST_BINS := $(foreach v,$(VARIANTS),$(UNIT_TESTS:%=$(B)/$(v)/test_%) $(B)/$(v)/lt-vectors) \
     $(B)/sim/test_cache $(B)/host/lanetrace-native $(B)/sim/lanetrace $(EXTRA_TEST_BINS)

@@ -16,6 +16,10 @@
 #include "lt_sim.h"
 #endif
 
+/* A segment start within this many pixels of the source's border was clipped by the screen (the
+ * clip puts it on the border up to rounding in s15.16 or float32). */
+#define RP_EDGE_EPS (1.0 / 256.0)
+
 static double now_s(void)
 {
     struct timespec ts;
@@ -38,6 +42,7 @@ void lt_rp_opts_default(lt_rp_opts_t *o)
     o->enc = LT_QT_N64;
     o->bilinear = 1;
     o->inpaint = 1;
+    lt_qt_params_default(&o->params);
 }
 
 void lt_rp_result_free(lt_rp_result_t *r)
@@ -475,8 +480,8 @@ int lt_rp_run(const lt_rp_source_t *src, const lt_reproj_cam_t *dst, const lt_rp
     else
         (void)lt_sim_region(wf, n * sizeof *wf, 0x50000000u);
 #endif
-    s = fenc ? lt_qt_build_f32(&qt, &qd, NULL, wf, arena, &bytes)
-             : lt_qt_build_q30(&qt, &qd, NULL, wq, arena, &bytes);
+    s = fenc ? lt_qt_build_f32(&qt, &qd, &o->params, wf, arena, &bytes)
+             : lt_qt_build_q30(&qt, &qd, &o->params, wq, arena, &bytes);
     if (s != LT_OK) {
         snprintf(err, errlen, "reproject: quadtree build failed (%s)", lt_status_str(s));
         goto done;
@@ -611,8 +616,13 @@ int lt_rp_run(const lt_rp_source_t *src, const lt_reproj_cam_t *dst, const lt_rp
                     res->layer[p] = lay;
                     fetch(&fc, (uint32_t)lay, sx, sy, w, &res->rgb[3 * p]);
                     res->z[p] = (float)lt_rp_target_depth(&src->cam, dst, res->st.zref, sx, sy, w);
-                } else if (stt == LT_QT_MISS && rw + rdw <= 0.0 && t >= 1.0) {
-                    /* reached the vanishing point on screen: the source's background there */
+                } else if (stt == LT_QT_MISS && rw + rdw <= 0.0 && t >= 1.0 &&
+                           rx > RP_EDGE_EPS && rx < (double)W - RP_EDGE_EPS &&
+                           ry > RP_EDGE_EPS && ry < (double)H - RP_EDGE_EPS) {
+                    /* reached the vanishing point on screen, the whole segment seen by the
+                       source: the source's background there. A segment whose start the screen
+                       clipped entered the view from outside: what lies on its unseen part is
+                       unknown, so it stays LT_RP_OUTSIDE. */
                     double ex = rx + rdx, ey = ry + rdy;
                     int bx = (int)floor(ex), by = (int)floor(ey);
                     if (bx >= (int)W)
@@ -671,4 +681,80 @@ done:
     if (status != 0)
         lt_rp_result_free(res);
     return status;
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return x < y ? -1 : (x > y ? 1 : 0);
+}
+
+int lt_rp_truth_compare(const lt_rp_result_t *res, const float *ztrue, double tol,
+                        lt_rp_truth_t *t, float *relerr)
+{
+    size_t i, n = (size_t)res->width * res->height;
+    double se = 0.0, sre = 0.0, ip_sre = 0.0;
+    double *rels;
+    memset(t, 0, sizeof *t);
+    if (!(tol > 0.0 && tol <= 1.0))
+        return -1;
+    rels = malloc((n > 0 ? n : 1) * sizeof *rels);
+    if (rels == NULL)
+        return -1;
+    t->tol = tol;
+    t->pixels = n;
+    for (i = 0; i < n; i++) {
+        double zt = (double)ztrue[i], z = (double)res->z[i], e, rel;
+        int thit = isfinite(zt) && zt > 0.0, rhit = isfinite(z) && z > 0.0;
+        int known = res->cls[i] == LT_RP_HIT || res->cls[i] == LT_RP_BACKGROUND;
+        t->truth_hit += (uint64_t)thit;
+        if (relerr != NULL)
+            relerr[i] = NAN;
+        if (known) {
+            t->known++;
+            if (res->cls[i] == LT_RP_HIT && !thit)
+                t->spurious++;
+            else if (res->cls[i] == LT_RP_BACKGROUND && thit)
+                t->missed++;
+        } else {
+            t->inpainted++;
+            if (z != z)
+                t->ip_unfilled++;
+            else if (rhit != thit)
+                t->ip_wrong++;
+        }
+        if (!rhit || !thit)
+            continue;
+        e = z - zt;
+        rel = fabs(e) / zt;
+        if (relerr != NULL)
+            relerr[i] = (float)rel;
+        if (res->cls[i] == LT_RP_HIT) {
+            rels[t->both_hit] = rel;
+            t->both_hit++;
+            se += e * e;
+            sre += rel * rel;
+            if (rel > t->max_rel)
+                t->max_rel = rel;
+            t->within += rel <= tol;
+        } else if (!known) {
+            t->ip_both++;
+            ip_sre += rel * rel;
+            t->ip_within += rel <= tol;
+        }
+    }
+    if (t->both_hit > 0) {
+        t->rmse = sqrt(se / (double)t->both_hit);
+        t->rel_rmse = sqrt(sre / (double)t->both_hit);
+    }
+    if (t->ip_both > 0)
+        t->ip_rel_rmse = sqrt(ip_sre / (double)t->ip_both);
+    if (t->both_hit > 0) {
+        qsort(rels, (size_t)t->both_hit, sizeof *rels, cmp_double);
+        /* nearest rank: the smallest value with at least q of the samples at or below it */
+        t->rel_p50 = rels[(size_t)ceil(0.50 * (double)t->both_hit) - 1];
+        t->rel_p99 = rels[(size_t)ceil(0.99 * (double)t->both_hit) - 1];
+    }
+    free(rels);
+    return 0;
 }

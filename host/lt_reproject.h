@@ -44,10 +44,11 @@ typedef struct lt_rp_opts {
     int inpaint;          /* 1: fill holes (default); 0: holes stay black with depth NaN */
     uint32_t max_steps;   /* nodes per lane per layer, 0 = lt_qt_default_steps */
     double z_near_dst;    /* target near plane (0 = rays start at the target camera centre) */
+    lt_qt_params_t params; /* quadtree build thresholds (lt_qt_params_default; docs/quadtree.md) */
     void (*progress)(double done); /* may be NULL */
 } lt_rp_opts_t;
 
-/* Fill o with the defaults above (n64, bilinear, inpaint). */
+/* Fill o with the defaults above (n64, bilinear, inpaint, lt_qt_params_default). */
 void lt_rp_opts_default(lt_rp_opts_t *o);
 
 /* Figures of one run; cycles are 0 outside the sim build. */
@@ -111,6 +112,37 @@ void lt_rp_cam_move(const lt_reproj_cam_t *src, const double move[3], const doub
  * camera dst. */
 double lt_rp_target_depth(const lt_reproj_cam_t *src, const lt_reproj_cam_t *dst, double zref,
                           double x, double y, double w);
+
+/* Accuracy of a synthesised view against ground truth: the target view's z-depths as the
+ * object-space tracer sees them (ztrue: width x height, +inf where the ray misses the scene).
+ * A pixel the reprojection *knows* (LT_RP_HIT, LT_RP_BACKGROUND) is a wrong hit when it claims a
+ * surface the truth does not have (spurious) or background where the truth hits (missed); where
+ * both hit, the depth error e = z - z_true and its relative size |e| / z_true are measured and
+ * the pixel is within tolerance when |e| <= tol * z_true. Inpainted pixels (disoccluded,
+ * outside, step bound) are counted apart: their filled depth is a guess, not a trace. */
+typedef struct lt_rp_truth {
+    double tol;                 /* relative depth tolerance used */
+    uint64_t pixels;            /* compared pixels (width x height) */
+    uint64_t truth_hit;         /* pixels where the ground truth hits a surface */
+    uint64_t known;             /* LT_RP_HIT + LT_RP_BACKGROUND pixels */
+    uint64_t spurious, missed;  /* wrong hits among the known pixels */
+    uint64_t both_hit, within;  /* LT_RP_HIT pixels whose truth hits; of those within tol */
+    double rmse, rel_rmse, max_rel; /* over both_hit: absolute (world units) and relative */
+    double rel_p50, rel_p99;    /* nearest-rank median and 99th percentile of the
+                                   relative error over both_hit */
+    uint64_t inpainted;         /* LT_RP_DISOCCLUDED + LT_RP_OUTSIDE + LT_RP_UNKNOWN pixels */
+    uint64_t ip_unfilled;       /* of those without a filled depth (NaN: --no-inpaint) */
+    uint64_t ip_wrong;          /* filled hit where the truth misses, or the reverse */
+    uint64_t ip_both, ip_within; /* filled and true surface; of those within tol */
+    double ip_rel_rmse;         /* over ip_both */
+} lt_rp_truth_t;
+
+/* Compare res against ztrue (res->width x res->height). relerr (may be NULL) receives
+ * |e| / z_true per pixel where both the result (any class, after inpainting) and the truth have a
+ * surface, NaN elsewhere. Returns 0, or -1 when tol is not a finite value in (0, 1] or memory
+ * for the percentiles runs out. */
+int lt_rp_truth_compare(const lt_rp_result_t *res, const float *ztrue, double tol,
+                        lt_rp_truth_t *t, float *relerr);
 
 #ifdef __cplusplus
 }

@@ -10,6 +10,7 @@
 #include "lt_heatmap.h"
 #include "lt_mesh.h"
 #include "lt_png.h"
+#include "lt_render.h"
 #include "lt_reproject.h"
 #include "lt_scene.h"
 #include "lt_scenefile.h"
@@ -27,6 +28,7 @@
 #define EXIT_INPUT 1
 #define EXIT_USAGE 2
 #define RP_DEFAULT_FOV 60.0
+#define RP_DEFAULT_TRUTH_TOL 0.01
 
 void lt_rp_cli_usage(const char *prog, FILE *f)
 {
@@ -57,11 +59,24 @@ void lt_rp_cli_usage(const char *prog, FILE *f)
             "  --sample bilinear|nearest  colour fetch (default: depth-aware bilinear)\n"
             "  --no-inpaint         leave holes black (depth NaN)\n"
             "  --max-steps N        quadtree nodes per ray per layer (default 8(w+h)+4 levels+16)\n"
+            "  --lambda-h V         build: |dw/dpixel| above V is a jump, its slope zeroed (1e-3)\n"
+            "  --lambda-d V         build: Laplacian |Lx|+|Ly| >= V flags a discontinuity (1e-3)\n"
+            "  --gamma-norm V       build: merge planes whose normals differ by < V (1e-3)\n"
+            "  --gamma-dist V       build: merge when the proxy plane stays within V relative\n"
+            "                       depth of its children (2^-17); w units, each in [0, 1]\n"
             "  --machine NAME       (simulator build) machine model: lrb16, mcu-m4\n"
+            "ground truth (a mesh scene only; the target camera must keep the source's centred\n"
+            "square-pixel intrinsics):\n"
+            "  --truth              also render the target view with the object-space tracer (BVH,\n"
+            "                       float32; not counted in the cycle report) and print the\n"
+            "                       synthesised depth's error: wrong hit/miss, RMSE, within tolerance\n"
+            "  --truth-tol REL      relative depth tolerance, (0, 1] (default %g)\n"
+            "  --heat-error FILE.png  |z - z_true| / z_true per pixel, colours 0..5x the tolerance\n"
+            "                       (black: no surface in one of the two)\n"
             "outputs:\n"
             "  --out FILE.exr       R G B (linear), Z (target depth, inf = background), hole (0 hit,\n"
             "                       1 background, 2 disoccluded, 3 outside, 4 step bound), steps,\n"
-            "                       cycles (simulator build)\n"
+            "                       cycles (simulator build), Ztrue (with --truth)\n"
             "  --png FILE.png       the view (gamma 2.2)\n"
             "  --heat-steps FILE.png  quadtree nodes per pixel, with legend\n"
             "  --heat-cycles FILE.png (simulator build) simulated cycles per pixel, with legend\n"
@@ -70,7 +85,7 @@ void lt_rp_cli_usage(const char *prog, FILE *f)
             "  -q                   quiet: no summary, no report text\n"
             "A scene file may give 'depth', 'camera' (the source) and a 'reproject' object\n"
             "(docs/scene-format.md); flags override it.\n",
-            prog, LT_RP_MAX_LAYERS, RP_DEFAULT_FOV, LT_QT_MAX_DIM);
+            prog, LT_RP_MAX_LAYERS, RP_DEFAULT_FOV, LT_QT_MAX_DIM, RP_DEFAULT_TRUTH_TOL);
 }
 
 /* ---- small parsers ------------------------------------------------------------------------- */
@@ -207,6 +222,95 @@ static void cross3(const double a[3], const double b[3], double r[3])
     r[2] = a[0] * b[1] - a[1] * b[0];
 }
 
+/* Ground truth: the target view rendered by the object-space tracer (float32 BVH packets, the
+ * path lanetrace render uses) as z-depths along the target's optical axis, +inf on a miss. The
+ * tracer's camera is centred with square pixels, so the target's intrinsics must be too. */
+static int render_truth(const lt_scene_t *sc, const lt_reproj_cam_t *d, float *ztrue, char *err,
+                        size_t errlen)
+{
+    lt_camera_t cam;
+    lt_frame_t fr;
+    lt_accel_t *acc;
+    double w = (double)d->width, h = (double)d->height;
+    uint32_t x, y;
+    int k;
+    if (fabs(d->fx - d->fy) > 1e-9 * d->fy || fabs(d->cx - 0.5 * w) > 1e-9 * w ||
+        fabs(d->cy - 0.5 * h) > 1e-9 * h) {
+        snprintf(err, errlen, "--truth: the target camera (f %.6g,%.6g c %.6g,%.6g, %ux%u) is not "
+                              "centred with square pixels, which the object-space tracer's camera "
+                              "needs (drop --dst-cam, keep the aspect in --res)",
+                 d->fx, d->fy, d->cx, d->cy, d->width, d->height);
+        return -1;
+    }
+    memset(&cam, 0, sizeof cam);
+    for (k = 0; k < 3; k++) {
+        cam.eye[k] = d->c[k];
+        cam.right[k] = d->r[0][k];
+        cam.up[k] = -d->r[1][k];
+        cam.fwd[k] = d->r[2][k];
+    }
+    cam.tan_half_fov = 0.5 * h / d->fy;
+    cam.width = d->width;
+    cam.height = d->height;
+    if (lt_frame_alloc(&fr, d->width, d->height, err, errlen) != 0)
+        return -1;
+    acc = lt_accel_build(sc, "bvh", LT_PATH_F32, err, errlen);
+    if (acc == NULL) {
+        lt_frame_free(&fr);
+        return -1;
+    }
+    lt_render_primary(sc, acc, &cam, &fr, NULL);
+    for (y = 0; y < d->height; y++)
+        for (x = 0; x < d->width; x++) {
+            size_t p = (size_t)y * d->width + x;
+            double dir[3];
+            lt_camera_dir(&cam, x, y, dir);
+            ztrue[p] = fr.id[p] >= 0 ? (float)(fr.t[p] * (dir[0] * cam.fwd[0] +
+                                                          dir[1] * cam.fwd[1] +
+                                                          dir[2] * cam.fwd[2]))
+                                     : (float)INFINITY;
+        }
+    lt_accel_free(acc);
+    lt_frame_free(&fr);
+    return 0;
+}
+
+/* The ground-truth comparison as a JSON object (--json, --report). */
+static cJSON *truth_json(const lt_rp_truth_t *tr)
+{
+    const struct {
+        const char *key;
+        double v;
+    } f[] = {
+        {"tolerance", tr->tol},
+        {"truth_hits", (double)tr->truth_hit},
+        {"known_pixels", (double)tr->known},
+        {"spurious_hits", (double)tr->spurious},
+        {"missed_hits", (double)tr->missed},
+        {"common_hits", (double)tr->both_hit},
+        {"within_tolerance", (double)tr->within},
+        {"rmse", tr->rmse},
+        {"relative_rmse", tr->rel_rmse},
+        {"max_relative", tr->max_rel},
+        {"relative_p50", tr->rel_p50},
+        {"relative_p99", tr->rel_p99},
+        {"inpainted", (double)tr->inpainted},
+        {"inpainted_unfilled", (double)tr->ip_unfilled},
+        {"inpainted_wrong", (double)tr->ip_wrong},
+        {"inpainted_common", (double)tr->ip_both},
+        {"inpainted_within", (double)tr->ip_within},
+        {"inpainted_relative_rmse", tr->ip_rel_rmse},
+    };
+    cJSON *t = cJSON_CreateObject();
+    size_t k;
+    if (t == NULL)
+        return NULL;
+    cJSON_AddStringToObject(t, "tracer", "bvh f32");
+    for (k = 0; k < sizeof f / sizeof f[0]; k++)
+        cJSON_AddNumberToObject(t, f[k].key, f[k].v);
+    return t;
+}
+
 /* ---- the command --------------------------------------------------------------------------- */
 
 int lt_rp_cli(int argc, char **argv, const char *prog, const lt_rp_cli_hooks_t *hk)
@@ -221,6 +325,13 @@ int lt_rp_cli(int argc, char **argv, const char *prog, const lt_rp_cli_hooks_t *
     char err[1024];
     const char *scene_path = NULL, *depth = NULL, *channel = NULL, *out = NULL, *png = NULL;
     const char *heat_steps = NULL, *heat_cycles = NULL, *report = NULL, *machine = NULL;
+    const char *heat_error = NULL;
+    lt_mesh_t mesh;
+    lt_scene_t sc;
+    int have_scene = 0, truth = 0;
+    double truth_tol = RP_DEFAULT_TRUTH_TOL;
+    float *ztrue = NULL, *relerr = NULL;
+    lt_rp_truth_t tr;
     double move[3] = {0, 0, 0}, rot[3] = {0, 0, 0}, srck[4], dstk[4], fov = RP_DEFAULT_FOV;
     int have_srck = 0, have_dstk = 0, have_move = 0, move_rel = 0, have_rot = 0, color = 0;
     int dist = -1, json = 0, layers = 0, status = 0, a, l, enc = -1, bilinear = 1, inpaint = 1;
@@ -230,11 +341,20 @@ int lt_rp_cli(int argc, char **argv, const char *prog, const lt_rp_cli_hooks_t *
     const char *cam_desc = "default";
     static const char *const enc_name[3] = {"n64", "n32", "f32"};
     double median = 0.0;
+    double qtp[4] = {-1.0, -1.0, -1.0, -1.0}; /* lambda_h, lambda_d, gamma_norm, gamma_dist */
+    static const char *const qtp_flag[4] = {"--lambda-h", "--lambda-d", "--gamma-norm",
+                                            "--gamma-dist"};
+#if LT_COST_MODE == LT_COST_SIM
+    const lt_machine_t *m = NULL;
+#endif
 
     memset(dl, 0, sizeof dl);
     memset(&dc, 0, sizeof dc);
     memset(&res, 0, sizeof res);
     memset(rgb, 0, sizeof rgb);
+    memset(&mesh, 0, sizeof mesh);
+    memset(&sc, 0, sizeof sc);
+    memset(&tr, 0, sizeof tr);
     lt_sf_defaults(&sf);
     for (a = 2; a < argc; a++) {
         const char *o = argv[a], *v = a + 1 < argc ? argv[a + 1] : NULL;
@@ -260,6 +380,10 @@ int lt_rp_cli(int argc, char **argv, const char *prog, const lt_rp_cli_hooks_t *
         }
         if (strcmp(o, "--no-inpaint") == 0) {
             inpaint = 0;
+            continue;
+        }
+        if (strcmp(o, "--truth") == 0) {
+            truth = 1;
             continue;
         }
         if (o[0] != '-') {
@@ -288,6 +412,14 @@ int lt_rp_cli(int argc, char **argv, const char *prog, const lt_rp_cli_hooks_t *
             heat_steps = v;
         } else if (strcmp(o, "--heat-cycles") == 0) {
             heat_cycles = v;
+        } else if (strcmp(o, "--heat-error") == 0) {
+            heat_error = v;
+        } else if (strcmp(o, "--truth-tol") == 0) {
+            if (parse_vec(v, &truth_tol, 1) != 0 || !(truth_tol > 0.0) || truth_tol > 1.0) {
+                fprintf(stderr, "%s reproject: --truth-tol %s: expected a relative tolerance in "
+                                "(0, 1]\n", prog, v);
+                return EXIT_USAGE;
+            }
         } else if (strcmp(o, "--report") == 0) {
             report = v;
         } else if (strcmp(o, "--machine") == 0) {
@@ -353,6 +485,16 @@ int lt_rp_cli(int argc, char **argv, const char *prog, const lt_rp_cli_hooks_t *
                 return EXIT_USAGE;
             }
             bilinear = strcmp(v, "bilinear") == 0;
+        } else if (strcmp(o, "--lambda-h") == 0 || strcmp(o, "--lambda-d") == 0 ||
+                   strcmp(o, "--gamma-norm") == 0 || strcmp(o, "--gamma-dist") == 0) {
+            int k;
+            for (k = 0; strcmp(o, qtp_flag[k]) != 0; k++)
+                ;
+            if (parse_vec(v, &qtp[k], 1) != 0 || qtp[k] < 0.0 || qtp[k] > 1.0) {
+                fprintf(stderr, "%s reproject: %s %s: expected a value in [0, 1] (w units, "
+                                "docs/quadtree.md section 6)\n", prog, o, v);
+                return EXIT_USAGE;
+            }
         } else if (strcmp(o, "--max-steps") == 0) {
             char *end;
             unsigned long k = strtoul(v, &end, 10);
@@ -381,6 +523,14 @@ int lt_rp_cli(int argc, char **argv, const char *prog, const lt_rp_cli_hooks_t *
     }
     if (depth == NULL && sf.depth[0] != '\0')
         depth = sf.depth;
+    if (heat_error != NULL)
+        truth = 1;
+    if (truth && sf.mesh[0] == '\0') {
+        fprintf(stderr, "%s reproject: --truth%s needs a mesh scene file (SCENE.json with "
+                        "'mesh'): the ground truth is the mesh rendered from the target camera\n",
+                prog, heat_error != NULL ? " (and --heat-error)" : "");
+        return EXIT_USAGE;
+    }
     if (depth == NULL) {
         fprintf(stderr, "%s reproject: --depth FILE.exr is required (or a scene file with "
                         "'depth')\n", prog);
@@ -411,7 +561,7 @@ int lt_rp_cli(int argc, char **argv, const char *prog, const lt_rp_cli_hooks_t *
         machine = sf.machine;
 #if LT_COST_MODE == LT_COST_SIM
     {
-        const lt_machine_t *m = lt_sim_machine_find(machine);
+        m = lt_sim_machine_find(machine);
         if (m == NULL) {
             fprintf(stderr, "%s reproject: --machine %s: unknown (lrb16, mcu-m4)\n", prog, machine);
             return EXIT_USAGE;
@@ -507,9 +657,8 @@ int lt_rp_cli(int argc, char **argv, const char *prog, const lt_rp_cli_hooks_t *
         src.cam.height = H;
         cam_desc = "--src-cam";
     } else if (sf.mesh[0] != '\0') {
-        /* lanetrace render's camera for this scene, in its scaled units */
-        lt_mesh_t mesh;
-        lt_scene_t sc;
+        /* lanetrace render's camera for this scene, in its scaled units; the scene stays loaded
+           for --truth */
         lt_camera_t cam;
         if (lt_mesh_load(sf.mesh, &mesh, err, sizeof err) != 0) {
             fprintf(stderr, "%s\n", err);
@@ -519,15 +668,15 @@ int lt_rp_cli(int argc, char **argv, const char *prog, const lt_rp_cli_hooks_t *
         if (lt_scene_prepare(&mesh, &sc, err, sizeof err) != 0) {
             fprintf(stderr, "%s: %s\n", sf.mesh, err);
             lt_mesh_free(&mesh);
+            memset(&mesh, 0, sizeof mesh);
             status = EXIT_INPUT;
             goto done;
         }
+        have_scene = 1;
         if (sf.has_camera) {
             if (lt_camera_look(&sc, sf.eye, sf.target, sf.up, sf.fov_y_deg, W, H, &cam, err,
                                sizeof err) != 0) {
                 fprintf(stderr, "%s: %s\n", sf.path, err);
-                lt_scene_free(&sc);
-                lt_mesh_free(&mesh);
                 status = EXIT_INPUT;
                 goto done;
             }
@@ -535,8 +684,6 @@ int lt_rp_cli(int argc, char **argv, const char *prog, const lt_rp_cli_hooks_t *
             lt_camera_default(&sc, W, H, &cam);
         }
         cam_from_basis(cam.eye, cam.fwd, cam.right, cam.up, cam.tan_half_fov, W, H, &src.cam);
-        lt_scene_free(&sc);
-        lt_mesh_free(&mesh);
         if (dist < 0)
             dist = 1;
         cam_desc = "the scene's render camera";
@@ -601,12 +748,58 @@ int lt_rp_cli(int argc, char **argv, const char *prog, const lt_rp_cli_hooks_t *
         dcam.cy = dstk[3];
     }
 
+    /* ---- ground truth (before the run: the sim is reset afterwards, so the report holds the
+       reprojection alone) ---- */
+    if (truth) {
+        size_t nt = (size_t)dcam.width * dcam.height;
+        if (!have_scene) {
+            fprintf(stderr, "%s reproject: --truth needs the source camera of the mesh scene "
+                            "(lanetrace render's camera), not --src-cam\n", prog);
+            status = EXIT_USAGE;
+            goto done;
+        }
+        ztrue = malloc(nt * sizeof *ztrue);
+        relerr = malloc(nt * sizeof *relerr);
+        if (ztrue == NULL || relerr == NULL) {
+            fprintf(stderr, "%s reproject: out of memory for the ground truth (%ux%u)\n", prog,
+                    dcam.width, dcam.height);
+            status = EXIT_INPUT;
+            goto done;
+        }
+        hk->begin("ground truth");
+        if (render_truth(&sc, &dcam, ztrue, err, sizeof err) != 0) {
+            hk->end();
+            fprintf(stderr, "%s reproject: %s\n", prog, err);
+            status = EXIT_USAGE;
+            goto done;
+        }
+        hk->end();
+#if LT_COST_MODE == LT_COST_SIM
+        if (lt_sim_init(m, NULL, NULL, err, sizeof err) != 0) {
+            fprintf(stderr, "%s\n", err);
+            status = EXIT_INPUT;
+            goto done;
+        }
+#endif
+    }
+
     /* ---- run ---- */
     lt_rp_opts_default(&ro);
     ro.enc = (lt_qt_enc_t)enc;
     ro.bilinear = bilinear;
     ro.inpaint = inpaint;
     ro.max_steps = max_steps;
+    {
+        lt_q30_t *pp[4];
+        int k;
+        pp[0] = &ro.params.lambda_h;
+        pp[1] = &ro.params.lambda_d;
+        pp[2] = &ro.params.gamma_norm;
+        pp[3] = &ro.params.gamma_dist;
+        for (k = 0; k < 4; k++)
+            if (qtp[k] >= 0.0)
+                *pp[k] = (lt_q30_t)floor(qtp[k] * 1073741824.0 + 0.5);
+    }
     ro.progress = hk->progress;
     hk->begin("reproject");
     if (lt_rp_run(&src, &dcam, &ro, &res, err, sizeof err) != 0) {
@@ -616,11 +809,20 @@ int lt_rp_cli(int argc, char **argv, const char *prog, const lt_rp_cli_hooks_t *
         goto done;
     }
     hk->end();
+    if (truth && lt_rp_truth_compare(&res, ztrue, truth_tol, &tr, relerr) != 0) {
+        fprintf(stderr, "%s reproject: out of memory comparing with the ground truth\n", prog);
+        status = EXIT_INPUT;
+        goto done;
+    }
 
     /* ---- outputs ---- */
     {
+        /* the error map's colours run from 0 to 5x the tolerance (larger errors saturate) */
+        lt_heatmap_opts_t eo = LT_HEATMAP_OPTS_DEFAULT;
         size_t np = (size_t)res.width * res.height;
         float *ch[5];
+        eo.lo = 0.0f;
+        eo.hi = (float)(5.0 * truth_tol);
         int k;
         memset(ch, 0, sizeof ch);
         for (k = 0; k < 5; k++)
@@ -637,7 +839,7 @@ int lt_rp_cli(int argc, char **argv, const char *prog, const lt_rp_cli_hooks_t *
             }
         }
         if (status == 0 && out != NULL) {
-            lt_exr_channel_t ec[7];
+            lt_exr_channel_t ec[8];
             lt_exr_image_t im;
             int nc = 0;
             ec[nc].name = "R";
@@ -663,6 +865,11 @@ int lt_rp_cli(int argc, char **argv, const char *prog, const lt_rp_cli_hooks_t *
             ec[nc].type = LT_EXR_FLOAT;
             ec[nc++].data = res.cycles;
 #endif
+            if (truth) {
+                ec[nc].name = "Ztrue";
+                ec[nc].type = LT_EXR_FLOAT;
+                ec[nc++].data = ztrue;
+            }
             memset(&im, 0, sizeof im);
             im.width = (int32_t)res.width;
             im.height = (int32_t)res.height;
@@ -692,6 +899,12 @@ int lt_rp_cli(int argc, char **argv, const char *prog, const lt_rp_cli_hooks_t *
         if (status == 0 && heat_steps != NULL &&
             lt_heatmap_write_png(heat_steps, res.steps, (int32_t)res.width, (int32_t)res.height,
                                  NULL, err, sizeof err) != 0) {
+            fprintf(stderr, "%s\n", err);
+            status = EXIT_INPUT;
+        }
+        if (status == 0 && heat_error != NULL &&
+            lt_heatmap_write_png(heat_error, relerr, (int32_t)res.width, (int32_t)res.height,
+                                 &eo, err, sizeof err) != 0) {
             fprintf(stderr, "%s\n", err);
             status = EXIT_INPUT;
         }
@@ -746,6 +959,37 @@ int lt_rp_cli(int argc, char **argv, const char *prog, const lt_rp_cli_hooks_t *
                    100.0 * (double)st->cls[LT_RP_OUTSIDE] / px,
                    100.0 * (double)st->cls[LT_RP_UNKNOWN] / px, 100.0 * holes / px,
                    inpaint ? "(inpainted)" : "(left black)");
+            if (truth) {
+                double kn = tr.known > 0 ? (double)tr.known : 1.0;
+                double bh = tr.both_hit > 0 ? (double)tr.both_hit : 1.0;
+                double ip = tr.inpainted > 0 ? (double)tr.inpainted : 1.0;
+                double ipb = tr.ip_both > 0 ? (double)tr.ip_both : 1.0;
+                printf("truth     the target view by the object-space tracer (BVH, float32): a "
+                       "surface on %.2f%% of the pixels\n", 100.0 * (double)tr.truth_hit / px);
+                printf("          traced (hit or background) %.2f%% of the pixels: wrong hit/miss "
+                       "%.3f%% of them (%llu spurious hits, %llu missed surfaces)\n",
+                       100.0 * (double)tr.known / px,
+                       100.0 * (double)(tr.spurious + tr.missed) / kn,
+                       (unsigned long long)tr.spurious, (unsigned long long)tr.missed);
+                printf("          depth of the %llu common hits: RMSE %.4g (%.3f%% relative), "
+                       "relative error median %.2g%%, 99th percentile %.2g%%, max %.2f%%; within "
+                       "%.3g%%: %.2f%%\n",
+                       (unsigned long long)tr.both_hit, tr.rmse, 100.0 * tr.rel_rmse,
+                       100.0 * tr.rel_p50, 100.0 * tr.rel_p99, 100.0 * tr.max_rel, 100.0 * tr.tol,
+                       100.0 * (double)tr.within / bh);
+                if (tr.inpainted == 0)
+                    printf("          no holes\n");
+                else if (tr.inpainted > tr.ip_unfilled)
+                    printf("          inpainted %.2f%% of the pixels: wrong hit/miss %.2f%% of "
+                           "them; depth within %.3g%% on %.2f%% of %llu filled surfaces "
+                           "(relative RMSE %.2f%%)\n",
+                           100.0 * (double)tr.inpainted / px, 100.0 * (double)tr.ip_wrong / ip,
+                           100.0 * tr.tol, 100.0 * (double)tr.ip_within / ipb,
+                           (unsigned long long)tr.ip_both, 100.0 * tr.ip_rel_rmse);
+                else
+                    printf("          holes %.2f%% of the pixels, not inpainted\n",
+                           100.0 * (double)tr.inpainted / px);
+            }
 #if LT_COST_MODE == LT_COST_SIM
             printf("cycles    build %llu, setup %llu (%.1f per ray), traverse %llu (%.1f per ray); "
                    "lane utilisation %.1f%%\n",
@@ -756,8 +1000,8 @@ int lt_rp_cli(int argc, char **argv, const char *prog, const lt_rp_cli_hooks_t *
         }
 #if LT_COST_MODE == LT_COST_SIM
         {
-            char extra[1024], *js;
-            snprintf(extra, sizeof extra,
+            char extra[2048], *js;
+            int len = snprintf(extra, sizeof extra,
                      "{\"encoding\": \"%s\", \"pixels\": %llu, \"traced_rays\": %llu, "
                      "\"nodes_per_ray\": %.4f, \"aabb_per_ray\": %.4f, \"planes_per_ray\": %.4f, "
                      "\"nodes_max\": %u, \"hole_fraction\": %.6f, \"build_cycles\": %llu, "
@@ -767,6 +1011,15 @@ int lt_rp_cli(int argc, char **argv, const char *prog, const lt_rp_cli_hooks_t *
                      (double)st->nodes / rays, (double)st->aabb / rays, (double)st->planes / rays,
                      st->nodes_max, holes / px, (unsigned long long)st->cyc_build,
                      (unsigned long long)st->cyc_setup, (unsigned long long)st->cyc_trace, util);
+            if (truth && len > 0 && (size_t)len < sizeof extra) {
+                cJSON *tj = truth_json(&tr);
+                char *ts = tj != NULL ? cJSON_PrintUnformatted(tj) : NULL;
+                if (ts != NULL)
+                    snprintf(extra + len - 1, sizeof extra - (size_t)len + 1, ", \"truth\": %s}",
+                             ts);
+                free(ts);
+                cJSON_Delete(tj);
+            }
             if (!*hk->quiet)
                 lt_sim_report_text(stdout, title, st->pixels);
             if (report != NULL) {
@@ -784,24 +1037,27 @@ int lt_rp_cli(int argc, char **argv, const char *prog, const lt_rp_cli_hooks_t *
 #endif
         if (!*hk->quiet) {
             if (out != NULL)
-                printf("exr       %s (R G B Z hole steps%s)\n", out,
-                       LT_COST_MODE == LT_COST_SIM ? " cycles" : "");
+                printf("exr       %s (R G B Z hole steps%s%s)\n", out,
+                       LT_COST_MODE == LT_COST_SIM ? " cycles" : "", truth ? " Ztrue" : "");
             if (png != NULL)
                 printf("png       %s\n", png);
             if (heat_steps != NULL)
                 printf("heatmap   %s (quadtree nodes per pixel)\n", heat_steps);
             if (heat_cycles != NULL)
                 printf("heatmap   %s (simulated cycles per pixel)\n", heat_cycles);
+            if (heat_error != NULL)
+                printf("heatmap   %s (relative depth error against the ground truth)\n",
+                       heat_error);
             if (report != NULL)
                 printf("report    %s\n", report);
         }
         if (json) {
             cJSON *o = cJSON_CreateObject(), *files = cJSON_AddArrayToObject(o, "files");
             cJSON *cls = cJSON_AddObjectToObject(o, "pixels_by_class");
-            const char *fl[5] = {out, png, heat_steps, heat_cycles, report};
+            const char *fl[6] = {out, png, heat_steps, heat_cycles, report, heat_error};
             char *js;
             int k;
-            for (k = 0; k < 5; k++)
+            for (k = 0; k < 6; k++)
                 if (fl[k] != NULL)
                     cJSON_AddItemToArray(files, cJSON_CreateString(fl[k]));
             cJSON_AddStringToObject(o, "depth", depth);
@@ -830,6 +1086,8 @@ int lt_rp_cli(int argc, char **argv, const char *prog, const lt_rp_cli_hooks_t *
             cJSON_AddNumberToObject(o, "quadtree_bytes", (double)st->qt_bytes);
             cJSON_AddNumberToObject(o, "build_seconds", st->t_build);
             cJSON_AddNumberToObject(o, "trace_seconds", st->t_trace);
+            if (truth)
+                cJSON_AddItemToObject(o, "truth", truth_json(&tr));
 #if LT_COST_MODE == LT_COST_SIM
             cJSON_AddNumberToObject(o, "build_cycles", (double)st->cyc_build);
             cJSON_AddNumberToObject(o, "setup_cycles", (double)st->cyc_setup);
@@ -856,6 +1114,11 @@ done:
     }
     lt_exr_depth_free(&dc);
     free(zall);
+    free(ztrue);
+    free(relerr);
+    if (have_scene)
+        lt_scene_free(&sc);
+    lt_mesh_free(&mesh);
     lt_rp_result_free(&res);
 #if LT_COST_MODE == LT_COST_SIM
     lt_sim_shutdown();

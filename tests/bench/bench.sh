@@ -4,9 +4,14 @@
 #     (LT_COST_SIM, lrb16 with caches); target: counted <= 3x native;
 #  2. the scalar MCU model vs measured instructions: mcu-m4's predicted cycles for the slab-test loop
 #     vs the instructions QEMU's lt_icount plugin counts inside lt_slab16_q16 on Cortex-M4;
-#  3. the cycle report of the bundled scene on lrb16;
+#  3. the race against Embree 3 (native, single thread, same rays; all shared scenes);
+#  4. structures: grid vs kd-tree vs BVH in the simulator (tests/bench/structures.sh);
+#  5. the cycle report of the bundled scene on lrb16;
+#  6. screen-space baselines: quadtree vs DDA vs Hi-Z on the same rays (build/sim/ssbench);
 #  7. the multi-frusta Table 1 (docs/frusta.md): P-Packet vs P-Frusta and S-Packet vs S-Frusta in
-#     the simulator on Sibenik at 1024x1024 (~20 s), the bundled teapot at 256x256 without ../shared.
+#     the simulator on Sibenik at 1024x1024 (~20 s), the bundled teapot at 256x256 without ../shared;
+#  8. view synthesis against ray-traced ground truth (tests/bench/rptruth.sh): depth error of the
+#     quadtree reprojection per numeric configuration on the teapot and the shared meshes (~15 s).
 # Run from the repository root after make all firmware build/sim/slab-model build/plugin/lt_icount.so.
 set -euo pipefail
 B=build
@@ -65,3 +70,6 @@ else
     echo "(../shared missing: the bundled teapot instead of Sibenik)"
     "$B/sim/lanetrace-shadows" --mesh "$SCENE" --res "${FRUSTA_RES:-256}" --no-ref
 fi
+
+echo "== 8. view synthesis vs ray-traced ground truth: depth error per numeric configuration (lrb16 simulator; docs/reproject.md)"
+B=$B tests/bench/rptruth.sh

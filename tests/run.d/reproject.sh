@@ -94,6 +94,71 @@ check "reproject (sim) prints the cycle report" \
     bash -c "grep -q '^== cycle report: reproject' '$tmp/rpt.txt' && grep -q '^SETUP' '$tmp/rpt.txt' && grep -q '^TRAVERSE' '$tmp/rpt.txt'"
 rp_expect "reproject -q prints nothing" 0 "" bash -c "[ -z \"\$('$RP_NAT' reproject scenes/teapot.json --depth '$tmp/tp.exr' -q)\" ]"
 
+# ---- against ray-traced ground truth (--truth: the target view by the BVH float32 tracer) ----
+rp_expect "reproject --truth needs a mesh scene" 2 "needs a mesh scene" \
+    "$RP_NAT" reproject --depth "$tmp/tp.exr" --truth
+rp_expect "reproject --heat-error needs a mesh scene" 2 "needs a mesh scene" \
+    "$RP_NAT" reproject --depth "$tmp/tp.exr" --heat-error "$tmp/e.png"
+rp_expect "reproject --truth-tol 0 names the range" 2 "(0, 1]" \
+    "$RP_NAT" reproject scenes/teapot.json --depth "$tmp/tp.exr" --truth --truth-tol 0
+rp_expect "reproject --truth with --src-cam refused" 2 "not --src-cam" \
+    "$RP_NAT" reproject scenes/teapot.json --depth "$tmp/tp.exr" --layers 2 --truth --src-cam 60,60,24,24
+rp_expect "reproject --truth with an off-centre --dst-cam refused" 2 "not centred with square pixels" \
+    "$RP_NAT" reproject scenes/teapot.json --depth "$tmp/tp.exr" --layers 2 --truth --dst-cam 60,60,20,24
+"$RP_NAT" render scenes/teapot.json --res 96 --layers 2 --out "$tmp/tp96" -q >/dev/null 2>&1
+# jnum KEY FILE: a number from the pretty-printed --json output
+jnum() { awk -F':' -v k="\"$1\"" '{g = $1; gsub(/[ \t]/, "", g)} g == k {v = $2; gsub(/[ \t,]/, "", v); print v; exit}' "$2"; }
+"$RP_NAT" reproject scenes/teapot.json --depth "$tmp/tp96.exr" --layers 2 --truth --json >"$tmp/tr0.json" 2>&1
+check "reproject --truth, identity view: every pixel traced, 0 wrong hit/miss, depth within 1e-4 relative ($(jnum max_relative "$tmp/tr0.json"))" \
+    awk -v k="$(jnum known_pixels "$tmp/tr0.json")" -v s="$(jnum spurious_hits "$tmp/tr0.json")" \
+    -v m="$(jnum missed_hits "$tmp/tr0.json")" -v x="$(jnum max_relative "$tmp/tr0.json")" \
+    'BEGIN{exit !(k == 9216 && s == 0 && m == 0 && x != "" && x <= 1e-4)}'
+for e in n64 n32 f32; do
+    args=(reproject scenes/teapot.json --depth "$tmp/tp96.exr" --layers 2 --move-rel 0.08,0,0 --rot -3,0,0
+        --enc $e --truth --json)
+    "$RP_NAT" "${args[@]}" --heat-error "$tmp/he_$e.png" --out "$tmp/tr_$e.exr" >"$tmp/tr_$e.json" 2>&1
+    rcn=$?
+    "$RP_SIM" "${args[@]}" >"$tmp/trs_$e.json" 2>&1
+    rcs=$?
+    f="$tmp/tr_$e.json"
+    kn=$(jnum known_pixels "$f"); wr=$(( $(jnum spurious_hits "$f") + $(jnum missed_hits "$f") ))
+    ch=$(jnum common_hits "$f"); wi=$(jnum within_tolerance "$f"); p50=$(jnum relative_p50 "$f")
+    check "reproject --truth teapot $e moved: native and sim exit 0 (rc $rcn, $rcs), error map and Ztrue written" \
+        bash -c "[ $rcn$rcs = 00 ] && [ -s '$tmp/he_$e.png' ] && '$RP_NAT' info '$tmp/tr_$e.exr' | grep -q 'Ztrue(FLOAT)'"
+    check "reproject --truth teapot $e moved: native = sim ground truth and error" \
+        test "$(sed -n '/"truth"/,/}/p' "$f" | tr -d ',')" = "$(sed -n '/"truth"/,/}/p' "$tmp/trs_$e.json" | tr -d ',')"
+    check "reproject --truth teapot $e moved: wrong hit/miss $wr of $kn traced pixels (bound 1%), $wi of $ch common hits within 1% (bound 90%), median relative error $p50 (bound 0.5%)" \
+        awk -v k="$kn" -v w="$wr" -v c="$ch" -v i="$wi" -v p="$p50" \
+        'BEGIN{exit !(k > 6000 && w <= 0.01 * k && c > 1000 && i >= 0.9 * c && p <= 0.005)}'
+done
+
+rp_expect "reproject --lambda-h out of range names it" 2 "\[0, 1\]" \
+    "$RP_NAT" reproject --depth x.exr --lambda-h 2
+"$RP_NAT" reproject scenes/teapot.json --depth "$tmp/tp96.exr" --layers 2 --move-rel 0.08,0,0 --rot -3,0,0 \
+    --truth --lambda-h 0.1 --json >"$tmp/trl.json" 2>&1
+check "reproject --lambda-h 0.1 reaches the build: median relative error $(jnum relative_p50 "$tmp/trl.json") below the default's $(jnum relative_p50 "$tmp/tr_n64.json") (slopes of grazing surfaces kept)" \
+    awk -v a="$(jnum relative_p50 "$tmp/trl.json")" -v b="$(jnum relative_p50 "$tmp/tr_n64.json")" \
+    'BEGIN{exit !(a != "" && b != "" && a < 0.1 * b)}'
+
+# a real scanned mesh from ../shared: the bunny, 128x128, n32 (the narrowest encoding)
+bun=../shared/scenes/bunny.obj
+if [ -f "$bun" ]; then
+    printf '{"mesh": "%s/%s"}\n' "$PWD" "$bun" >"$tmp/bun.json"
+    "$RP_NAT" render "$tmp/bun.json" --res 128 --layers 2 --out "$tmp/bun" -q >/dev/null 2>&1
+    "$RP_NAT" reproject "$tmp/bun.json" --depth "$tmp/bun.exr" --layers 2 --move-rel 0.05,0,0 \
+        --rot -2,0,0 --enc n32 --truth --json >"$tmp/trb.json" 2>&1
+    f="$tmp/trb.json"
+    kn=$(jnum known_pixels "$f"); wr=$(( $(jnum spurious_hits "$f") + $(jnum missed_hits "$f") ))
+    ch=$(jnum common_hits "$f"); wi=$(jnum within_tolerance "$f")
+    check "reproject --truth bunny n32 moved: wrong hit/miss $wr of $kn traced pixels (bound 1%), $wi of $ch common hits within 1% (bound 95%)" \
+        awk -v k="$kn" -v w="$wr" -v c="$ch" -v i="$wi" \
+        'BEGIN{exit !(k > 10000 && w <= 0.01 * k && c > 3000 && i >= 0.95 * c)}'
+elif [ "${CI:-}" = "true" ]; then
+    ko "reproject: shared mesh missing under CI: $bun"
+else
+    echo "SKIP reproject --truth bunny: $bun not found (a fresh clone has no ../shared)"
+fi
+
 # ---- the shared beachball (no camera: the default 60-degree camera) ----
 bb=../shared/depth/beachball_singlepart.0001.exr
 if [ -f "$bb" ]; then

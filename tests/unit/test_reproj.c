@@ -860,6 +860,120 @@ static void test_inpaint(void **state)
     assert_int_equal(lt_rp_inpaint(rgb, z, v, W, H), -1);
 }
 
+/* lt_rp_truth_compare: the accounting on a hand-made 4 x 2 result, then the box-over-wall view
+ * synthesis against its analytic ground truth (the world the depth image samples). */
+static void test_truth(void **state)
+{
+    static const uint8_t cls[8] = {LT_RP_HIT, LT_RP_HIT, LT_RP_HIT, LT_RP_BACKGROUND,
+                                   LT_RP_BACKGROUND, LT_RP_DISOCCLUDED, LT_RP_OUTSIDE,
+                                   LT_RP_UNKNOWN};
+    float z8[8] = {10.0f, 10.5f, 4.0f, INFINITY, INFINITY, 7.0f, INFINITY, NAN};
+    const float zt8[8] = {10.0f, 10.0f, INFINITY, INFINITY, 5.0f, 7.7f, INFINITY, 3.0f};
+    float rel[8];
+    lt_rp_result_t r;
+    lt_rp_truth_t t;
+    (void)state;
+    memset(&r, 0, sizeof r);
+    r.width = 4;
+    r.height = 2;
+    r.z = z8;
+    r.cls = (uint8_t *)cls;
+    assert_int_equal(lt_rp_truth_compare(&r, zt8, 0.0, &t, NULL), -1);
+    assert_int_equal(lt_rp_truth_compare(&r, zt8, NAN, &t, NULL), -1);
+    assert_int_equal(lt_rp_truth_compare(&r, zt8, 0.01, &t, rel), 0);
+    /* known: pixels 0-4; spurious: 2 (hit, truth misses); missed: 4 (background, truth hits);
+       common hits 0 (exact) and 1 (5% off); inpainted 5 (10% off), 6 (correct background),
+       7 (unfilled) */
+    printf("reproj truth accounting 4x2: known %llu, spurious %llu, missed %llu, common %llu "
+           "(within %llu), RMSE %.4g (expected 0.25*sqrt(2)), relative RMSE %.4g, inpainted %llu "
+           "(wrong %llu, unfilled %llu, common %llu)\n",
+           (unsigned long long)t.known, (unsigned long long)t.spurious,
+           (unsigned long long)t.missed, (unsigned long long)t.both_hit,
+           (unsigned long long)t.within, t.rmse, t.rel_rmse, (unsigned long long)t.inpainted,
+           (unsigned long long)t.ip_wrong, (unsigned long long)t.ip_unfilled,
+           (unsigned long long)t.ip_both);
+    assert_true(t.pixels == 8 && t.truth_hit == 5 && t.known == 5 && t.spurious == 1 &&
+                t.missed == 1 && t.both_hit == 2 && t.within == 1 && t.inpainted == 3 &&
+                t.ip_wrong == 0 && t.ip_unfilled == 1 && t.ip_both == 1 && t.ip_within == 0);
+    assert_true(fabs(t.rmse - 0.5 / sqrt(2.0)) < 1e-12);
+    assert_true(fabs(t.rel_rmse - 0.05 / sqrt(2.0)) < 1e-9 && fabs(t.max_rel - 0.05) < 1e-9);
+    assert_true(t.rel_p50 == 0.0 && fabs(t.rel_p99 - 0.05) < 1e-9);
+    assert_true(fabs(t.ip_rel_rmse - 0.7 / 7.7) < 1e-6);
+    assert_true(rel[0] == 0.0f && isnan(rel[2]) && isnan(rel[3]) && isnan(rel[4]) &&
+                fabsf(rel[5] - 0.7f / 7.7f) < 1e-6f && isnan(rel[6]) && isnan(rel[7]));
+
+    {
+        /* box (source pixels 16..31 x 12..27) at z = 3 over a wall at z = 8, two layers; the
+           target moved 0.6 right. Ground truth: the same world traced analytically. */
+        const uint32_t W = 48, H = 40;
+        float *z = malloc(2 * W * H * sizeof *z), *zt = malloc(W * H * sizeof *zt);
+        lt_rp_source_t src;
+        lt_reproj_cam_t dst;
+        lt_rp_opts_t o;
+        lt_rp_result_t res;
+        char err[256];
+        double mv[3] = {0.6, 0, 0}, rot[3] = {0, 0, 0};
+        double bx0, bx1, by0, by1;
+        size_t i;
+        uint32_t x, y, edge = 0;
+        memset(&src, 0, sizeof src);
+        for (i = 0; i < (size_t)W * H; i++) {
+            x = (uint32_t)(i % W);
+            y = (uint32_t)(i / W);
+            z[i] = x >= 16 && x < 32 && y >= 12 && y < 28 ? 3.0f : 8.0f;
+            z[W * H + i] = z[i] == 3.0f ? 8.0f : INFINITY;
+        }
+        src.width = W;
+        src.height = H;
+        src.layers = 2;
+        src.z = z;
+        lt_rp_cam_default(W, H, 0, 0, 0, 0, 60.0, &src.cam);
+        lt_rp_cam_move(&src.cam, mv, rot, &dst);
+        /* the box's world extent at z = 3: the source pixels' footprints */
+        bx0 = (16.0 - src.cam.cx) / src.cam.fx * 3.0;
+        bx1 = (32.0 - src.cam.cx) / src.cam.fx * 3.0;
+        by0 = (12.0 - src.cam.cy) / src.cam.fy * 3.0;
+        by1 = (28.0 - src.cam.cy) / src.cam.fy * 3.0;
+        for (y = 0; y < H; y++)
+            for (x = 0; x < W; x++) {
+                /* target ray: centre (0.6, 0, 0), direction ((x+.5-cx)/fx, (y+.5-cy)/fy, 1) */
+                double dx = ((double)x + 0.5 - dst.cx) / dst.fx;
+                double dy = ((double)y + 0.5 - dst.cy) / dst.fy;
+                double X = 0.6 + 3.0 * dx, Y = 3.0 * dy;
+                double ex = fmin(fabs(X - bx0), fabs(X - bx1)) * dst.fx / 3.0;
+                double ey = fmin(fabs(Y - by0), fabs(Y - by1)) * dst.fy / 3.0;
+                int inbox = X >= bx0 && X < bx1 && Y >= by0 && Y < by1;
+                zt[(size_t)y * W + x] = inbox ? 3.0f : 8.0f;
+                /* pixels within one pixel of the box outline, or whose wall point lies in the
+                   box's shadow edge, may take the other surface: the depth image cannot place
+                   an edge between two pixel centres */
+                edge += (ex < 1.0 && Y > by0 - 3.0 / dst.fy && Y < by1 + 3.0 / dst.fy) ||
+                        (ey < 1.0 && X > bx0 - 3.0 / dst.fx && X < bx1 + 3.0 / dst.fx);
+            }
+        for (o.enc = LT_QT_N64; o.enc <= LT_QT_F32; o.enc = (lt_qt_enc_t)(o.enc + 1)) {
+            lt_qt_enc_t e = o.enc;
+            lt_rp_opts_default(&o);
+            o.enc = e;
+            assert_int_equal(lt_rp_run(&src, &dst, &o, &res, err, sizeof err), 0);
+            assert_int_equal(lt_rp_truth_compare(&res, zt, 0.01, &t, NULL), 0);
+            printf("reproj truth box over wall, enc %d, moved 0.6: %llu known pixels, wrong hit/miss "
+                   "%llu (bound 0), common hits %llu, outside 1%% %llu (bound: %u outline pixels), "
+                   "median relative error %.3g (bound 1e-6), inpainted %llu\n",
+                   (int)e, (unsigned long long)t.known,
+                   (unsigned long long)(t.spurious + t.missed), (unsigned long long)t.both_hit,
+                   (unsigned long long)(t.both_hit - t.within), edge, t.rel_p50,
+                   (unsigned long long)t.inpainted);
+            assert_true(t.spurious + t.missed == 0);
+            assert_true(t.both_hit - t.within <= edge);
+            assert_true(t.rel_p50 <= 1e-6);
+            assert_true(t.known > (uint64_t)W * H * 9 / 10);
+            lt_rp_result_free(&res);
+        }
+        free(z);
+        free(zt);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -871,6 +985,7 @@ int main(void)
         cmocka_unit_test(test_errors),
         cmocka_unit_test(test_view_synthesis),
         cmocka_unit_test(test_inpaint),
+        cmocka_unit_test(test_truth),
     };
 #if LT_COST_MODE == LT_COST_SIM
     {
