@@ -43,6 +43,94 @@ void lt_rp_opts_default(lt_rp_opts_t *o)
     o->bilinear = 1;
     o->inpaint = 1;
     lt_qt_params_default(&o->params);
+    o->tracer = LT_RP_QUADTREE;
+    lt_ssb_params_default(&o->ssb);
+}
+
+/* The structure one run traces: the quadtree, the DDA over the w buffer or the Hi-Z pyramid. */
+typedef struct rp_tracer {
+    lt_rp_tracer_t kind;
+    lt_qt_t qt;
+    lt_ssdda_t dda;
+    lt_hiz_t hiz;
+} rp_tracer_t;
+
+static void trace_q30(const rp_tracer_t *t, const lt_qray16_q30_t *r, lt_mask16_t k,
+                      uint32_t max_steps, lt_qhit16_q30_t *h)
+{
+    if (t->kind == LT_RP_DDA)
+        (void)lt_ssdda_trace16_q30(&t->dda, r, k, max_steps, h);
+    else if (t->kind == LT_RP_HIZ)
+        (void)lt_hiz_trace16_q30(&t->hiz, r, k, max_steps, h);
+    else
+        (void)lt_qt_trace16_q30(&t->qt, r, k, max_steps, h);
+}
+
+static void trace_f32(const rp_tracer_t *t, const lt_qray16_f32_t *r, lt_mask16_t k,
+                      uint32_t max_steps, lt_qhit16_f32_t *h)
+{
+    if (t->kind == LT_RP_DDA)
+        (void)lt_ssdda_trace16_f32(&t->dda, r, k, max_steps, h);
+    else if (t->kind == LT_RP_HIZ)
+        (void)lt_hiz_trace16_f32(&t->hiz, r, k, max_steps, h);
+    else
+        (void)lt_qt_trace16_f32(&t->qt, r, k, max_steps, h);
+}
+
+/* Build (quadtree, Hi-Z) or set up (DDA) the tracer over the w buffers; *arena gets the memory
+ * (NULL for the DDA), *bytes its size. Returns 0 or -1 with a message. */
+static int tracer_build(rp_tracer_t *t, const lt_rp_opts_t *o, uint32_t W, uint32_t H,
+                        uint32_t layers, const lt_q30_t *wq, const float *wf, void **arena,
+                        size_t *bytes, char *err, size_t errlen)
+{
+    int fenc = o->enc == LT_QT_F32;
+    lt_status_t s;
+    lt_ssb_desc_t sd;
+    static const char *const name[3] = {"quadtree", "DDA", "Hi-Z"};
+    t->kind = o->tracer;
+    *arena = NULL;
+    *bytes = 0;
+    sd.width = W;
+    sd.height = H;
+    sd.layers = layers;
+    sd.enc = fenc ? LT_SSB_F32 : LT_SSB_Q30;
+    if (o->tracer == LT_RP_DDA) {
+        s = fenc ? lt_ssdda_init_f32(&t->dda, &sd, &o->ssb, wf)
+                 : lt_ssdda_init_q30(&t->dda, &sd, &o->ssb, wq);
+    } else {
+        lt_qt_desc_t qd;
+        qd.width = W;
+        qd.height = H;
+        qd.layers = layers;
+        qd.enc = (uint32_t)o->enc;
+        s = o->tracer == LT_RP_HIZ ? lt_hiz_size(&sd, bytes) : lt_qt_size(&qd, bytes);
+        if (s != LT_OK) {
+            snprintf(err, errlen, "reproject: %s size query failed for %ux%u x %u layers (%s)",
+                     name[o->tracer], W, H, layers, lt_status_str(s));
+            return -1;
+        }
+        *arena = malloc(*bytes > 0 ? *bytes : 1);
+        if (*arena == NULL) {
+            snprintf(err, errlen, "reproject: out of memory for the %zu-byte %s", *bytes,
+                     name[o->tracer]);
+            return -1;
+        }
+#if LT_COST_MODE == LT_COST_SIM
+        (void)lt_sim_region(*arena, *bytes, 0x40000000u);
+#endif
+        if (o->tracer == LT_RP_HIZ)
+            s = fenc ? lt_hiz_build_f32(&t->hiz, &sd, &o->ssb, wf, *arena, bytes)
+                     : lt_hiz_build_q30(&t->hiz, &sd, &o->ssb, wq, *arena, bytes);
+        else
+            s = fenc ? lt_qt_build_f32(&t->qt, &qd, &o->params, wf, *arena, bytes)
+                     : lt_qt_build_q30(&t->qt, &qd, &o->params, wq, *arena, bytes);
+    }
+    if (s != LT_OK) {
+        snprintf(err, errlen, "reproject: %s build failed (%s)", name[o->tracer],
+                 lt_status_str(s));
+        return -1;
+    }
+    return 0;
 }
 
 void lt_rp_result_free(lt_rp_result_t *r)
@@ -374,8 +462,7 @@ int lt_rp_run(const lt_rp_source_t *src, const lt_reproj_cam_t *dst, const lt_rp
               lt_rp_result_t *res, char *err, size_t errlen)
 {
     lt_rp_opts_t od;
-    lt_qt_desc_t qd;
-    lt_qt_t qt;
+    static rp_tracer_t tr;
     lt_reproj_opts_t ro;
     lt_reproj_q30_t mq;
     lt_reproj_f32_t mf;
@@ -455,45 +542,28 @@ int lt_rp_run(const lt_rp_source_t *src, const lt_reproj_cam_t *dst, const lt_rp
         goto done;
     }
 
-    /* quadtree */
-    qd.width = W;
-    qd.height = H;
-    qd.layers = src->layers;
-    qd.enc = (uint32_t)o->enc;
-    if (lt_qt_size(&qd, &bytes) != LT_OK) {
-        snprintf(err, errlen, "reproject: quadtree size query failed for %ux%u x %u layers", W, H,
-                 src->layers);
-        goto done;
-    }
-    arena = malloc(bytes);
-    if (arena == NULL) {
-        snprintf(err, errlen, "reproject: out of memory for the %zu-byte quadtree", bytes);
-        goto done;
-    }
-    res->st.qt_bytes = bytes;
+    /* the tracer: quadtree (built), DDA (no structure) or Hi-Z (built) */
     t0 = now_s();
-    c0 = cycles_now();
 #if LT_COST_MODE == LT_COST_SIM
-    (void)lt_sim_region(arena, bytes, 0x40000000u);
     if (wq != NULL)
         (void)lt_sim_region(wq, n * sizeof *wq, 0x50000000u);
     else
         (void)lt_sim_region(wf, n * sizeof *wf, 0x50000000u);
 #endif
-    s = fenc ? lt_qt_build_f32(&qt, &qd, &o->params, wf, arena, &bytes)
-             : lt_qt_build_q30(&qt, &qd, &o->params, wq, arena, &bytes);
-    if (s != LT_OK) {
-        snprintf(err, errlen, "reproject: quadtree build failed (%s)", lt_status_str(s));
+    c0 = cycles_now();
+    if (tracer_build(&tr, o, W, H, src->layers, wq, wf, &arena, &bytes, err, errlen) != 0)
         goto done;
-    }
     res->st.cyc_build = cycles_now() - c0;
     res->st.t_build = now_s() - t0;
-    res->st.qt_nodes = (uint64_t)qt.layer_nodes * qt.layers;
-    for (i = 0; i < res->st.qt_nodes; i++) {
-        int aabb = o->enc == LT_QT_N64 ? LT_QT_N64_IS_AABB(((const lt_qt_n64_t *)arena)[i])
-                   : o->enc == LT_QT_N32 ? LT_QT_N32_IS_AABB(((const lt_qt_n32_t *)arena)[i])
-                                         : LT_QT_NF32_IS_AABB(((const lt_qt_nf32_t *)arena)[i]);
-        res->st.qt_planes += !aabb;
+    res->st.qt_bytes = bytes;
+    if (o->tracer == LT_RP_QUADTREE) {
+        res->st.qt_nodes = (uint64_t)tr.qt.layer_nodes * tr.qt.layers;
+        for (i = 0; i < res->st.qt_nodes; i++) {
+            int aabb = o->enc == LT_QT_N64 ? LT_QT_N64_IS_AABB(((const lt_qt_n64_t *)arena)[i])
+                       : o->enc == LT_QT_N32 ? LT_QT_N32_IS_AABB(((const lt_qt_n32_t *)arena)[i])
+                                             : LT_QT_NF32_IS_AABB(((const lt_qt_nf32_t *)arena)[i]);
+            res->st.qt_planes += !aabb;
+        }
     }
 
     /* outputs */
@@ -546,12 +616,12 @@ int lt_rp_run(const lt_rp_source_t *src, const lt_reproj_cam_t *dst, const lt_rp
                 (void)lt_reproj_rays16_f32(&mf, tx, ty, &rf, &k);
                 p1 = cycles_now();
                 if (k != 0)
-                    (void)lt_qt_trace16_f32(&qt, &rf, k, o->max_steps, &hf);
+                    trace_f32(&tr, &rf, k, o->max_steps, &hf);
             } else {
                 (void)lt_reproj_rays16_q30(&mq, tx, ty, &rq, &k);
                 p1 = cycles_now();
                 if (k != 0)
-                    (void)lt_qt_trace16_q30(&qt, &rq, k, o->max_steps, &hq);
+                    trace_q30(&tr, &rq, k, o->max_steps, &hq);
             }
             res->st.cyc_setup += p1 - p0;
             res->st.cyc_trace += cycles_now() - p1;

@@ -11,6 +11,7 @@
 
 #include <stddef.h>
 #include <stdint.h>
+#include "lt/lt_hiz.h"
 #include "lt/lt_reproj.h"
 
 #ifdef __cplusplus
@@ -27,6 +28,14 @@ extern "C" {
 #define LT_RP_OUTSIDE 3    /* the ray leaves or never enters the source view: inpainted */
 #define LT_RP_UNKNOWN 4    /* the traversal step bound was reached: inpainted */
 #define LT_RP_CLASSES 5
+
+/* The screen-space tracer that walks the reprojected segments (same rays, same result codes). */
+typedef enum lt_rp_tracer {
+    LT_RP_QUADTREE = 0, /* the adaptive quadtree (lt_qt.h), the node format of lt_rp_opts.enc */
+    LT_RP_DDA = 1,      /* perspective-correct DDA (lt_ssdda.h), McGuire & Mara: s1.30 for n64 and
+                           n32, float32 for f32 */
+    LT_RP_HIZ = 2       /* min/max Hi-Z pyramid (lt_hiz.h), Uludag: the same numeric paths */
+} lt_rp_tracer_t;
 
 /* The source view. */
 typedef struct lt_rp_source {
@@ -45,10 +54,13 @@ typedef struct lt_rp_opts {
     uint32_t max_steps;   /* nodes per lane per layer, 0 = lt_qt_default_steps */
     double z_near_dst;    /* target near plane (0 = rays start at the target camera centre) */
     lt_qt_params_t params; /* quadtree build thresholds (lt_qt_params_default; docs/quadtree.md) */
+    lt_rp_tracer_t tracer; /* LT_RP_QUADTREE (default), LT_RP_DDA or LT_RP_HIZ */
+    lt_ssb_params_t ssb;  /* the DDA's and Hi-Z's surface thickness (lt_ssb_params_default) */
     void (*progress)(double done); /* may be NULL */
 } lt_rp_opts_t;
 
-/* Fill o with the defaults above (n64, bilinear, inpaint, lt_qt_params_default). */
+/* Fill o with the defaults above (n64, bilinear, inpaint, lt_qt_params_default, the quadtree,
+ * lt_ssb_params_default). */
 void lt_rp_opts_default(lt_rp_opts_t *o);
 
 /* Figures of one run; cycles are 0 outside the sim build. */
@@ -60,8 +72,8 @@ typedef struct lt_rp_stats {
     uint32_t nodes_max, aabb_max, planes_max;
     uint64_t packets;                   /* trace calls */
     double zref;                        /* z_ref = 2^e used for w */
-    size_t qt_bytes;                    /* quadtree arena */
-    uint64_t qt_planes, qt_nodes;       /* plane nodes / all nodes of the quadtree */
+    size_t qt_bytes;                    /* the tracer's arena: quadtree, Hi-Z levels 1.. (0: DDA) */
+    uint64_t qt_planes, qt_nodes;       /* plane nodes / all nodes of the quadtree (0 otherwise) */
     uint64_t cyc_build, cyc_setup, cyc_trace, cyc_total; /* simulated cycles (sim build) */
     uint64_t lanes_on, lane_ops;        /* utilisation events of setup + trace (sim build) */
     double t_build, t_trace, t_shade, t_inpaint; /* wall seconds */
@@ -73,7 +85,8 @@ typedef struct lt_rp_result {
     float *rgb;    /* width x height x 3, linear */
     float *z;      /* target z-depth; +inf background; inpainted pixels carry the filled depth */
     uint8_t *cls;  /* LT_RP_* per pixel (before inpainting) */
-    float *steps;  /* quadtree nodes visited per pixel (all layers); 0 for untraced pixels */
+    float *steps;  /* nodes (quadtree), pixels (DDA) or cells (Hi-Z) visited per pixel (all
+                      layers); 0 for untraced pixels */
     float *cycles; /* simulated cycles per pixel: its packet's setup + trace cycles over the
                       packet's lanes on the image (sim build; 0 otherwise) */
     float *sx, *sy; /* source position of each hit, pixels (NaN elsewhere) */

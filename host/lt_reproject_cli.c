@@ -56,6 +56,10 @@ void lt_rp_cli_usage(const char *prog, FILE *f)
             "  --res WxH|N          target size (default: the source's), 1..%u\n"
             "tracing:\n"
             "  --enc n64|n32|f32    quadtree node format / numeric path (default n64)\n"
+            "  --tracer quadtree|dda|hiz  the screen-space tracer (default quadtree); the DDA\n"
+            "                       (McGuire & Mara) and Hi-Z (Uludag) baselines run on the\n"
+            "                       same rays, s1.30 for n64/n32, float32 for f32\n"
+            "  --thickness REL      DDA and Hi-Z: relative depth thickness of a pixel (1/64)\n"
             "  --sample bilinear|nearest  colour fetch (default: depth-aware bilinear)\n"
             "  --no-inpaint         leave holes black (depth NaN)\n"
             "  --max-steps N        quadtree nodes per ray per layer (default 8(w+h)+4 levels+16)\n"
@@ -340,6 +344,9 @@ int lt_rp_cli(int argc, char **argv, const char *prog, const lt_rp_cli_hooks_t *
     size_t i, n;
     const char *cam_desc = "default";
     static const char *const enc_name[3] = {"n64", "n32", "f32"};
+    static const char *const tracer_name[3] = {"quadtree", "dda", "hiz"};
+    int tracer = 0;
+    double thickness = -1.0;
     double median = 0.0;
     double qtp[4] = {-1.0, -1.0, -1.0, -1.0}; /* lambda_h, lambda_d, gamma_norm, gamma_dist */
     static const char *const qtp_flag[4] = {"--lambda-h", "--lambda-d", "--gamma-norm",
@@ -476,6 +483,20 @@ int lt_rp_cli(int argc, char **argv, const char *prog, const lt_rp_cli_hooks_t *
                 ;
             if (enc == 3) {
                 fprintf(stderr, "%s reproject: --enc %s: expected n64, n32 or f32\n", prog, v);
+                return EXIT_USAGE;
+            }
+        } else if (strcmp(o, "--tracer") == 0) {
+            for (tracer = 0; tracer < 3 && strcmp(v, tracer_name[tracer]) != 0; tracer++)
+                ;
+            if (tracer == 3) {
+                fprintf(stderr, "%s reproject: --tracer %s: expected quadtree, dda or hiz\n", prog,
+                        v);
+                return EXIT_USAGE;
+            }
+        } else if (strcmp(o, "--thickness") == 0) {
+            if (parse_vec(v, &thickness, 1) != 0 || thickness < 0.0 || thickness >= 2.0) {
+                fprintf(stderr, "%s reproject: --thickness %s: expected a relative depth in "
+                                "[0, 2)\n", prog, v);
                 return EXIT_USAGE;
             }
         } else if (strcmp(o, "--sample") == 0) {
@@ -789,6 +810,9 @@ int lt_rp_cli(int argc, char **argv, const char *prog, const lt_rp_cli_hooks_t *
     ro.bilinear = bilinear;
     ro.inpaint = inpaint;
     ro.max_steps = max_steps;
+    ro.tracer = (lt_rp_tracer_t)tracer;
+    if (thickness >= 0.0)
+        ro.ssb.thickness = (lt_q30_t)floor(thickness * 1073741824.0 + 0.5);
     {
         lt_q30_t *pp[4];
         int k;
@@ -929,8 +953,9 @@ int lt_rp_cli(int argc, char **argv, const char *prog, const lt_rp_cli_hooks_t *
         double util = st->lane_ops > 0 ? (double)st->lanes_on / (16.0 * (double)st->lane_ops) : 0.0;
         char title[1400];
         (void)util;
-        snprintf(title, sizeof title, "reproject %s %ux%u x %d layer(s) -> %ux%u, %s", depth, W, H,
-                 layers, res.width, res.height, enc_name[enc]);
+        snprintf(title, sizeof title, "reproject %s %ux%u x %d layer(s) -> %ux%u, %s%s%s", depth,
+                 W, H, layers, res.width, res.height, enc_name[enc], tracer ? " " : "",
+                 tracer ? tracer_name[tracer] : "");
         if (!*hk->quiet) {
             printf("source    %s: %ux%u, %d layer(s), channel %s%s, z_ref %g, median depth %.4g\n",
                    depth, W, H, layers, dl[0].channel, dist == 1 ? " (distances)" : "", st->zref,
@@ -940,9 +965,15 @@ int lt_rp_cli(int argc, char **argv, const char *prog, const lt_rp_cli_hooks_t *
                    cam_desc, src.cam.fx, src.cam.fy, src.cam.cx, src.cam.cy, dcam.c[0] - src.cam.c[0],
                    dcam.c[1] - src.cam.c[1], dcam.c[2] - src.cam.c[2], rot[0], rot[1], rot[2],
                    res.width, res.height);
-            printf("quadtree  %s: %llu nodes (%llu planes), %zu bytes, build %.3f s\n",
-                   enc_name[enc], (unsigned long long)st->qt_nodes,
-                   (unsigned long long)st->qt_planes, st->qt_bytes, st->t_build);
+            if (tracer == LT_RP_QUADTREE)
+                printf("quadtree  %s: %llu nodes (%llu planes), %zu bytes, build %.3f s\n",
+                       enc_name[enc], (unsigned long long)st->qt_nodes,
+                       (unsigned long long)st->qt_planes, st->qt_bytes, st->t_build);
+            else
+                printf("tracer    %s, %s: %zu bytes besides the w buffer, build %.3f s; "
+                       "thickness %.4g\n", tracer == LT_RP_DDA ? "DDA" : "Hi-Z",
+                       enc == LT_QT_F32 ? "float32" : "s1.30", st->qt_bytes, st->t_build,
+                       (double)ro.ssb.thickness / 1073741824.0);
             printf("rays      %llu of %llu pixels traced in %llu packets, %.3f s (%.2f Mrays/s)\n",
                    (unsigned long long)st->rays, (unsigned long long)st->pixels,
                    (unsigned long long)st->packets, st->t_trace,
@@ -1002,13 +1033,13 @@ int lt_rp_cli(int argc, char **argv, const char *prog, const lt_rp_cli_hooks_t *
         {
             char extra[2048], *js;
             int len = snprintf(extra, sizeof extra,
-                     "{\"encoding\": \"%s\", \"pixels\": %llu, \"traced_rays\": %llu, "
+                     "{\"encoding\": \"%s\", \"tracer\": \"%s\", \"pixels\": %llu, \"traced_rays\": %llu, "
                      "\"nodes_per_ray\": %.4f, \"aabb_per_ray\": %.4f, \"planes_per_ray\": %.4f, "
                      "\"nodes_max\": %u, \"hole_fraction\": %.6f, \"build_cycles\": %llu, "
                      "\"setup_cycles\": %llu, \"traverse_cycles\": %llu, "
                      "\"lane_utilisation\": %.4f}",
-                     enc_name[enc], (unsigned long long)st->pixels, (unsigned long long)st->rays,
-                     (double)st->nodes / rays, (double)st->aabb / rays, (double)st->planes / rays,
+                     enc_name[enc], tracer_name[tracer], (unsigned long long)st->pixels,
+                     (unsigned long long)st->rays, (double)st->nodes / rays, (double)st->aabb / rays, (double)st->planes / rays,
                      st->nodes_max, holes / px, (unsigned long long)st->cyc_build,
                      (unsigned long long)st->cyc_setup, (unsigned long long)st->cyc_trace, util);
             if (truth && len > 0 && (size_t)len < sizeof extra) {
@@ -1064,6 +1095,7 @@ int lt_rp_cli(int argc, char **argv, const char *prog, const lt_rp_cli_hooks_t *
             cJSON_AddStringToObject(o, "channel", dl[0].channel);
             cJSON_AddNumberToObject(o, "layers", layers);
             cJSON_AddStringToObject(o, "encoding", enc_name[enc]);
+            cJSON_AddStringToObject(o, "tracer", tracer_name[tracer]);
             cJSON_AddNumberToObject(o, "source_width", W);
             cJSON_AddNumberToObject(o, "source_height", H);
             cJSON_AddNumberToObject(o, "width", res.width);

@@ -132,6 +132,29 @@ for e in n64 n32 f32; do
         'BEGIN{exit !(k > 6000 && w <= 0.01 * k && c > 1000 && i >= 0.9 * c && p <= 0.005)}'
 done
 
+# the DDA and Hi-Z baselines through the same view synthesis and the same ground truth
+rp_expect "reproject --tracer unknown names the choices" 2 "quadtree, dda or hiz" \
+    "$RP_NAT" reproject --depth x.exr --tracer bvh
+rp_expect "reproject --thickness out of range names it" 2 "\[0, 2)" \
+    "$RP_NAT" reproject --depth x.exr --thickness 3
+for t in dda hiz; do
+    args=(reproject scenes/teapot.json --depth "$tmp/tp96.exr" --layers 2 --move-rel 0.08,0,0 --rot -3,0,0
+        --tracer $t --truth --json)
+    "$RP_NAT" "${args[@]}" >"$tmp/tt_$t.json" 2>&1
+    rcn=$?
+    "$RP_SIM" "${args[@]}" >"$tmp/tts_$t.json" 2>&1
+    rcs=$?
+    f="$tmp/tt_$t.json"
+    kn=$(jnum known_pixels "$f"); wr=$(( $(jnum spurious_hits "$f") + $(jnum missed_hits "$f") ))
+    ch=$(jnum common_hits "$f"); wi=$(jnum within_tolerance "$f")
+    check "reproject --tracer $t teapot: native and sim exit 0 (rc $rcn, $rcs), same ground-truth figures" \
+        test "$rcn$rcs" = 00 -a "$(sed -n '/"truth"/,/}/p' "$f" | tr -d ',')" = "$(sed -n '/"truth"/,/}/p' "$tmp/tts_$t.json" | tr -d ',')"
+    check "reproject --tracer $t teapot: wrong hit/miss $wr of $kn traced pixels (bound 1%), $wi of $ch common hits within 1% (bound 90%)" \
+        awk -v k="$kn" -v w="$wr" -v c="$ch" -v i="$wi" \
+        'BEGIN{exit !(k > 6000 && w <= 0.01 * k && c > 1000 && i >= 0.9 * c)}'
+done
+check "reproject --tracer: the JSON names the tracer" grep -q '"tracer":.*"hiz"' "$tmp/tt_hiz.json"
+
 rp_expect "reproject --lambda-h out of range names it" 2 "\[0, 1\]" \
     "$RP_NAT" reproject --depth x.exr --lambda-h 2
 "$RP_NAT" reproject scenes/teapot.json --depth "$tmp/tp96.exr" --layers 2 --move-rel 0.08,0,0 --rot -3,0,0 \

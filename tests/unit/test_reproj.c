@@ -950,16 +950,17 @@ static void test_truth(void **state)
                 edge += (ex < 1.0 && Y > by0 - 3.0 / dst.fy && Y < by1 + 3.0 / dst.fy) ||
                         (ey < 1.0 && X > bx0 - 3.0 / dst.fx && X < bx1 + 3.0 / dst.fx);
             }
-        for (o.enc = LT_QT_N64; o.enc <= LT_QT_F32; o.enc = (lt_qt_enc_t)(o.enc + 1)) {
-            lt_qt_enc_t e = o.enc;
+        for (i = 0; i < 9; i++) {
+            static const char *const tn[3] = {"quadtree", "DDA", "Hi-Z"};
             lt_rp_opts_default(&o);
-            o.enc = e;
+            o.enc = (lt_qt_enc_t)(i % 3);
+            o.tracer = (lt_rp_tracer_t)(i / 3);
             assert_int_equal(lt_rp_run(&src, &dst, &o, &res, err, sizeof err), 0);
             assert_int_equal(lt_rp_truth_compare(&res, zt, 0.01, &t, NULL), 0);
-            printf("reproj truth box over wall, enc %d, moved 0.6: %llu known pixels, wrong hit/miss "
-                   "%llu (bound 0), common hits %llu, outside 1%% %llu (bound: %u outline pixels), "
-                   "median relative error %.3g (bound 1e-6), inpainted %llu\n",
-                   (int)e, (unsigned long long)t.known,
+            printf("reproj truth box over wall, %s enc %d, moved 0.6: %llu known pixels, wrong "
+                   "hit/miss %llu (bound 0), common hits %llu, outside 1%% %llu (bound: %u outline "
+                   "pixels), median relative error %.3g (bound 1e-6), inpainted %llu\n",
+                   tn[o.tracer], (int)o.enc, (unsigned long long)t.known,
                    (unsigned long long)(t.spurious + t.missed), (unsigned long long)t.both_hit,
                    (unsigned long long)(t.both_hit - t.within), edge, t.rel_p50,
                    (unsigned long long)t.inpainted);
