@@ -503,6 +503,11 @@ int lt_rp_run(const lt_rp_source_t *src, const lt_reproj_cam_t *dst, const lt_rp
                  src->width, src->height, dst->width, dst->height, LT_QT_MAX_DIM);
         return -1;
     }
+    if ((unsigned)o->enc > (unsigned)LT_QT_F32 || (unsigned)o->tracer > (unsigned)LT_RP_HIZ) {
+        snprintf(err, errlen, "reproject: unknown node encoding %d or tracer %d (0..2 each)",
+                 (int)o->enc, (int)o->tracer);
+        return -1;
+    }
     fenc = o->enc == LT_QT_F32;
     W = src->width;
     H = src->height;

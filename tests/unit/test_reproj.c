@@ -970,6 +970,16 @@ static void test_truth(void **state)
             assert_true(t.known > (uint64_t)W * H * 9 / 10);
             lt_rp_result_free(&res);
         }
+        /* an unknown tracer or encoding is refused with a message, nothing allocated */
+        lt_rp_opts_default(&o);
+        o.tracer = (lt_rp_tracer_t)3;
+        err[0] = '\0';
+        assert_int_equal(lt_rp_run(&src, &dst, &o, &res, err, sizeof err), -1);
+        assert_true(strstr(err, "tracer") != NULL && res.z == NULL);
+        lt_rp_opts_default(&o);
+        o.enc = (lt_qt_enc_t)7;
+        assert_int_equal(lt_rp_run(&src, &dst, &o, &res, err, sizeof err), -1);
+        printf("reproj truth: unknown tracer 3 and encoding 7 refused ('%s')\n", err);
         free(z);
         free(zt);
     }
