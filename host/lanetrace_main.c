@@ -4,6 +4,7 @@
  * hands over to the native build. Exit codes: 0 ok, 1 input or runtime error, 2 usage. Host only.
  */
 #include "lt/lt.h"
+#include "lt_cliutil.h"
 #include "lt_exr.h"
 #include "lt_heatmap.h"
 #include "lt_mesh.h"
@@ -36,19 +37,12 @@ static const char *prog = "lanetrace";
 
 static double t_start;
 
-static double now_s(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
 static const char *progress_label = "";
 static int progress_shown;
 
 static void progress(double done)
 {
-    double el = now_s() - t_start;
+    double el = lt_now_s() - t_start;
     int i, w = 30, fill;
     if (quiet || !isatty(2) || el < 1.0)
         return;
@@ -65,7 +59,7 @@ static void progress(double done)
 static void progress_begin(const char *label)
 {
     progress_label = label;
-    t_start = now_s();
+    t_start = lt_now_s();
     progress_shown = 0;
 }
 
@@ -144,21 +138,6 @@ static void run_usage(FILE *f)
             "  --json             machine-readable JSON on stdout\n"
             "  -q                 quiet: summary lines only\n",
             prog, LT_SF_MAX_RES);
-}
-
-static int parse_res(const char *s, uint32_t *w, uint32_t *h)
-{
-    unsigned long a, b;
-    char *end;
-    a = strtoul(s, &end, 10);
-    b = a;
-    if (*end == 'x')
-        b = strtoul(end + 1, &end, 10);
-    if (*end != '\0' || a == 0 || b == 0 || a > LT_SF_MAX_RES || b > LT_SF_MAX_RES)
-        return -1;
-    *w = (uint32_t)a;
-    *h = (uint32_t)b;
-    return 0;
 }
 
 #if LT_COST_MODE == LT_COST_SIM
@@ -246,7 +225,7 @@ static int cmd_run(int argc, char **argv)
         if (strcmp(o, "--mesh") == 0) {
             mesh_over = v;
         } else if (strcmp(o, "--res") == 0) {
-            if (parse_res(v, &sf.width, &sf.height) != 0) {
+            if (lt_parse_wh(v, LT_SF_MAX_RES, &sf.width, &sf.height) != 0) {
                 fprintf(stderr, "%s run: --res %s: expected WxH or N, 1..%d\n", prog, v,
                         LT_SF_MAX_RES);
                 return EXIT_USAGE;
@@ -414,10 +393,10 @@ static int cmd_run(int argc, char **argv)
             break;
         }
         progress_begin(pname);
-        t0 = now_s();
+        t0 = lt_now_s();
         for (rep = 0; rep < repeat; rep++)
             lt_render_primary(&sc, acc, &cam, &fr, progress);
-        ms = 1e3 * (now_s() - t0);
+        ms = 1e3 * (lt_now_s() - t0);
         progress_end();
         acc_bytes = lt_accel_bytes(acc);
         lt_accel_free(acc);
@@ -985,12 +964,6 @@ static void render_usage(FILE *f)
             prog);
 }
 
-static uint8_t to8(double v)
-{
-    v = v < 0.0 ? 0.0 : (v > 1.0 ? 1.0 : v);
-    return (uint8_t)(255.0 * pow(v, 1.0 / 2.2) + 0.5);
-}
-
 static uint64_t count_hits(const lt_frame_t *f)
 {
     size_t i, n = (size_t)f->width * f->height;
@@ -1054,7 +1027,7 @@ static int cmd_render(int argc, char **argv)
         } else if (strcmp(o, "--report") == 0) {
             report = v;
         } else if (strcmp(o, "--res") == 0) {
-            if (parse_res(v, &w, &h) != 0) {
+            if (lt_parse_wh(v, LT_SF_MAX_RES, &w, &h) != 0) {
                 fprintf(stderr, "%s render: --res %s: expected WxH or N, 1..%d\n", prog, v,
                         LT_SF_MAX_RES);
                 return EXIT_USAGE;
@@ -1232,7 +1205,7 @@ static int cmd_render(int argc, char **argv)
         ch[3][i] = (float)nrm[1];
         ch[4][i] = (float)nrm[2];
         ch[5][i] = ch[6][i] = ch[7][i] = (float)shade;
-        rgb[3 * i] = rgb[3 * i + 1] = rgb[3 * i + 2] = id >= 0 ? to8(shade) : 24;
+        rgb[3 * i] = rgb[3 * i + 1] = rgb[3 * i + 2] = id >= 0 ? lt_gamma8(shade) : 24;
     }
     {
         lt_exr_channel_t ec[8 + 16];
@@ -1449,6 +1422,7 @@ static int cmd_reproject(int argc, char **argv)
     h.progress = progress;
     h.end = progress_end;
     h.quiet = &quiet;
+    h.write_text = write_atomic;
     return lt_rp_cli(argc, argv, prog, &h);
 }
 

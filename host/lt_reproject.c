@@ -5,6 +5,7 @@
  * double); the same code runs in the host, asan and sim builds. docs/reproject.md.
  */
 #include "lt_reproject.h"
+#include "lt_cliutil.h"
 #include "lt_qt_ref.h"
 
 #include <math.h>
@@ -19,13 +20,6 @@
 /* A segment start within this many pixels of the source's border was clipped by the screen (the
  * clip puts it on the border up to rounding in s15.16 or float32). */
 #define RP_EDGE_EPS (1.0 / 256.0)
-
-static double now_s(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 static uint64_t cycles_now(void)
 {
@@ -548,7 +542,7 @@ int lt_rp_run(const lt_rp_source_t *src, const lt_reproj_cam_t *dst, const lt_rp
     }
 
     /* the tracer: quadtree (built), DDA (no structure) or Hi-Z (built) */
-    t0 = now_s();
+    t0 = lt_now_s();
 #if LT_COST_MODE == LT_COST_SIM
     if (wq != NULL)
         (void)lt_sim_region(wq, n * sizeof *wq, 0x50000000u);
@@ -559,7 +553,7 @@ int lt_rp_run(const lt_rp_source_t *src, const lt_reproj_cam_t *dst, const lt_rp
     if (tracer_build(&tr, o, W, H, src->layers, wq, wf, &arena, &bytes, err, errlen) != 0)
         goto done;
     res->st.cyc_build = cycles_now() - c0;
-    res->st.t_build = now_s() - t0;
+    res->st.t_build = lt_now_s() - t0;
     res->st.qt_bytes = bytes;
     if (o->tracer == LT_RP_QUADTREE) {
         res->st.qt_nodes = (uint64_t)tr.qt.layer_nodes * tr.qt.layers;
@@ -603,7 +597,7 @@ int lt_rp_run(const lt_rp_source_t *src, const lt_reproj_cam_t *dst, const lt_rp
     fc.bilinear = o->bilinear;
     res->st.pixels = np;
 
-    t0 = now_s();
+    t0 = lt_now_s();
 #if LT_COST_MODE == LT_COST_SIM
     lt_sim_totals(&tt0);
 #endif
@@ -725,7 +719,7 @@ int lt_rp_run(const lt_rp_source_t *src, const lt_reproj_cam_t *dst, const lt_rp
         if (o->progress != NULL)
             o->progress((double)(ty + 4) / (double)dst->height);
     }
-    res->st.t_trace = now_s() - t0;
+    res->st.t_trace = lt_now_s() - t0;
 #if LT_COST_MODE == LT_COST_SIM
     lt_sim_totals(&tt1);
     {
@@ -743,10 +737,10 @@ int lt_rp_run(const lt_rp_source_t *src, const lt_reproj_cam_t *dst, const lt_rp
         res->st.cls[res->cls[i]]++;
         valid[i] = res->cls[i] == LT_RP_HIT || res->cls[i] == LT_RP_BACKGROUND;
     }
-    t0 = now_s();
+    t0 = lt_now_s();
     if (o->inpaint)
         (void)lt_rp_inpaint(res->rgb, res->z, valid, dst->width, dst->height);
-    res->st.t_inpaint = now_s() - t0;
+    res->st.t_inpaint = lt_now_s() - t0;
     status = 0;
 done:
     free(arena);

@@ -6,6 +6,7 @@
  * as text and JSON. Exit codes: 0 ok, 1 input or runtime error, 2 usage. Host only.
  */
 #include "lt_reproject_cli.h"
+#include "lt_cliutil.h"
 #include "lt_exr.h"
 #include "lt_heatmap.h"
 #include "lt_mesh.h"
@@ -23,7 +24,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <unistd.h>
 
 #define EXIT_INPUT 1
 #define EXIT_USAGE 2
@@ -113,55 +113,6 @@ static int parse_vec(const char *s, double *v, int n)
     return *p == '\0' ? 0 : -1;
 }
 
-static int parse_wh(const char *s, uint32_t *w, uint32_t *h)
-{
-    unsigned long a, b;
-    char *end;
-    a = strtoul(s, &end, 10);
-    b = a;
-    if (end == s)
-        return -1;
-    if (*end == 'x')
-        b = strtoul(end + 1, &end, 10);
-    if (*end != '\0' || a == 0 || b == 0 || a > LT_QT_MAX_DIM || b > LT_QT_MAX_DIM)
-        return -1;
-    *w = (uint32_t)a;
-    *h = (uint32_t)b;
-    return 0;
-}
-
-static uint8_t to8(float v)
-{
-    double d = (double)v;
-    d = d < 0.0 || d != d ? 0.0 : (d > 1.0 ? 1.0 : d);
-    return (uint8_t)(255.0 * pow(d, 1.0 / 2.2) + 0.5);
-}
-
-#if LT_COST_MODE == LT_COST_SIM
-static int write_text_atomic(const char *path, const char *text, char *err, size_t errlen)
-{
-    char tmp[1200];
-    FILE *f;
-    snprintf(tmp, sizeof tmp, "%s.tmp.%ld", path, (long)getpid());
-    f = fopen(tmp, "w");
-    if (f == NULL) {
-        snprintf(err, errlen, "%s: cannot create the output (directory missing or not writable)",
-                 path);
-        return -1;
-    }
-    if (fputs(text, f) < 0 || fclose(f) != 0) {
-        unlink(tmp);
-        snprintf(err, errlen, "%s: write failed (disk full?)", path);
-        return -1;
-    }
-    if (rename(tmp, path) != 0) {
-        unlink(tmp);
-        snprintf(err, errlen, "%s: cannot rename the output into place", path);
-        return -1;
-    }
-    return 0;
-}
-#endif
 
 static int cmp_float(const void *a, const void *b)
 {
@@ -188,42 +139,23 @@ static double median_depth(const float *z, size_t n)
     return r;
 }
 
-/* A look-at camera as lanetrace render builds it (lt_camera_look): fwd = target - eye, right =
- * fwd x up, up' = right x fwd; fov_y over the image height. Rows: right, -up', fwd. */
-static void cam_from_basis(const double eye[3], const double fwd[3], const double right[3],
-                           const double up[3], double tan_half_fov, uint32_t w, uint32_t h,
-                           lt_reproj_cam_t *c)
+/* lanetrace render's camera (lt_camera_t: eye, fwd, right, up, fov_y over the image height) as
+ * the reprojection's pinhole: rows right, -up, fwd; fx = fy = H / (2 tan(fov_y / 2)), centred. */
+static void cam_from_camera(const lt_camera_t *cam, uint32_t w, uint32_t h, lt_reproj_cam_t *c)
 {
     int i;
     memset(c, 0, sizeof *c);
-    c->fy = c->fx = 0.5 * (double)h / tan_half_fov;
+    c->fy = c->fx = 0.5 * (double)h / cam->tan_half_fov;
     c->cx = 0.5 * (double)w;
     c->cy = 0.5 * (double)h;
     for (i = 0; i < 3; i++) {
-        c->r[0][i] = right[i];
-        c->r[1][i] = -up[i];
-        c->r[2][i] = fwd[i];
-        c->c[i] = eye[i];
+        c->r[0][i] = cam->right[i];
+        c->r[1][i] = -cam->up[i];
+        c->r[2][i] = cam->fwd[i];
+        c->c[i] = cam->eye[i];
     }
     c->width = w;
     c->height = h;
-}
-
-static void normalize3(double v[3])
-{
-    double l = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-    if (l > 0.0) {
-        v[0] /= l;
-        v[1] /= l;
-        v[2] /= l;
-    }
-}
-
-static void cross3(const double a[3], const double b[3], double r[3])
-{
-    r[0] = a[1] * b[2] - a[2] * b[1];
-    r[1] = a[2] * b[0] - a[0] * b[2];
-    r[2] = a[0] * b[1] - a[1] * b[0];
 }
 
 /* Ground truth: the target view rendered by the object-space tracer (float32 BVH packets, the
@@ -473,7 +405,7 @@ int lt_rp_cli(int argc, char **argv, const char *prog, const lt_rp_cli_hooks_t *
             }
             have_rot = 1;
         } else if (strcmp(o, "--res") == 0) {
-            if (parse_wh(v, &dw, &dh) != 0) {
+            if (lt_parse_wh(v, LT_QT_MAX_DIM, &dw, &dh) != 0) {
                 fprintf(stderr, "%s reproject: --res %s: expected WxH or N, 1..%u (LT_QT_MAX_DIM)\n",
                         prog, v, LT_QT_MAX_DIM);
                 return EXIT_USAGE;
@@ -704,21 +636,23 @@ int lt_rp_cli(int argc, char **argv, const char *prog, const lt_rp_cli_hooks_t *
         } else {
             lt_camera_default(&sc, W, H, &cam);
         }
-        cam_from_basis(cam.eye, cam.fwd, cam.right, cam.up, cam.tan_half_fov, W, H, &src.cam);
+        cam_from_camera(&cam, W, H, &src.cam);
         if (dist < 0)
             dist = 1;
         cam_desc = "the scene's render camera";
     } else if (sf.has_camera) {
-        double f[3], r[3], u[3];
+        /* the look-at camera of the scene file, in the depth image's own units */
+        lt_camera_t cam;
+        double dir[3];
         int k;
-        for (k = 0; k < 3; k++)
-            f[k] = sf.target[k] - sf.eye[k];
-        normalize3(f);
-        cross3(f, sf.up, r);
-        normalize3(r);
-        cross3(r, f, u);
-        cam_from_basis(sf.eye, f, r, u, tan(0.5 * sf.fov_y_deg * 3.14159265358979323846 / 180.0),
-                       W, H, &src.cam);
+        memset(&cam, 0, sizeof cam);
+        for (k = 0; k < 3; k++) {
+            cam.eye[k] = sf.eye[k];
+            dir[k] = sf.target[k] - sf.eye[k];
+        }
+        lt_camera_basis(&cam, dir, sf.up);
+        cam.tan_half_fov = tan(0.5 * sf.fov_y_deg * 3.14159265358979323846 / 180.0);
+        cam_from_camera(&cam, W, H, &src.cam);
         cam_desc = "the scene's camera";
     } else {
         int32_t disp_w = dl[0].display_window.x1 - dl[0].display_window.x0 + 1;
@@ -911,7 +845,7 @@ int lt_rp_cli(int argc, char **argv, const char *prog, const lt_rp_cli_hooks_t *
                 status = EXIT_INPUT;
             } else {
                 for (i = 0; i < np * 3; i++)
-                    px[i] = to8(res.rgb[i]);
+                    px[i] = lt_gamma8((double)res.rgb[i]);
                 if (lt_png_write(png, px, (int32_t)res.width, (int32_t)res.height, 3, 0, err,
                                  sizeof err) != 0) {
                     fprintf(stderr, "%s\n", err);
@@ -1055,7 +989,7 @@ int lt_rp_cli(int argc, char **argv, const char *prog, const lt_rp_cli_hooks_t *
                 lt_sim_report_text(stdout, title, st->pixels);
             if (report != NULL) {
                 js = lt_sim_report_json_string(title, st->pixels, extra);
-                if (js == NULL || write_text_atomic(report, js, err, sizeof err) != 0) {
+                if (js == NULL || hk->write_text(report, js, err, sizeof err) != 0) {
                     fprintf(stderr, "%s\n", js == NULL ? "reproject: out of memory for the report"
                                                        : err);
                     free(js);

@@ -18,6 +18,9 @@ typedef struct lt_rp_cli_hooks {
     void (*progress)(double done);
     void (*end)(void);
     int *quiet;
+    /* write text to path atomically (temporary name, rename; removed on a signal); 0 or -1 with
+       a message naming the path */
+    int (*write_text)(const char *path, const char *text, char *err, size_t errlen);
 } lt_rp_cli_hooks_t;
 
 /* argv[1] == "reproject". Returns the exit code: 0 ok, 1 input or runtime error, 2 usage. */

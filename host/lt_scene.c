@@ -147,15 +147,26 @@ void lt_camera_default(const lt_scene_t *s, uint32_t width, uint32_t height, lt_
     c->height = height;
 }
 
+void lt_camera_basis(lt_camera_t *c, const double dir[3], const double up[3])
+{
+    int a;
+    for (a = 0; a < 3; a++)
+        c->fwd[a] = dir[a];
+    normalize(c->fwd);
+    cross(c->fwd, up, c->right);
+    normalize(c->right);
+    cross(c->right, c->fwd, c->up);
+}
+
 int lt_camera_look(const lt_scene_t *s, const double eye[3], const double target[3],
                    const double up[3], double fov_y_deg, uint32_t width, uint32_t height,
                    lt_camera_t *c, char *err, size_t errlen)
 {
-    double lim = ldexp(1.0, LT_CFG_GEOM_MAX_LOG2);
+    double lim = ldexp(1.0, LT_CFG_GEOM_MAX_LOG2), dir[3];
     int a;
     for (a = 0; a < 3; a++) {
         c->eye[a] = (eye[a] - s->center[a]) * s->scale;
-        c->fwd[a] = target[a] - eye[a];
+        dir[a] = target[a] - eye[a];
         if (fabs(c->eye[a]) > lim) {
             snprintf(err, errlen,
                      "camera eye is %.4g scene radii from the centre; the fixed-point range allows "
@@ -164,10 +175,7 @@ int lt_camera_look(const lt_scene_t *s, const double eye[3], const double target
             return -1;
         }
     }
-    normalize(c->fwd);
-    cross(c->fwd, up, c->right);
-    normalize(c->right);
-    cross(c->right, c->fwd, c->up);
+    lt_camera_basis(c, dir, up);
     c->tan_half_fov = tan(0.5 * fov_y_deg * 3.14159265358979323846 / 180.0);
     c->width = width;
     c->height = height;

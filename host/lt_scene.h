@@ -59,6 +59,10 @@ int lt_camera_look(const lt_scene_t *s, const double eye[3], const double target
                    const double up[3], double fov_y_deg, uint32_t width, uint32_t height,
                    lt_camera_t *c, char *err, size_t errlen);
 
+/* The look-at basis: fwd = normalize(dir), right = normalize(fwd x up), up' = right x fwd into
+ * c->fwd, c->right, c->up (the rest of c untouched). dir and up must not be parallel. */
+void lt_camera_basis(lt_camera_t *c, const double dir[3], const double up[3]);
+
 /* Unit direction of the ray through the centre of pixel (x, y) (y down). */
 void lt_camera_dir(const lt_camera_t *c, uint32_t x, uint32_t y, double d[3]);
 

@@ -8,6 +8,7 @@
  * runtime error (including frusta != packet visibility), 2 usage. Host only; docs/frusta.md.
  */
 #include "lt_softshadow.h"
+#include "lt_cliutil.h"
 #if LT_COST_MODE == LT_COST_SIM
 #include "lt_sim.h"
 #endif
@@ -50,13 +51,6 @@ static void usage(FILE *f)
             "  -q                 only the result lines\n");
 }
 
-static double now_s(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
 static int parse3(const char *s, double v[3], double *extra)
 {
     int n = extra != NULL ? sscanf(s, "%lf,%lf,%lf,%lf", &v[0], &v[1], &v[2], extra)
@@ -84,7 +78,7 @@ static void stage_end(stage_t *st, const char *name, double t0)
 {
     memset(st, 0, sizeof *st);
     st->name = name;
-    st->seconds = now_s() - t0;
+    st->seconds = lt_now_s() - t0;
 #if LT_COST_MODE == LT_COST_SIM
     {
         static lt_sim_totals_t t;
@@ -438,7 +432,7 @@ int main(int argc, char **argv)
     memset(&sshf, 0, sizeof sshf);
     if (run_pp) {
         stage_begin();
-        t0 = now_s();
+        t0 = lt_now_s();
         lt_ss_primary(ss);
         stage_end(&sp, "P-Packet (+shad)", t0);
         hash_pp = lt_ss_primary_hash(ss);
@@ -451,7 +445,7 @@ int main(int argc, char **argv)
         /* S-Packet right after P-Packet (or, without P-Packet, after P-Frusta) */
         if (run_pk && (i == 0) == (run_pp != 0)) {
             stage_begin();
-            t0 = now_s();
+            t0 = lt_now_s();
             lt_ss_shadows_packet(ss);
             stage_end(&sshp, "S-Packet shadows", t0);
 #if LT_COST_MODE == LT_COST_SIM
@@ -461,7 +455,7 @@ int main(int argc, char **argv)
         }
         if (i == 0 && run_pf) {
             stage_begin();
-            t0 = now_s();
+            t0 = lt_now_s();
             lt_ss_primary_frusta(ss);
             stage_end(&spf, "P-Frusta (+shad)", t0);
             hash_pf = lt_ss_primary_hash(ss);
@@ -473,7 +467,7 @@ int main(int argc, char **argv)
     }
     if (run_fr) {
         stage_begin();
-        t0 = now_s();
+        t0 = lt_now_s();
         lt_ss_shadows_frusta(ss);
         stage_end(&sshf, "S-Frusta shadows", t0);
 #if LT_COST_MODE == LT_COST_SIM
@@ -482,11 +476,11 @@ int main(int argc, char **argv)
 #endif
     }
     stage_begin();
-    t0 = now_s();
+    t0 = lt_now_s();
     lt_ss_shade(ss, run_fr ? LT_SS_FRUSTA : LT_SS_PACKET);
     stage_end(&sshade, "shade", t0);
     stage_begin();
-    t0 = now_s();
+    t0 = lt_now_s();
     lt_ss_filter(ss);
     stage_end(&sfilt, "filter", t0);
 #if LT_COST_MODE == LT_COST_SIM
@@ -687,13 +681,13 @@ int main(int argc, char **argv)
 #endif
     if (!no_ref) {
         lt_ss_quality_t q;
-        t0 = now_s();
+        t0 = lt_now_s();
         lt_ss_reference(ss, NULL);
         lt_ss_quality(ss, tol, &q);
         printf("quality   vs 256 samples/pixel (%.1f s): PSNR filtered %.2f dB, unfiltered 16 spp "
                "%.2f dB, reference through the same filter %.2f dB, filtered vs filtered reference "
                "%.2f dB; penumbra pixels %llu, within %.3g: %.1f%% filtered, %.1f%% unfiltered\n",
-               now_s() - t0, q.psnr_filtered, q.psnr_raw, q.psnr_filtered_ref,
+               lt_now_s() - t0, q.psnr_filtered, q.psnr_raw, q.psnr_filtered_ref,
                q.psnr_vs_filtered_ref,
                (unsigned long long)q.penumbra, q.tol, 100.0 * ratio(q.penumbra_ok, q.penumbra),
                100.0 * ratio(q.penumbra_raw_ok, q.penumbra));

@@ -1272,12 +1272,10 @@ static void brute1(const lt_softshadow_t *ss, size_t q, unsigned set, unsigned j
     }
 }
 
-/* A primary kernel hit at t is genuine when the exact ray crosses the triangle's plane within a
- * quarter of the BVH pad of t, inside the triangle's box padded by that much (docs/frusta.md: both
- * primary traversals provably find those). */
-static int pgenuine(const double o[3], const double d[3], double tk, const double v[9])
+int lt_ss_hit_genuine(const double o[3], const double d[3], const double v[9], double pad,
+                      double tk)
 {
-    double q = (double)LT_BVH_PAD_Q16 / 65536.0 / 4.0, e1[3], e2[3], n[3], den, t;
+    double e1[3], e2[3], n[3], den, t;
     int a, j;
     for (a = 0; a < 3; a++) {
         e1[a] = v[3 + a] - v[a];
@@ -1290,7 +1288,7 @@ static int pgenuine(const double o[3], const double d[3], double tk, const doubl
     if (den == 0.0)
         return 0;
     t = ((v[0] - o[0]) * n[0] + (v[1] - o[1]) * n[1] + (v[2] - o[2]) * n[2]) / den;
-    if (!(t > 0.0) || fabs(t - tk) > q)
+    if (!(t > 0.0) || fabs(t - tk) > pad)
         return 0;
     for (a = 0; a < 3; a++) {
         double x = o[a] + t * d[a], lo = v[a], hi = v[a];
@@ -1298,7 +1296,7 @@ static int pgenuine(const double o[3], const double d[3], double tk, const doubl
             lo = v[3 * j + a] < lo ? v[3 * j + a] : lo;
             hi = v[3 * j + a] > hi ? v[3 * j + a] : hi;
         }
-        if (x < lo - q || x > hi + q)
+        if (x < lo - pad || x > hi + pad)
             return 0;
     }
     return 1;
@@ -1349,7 +1347,7 @@ static int prim_right(const lt_softshadow_t *ss, uint32_t x, uint32_t y, int32_t
                 v[3 + a] = (double)((int64_t)tr->v0[a] + tr->e1[a]) / 65536.0;
                 v[6 + a] = (double)((int64_t)tr->v0[a] + tr->e2[a]) / 65536.0;
             }
-            if (pgenuine(o, d, (double)rr.tmax / 65536.0, v))
+            if (lt_ss_hit_genuine(o, d, v, LT_SS_GENUINE_PAD, (double)rr.tmax / 65536.0))
                 return 0; /* a genuine hit before the answer was missed */
         }
     } else {
@@ -1385,7 +1383,7 @@ static int prim_right(const lt_softshadow_t *ss, uint32_t x, uint32_t y, int32_t
                 v[3 + a] = (double)tr->v0[a] + (double)tr->e1[a];
                 v[6 + a] = (double)tr->v0[a] + (double)tr->e2[a];
             }
-            if (pgenuine(o, d, (double)rr.tmax, v))
+            if (lt_ss_hit_genuine(o, d, v, LT_SS_GENUINE_PAD, (double)rr.tmax))
                 return 0;
         }
     }

@@ -84,6 +84,14 @@ lt_softshadow_t *lt_ss_create(const lt_scene_t *s, const lt_camera_t *cam, const
                               const lt_ss_opts_t *o, char *err, size_t errlen);
 void lt_ss_free(lt_softshadow_t *ss);
 
+/* A kernel hit at t (tk) of the ray o + s d against triangle v (9 doubles) is genuine when the
+ * exact ray meets the triangle's plane at a parameter within pad of tk, inside the triangle's box
+ * padded by pad: every box-pruning traversal provably finds those (docs/frusta.md). The primary
+ * audits use pad = LT_SS_GENUINE_PAD, a quarter of the BVH's pad. */
+#define LT_SS_GENUINE_PAD ((double)LT_BVH_PAD_Q16 / 65536.0 / 4.0)
+int lt_ss_hit_genuine(const double o[3], const double d[3], const double v[9], double pad,
+                      double tk);
+
 /* Stages. primary: P-Packet traversal (16-ray packets of 4x4 tiles, deep tree, closest hit),
  * hit points, normals, origins, direct term (SHADE). primary_frusta: the same by P-Frusta (16
  * frusta of 4x4 rays per 16x16 block, shallow tree); both trace the same rays (the linear camera

@@ -6,6 +6,7 @@
  * device status 0), 1 any fault or input error, 2 usage. Host only.
  */
 #include "lt_rx.h"
+#include "lt_cliutil.h"
 #include "usb/lt_rx_hid.h"
 
 #include <errno.h>
@@ -38,13 +39,6 @@ static void usage(FILE *f)
            "  --json           print the summary as JSON on stdout\n"
            "  -q               no live line on stderr\n"
            "exit status: 0 clean stream, 1 faults found or input error, 2 usage\n");
-}
-
-static double now_s(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
 /* --tiles output: the device's records, one line each, in arrival order (first copies only). */
@@ -349,10 +343,10 @@ int main(int argc, char **argv)
         return 1;
     }
     tty = !o.quiet && isatty(2);
-    t0 = last_byte = now_s();
+    t0 = last_byte = lt_now_s();
     for (;;) {
         long n = lt_rx_src_read(src, buf, sizeof buf, tty ? 250 : 1000, err, sizeof err);
-        double t = now_s();
+        double t = lt_now_s();
         if (n > 0) {
             lt_rx_feed(rx, buf, (size_t)n);
             last_byte = t;
@@ -378,13 +372,13 @@ int main(int argc, char **argv)
     lt_rx_finish(rx);
     s = lt_rx_stats(rx);
     if (tty) {
-        live_line(s, now_s() - t0);
+        live_line(s, lt_now_s() - t0);
         fputc('\n', stderr);
     }
     if (o.json)
-        print_json(lt_rx_src_name(src), s, now_s() - t0);
+        print_json(lt_rx_src_name(src), s, lt_now_s() - t0);
     else
-        print_text(lt_rx_src_name(src), s, now_s() - t0);
+        print_text(lt_rx_src_name(src), s, lt_now_s() - t0);
     if (!clean(s))
         status = 1;
     if (tiles != NULL && fclose(tiles) != 0) {

@@ -6,6 +6,7 @@
  * Usage: embree-race [--mesh PATH] [--res N] [--runs N] [--structure NAME]
  */
 #include "lt_mesh.h"
+#include "lt_cliutil.h"
 #include "lt_render.h"
 #include "lt_scene.h"
 
@@ -16,13 +17,6 @@
 #include <string.h>
 #include <time.h>
 #include <xmmintrin.h>
-
-static double now_s(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 static int cmp_double(const void *a, const void *b)
 {
@@ -248,26 +242,26 @@ int main(int argc, char **argv)
     rtcAttachGeometry(r.scene, g);
     rtcReleaseGeometry(g);
     rtcSetSceneBuildQuality(r.scene, RTC_BUILD_QUALITY_MEDIUM);
-    t0 = now_s();
+    t0 = lt_now_s();
     rtcCommitScene(r.scene);
-    build_ms = 1e3 * (now_s() - t0);
+    build_ms = 1e3 * (lt_now_s() - t0);
 
     for (k = 0; k < runs; k++) {
-        t0 = now_s();
+        t0 = lt_now_s();
         embree_primary1(&r);
-        times[k] = now_s() - t0;
+        times[k] = lt_now_s() - t0;
     }
     e1 = (double)res * res / median(times, runs) / 1e6;
     for (k = 0; k < runs; k++) {
-        t0 = now_s();
+        t0 = lt_now_s();
         embree_primary16(&r);
-        times[k] = now_s() - t0;
+        times[k] = lt_now_s() - t0;
     }
     e16 = (double)res * res / median(times, runs) / 1e6;
     for (k = 0; k < runs; k++) {
-        t0 = now_s();
+        t0 = lt_now_s();
         occ = embree_shadow16(&r, &shadow_n);
-        times[k] = now_s() - t0;
+        times[k] = lt_now_s() - t0;
     }
     es16 = (double)shadow_n / median(times, runs) / 1e6;
 
@@ -284,9 +278,9 @@ int main(int argc, char **argv)
         double lp, l1 = 0.0, ls = 0.0, lb;
         double light[3] = {r.light[0], r.light[1], r.light[2]};
         const char *name = a == 0 ? "s15.16 " : "float32";
-        t0 = now_s();
+        t0 = lt_now_s();
         acc = lt_accel_build(&sc, structure, (lt_path_t)a, err, sizeof err);
-        lb = 1e3 * (now_s() - t0);
+        lb = 1e3 * (lt_now_s() - t0);
         if (acc == NULL) {
             fprintf(stderr, "%s\n", err);
             return 1;
@@ -295,16 +289,16 @@ int main(int argc, char **argv)
                lt_accel_bytes(acc));
         if (strcmp(structure, "chunks") != 0) {
             for (k = 0; k < runs; k++) {
-                t0 = now_s();
+                t0 = lt_now_s();
                 lt_render_primary1(&sc, acc, &r.cam, &fr, err, sizeof err);
-                times[k] = now_s() - t0;
+                times[k] = lt_now_s() - t0;
             }
             l1 = (double)res * res / median(times, runs) / 1e6;
         }
         for (k = 0; k < runs; k++) {
-            t0 = now_s();
+            t0 = lt_now_s();
             lt_render_primary(&sc, acc, &r.cam, &fr, NULL);
-            times[k] = now_s() - t0;
+            times[k] = lt_now_s() - t0;
         }
         lp = (double)res * res / median(times, runs) / 1e6;
         for (i = 0; i < res * res; i++) {
@@ -313,9 +307,9 @@ int main(int argc, char **argv)
         }
         if (strcmp(structure, "chunks") != 0) {
             for (k = 0; k < runs; k++) {
-                t0 = now_s();
+                t0 = lt_now_s();
                 lt_render_shadows(&sc, acc, &r.cam, &fr, light, &sn, &so, NULL, err, sizeof err);
-                times[k] = now_s() - t0;
+                times[k] = lt_now_s() - t0;
             }
             ls = (double)sn / median(times, runs) / 1e6;
             printf("lanetrace %s single rays     %8.2f Mrays/s = %.3fx Embree rtcIntersect1\n",

@@ -7,6 +7,7 @@
  * Usage: frusta-race --mesh PATH [--res N] [--runs N] [--num q16|f32] [--leaf N] [--cull LIST]
  */
 #include "lt_softshadow.h"
+#include "lt_cliutil.h"
 
 #include <embree3/rtcore.h>
 #include <math.h>
@@ -15,13 +16,6 @@
 #include <string.h>
 #include <time.h>
 #include <xmmintrin.h>
-
-static double now_s(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 static int cmp_double(const void *a, const void *b)
 {
@@ -136,12 +130,12 @@ int main(int argc, char **argv)
     }
     lt_ss_primary(ss);
     for (run = 0; run < runs; run++) {
-        double t0 = now_s();
+        double t0 = lt_now_s();
         lt_ss_shadows_packet(ss);
-        tp[run] = now_s() - t0;
-        t0 = now_s();
+        tp[run] = lt_now_s() - t0;
+        t0 = lt_now_s();
         lt_ss_shadows_frusta(ss);
-        tf[run] = now_s() - t0;
+        tf[run] = lt_now_s() - t0;
     }
     lt_ss_counts(ss, &cnt);
 
@@ -177,7 +171,7 @@ int main(int argc, char **argv)
     }
     for (run = 0; run < runs; run++) {
         struct RTCIntersectContext ctx;
-        double t0 = now_s();
+        double t0 = lt_now_s();
         rtcInitIntersectContext(&ctx);
         for (y = 0; y < res; y++)
             for (x = 0; x < res; x++) {
@@ -214,7 +208,7 @@ int main(int argc, char **argv)
                     oc |= (ray.tfar[l] < 0.0f ? 1u : 0u) << l;
                 eocc[q] = (uint16_t)oc;
             }
-        te[run] = now_s() - t0;
+        te[run] = lt_now_s() - t0;
     }
     locc = lt_ss_occlusion(ss, LT_SS_FRUSTA);
     for (i = 0; i < res * res; i++)

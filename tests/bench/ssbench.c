@@ -17,6 +17,7 @@
 #include <time.h>
 
 #include "lt/lt_hiz.h"
+#include "lt_cliutil.h"
 #include "lt/lt_qt.h"
 #include "lt/lt_ssdda.h"
 #if SSBENCH_HAVE_REPROJ
@@ -29,13 +30,6 @@
 #endif
 
 #define TOL_DZ 1e-3 /* "within tolerance": same status and relative depth error <= 0.1% */
-
-static double now_s(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 /* ---- configurations -------------------------------------------------------------------------- */
 
@@ -437,7 +431,7 @@ static void measure(const sctx_t *c, int ci, int th, const rayset_t *rs, row_t *
         return;
     /* pass 1: the timed (and counted) traces only */
     sim_reset();
-    t0 = now_s();
+    t0 = lt_now_s();
     for (p = 0; p < rs->npk; p++) {
         lt_mask16_t k = cf->f32 ? rs->kf[p] : rs->kq[p];
         if (k == 0)
@@ -463,7 +457,7 @@ static void measure(const sctx_t *c, int ci, int th, const rayset_t *rs, row_t *
             break;
         }
     }
-    row->host_ns_ray = now_s() - t0;
+    row->host_ns_ray = lt_now_s() - t0;
 #if LT_COST_MODE == LT_COST_SIM
     {
         lt_sim_totals_t t;

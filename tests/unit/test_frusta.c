@@ -997,38 +997,6 @@ typedef struct ptally {
 
 static int ptie_q16(const tscene_t *s, const lt_ray1_q16_t *r1, int32_t id, lt_q16_t t);
 
-/* A kernel hit at t of the ray o + s d is genuine when the exact ray meets the triangle's plane
- * at a parameter s within `pad` of t, inside the triangle's box padded by `pad` (a quarter of the
- * BVH's pad): every box-pruning traversal provably finds those (docs/frusta.md). */
-static int pgenuine(const double o[3], const double d[3], const double v[9], double pad, double tk)
-{
-    double e1[3], e2[3], n[3], den, t;
-    int a, j;
-    for (a = 0; a < 3; a++) {
-        e1[a] = v[3 + a] - v[a];
-        e2[a] = v[6 + a] - v[a];
-    }
-    n[0] = e1[1] * e2[2] - e1[2] * e2[1];
-    n[1] = e1[2] * e2[0] - e1[0] * e2[2];
-    n[2] = e1[0] * e2[1] - e1[1] * e2[0];
-    den = d[0] * n[0] + d[1] * n[1] + d[2] * n[2];
-    if (den == 0.0)
-        return 0;
-    t = ((v[0] - o[0]) * n[0] + (v[1] - o[1]) * n[1] + (v[2] - o[2]) * n[2]) / den;
-    if (!(t > 0.0) || fabs(t - tk) > pad)
-        return 0;
-    for (a = 0; a < 3; a++) {
-        double x = o[a] + t * d[a], lo = v[a], hi = v[a];
-        for (j = 1; j < 3; j++) {
-            lo = v[3 * j + a] < lo ? v[3 * j + a] : lo;
-            hi = v[3 * j + a] > hi ? v[3 * j + a] : hi;
-        }
-        if (x < lo - pad || x > hi + pad)
-            return 0;
-    }
-    return 1;
-}
-
 /* Whether a closest-hit answer (id, t) that differs from the reference is still right: it is a
  * kernel hit of the ray (or a miss), and every kernel hit before it in (t, id) order is not
  * genuine. Returns 1 if so. */
@@ -1058,7 +1026,7 @@ static int pexcused_q16(const tscene_t *s, const lt_ray1_q16_t *r1, uint32_t fla
             v[3 + a] = (double)((int64_t)tr->v0[a] + tr->e1[a]) / 65536.0;
             v[6 + a] = (double)((int64_t)tr->v0[a] + tr->e2[a]) / 65536.0;
         }
-        if (pgenuine(o, d, v, (double)LT_BVH_PAD_Q16 / 65536.0 / 4.0,
+        if (lt_ss_hit_genuine(o, d, v, LT_SS_GENUINE_PAD,
                      (double)rr.tmax / 65536.0))
             return 0;
     }
@@ -1102,7 +1070,7 @@ static int pexcused_f32(const tscene_t *s, const lt_ray1_f32_t *r1, uint32_t fla
             v[3 + a] = (double)tr->v0[a] + (double)tr->e1[a];
             v[6 + a] = (double)tr->v0[a] + (double)tr->e2[a];
         }
-        if (pgenuine(o, d, v, pad, (double)rr.tmax))
+        if (lt_ss_hit_genuine(o, d, v, pad, (double)rr.tmax))
             return 0;
     }
     return 1;
