@@ -7,26 +7,41 @@
 
 .SUFFIXES:
 .DELETE_ON_ERROR:
+# keep intermediate objects (test mains), so a second build does not recompile them
+.SECONDARY:
 SHELL := /bin/bash
 
 B ?= build
 CC ?= gcc
+# One warning list for every build of every room (host, sim, asan and the firmware targets).
 WARN := -std=c99 -Wall -Wextra -Wpedantic -Werror -Wshadow -Wundef -Wstrict-prototypes \
     -Wmissing-prototypes -Wcast-align -Wconversion
 # Float32 results are bit-identical across builds only without FMA contraction or fast-math.
 FPFLAGS := -ffp-contract=off -fno-fast-math
-INC := -Ifirmware/include -Isim -Ihost -Itests/unit -Itests/vectors -isystem /usr/include/OpenEXR
+# Header dependencies come from the compiler (-MMD -MP): every object has a .d file beside it.
+DEPFLAGS := -MMD -MP
 # -Wno-format-truncation: host messages are built with snprintf, whose truncation is the intent
-HOST_CFLAGS := $(WARN) -Wdouble-promotion -Wno-format-truncation $(FPFLAGS) -O2 -g -fno-var-tracking-assignments $(INC) -D_POSIX_C_SOURCE=200809L
+HOST_CFLAGS := $(WARN) -Wdouble-promotion -Wno-format-truncation $(FPFLAGS) -O2 -g \
+    -fno-var-tracking-assignments -D_POSIX_C_SOURCE=200809L $(DEPFLAGS)
 NATIVE_ARCH ?= -march=native
 
-CORE_SRCS := $(wildcard firmware/core/*.c)
-CORE_HDRS := $(wildcard firmware/include/lt/*.h firmware/include/lt/*.def firmware/core/*.inc)
-# host library: every host/*.c except program mains (*_main.c)
-HOSTLIB_SRCS := $(filter-out %_main.c,$(wildcard host/*.c))
-HOSTLIB_HDRS := $(wildcard host/*.h)
+# ---- rooms and their include paths (docs/architecture.md) ----------------------------------------
+#   firmware/core/<room>/   the freestanding core: sees only the public API and its own rooms
+#   firmware/apps/          firmware applications (the stream device), shared with the host sim
+#   sim/                    the cycle model (host only)
+#   host/<room>/            the programs: cli, io, render, stream
+#   tests/                  tests and benchmarks only: no shipped program is built from here
+CORE_INC := -Ifirmware/include -Ifirmware/core
+APP_INC := $(CORE_INC) -Ifirmware/apps
+SIM_INC := -Ifirmware/include -Isim
+HOST_INC := -Ifirmware/include -Ifirmware/apps -Ihost -Isim -isystem /usr/include/OpenEXR
+TEST_INC := $(HOST_INC) -Itests/unit -Itests/vectors
+
+CORE_SRCS := $(wildcard firmware/core/*/*.c)
+# host library: every host/<room>/*.c except program mains (*_main.c) and the USB backend
+# (host/stream/usb, compiled with hidapi's flags in host/host.mk)
+HOSTLIB_SRCS := $(filter-out %_main.c,$(wildcard host/*/*.c))
 SIM_SRCS := sim/lt_sim.c sim/lt_cache.c
-SIM_HDRS := $(wildcard sim/*.h sim/machines/*.def)
 # unit tests: tests/unit/test_<name>.c, built for every variant (test_cache is sim-only)
 UNIT_TESTS := $(filter-out cache,$(patsubst tests/unit/test_%.c,%,$(wildcard tests/unit/test_*.c)))
 VEC_SRCS := tests/vectors/lt_vec.c
@@ -46,11 +61,18 @@ VARIANTS := host sim asan
 
 all: $(B)/sim/lanetrace $(B)/host/lanetrace-native
 
+# One object rule per variant; the include path follows the room the source lives in
+# (pattern-specific SRC_INC), so the core never sees host, sim or test headers.
 define variant_rules
-$(B)/$(1)/obj/%.o: %.c $(CORE_HDRS) $(HOSTLIB_HDRS) $(SIM_HDRS) Makefile
+$(B)/$(1)/obj/firmware/core/%.o: SRC_INC := $(CORE_INC)
+$(B)/$(1)/obj/firmware/apps/%.o: SRC_INC := $(APP_INC)
+$(B)/$(1)/obj/sim/%.o: SRC_INC := $(SIM_INC)
+$(B)/$(1)/obj/host/%.o: SRC_INC := $(HOST_INC)
+$(B)/$(1)/obj/tests/%.o: SRC_INC := $(TEST_INC)
+$(B)/$(1)/obj/%.o: %.c Makefile
 	@mkdir -p $$(@D)
 	@echo "CC [$(1)] $$<"
-	@$(CC) $(CFLAGS_$(1)) -c $$< -o $$@
+	@$(CC) $(CFLAGS_$(1)) $$(SRC_INC) -c $$< -o $$@
 $(1)_CORE_OBJS := $(CORE_SRCS:%.c=$(B)/$(1)/obj/%.o)
 $(1)_HOST_OBJS := $(HOSTLIB_SRCS:%.c=$(B)/$(1)/obj/%.o)
 $(1)_EXTRA_OBJS := $(if $(filter sim,$(1)),$(SIM_SRCS:%.c=$(B)/$(1)/obj/%.o))
@@ -65,14 +87,6 @@ $(B)/$(1)/lt-vectors: $(B)/$(1)/obj/tests/vectors/vec_host.o $(B)/$(1)/obj/$(VEC
 endef
 $(foreach v,$(VARIANTS),$(eval $(call variant_rules,$(v))))
 
-# the CLI: the simulator build (cycle reports) and the native build, from one source
-$(B)/host/lanetrace-native: $(B)/host/obj/host/lanetrace_main.o $(host_CORE_OBJS) $(host_HOST_OBJS)
-	@echo "LD $@"
-	@$(CC) -o $@ $^ $(LIBS_host)
-$(B)/sim/lanetrace: $(B)/sim/obj/host/lanetrace_main.o $(sim_CORE_OBJS) $(sim_HOST_OBJS) \
-    $(sim_EXTRA_OBJS)
-	@echo "LD $@"
-	@$(CC) -o $@ $^ $(LIBS_sim)
 $(B)/sim/test_cache: $(B)/sim/obj/tests/unit/test_cache.o $(B)/sim/obj/sim/lt_cache.o
 	@echo "LD $@"
 	@$(CC) -o $@ $^ -lcmocka
@@ -84,13 +98,16 @@ $(B)/sim/slab-model: $(B)/sim/obj/tests/bench/slab_model.o $(B)/sim/obj/tests/ve
 
 sim: $(B)/sim/lanetrace
 
-# ---- firmware ----------------------------------------------------------------------------------
+# ---- rooms' own rules --------------------------------------------------------------------------
 include firmware/targets/targets.mk
 include sim/qemu/plugin.mk
 include firmware/firmware.mk
 include firmware/opcal.mk
-# feature fragments add their own programs and images (each documents what it builds)
-include $(sort $(wildcard host/*.mk tests/*.mk))
+# the shipped programs (host/host.mk), then tests' and benchmarks' own programs and images
+include host/host.mk
+include $(sort $(wildcard tests/*.mk))
+# compiler-generated header dependencies of every object built so far
+-include $(shell find $(B) -name '*.d' 2>/dev/null)
 
 # ---- deps, run, test, bench ----------------------------------------------------------------------
 deps:
@@ -117,9 +134,16 @@ test: deps
 test-build: $(TEST_BINS) firmware $(PLUGIN_SO)
 
 bench: deps
-	@$(MAKE) --no-print-directory all firmware opcal $(B)/host/embree-race $(B)/sim/ssbench \
-	    $(B)/sim/lanetrace-shadows
+	@$(MAKE) --no-print-directory all firmware opcal $(B)/host/embree-race $(B)/sim/ssbench
 	@tests/bench/bench.sh
+
+# the rooms' rules: the core includes nothing of host, sim or tests; no shipped program from tests/
+layout:
+	@tools/check_layout.sh
+
+# the index of every core function, template-generated ones included (build/index/tags)
+index: $(host_CORE_OBJS)
+	@tools/gen_index.sh --check $(B)/host/obj/firmware/core $(B)/index
 
 # CSV sweep -> PNG plots (gnuplot): cycles per phase, error vs cycles, lane utilisation
 plots: deps
@@ -131,4 +155,4 @@ plots: deps
 clean:
 	rm -rf $(B)
 
-.PHONY: all sim deps run test test-build bench clean firmware plots
+.PHONY: all sim deps run test test-build bench clean firmware plots layout index

@@ -6,22 +6,19 @@
 # Usage: ssbench [--rays N] [--quick] (see --help). Rays come from lt_reproj.h when that module
 # exists (firmware/include/lt/lt_reproj.h), else from the double-precision fallback in
 # tests/unit/lt_ssb_testlib.h.
-SSBENCH_REPROJ := $(if $(wildcard firmware/include/lt/lt_reproj.h firmware/core/lt_reproj.c),\
+SSBENCH_REPROJ := $(if $(wildcard firmware/include/lt/lt_reproj.h firmware/core/screen/lt_reproj.c),\
     -DSSBENCH_HAVE_REPROJ=1,)
 define ssbench_rules
-$(B)/$(1)/obj/tests/bench/ssbench.o: tests/bench/ssbench.c tests/unit/lt_ssb_testlib.h \
-    $(CORE_HDRS) $(HOSTLIB_HDRS) $(SIM_HDRS) Makefile tests/ssbench.mk
+$(B)/$(1)/obj/tests/bench/ssbench.o: tests/bench/ssbench.c Makefile tests/ssbench.mk
 	@mkdir -p $$(@D)
 	@echo "CC [$(1)] $$<"
-	@$(CC) $(CFLAGS_$(1)) $(SSBENCH_REPROJ) -c $$< -o $$@
+	@$(CC) $(CFLAGS_$(1)) $(TEST_INC) $(SSBENCH_REPROJ) -c $$< -o $$@
 $(B)/$(1)/ssbench: $(B)/$(1)/obj/tests/bench/ssbench.o $$($(1)_CORE_OBJS) $$($(1)_HOST_OBJS) \
     $$($(1)_EXTRA_OBJS)
 	@echo "LD $$@"
 	@$(CC) $(LDFLAGS_$(1)) -o $$@ $$^ $(LIBS_$(1))
-$(B)/$(1)/obj/tests/unit/test_ssbase.o: tests/unit/lt_ssb_testlib.h
 endef
 $(foreach v,host sim,$(eval $(call ssbench_rules,$(v))))
-$(B)/asan/obj/tests/unit/test_ssbase.o: tests/unit/lt_ssb_testlib.h
 ssbench: $(B)/sim/ssbench $(B)/host/ssbench
 EXTRA_TEST_BINS += $(B)/sim/ssbench $(B)/host/ssbench
 # `make bench` runs build/sim/ssbench (tests/bench/bench.sh): build it first

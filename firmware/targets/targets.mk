@@ -32,7 +32,7 @@ FW_QEMU_ARM := qemu-system-arm -nographic -monitor none -serial stdio \
 # cm4: Cortex-M4F on mps2-an386. SysTick runs on the 25 MHz board clock.
 ARCH_cm4 := -mcpu=cortex-m4 -mthumb -mfloat-abi=hard -mfpu=fpv4-sp-d16
 CC_cm4 := arm-none-eabi-gcc
-CFLAGS_cm4 := $(ARCH_cm4) $(FW_INC) -DLT_FW_TARGET_NAME=\"cm4\" \
+CFLAGS_cm4 := $(ARCH_cm4) -DLT_FW_TARGET_NAME=\"cm4\" \
     -DLT_FW_UART_BASE=0x40004000u -DLT_FW_SYSTICK_HZ=25000000
 LDFLAGS_cm4 := $(ARCH_cm4) -T $(FW_TGT_DIR)/cortex-m/mps2_an386.ld $(FW_LDFLAGS_COMMON)
 LDLIBS_cm4 := -lgcc
@@ -42,7 +42,7 @@ QEMU_cm4 := $(FW_QEMU_ARM) -M mps2-an386 -kernel
 # cm55: Cortex-M55 + MVE on mps3-an547 (secure state). SysTick runs on the 32 MHz board clock.
 ARCH_cm55 := -mcpu=cortex-m55 -mthumb -mfloat-abi=hard
 CC_cm55 := arm-none-eabi-gcc
-CFLAGS_cm55 := $(ARCH_cm55) $(FW_INC) -DLT_FW_TARGET_NAME=\"cm55\" \
+CFLAGS_cm55 := $(ARCH_cm55) -DLT_FW_TARGET_NAME=\"cm55\" \
     -DLT_FW_UART_BASE=0x49303000u -DLT_FW_SYSTICK_HZ=32000000
 LDFLAGS_cm55 := $(ARCH_cm55) -T $(FW_TGT_DIR)/cortex-m/mps3_an547.ld $(FW_LDFLAGS_COMMON)
 LDLIBS_cm55 := -lgcc
@@ -53,7 +53,7 @@ QEMU_cm55 := $(FW_QEMU_ARM) -M mps3-an547 -kernel
 # _zicsr selects the rv64 default multilib of this toolchain (CSR code uses .option arch instead).
 ARCH_rv32 := -march=rv32imac -mabi=ilp32 -mcmodel=medany
 CC_rv32 := riscv64-unknown-elf-gcc
-CFLAGS_rv32 := $(ARCH_rv32) $(FW_INC) -DLT_FW_TARGET_NAME=\"rv32\" -DLT_FW_UART_BASE=0x10000000u
+CFLAGS_rv32 := $(ARCH_rv32) -DLT_FW_TARGET_NAME=\"rv32\" -DLT_FW_UART_BASE=0x10000000u
 LDFLAGS_rv32 := $(ARCH_rv32) -T $(FW_TGT_DIR)/riscv/virt_rv32.ld $(FW_LDFLAGS_COMMON)
 LDLIBS_rv32 := -lgcc
 FW_RT_SRCS_rv32 := $(FW_RT_COMMON) $(FW_TGT_DIR)/riscv/start.S $(FW_TGT_DIR)/riscv/platform.c

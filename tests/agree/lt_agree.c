@@ -31,9 +31,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "lt_mesh.h"
-#include "lt_render.h"
-#include "lt_scene.h"
+#include "io/lt_mesh.h"
+#include "render/lt_render.h"
+#include "render/lt_scene.h"
 
 typedef struct geo {
     double t, m, cosv; /* ray parameter, signed border distance, |cos| ray vs normal */

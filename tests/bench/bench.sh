@@ -65,10 +65,10 @@ echo "== 6. screen-space baselines: quadtree vs DDA vs Hi-Z, same rays (lrb16, s
 
 echo "== 7. multi-frusta Table 1: primary and soft-shadow frusta vs 16-ray packets (lrb16 simulator)"
 if [ -f ../shared/scenes/sibenik.obj ]; then
-    "$B/sim/lanetrace-shadows" --mesh ../shared/scenes/sibenik.obj --res "${FRUSTA_RES:-1024}" --no-ref
+    "$B/sim/lanetrace" shadows --mesh ../shared/scenes/sibenik.obj --res "${FRUSTA_RES:-1024}" --no-ref
 else
     echo "(../shared missing: the bundled teapot instead of Sibenik)"
-    "$B/sim/lanetrace-shadows" --mesh "$SCENE" --res "${FRUSTA_RES:-256}" --no-ref
+    "$B/sim/lanetrace" shadows --mesh "$SCENE" --res "${FRUSTA_RES:-256}" --no-ref
 fi
 
 echo "== 8. view synthesis vs ray-traced ground truth: depth error per numeric configuration (lrb16 simulator; docs/reproject.md)"

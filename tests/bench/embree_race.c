@@ -5,10 +5,10 @@
  * Embree is linked only into this benchmark. Host only; `make bench` runs it.
  * Usage: embree-race [--mesh PATH] [--res N] [--runs N] [--structure NAME]
  */
-#include "lt_mesh.h"
-#include "lt_cliutil.h"
-#include "lt_render.h"
-#include "lt_scene.h"
+#include "io/lt_mesh.h"
+#include "cli/lt_cliutil.h"
+#include "render/lt_render.h"
+#include "render/lt_scene.h"
 
 #include <embree3/rtcore.h>
 #include <math.h>

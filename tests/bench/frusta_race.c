@@ -6,8 +6,8 @@
  * a few samples differ). Embree is linked only into this benchmark. Host only; docs/frusta.md.
  * Usage: frusta-race --mesh PATH [--res N] [--runs N] [--num q16|f32] [--leaf N] [--cull LIST]
  */
-#include "lt_softshadow.h"
-#include "lt_cliutil.h"
+#include "render/lt_softshadow.h"
+#include "cli/lt_cliutil.h"
 
 #include <embree3/rtcore.h>
 #include <math.h>

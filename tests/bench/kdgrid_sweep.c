@@ -10,7 +10,7 @@
 
 #include "lt/lt_grid.h"
 #include "lt/lt_kd.h"
-#include "lt_scene.h"
+#include "render/lt_scene.h"
 #include "lt_sim.h"
 
 /* NODES, TRIS, TRI_RAYS summed over phases, and modelled cycles. */

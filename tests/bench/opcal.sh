@@ -132,7 +132,7 @@ awk -v uart="$UART" -v wrappers="$WRAPPERS" '
     }' "$OUT/counts.txt" /dev/null
 
 # Per-class values. Weights: how often one lt_slab16_q16 call plus one lt_tri16_q16 call
-# (firmware/core/lt_isect.inc, fixed-point traits in lt_isect.c) use each op, the triangle's tail
+# (firmware/core/object/lt_isect.inc, fixed-point traits in lt_isect.c) use each op, the triangle's tail
 # (t = tnum / det and after) counted as taken: VALU sub 6+3, min 6, max 6, blend 1+2 (q16 and vi32
 # blend); VMUL q16 mul_sat 6, vql_mul 24; VMULW add 9, sub 6, merge-masked sub (the two-sided flip) 4;
 # VSHIFT round_sat 6, asr 1; VCMP q16 1+2, vql 5; MASK the two any-tests. VBCAST is lt_vq16_set1

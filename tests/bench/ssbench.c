@@ -6,7 +6,7 @@
  * numeric path (quadtree n64 / n32 / f32, DDA and Hi-Z q30 / f32) traces the same packets; printed:
  * build cycles, trace cycles per ray (lrb16, sim build), host time, nodes / AABB / plane tests per
  * ray (Hi-Z: cells visited = lookups; DDA: pixels), lane utilisation, memory per pixel, and the
- * depth error against the double reference of the quadtree's model (host/lt_qt_ref.h); then ratios
+ * depth error against the double reference of the quadtree's model (host/render/lt_qt_ref.h); then ratios
  * and an error-vs-cycles table over every numeric configuration and three thicknesses.
  * Built for sim (cycles) and host (native times). Usage: see usage(). docs/ss-baselines.md.
  */
@@ -17,13 +17,13 @@
 #include <time.h>
 
 #include "lt/lt_hiz.h"
-#include "lt_cliutil.h"
+#include "cli/lt_cliutil.h"
 #include "lt/lt_qt.h"
 #include "lt/lt_ssdda.h"
 #if SSBENCH_HAVE_REPROJ
 #include "lt/lt_reproj.h"
 #endif
-#include "lt_exr.h"
+#include "io/lt_exr.h"
 #include "lt_ssb_testlib.h"
 #if LT_COST_MODE == LT_COST_SIM
 #include "lt_sim.h"
@@ -765,7 +765,7 @@ int main(int argc, char **argv)
            "lookups per layer); aabb = ray-box (cell) tests; plane = plane / pixel tests; util%% = "
            "masked-op lane utilisation (sim); pkut%% = lane-steps / (16 x longest lane) per "
            "packet; B/px = bytes per pixel needed at trace time; against the double reference of "
-           "the quadtree's model (host/lt_qt_ref.h): same%% status, dRMSE relative depth on common "
+           "the quadtree's model (host/render/lt_qt_ref.h): same%% status, dRMSE relative depth on common "
            "hits, tol%% = same status and depth within %.0e, wrong%% = hits the reference does not "
            "have or > 0.5 px away\n",
            LT_COST_MODE == LT_COST_SIM ? " with counting" : "", TOL_DZ);

@@ -12,8 +12,8 @@
 #include <string.h>
 
 #include "lt/lt_stream.h"
-#include "lt_faults.h"
-#include "lt_rx.h"
+#include "stream/lt_faults.h"
+#include "stream/lt_rx.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 

@@ -1,4 +1,4 @@
-/* fuzz_scene.c - fuzz target of the scene-file parser (host/lt_scenefile.c): any bytes must give
+/* fuzz_scene.c - fuzz target of the scene-file parser (host/io/lt_scenefile.c): any bytes must give
  * either a valid scene or an error message, never a crash, a hang or an unterminated message.
  * Built with libFuzzer by `make fuzz-scene` when clang has it, and replayed over
  * tests/fuzz/corpus/scene/ by tests/fuzz/fuzz_main.c in `make test`. Host only.
@@ -6,7 +6,7 @@
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
-#include "lt_scenefile.h"
+#include "io/lt_scenefile.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 

@@ -1,14 +1,14 @@
 # frusta.sh - multi-frusta soft shadows and primary frusta (docs/frusta.md), CLI level. Sourced by
 # tests/run_tests.sh ($B, $tmp, check/ok/ko): the unit test's tile hashes are equal in the host,
-# sim and asan builds; lanetrace-shadows gives the same result hash natively and in the simulator
+# sim and asan builds; lanetrace shadows gives the same result hash natively and in the simulator
 # (s15.16 and float32), P-Frusta = P-Packet closest hit on every pixel with equal primary-image
 # hashes, frusta = packet visibility on every pixel, a PNG is written, the Table-1 report (P and S
 # rows) is printed, and bad input exits with the right code and names the input; the shared tile
 # workload (shadow and primary frusta) hashes the same in the firmware images under QEMU (cm4,
 # cm55, rv32) as on the host; the bunny runs when ../shared exists (SKIP otherwise, FAIL under
 # CI=true).
-SH_SIM="$B/sim/lanetrace-shadows"
-SH_NAT="$B/host/lanetrace-shadows-native"
+SH_SIM="$B/sim/lanetrace"
+SH_NAT="$B/host/lanetrace-native"
 fr_expect() { # name, expected rc, pattern ("" = any), command...
     local name=$1 want=$2 pat=$3
     shift 3
@@ -35,51 +35,51 @@ for t in cm4 cm55 rv32; do
         bash -c "[ $rc -eq 0 ] && [ -n \"$fwh\" ] && grep -qF \"$fwh\" '$tmp/frfw.$t'"
 done
 for p in q16 f32; do
-    "$SH_NAT" --mesh scenes/teapot.obj --res 32 --num $p --png "$tmp/tp_$p.png" >"$tmp/frn.$p" 2>&1
+    "$SH_NAT" shadows --mesh scenes/teapot.obj --res 32 --num $p --png "$tmp/tp_$p.png" >"$tmp/frn.$p" 2>&1
     rcn=$?
-    "$SH_SIM" --mesh scenes/teapot.obj --res 32 --num $p >"$tmp/frs.$p" 2>&1
+    "$SH_SIM" shadows --mesh scenes/teapot.obj --res 32 --num $p >"$tmp/frs.$p" 2>&1
     rcs=$?
     a=$(grep "^result" "$tmp/frn.$p")
     b=$(grep "^result" "$tmp/frs.$p")
-    check "lanetrace-shadows teapot $p: native and sim exit 0 (rc $rcn, $rcs)" test "$rcn$rcs" = 00
-    check "lanetrace-shadows teapot $p: result native = sim ($a)" test -n "$a" -a "$a" = "$b"
-    check "lanetrace-shadows teapot $p: frusta = packet visibility" grep -q "visibility on .*(0 differ)" "$tmp/frs.$p"
+    check "lanetrace shadows teapot $p: native and sim exit 0 (rc $rcn, $rcs)" test "$rcn$rcs" = 00
+    check "lanetrace shadows teapot $p: result native = sim ($a)" test -n "$a" -a "$a" = "$b"
+    check "lanetrace shadows teapot $p: frusta = packet visibility" grep -q "visibility on .*(0 differ)" "$tmp/frs.$p"
     for f in "$tmp/frn.$p" "$tmp/frs.$p"; do
         ph=$(grep "^check     P-Frusta = P-Packet" "$f")
-        check "lanetrace-shadows teapot $p ($(basename "$f")): P-Frusta = P-Packet closest hit on every pixel, primary hashes equal ($ph)" \
+        check "lanetrace shadows teapot $p ($(basename "$f")): P-Frusta = P-Packet closest hit on every pixel, primary hashes equal ($ph)" \
             bash -c "grep -q 'P-Frusta = P-Packet closest hit on .*(0 differ)' '$f' && grep '^check     P-Frusta = P-Packet' '$f' | awk '{a = \$(NF-2); sub(\",\", \"\", a); if (\$NF != a) exit 1}'"
     done
-    check "lanetrace-shadows teapot $p: PNG written" test -s "$tmp/tp_$p.png"
+    check "lanetrace shadows teapot $p: PNG written" test -s "$tmp/tp_$p.png"
 done
-check "lanetrace-shadows sim prints the Table-1 rows (P and S)" \
+check "lanetrace shadows sim prints the Table-1 rows (P and S)" \
     bash -c "grep -q '^P-Packet (+shad)' '$tmp/frs.q16' && grep -q '^P-Frusta (+shad)' '$tmp/frs.q16' && grep -q '^P Reduction' '$tmp/frs.q16' && grep -q '^S-Frusta ' '$tmp/frs.q16' && grep -q '^S Reduction' '$tmp/frs.q16' && grep -q 'Mrays/s per simulated' '$tmp/frs.q16'"
 # the old combination (S-Frusta on P-Packet primaries) and two-sided primaries stay available
-"$SH_SIM" --mesh scenes/teapot.obj --res 16 --prim packet --pcull cr --no-ref >"$tmp/frs.old" 2>&1
+"$SH_SIM" shadows --mesh scenes/teapot.obj --res 16 --prim packet --pcull cr --no-ref >"$tmp/frs.old" 2>&1
 rco=$?
-check "lanetrace-shadows --prim packet --pcull cr: exit 0, S rows without P-Frusta (rc $rco)" \
+check "lanetrace shadows --prim packet --pcull cr: exit 0, S rows without P-Frusta (rc $rco)" \
     bash -c "[ $rco -eq 0 ] && grep -q '^S-Frusta ' '$tmp/frs.old' && ! grep -q '^P-Frusta' '$tmp/frs.old'"
-check "lanetrace-shadows prints the quality line" grep -q "^quality .*PSNR filtered" "$tmp/frn.q16"
-fr_expect "shadows: usage without --mesh" 2 "usage:" "$SH_NAT"
-fr_expect "shadows: unknown option" 2 "unknown option" "$SH_NAT" --mesh scenes/teapot.obj --frob
-fr_expect "shadows: --leaf 0 names the limit" 2 "LT_BVH_MAX_LEAF" "$SH_NAT" --mesh scenes/teapot.obj --leaf 0
-fr_expect "shadows: --leaf 65 names the limit" 2 "1..64" "$SH_NAT" --mesh scenes/teapot.obj --leaf 65
-fr_expect "shadows: --res 3" 2 "4..8192" "$SH_NAT" --mesh scenes/teapot.obj --res 3
-fr_expect "shadows: --cull letters" 2 "letters b, c, r" "$SH_NAT" --mesh scenes/teapot.obj --cull x
-fr_expect "shadows: --pcull letters" 2 "pcull x: letters b, c, r" "$SH_NAT" --mesh scenes/teapot.obj --pcull x
-fr_expect "shadows: --prim values" 2 "need packet, frusta or both" "$SH_NAT" --mesh scenes/teapot.obj --prim rays
-fr_expect "shadows: --light needs 4 numbers" 2 "X,Y,Z,SIZE" "$SH_NAT" --mesh scenes/teapot.obj --light 1,2
-fr_expect "shadows: missing mesh names the file" 1 "/nonexistent.obj" "$SH_NAT" --mesh /nonexistent.obj
+check "lanetrace shadows prints the quality line" grep -q "^quality .*PSNR filtered" "$tmp/frn.q16"
+fr_expect "shadows: usage without --mesh" 2 "usage:" "$SH_NAT" shadows
+fr_expect "shadows: unknown option" 2 "unknown option" "$SH_NAT" shadows --mesh scenes/teapot.obj --frob
+fr_expect "shadows: --leaf 0 names the limit" 2 "LT_BVH_MAX_LEAF" "$SH_NAT" shadows --mesh scenes/teapot.obj --leaf 0
+fr_expect "shadows: --leaf 65 names the limit" 2 "1..64" "$SH_NAT" shadows --mesh scenes/teapot.obj --leaf 65
+fr_expect "shadows: --res 3" 2 "4..8192" "$SH_NAT" shadows --mesh scenes/teapot.obj --res 3
+fr_expect "shadows: --cull letters" 2 "letters b, c, r" "$SH_NAT" shadows --mesh scenes/teapot.obj --cull x
+fr_expect "shadows: --pcull letters" 2 "pcull x: letters b, c, r" "$SH_NAT" shadows --mesh scenes/teapot.obj --pcull x
+fr_expect "shadows: --prim values" 2 "need packet, frusta or both" "$SH_NAT" shadows --mesh scenes/teapot.obj --prim rays
+fr_expect "shadows: --light needs 4 numbers" 2 "X,Y,Z,SIZE" "$SH_NAT" shadows --mesh scenes/teapot.obj --light 1,2
+fr_expect "shadows: missing mesh names the file" 1 "/nonexistent.obj" "$SH_NAT" shadows --mesh /nonexistent.obj
 fr_expect "shadows: light outside the fixed-point range" 1 "LT_CFG_GEOM_MAX_LOG2" \
-    "$SH_NAT" --mesh scenes/teapot.obj --res 8 --light 0,90000,0,1
+    "$SH_NAT" shadows --mesh scenes/teapot.obj --res 8 --light 0,90000,0,1
 fr_expect "shadows: unwritable PNG names the path" 1 "/nonexistent-dir/x.png" \
-    "$SH_NAT" --mesh scenes/teapot.obj --res 8 --no-ref --png /nonexistent-dir/x.png
-fr_expect "shadows: unknown machine (sim)" 2 "z80" "$SH_SIM" --mesh scenes/teapot.obj --res 8 --machine z80
+    "$SH_NAT" shadows --mesh scenes/teapot.obj --res 8 --no-ref --png /nonexistent-dir/x.png
+fr_expect "shadows: unknown machine (sim)" 2 "z80" "$SH_SIM" shadows --mesh scenes/teapot.obj --res 8 --machine z80
 shared_bunny=../shared/scenes/bunny.obj
 if [ -f "$shared_bunny" ]; then
     fr_expect "shadows: bunny 64x64 in the sim, frusta = packet" 0 "visibility on .*(0 differ)" \
-        "$SH_SIM" --mesh "$shared_bunny" --res 64 --no-ref
+        "$SH_SIM" shadows --mesh "$shared_bunny" --res 64 --no-ref
     fr_expect "shadows: bunny 64x64 in the sim, P-Frusta = P-Packet" 0 "closest hit on .*(0 differ)" \
-        "$SH_SIM" --mesh "$shared_bunny" --res 64 --no-ref
+        "$SH_SIM" shadows --mesh "$shared_bunny" --res 64 --no-ref
 elif [ "${CI:-}" = "true" ]; then
     ko "frusta: shared scene missing under CI: $shared_bunny"
 else

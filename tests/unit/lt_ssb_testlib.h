@@ -6,7 +6,7 @@
  * packets with the exact values each path sees and of hit packets back to doubles, and two
  * double-precision references of the baselines' own surface model (pixel shells of relative
  * thickness): a supercover pixel march (what the Hi-Z tracer must reproduce) and McGuire & Mara's
- * major-axis march (the DDA's), built on host/lt_qt_ref.h's clip and grid crossings. Static
+ * major-axis march (the DDA's), built on host/render/lt_qt_ref.h's clip and grid crossings. Static
  * functions, included once by each program. Host only (C99 + libm, malloc).
  */
 #ifndef LT_SSB_TESTLIB_H
@@ -20,8 +20,8 @@
 #include "lt/lt_hiz.h"
 #include "lt/lt_qt.h"
 #include "lt/lt_ssdda.h"
-#include "lt_fx_float.h"
-#include "lt_qt_ref.h"
+#include "io/lt_fx_float.h"
+#include "render/lt_qt_ref.h"
 #include "lt_test_util.h"
 
 #define SS_Q30 1073741824.0
@@ -959,7 +959,7 @@ static LT_UNUSED void ss_ref_trace(const double *w, uint32_t W, uint32_t H, uint
 #ifdef fail_msg
 #include <stdio.h>
 
-#include "lt_exr.h"
+#include "io/lt_exr.h"
 
 /* The shared depth buffer at path (../shared/...) into *d: 1 when read (a read error fails the
  * test), 0 when the file is missing -- reported as skipped, and a failure when CI=true. */

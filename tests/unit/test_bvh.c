@@ -21,9 +21,9 @@
 #include <time.h>
 
 #include "lt/lt_bvh.h"
-#include "lt_fx_float.h"
-#include "lt_mesh.h"
-#include "lt_scene.h"
+#include "io/lt_fx_float.h"
+#include "io/lt_mesh.h"
+#include "render/lt_scene.h"
 #include "lt_test_util.h"
 #if LT_COST_MODE == LT_COST_SIM
 #include "lt_sim.h"

@@ -30,7 +30,7 @@
 #include <openexr.h>
 #pragma GCC diagnostic pop
 
-#include "lt_exr.h"
+#include "io/lt_exr.h"
 #include "lt_test_util.h"
 
 static char g_dir[64]; /* per-run temp directory */

@@ -20,10 +20,10 @@
 #include <cmocka.h>
 
 #include "lt/lt_frusta.h"
-#include "lt_fx_float.h"
-#include "lt_mesh.h"
-#include "lt_scene.h"
-#include "lt_softshadow.h"
+#include "io/lt_fx_float.h"
+#include "io/lt_mesh.h"
+#include "render/lt_scene.h"
+#include "render/lt_softshadow.h"
 #include "lt_test_util.h"
 #include "lt_frusta_tile.h"
 #if LT_COST_MODE == LT_COST_SIM

@@ -21,7 +21,7 @@
 #include <string.h>
 
 #include "lt/lt_fx.h"
-#include "lt_fx_float.h"
+#include "io/lt_fx_float.h"
 #include "lt_test_util.h"
 
 LT_STATIC_ASSERT(LDBL_MANT_DIG >= 64, "references need a 64-bit long double significand");
@@ -641,7 +641,7 @@ static void test_constants_and_host(void **state)
     assert_int_equal(LT_Q16(-0.5 / 65536.0), -1);
     assert_int_equal(LT_Q30(1.0), LT_Q30_ONE);
     assert_int_equal(LT_Q30(-2.0), INT32_MIN);
-    /* host/lt_fx_float.h: fixed -> double -> fixed is the identity; x + 1/2 ulp rounds up (also
+    /* host/io/lt_fx_float.h: fixed -> double -> fixed is the identity; x + 1/2 ulp rounds up (also
      * for negative x); out-of-range and NaN saturate and are flagged by the _chk forms */
     ltt_rng_seed(&r, 36);
     ltt_stat_init(&st, "lt_fx_float.h round trips", "ulp", 0);

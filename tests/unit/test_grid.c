@@ -30,9 +30,9 @@
 
 #include "lt/lt_grid.h"
 #include "lt/lt_kd.h"
-#include "lt_fx_float.h"
-#include "lt_mesh.h"
-#include "lt_scene.h"
+#include "io/lt_fx_float.h"
+#include "io/lt_mesh.h"
+#include "render/lt_scene.h"
 #include "lt_test_util.h"
 #include "lt_kdgrid_testlib.h"
 /* ---- grid specifics ------------------------------------------------------------------------- */

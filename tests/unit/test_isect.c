@@ -40,7 +40,7 @@
 #include <string.h>
 
 #include "lt/lt_isect.h"
-#include "lt_fx_float.h"
+#include "io/lt_fx_float.h"
 #include "lt_test_util.h"
 
 #define FMT_Q16 0

@@ -32,9 +32,9 @@
 #include <string.h>
 
 #include "lt/lt_kd.h"
-#include "lt_fx_float.h"
-#include "lt_mesh.h"
-#include "lt_scene.h"
+#include "io/lt_fx_float.h"
+#include "io/lt_mesh.h"
+#include "render/lt_scene.h"
 #include "lt_test_util.h"
 #include "lt_kdgrid_testlib.h"
 /* Tree invariants: children inside [0, nnodes), splits strictly inside the node box, every node

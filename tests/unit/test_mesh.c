@@ -19,7 +19,7 @@
 #include <unistd.h>
 #include <zlib.h>
 
-#include "lt_mesh.h"
+#include "io/lt_mesh.h"
 #include "lt_test_util.h"
 
 static char g_dir[64];

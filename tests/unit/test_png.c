@@ -18,9 +18,9 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "lt_exr.h"
-#include "lt_heatmap.h"
-#include "lt_png.h"
+#include "io/lt_exr.h"
+#include "io/lt_heatmap.h"
+#include "io/lt_png.h"
 #include "lt_test_util.h"
 
 static char g_dir[64];

@@ -1,7 +1,7 @@
 /* test_qt.c - cmocka tests of the screen-space quadtree (lt_qt.h, Widmer et al., seeds/000-001) in
  * its three node formats (64-bit and 32-bit fixed point, float32) against
  *   - the double-precision reference that marches every pixel over the leaf planes of Alg. 1
- *     (host/lt_qt_ref.c), fed with the exact values each path sees (raw / 2^30, floats as double),
+ *     (host/render/lt_qt_ref.c), fed with the exact values each path sees (raw / 2^30, floats as double),
  *     so the figures measure the hierarchy, the merges and the formats, not input rounding;
  *   - analytic scenes (a tilted plane, steps, spheres, depth bands from 1e-3 to 1e4) for the error
  *     of the whole model against the true surface.
@@ -22,9 +22,9 @@
 #include <string.h>
 
 #include "lt/lt_qt.h"
-#include "lt_exr.h"
-#include "lt_fx_float.h"
-#include "lt_qt_ref.h"
+#include "io/lt_exr.h"
+#include "io/lt_fx_float.h"
+#include "render/lt_qt_ref.h"
 #include "lt_ssb_testlib.h"
 #include "lt_test_util.h"
 #if LT_COST_MODE == LT_COST_SIM

@@ -1,5 +1,5 @@
 /* test_reproj.c - cmocka tests of reprojection ray generation (lt_reproj.h) and view synthesis
- * (host/lt_reproject.h), docs/reproject.md:
+ * (host/render/lt_reproject.h), docs/reproject.md:
  *   - the shared 64 x 64 workload hash (tests/vectors/lt_reproj_tile.h; the firmware prints the
  *     same line) and the stored mapping reproduced by lt_reproj_setup;
  *   - an identity camera reprojects every pixel onto itself (x, y exact, w from w_near to 0);
@@ -22,8 +22,8 @@
 #include <string.h>
 
 #include "lt/lt_reproj.h"
-#include "lt_qt_ref.h"
-#include "lt_reproject.h"
+#include "render/lt_qt_ref.h"
+#include "render/lt_reproject.h"
 #include "lt_reproj_tile.h"
 #include "lt_test_util.h"
 #if LT_COST_MODE == LT_COST_SIM

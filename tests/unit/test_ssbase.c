@@ -4,7 +4,7 @@
  *   - double references of their own surface model (tests/unit/lt_ssb_testlib.h: a supercover pixel
  *     march for Hi-Z, McGuire & Mara's major-axis march for the DDA), fed with the exact values
  *     each path sees: these must agree but for rounding at ties;
- *   - the quadtree's double reference (host/lt_qt_ref.h: Widmer et al.'s pixel planes, cracks and
+ *   - the quadtree's double reference (host/render/lt_qt_ref.h: Widmer et al.'s pixel planes, cracks and
  *     discontinuity flags): the share that agrees and a breakdown of why the rest differs
  *     (thickness and the fronto-parallel pixel model against planes, and the DDA's sampling).
  * Each test prints what it checked. Builds: host, sim, asan; float32 parts with LT_CFG_FLOAT32.
@@ -23,7 +23,7 @@
 #include "lt/lt_hiz.h"
 #include "lt/lt_qt.h"
 #include "lt/lt_ssdda.h"
-#include "lt_exr.h"
+#include "io/lt_exr.h"
 #include "lt_ssb_testlib.h"
 #if LT_COST_MODE == LT_COST_SIM
 #include "lt_sim.h"

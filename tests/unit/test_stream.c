@@ -1,5 +1,5 @@
 /* test_stream.c - cmocka tests of the stream protocol (firmware/include/lt/lt_stream.h) and its
- * host side (host/lt_rx.h, host/lt_faults.h): CRC-32C against a bitwise reference and the standard
+ * host side (host/stream/lt_rx.h, host/stream/lt_faults.h): CRC-32C against a bitwise reference and the standard
  * check value; random frames round-trip; every single-bit flip and every 2..5-bit flip pattern
  * tried is detected; truncation is detected and costs exactly the cut bytes; 16-bit sequence
  * numbers wrap without loss; the decoder resynchronises after garbage and counts it exactly; the
@@ -27,8 +27,8 @@
 #include <unistd.h>
 
 #include "lt/lt_stream.h"
-#include "lt_faults.h"
-#include "lt_rx.h"
+#include "stream/lt_faults.h"
+#include "stream/lt_rx.h"
 #include "lt_test_util.h"
 
 #define FB LT_STREAM_FRAME_BYTES

@@ -305,7 +305,7 @@ LT_INLINE lt_q16_t lt_q16_dot3_sat(const lt_q16_t a[3], const lt_q16_t b[3])
     return lt__q16_dot3_sat(a[0], a[1], a[2], b[0], b[1], b[2]);
 }
 
-/* Out-of-line ops (firmware/core/lt_fx.c). */
+/* Out-of-line ops (firmware/core/numerics/lt_fx.c). */
 
 /* sqrt(x). Format: s15.16 -> s15.16. Range: x >= 0; x < 0 gives 0 (a saturation event).
  * Rounding: to nearest, half up. Overflow: none (sqrt(max) = 181.02). Cost: SDIV x1 (iterative). */

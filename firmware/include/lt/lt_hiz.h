@@ -6,7 +6,7 @@
  * can, and testing single pixels at level 0 with the surface model of lt_ssdda.h. Level 0 is the
  * caller's w = z_ref / z buffer itself; the levels above are built into a caller-allocated arena.
  * Same ray and result packets as lt_qt (lt_qray16_*, lt_qhit16_*). One kernel source
- * (firmware/core/lt_hiz.inc) for s1.30 and float32. docs/ss-baselines.md is the reference.
+ * (firmware/core/screen/lt_hiz.inc) for s1.30 and float32. docs/ss-baselines.md is the reference.
  * Builds: all; the float32 entry points only with LT_CFG_FLOAT32.
  */
 #ifndef LT_HIZ_H

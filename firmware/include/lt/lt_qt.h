@@ -4,7 +4,7 @@
  * space (Alg. 3 descent/plane/box tests, Alg. 4 next node + findMSB level jump) with the
  * occlusion-aware choice across layers. Depth is stored as normalised inverse depth w = z_ref / z,
  * because a world plane is a plane and a world ray a straight line in (x_s, y_s, w).
- * Three node formats come from one kernel source (firmware/core/lt_qt.inc): 64-bit and 32-bit
+ * Three node formats come from one kernel source (firmware/core/screen/lt_qt.inc): 64-bit and 32-bit
  * fixed-point nodes (s1.30 compute) and 16-byte float32 nodes. docs/quadtree.md is the reference.
  * Builds: all; the float32 entry points only with LT_CFG_FLOAT32.
  */

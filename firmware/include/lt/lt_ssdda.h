@@ -5,7 +5,7 @@
  * relative thickness theta, tested in every depth layer. It reads the caller's w = z_ref / z
  * buffer (the input of lt_qt_build_*) directly and takes and returns the quadtree's ray and result
  * packets (lt_qray16_*, lt_qhit16_*), so the same rays give comparable answers. One kernel source
- * (firmware/core/lt_ssdda.inc) for s1.30 and float32. docs/ss-baselines.md is the reference.
+ * (firmware/core/screen/lt_ssdda.inc) for s1.30 and float32. docs/ss-baselines.md is the reference.
  * Builds: all; the float32 entry points only with LT_CFG_FLOAT32.
  */
 #ifndef LT_SSDDA_H

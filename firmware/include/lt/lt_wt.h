@@ -1,7 +1,7 @@
 /* lt_wt.h - watertight 16-lane ray/triangle test: Woop, Benthin, Wald, "Watertight Ray/Triangle
  * Intersection", JCGT 2(1) 2013 (translate, permute, shear, 2D edge functions), in s15.16 fixed
  * point with EXACT integer edge functions and in float32 with the paper's double fallback, both
- * compiled from one kernel source (firmware/core/lt_wt.inc). docs/watertight.md has the bit widths
+ * compiled from one kernel source (firmware/core/object/lt_wt.inc). docs/watertight.md has the bit widths
  * and the proof sketch. Builds: all; float32 entry points only with LT_CFG_FLOAT32.
  */
 #ifndef LT_WT_H

@@ -1,6 +1,6 @@
 /* lt_rt.c - freestanding runtime for firmware targets: the memory functions GCC may emit calls to
  * (memcpy, memset, memmove, memcmp) routed to the core's lt__memcpy/lt__memset
- * (firmware/core/lt_mem.c), and the target-independent
+ * (firmware/core/numerics/lt_mem.c), and the target-independent
  * UART output helpers of lt_fw.h (strings, decimal, hex). No libc is linked (-nostdlib).
  * Builds: firmware (cm4, cm55, rv32); plain C99 plus GCC attributes where GCC needs them.
  */

@@ -1,0 +1,198 @@
+/* lt_isect.c - instantiates the packet kernels of lt_isect.inc for each numeric path:
+ * s15.16 fixed point (exact int64 products) and IEEE float32. The traits below are the only
+ * place where the two paths differ. Builds: all; float32 only with LT_CFG_FLOAT32.
+ */
+#include "lt/lt_isect.h"
+
+/* ---- fixed point: s15.16 positions, s1.30 directions ---------------------------------------- */
+
+/* 1/d per lane: 2^46 / d_raw (s1.30 -> s15.16), half up, saturated; d == 0 gives +max. */
+static lt_vq16_t recip_q30(lt_vq30_t d)
+{
+    lt_vq16_t r;
+    int i;
+    LT_COST(VDIV, 1);
+    for (i = 0; i < LT_LANES; i++) {
+        if (d.l[i] == 0) {
+            r.l[i] = LT_Q16_MAX;
+        } else {
+            int64_t q = lt__div_round64((int64_t)1 << 46, d.l[i]);
+            LT_EVENT(SAT, q != (int64_t)lt__ssat32(q));
+            r.l[i] = lt__ssat32(q);
+        }
+    }
+    return r;
+}
+
+void lt_ray16_q16_setup(lt_ray16_q16_t *r)
+{
+    const lt_vq30_t *d[3];
+    lt_vq16_t *rc[3];
+    int a;
+    d[0] = &r->dx;
+    d[1] = &r->dy;
+    d[2] = &r->dz;
+    rc[0] = &r->rx;
+    rc[1] = &r->ry;
+    rc[2] = &r->rz;
+    for (a = 0; a < 3; a++) {
+        *rc[a] = recip_q30(*d[a]);
+        r->par[a] = lt_vq30_cmpeq(*d[a], lt_vq30_set1(0));
+        r->rsat[a] = (lt_mask16_t)((lt_vq16_cmpeq(*rc[a], lt_vq16_set1(LT_Q16_MAX)) |
+                                    lt_vq16_cmpeq(*rc[a], lt_vq16_set1(LT_Q16_MIN))) &
+                                   (unsigned)~r->par[a]);
+    }
+    r->pad_[0] = r->pad_[1] = 0;
+}
+
+/* The exact path of the slab test for flagged lanes. par (d == 0): the slab holds for all t when
+ * lo <= o <= hi (closed), else for none. rsat (1/d saturated, d != 0): t = (plane - o) / d by
+ * division, s15.16 / s1.30 -> s15.16 half up, saturating, which is right where the product with
+ * the clamped reciprocal is not. */
+static void q_slab_fix(lt_mask16_t par, lt_mask16_t rsat, lt_vq16_t o, lt_vq30_t d, lt_q16_t lo,
+                       lt_q16_t hi, lt_vq16_t *t0, lt_vq16_t *t1)
+{
+    int i;
+    LT_COST(VDIV, rsat != 0);
+    LT_COST(VCMP, (par != 0) * 2);
+    LT_COST(VALU, (par != 0) * 2);
+    for (i = 0; i < LT_LANES; i++) {
+        if (LT__ON(par, i)) {
+            int in = o.l[i] >= lo && o.l[i] <= hi;
+            t0->l[i] = in ? LT_Q16_MIN : LT_Q16_MAX;
+            t1->l[i] = LT_Q16_MAX;
+        } else if (LT__ON(rsat, i)) {
+            int64_t p0 = (int64_t)lo - o.l[i], p1 = (int64_t)hi - o.l[i];
+            t0->l[i] = lt__ssat32(lt__div_round64(p0 * ((int64_t)1 << 30), d.l[i]));
+            t1->l[i] = lt__ssat32(lt__div_round64(p1 * ((int64_t)1 << 30), d.l[i]));
+        }
+    }
+}
+
+#include "lt_isect_q16.inc"
+
+#include "numerics/lt_traits_q16.h"
+#define LTN_QV lt_vi32_t
+#define LTN_W lt_vql_t
+#define LTN_TN lt_vql_t
+#define LTN_CROSS_DP q_cross_dp
+#define LTN_DOT_PP q_dot_pp
+#define LTN_CROSS_PP q_cross_pp
+#define LTN_DOT_DQ q_dot_dq
+#define LTN_DOT_PQ q_dot_pq
+#define LTN_W_ADD lt_vql_add_wrap
+#define LTN_W_NEG_M(k, a) lt_vql_sub_wrap_m((a), (k), lt_vql_set1(0), (a))
+#define LTN_TN_NEG_M LTN_W_NEG_M
+#define LTN_W_CMPLT0(k, a) lt_vql_cmplt_m((k), (a), lt_vql_set1(0))
+#define LTN_W_CMPGT0(k, a) lt_vql_cmpgt_m((k), (a), lt_vql_set1(0))
+#define LTN_W_CMPGE0(k, a) lt_vql_cmpge_m((k), (a), lt_vql_set1(0))
+#define LTN_W_CMPLE_M lt_vql_cmple_m
+#define LTN_TDIV_M q_tdiv_m
+#define LTN_SLAB_FIX q_slab_fix
+#include "lt_isect.inc"
+#include "numerics/lt_traits_undef.h"
+#undef LTN_QV
+#undef LTN_W
+#undef LTN_TN
+#undef LTN_CROSS_DP
+#undef LTN_DOT_PP
+#undef LTN_CROSS_PP
+#undef LTN_DOT_DQ
+#undef LTN_DOT_PQ
+#undef LTN_W_ADD
+#undef LTN_W_NEG_M
+#undef LTN_TN_NEG_M
+#undef LTN_W_CMPLT0
+#undef LTN_W_CMPGT0
+#undef LTN_W_CMPGE0
+#undef LTN_W_CMPLE_M
+#undef LTN_TDIV_M
+#undef LTN_SLAB_FIX
+
+/* ---- float32 -------------------------------------------------------------------------------- */
+#if LT_CFG_FLOAT32
+
+static lt_vf32_t recip_f32(lt_vf32_t d)
+{
+    lt_vf32_t r;
+    int i;
+    LT_COST(FDIV, 1);
+    LT_COST(FCMP, 1);
+    LT_COST(VALU, 1);
+    for (i = 0; i < LT_LANES; i++) {
+        /* +-0 -> +-FLT_MAX (the sign bit of -0.0 is tested through 1/d = -inf) */
+        float q = 1.0f / d.l[i];
+        if (q > 3.40282347e38f)
+            q = 3.40282347e38f;
+        else if (q < -3.40282347e38f)
+            q = -3.40282347e38f;
+        r.l[i] = q;
+    }
+    return r;
+}
+
+void lt_ray16_f32_setup(lt_ray16_f32_t *r)
+{
+    r->rx = recip_f32(r->dx);
+    r->ry = recip_f32(r->dy);
+    r->rz = recip_f32(r->dz);
+    /* == compares -0.0 equal to +0.0: both are parallel */
+    r->par[0] = lt_vf32_cmpeq(r->dx, lt_vf32_set1(0.0f));
+    r->par[1] = lt_vf32_cmpeq(r->dy, lt_vf32_set1(0.0f));
+    r->par[2] = lt_vf32_cmpeq(r->dz, lt_vf32_set1(0.0f));
+    r->rsat[0] = r->rsat[1] = r->rsat[2] = 0;
+    r->pad_[0] = r->pad_[1] = 0;
+}
+
+/* Parallel lanes (d == +-0): all t when lo <= o <= hi, none otherwise; FLT_MAX stands for
+ * infinity (tmax < FLT_MAX). */
+static void f_slab_fix(lt_mask16_t par, lt_mask16_t rsat, lt_vf32_t o, lt_vf32_t d, float lo,
+                       float hi, lt_vf32_t *t0, lt_vf32_t *t1)
+{
+    int i;
+    (void)rsat;
+    (void)d;
+    LT_COST(FCMP, 2);
+    LT_COST(FADD, 2);
+    for (i = 0; i < LT_LANES; i++) {
+        if (LT__ON(par, i)) {
+            int in = o.l[i] >= lo && o.l[i] <= hi;
+            t0->l[i] = in ? -3.40282347e38f : 3.40282347e38f;
+            t1->l[i] = 3.40282347e38f;
+        }
+    }
+}
+
+LT_INLINE lt_vf32_t f_cross(lt_vf32_t a, lt_vf32_t b, lt_vf32_t c, lt_vf32_t d)
+{
+    return lt_vf32_sub(lt_vf32_mul(a, b), lt_vf32_mul(c, d));
+}
+
+LT_INLINE lt_vf32_t f_dot(lt_vf32_t ax, lt_vf32_t ay, lt_vf32_t az, lt_vf32_t bx, lt_vf32_t by,
+                          lt_vf32_t bz)
+{
+    return lt_vf32_add(lt_vf32_add(lt_vf32_mul(ax, bx), lt_vf32_mul(ay, by)), lt_vf32_mul(az, bz));
+}
+
+
+#include "numerics/lt_traits_f32.h"
+#define LTN_QV lt_vf32_t
+#define LTN_W lt_vf32_t
+#define LTN_TN lt_vf32_t
+#define LTN_CROSS_DP f_cross
+#define LTN_DOT_PP f_dot
+#define LTN_CROSS_PP f_cross
+#define LTN_DOT_DQ f_dot
+#define LTN_DOT_PQ f_dot
+#define LTN_W_ADD lt_vf32_add
+#define LTN_W_NEG_M(k, a) lt_vf32_neg_m((a), (k), (a))
+#define LTN_TN_NEG_M LTN_W_NEG_M
+#define LTN_W_CMPLT0(k, a) lt_vf32_cmplt_m((k), (a), lt_vf32_set1(0.0f))
+#define LTN_W_CMPGT0(k, a) lt_vf32_cmpgt_m((k), (a), lt_vf32_set1(0.0f))
+#define LTN_W_CMPGE0(k, a) lt_vf32_cmpge_m((k), (a), lt_vf32_set1(0.0f))
+#define LTN_W_CMPLE_M lt_vf32_cmple_m
+#define LTN_TDIV_M(src, k, n, d) lt_vf32_div_m((src), (k), (n), (d))
+#define LTN_SLAB_FIX f_slab_fix
+#include "lt_isect.inc"
+
+#endif /* LT_CFG_FLOAT32 */

@@ -1,0 +1,401 @@
+/* lt_wt.c - instantiates the watertight ray/triangle kernel of lt_wt.inc (Woop, Benthin, Wald,
+ * JCGT 2013) for s15.16 fixed point (exact int64 edge functions, exact 128-bit T and t = T / det)
+ * and IEEE float32 (with the paper's double fallback for 0.0f edge functions). The traits below
+ * are the only place where the two paths differ. Builds: all; float32 only with LT_CFG_FLOAT32.
+ */
+#include "lt/lt_wt.h"
+
+/* The bit budget of docs/watertight.md: |A| <= 2^13, sheared |x| <= 2^14 units (2^30 raw), edge
+ * functions <= 2^61, det < 2^63. A larger geometry bound would overflow them. */
+LT_STATIC_ASSERT(LT_CFG_GEOM_MAX_LOG2 <= 12, "lt_wt's exact int64 edge functions need GEOM <= 12");
+
+/* ---- fixed point: s15.16 positions, s1.30 directions and shear ------------------------------- */
+
+/* |d| per lane, s1.30; |min| saturates to max (never reached by a unit vector). Cost: VALU x1. */
+static lt_vq30_t q_dabs(lt_vq30_t a)
+{
+    int i;
+    LT_COST(VALU, 1);
+    for (i = 0; i < LT_LANES; i++)
+        a.l[i] = lt__q16_abs_sat(a.l[i]);
+    return a;
+}
+
+/* Mask of lanes with a >= b (s1.30). Cost: VCMP x1. */
+static lt_mask16_t q_dcmpge(lt_vq30_t a, lt_vq30_t b)
+{
+    unsigned m = 0;
+    int i;
+    LT_COST(VCMP, 1);
+    for (i = 0; i < LT_LANES; i++)
+        m |= (unsigned)(a.l[i] >= b.l[i]) << i;
+    return (lt_mask16_t)m;
+}
+
+/* Mask of lanes with a < 0. Cost: VCMP x1. */
+static lt_mask16_t q_dcmplt0(lt_vq30_t a)
+{
+    unsigned m = 0;
+    int i;
+    LT_COST(VCMP, 1);
+    for (i = 0; i < LT_LANES; i++)
+        m |= (unsigned)(a.l[i] < 0) << i;
+    return (lt_mask16_t)m;
+}
+
+/* Lanes whose d[kz] cannot be sheared in s1.30: |d[kz]| <= 1/2 (a unit vector has its largest
+ * component >= 1/sqrt3), so Sz = 1/d[kz] < 2 always fits. Cost: VALU x1, VCMP x1. */
+static lt_mask16_t q_baddir(lt_vq30_t dkz)
+{
+    return (lt_mask16_t)~q_dcmpge(q_dabs(dkz), lt_vq30_set1((lt_q30_t)((1 << 29) + 1)));
+}
+
+/* num / den in s1.30, half up, for |num| <= |den| (so |S| <= 1); bad lanes get 0. Cost: VDIV x1. */
+static lt_vq30_t q_ratio(lt_vq30_t num, lt_vq30_t den, lt_mask16_t bad)
+{
+    int i;
+    LT_COST(VDIV, 1);
+    for (i = 0; i < LT_LANES; i++)
+        num.l[i] = LT__ON(bad, i) ? 0
+                                  : lt__ssat32(lt__div_round64((int64_t)num.l[i] * 1073741824,
+                                                               den.l[i]));
+    return num;
+}
+
+/* 1 / den in s1.30 (2^60 / den_raw), half up: |den| > 1/2 gives |Sz| < 2; bad lanes get 0.
+ * Cost: VDIV x1. */
+static lt_vq30_t q_recip(lt_vq30_t den, lt_mask16_t bad)
+{
+    int i;
+    LT_COST(VDIV, 1);
+    for (i = 0; i < LT_LANES; i++)
+        den.l[i] = LT__ON(bad, i) ? 0
+                                  : lt__ssat32(lt__div_round64((int64_t)1 << 60, den.l[i]));
+    return den;
+}
+
+/* round(S * a): s1.30 x s15.16 -> 46 fractional bits -> s15.16, half up. Cost: VMUL x1. */
+LT_INLINE lt_vq16_t q_muls(lt_vq30_t s, lt_vq16_t a)
+{
+    return lt_vq16_mul_q30_sat(a, s);
+}
+
+/* ax * by - ay * bx exactly: s15.16 x s15.16 -> s31.32. |sheared| <= 2^14 units (2^30 raw) keeps
+ * each product within 2^60 and the difference within 2^61. Cost: VMUL x2, VMULW x1. */
+LT_INLINE lt_vql_t q_cross2(lt_vq16_t ax, lt_vq16_t ay, lt_vq16_t bx, lt_vq16_t by)
+{
+    return lt_vql_sub_wrap(lt_vql_mul(lt_vi32_from_q16(ax), lt_vi32_from_q16(by)),
+                           lt_vql_mul(lt_vi32_from_q16(ay), lt_vi32_from_q16(bx)));
+}
+
+/* 16 signed 128-bit integers, two's complement in two unsigned words: value = hi 2^64 + lo
+ * (the sign is bit 63 of hi). 256 bytes. */
+typedef struct wt_v128 {
+    uint64_t hi[LT_LANES]; /* bits 64..127 */
+    uint64_t lo[LT_LANES]; /* bits 0..63 */
+} wt_v128_t;
+
+/* (h, l) += a * b exactly, a int64, b int32. a = ah 2^32 + al (al in [0, 2^32)), so a * b =
+ * (ah b) 2^32 + al b with |ah b| <= 2^62 and |al b| < 2^63: both fit int64 for any inputs.
+ * Adds are modulo 2^128 in unsigned words (carry = the sum wrapped below an addend). */
+LT_INLINE void q_mac128(uint64_t *h, uint64_t *l, int64_t a, int32_t b)
+{
+    int64_t p1 = lt__asr64(a, 32) * (int64_t)b;
+    int64_t p0 = (int64_t)((uint64_t)a & 0xFFFFFFFFu) * (int64_t)b;
+    uint64_t add = (uint64_t)p1 << 32, s = *l + add;
+    *h += (uint64_t)lt__asr64(p1, 32) + (uint64_t)(s < add);
+    add = (uint64_t)p0;
+    *l = s + add;
+    *h += (p0 < 0 ? ~(uint64_t)0 : 0u) + (uint64_t)(*l < add);
+}
+
+/* T = U za + V zb + W zc exactly in 128 bits (s31.32 x s15.16 -> 48 fractional bits), lanes in k.
+ * |U| <= 2^61, |z| < 2^30 raw: |T| < 2^93. Cost: VMUL x6, VMULW x10. */
+static wt_v128_t q_tsum(lt_mask16_t k, lt_vql_t u, lt_vql_t v, lt_vql_t w, lt_vq16_t za,
+                        lt_vq16_t zb, lt_vq16_t zc)
+{
+    wt_v128_t r;
+    int i;
+    LT_COST(VMUL, 6);
+    LT_COST(VMULW, 10);
+    LT_UTIL(k);
+    for (i = 0; i < LT_LANES; i++) {
+        r.hi[i] = 0;
+        r.lo[i] = 0;
+        if (!LT__ON(k, i))
+            continue;
+        q_mac128(&r.hi[i], &r.lo[i], u.l[i], za.l[i]);
+        q_mac128(&r.hi[i], &r.lo[i], v.l[i], zb.l[i]);
+        q_mac128(&r.hi[i], &r.lo[i], w.l[i], zc.l[i]);
+    }
+    return r;
+}
+
+/* floor(n / d) and n mod d for an unsigned 128-bit n = (nh, nl) < d 2^31 and d > 0: restoring
+ * division, one quotient bit per step (31 steps; the quotient is < 2^31). */
+static uint32_t q_udiv128(uint64_t nh, uint64_t nl, uint64_t d, uint64_t *rem)
+{
+    uint32_t q = 0;
+    int b;
+    for (b = 30; b >= 0; b--) {
+        uint64_t dl = d << b, dh = b > 0 ? d >> (64 - b) : 0;
+        if (nh > dh || (nh == dh && nl >= dl)) {
+            nh = nh - dh - (uint64_t)(nl < dl);
+            nl -= dl;
+            q |= 1u << b;
+        }
+    }
+    *rem = nl;
+    return q;
+}
+
+/* t = T / det as s15.16 (48 - 32 fractional bits), rounded half up from the exact quotient, for
+ * lanes in k (det != 0 there); other lanes keep src. A hit has |t| <= max |z| < 2^30 raw; a
+ * quotient >= 2^31 (only for out-of-range input) saturates. Cost: VDIV x2 (128/64 bits). */
+static lt_vq16_t q_tdiv_m(lt_vq16_t src, lt_mask16_t k, wt_v128_t tn, lt_vql_t det)
+{
+    int i;
+    LT_COST(VDIV, 2);
+    LT_UTIL(k);
+    for (i = 0; i < LT_LANES; i++) {
+        int64_t d = det.l[i];
+        uint64_t nh, nl, ad, rem;
+        uint32_t q;
+        int neg;
+        if (!LT__ON(k, i))
+            continue;
+        /* magnitudes, in unsigned arithmetic (no overflow for any input) */
+        nh = tn.hi[i];
+        nl = tn.lo[i];
+        neg = (int)(nh >> 63) != (d < 0);
+        if ((nh >> 63) != 0) {
+            nl = ~nl + 1u;
+            nh = ~nh + (uint64_t)(nl == 0);
+        }
+        ad = d < 0 ? 0u - (uint64_t)d : (uint64_t)d;
+        /* n >= ad 2^31: the quotient does not fit s15.16 */
+        if (nh > (ad >> 33) || (nh == (ad >> 33) && nl >= (ad << 31))) {
+            LT_EVENT(SAT, 1);
+            src.l[i] = neg ? LT_Q16_MIN : LT_Q16_MAX;
+            continue;
+        }
+        q = q_udiv128(nh, nl, ad, &rem);
+        /* half up: x = q + f rounds to q + 1 when f >= 1/2; -x rounds to -(q + 1) when f > 1/2 */
+        if (neg) {
+            q += (uint32_t)(rem > ad - rem);
+            src.l[i] = q == 0 ? 0 : -(int32_t)(q - 1u) - 1;
+        } else {
+            q += (uint32_t)(rem >= ad - rem);
+            src.l[i] = lt__ssat32((int64_t)q);
+        }
+    }
+    return src;
+}
+
+/* e1 x e2 == 0 exactly for the rebuilt vertices (s15.16 differences, int64 products compared
+ * without subtracting, so no overflow for any input). Cost: SALU x9, SMUL x6. */
+static int q_zero_area(lt_q16_t p[3][3])
+{
+    int32_t a[3], b[3];
+    int i;
+    LT_COST(SALU, 9);
+    LT_COST(SMUL, 6);
+    for (i = 0; i < 3; i++) {
+        a[i] = lt__ssat32((int64_t)p[1][i] - p[0][i]);
+        b[i] = lt__ssat32((int64_t)p[2][i] - p[0][i]);
+    }
+    return lt__mul32x32_64(a[1], b[2]) == lt__mul32x32_64(a[2], b[1]) &&
+           lt__mul32x32_64(a[2], b[0]) == lt__mul32x32_64(a[0], b[2]) &&
+           lt__mul32x32_64(a[0], b[1]) == lt__mul32x32_64(a[1], b[0]);
+}
+
+#include "numerics/lt_traits_q16.h"
+#define LTN_WT lt_wt16_q16_t
+#define LTN_DV lt_vq30_t
+#define LTN_D_ABS q_dabs
+#define LTN_D_CMPGE q_dcmpge
+#define LTN_D_CMPLT0 q_dcmplt0
+#define LTN_D_BLEND lt_vq30_blend
+#define LTN_WT_BADDIR q_baddir
+#define LTN_WT_RATIO q_ratio
+#define LTN_WT_RECIP q_recip
+#define LTN_WT_MULS q_muls
+#define LTN_E lt_vql_t
+#define LTN_E_ADD lt_vql_add_wrap
+#define LTN_E_ZERO() lt_vql_set1(0)
+#define LTN_E_CMPLT_M lt_vql_cmplt_m
+#define LTN_E_CMPGT_M lt_vql_cmpgt_m
+#define LTN_WT_CROSS2 q_cross2
+#define LTN_WT_EXACT_EDGES 1
+#define LTN_TT wt_v128_t
+#define LTN_WT_TSUM q_tsum
+#define LTN_WT_TDIV_M q_tdiv_m
+#define LTN_WT_ZERO_AREA q_zero_area
+#include "lt_wt.inc"
+#include "numerics/lt_traits_undef.h"
+#undef LTN_WT
+#undef LTN_DV
+#undef LTN_D_ABS
+#undef LTN_D_CMPGE
+#undef LTN_D_CMPLT0
+#undef LTN_D_BLEND
+#undef LTN_WT_BADDIR
+#undef LTN_WT_RATIO
+#undef LTN_WT_RECIP
+#undef LTN_WT_MULS
+#undef LTN_E
+#undef LTN_E_ADD
+#undef LTN_E_ZERO
+#undef LTN_E_CMPLT_M
+#undef LTN_E_CMPGT_M
+#undef LTN_WT_CROSS2
+#undef LTN_WT_EXACT_EDGES
+#undef LTN_TT
+#undef LTN_WT_TSUM
+#undef LTN_WT_TDIV_M
+#undef LTN_WT_ZERO_AREA
+
+/* ---- float32 -------------------------------------------------------------------------------- */
+#if LT_CFG_FLOAT32
+
+/* Lanes with d[kz] == 0 (all of d zero) or NaN. Cost: FADD x1, FCMP x1. */
+static lt_mask16_t f_baddir(lt_vf32_t dkz)
+{
+    return (lt_mask16_t)~lt_vf32_cmpgt(lt_vf32_abs(dkz), lt_vf32_set1(0.0f));
+}
+
+/* num / den per lane (IEEE); bad lanes get 0. Cost: FDIV x1. */
+static lt_vf32_t f_ratio(lt_vf32_t num, lt_vf32_t den, lt_mask16_t bad)
+{
+    int i;
+    LT_COST(FDIV, 1);
+    for (i = 0; i < LT_LANES; i++)
+        num.l[i] = LT__ON(bad, i) ? 0.0f : num.l[i] / den.l[i];
+    return num;
+}
+
+static lt_vf32_t f_recip(lt_vf32_t den, lt_mask16_t bad)
+{
+    int i;
+    LT_COST(FDIV, 1);
+    for (i = 0; i < LT_LANES; i++)
+        den.l[i] = LT__ON(bad, i) ? 0.0f : 1.0f / den.l[i];
+    return den;
+}
+
+LT_INLINE lt_vf32_t f_muls(lt_vf32_t s, lt_vf32_t a)
+{
+    return lt_vf32_mul(s, a);
+}
+
+LT_INLINE lt_vf32_t f_cross2(lt_vf32_t ax, lt_vf32_t ay, lt_vf32_t bx, lt_vf32_t by)
+{
+    return lt_vf32_sub(lt_vf32_mul(ax, by), lt_vf32_mul(ay, bx));
+}
+
+LT_INLINE lt_vf32_t f_tsum(lt_mask16_t k, lt_vf32_t u, lt_vf32_t v, lt_vf32_t w, lt_vf32_t za,
+                           lt_vf32_t zb, lt_vf32_t zc)
+{
+    (void)k;
+    return lt_vf32_add(lt_vf32_add(lt_vf32_mul(u, za), lt_vf32_mul(v, zb)), lt_vf32_mul(w, zc));
+}
+
+#if LT_CFG_WT_F64_FALLBACK
+/* A double edge function back to float with its sign kept: a nonzero value below the float range
+ * becomes +-FLT_MIN instead of 0 (only for sheared coordinates below ~2^-63 units). */
+static float f_narrow(double e)
+{
+    float f = (float)e;
+    if (f == 0.0f && e != 0.0)
+        f = e > 0.0 ? 1.17549435e-38f : -1.17549435e-38f;
+    return f;
+}
+
+/* The paper's fallback: for lanes in z, U, V, W again in double. A float x float product is exact
+ * in double (48 <= 53 bits) and the difference of two exact products is rounded with its exact
+ * sign, so every recomputed edge sign is exact; both neighbours of an edge run this same code.
+ * Cost: FMUL x6, FADD x3 (charged as lane ops). */
+static void f_edge_fix(lt_mask16_t z, lt_vf32_t *u, lt_vf32_t *v, lt_vf32_t *w,
+                       const lt_vf32_t x[3], const lt_vf32_t y[3])
+{
+    int i;
+    LT_COST(FMUL, 6);
+    LT_COST(FADD, 3);
+    LT_UTIL(z);
+    for (i = 0; i < LT_LANES; i++) {
+        double ax, ay, bx, by, cx, cy;
+        if (!LT__ON(z, i))
+            continue;
+        ax = (double)x[0].l[i];
+        ay = (double)y[0].l[i];
+        bx = (double)x[1].l[i];
+        by = (double)y[1].l[i];
+        cx = (double)x[2].l[i];
+        cy = (double)y[2].l[i];
+        u->l[i] = f_narrow(cx * by - cy * bx);
+        v->l[i] = f_narrow(ax * cy - ay * cx);
+        w->l[i] = f_narrow(bx * ay - by * ax);
+    }
+}
+
+/* e1 x e2 == 0 exactly: float differences and their products are exact in double for
+ * coordinates within a 2^29 ratio of each other. Cost: SALU x9, SMUL x6. */
+static int f_zero_area(float p[3][3])
+{
+    double a[3], b[3];
+    int i;
+    LT_COST(SALU, 9);
+    LT_COST(SMUL, 6);
+    for (i = 0; i < 3; i++) {
+        a[i] = (double)p[1][i] - (double)p[0][i];
+        b[i] = (double)p[2][i] - (double)p[0][i];
+    }
+    return a[1] * b[2] == a[2] * b[1] && a[2] * b[0] == a[0] * b[2] && a[0] * b[1] == a[1] * b[0];
+}
+#define F_EXACT_EDGES 0
+#else
+/* Without double: products compared in float, so a zero-area triangle is always caught but a
+ * sliver whose products round equal is taken as zero-area too. Cost: SALU x9, SMUL x6. */
+static int f_zero_area(float p[3][3])
+{
+    float a[3], b[3];
+    int i;
+    LT_COST(SALU, 9);
+    LT_COST(SMUL, 6);
+    for (i = 0; i < 3; i++) {
+        a[i] = p[1][i] - p[0][i];
+        b[i] = p[2][i] - p[0][i];
+    }
+    return a[1] * b[2] == a[2] * b[1] && a[2] * b[0] == a[0] * b[2] && a[0] * b[1] == a[1] * b[0];
+}
+#define F_EXACT_EDGES 1
+#endif
+
+#include "numerics/lt_traits_f32.h"
+#define LTN_WT lt_wt16_f32_t
+#define LTN_DV lt_vf32_t
+#define LTN_D_ABS lt_vf32_abs
+#define LTN_D_CMPGE lt_vf32_cmpge
+#define LTN_D_CMPLT0(a) lt_vf32_cmplt((a), lt_vf32_set1(0.0f))
+#define LTN_D_BLEND lt_vf32_blend
+#define LTN_WT_BADDIR f_baddir
+#define LTN_WT_RATIO f_ratio
+#define LTN_WT_RECIP f_recip
+#define LTN_WT_MULS f_muls
+#define LTN_E lt_vf32_t
+#define LTN_E_ADD lt_vf32_add
+#define LTN_E_ZERO() lt_vf32_set1(0.0f)
+#define LTN_E_CMPLT_M lt_vf32_cmplt_m
+#define LTN_E_CMPGT_M lt_vf32_cmpgt_m
+#define LTN_E_CMPEQ_M lt_vf32_cmpeq_m
+#define LTN_WT_CROSS2 f_cross2
+#define LTN_WT_EXACT_EDGES F_EXACT_EDGES
+#define LTN_WT_EDGE_FIX f_edge_fix
+#define LTN_TT lt_vf32_t
+#define LTN_WT_TSUM f_tsum
+#define LTN_WT_TDIV_M(src, k, n, d) lt_vf32_div_m((src), (k), (n), (d))
+#define LTN_WT_ZERO_AREA f_zero_area
+#include "lt_wt.inc"
+#include "numerics/lt_traits_undef.h"
+
+#endif /* LT_CFG_FLOAT32 */

@@ -1,0 +1,36 @@
+/* lt_cliutil.c - see lt_cliutil.h. */
+#include "cli/lt_cliutil.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <time.h>
+
+double lt_now_s(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+int lt_parse_wh(const char *s, uint32_t max, uint32_t *w, uint32_t *h)
+{
+    unsigned long a, b;
+    char *end;
+    a = strtoul(s, &end, 10);
+    b = a;
+    if (end == s)
+        return -1;
+    if (*end == 'x')
+        b = strtoul(end + 1, &end, 10);
+    if (*end != '\0' || a == 0 || b == 0 || a > max || b > max)
+        return -1;
+    *w = (uint32_t)a;
+    *h = (uint32_t)b;
+    return 0;
+}
+
+uint8_t lt_gamma8(double v)
+{
+    v = v < 0.0 || v != v ? 0.0 : (v > 1.0 ? 1.0 : v);
+    return (uint8_t)(255.0 * pow(v, 1.0 / 2.2) + 0.5);
+}

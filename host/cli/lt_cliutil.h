@@ -1,0 +1,19 @@
+/* lt_cliutil.h - small helpers shared by the host programs (lanetrace and its subcommands,
+ * lanetrace-stream, the benchmarks) and host modules: a monotonic wall clock, WxH size parsing
+ * and the 8-bit gamma encoding of linear values for PNG output. Host only.
+ */
+#ifndef LT_CLIUTIL_H
+#define LT_CLIUTIL_H
+
+#include <stdint.h>
+
+/* Seconds of the monotonic clock (CLOCK_MONOTONIC): for intervals only. */
+double lt_now_s(void);
+
+/* "WxH" or "N" (square) -> *w, *h; 0 when both lie in 1..max, else -1 (nothing written). */
+int lt_parse_wh(const char *s, uint32_t max, uint32_t *w, uint32_t *h);
+
+/* A linear value clamped to [0, 1] (NaN -> 0) encoded with gamma 2.2 to 0..255, rounded. */
+uint8_t lt_gamma8(double v);
+
+#endif /* LT_CLIUTIL_H */

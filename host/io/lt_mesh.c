@@ -1,0 +1,549 @@
+/* lt_mesh.c - mesh loading through assimp's C API (Debian libassimp-dev): gzip'd files unpacked
+ * in memory with zlib, OBJ text checked line by line (assimp silently accepts NaN vertices and
+ * out-of-range texture indices, and reports no line numbers), then indices and finiteness checked
+ * again after import for every format. Host only; docs/io.md.
+ */
+#include "io/lt_mesh.h"
+
+#include <assimp/cimport.h>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+#include <ctype.h>
+#include <errno.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <zlib.h>
+
+#define IMPORT_FLAGS (aiProcess_Triangulate | aiProcess_PreTransformVertices)
+
+static void fail(char *err, size_t errlen, const char *fmt, ...)
+{
+    va_list ap;
+    if (err == NULL || errlen == 0)
+        return;
+    va_start(ap, fmt);
+    (void)vsnprintf(err, errlen, fmt, ap);
+    va_end(ap);
+}
+
+/* Case-insensitive "s ends with suffix". */
+static int ends_with(const char *s, const char *suffix)
+{
+    size_t n = strlen(s), k = strlen(suffix), i;
+    if (k > n)
+        return 0;
+    for (i = 0; i < k; i++)
+        if (tolower((unsigned char)s[n - k + i]) != tolower((unsigned char)suffix[i]))
+            return 0;
+    return 1;
+}
+
+/* ---- whole-file reading and gunzip ----------------------------------------------------------- */
+
+/* Read the file into a NUL-terminated buffer (*len bytes + 1). */
+static int read_all(const char *path, char **buf, size_t *len, char *err, size_t errlen)
+{
+    FILE *f = fopen(path, "rb");
+    struct stat st;
+    size_t got;
+    *buf = NULL;
+    *len = 0;
+    if (f == NULL) {
+        fail(err, errlen, "%s: cannot open the mesh file: %s", path, strerror(errno));
+        return -1;
+    }
+    if (fstat(fileno(f), &st) != 0 || !S_ISREG(st.st_mode)) {
+        fail(err, errlen, "%s: not a regular file", path);
+        (void)fclose(f);
+        return -1;
+    }
+    if ((uint64_t)st.st_size > LT_MESH_MAX_BYTES) {
+        fail(err, errlen, "%s: %lld bytes exceed LT_MESH_MAX_BYTES %u", path,
+             (long long)st.st_size, LT_MESH_MAX_BYTES);
+        (void)fclose(f);
+        return -1;
+    }
+    *buf = (char *)malloc((size_t)st.st_size + 1);
+    if (*buf == NULL) {
+        fail(err, errlen, "%s: out of memory for %lld bytes", path, (long long)st.st_size);
+        (void)fclose(f);
+        return -1;
+    }
+    got = fread(*buf, 1, (size_t)st.st_size, f);
+    if (got != (size_t)st.st_size || ferror(f)) {
+        fail(err, errlen, "%s: read error after %zu of %lld bytes", path, got,
+             (long long)st.st_size);
+        (void)fclose(f);
+        free(*buf);
+        *buf = NULL;
+        return -1;
+    }
+    (void)fclose(f);
+    (*buf)[got] = '\0';
+    *len = got;
+    return 0;
+}
+
+/* Unpack gzip data (one or more members) into a NUL-terminated buffer. */
+static int gunzip(const char *path, const unsigned char *in, size_t inlen, char **out,
+                  size_t *outlen, char *err, size_t errlen)
+{
+    z_stream zs;
+    size_t cap, used = 0;
+    char *buf;
+    int zr = Z_OK;
+
+    *out = NULL;
+    *outlen = 0;
+    if (inlen < 18 || in[0] != 0x1F || in[1] != 0x8B) {
+        fail(err, errlen, "%s: not a gzip file (%zu bytes; a gzip stream starts 1f 8b and has "
+             "at least 18 bytes)", path, inlen);
+        return -1;
+    }
+    /* first guess: the last member's ISIZE (size mod 2^32), at least 64 KiB */
+    cap = (size_t)in[inlen - 4] | ((size_t)in[inlen - 3] << 8) | ((size_t)in[inlen - 2] << 16) |
+          ((size_t)in[inlen - 1] << 24);
+    if (cap < 65536)
+        cap = 65536;
+    if (cap > LT_MESH_MAX_BYTES)
+        cap = LT_MESH_MAX_BYTES;
+    buf = (char *)malloc(cap + 1);
+    if (buf == NULL) {
+        fail(err, errlen, "%s: out of memory", path);
+        return -1;
+    }
+    memset(&zs, 0, sizeof zs);
+    if (inflateInit2(&zs, 16 + MAX_WBITS) != Z_OK) {
+        fail(err, errlen, "%s: zlib init failed", path);
+        free(buf);
+        return -1;
+    }
+    zs.next_in = (Bytef *)(uintptr_t)in; /* zlib's API is not const-correct */
+    zs.avail_in = (uInt)inlen;           /* inlen <= LT_MESH_MAX_BYTES < 2^32 */
+    for (;;) {
+        if (used == cap) {
+            char *nb;
+            if (cap >= LT_MESH_MAX_BYTES) {
+                fail(err, errlen, "%s: unpacks to more than LT_MESH_MAX_BYTES %u bytes", path,
+                     LT_MESH_MAX_BYTES);
+                goto bad;
+            }
+            cap = cap * 2 > LT_MESH_MAX_BYTES ? LT_MESH_MAX_BYTES : cap * 2;
+            nb = (char *)realloc(buf, cap + 1);
+            if (nb == NULL) {
+                fail(err, errlen, "%s: out of memory for %zu unpacked bytes", path, cap);
+                goto bad;
+            }
+            buf = nb;
+        }
+        zs.next_out = (Bytef *)(buf + used);
+        zs.avail_out = (uInt)(cap - used);
+        zr = inflate(&zs, Z_NO_FLUSH);
+        used = cap - zs.avail_out;
+        if (zr == Z_STREAM_END) {
+            if (zs.avail_in == 0)
+                break;
+            /* another gzip member follows (as `cat a.gz b.gz` makes), or trailing garbage */
+            if (zs.avail_in < 2 || zs.next_in[0] != 0x1F || zs.next_in[1] != 0x8B) {
+                fail(err, errlen, "%s: %u bytes of trailing data after the gzip stream "
+                     "(at compressed byte %lu)", path, zs.avail_in, zs.total_in);
+                goto bad;
+            }
+            if (inflateReset(&zs) != Z_OK) {
+                fail(err, errlen, "%s: zlib reset failed", path);
+                goto bad;
+            }
+            continue;
+        }
+        if (zr == Z_OK)
+            continue;
+        if (zr == Z_BUF_ERROR && zs.avail_in == 0) {
+            fail(err, errlen, "%s: truncated gzip stream: input ends after %lu compressed bytes "
+                 "(%zu bytes unpacked) before the end of the stream", path, zs.total_in, used);
+            goto bad;
+        }
+        if (zr == Z_BUF_ERROR)
+            continue; /* output full: grow */
+        fail(err, errlen, "%s: corrupt gzip stream near compressed byte %lu: %s (zlib %d)", path,
+             zs.total_in, zs.msg != NULL ? zs.msg : "no message", zr);
+        goto bad;
+    }
+    (void)inflateEnd(&zs);
+    buf[used] = '\0';
+    *out = buf;
+    *outlen = used;
+    return 0;
+bad:
+    (void)inflateEnd(&zs);
+    free(buf);
+    return -1;
+}
+
+/* ---- OBJ text check -------------------------------------------------------------------------- */
+
+/* Largest positive index seen for one index kind and the line it was on. */
+typedef struct obj_ref {
+    long long max;        /* largest positive index */
+    unsigned long line;   /* line of max */
+} obj_ref_t;
+
+static int is_blank(char c) { return c == ' ' || c == '\t' || c == '\v' || c == '\f'; }
+
+static int is_eol(char c) { return c == '\n' || c == '\r' || c == '\0'; }
+
+/* One index of a face vertex: positive (must end up <= count in the file), or negative
+ * (relative: must reach one of the `have` defined so far). */
+static int check_index(long long idx, uint64_t have, obj_ref_t *r, unsigned long line,
+                       const char *what, const char *where, char *err, size_t errlen)
+{
+    if (idx == 0) {
+        fail(err, errlen, "%s: line %lu: %s index 0 (OBJ indices start at 1, or -1 for the last)",
+             where, line, what);
+        return -1;
+    }
+    if (idx < 0 && (uint64_t)(-(idx + 1)) >= have) {
+        fail(err, errlen, "%s: line %lu: relative %s index %lld but only %llu defined so far",
+             where, line, what, idx, (unsigned long long)have);
+        return -1;
+    }
+    if (idx > r->max) {
+        r->max = idx;
+        r->line = line;
+    }
+    return 0;
+}
+
+/* Check OBJ text (NUL-terminated at len). where names the file in messages. */
+static int check_obj(const char *where, const char *buf, size_t len, char *err, size_t errlen)
+{
+    const char *nul = (const char *)memchr(buf, '\0', len);
+    const char *p = buf, *end = buf + len;
+    unsigned long line = 0;
+    uint64_t nv = 0, nvt = 0, nvn = 0, nf = 0;
+    obj_ref_t rv = {0, 0}, rt = {0, 0}, rn = {0, 0};
+
+    if (nul != NULL) {
+        unsigned long l = 1;
+        const char *q;
+        for (q = buf; q < nul; q++)
+            l += *q == '\n';
+        fail(err, errlen, "%s: line %lu: NUL byte at offset %zu: binary data, not OBJ text", where,
+             l, (size_t)(nul - buf));
+        return -1;
+    }
+    while (p < end) {
+        const char *ls = p, *q;
+        line++;
+        while (p < end && *p != '\n')
+            p++;
+        /* [ls, p) is the line; p is at '\n' or the end; buffer is NUL-terminated at end */
+        q = ls;
+        while (q < p && is_blank(*q))
+            q++;
+        if (q < p && *q != '#') {
+            const char *c;
+            for (c = q; c < p; c++)
+                if ((unsigned char)*c < 0x20 && !is_blank(*c) && *c != '\r') {
+                    fail(err, errlen, "%s: line %lu: control byte 0x%02x: binary data, not OBJ "
+                         "text", where, line, (unsigned)(unsigned char)*c);
+                    return -1;
+                }
+        }
+        if (q < p && q[0] == 'v' && (is_blank(q[1]) || is_eol(q[1]))) {
+            int n = 0;
+            q++;
+            for (;;) {
+                char *e;
+                double d;
+                while (q < p && is_blank(*q))
+                    q++;
+                if (q >= p || is_eol(*q) || *q == '#')
+                    break;
+                d = strtod(q, &e);
+                if (e == q || (e < p && !is_blank(*e) && !is_eol(*e))) {
+                    const char *t = q;
+                    while (t < p && !is_blank(*t) && !is_eol(*t))
+                        t++;
+                    fail(err, errlen, "%s: line %lu: vertex coordinate %d '%.*s' is not a number",
+                         where, line, n + 1, (int)(t - q), q);
+                    return -1;
+                }
+                if (!isfinite(d)) {
+                    fail(err, errlen, "%s: line %lu: vertex coordinate %d '%.*s' is not finite",
+                         where, line, n + 1, (int)(e - q), q);
+                    return -1;
+                }
+                n++;
+                q = e;
+            }
+            if (n < 3) {
+                fail(err, errlen, "%s: line %lu: vertex has %d coordinate%s (need 3; truncated "
+                     "file?)", where, line, n, n == 1 ? "" : "s");
+                return -1;
+            }
+            nv++;
+        } else if (q < p && q[0] == 'v' && q[1] == 't' && (is_blank(q[2]) || is_eol(q[2]))) {
+            nvt++;
+        } else if (q < p && q[0] == 'v' && q[1] == 'n' && (is_blank(q[2]) || is_eol(q[2]))) {
+            nvn++;
+        } else if (q < p && q[0] == 'f' && (is_blank(q[1]) || is_eol(q[1]))) {
+            int n = 0;
+            q++;
+            for (;;) {
+                char *e;
+                long long idx;
+                int part;
+                while (q < p && is_blank(*q))
+                    q++;
+                if (q >= p || is_eol(*q))
+                    break;
+                if (*q == '#') {
+                    fail(err, errlen, "%s: line %lu: comment after face vertices (assimp's OBJ "
+                         "reader rejects it)", where, line);
+                    return -1;
+                }
+                /* v, v/t, v//n, v/t/n */
+                for (part = 0; part < 3; part++) {
+                    if (part > 0) {
+                        if (*q != '/')
+                            break;
+                        q++;
+                        if (*q == '/' || is_blank(*q) || is_eol(*q))
+                            continue; /* empty texture (or trailing) index */
+                    }
+                    errno = 0;
+                    idx = strtoll(q, &e, 10);
+                    if (e == q || (e < p && *e != '/' && !is_blank(*e) && !is_eol(*e))) {
+                        const char *t = q;
+                        while (t < p && !is_blank(*t) && !is_eol(*t))
+                            t++;
+                        fail(err, errlen, "%s: line %lu: face vertex %d: '%.*s' is not an index",
+                             where, line, n + 1, (int)(t - q), q);
+                        return -1;
+                    }
+                    if (check_index(idx, part == 0 ? nv : part == 1 ? nvt : nvn,
+                                    part == 0 ? &rv : part == 1 ? &rt : &rn, line,
+                                    part == 0 ? "vertex" : part == 1 ? "texture" : "normal", where,
+                                    err, errlen) != 0)
+                        return -1;
+                    q = e;
+                }
+                if (q < p && !is_blank(*q) && !is_eol(*q)) {
+                    fail(err, errlen, "%s: line %lu: face vertex %d: unexpected '%c'", where,
+                         line, n + 1, *q);
+                    return -1;
+                }
+                n++;
+            }
+            if (n < 3) {
+                fail(err, errlen, "%s: line %lu: face has %d vert%s (need 3; truncated file?)",
+                     where, line, n, n == 1 ? "ex" : "ices");
+                return -1;
+            }
+            nf++;
+        }
+        p++; /* past '\n' */
+    }
+    if ((uint64_t)rv.max > nv) {
+        fail(err, errlen, "%s: line %lu: vertex index %lld but the file defines %llu vertices",
+             where, rv.line, rv.max, (unsigned long long)nv);
+        return -1;
+    }
+    if ((uint64_t)rt.max > nvt) {
+        fail(err, errlen, "%s: line %lu: texture index %lld but the file defines %llu (vt lines)",
+             where, rt.line, rt.max, (unsigned long long)nvt);
+        return -1;
+    }
+    if ((uint64_t)rn.max > nvn) {
+        fail(err, errlen, "%s: line %lu: normal index %lld but the file defines %llu (vn lines)",
+             where, rn.line, rn.max, (unsigned long long)nvn);
+        return -1;
+    }
+    if (nf == 0) {
+        fail(err, errlen, "%s: no faces ('f' lines) in %lu lines, %llu vertices (empty or "
+             "truncated OBJ?)", where, line, (unsigned long long)nv);
+        return -1;
+    }
+    return 0;
+}
+
+/* Remove the blanks that start lines, in place: assimp 5.2.5's OBJ reader silently skips a
+ * statement with leading blanks (" v 1 2 3" shifts every later index; "\tf 1 2 3" drops a face),
+ * although they are legal OBJ. Returns the new length (buffer stays NUL-terminated). */
+static size_t strip_leading_blanks(char *buf, size_t len)
+{
+    size_t r = 0, w = 0;
+    int line_start = 1;
+    for (r = 0; r < len; r++) {
+        char c = buf[r];
+        if (line_start && is_blank(c))
+            continue;
+        line_start = c == '\n';
+        buf[w++] = c;
+    }
+    buf[w] = '\0';
+    return w;
+}
+
+/* ---- assimp scene -> triangles --------------------------------------------------------------- */
+
+static int scene_to_mesh(const struct aiScene *sc, const char *path, lt_mesh_t *m, char *err,
+                         size_t errlen)
+{
+    unsigned i, f, j, a;
+    uint64_t n = 0;
+    uint32_t t = 0;
+
+    for (i = 0; i < sc->mNumMeshes; i++)
+        for (f = 0; f < sc->mMeshes[i]->mNumFaces; f++)
+            n += sc->mMeshes[i]->mFaces[f].mNumIndices == 3;
+    if (n == 0 || n > LT_MESH_MAX_TRIS) {
+        fail(err, errlen, "%s: %llu triangles (need 1..%u)", path, (unsigned long long)n,
+             LT_MESH_MAX_TRIS);
+        return -1;
+    }
+    m->v = (double *)malloc((size_t)n * 9 * sizeof(double));
+    if (m->v == NULL) {
+        fail(err, errlen, "%s: out of memory for %llu triangles", path, (unsigned long long)n);
+        return -1;
+    }
+    for (a = 0; a < 3; a++) {
+        m->lo[a] = HUGE_VAL;
+        m->hi[a] = -HUGE_VAL;
+    }
+    for (i = 0; i < sc->mNumMeshes; i++) {
+        const struct aiMesh *me = sc->mMeshes[i];
+        for (f = 0; f < me->mNumFaces; f++) {
+            const struct aiFace *fa = &me->mFaces[f];
+            if (fa->mNumIndices != 3)
+                continue;
+            for (j = 0; j < 3; j++) {
+                const struct aiVector3D *p;
+                if (fa->mIndices[j] >= me->mNumVertices) {
+                    fail(err, errlen, "%s: mesh %u face %u: vertex index %u >= %u vertices", path,
+                         i, f, fa->mIndices[j], me->mNumVertices);
+                    lt_mesh_free(m);
+                    return -1;
+                }
+                p = &me->mVertices[fa->mIndices[j]];
+                if (!isfinite(p->x) || !isfinite(p->y) || !isfinite(p->z)) {
+                    fail(err, errlen, "%s: mesh %u face %u: vertex %u is not finite", path, i, f,
+                         fa->mIndices[j]);
+                    lt_mesh_free(m);
+                    return -1;
+                }
+                m->v[t * 9 + j * 3 + 0] = p->x;
+                m->v[t * 9 + j * 3 + 1] = p->y;
+                m->v[t * 9 + j * 3 + 2] = p->z;
+                for (a = 0; a < 3; a++) {
+                    double c = m->v[t * 9 + j * 3 + a];
+                    if (c < m->lo[a])
+                        m->lo[a] = c;
+                    if (c > m->hi[a])
+                        m->hi[a] = c;
+                }
+            }
+            t++;
+        }
+    }
+    m->ntris = t;
+    return 0;
+}
+
+int lt_mesh_load(const char *path, lt_mesh_t *m, char *err, size_t errlen)
+{
+    const struct aiScene *sc = NULL;
+    char *raw = NULL, *text = NULL;
+    size_t rawlen = 0, textlen = 0;
+    char hint[16] = "";
+    int gz, obj, rc = -1;
+
+    memset(m, 0, sizeof *m);
+    gz = ends_with(path, ".gz");
+    obj = ends_with(path, gz ? ".obj.gz" : ".obj");
+    if (gz) {
+        /* the format hint is the extension inside: "x.obj.gz" -> "obj" */
+        size_t n = strlen(path) - 3, k = n;
+        while (k > 0 && path[k - 1] != '.' && path[k - 1] != '/')
+            k--;
+        if (k == 0 || path[k - 1] != '.' || n - k < 1 || n - k >= sizeof hint) {
+            fail(err, errlen, "%s: cannot tell the format inside the gzip file: name it "
+                 "<name>.<ext>.gz (e.g. scene.obj.gz)", path);
+            return -1;
+        }
+        memcpy(hint, path + k, n - k);
+        hint[n - k] = '\0';
+    }
+    if (gz || obj) {
+        if (read_all(path, &raw, &rawlen, err, errlen) != 0)
+            return -1;
+        if (rawlen == 0) {
+            fail(err, errlen, "%s: empty file (0 bytes)", path);
+            goto done;
+        }
+        if (gz) {
+            if (gunzip(path, (const unsigned char *)raw, rawlen, &text, &textlen, err,
+                       errlen) != 0)
+                goto done;
+            free(raw);
+            raw = NULL;
+            if (textlen == 0) {
+                fail(err, errlen, "%s: empty after gunzip", path);
+                goto done;
+            }
+        } else {
+            text = raw;
+            textlen = rawlen;
+            raw = NULL;
+        }
+        if (obj) {
+            if (check_obj(path, text, textlen, err, errlen) != 0)
+                goto done;
+            textlen = strip_leading_blanks(text, textlen);
+            (void)snprintf(hint, sizeof hint, "obj");
+        }
+    } else {
+        FILE *probe = fopen(path, "rb");
+        if (probe == NULL) {
+            fail(err, errlen, "%s: cannot open the mesh file: %s", path, strerror(errno));
+            return -1;
+        }
+        if (fseek(probe, 0, SEEK_END) == 0 && ftell(probe) == 0) {
+            (void)fclose(probe);
+            fail(err, errlen, "%s: empty file (0 bytes)", path);
+            return -1;
+        }
+        (void)fclose(probe);
+    }
+    if (text != NULL) {
+        /* OBJ (checked, blanks stripped) and unpacked .gz: from memory. Material files are not
+         * found from there, which only costs assimp a warning: we keep geometry only. */
+        sc = aiImportFileFromMemory(text, (unsigned)textlen, IMPORT_FLAGS, hint);
+    } else {
+        /* other formats from the path, so that assimp finds the files they refer to (.bin) */
+        sc = aiImportFile(path, IMPORT_FLAGS);
+    }
+    if (sc == NULL || sc->mNumMeshes == 0) {
+        fail(err, errlen, "%s: not a readable mesh (assimp: %s)", path,
+             sc == NULL ? aiGetErrorString() : "no meshes in the scene");
+        goto done;
+    }
+    rc = scene_to_mesh(sc, path, m, err, errlen);
+done:
+    if (sc != NULL)
+        aiReleaseImport(sc);
+    free(raw);
+    free(text);
+    return rc;
+}
+
+void lt_mesh_free(lt_mesh_t *m)
+{
+    free(m->v);
+    m->v = NULL;
+    m->ntris = 0;
+}

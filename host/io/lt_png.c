@@ -1,0 +1,144 @@
+/* lt_png.c - 8-bit PNG writer over libpng's classic write API, with libpng errors captured
+ * through setjmp/longjmp into our message (never printed, never an abort) and an atomic
+ * temp + fsync + rename commit. Host only; docs/io.md.
+ */
+#include "io/lt_png.h"
+
+#include <errno.h>
+#include <png.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+/* Error state shared with the libpng callbacks. */
+typedef struct png_err {
+    char msg[200]; /* first libpng error or warning text */
+} png_err_t;
+
+static void fail(char *err, size_t errlen, const char *fmt, ...)
+{
+    va_list ap;
+    if (err == NULL || errlen == 0)
+        return;
+    va_start(ap, fmt);
+    (void)vsnprintf(err, errlen, fmt, ap);
+    va_end(ap);
+}
+
+static void on_png_error(png_structp png, png_const_charp msg)
+{
+    png_err_t *pe = (png_err_t *)png_get_error_ptr(png);
+    if (pe != NULL && pe->msg[0] == '\0')
+        (void)snprintf(pe->msg, sizeof pe->msg, "%s", msg != NULL ? msg : "libpng error");
+    png_longjmp(png, 1);
+}
+
+static void on_png_warning(png_structp png, png_const_charp msg)
+{
+    (void)png;
+    (void)msg; /* warnings (e.g. about ancillary chunks) are not failures */
+}
+
+/* The libpng part: returns 0 or -1 with pe->msg set. Kept apart from file handling so that only
+ * the locals here live across setjmp (none is modified after it). */
+static int encode(FILE *fp, const uint8_t *pix, int32_t w, int32_t h, int channels, size_t stride,
+                  png_err_t *pe)
+{
+    static const int color_of[5] = {0, PNG_COLOR_TYPE_GRAY, PNG_COLOR_TYPE_GRAY_ALPHA,
+                                    PNG_COLOR_TYPE_RGB, PNG_COLOR_TYPE_RGB_ALPHA};
+    png_structp png;
+    png_infop info = NULL;
+    int32_t y;
+
+    png = png_create_write_struct(PNG_LIBPNG_VER_STRING, pe, on_png_error, on_png_warning);
+    if (png == NULL) {
+        (void)snprintf(pe->msg, sizeof pe->msg, "libpng: cannot create the write struct");
+        return -1;
+    }
+    info = png_create_info_struct(png);
+    if (info == NULL) {
+        png_destroy_write_struct(&png, NULL);
+        (void)snprintf(pe->msg, sizeof pe->msg, "libpng: cannot create the info struct");
+        return -1;
+    }
+    if (setjmp(png_jmpbuf(png))) {
+        png_destroy_write_struct(&png, &info);
+        return -1;
+    }
+    png_init_io(png, fp);
+    png_set_compression_level(png, 6);
+    png_set_IHDR(png, info, (png_uint_32)w, (png_uint_32)h, 8, color_of[channels],
+                 PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+    png_write_info(png, info);
+    for (y = 0; y < h; y++)
+        png_write_row(png, (png_const_bytep)(pix + (size_t)y * stride));
+    png_write_end(png, info);
+    png_destroy_write_struct(&png, &info);
+    return 0;
+}
+
+int lt_png_write(const char *path, const uint8_t *pix, int32_t w, int32_t h, int channels,
+                 size_t stride, char *err, size_t errlen)
+{
+    png_err_t pe;
+    FILE *fp;
+    char *tmp;
+    int rc;
+
+    if (path == NULL || pix == NULL) {
+        fail(err, errlen, "lt_png_write: NULL %s", path == NULL ? "path" : "pixels");
+        return -1;
+    }
+    if (w < 1 || h < 1 || w > LT_PNG_MAX_DIM || h > LT_PNG_MAX_DIM) {
+        fail(err, errlen, "%s: image %dx%d outside 1..LT_PNG_MAX_DIM %d", path, (int)w, (int)h,
+             LT_PNG_MAX_DIM);
+        return -1;
+    }
+    if (channels < 1 || channels > 4) {
+        fail(err, errlen, "%s: %d channels per pixel (need 1 gray, 2 gray+alpha, 3 RGB, 4 RGBA)",
+             path, channels);
+        return -1;
+    }
+    if (stride == 0)
+        stride = (size_t)w * (size_t)channels;
+    if (stride < (size_t)w * (size_t)channels) {
+        fail(err, errlen, "%s: row stride %zu < %d pixels x %d channels", path, stride, (int)w,
+             channels);
+        return -1;
+    }
+    tmp = (char *)malloc(strlen(path) + 32);
+    if (tmp == NULL) {
+        fail(err, errlen, "%s: out of memory", path);
+        return -1;
+    }
+    (void)sprintf(tmp, "%s.tmp.%ld", path, (long)getpid());
+    fp = fopen(tmp, "wb");
+    if (fp == NULL) {
+        fail(err, errlen, "%s: cannot create temporary file %s: %s", path, tmp, strerror(errno));
+        free(tmp);
+        return -1;
+    }
+    memset(&pe, 0, sizeof pe);
+    rc = encode(fp, pix, w, h, channels, stride, &pe);
+    if (rc != 0) {
+        fail(err, errlen, "%s: PNG encoding failed: %s", path, pe.msg);
+        (void)fclose(fp);
+    } else if (fflush(fp) != 0 || fsync(fileno(fp)) != 0 || ferror(fp)) {
+        fail(err, errlen, "%s: writing %s failed: %s", path, tmp, strerror(errno));
+        (void)fclose(fp);
+        rc = -1;
+    } else if (fclose(fp) != 0) {
+        fail(err, errlen, "%s: closing %s failed: %s", path, tmp, strerror(errno));
+        rc = -1;
+    } else if (rename(tmp, path) != 0) {
+        fail(err, errlen, "%s: cannot rename %s to it: %s", path, tmp, strerror(errno));
+        rc = -1;
+    }
+    if (rc != 0)
+        (void)unlink(tmp);
+    free(tmp);
+    return rc;
+}

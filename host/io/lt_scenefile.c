@@ -1,0 +1,437 @@
+/* lt_scenefile.c - scene description parsing and validation with cJSON (Debian libcjson).
+ * Every error names the file, the key path (e.g. "camera.fov_y_deg") and the rule. Host only.
+ */
+#include "io/lt_scenefile.h"
+
+#include <cjson/cJSON.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+const char *const lt_sf_structures[] = {"chunks", "bvh", "bvhq", "kd", "grid", NULL};
+
+static const char *const machines[] = {"lrb16", "mcu-m4", NULL};
+
+typedef struct ctx {
+    const char *name;
+    const char *base;
+    char *err;
+    size_t errlen;
+} ctx_t;
+
+static int fail(ctx_t *c, const char *fmt, ...)
+{
+    char msg[768];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_end(ap);
+    snprintf(c->err, c->errlen, "%s: %s", c->name, msg);
+    return -1;
+}
+
+void lt_sf_defaults(lt_scenefile_t *sf)
+{
+    memset(sf, 0, sizeof *sf);
+    sf->fov_y_deg = 40.0;
+    sf->up[1] = 1.0;
+    sf->width = sf->height = 128;
+    snprintf(sf->structure, sizeof sf->structure, "chunks");
+    sf->numeric = LT_SF_NUM_BOTH;
+    snprintf(sf->machine, sizeof sf->machine, "lrb16");
+}
+
+/* Every member of obj must be one of the names in known (NULL-terminated). */
+static int check_keys(ctx_t *c, const cJSON *obj, const char *where, const char *const *known)
+{
+    const cJSON *it;
+    cJSON_ArrayForEach(it, obj) {
+        int i, ok = 0;
+        for (i = 0; known[i] != NULL; i++)
+            ok |= strcmp(it->string, known[i]) == 0;
+        if (!ok) {
+            char list[512] = "";
+            for (i = 0; known[i] != NULL; i++) {
+                strncat(list, known[i], sizeof list - strlen(list) - 3);
+                if (known[i + 1] != NULL)
+                    strncat(list, ", ", sizeof list - strlen(list) - 1);
+            }
+            return fail(c, "unknown key '%s%s%s' (known: %s)", where, *where ? "." : "",
+                        it->string, list);
+        }
+    }
+    return 0;
+}
+
+static int get_number(ctx_t *c, const cJSON *it, const char *key, double lo, double hi, double *out)
+{
+    if (!cJSON_IsNumber(it))
+        return fail(c, "'%s' must be a number", key);
+    if (!isfinite(it->valuedouble) || it->valuedouble < lo || it->valuedouble > hi)
+        return fail(c, "'%s' = %g is out of range [%g, %g]", key, it->valuedouble, lo, hi);
+    *out = it->valuedouble;
+    return 0;
+}
+
+static int get_vec3(ctx_t *c, const cJSON *it, const char *key, double out[3])
+{
+    int i;
+    if (!cJSON_IsArray(it) || cJSON_GetArraySize(it) != 3)
+        return fail(c, "'%s' must be an array of 3 numbers", key);
+    for (i = 0; i < 3; i++) {
+        const cJSON *e = cJSON_GetArrayItem(it, i);
+        if (!cJSON_IsNumber(e) || !isfinite(e->valuedouble))
+            return fail(c, "'%s[%d]' must be a finite number", key, i);
+        out[i] = e->valuedouble;
+    }
+    return 0;
+}
+
+static int get_string(ctx_t *c, const cJSON *it, const char *key, char *out, size_t n)
+{
+    if (!cJSON_IsString(it) || it->valuestring[0] == '\0')
+        return fail(c, "'%s' must be a non-empty string", key);
+    if (strlen(it->valuestring) >= n)
+        return fail(c, "'%s' is longer than %zu characters", key, n - 1);
+    snprintf(out, n, "%s", it->valuestring);
+    return 0;
+}
+
+static int get_choice(ctx_t *c, const cJSON *it, const char *key, const char *const *choices,
+                      char *out, size_t n)
+{
+    int i;
+    char list[256] = "";
+    if (get_string(c, it, key, out, n) != 0)
+        return -1;
+    for (i = 0; choices[i] != NULL; i++) {
+        if (strcmp(out, choices[i]) == 0)
+            return 0;
+        strncat(list, choices[i], sizeof list - strlen(list) - 3);
+        if (choices[i + 1] != NULL)
+            strncat(list, ", ", sizeof list - strlen(list) - 1);
+    }
+    return fail(c, "'%s' = \"%s\" is not one of: %s", key, out, list);
+}
+
+/* Resolve a path relative to the scene file's directory; input files must exist. */
+static int get_path(ctx_t *c, const cJSON *it, const char *key, char *out, size_t n, int must_exist)
+{
+    char raw[LT_SF_PATH_MAX];
+    struct stat st;
+    if (get_string(c, it, key, raw, sizeof raw) != 0)
+        return -1;
+    if (raw[0] == '/' || c->base[0] == '\0')
+        snprintf(out, n, "%s", raw);
+    else if ((size_t)snprintf(out, n, "%s/%s", c->base, raw) >= n)
+        return fail(c, "'%s': resolved path longer than %zu characters", key, n - 1);
+    if (must_exist && (stat(out, &st) != 0 || !S_ISREG(st.st_mode)))
+        return fail(c, "'%s': file '%s' not found (resolved to '%s')", key, raw, out);
+    return 0;
+}
+
+static int parse_camera(ctx_t *c, const cJSON *cam, lt_scenefile_t *sf)
+{
+    static const char *const keys[] = {"eye", "target", "up", "fov_y_deg", NULL};
+    const cJSON *it;
+    double f[3], len2;
+    if (!cJSON_IsObject(cam))
+        return fail(c, "'camera' must be an object");
+    if (check_keys(c, cam, "camera", keys) != 0)
+        return -1;
+    if ((it = cJSON_GetObjectItemCaseSensitive(cam, "eye")) == NULL)
+        return fail(c, "'camera.eye' is missing");
+    if (get_vec3(c, it, "camera.eye", sf->eye) != 0)
+        return -1;
+    if ((it = cJSON_GetObjectItemCaseSensitive(cam, "target")) == NULL)
+        return fail(c, "'camera.target' is missing");
+    if (get_vec3(c, it, "camera.target", sf->target) != 0)
+        return -1;
+    if ((it = cJSON_GetObjectItemCaseSensitive(cam, "up")) != NULL &&
+        get_vec3(c, it, "camera.up", sf->up) != 0)
+        return -1;
+    if ((it = cJSON_GetObjectItemCaseSensitive(cam, "fov_y_deg")) != NULL &&
+        get_number(c, it, "camera.fov_y_deg", 1.0, 179.0, &sf->fov_y_deg) != 0)
+        return -1;
+    f[0] = sf->target[0] - sf->eye[0];
+    f[1] = sf->target[1] - sf->eye[1];
+    f[2] = sf->target[2] - sf->eye[2];
+    len2 = f[0] * f[0] + f[1] * f[1] + f[2] * f[2];
+    if (!(len2 > 0.0))
+        return fail(c, "'camera.target' equals 'camera.eye': no view direction");
+    {
+        double u[3] = {sf->up[0], sf->up[1], sf->up[2]};
+        double x[3] = {f[1] * u[2] - f[2] * u[1], f[2] * u[0] - f[0] * u[2],
+                       f[0] * u[1] - f[1] * u[0]};
+        if (!(x[0] * x[0] + x[1] * x[1] + x[2] * x[2] > 1e-12 * len2))
+            return fail(c, "'camera.up' is parallel to the view direction");
+    }
+    sf->has_camera = 1;
+    return 0;
+}
+
+/* "reproject": { "move": [x,y,z], "move_relative": bool, "rot": [yaw,pitch,roll],
+ * "encoding": "n64"|"n32"|"f32", "layers": K, "channel": "Z", "color": bool, "distance": bool } */
+static int parse_reproject(ctx_t *c, const cJSON *rp, lt_scenefile_t *sf)
+{
+    static const char *const keys[] = {"move", "move_relative", "rot", "encoding", "layers",
+                                       "channel", "color", "distance", NULL};
+    static const char *const encs[] = {"n64", "n32", "f32", NULL};
+    const cJSON *it;
+    double v;
+    if (!cJSON_IsObject(rp))
+        return fail(c, "'reproject' must be an object");
+    if (check_keys(c, rp, "reproject", keys) != 0)
+        return -1;
+    if ((it = cJSON_GetObjectItemCaseSensitive(rp, "move")) != NULL &&
+        get_vec3(c, it, "reproject.move", sf->rp_move) != 0)
+        return -1;
+    if ((it = cJSON_GetObjectItemCaseSensitive(rp, "rot")) != NULL) {
+        int i;
+        if (get_vec3(c, it, "reproject.rot", sf->rp_rot) != 0)
+            return -1;
+        for (i = 0; i < 3; i++)
+            if (fabs(sf->rp_rot[i]) > 180.0)
+                return fail(c, "'reproject.rot[%d]' = %g is out of range [-180, 180]", i,
+                            sf->rp_rot[i]);
+    }
+    if ((it = cJSON_GetObjectItemCaseSensitive(rp, "encoding")) != NULL &&
+        get_choice(c, it, "reproject.encoding", encs, sf->rp_encoding, sizeof sf->rp_encoding) != 0)
+        return -1;
+    if ((it = cJSON_GetObjectItemCaseSensitive(rp, "layers")) != NULL) {
+        if (get_number(c, it, "reproject.layers", 1, 16, &v) != 0)
+            return -1;
+        if (v != floor(v))
+            return fail(c, "'reproject.layers' must be a whole number");
+        sf->rp_layers = (uint32_t)v;
+    }
+    if ((it = cJSON_GetObjectItemCaseSensitive(rp, "channel")) != NULL &&
+        get_string(c, it, "reproject.channel", sf->rp_channel, sizeof sf->rp_channel) != 0)
+        return -1;
+    if ((it = cJSON_GetObjectItemCaseSensitive(rp, "move_relative")) != NULL) {
+        if (!cJSON_IsBool(it))
+            return fail(c, "'reproject.move_relative' must be true or false");
+        sf->rp_move_rel = cJSON_IsTrue(it);
+    }
+    if ((it = cJSON_GetObjectItemCaseSensitive(rp, "color")) != NULL) {
+        if (!cJSON_IsBool(it))
+            return fail(c, "'reproject.color' must be true or false");
+        sf->rp_color = cJSON_IsTrue(it);
+    }
+    if ((it = cJSON_GetObjectItemCaseSensitive(rp, "distance")) != NULL) {
+        if (!cJSON_IsBool(it))
+            return fail(c, "'reproject.distance' must be true or false");
+        sf->rp_distance = cJSON_IsTrue(it);
+    }
+    sf->has_reproject = 1;
+    return 0;
+}
+
+static int parse_root(ctx_t *c, const cJSON *root, lt_scenefile_t *sf)
+{
+    static const char *const keys[] = {"lanetrace", "mesh",   "depth",   "camera",  "resolution",
+                                       "structure", "numeric", "machine", "caches", "lights",
+                                       "outputs",   "reproject", NULL};
+    static const char *const cache_keys[] = {"l1", "l2", NULL};
+    static const char *const light_keys[] = {"type", "position", "intensity", NULL};
+    static const char *const out_keys[] = {"report", "csv", NULL};
+    static const char *const nums[] = {"q16", "f32", "both", NULL};
+    static const char *const light_types[] = {"point", NULL};
+    const cJSON *it;
+    double v;
+    char tmp[32];
+
+    if (!cJSON_IsObject(root))
+        return fail(c, "the top level must be a JSON object");
+    if (check_keys(c, root, "", keys) != 0)
+        return -1;
+    if ((it = cJSON_GetObjectItemCaseSensitive(root, "lanetrace")) != NULL) {
+        if (get_number(c, it, "lanetrace", 1, 1, &v) != 0)
+            return fail(c, "'lanetrace' (format version) must be 1");
+    }
+    if ((it = cJSON_GetObjectItemCaseSensitive(root, "mesh")) != NULL &&
+        get_path(c, it, "mesh", sf->mesh, sizeof sf->mesh, 1) != 0)
+        return -1;
+    if ((it = cJSON_GetObjectItemCaseSensitive(root, "depth")) != NULL &&
+        get_path(c, it, "depth", sf->depth, sizeof sf->depth, 1) != 0)
+        return -1;
+    if (sf->mesh[0] == '\0' && sf->depth[0] == '\0')
+        return fail(c, "needs 'mesh' (object space) or 'depth' (screen space)");
+    if ((it = cJSON_GetObjectItemCaseSensitive(root, "camera")) != NULL &&
+        parse_camera(c, it, sf) != 0)
+        return -1;
+    if ((it = cJSON_GetObjectItemCaseSensitive(root, "resolution")) != NULL) {
+        double w, h;
+        if (cJSON_IsNumber(it)) {
+            if (get_number(c, it, "resolution", 1, LT_SF_MAX_RES, &w) != 0)
+                return -1;
+            h = w;
+        } else if (cJSON_IsArray(it) && cJSON_GetArraySize(it) == 2) {
+            if (get_number(c, cJSON_GetArrayItem(it, 0), "resolution[0]", 1, LT_SF_MAX_RES, &w) != 0 ||
+                get_number(c, cJSON_GetArrayItem(it, 1), "resolution[1]", 1, LT_SF_MAX_RES, &h) != 0)
+                return -1;
+        } else {
+            return fail(c, "'resolution' must be a number or [width, height]");
+        }
+        if (w != floor(w) || h != floor(h))
+            return fail(c, "'resolution' must be whole pixels");
+        sf->width = (uint32_t)w;
+        sf->height = (uint32_t)h;
+    }
+    if ((it = cJSON_GetObjectItemCaseSensitive(root, "structure")) != NULL &&
+        get_choice(c, it, "structure", lt_sf_structures, sf->structure, sizeof sf->structure) != 0)
+        return -1;
+    if ((it = cJSON_GetObjectItemCaseSensitive(root, "numeric")) != NULL) {
+        if (get_choice(c, it, "numeric", nums, tmp, sizeof tmp) != 0)
+            return -1;
+        sf->numeric = strcmp(tmp, "q16") == 0 ? LT_SF_NUM_Q16
+                      : strcmp(tmp, "f32") == 0 ? LT_SF_NUM_F32 : LT_SF_NUM_BOTH;
+    }
+    if ((it = cJSON_GetObjectItemCaseSensitive(root, "machine")) != NULL &&
+        get_choice(c, it, "machine", machines, sf->machine, sizeof sf->machine) != 0)
+        return -1;
+    if ((it = cJSON_GetObjectItemCaseSensitive(root, "caches")) != NULL) {
+        const cJSON *x;
+        if (!cJSON_IsObject(it))
+            return fail(c, "'caches' must be an object");
+        if (check_keys(c, it, "caches", cache_keys) != 0)
+            return -1;
+        if ((x = cJSON_GetObjectItemCaseSensitive(it, "l1")) != NULL &&
+            get_string(c, x, "caches.l1", sf->l1, sizeof sf->l1) != 0)
+            return -1;
+        if ((x = cJSON_GetObjectItemCaseSensitive(it, "l2")) != NULL &&
+            get_string(c, x, "caches.l2", sf->l2, sizeof sf->l2) != 0)
+            return -1;
+    }
+    if ((it = cJSON_GetObjectItemCaseSensitive(root, "lights")) != NULL) {
+        const cJSON *l;
+        if (!cJSON_IsArray(it))
+            return fail(c, "'lights' must be an array");
+        if (cJSON_GetArraySize(it) > LT_SF_MAX_LIGHTS)
+            return fail(c, "'lights' has %d entries (at most %d)", cJSON_GetArraySize(it),
+                        LT_SF_MAX_LIGHTS);
+        cJSON_ArrayForEach(l, it) {
+            char where[32], key[48];
+            const cJSON *x;
+            lt_sf_light_t *lt = &sf->lights[sf->nlights];
+            snprintf(where, sizeof where, "lights[%d]", sf->nlights);
+            if (!cJSON_IsObject(l))
+                return fail(c, "'%s' must be an object", where);
+            if (check_keys(c, l, where, light_keys) != 0)
+                return -1;
+            snprintf(key, sizeof key, "%s.type", where);
+            if ((x = cJSON_GetObjectItemCaseSensitive(l, "type")) != NULL &&
+                get_choice(c, x, key, light_types, tmp, sizeof tmp) != 0)
+                return -1;
+            snprintf(key, sizeof key, "%s.position", where);
+            if ((x = cJSON_GetObjectItemCaseSensitive(l, "position")) == NULL)
+                return fail(c, "'%s' is missing", key);
+            if (get_vec3(c, x, key, lt->position) != 0)
+                return -1;
+            lt->intensity = 1.0;
+            snprintf(key, sizeof key, "%s.intensity", where);
+            if ((x = cJSON_GetObjectItemCaseSensitive(l, "intensity")) != NULL &&
+                get_number(c, x, key, 0.0, 1e12, &lt->intensity) != 0)
+                return -1;
+            sf->nlights++;
+        }
+    }
+    if ((it = cJSON_GetObjectItemCaseSensitive(root, "reproject")) != NULL &&
+        parse_reproject(c, it, sf) != 0)
+        return -1;
+    if ((it = cJSON_GetObjectItemCaseSensitive(root, "outputs")) != NULL) {
+        const cJSON *x;
+        if (!cJSON_IsObject(it))
+            return fail(c, "'outputs' must be an object");
+        if (check_keys(c, it, "outputs", out_keys) != 0)
+            return -1;
+        if ((x = cJSON_GetObjectItemCaseSensitive(it, "report")) != NULL &&
+            get_path(c, x, "outputs.report", sf->out_report, sizeof sf->out_report, 0) != 0)
+            return -1;
+        if ((x = cJSON_GetObjectItemCaseSensitive(it, "csv")) != NULL &&
+            get_path(c, x, "outputs.csv", sf->out_csv, sizeof sf->out_csv, 0) != 0)
+            return -1;
+    }
+    return 0;
+}
+
+int lt_sf_parse(const char *text, const char *name, const char *base_dir, lt_scenefile_t *sf,
+                char *err, size_t errlen)
+{
+    ctx_t c;
+    cJSON *root;
+    const char *end = NULL;
+    int r;
+    c.name = name;
+    c.base = base_dir != NULL ? base_dir : "";
+    c.err = err;
+    c.errlen = errlen;
+    lt_sf_defaults(sf);
+    root = cJSON_ParseWithOpts(text, &end, 1);
+    if (root == NULL) {
+        /* report line and column of the first byte cJSON could not take */
+        int line = 1, col = 1;
+        const char *p;
+        for (p = text; end != NULL && p < end && *p != '\0'; p++) {
+            if (*p == '\n') {
+                line++;
+                col = 1;
+            } else {
+                col++;
+            }
+        }
+        return fail(&c, "not valid JSON at line %d, column %d", line, col);
+    }
+    r = parse_root(&c, root, sf);
+    cJSON_Delete(root);
+    return r;
+}
+
+int lt_sf_load(const char *path, lt_scenefile_t *sf, char *err, size_t errlen)
+{
+    FILE *f;
+    char *text, base[LT_SF_PATH_MAX];
+    const char *slash;
+    long n;
+    int r;
+    /* scene files are small: anything above 1 MiB is not one */
+    const long max = 1L << 20;
+
+    f = fopen(path, "rb");
+    if (f == NULL) {
+        snprintf(err, errlen, "%s: cannot open the scene file", path);
+        return -1;
+    }
+    if (fseek(f, 0, SEEK_END) != 0 || (n = ftell(f)) < 0 || fseek(f, 0, SEEK_SET) != 0) {
+        fclose(f);
+        snprintf(err, errlen, "%s: cannot read the scene file", path);
+        return -1;
+    }
+    if (n > max) {
+        fclose(f);
+        snprintf(err, errlen, "%s: %ld bytes exceeds the scene file limit of %ld", path, n, max);
+        return -1;
+    }
+    text = malloc((size_t)n + 1);
+    if (text == NULL || fread(text, 1, (size_t)n, f) != (size_t)n) {
+        fclose(f);
+        free(text);
+        snprintf(err, errlen, "%s: cannot read the scene file", path);
+        return -1;
+    }
+    fclose(f);
+    text[n] = '\0';
+    slash = strrchr(path, '/');
+    if (slash == NULL)
+        base[0] = '\0';
+    else
+        snprintf(base, sizeof base, "%.*s", (int)(slash - path), path);
+    r = lt_sf_parse(text, path, slash == path ? "/" : base, sf, err, errlen);
+    free(text);
+    if (r == 0)
+        snprintf(sf->path, sizeof sf->path, "%s", path);
+    return r;
+}

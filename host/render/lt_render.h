@@ -1,0 +1,83 @@
+/* lt_render.h - trace one frame of primary rays through a structure in one numeric path, as
+ * 16-ray packets over 4x4 tiles, and compare frames with the double reference. Used by the CLI,
+ * benchmarks and tests; the same code runs in the host and sim builds (in sim builds it also
+ * records simulated cycles per pixel). Host only.
+ */
+#ifndef LT_RENDER_H
+#define LT_RENDER_H
+
+#include "render/lt_scene.h"
+
+typedef enum lt_path { LT_PATH_Q16 = 0, LT_PATH_F32 = 1 } lt_path_t;
+
+/* Per-pixel results, width * height each, row-major, y down. */
+typedef struct lt_frame {
+    uint32_t width, height;
+    int32_t *id;   /* hit triangle id, -1 = none */
+    double *t;     /* hit distance in scaled scene units (meaningless where id < 0) */
+    float *cost;   /* simulated cycles per pixel (the packet's cycles / its active lanes); 0 in
+                      non-sim builds */
+    float *steps;  /* traversal steps per pixel: nodes (or chunks) its packet visited; 0 in
+                      non-sim builds */
+} lt_frame_t;
+
+/* Allocate (0) or fail (-1, message). */
+int lt_frame_alloc(lt_frame_t *f, uint32_t w, uint32_t h, char *err, size_t errlen);
+void lt_frame_free(lt_frame_t *f);
+
+/* The prepared acceleration structure for one path. Opaque to callers. */
+typedef struct lt_accel lt_accel_t;
+
+/* Names of the structures lt_accel_build knows (NULL-terminated): "chunks" (a box per 16
+ * triangles), "bvh" (binned SAH, 32-byte nodes), "bvhq" (the same tree with 16-byte quantised
+ * nodes, s15.16 only). */
+extern const char *const lt_render_structures[];
+
+/* Build `structure` over the scene for a path. Returns NULL with a message on error. */
+lt_accel_t *lt_accel_build(const lt_scene_t *s, const char *structure, lt_path_t path, char *err,
+                           size_t errlen);
+void lt_accel_free(lt_accel_t *a);
+
+/* Bytes of the built structure (nodes, indices, boxes; not the triangles). */
+size_t lt_accel_bytes(const lt_accel_t *a);
+
+/* Trace all primary rays of the camera into f (allocated to the camera size). progress (may be
+ * NULL) is called with the fraction done. */
+void lt_render_primary(const lt_scene_t *s, const lt_accel_t *a, const lt_camera_t *c,
+                       lt_frame_t *f, void (*progress)(double done));
+
+/* The same with one ray per pixel: the scalar single-ray traversal for bvh and bvhq; the kd-tree,
+ * grid and chunks have no scalar kernel and trace each ray alone through their packet kernel
+ * with a one-lane mask. Returns 0 (the err arguments are kept for future structures). */
+int lt_render_primary1(const lt_scene_t *s, const lt_accel_t *a, const lt_camera_t *c,
+                       lt_frame_t *f, char *err, size_t errlen);
+
+/* Shadow rays (16-ray packets, any hit) from every primary hit of f to a point light given in
+ * scaled units; *nrays rays, *noccluded of them blocked; occluded (may be NULL) gets 0/1 per pixel.
+ * BVH structures only. Returns 0, or -1 with a message. */
+int lt_render_shadows(const lt_scene_t *s, const lt_accel_t *a, const lt_camera_t *c,
+                      const lt_frame_t *f, const double light[3], uint32_t *nrays,
+                      uint32_t *noccluded, uint8_t *occluded, char *err, size_t errlen);
+
+/* The next depth layer: for every pixel that hit in prev, the first surface strictly beyond it
+ * (tmin = the previous distance); pixels without a previous hit get id -1. Coplanar duplicates
+ * at exactly the previous distance are skipped. BVH structures only. Returns 0 or -1. */
+int lt_render_peel(const lt_scene_t *s, const lt_accel_t *a, const lt_camera_t *c,
+                   const lt_frame_t *prev, lt_frame_t *next, char *err, size_t errlen);
+
+/* The double-precision reference frame (brute force, independent code). */
+void lt_render_reference(const lt_scene_t *s, const lt_camera_t *c, lt_frame_t *f,
+                         void (*progress)(double done));
+
+/* Accuracy of a frame against the reference. */
+typedef struct lt_accuracy {
+    uint32_t pixels, same_id, both_hit, within_tol;
+    double rmse, max_err, tol;
+} lt_accuracy_t;
+
+void lt_frame_compare(const lt_frame_t *a, const lt_frame_t *ref, double tol, lt_accuracy_t *acc);
+
+/* FNV-1a over ids and distance bits: equal across host and sim builds. */
+uint32_t lt_frame_hash(const lt_frame_t *f);
+
+#endif /* LT_RENDER_H */

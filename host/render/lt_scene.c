@@ -1,0 +1,277 @@
+/* lt_scene.c - scene placement, quantisation, camera rays and the double reference. Host only. */
+#include "render/lt_scene.h"
+#include "io/lt_fx_float.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+int lt_scene_prepare(const lt_mesh_t *m, lt_scene_t *s, char *err, size_t errlen)
+{
+    double ext = 0.0, diag2 = 0.0;
+    uint32_t i, a, j;
+    int e;
+
+    memset(s, 0, sizeof *s);
+    for (a = 0; a < 3; a++) {
+        double w = m->hi[a] - m->lo[a];
+        s->center[a] = 0.5 * (m->lo[a] + m->hi[a]);
+        diag2 += w * w;
+        if (w > ext)
+            ext = w;
+    }
+    if (!(ext > 0.0) || !isfinite(diag2)) {
+        snprintf(err, errlen, "scene has empty or non-finite bounds (extent %g)", ext);
+        return -1;
+    }
+    /* largest power of two with radius * scale <= 2^LT_SCENE_RADIUS_LOG2 */
+    frexp(0.5 * sqrt(diag2) / ldexp(1.0, LT_SCENE_RADIUS_LOG2), &e);
+    s->scale = ldexp(1.0, -e);
+    s->radius = 0.5 * sqrt(diag2) * s->scale;
+    s->ntris = m->ntris;
+    s->tq = malloc((size_t)m->ntris * sizeof *s->tq);
+    s->tf = malloc((size_t)m->ntris * sizeof *s->tf);
+    s->vd = malloc((size_t)m->ntris * 9 * sizeof(double));
+    if (s->tq == NULL || s->tf == NULL || s->vd == NULL) {
+        lt_scene_free(s);
+        snprintf(err, errlen, "out of memory for %u triangles", m->ntris);
+        return -1;
+    }
+    for (i = 0; i < m->ntris; i++) {
+        lt_q16_t q[3][3];
+        for (j = 0; j < 3; j++)
+            for (a = 0; a < 3; a++) {
+                double c = (m->v[i * 9 + j * 3 + a] - s->center[a]) * s->scale;
+                s->vd[i * 9 + j * 3 + a] = c;
+                q[j][a] = lt_q16_from_double_sat(c);
+            }
+        {
+            /* area in double (the file's geometry) and of the quantised vertices (exact) */
+            const double *v = &s->vd[i * 9];
+            double e1[3], e2[3], nx, ny, nz;
+            int64_t q1[3], q2[3];
+            for (a = 0; a < 3; a++) {
+                e1[a] = v[3 + a] - v[a];
+                e2[a] = v[6 + a] - v[a];
+                q1[a] = (int64_t)q[1][a] - q[0][a];
+                q2[a] = (int64_t)q[2][a] - q[0][a];
+            }
+            nx = e1[1] * e2[2] - e1[2] * e2[1];
+            ny = e1[2] * e2[0] - e1[0] * e2[2];
+            nz = e1[0] * e2[1] - e1[1] * e2[0];
+            if (nx != 0.0 || ny != 0.0 || nz != 0.0) {
+                double l[3];
+                s->nonzero++;
+                for (a = 0; a < 3; a++) {
+                    const double *p0 = &v[3 * a], *p1 = &v[3 * ((a + 1) % 3)];
+                    l[a] = sqrt((p1[0] - p0[0]) * (p1[0] - p0[0]) + (p1[1] - p0[1]) * (p1[1] - p0[1]) +
+                                (p1[2] - p0[2]) * (p1[2] - p0[2]));
+                    if (l[a] > 0.0 && (s->min_edge == 0.0 || l[a] < s->min_edge))
+                        s->min_edge = l[a];
+                }
+                /* every vertex lies within the radius, 2^LT_SCENE_RADIUS_LOG2 units = 2^26 raw:
+                   edges < 2^27 raw, products < 2^54, exact in int64 */
+                if (q1[1] * q2[2] == q1[2] * q2[1] && q1[2] * q2[0] == q1[0] * q2[2] &&
+                    q1[0] * q2[1] == q1[1] * q2[0])
+                    s->collapsed_q16++;
+            }
+        }
+        for (a = 0; a < 3; a++) {
+            float v0 = (float)s->vd[i * 9 + a];
+            s->tq[i].v0[a] = q[0][a];
+            s->tq[i].e1[a] = q[1][a] - q[0][a];
+            s->tq[i].e2[a] = q[2][a] - q[0][a];
+            s->tf[i].v0[a] = v0;
+            s->tf[i].e1[a] = (float)s->vd[i * 9 + 3 + a] - v0;
+            s->tf[i].e2[a] = (float)s->vd[i * 9 + 6 + a] - v0;
+        }
+    }
+    return 0;
+}
+
+int lt_scene_check_q16(const lt_scene_t *s, const char *name, char *err, size_t errlen)
+{
+    if ((uint64_t)s->collapsed_q16 * 1000000u <= (uint64_t)s->nonzero * LT_SCENE_MAX_COLLAPSED_PPM)
+        return 0;
+    snprintf(err, errlen,
+             "%s: cannot be represented in s15.16: %u of %u triangles with non-zero area (%.3f%%) "
+             "collapse to zero area (limit %.1f%%); the scene is scaled by %g to a radius of %.0f "
+             "units, its shortest edge is %.3g units against a resolution of 2^-16 = 1.5e-05; "
+             "use the float32 path (--num f32) or split the scene",
+             name, s->collapsed_q16, s->nonzero, 100.0 * s->collapsed_q16 / (double)s->nonzero,
+             LT_SCENE_MAX_COLLAPSED_PPM / 1e4, s->scale, s->radius, s->min_edge);
+    return -1;
+}
+
+void lt_scene_free(lt_scene_t *s)
+{
+    free(s->tq);
+    free(s->tf);
+    free(s->vd);
+    memset(s, 0, sizeof *s);
+}
+
+static void normalize(double v[3])
+{
+    double l = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    v[0] /= l;
+    v[1] /= l;
+    v[2] /= l;
+}
+
+static void cross(const double a[3], const double b[3], double r[3])
+{
+    r[0] = a[1] * b[2] - a[2] * b[1];
+    r[1] = a[2] * b[0] - a[0] * b[2];
+    r[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+void lt_camera_default(const lt_scene_t *s, uint32_t width, uint32_t height, lt_camera_t *c)
+{
+    double dir[3] = {0.45, 0.35, 1.0}, wup[3] = {0.0, 1.0, 0.0};
+    double dist;
+    int a;
+    (void)s;
+    normalize(dir);
+    c->tan_half_fov = tan(20.0 * 3.14159265358979323846 / 180.0);
+    dist = s->radius / c->tan_half_fov;
+    for (a = 0; a < 3; a++) {
+        c->eye[a] = dir[a] * dist; /* the scaled space is centred on the bounding box */
+        c->fwd[a] = -dir[a];
+    }
+    cross(c->fwd, wup, c->right);
+    normalize(c->right);
+    cross(c->right, c->fwd, c->up);
+    c->width = width;
+    c->height = height;
+}
+
+void lt_camera_basis(lt_camera_t *c, const double dir[3], const double up[3])
+{
+    int a;
+    for (a = 0; a < 3; a++)
+        c->fwd[a] = dir[a];
+    normalize(c->fwd);
+    cross(c->fwd, up, c->right);
+    normalize(c->right);
+    cross(c->right, c->fwd, c->up);
+}
+
+int lt_camera_look(const lt_scene_t *s, const double eye[3], const double target[3],
+                   const double up[3], double fov_y_deg, uint32_t width, uint32_t height,
+                   lt_camera_t *c, char *err, size_t errlen)
+{
+    double lim = ldexp(1.0, LT_CFG_GEOM_MAX_LOG2), dir[3];
+    int a;
+    for (a = 0; a < 3; a++) {
+        c->eye[a] = (eye[a] - s->center[a]) * s->scale;
+        dir[a] = target[a] - eye[a];
+        if (fabs(c->eye[a]) > lim) {
+            snprintf(err, errlen,
+                     "camera eye is %.4g scene radii from the centre; the fixed-point range allows "
+                     "at most %.4g (LT_CFG_GEOM_MAX_LOG2 = %d)",
+                     fabs(c->eye[a]) / s->radius, lim / s->radius, LT_CFG_GEOM_MAX_LOG2);
+            return -1;
+        }
+    }
+    lt_camera_basis(c, dir, up);
+    c->tan_half_fov = tan(0.5 * fov_y_deg * 3.14159265358979323846 / 180.0);
+    c->width = width;
+    c->height = height;
+    return 0;
+}
+
+void lt_camera_dir(const lt_camera_t *c, uint32_t x, uint32_t y, double d[3])
+{
+    double aspect = (double)c->width / (double)c->height;
+    double u = (2.0 * ((double)x + 0.5) / (double)c->width - 1.0) * c->tan_half_fov * aspect;
+    double v = (1.0 - 2.0 * ((double)y + 0.5) / (double)c->height) * c->tan_half_fov;
+    int a;
+    for (a = 0; a < 3; a++)
+        d[a] = c->fwd[a] + u * c->right[a] + v * c->up[a];
+    normalize(d);
+}
+
+lt_mask16_t lt_camera_packet_q16(const lt_camera_t *c, uint32_t tx, uint32_t ty, lt_ray16_q16_t *r)
+{
+    unsigned k = 0;
+    int i;
+    for (i = 0; i < LT_LANES; i++) {
+        uint32_t x = tx + (uint32_t)(i % 4), y = ty + (uint32_t)(i / 4);
+        double d[3] = {0.0, 0.0, 1.0};
+        if (x < c->width && y < c->height) {
+            lt_camera_dir(c, x, y, d);
+            k |= 1u << i;
+        }
+        r->ox.l[i] = lt_q16_from_double_sat(c->eye[0]);
+        r->oy.l[i] = lt_q16_from_double_sat(c->eye[1]);
+        r->oz.l[i] = lt_q16_from_double_sat(c->eye[2]);
+        r->dx.l[i] = lt_q30_from_double_sat(d[0]);
+        r->dy.l[i] = lt_q30_from_double_sat(d[1]);
+        r->dz.l[i] = lt_q30_from_double_sat(d[2]);
+        r->tmin.l[i] = 0;
+        r->tmax.l[i] = LT_Q16_MAX - 1;
+    }
+    lt_ray16_q16_setup(r);
+    return (lt_mask16_t)k;
+}
+
+lt_mask16_t lt_camera_packet_f32(const lt_camera_t *c, uint32_t tx, uint32_t ty, lt_ray16_f32_t *r)
+{
+    unsigned k = 0;
+    int i;
+    for (i = 0; i < LT_LANES; i++) {
+        uint32_t x = tx + (uint32_t)(i % 4), y = ty + (uint32_t)(i / 4);
+        double d[3] = {0.0, 0.0, 1.0};
+        if (x < c->width && y < c->height) {
+            lt_camera_dir(c, x, y, d);
+            k |= 1u << i;
+        }
+        r->ox.l[i] = (float)c->eye[0];
+        r->oy.l[i] = (float)c->eye[1];
+        r->oz.l[i] = (float)c->eye[2];
+        r->dx.l[i] = (float)d[0];
+        r->dy.l[i] = (float)d[1];
+        r->dz.l[i] = (float)d[2];
+        r->tmin.l[i] = 0.0f;
+        r->tmax.l[i] = 3.0e38f;
+    }
+    lt_ray16_f32_setup(r);
+    return (lt_mask16_t)k;
+}
+
+int32_t lt_ref_trace(const lt_scene_t *s, const double o[3], const double d[3], double *t)
+{
+    uint32_t i;
+    int32_t best = -1;
+    double tb = HUGE_VAL;
+    for (i = 0; i < s->ntris; i++) {
+        const double *v = &s->vd[i * 9];
+        double e1[3], e2[3], p[3], q[3], tv[3], det, u, w, tt;
+        int a;
+        for (a = 0; a < 3; a++) {
+            e1[a] = v[3 + a] - v[a];
+            e2[a] = v[6 + a] - v[a];
+            tv[a] = o[a] - v[a];
+        }
+        cross(d, e2, p);
+        det = e1[0] * p[0] + e1[1] * p[1] + e1[2] * p[2];
+        if (det == 0.0)
+            continue;
+        u = (tv[0] * p[0] + tv[1] * p[1] + tv[2] * p[2]) / det;
+        if (u < 0.0 || u > 1.0)
+            continue;
+        cross(tv, e1, q);
+        w = (d[0] * q[0] + d[1] * q[1] + d[2] * q[2]) / det;
+        if (w < 0.0 || u + w > 1.0)
+            continue;
+        tt = (e2[0] * q[0] + e2[1] * q[1] + e2[2] * q[2]) / det;
+        if (tt > 0.0 && tt < tb) {
+            tb = tt;
+            best = (int32_t)i;
+        }
+    }
+    *t = tb;
+    return best;
+}
