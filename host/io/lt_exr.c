@@ -264,6 +264,25 @@ static int check_image(const char *path, const lt_exr_image_t *img, char *err, s
 
 /* Encode every chunk of the header-complete context. halfs[i] holds channel i as binary16 (or
  * NULL for FLOAT channels). */
+/* The library's own compression step, wrapped by store_smaller. */
+static exr_result_t (*lib_compress)(exr_encode_pipeline_t *enc);
+
+/* A chunk is stored compressed only when that makes it smaller: a reader (OpenEXR's too) takes a
+ * chunk whose stored size equals its raw size as uncompressed, and OpenEXRCore 3.1 stores the
+ * zlib bytes when they are exactly as long as the raw ones. Then the raw bytes go to the file.
+ * (The compressed buffer holds at least the raw size: exr_compress_max_buffer_size.) */
+static exr_result_t store_smaller(exr_encode_pipeline_t *enc)
+{
+    exr_result_t rv = lib_compress(enc);
+    if (rv != EXR_ERR_SUCCESS || enc->compressed_bytes < enc->packed_bytes)
+        return rv;
+    if (enc->compressed_alloc_size < enc->packed_bytes || enc->compressed_buffer == NULL)
+        return EXR_ERR_OUT_OF_MEMORY;
+    memcpy(enc->compressed_buffer, enc->packed_buffer, (size_t)enc->packed_bytes);
+    enc->compressed_bytes = enc->packed_bytes;
+    return EXR_ERR_SUCCESS;
+}
+
 static exr_result_t write_chunks(exr_context_t ctx, const lt_exr_image_t *img,
                                  uint16_t *const *halfs)
 {
@@ -307,6 +326,10 @@ static exr_result_t write_chunks(exr_context_t ctx, const lt_exr_image_t *img,
             }
         }
         rv = exr_encoding_choose_default_routines(ctx, 0, &enc);
+        if (rv == EXR_ERR_SUCCESS && enc.compress_fn != NULL) {
+            lib_compress = enc.compress_fn;
+            enc.compress_fn = store_smaller;
+        }
         if (rv == EXR_ERR_SUCCESS)
             rv = exr_encoding_run(ctx, 0, &enc);
     }
@@ -756,7 +779,7 @@ static int read_deep(exr_context_t ctx, int part, const exr_attr_box2i_t *dw,
     exr_chunk_info_t ci;
     exr_result_t rv = EXR_ERR_SUCCESS;
     int32_t W = dw->max.x - dw->min.x + 1, H = dw->max.y - dw->min.y + 1;
-    int32_t lines = 1, y = dw->min.y, l, x;
+    int32_t lines = 1, y = dw->min.y, l = 0, x;
     int inited = 0, c, ok = 0, zi = -1;
     const char *why = NULL;
     const exr_coding_channel_info_t *zc = NULL;
@@ -771,6 +794,7 @@ static int read_deep(exr_context_t ctx, int part, const exr_attr_box2i_t *dw,
         const uint8_t *buf;
         const int32_t *counts;
         size_t off = 0, total;
+        l = 0;
         rv = exr_read_scanline_chunk_info(ctx, part, y, &ci);
         if (rv == EXR_ERR_SUCCESS &&
             (ci.width != W || ci.height < 1 || ci.height > H - (y - dw->min.y)))
@@ -805,11 +829,18 @@ static int read_deep(exr_context_t ctx, int part, const exr_attr_box2i_t *dw,
             const int32_t *cnt = counts + (size_t)l * (size_t)W;
             size_t line_samples = (size_t)cnt[W - 1];
             size_t row = (size_t)(y - dw->min.y + l) * (size_t)W;
-            /* cumulative counts per line; the library checked they never decrease */
-            if (cnt[W - 1] < 0) {
-                why = "negative sample count";
-                break;
+            /* Cumulative counts per line. OpenEXRCore 3.1 does not check that they never decrease
+               (a raised count would walk past the line's samples): check every one here. */
+            for (x = 0; x < W; x++) {
+                int32_t prev = x == 0 ? 0 : cnt[x - 1];
+                if (cnt[x] < prev) {
+                    why = cnt[x] < 0 ? "negative sample count"
+                                     : "sample counts decrease along the line";
+                    break;
+                }
             }
+            if (why != NULL)
+                break;
             for (c = 0; c < dec.channel_count; c++) {
                 size_t bytes = line_samples * (size_t)dec.channels[c].bytes_per_element;
                 if (bytes > total - off) {
@@ -862,7 +893,8 @@ static int read_deep(exr_context_t ctx, int part, const exr_attr_box2i_t *dw,
     if (rv == EXR_ERR_SUCCESS && why == NULL)
         ok = 1;
     else if (why != NULL)
-        fail(err, errlen, "%s: part %d: deep chunk at y %d corrupt: %s", path, part, (int)y, why);
+        fail(err, errlen, "%s: part %d: deep chunk at y %d corrupt: %s", path, part,
+             (int)(y + l), why);
     else
         fail(err, errlen, "%s: part %d: deep chunk at y %d unreadable (truncated or corrupt "
              "file?): %s", path, part, (int)y, lib_text(io, rv));

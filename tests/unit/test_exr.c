@@ -667,7 +667,10 @@ static void test_tiled(void **state)
 
 /* A deep scanline file, NONE compression, W x 2 pixels, channels R (HALF) and Z (FLOAT);
  * samples per pixel from counts[], Z values from zs[] in pixel order, R = 0.25 * sample index. */
-static void write_deep(const char *path, int32_t W, const int32_t *counts, const float *zs)
+/* A deep 2-line file; table, when not NULL, replaces the cumulative sample-count table written
+ * per line (W entries per line; the sample data stays what counts says). */
+static void write_deep_table(const char *path, int32_t W, const int32_t *counts, const float *zs,
+                             const int32_t *table_override)
 {
     raw_io_t io;
     exr_context_t ctx = raw_start(path, &io);
@@ -695,6 +698,8 @@ static void write_deep(const char *path, int32_t W, const int32_t *counts, const
             memcpy(table + 4 * x, &cum, 4); /* little-endian host */
         }
         n = cum;
+        if (table_override != NULL)
+            memcpy(table, table_override + y * W, (size_t)W * 4);
         for (s = 0; s < n; s++) { /* R: all samples of the line, then Z */
             uint16_t hv = lt_exr_half_from_float(0.25f * (float)(base + s));
             memcpy(data + o, &hv, 2);
@@ -710,6 +715,11 @@ static void write_deep(const char *path, int32_t W, const int32_t *counts, const
         base += n;
     }
     raw_finish(ctx, &io);
+}
+
+static void write_deep(const char *path, int32_t W, const int32_t *counts, const float *zs)
+{
+    write_deep_table(path, W, counts, zs, NULL);
 }
 
 static void test_deep_synthetic(void **state)
@@ -786,6 +796,103 @@ static void write_wide(const char *path, int32_t w, int32_t disp_w)
     (void)exr_encoding_destroy(ctx, &enc);
     raw_finish(ctx, &io);
     free(row);
+}
+
+/* A deep file whose cumulative sample counts decrease (one raised far past the line's samples,
+ * the file otherwise valid) or go negative: an error naming the file and the line, never a read
+ * past the decompressed samples (ASan build). Every pixel of both lines, several bad values. */
+static void test_deep_bad_counts(void **state)
+{
+    static const int32_t counts[8] = {0, 1, 3, 2, 2, 1, 2, 1};
+    static const float zs[12] = {5, 7, 3, 9, NAN, 4, 2, 2, NAN, INFINITY, 8, 1};
+    static const int32_t good[8] = {0, 1, 4, 6, 2, 3, 5, 6};
+    static const int32_t bad_values[4] = {100000, 2147483647, -1, -100000};
+    lt_exr_read_opts_t o = LT_EXR_READ_OPTS_DEFAULT;
+    int i, v, cases = 0, refused = 0, named = 0;
+    char err[512];
+    (void)state;
+    o.deep = LT_EXR_DEEP_FRONT;
+    o.color = 1;
+    for (i = 0; i < 8; i++) {
+        for (v = 0; v < 4; v++) {
+            int32_t t[8];
+            lt_exr_depth_t d;
+            memcpy(t, good, sizeof t);
+            t[i] = bad_values[v];
+            write_deep_table(tpath("deepbad.exr"), 4, counts, zs, t);
+            cases++;
+            if (lt_exr_read_depth(tpath("deepbad.exr"), NULL, &o, &d, err, sizeof err) != 0) {
+                refused++;
+                named += strstr(err, "deepbad.exr") != NULL && strstr(err, "at y ") != NULL;
+            } else {
+                lt_exr_depth_free(&d);
+            }
+        }
+    }
+    ltt_report("deep sample-count table corrupt (4x2 file, each of 8 entries set to 1e5, INT_MAX, "
+               "-1, -1e5): %d files, %d refused with the file and line named (bound: all)\n",
+               cases, named);
+    assert_int_equal(refused, cases);
+    assert_int_equal(named, cases);
+}
+
+/* Small, highly compressible images through ZIP and ZIPS: chunks whose zlib stream is as long as
+ * the raw bytes must be stored raw (a reader takes an equal-size chunk as uncompressed), so every
+ * image reads back bit for bit. Sizes 1x1..7x5, HALF and FLOAT, constant, two-valued and random
+ * pixels (all exactly representable in HALF). */
+static void test_zip_small_roundtrip(void **state)
+{
+    ltt_rng_t r;
+    float *z = malloc(64 * sizeof(float));
+    lt_exr_channel_t ch[1];
+    lt_exr_image_t img;
+    char err[512];
+    int w, h, comp, ty, kind, rep, cases = 0, bad = 0, i;
+    (void)state;
+    assert_non_null(z);
+    ltt_rng_seed(&r, 7);
+    for (w = 1; w <= 7; w++)
+        for (h = 1; h <= 5; h++)
+            for (comp = 0; comp < 2; comp++)
+                for (ty = 0; ty < 2; ty++)
+                    for (kind = 0; kind < 3; kind++)
+                        for (rep = 0; rep < 6; rep++) {
+                            lt_exr_depth_t d;
+                            float a = (float)ltt_rng_below(&r, 2048) * 0.5f;
+                            float b = (float)ltt_rng_below(&r, 2048) * 0.25f;
+                            for (i = 0; i < w * h; i++)
+                                z[i] = kind == 0 ? a
+                                       : kind == 1 ? ((ltt_rng_u32(&r) & 1u) ? a : b)
+                                                   : (float)ltt_rng_below(&r, 2048) * 0.125f;
+                            ch[0].name = "Z";
+                            ch[0].type = ty == 0 ? LT_EXR_HALF : LT_EXR_FLOAT;
+                            ch[0].data = z;
+                            memset(&img, 0, sizeof img);
+                            img.width = w;
+                            img.height = h;
+                            img.nchannels = 1;
+                            img.channels = ch;
+                            img.compression = comp == 0 ? LT_EXR_COMP_ZIP : LT_EXR_COMP_ZIPS;
+                            assert_int_equal(lt_exr_write(tpath("zs.exr"), &img, err, sizeof err),
+                                             0);
+                            cases++;
+                            if (lt_exr_read_depth(tpath("zs.exr"), NULL, NULL, &d, err,
+                                                  sizeof err) != 0) {
+                                bad++;
+                                continue;
+                            }
+                            for (i = 0; i < w * h; i++)
+                                if (fbits(d.z[i]) != fbits(z[i])) {
+                                    bad++;
+                                    break;
+                                }
+                            lt_exr_depth_free(&d);
+                        }
+    ltt_report("ZIP/ZIPS small-image round trips (1x1..7x5, HALF/FLOAT, constant, two-valued, "
+               "random): %d images, %d not read back bit for bit (bound 0)\n", cases, bad);
+    assert_int_equal(bad, 0);
+    assert_int_equal(temps_left(), 0);
+    free(z);
 }
 
 static void test_limits(void **state)
@@ -1197,7 +1304,8 @@ int main(void)
         cmocka_unit_test(test_half_conversion),  cmocka_unit_test(test_roundtrip),
         cmocka_unit_test(test_data_window),      cmocka_unit_test(test_multilayer),
         cmocka_unit_test(test_special_values),   cmocka_unit_test(test_tiled),
-        cmocka_unit_test(test_deep_synthetic),   cmocka_unit_test(test_limits),
+        cmocka_unit_test(test_deep_synthetic),   cmocka_unit_test(test_deep_bad_counts),
+        cmocka_unit_test(test_zip_small_roundtrip), cmocka_unit_test(test_limits),
         cmocka_unit_test(test_corrupt),          cmocka_unit_test(test_write_errors),
         cmocka_unit_test(test_atomic_kill),      cmocka_unit_test(test_shared_beachball),
         cmocka_unit_test(test_shared_deep),      cmocka_unit_test(test_shared_cut),
