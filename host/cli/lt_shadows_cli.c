@@ -2,10 +2,11 @@
  * pixel, by multi-frusta tracing (S-Frusta) and by 16-ray packets (S-Packet), after primary
  * visibility by 16-ray packets (P-Packet) and by primary frusta (P-Frusta; S-Frusta uses them as
  * the paper does, S-Packet the packets); shading, 4x4 discontinuity filter, 256-sample reference
- * and quality, PNGs, and the Table-1-style comparison of seeds/004. A subcommand of both CLIs:
- * build/sim/lanetrace shadows (every lane op charged to a machine model: counts and cycles per
- * stage) and build/host/lanetrace-native shadows (native timing). Exit codes: 0 ok, 1 input or
- * runtime error (including frusta != packet visibility), 2 usage. Host only; docs/frusta.md.
+ * and quality, PNGs, and the Table-1-style comparison of Benthin & Wald 2009 [Benthin09]. A
+ * subcommand of both CLIs: build/sim/lanetrace shadows (every lane op charged to a machine model:
+ * counts and cycles per stage) and build/host/lanetrace-native shadows (native timing). Exit codes:
+ * 0 ok, 1 input or runtime error (including frusta != packet visibility), 2 usage. Host only;
+ * docs/frusta.md.
  */
 #include "render/lt_softshadow.h"
 #include "cli/lt_cliutil.h"
@@ -45,7 +46,8 @@ static void usage(const char *prog, FILE *f)
             "  --eye X,Y,Z --target X,Y,Z --fov DEG   camera (file units)\n"
             "  --ground | --no-ground   add a ground quad below the mesh (default: per scene)\n"
             "  --depth-rel R --cos-min C  filter thresholds (default 0.05, 0.9)\n"
-            "  --filter irradiance|visibility  filter E = G V (default, seeds/004) or V alone\n"
+            "  --filter irradiance|visibility  filter E = G V (default, as Benthin & Wald\n"
+            "                     2009 do) or V alone\n"
             "  --tol T            penumbra tolerance on irradiance (default 0.05)\n"
             "  --no-ref           skip the 256-sample reference and the quality metrics\n"
             "  --png PATH         filtered image; --raw-png PATH unfiltered; --ref-png PATH reference\n"

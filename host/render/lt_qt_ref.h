@@ -1,9 +1,9 @@
 /* lt_qt_ref.h - host side of the screen-space quadtree (firmware/include/lt/lt_qt.h): depth ->
  * normalised inverse depth w = z_ref / z (holes for NaN, inf and non-positive depth), and an
  * independent double-precision reference that marches a ray pixel by pixel over the leaf planes of
- * Alg. 1 (seeds/000) with the same surface model (hit, crack, occlusion, layer choice), so error
- * figures measure the hierarchy and the fixed-point formats, never a path against itself.
- * Host only (C99 + libm, malloc). docs/quadtree.md describes the model.
+ * Alg. 1 of Widmer et al. 2015 [Widmer15] with the same surface model (hit, crack, occlusion, layer
+ * choice), so error figures measure the hierarchy and the fixed-point formats, never a path against
+ * itself. Host only (C99 + libm, malloc). docs/quadtree.md describes the model.
  */
 #ifndef LT_QT_REF_H
 #define LT_QT_REF_H

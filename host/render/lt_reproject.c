@@ -1,8 +1,8 @@
-/* lt_reproject.c - view synthesis by screen-space ray tracing (Widmer et al., seeds/000 section 5):
- * quadtree over the source depth layers (lt_qt.h), reprojected segments per 4x4 target tile
- * (lt_reproj.h), colour fetch (nearest or depth-aware bilinear), target depth, background-biased
- * pull-push inpainting of the holes, per-pixel steps and simulated cycles. Host only (malloc,
- * double); the same code runs in the host, asan and sim builds. docs/reproject.md.
+/* lt_reproject.c - view synthesis by screen-space ray tracing (Widmer et al. 2015 [Widmer15],
+ * section 5): quadtree over the source depth layers (lt_qt.h), reprojected segments per 4x4 target
+ * tile (lt_reproj.h), colour fetch (nearest or depth-aware bilinear), target depth,
+ * background-biased pull-push inpainting of the holes, per-pixel steps and simulated cycles. Host
+ * only (malloc, double); the same code runs in the host, asan and sim builds. docs/reproject.md.
  */
 #include "render/lt_reproject.h"
 #include "cli/lt_cliutil.h"

@@ -1,8 +1,9 @@
-/* lt_reproject.h - view synthesis by screen-space ray tracing (Widmer et al., seeds/000 section 5):
- * a depth image (one or more layers, optional colour) seen by a source pinhole camera is turned
- * into the screen-space quadtree (lt_qt.h), every pixel of a target camera is traced through it as
- * a reprojected segment (lt_reproj.h), hits fetch the source colour, and holes (disocclusions,
- * views outside the source, step bound) are filled by a background-biased pull-push inpainting.
+/* lt_reproject.h - view synthesis by screen-space ray tracing (Widmer et al. 2015 [Widmer15],
+ * section 5): a depth image (one or more layers, optional colour) seen by a source pinhole camera
+ * is turned into the screen-space quadtree (lt_qt.h), every pixel of a target camera is traced
+ * through it as a reprojected segment (lt_reproj.h), hits fetch the source colour, and holes
+ * (disocclusions, views outside the source, step bound) are filled by a background-biased pull-push
+ * inpainting.
  * Per-pixel traversal steps and (sim build) simulated cycles are recorded. Host only (malloc,
  * double); docs/reproject.md is the reference.
  */

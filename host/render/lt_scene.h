@@ -49,8 +49,9 @@ typedef struct lt_camera {
     uint32_t width, height;
 } lt_camera_t;
 
-/* The benchmark view of ../shared/docs/facts.md: looking at the bounding-box centre from direction
- * normalize(0.45, 0.35, 1.0) at distance radius / tan(20 deg), 40 deg vertical field of view, +y up. */
+/* The benchmark view (docs/results.md, "The benchmark view"): looking at the bounding-box centre
+ * from direction normalize(0.45, 0.35, 1.0) at distance radius / tan(20 deg), 40 deg vertical field
+ * of view, +y up. */
 void lt_camera_default(const lt_scene_t *s, uint32_t width, uint32_t height, lt_camera_t *c);
 
 /* An explicit pinhole camera given in mesh file units (converted to the scaled space).

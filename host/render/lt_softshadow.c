@@ -1,8 +1,9 @@
 /* lt_softshadow.c - soft shadows from a quad light by multi-frusta tracing or 16-ray packets, after
  * primary visibility by 16-ray packets or primary frusta from one linear camera, the shading and
- * filtering of seeds/004 4.5, the 256-sample reference, quality metrics and brute-force audits,
- * on the core's kernels (lt_frusta.h, lt_bvh.h). Every per-pixel stage runs lane ops, so the sim
- * build charges it to its phase (SETUP, TRAVERSE, INTERSECT, SHADE, FILTER). Host only.
+ * filtering of Benthin & Wald 2009 [Benthin09], section 4.5, the 256-sample reference, quality
+ * metrics and brute-force audits, on the core's kernels (lt_frusta.h, lt_bvh.h). Every per-pixel
+ * stage runs lane ops, so the sim build charges it to its phase (SETUP, TRAVERSE, INTERSECT, SHADE,
+ * FILTER). Host only.
  */
 #include "render/lt_softshadow.h"
 #include "io/lt_fx_float.h"

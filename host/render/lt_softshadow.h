@@ -1,12 +1,12 @@
-/* lt_softshadow.h - the soft-shadow renderer of seeds/004 on the core's kernels: primary
- * visibility (16-ray packets over 4x4 tiles: P-Packet, or 16 frusta per 16x16 block: P-Frusta,
- * from one linear camera), hit points and normals, the direct term toward a
- * quad area light's centre, soft-shadow visibility with 16 samples per pixel either by
- * multi-frusta tracing (one frustum per pixel, 16 per tile: S-Frusta) or by 16-ray packets (one
- * per pixel: S-Packet), shading with fractional visibility, the 4x4 discontinuity filter, a
- * 256-samples-per-pixel packet reference and quality metrics, PNG output. The same code runs in
- * the host and sim builds (the sim charges every lane op; the driver reads counters per stage).
- * Host only; see docs/frusta.md.
+/* lt_softshadow.h - the soft-shadow renderer of Benthin & Wald 2009 [Benthin09] on the core's
+ * kernels: primary visibility (16-ray packets over 4x4 tiles: P-Packet, or 16 frusta per 16x16
+ * block: P-Frusta, from one linear camera), hit points and normals, the direct term toward a quad
+ * area light's centre, soft-shadow visibility with 16 samples per pixel either by multi-frusta
+ * tracing (one frustum per pixel, 16 per tile: S-Frusta) or by 16-ray packets (one per pixel:
+ * S-Packet), shading with fractional visibility, the 4x4 discontinuity filter, a
+ * 256-samples-per-pixel packet reference and quality metrics, PNG output. The same code runs in the
+ * host and sim builds (the sim charges every lane op; the driver reads counters per stage). Host
+ * only; see docs/frusta.md.
  */
 #ifndef LT_SOFTSHADOW_H
 #define LT_SOFTSHADOW_H
@@ -30,7 +30,7 @@ typedef struct lt_ss_opts {
     double depth_rel;    /* filter: relative depth threshold */
     double cos_min;      /* filter: normal cosine threshold */
     double eps;          /* shadow-ray origin offset along the normal, scaled units */
-    int filter_vis;      /* 0: filter the irradiance E = G V (seeds/004); 1: filter the visibility
+    int filter_vis;      /* 0: filter the irradiance E = G V ([Benthin09]); 1: filter the visibility
                             V and multiply by the unfiltered direct term G afterwards */
     uint32_t pflags;     /* primary rays (both methods): LT_FRUSTA_BACKFACE (cull back faces; the
                             packets skip them per triangle too), LT_FRUSTA_CORNER and LT_FRUSTA_CR

@@ -1,8 +1,8 @@
 /* embree_race.c - lanetrace's native build against Embree 3 (Debian libembree-dev), single thread,
- * the same rays in the same run: 1024x1024 (by default) primary rays of the benchmark view of
- * ../shared/docs/facts.md as single rays and 16-ray packets over 4x4 tiles, and shadow rays from
- * each primary hit to a point light. Prints Mrays/s of each and the lanetrace / Embree ratios.
- * Embree is linked only into this benchmark. Host only; `make bench` runs it.
+ * the same rays in the same run: 1024x1024 (by default) primary rays of the benchmark view
+ * (docs/results.md, "The benchmark view") as single rays and 16-ray packets over 4x4 tiles, and
+ * shadow rays from each primary hit to a point light. Prints Mrays/s of each and the lanetrace /
+ * Embree ratios. Embree is linked only into this benchmark. Host only; `make bench` runs it.
  * Usage: embree-race [--mesh PATH] [--res N] [--runs N] [--structure NAME]
  */
 #include "io/lt_mesh.h"
@@ -194,7 +194,7 @@ int main(int argc, char **argv)
         fprintf(stderr, "embree-race: --res 4..8192, --runs 1..15\n");
         return 2;
     }
-    /* as measured in ../shared/docs/facts.md: flush denormals on both sides */
+    /* flush denormals on both sides (docs/results.md, "The benchmark view") */
     /* MXCSR bits 15 (FTZ) and 6 (DAZ), set directly: the header macros trip -Wsign-conversion */
     _mm_setcsr(_mm_getcsr() | 0x8040u);
     if (lt_mesh_load(mesh_path, &m, err, sizeof err) != 0 ||
@@ -221,7 +221,7 @@ int main(int argc, char **argv)
         r.dirs[3 * i + 2] = (float)d[2];
     }
     {
-        /* light at centre + 2 radius normalize(-0.5, 1.5, 0.8), as in facts.md */
+        /* light at centre + 2 radius normalize(-0.5, 1.5, 0.8): the benchmark view's light */
         double l[3] = {-0.5, 1.5, 0.8}, n = sqrt(0.25 + 2.25 + 0.64);
         for (a = 0; a < 3; a++)
             r.light[a] = (float)(2.0 * sc.radius * l[a] / n);

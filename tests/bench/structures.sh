@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
-# structures.sh - the lecture's comparison (seeds/002-003) measured: uniform grid vs kd-tree vs BVH
-# (and the chunk scene and quantised BVH) on real scenes, in the simulator (lrb16), both numeric
-# paths: build cycles, structure memory, trace cycles per ray, nodes / AABB tests / triangle tests
-# per ray (the frusta paper's Table 1 columns), L1 hit rate, lane utilisation, accuracy.
+# structures.sh - the lectures' comparison (Stamminger & Grosso 2020 [Stamminger20], Bikker 2016
+# [Bikker16]; docs/bibliography.md) measured: uniform grid vs kd-tree vs BVH (and the chunk scene
+# and quantised BVH) on real scenes, in the simulator (lrb16), both numeric paths: build cycles,
+# structure memory, trace cycles per ray, nodes / AABB tests / triangle tests per ray (the columns
+# of Table 1 of Benthin & Wald 2009 [Benthin09]), L1 hit rate, lane utilisation, accuracy.
 set -euo pipefail
 B=${B:-build}
 RES=${STRUCT_RES:-128}

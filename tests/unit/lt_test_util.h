@@ -248,7 +248,8 @@ static inline void ltt_stat_fail(ltt_stat_t *s, const char *fmt, ...)
     (void)fflush(stdout);
 }
 
-/* The summary line of style.md section 6. */
+/* The one-line summary every numeric test prints: cases, max error with its unit, the bound,
+ * saturations (then ties and failures when there are any). */
 static inline void ltt_stat_print(const ltt_stat_t *s)
 {
     ltt_report("%s: %lu cases, max |err| %.6g%s%s (bound %g), %lu saturated", s->name, s->cases,

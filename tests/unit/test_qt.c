@@ -1,5 +1,5 @@
-/* test_qt.c - cmocka tests of the screen-space quadtree (lt_qt.h, Widmer et al., seeds/000-001) in
- * its three node formats (64-bit and 32-bit fixed point, float32) against
+/* test_qt.c - cmocka tests of the screen-space quadtree (lt_qt.h, Widmer et al. 2015
+ * [Widmer15]) in its three node formats (64-bit and 32-bit fixed point, float32) against
  *   - the double-precision reference that marches every pixel over the leaf planes of Alg. 1
  *     (host/render/lt_qt_ref.c), fed with the exact values each path sees (raw / 2^30, floats as double),
  *     so the figures measure the hierarchy, the merges and the formats, not input rounding;

@@ -1,5 +1,5 @@
 /* test_wt.c - cmocka tests of the watertight ray/triangle test (lt_wt.h, Woop, Benthin, Wald,
- * JCGT 2013) in s15.16 and float32: crack tests on closed meshes, agreement with a double
+ * JCGT 2013 [Woop13]) in s15.16 and float32: crack tests on closed meshes, agreement with a double
  * reference, zero-area and degenerate triangles, rays parallel to the triangle's plane,
  * axis-parallel rays and the kz tie rule, lane independence, and (sim build) the cost per test
  * against lt_tri16_q16 (Moller-Trumbore). Every test prints what it checked.

@@ -1,10 +1,10 @@
-/* lt_frusta.c - instantiates the multi-frusta kernels of lt_frusta.inc (Benthin & Wald, seeds/004)
- * for s15.16 (exact integer rays, proven margins) and float32 (relative margins), and holds what
- * differs between the two paths: the per-frame tables, the direction scaling, reciprocals, the
- * triangle-kernel arithmetic replicated for culling (bit-identical to lt_isect.c's lane math, which
- * tests/unit/test_frusta.c checks) and the margins; for primary frusta the eye's scalar terms, the
- * exact linear camera (s1.30 integer directions; float32 on a 2^-23 grid) and its lane helpers.
- * Builds: all; float32 only with LT_CFG_FLOAT32.
+/* lt_frusta.c - instantiates the multi-frusta kernels of lt_frusta.inc (Benthin & Wald 2009
+ * [Benthin09]) for s15.16 (exact integer rays, proven margins) and float32 (relative margins), and
+ * holds what differs between the two paths: the per-frame tables, the direction scaling,
+ * reciprocals, the triangle-kernel arithmetic replicated for culling (bit-identical to lt_isect.c's
+ * lane math, which tests/unit/test_frusta.c checks) and the margins; for primary frusta the eye's
+ * scalar terms, the exact linear camera (s1.30 integer directions; float32 on a 2^-23 grid) and its
+ * lane helpers. Builds: all; float32 only with LT_CFG_FLOAT32.
  */
 #include "lt/lt_frusta.h"
 

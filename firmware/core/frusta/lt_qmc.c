@@ -1,6 +1,6 @@
-/* lt_qmc.c - integer QMC point sets (Kollig & Keller 2002) and their 4x4 interleaved split
- * (Keller & Heidrich 2001) for the soft-shadow frusta of seeds/004 section 4.5. Bit operations
- * only: exact and identical in every build. Builds: all.
+/* lt_qmc.c - integer QMC point sets (Kollig & Keller 2002 [Kollig02]) and their 4x4 interleaved
+ * split (Keller & Heidrich 2001 [Keller01]) for the soft-shadow frusta of Benthin & Wald 2009
+ * [Benthin09], section 4.5. Bit operations only: exact and identical in every build. Builds: all.
  */
 #include "lt/lt_qmc.h"
 

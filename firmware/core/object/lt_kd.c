@@ -62,7 +62,7 @@ static lt_status_t kd_config(uint32_t n, const lt_kd_params_t *p, kd_cfg_t *c)
     c->ct = p->cost_trav;
     c->ci = p->cost_isect;
     c->bonus = p->empty_bonus_q8;
-    /* Havran's rule of thumb, 8 + 1.3 log2 n, with the log rounded down */
+    /* Havran's rule of thumb (Havran 2000 [Havran00]), 8 + 1.3 log2 n, with the log rounded down */
     c->max_depth = p->max_depth != 0 ? p->max_depth : 8u + (13u * ilog2_u32(n)) / 10u;
     if (c->max_depth > LT_KD_MAX_DEPTH)
         c->max_depth = LT_KD_MAX_DEPTH;

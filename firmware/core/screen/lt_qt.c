@@ -1,4 +1,4 @@
-/* lt_qt.c - the screen-space quadtree of Widmer et al. (seeds/000, 001): layout and size query, the
+/* lt_qt.c - the screen-space quadtree of Widmer et al. 2015 [Widmer15]: layout and size query, the
  * lane helpers the kernels need beyond lt_v16.h, and the traits that instantiate lt_qt.inc three
  * times: 64-bit and 32-bit fixed-point nodes (s1.30 compute, int64 products) and float32 nodes.
  * Node formats are documented in lt_qt.h and docs/quadtree.md. Builds: all; float32 only with

@@ -1,5 +1,5 @@
 /* lt_reproj.c - reprojection ray generation for screen-space view synthesis (Widmer et al.,
- * seeds/000; docs/quadtree.md section 1, docs/reproject.md): the traits that instantiate
+ * 2015 [Widmer15]; docs/quadtree.md section 1, docs/reproject.md): the traits that instantiate
  * lt_reproj.inc for the s1.30 mapping (int64 homogeneous points, integer only) and the float32
  * mapping, and lt_reproj_setup, which builds both from two pinhole cameras in double.
  * Builds: all; float32 and the setup only with LT_CFG_FLOAT32.

@@ -1,8 +1,9 @@
-/* lt_bvh.h - bounding volume hierarchy over triangles: a binned SAH builder (Wald 2007, seeds/002),
- * 32-byte nodes with a primitive index array (Bikker, seeds/003), ordered traversal of 16-ray
- * packets with a (node, mask) stack (seeds/004 Appendix A) and of single rays, in s15.16 and float32
- * from one source (firmware/core/object/lt_bvh.inc); plus a quantised 16-byte node variant (s15.16 only).
- * Freestanding: the caller hands in one arena sized by lt_bvh_size(). See docs/bvh.md.
+/* lt_bvh.h - bounding volume hierarchy over triangles: a binned SAH builder (Wald 2007 [Wald07]),
+ * 32-byte nodes with a primitive index array (Bikker 2016 [Bikker16]), ordered traversal of 16-ray
+ * packets with a (node, mask) stack (Benthin & Wald 2009 [Benthin09], Appendix A) and of single
+ * rays, in s15.16 and float32 from one source (firmware/core/object/lt_bvh.inc); plus a quantised 16-byte
+ * node variant (s15.16 only). Freestanding: the caller hands in one arena sized by lt_bvh_size().
+ * See docs/bvh.md.
  * Builds: all; float32 entry points only with LT_CFG_FLOAT32.
  */
 #ifndef LT_BVH_H

@@ -1,5 +1,5 @@
-/* lt_frusta.h - soft shadows from a quad area light with multi-frusta tracing (Benthin & Wald,
- * seeds/004): 16 shadow frusta traced in parallel through a BVH, one per lane, each frustum being
+/* lt_frusta.h - soft shadows from a quad area light with multi-frusta tracing (Benthin & Wald 2009
+ * [Benthin09]): 16 shadow frusta traced in parallel through a BVH, one per lane, each frustum being
  * the 16 shadow rays from one pixel's hit point to its 16 light samples (4x4 interleaved QMC sets,
  * lt_qmc.h). Interval-arithmetic slab test, (node, frusta mask) stack, rays generated on demand
  * inside leaves from the frustum's light corner and the set's delta vectors, back-face and
@@ -163,11 +163,11 @@ typedef struct lt_frusta_filter_q16 {
     lt_q30_t cos_min;   /* ... and n_p . n_q >= cos_min (s1.30) */
 } lt_frusta_filter_q16_t;
 
-/* 4x4 discontinuity filter (seeds/004 4.5) of row y, pixels x0 .. x0 + 15 (lanes): each output is
- * the mean of e over the pixels q of the window x - 1 .. x + 2, y - 1 .. y + 2 (inside the image)
- * that are valid (valid[q] != 0) and pass both thresholds against p; p itself always joins. Every
- * 4x4 window holds each interleaved set once, so a pixel with all 16 neighbours joined averages
- * all 256 samples. Invalid pixels output 0. Arrays are row-major w x h.
+/* 4x4 discontinuity filter ([Benthin09], section 4.5) of row y, pixels x0 .. x0 + 15 (lanes): each
+ * output is the mean of e over the pixels q of the window x - 1 .. x + 2, y - 1 .. y + 2 (inside
+ * the image) that are valid (valid[q] != 0) and pass both thresholds against p; p itself always
+ * joins. Every 4x4 window holds each interleaved set once, so a pixel with all 16 neighbours joined
+ * averages all 256 samples. Invalid pixels output 0. Arrays are row-major w x h.
  * Format: e, z s15.16, n s1.30 (unit) -> out s15.16. Rounding: mean half up. Overflow: none
  * (sums of <= 16 values saturate; never for e in [0, 1]). Cost: FILTER phase; per window offset VLOAD x6, VMUL x3 and
  * VMULW x2 (normal dot), VCMP x3, VALU x4; VMUL x1 and VDIV x1 per row segment. */
@@ -178,14 +178,14 @@ void lt_frusta_filter16_q16(const lt_q16_t *e, const lt_q16_t *z, const lt_q30_t
 
 /* ---- primary visibility with frusta (P-Frusta) -------------------------------------------- */
 
-/* Primary frusta (seeds/004 Appendix A, "common origin"): one frustum per 4x4 pixel tile, 16 frusta
- * per call = the 4 x 4 tiles of a 16 x 16 pixel block (lane f: tile (f & 3, f >> 2) of the block;
- * ray j of a tile: pixel (j & 3, j >> 2) of the tile). Every ray starts at the eye, and pixel
- * (x, y) has the direction d0 + x dx + y dy: a linear pinhole camera in exact integer (s1.30)
+/* Primary frusta ([Benthin09], Appendix A, "common origin"): one frustum per 4x4 pixel tile, 16
+ * frusta per call = the 4 x 4 tiles of a 16 x 16 pixel block (lane f: tile (f & 3, f >> 2) of the
+ * block; ray j of a tile: pixel (j & 3, j >> 2) of the tile). Every ray starts at the eye, and
+ * pixel (x, y) has the direction d0 + x dx + y dy: a linear pinhole camera in exact integer (s1.30)
  * arithmetic, so every ray of a tile is an exact convex (bilinear) combination of the tile's four
  * corner rays and the packet baseline, the per-ray reference and the frusta trace the very same
- * rays. Closest hit, per ray: the smallest t, and among equal t the smallest triangle id (what
- * the single-ray kernel over every triangle in index order returns). */
+ * rays. Closest hit, per ray: the smallest t, and among equal t the smallest triangle id (what the
+ * single-ray kernel over every triangle in index order returns). */
 #define LT_FRUSTA_PMAX_DIM 16384u /* largest image width / height of a view */
 
 /* A linear pinhole view, 60 bytes. Pixel (x, y), 0 <= x < width, 0 <= y < height: ray from o with

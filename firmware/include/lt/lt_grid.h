@@ -1,7 +1,8 @@
-/* lt_grid.h - uniform grid over triangles (seeds/002 "Uniform Grid", seeds/003 Amanatides & Woo):
- * resolution from the triangle count, per-cell triangle lists built in two passes (count, fill)
- * into caller memory sized exactly by lt_grid_size, and 16-ray packet traversal by per-lane 3D-DDA
- * with a per-packet mailbox. s15.16 and float32 from one kernel source (firmware/core/object/lt_grid.inc).
+/* lt_grid.h - uniform grid over triangles (Stamminger & Grosso 2020 [Stamminger20], "Uniform Grid";
+ * Amanatides & Woo 1987 [Amanatides87], as in Bikker 2016 [Bikker16]): resolution from the triangle
+ * count, per-cell triangle lists built in two passes (count, fill) into caller memory sized exactly
+ * by lt_grid_size, and 16-ray packet traversal by per-lane 3D-DDA with a per-packet mailbox. s15.16
+ * and float32 from one kernel source (firmware/core/object/lt_grid.inc).
  * Builds: all; float32 entry points only with LT_CFG_FLOAT32. Layout and numbers: docs/kdtree-grid.md.
  */
 #ifndef LT_GRID_H

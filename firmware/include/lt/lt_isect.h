@@ -1,7 +1,8 @@
-/* lt_isect.h - 16-ray packets against boxes and triangles: the Kay-Kajiya slab test (seeds/002) and
- * the Moller-Trumbore ray/triangle test (seeds/004), in s15.16 fixed point and in float32, both
- * compiled from one kernel source (firmware/core/object/lt_isect.inc). Also a flat "chunk" scene (boxes
- * over runs of 16 triangles), the smallest structure that exercises both kernels end to end.
+/* lt_isect.h - 16-ray packets against boxes and triangles: the Kay-Kajiya slab test (Kay & Kajiya
+ * 1986 [Kay86]) and the Moller-Trumbore ray/triangle test (Moller & Trumbore 1997 [Moller97]), in
+ * s15.16 fixed point and in float32, both compiled from one kernel source
+ * (firmware/core/object/lt_isect.inc). Also a flat "chunk" scene (boxes over runs of 16 triangles), the
+ * smallest structure that exercises both kernels end to end.
  * Builds: all; float32 entry points only with LT_CFG_FLOAT32.
  */
 #ifndef LT_ISECT_H

@@ -1,8 +1,9 @@
-/* lt_kd.h - kd-tree over triangles: binned SAH build (Wald & Havran 2006, seeds/002 and 003) into
- * caller memory, and 16-ray packet traversal with a per-lane (node, tnear, tfar) stack in near/far
- * order, early exit only for hits inside the current node's interval (the seeds' caveat).
- * s15.16 and float32 from one kernel source (firmware/core/object/lt_kd.inc). Also the per-lane plane
- * distance and box span helpers the uniform grid (lt_grid.h) shares.
+/* lt_kd.h - kd-tree over triangles: binned SAH build (Wald & Havran 2006 [Wald06]; Stamminger &
+ * Grosso 2020 [Stamminger20]; Bikker 2016 [Bikker16]) into caller memory, and 16-ray packet
+ * traversal with a per-lane (node, tnear, tfar) stack in near/far order, early exit only for hits
+ * inside the current node's interval (the caveat of [Stamminger20]). s15.16 and float32 from one
+ * kernel source (firmware/core/object/lt_kd.inc). Also the per-lane plane distance and box span helpers
+ * the uniform grid (lt_grid.h) shares.
  * Builds: all; float32 entry points only with LT_CFG_FLOAT32. Layout and numbers: docs/kdtree-grid.md.
  */
 #ifndef LT_KD_H

@@ -1,9 +1,10 @@
-/* lt_qmc.h - integer quasi-Monte Carlo point sets for area-light sampling (seeds/004 section 4.5,
- * Kollig & Keller 2002): the van der Corput radical inverse in base 2 (bit reversal), the
- * Larcher-Pillichshammer radical inverse, the 2D Hammersley and Larcher-Pillichshammer point sets
- * of 2^m points, and the 4x4 interleaved split of a 256-point set into 16 sets of 16 (one set per
- * pixel of a 4x4 block). All values are 0.32 or 0.8 binary fractions computed with bit operations,
- * so they are exact in every build. Builds: all (integer only).
+/* lt_qmc.h - integer quasi-Monte Carlo point sets for area-light sampling (Benthin & Wald 2009
+ * [Benthin09], section 4.5; Kollig & Keller 2002 [Kollig02]): the van der Corput radical inverse in
+ * base 2 (bit reversal), the Larcher-Pillichshammer radical inverse, the 2D Hammersley and
+ * Larcher-Pillichshammer point sets of 2^m points, and the 4x4 interleaved split of a 256-point set
+ * into 16 sets of 16 (one set per pixel of a 4x4 block). All values are 0.32 or 0.8 binary
+ * fractions computed with bit operations, so they are exact in every build.
+ * Builds: all (integer only).
  */
 #ifndef LT_QMC_H
 #define LT_QMC_H

@@ -1,4 +1,4 @@
-/* lt_qt.h - the adaptive screen-space acceleration structure of Widmer et al. (seeds/000, 001): a
+/* lt_qt.h - the adaptive screen-space acceleration structure of Widmer et al. 2015 [Widmer15]: a
  * quadtree over each of N layers of an inverse-depth buffer whose nodes are planes or min/max-w
  * boxes, built bottom-up (Alg. 1 leaves, Alg. 2 merges) and traversed by 16-ray packets in screen
  * space (Alg. 3 descent/plane/box tests, Alg. 4 next node + findMSB level jump) with the

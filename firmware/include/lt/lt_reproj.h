@@ -1,5 +1,5 @@
-/* lt_reproj.h - reprojection ray generation for screen-space view synthesis (Widmer et al.,
- * seeds/000 section 5, docs/quadtree.md section 1): a pinhole target camera's pixel ray, seen by
+/* lt_reproj.h - reprojection ray generation for screen-space view synthesis (Widmer et al. 2015
+ * [Widmer15], section 5; docs/quadtree.md section 1): a pinhole target camera's pixel ray, seen by
  * the pinhole source camera that took a depth image, is a straight segment in the source's
  * (x_s, y_s, w = z_ref / z) space. A projective mapping precomputed once per camera pair gives, per
  * 4x4 target tile, the 16 clipped segments that lt_qt_trace16_q30 / _f32 take.

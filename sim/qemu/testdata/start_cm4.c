@@ -1,5 +1,5 @@
 /* start_cm4.c: Cortex-M4 (QEMU mps2-an386) startup for the lt_icount plugin test: vector table,
- * reset, CMSDK UART0 output and exit through semihosting SYS_EXIT_EXTENDED (docs facts.md).
+ * reset, CMSDK UART0 output and exit through semihosting SYS_EXIT_EXTENDED (docs/firmware.md).
  * No .data or .bss initialisation: the test program has no initialised data.
  */
 #include <stdint.h>

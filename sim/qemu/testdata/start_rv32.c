@@ -1,5 +1,5 @@
 /* start_rv32.c: RV32IMAC (QEMU virt, -bios none) startup for the lt_icount plugin test: _start,
- * NS16550 UART output and exit through the sifive_test device at 0x100000 (docs facts.md).
+ * NS16550 UART output and exit through the sifive_test device at 0x100000 (docs/firmware.md).
  * No .data or .bss initialisation: the test program has no initialised data.
  */
 #include <stdint.h>
