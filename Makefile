@@ -26,7 +26,7 @@ CORE_HDRS := $(wildcard firmware/include/lt/*.h firmware/include/lt/*.def firmwa
 # host library: every host/*.c except program mains (*_main.c)
 HOSTLIB_SRCS := $(filter-out %_main.c,$(wildcard host/*.c))
 HOSTLIB_HDRS := $(wildcard host/*.h)
-SIM_SRCS := sim/lt_sim.c sim/lt_cache.c
+SIM_SRCS := sim/lt_sim.c sim/lt_cache.c sim/lt_meter_sim.c
 SIM_HDRS := $(wildcard sim/*.h sim/machines/*.def) $(B)/gen/lt_machines.inc
 # unit tests: tests/unit/test_<name>.c, built for every variant (test_cache is sim-only)
 UNIT_TESTS := $(filter-out cache,$(patsubst tests/unit/test_%.c,%,$(wildcard tests/unit/test_*.c)))
@@ -65,7 +65,8 @@ $(B)/$(1)/obj/%.o: %.c $(CORE_HDRS) $(HOSTLIB_HDRS) $(SIM_HDRS) Makefile
 	@echo "CC [$(1)] $$<"
 	@$(CC) $(CFLAGS_$(1)) -c $$< -o $$@
 $(1)_CORE_OBJS := $(CORE_SRCS:%.c=$(B)/$(1)/obj/%.o)
-$(1)_HOST_OBJS := $(HOSTLIB_SRCS:%.c=$(B)/$(1)/obj/%.o)
+# the sim build meters through sim/lt_meter_sim.c (SIM_SRCS), the others through lt_meter_null.c
+$(1)_HOST_OBJS := $(filter-out $(if $(filter sim,$(1)),%/lt_meter_null.o),$(HOSTLIB_SRCS:%.c=$(B)/$(1)/obj/%.o))
 $(1)_EXTRA_OBJS := $(if $(filter sim,$(1)),$(SIM_SRCS:%.c=$(B)/$(1)/obj/%.o))
 $(B)/$(1)/test_%: $(B)/$(1)/obj/tests/unit/test_%.o $$($(1)_CORE_OBJS) $$($(1)_HOST_OBJS) \
     $$($(1)_EXTRA_OBJS)
