@@ -8,14 +8,12 @@
 #include "lt_exr.h"
 #include "lt_heatmap.h"
 #include "lt_mesh.h"
+#include "lt_meter.h"
 #include "lt_png.h"
 #include "lt_render.h"
 #include "lt_reproject_cli.h"
 #include "lt_scene.h"
 #include "lt_scenefile.h"
-#if LT_COST_MODE == LT_COST_SIM
-#include "lt_sim.h"
-#endif
 
 #include <cjson/cJSON.h>
 #include <math.h>
@@ -123,7 +121,7 @@ static void run_usage(FILE *f)
             "  --res WxH|N        image size (1..%d per side)\n"
             "  --num q16|f32|both numeric path\n"
             "  --structure NAME   acceleration structure (chunks)\n"
-            "  --machine NAME     machine model: lrb16, mcu-m4\n"
+            "  --machine NAME     machine model: %s (lanetrace machines)\n"
             "  --l1 S:W:B --l2 S:W:B  cache geometry overrides (sets:ways:line)\n"
             "  --report PATH      write the report JSON (PATH.q16 / PATH.f32 with both paths)\n"
             "  --csv PATH         write one CSV row per path\n"
@@ -137,10 +135,11 @@ static void run_usage(FILE *f)
             "  --native           run the native build (no cycle model; wall-clock speed)\n"
             "  --json             machine-readable JSON on stdout\n"
             "  -q                 quiet: summary lines only\n",
-            prog, LT_SF_MAX_RES);
+            prog, LT_SF_MAX_RES, lt_meter_machine_names());
 }
 
-#if LT_COST_MODE == LT_COST_SIM
+/* The simulator build's kernels charge every op (LT_COST_SIM is a compile-time mode): native
+ * speed is the other binary, build/host/lanetrace-native, which this hands over to. */
 static int exec_native(int argc, char **argv)
 {
     char path[1200];
@@ -163,7 +162,6 @@ static int exec_native(int argc, char **argv)
     free(nargv);
     return EXIT_INPUT;
 }
-#endif
 
 static int cmd_run(int argc, char **argv)
 {
@@ -188,11 +186,9 @@ static int cmd_run(int argc, char **argv)
             return 0;
         }
         if (strcmp(o, "--native") == 0) {
-#if LT_COST_MODE == LT_COST_SIM
-            return exec_native(argc, argv);
-#else
+            if (lt_meter_available())
+                return exec_native(argc, argv);
             continue;
-#endif
         }
         if (strcmp(o, "-q") == 0) {
             quiet = 1;
@@ -301,20 +297,16 @@ static int cmd_run(int argc, char **argv)
         report = sf.out_report;
     if (csv == NULL && sf.out_csv[0] != '\0')
         csv = sf.out_csv;
-#if LT_COST_MODE == LT_COST_SIM
-    {
-        const lt_machine_t *m = lt_sim_machine_find(sf.machine);
-        if (m == NULL) {
-            fprintf(stderr, "%s run: machine '%s' unknown (known: lrb16, mcu-m4)\n", prog,
-                    sf.machine);
-            return EXIT_USAGE;
-        }
-        if (lt_sim_init(m, sf.l1[0] ? sf.l1 : NULL, sf.l2[0] ? sf.l2 : NULL, err, sizeof err) != 0) {
-            fprintf(stderr, "%s run: %s\n", prog, err);
-            return EXIT_USAGE;
-        }
+    if (!lt_meter_machine_known(sf.machine)) {
+        fprintf(stderr, "%s run: machine '%s' unknown (known: %s)\n", prog, sf.machine,
+                lt_meter_machine_names());
+        return EXIT_USAGE;
     }
-#endif
+    if (lt_meter_init(sf.machine, sf.l1[0] ? sf.l1 : NULL, sf.l2[0] ? sf.l2 : NULL, err,
+                      sizeof err) != 0) {
+        fprintf(stderr, "%s run: %s\n", prog, err);
+        return EXIT_USAGE;
+    }
     if (lt_mesh_load(sf.mesh, &mesh, err, sizeof err) != 0) {
         fprintf(stderr, "%s\n", err);
         return EXIT_INPUT;
@@ -383,9 +375,7 @@ static int cmd_run(int argc, char **argv)
         uint64_t rays = (uint64_t)sf.width * sf.height * (uint64_t)repeat;
         if (!((unsigned)sf.numeric & (1u << path)))
             continue;
-#if LT_COST_MODE == LT_COST_SIM
-        lt_sim_reset();
-#endif
+        lt_meter_reset();
         acc = lt_accel_build(&sc, sf.structure, (lt_path_t)path, err, sizeof err);
         if (acc == NULL) {
             fprintf(stderr, "%s: %s\n", sf.path[0] ? sf.path : prog, err);
@@ -415,12 +405,10 @@ static int cmd_run(int argc, char **argv)
                 idbuf[path][i] = (float)fr.id[i];
             }
         }
-#if LT_COST_MODE != LT_COST_SIM
-        if (heat_out != NULL && path == 0)
+        if (!lt_meter_available() && heat_out != NULL && path == 0)
             fprintf(stderr, "%s run: --heatmap needs the simulator build (build/sim/lanetrace); "
                             "ignored\n", prog);
-#else
-        if (heat_out != NULL) {
+        if (lt_meter_available() && heat_out != NULL) {
             char hp[1100];
             lt_heatmap_opts_t ho = LT_HEATMAP_OPTS_DEFAULT;
             snprintf(hp, sizeof hp, "%s.%s.png", heat_out, pname);
@@ -451,14 +439,13 @@ static int cmd_run(int argc, char **argv)
                 }
             }
         }
-#endif
         memset(&ac, 0, sizeof ac);
         if (do_ref)
             lt_frame_compare(&fr, &ref, 1e-4 * sc.radius, &ac);
         if (!json) {
             printf("time      %-4s %.3f ms for %d frame(s) of %u rays (%s, %.2f Mrays/s host)\n",
                    pname, ms, repeat, sf.width * sf.height,
-                   LT_COST_MODE == LT_COST_SIM ? "counted" : "native",
+                   lt_meter_available() ? "counted" : "native",
                    (double)rays / (ms * 1e-3) / 1e6);
             printf("result    %-4s hash 0x%08x\n", pname, lt_frame_hash(&fr));
             if (do_ref)
@@ -492,21 +479,20 @@ static int cmd_run(int argc, char **argv)
             free(xs);
             cJSON_Delete(x);
         }
-#if LT_COST_MODE == LT_COST_SIM
-        {
+        if (lt_meter_available()) {
             char title[512], *js;
             snprintf(title, sizeof title, "%s %ux%u %s, %s, %d frame(s)", sf.mesh, sf.width,
                      sf.height, pname, sf.structure, repeat);
             if (!quiet) {
-                lt_sim_report_text(stdout, title, rays);
+                lt_meter_report_text(stdout, title, rays);
             } else if (!json) {
-                lt_sim_totals_t tt;
-                lt_sim_totals(&tt);
+                lt_meter_totals_t tt;
+                lt_meter_totals(&tt);
                 printf("cycles    %-4s %llu total, %.1f cycles/ray on %s\n", pname,
                        (unsigned long long)tt.total_cycles, (double)tt.total_cycles / (double)rays,
                        sf.machine);
             }
-            js = lt_sim_report_json_string(title, rays, extra);
+            js = lt_meter_report_json(title, rays, extra);
             jr = js != NULL ? cJSON_Parse(js) : NULL;
             if (report != NULL && js != NULL) {
                 char p[1100];
@@ -520,27 +506,27 @@ static int cmd_run(int argc, char **argv)
                 }
             }
             free(js);
-        }
-#else
-        /* native build: the report holds the run facts and accuracy, no cycle counts */
-        jr = cJSON_Parse(extra);
-        if (report != NULL) {
-            char p[1100];
-            snprintf(p, sizeof p, "%s%s%s", report, sf.numeric == LT_SF_NUM_BOTH ? "." : "",
-                     sf.numeric == LT_SF_NUM_BOTH ? pname : "");
-            if (write_atomic(p, extra, err, sizeof err) != 0) {
-                fprintf(stderr, "%s\n", err);
-                status = EXIT_INPUT;
-            } else if (!quiet) {
-                printf("report    %s\n", p);
+        } else {
+            /* native build: the report holds the run facts and accuracy, no cycle counts */
+            jr = cJSON_Parse(extra);
+            if (report != NULL) {
+                char p[1100];
+                snprintf(p, sizeof p, "%s%s%s", report, sf.numeric == LT_SF_NUM_BOTH ? "." : "",
+                         sf.numeric == LT_SF_NUM_BOTH ? pname : "");
+                if (write_atomic(p, extra, err, sizeof err) != 0) {
+                    fprintf(stderr, "%s\n", err);
+                    status = EXIT_INPUT;
+                } else if (!quiet) {
+                    printf("report    %s\n", p);
+                }
             }
         }
-#endif
-        if (csvf != NULL) {
-#if LT_COST_MODE == LT_COST_SIM
-            lt_sim_totals_t tt;
+        if (csvf != NULL && lt_meter_available()) {
+            lt_meter_machine_t mi;
+            lt_meter_totals_t tt;
             double util = 0.0;
-            lt_sim_totals(&tt);
+            (void)lt_meter_machine_info(sf.machine, &mi);
+            lt_meter_totals(&tt);
             if (jr != NULL && cJSON_GetObjectItem(jr, "lane_utilisation") != NULL)
                 util = cJSON_GetObjectItem(jr, "lane_utilisation")->valuedouble;
             fprintf(csvf,
@@ -549,7 +535,7 @@ static int cmd_run(int argc, char **argv)
                     sf.mesh, sf.structure, pname, sf.machine, sf.width, sf.height,
                     (unsigned long long)rays, (unsigned long long)tt.total_cycles,
                     (double)tt.total_cycles / (double)rays,
-                    (double)rays / ((double)tt.total_cycles / (lt_sim_machine()->clock_mhz * 1e6)) / 1e6,
+                    (double)rays / ((double)tt.total_cycles / (mi.clock_mhz * 1e6)) / 1e6,
                     util, ms, do_ref ? 100.0 * ac.same_id / ac.pixels : 0.0, ac.rmse, ac.max_err,
                     (unsigned long long)tt.cycles[LT_PH_BUILD],
                     (unsigned long long)tt.cycles[LT_PH_SETUP],
@@ -557,14 +543,13 @@ static int cmd_run(int argc, char **argv)
                     (unsigned long long)tt.cycles[LT_PH_INTERSECT],
                     (unsigned long long)tt.cycles[LT_PH_SHADE],
                     tt.l1_acc ? 100.0 * (double)tt.l1_hit / (double)tt.l1_acc : 0.0,
-                    (double)lt_sim_event_total(LT_EV_NODES) / (double)rays,
-                    (double)lt_sim_event_total(LT_EV_AABB_RAYS) / (double)rays,
-                    (double)lt_sim_event_total(LT_EV_TRI_RAYS) / (double)rays, acc_bytes);
-#else
+                    (double)tt.events[LT_EV_NODES] / (double)rays,
+                    (double)tt.events[LT_EV_AABB_RAYS] / (double)rays,
+                    (double)tt.events[LT_EV_TRI_RAYS] / (double)rays, acc_bytes);
+        } else if (csvf != NULL) {
             fprintf(csvf, "%s,%s,%s,native,%u,%u,%llu,,,,,%.3f,%.4f,%.6g,%.6g,,,,,,,,,,%zu\n", sf.mesh,
                     sf.structure, pname, sf.width, sf.height, (unsigned long long)rays, ms,
                     do_ref ? 100.0 * ac.same_id / ac.pixels : 0.0, ac.rmse, ac.max_err, acc_bytes);
-#endif
         }
         if (jr != NULL)
             cJSON_AddItemToArray(jout, jr);
@@ -623,9 +608,7 @@ done:
     lt_frame_free(&ref);
     lt_scene_free(&sc);
     lt_mesh_free(&mesh);
-#if LT_COST_MODE == LT_COST_SIM
-    lt_sim_shutdown();
-#endif
+    lt_meter_shutdown();
     return status;
 }
 
@@ -1063,13 +1046,11 @@ static int cmd_render(int argc, char **argv)
         fprintf(stderr, "%s render: --out PREFIX is required\n", prog);
         return EXIT_USAGE;
     }
-#if LT_COST_MODE != LT_COST_SIM
-    if (report != NULL) {
+    if (!lt_meter_available() && report != NULL) {
         fprintf(stderr, "%s render: --report needs the simulator build (build/sim/lanetrace); "
                         "this is the native build\n", prog);
         return EXIT_USAGE;
     }
-#endif
     if (scene_path != NULL && lt_sf_load(scene_path, &sf, err, sizeof err) != 0) {
         fprintf(stderr, "%s\n", err);
         return EXIT_INPUT;
@@ -1086,12 +1067,10 @@ static int cmd_render(int argc, char **argv)
         memcpy(lf, sf.lights[0].position, sizeof lf);
         have_light = 1;
     }
-#if LT_COST_MODE == LT_COST_SIM
-    if (lt_sim_init(lt_sim_machine_find(sf.machine), NULL, NULL, err, sizeof err) != 0) {
+    if (lt_meter_init(sf.machine, NULL, NULL, err, sizeof err) != 0) {
         fprintf(stderr, "%s\n", err);
         return EXIT_USAGE;
     }
-#endif
     if (lt_mesh_load(sf.mesh, &mesh, err, sizeof err) != 0) {
         fprintf(stderr, "%s\n", err);
         return EXIT_INPUT;
@@ -1262,17 +1241,16 @@ static int cmd_render(int argc, char **argv)
             goto done;
     }
     nrays += n + nshadow;
-#if LT_COST_MODE == LT_COST_SIM
-    {
+    if (lt_meter_available()) {
         /* every ray of the render: primary packets, shadow packets, peels (and the build) */
         char title[1400], extra[256], *js;
         snprintf(title, sizeof title, "render %s %ux%u %s, %s, %d layer(s), shadows", sf.mesh,
                  sf.width, sf.height, np == LT_PATH_Q16 ? "q16" : "f32", structure, layers);
         if (!quiet)
-            lt_sim_report_text(stdout, title, nrays);
+            lt_meter_report_text(stdout, title, nrays);
         snprintf(extra, sizeof extra, "{\"primary_rays\": %zu, \"shadow_rays\": %u, \"peel_rays\": %llu}",
                  n, nshadow, (unsigned long long)(nrays - n - nshadow));
-        js = lt_sim_report_json_string(title, nrays, extra);
+        js = lt_meter_report_json(title, nrays, extra);
         if (report != NULL) {
             if (js == NULL || write_atomic(report, js, err, sizeof err) != 0) {
                 fprintf(stderr, "%s\n", js == NULL ? "render: out of memory for the report" : err);
@@ -1285,7 +1263,6 @@ static int cmd_render(int argc, char **argv)
         }
         free(js);
     }
-#endif
     snprintf(path, sizeof path, "%s.png", out);
     if (lt_png_write(path, rgb, (int32_t)sf.width, (int32_t)sf.height, 3, 3 * sf.width, err,
                      sizeof err) != 0) {
@@ -1352,15 +1329,13 @@ static int cmd_render(int argc, char **argv)
         cJSON_AddNumberToObject(o, "shadow_rays", nshadow);
         cJSON_AddNumberToObject(o, "occluded", nocc);
         cJSON_AddNumberToObject(o, "rays", (double)nrays);
-#if LT_COST_MODE == LT_COST_SIM
-        {
-            lt_sim_totals_t tt;
-            lt_sim_totals(&tt);
+        if (lt_meter_available()) {
+            lt_meter_totals_t tt;
+            lt_meter_totals(&tt);
             cJSON_AddNumberToObject(o, "cycles", (double)tt.total_cycles);
             if (report != NULL)
                 cJSON_AddStringToObject(o, "report", report);
         }
-#endif
         js = cJSON_Print(o);
         if (js != NULL)
             puts(js);
@@ -1380,9 +1355,7 @@ done:
         lt_frame_free(&fr);
     lt_scene_free(&sc);
     lt_mesh_free(&mesh);
-#if LT_COST_MODE == LT_COST_SIM
-    lt_sim_shutdown();
-#endif
+    lt_meter_shutdown();
     return status;
 }
 
@@ -1443,7 +1416,7 @@ static void usage(FILE *f)
             "  diff A.json B.json compare two JSON reports\n"
             "  help               this text\n"
             "Every command takes --help. Exit codes: 0 ok, 1 input or runtime error, 2 usage.\n",
-            prog, LT_COST_MODE == LT_COST_SIM ? "simulator" : "native");
+            prog, lt_meter_available() ? "simulator" : "native");
 }
 
 int main(int argc, char **argv)
