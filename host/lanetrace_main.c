@@ -1,4 +1,5 @@
-/* lanetrace_main.c - the lanetrace command line: subcommands run, info, diff (docs/user-guide.md).
+/* lanetrace_main.c - the lanetrace command line: subcommands run, render, reproject, info, diff,
+ * machines, stream (docs/user-guide.md).
  * Built twice from this source: build/sim/lanetrace (the kernels charged to a machine model: cycle
  * reports) and build/host/lanetrace-native (LT_COST_OFF: native speed); `lanetrace run --native`
  * hands over to the native build. Exit codes: 0 ok, 1 input or runtime error, 2 usage. Host only.
@@ -1399,6 +1400,168 @@ static int cmd_reproject(int argc, char **argv)
     return lt_rp_cli(argc, argv, prog, &h);
 }
 
+/* ---- machines: the machine models (sim/machines/<name>.def) ------------------------------- */
+
+static const char *const op_names[] = {
+#define LT_OP(name, unit, doc) #name,
+#define LT_EV(name, doc)
+#define LT_PH(name, doc)
+#include "lt/lt_ops.def"
+#undef LT_OP
+#undef LT_EV
+#undef LT_PH
+};
+
+static const char *const op_units[] = {
+#define LT_OP(name, unit, doc) #unit,
+#define LT_EV(name, doc)
+#define LT_PH(name, doc)
+#include "lt/lt_ops.def"
+#undef LT_OP
+#undef LT_EV
+#undef LT_PH
+};
+
+/* "64:8:64 32 KiB, 3 cy" or "none" */
+static void cache_text(char *buf, size_t n, const char *spec, uint32_t hit)
+{
+    unsigned sets, ways, line;
+    char c;
+    if (spec == NULL) {
+        snprintf(buf, n, "none");
+    } else if (sscanf(spec, "%u:%u:%u%c", &sets, &ways, &line, &c) == 3) {
+        unsigned long long b = (unsigned long long)sets * ways * line;
+        if (b >= 1024 && b % 1024 == 0)
+            snprintf(buf, n, "%s %llu KiB, %u cy", spec, b / 1024, hit);
+        else
+            snprintf(buf, n, "%s %llu B, %u cy", spec, b, hit);
+    } else {
+        snprintf(buf, n, "%s, %u cy", spec, hit);
+    }
+}
+
+static int cmd_machines(int argc, char **argv)
+{
+    int a, i, o, json = 0, ops = 0, nm;
+    size_t wn = strlen("machine"), w1 = strlen("L1"), w2 = strlen("L2");
+    const char *name;
+    char c1[96], c2[96];
+    lt_meter_machine_t m;
+    for (a = 2; a < argc; a++) {
+        if (strcmp(argv[a], "--help") == 0 || strcmp(argv[a], "-h") == 0) {
+            printf("usage: %s machines [--ops] [--json]\n"
+                   "The machine models of the cycle model, one per file sim/machines/<name>.def:\n"
+                   "name, clock, lanes, caches (sets:ways:line, size, hit latency), memory\n"
+                   "latency, description; --ops adds the price of every op class (latency/issue\n"
+                   "cycles; issue is what is charged); --json prints all of it as JSON. The native\n"
+                   "build knows the names only.\n",
+                   prog);
+            return 0;
+        } else if (strcmp(argv[a], "--json") == 0) {
+            json = 1;
+        } else if (strcmp(argv[a], "--ops") == 0) {
+            ops = 1;
+        } else {
+            fprintf(stderr, "%s machines: unknown option '%s'\n", prog, argv[a]);
+            return EXIT_USAGE;
+        }
+    }
+    for (nm = 0; lt_meter_machine_name(nm) != NULL; nm++)
+        ;
+    if (json) {
+        cJSON *root = cJSON_CreateObject(), *arr;
+        char *js;
+        cJSON_AddStringToObject(root, "build", lt_meter_available() ? "simulator" : "native");
+        arr = cJSON_AddArrayToObject(root, "machines");
+        for (i = 0; i < nm; i++) {
+            cJSON *x = cJSON_CreateObject(), *y;
+            name = lt_meter_machine_name(i);
+            cJSON_AddStringToObject(x, "name", name);
+            if (lt_meter_machine_info(name, &m) == 0) {
+                cJSON_AddStringToObject(x, "description", m.desc);
+                cJSON_AddNumberToObject(x, "clock_mhz", m.clock_mhz);
+                cJSON_AddNumberToObject(x, "lanes", m.lanes);
+                y = cJSON_AddObjectToObject(x, "l1");
+                cJSON_AddStringToObject(y, "spec", m.l1);
+                cJSON_AddNumberToObject(y, "hit_cycles", m.l1_hit);
+                if (m.l2 != NULL) {
+                    y = cJSON_AddObjectToObject(x, "l2");
+                    cJSON_AddStringToObject(y, "spec", m.l2);
+                    cJSON_AddNumberToObject(y, "hit_cycles", m.l2_hit);
+                } else {
+                    cJSON_AddNullToObject(x, "l2");
+                }
+                cJSON_AddNumberToObject(x, "memory_cycles", m.mem);
+                y = cJSON_AddObjectToObject(x, "ops");
+                for (o = 0; o < LT_OP__COUNT; o++) {
+                    cJSON *z = cJSON_AddObjectToObject(y, op_names[o]);
+                    cJSON_AddNumberToObject(z, "latency", m.latency[o]);
+                    cJSON_AddNumberToObject(z, "issue", m.issue[o]);
+                }
+            }
+            cJSON_AddItemToArray(arr, x);
+        }
+        js = cJSON_Print(root);
+        if (js != NULL)
+            puts(js);
+        free(js);
+        cJSON_Delete(root);
+        return js != NULL ? 0 : EXIT_INPUT;
+    }
+    if (!lt_meter_available()) {
+        /* names only, one per line; where the rest is on stderr */
+        for (i = 0; i < nm; i++)
+            printf("%s\n", lt_meter_machine_name(i));
+        fprintf(stderr, "%s machines: the native build has no cycle model; build/sim/lanetrace "
+                        "machines prints clocks, caches and op prices\n", prog);
+        return 0;
+    }
+    for (i = 0; i < nm; i++) {
+        name = lt_meter_machine_name(i);
+        (void)lt_meter_machine_info(name, &m);
+        cache_text(c1, sizeof c1, m.l1, m.l1_hit);
+        cache_text(c2, sizeof c2, m.l2, m.l2_hit);
+        wn = strlen(name) > wn ? strlen(name) : wn;
+        w1 = strlen(c1) > w1 ? strlen(c1) : w1;
+        w2 = strlen(c2) > w2 ? strlen(c2) : w2;
+    }
+    printf("%-*s %9s %5s  %-*s  %-*s %7s  %s\n", (int)wn, "machine", "clock", "lanes", (int)w1,
+           "L1", (int)w2, "L2", "memory", "description");
+    for (i = 0; i < nm; i++) {
+        char clk[32], mem[32];
+        name = lt_meter_machine_name(i);
+        (void)lt_meter_machine_info(name, &m);
+        cache_text(c1, sizeof c1, m.l1, m.l1_hit);
+        cache_text(c2, sizeof c2, m.l2, m.l2_hit);
+        snprintf(clk, sizeof clk, "%u MHz", m.clock_mhz);
+        snprintf(mem, sizeof mem, "%u cy", m.mem);
+        printf("%-*s %9s %5u  %-*s  %-*s %7s  %s\n", (int)wn, name, clk, m.lanes, (int)w1, c1,
+               (int)w2, c2, mem, m.desc);
+    }
+    if (!ops) {
+        printf("(caches: sets:ways:line, size, load-to-use cycles of a hit; op prices: %s "
+               "machines --ops)\n", prog);
+        return 0;
+    }
+    printf("\nop prices, latency/issue cycles (a phase's cycles = sum of count x issue + memory "
+           "stalls)\n");
+    printf("%-10s %-7s", "op class", "unit");
+    for (i = 0; i < nm; i++)
+        printf(" %12s", lt_meter_machine_name(i));
+    printf("\n");
+    for (o = 0; o < LT_OP__COUNT; o++) {
+        printf("%-10s %-7s", op_names[o], op_units[o]);
+        for (i = 0; i < nm; i++) {
+            char cell[32];
+            (void)lt_meter_machine_info(lt_meter_machine_name(i), &m);
+            snprintf(cell, sizeof cell, "%u/%u", m.latency[o], m.issue[o]);
+            printf(" %12s", cell);
+        }
+        printf("\n");
+    }
+    return 0;
+}
+
 /* ---- main ----------------------------------------------------------------------------------- */
 
 static void usage(FILE *f)
@@ -1414,6 +1577,7 @@ static void usage(FILE *f)
             "  info FILE          describe a mesh or EXR file\n"
             "  stream [SOURCE]    receive a device's report frames (see lt-stream --help)\n"
             "  diff A.json B.json compare two JSON reports\n"
+            "  machines [--ops]   the machine models: clock, lanes, caches, op prices (--json)\n"
             "  help               this text\n"
             "Every command takes --help. Exit codes: 0 ok, 1 input or runtime error, 2 usage.\n",
             prog, lt_meter_available() ? "simulator" : "native");
@@ -1440,6 +1604,8 @@ int main(int argc, char **argv)
         return cmd_reproject(argc, argv);
     if (strcmp(argv[1], "diff") == 0)
         return cmd_diff(argc, argv);
+    if (strcmp(argv[1], "machines") == 0)
+        return cmd_machines(argc, argv);
     fprintf(stderr, "%s: unknown command '%s'\n", prog, argv[1]);
     usage(stderr);
     return EXIT_USAGE;
