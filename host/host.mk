@@ -37,7 +37,7 @@ ifeq ($(strip $(STREAM_HID_LIBS)),)
 STREAM_HID_CFLAGS := -DLT_RX_NO_HIDAPI
 endif
 
-$(B)/host/obj/host/stream/usb/lt_rx_hid.o: host/stream/usb/lt_rx_hid.c host/host.mk
+$(B)/host/obj/host/stream/usb/lt_rx_hid.o: host/stream/usb/lt_rx_hid.c host/host.mk | $(B)/gen/lt_machines.inc
 	@mkdir -p $(@D)
 	@echo "CC [host] $<"
 	@$(CC) $(CFLAGS_host) $(HOST_INC) $(STREAM_HID_CFLAGS) -c $< -o $@

@@ -13,74 +13,42 @@
 
 /* ---- machine tables ------------------------------------------------------------------------ */
 
-#define LT_OP_COST(op, lat, iss) [LT_OP_##op] = (lat),
-static const uint16_t lrb16_lat[LT_OP__COUNT] = {
-#include "machines/lrb16.def"
-};
-static const uint16_t mcu_m4_lat[LT_OP__COUNT] = {
-#include "machines/mcu_m4.def"
-};
-#undef LT_OP_COST
-#define LT_OP_COST(op, lat, iss) [LT_OP_##op] = (iss),
-static const uint16_t lrb16_iss[LT_OP__COUNT] = {
-#include "machines/lrb16.def"
-};
-static const uint16_t mcu_m4_iss[LT_OP__COUNT] = {
-#include "machines/mcu_m4.def"
-};
-#undef LT_OP_COST
-/* Every op must have a cost in every table: count the entries of each .def. */
+/* One static lt_machine_t per file sim/machines/<name>.def (lt_machines.h iterates over them). A
+ * repeated op is an error (-Woverride-init, in -Wextra); an unknown one is an undeclared name. */
+#define LT_MACHINE_L1(spec, hit) .l1 = (spec), .l1_hit = (hit),
+#define LT_MACHINE_L2(spec, hit) .l2 = (spec), .l2_hit = (hit),
+#define LT_MACHINE(id, nm, d, mhz, ln)                                                             \
+    static const lt_machine_t lt_machine_##id = {.name = (nm), .desc = (d), .clock_mhz = (mhz),   \
+                                                 .lanes = (ln),
+#define LT_MACHINE_CACHE(level, spec, hit) LT_MACHINE_##level(spec, hit)
+#define LT_MACHINE_MEM(cycles) .mem = (cycles),
+#define LT_OP_COST(op, lat, iss) .latency[LT_OP_##op] = (lat), .issue[LT_OP_##op] = (iss),
+#define LT_MACHINE_END };
+#include "lt_machines.h"
+#undef LT_MACHINE_L1
+#undef LT_MACHINE_L2
+
+/* Every machine prices every op: count each file's LT_OP_COST lines. A file that misses one fails
+ * here with an error naming it: "size of array 'lt_machine_<id>_must_price_every_op_of_lt_ops_def'
+ * is negative". */
+#define LT_MACHINE(id, nm, d, mhz, ln) enum { lt_machine_##id##_nops = 0
 #define LT_OP_COST(op, lat, iss) +1
-enum {
-    LRB16_N = 0
-#include "machines/lrb16.def"
-    ,
-    MCU_M4_N = 0
-#include "machines/mcu_m4.def"
-};
-#undef LT_OP_COST
-LT_STATIC_ASSERT((int)LRB16_N == (int)LT_OP__COUNT, "machines/lrb16.def must price every op in lt_ops.def");
-LT_STATIC_ASSERT((int)MCU_M4_N == (int)LT_OP__COUNT, "machines/mcu_m4.def must price every op in lt_ops.def");
+#define LT_MACHINE_END };
+#include "lt_machines.h"
+#define LT_MACHINE(id, nm, d, mhz, ln)                                                             \
+    typedef char lt_machine_##id##_must_price_every_op_of_lt_ops_def                              \
+        [(int)lt_machine_##id##_nops == (int)LT_OP__COUNT ? 1 : -1];
+#include "lt_machines.h"
 
-static lt_machine_t lrb16;
-static lt_machine_t mcu_m4;
-const lt_machine_t *const lt_sim_machines[] = {&lrb16, &mcu_m4, NULL};
-
-static void machines_fill(void)
-{
-    static int done;
-    if (done)
-        return;
-    done = 1;
-    lrb16.name = "lrb16";
-    lrb16.desc = "Larrabee-like core: 1 GHz, in-order, 16 lanes, L1 32 KiB 8-way, L2 256 KiB 8-way";
-    lrb16.clock_mhz = 1000;
-    lrb16.lanes = 16;
-    memcpy(lrb16.latency, lrb16_lat, sizeof lrb16_lat);
-    memcpy(lrb16.issue, lrb16_iss, sizeof lrb16_iss);
-    lrb16.l1 = "64:8:64";
-    lrb16.l2 = "512:8:64";
-    lrb16.l1_hit = 3;
-    lrb16.l2_hit = 14;
-    lrb16.mem = 150;
-    mcu_m4.name = "mcu-m4";
-    mcu_m4.desc = "Cortex-M4F-like MCU: 168 MHz, scalar (16-lane ops cost their loops), no data cache";
-    mcu_m4.clock_mhz = 168;
-    mcu_m4.lanes = 1;
-    memcpy(mcu_m4.latency, mcu_m4_lat, sizeof mcu_m4_lat);
-    memcpy(mcu_m4.issue, mcu_m4_iss, sizeof mcu_m4_iss);
-    /* SRAM with single-cycle access: modelled as a 1-line cache whose miss costs what a hit does */
-    mcu_m4.l1 = "1:1:4";
-    mcu_m4.l2 = NULL;
-    mcu_m4.l1_hit = 1;
-    mcu_m4.l2_hit = 1;
-    mcu_m4.mem = 1;
-}
+/* NULL-terminated, in file name order. */
+const lt_machine_t *const lt_sim_machines[] = {
+#define LT_MACHINE(id, nm, d, mhz, ln) &lt_machine_##id,
+#include "lt_machines.h"
+    NULL};
 
 const lt_machine_t *lt_sim_machine_find(const char *name)
 {
     int i;
-    machines_fill();
     for (i = 0; lt_sim_machines[i] != NULL; i++)
         if (strcmp(lt_sim_machines[i]->name, name) == 0)
             return lt_sim_machines[i];
@@ -169,13 +137,17 @@ void lt_sim_reset(void)
 int lt_sim_init(const lt_machine_t *m, const char *l1s, const char *l2s, char *err, size_t errlen)
 {
     lt_cache_cfg_t c1, c2;
-    machines_fill();
     lt_sim_shutdown();
     mach = m;
     if (l1s == NULL)
         l1s = m->l1;
     if (l2s == NULL)
         l2s = m->l2;
+    if (l1s == NULL) {
+        snprintf(err, errlen, "machine %s: no L1 cache (LT_MACHINE_CACHE(L1, ...) in its .def)",
+                 m->name);
+        return -1;
+    }
     if (lt_cache_parse(l1s, &c1, err, errlen) != 0)
         return -1;
     if (l2s != NULL && lt_cache_parse(l2s, &c2, err, errlen) != 0)

@@ -23,7 +23,8 @@ typedef struct lt_machine {
     uint32_t l1_hit, l2_hit, mem; /* load-to-use cycles of an L1 hit, L2 hit, memory access */
 } lt_machine_t;
 
-/* NULL-terminated list of the built-in machines. */
+/* NULL-terminated list of the machines: one per file sim/machines/<name>.def, in file name order
+ * (the Makefile lists the files; see lt_machines.h). */
 extern const lt_machine_t *const lt_sim_machines[];
 
 /* The machine called name, or NULL. */

@@ -8,10 +8,10 @@ $(B)/asan/fuzz-scene: $(B)/asan/obj/tests/fuzz/fuzz_scene.o $(B)/asan/obj/tests/
 EXTRA_TEST_BINS += $(B)/asan/fuzz-scene
 FUZZ_CLANG ?= clang
 FUZZ_SECONDS ?= 60
-$(B)/fuzz/fuzz-scene-libfuzzer: tests/fuzz/fuzz_scene.c host/io/lt_scenefile.c host/io/lt_scenefile.h
+$(B)/fuzz/fuzz-scene-libfuzzer: tests/fuzz/fuzz_scene.c host/io/lt_scenefile.c $(B)/gen/lt_machines.inc
 	@mkdir -p $(@D)
 	$(FUZZ_CLANG) -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all -Ihost \
-	    tests/fuzz/fuzz_scene.c host/io/lt_scenefile.c -lcjson -o $@
+	    -Isim -I$(B)/gen tests/fuzz/fuzz_scene.c host/io/lt_scenefile.c -lcjson -o $@
 fuzz-scene: $(B)/asan/fuzz-scene
 	@mkdir -p $(B)/fuzz/corpus-scene
 	@if echo 'int LLVMFuzzerTestOneInput(const char *d, long n){(void)d;(void)n;return 0;}' \

@@ -9,7 +9,7 @@
 SSBENCH_REPROJ := $(if $(wildcard firmware/include/lt/lt_reproj.h firmware/core/screen/lt_reproj.c),\
     -DSSBENCH_HAVE_REPROJ=1,)
 define ssbench_rules
-$(B)/$(1)/obj/tests/bench/ssbench.o: tests/bench/ssbench.c Makefile tests/ssbench.mk
+$(B)/$(1)/obj/tests/bench/ssbench.o: tests/bench/ssbench.c Makefile tests/ssbench.mk | $(B)/gen/lt_machines.inc
 	@mkdir -p $$(@D)
 	@echo "CC [$(1)] $$<"
 	@$(CC) $(CFLAGS_$(1)) $(TEST_INC) $(SSBENCH_REPROJ) -c $$< -o $$@

@@ -1,4 +1,5 @@
-/* lanetrace_main.c - the lanetrace command line: subcommands run, info, diff (docs/user-guide.md).
+/* lanetrace_main.c - the lanetrace command line: subcommands run, render, reproject, info, diff,
+ * machines, stream (docs/user-guide.md).
  * Built twice from this source: build/sim/lanetrace (the kernels charged to a machine model: cycle
  * reports) and build/host/lanetrace-native (LT_COST_OFF: native speed); `lanetrace run --native`
  * hands over to the native build. Exit codes: 0 ok, 1 input or runtime error, 2 usage. Host only.
@@ -8,15 +9,13 @@
 #include "io/lt_exr.h"
 #include "io/lt_heatmap.h"
 #include "io/lt_mesh.h"
+#include "lt_meter.h"
 #include "io/lt_png.h"
 #include "render/lt_render.h"
 #include "cli/lt_reproject_cli.h"
 #include "cli/lt_shadows_cli.h"
 #include "render/lt_scene.h"
 #include "io/lt_scenefile.h"
-#if LT_COST_MODE == LT_COST_SIM
-#include "lt_sim.h"
-#endif
 
 #include <cjson/cJSON.h>
 #include <math.h>
@@ -124,7 +123,7 @@ static void run_usage(FILE *f)
             "  --res WxH|N        image size (1..%d per side)\n"
             "  --num q16|f32|both numeric path\n"
             "  --structure NAME   acceleration structure (chunks)\n"
-            "  --machine NAME     machine model: lrb16, mcu-m4\n"
+            "  --machine NAME     machine model: %s (lanetrace machines)\n"
             "  --l1 S:W:B --l2 S:W:B  cache geometry overrides (sets:ways:line)\n"
             "  --report PATH      write the report JSON (PATH.q16 / PATH.f32 with both paths)\n"
             "  --csv PATH         write one CSV row per path\n"
@@ -138,10 +137,11 @@ static void run_usage(FILE *f)
             "  --native           run the native build (no cycle model; wall-clock speed)\n"
             "  --json             machine-readable JSON on stdout\n"
             "  -q                 quiet: summary lines only\n",
-            prog, LT_SF_MAX_RES);
+            prog, LT_SF_MAX_RES, lt_meter_machine_names());
 }
 
-#if LT_COST_MODE == LT_COST_SIM
+/* The simulator build's kernels charge every op (LT_COST_SIM is a compile-time mode): native
+ * speed is the other binary, build/host/lanetrace-native, which this hands over to. */
 static int exec_native(int argc, char **argv)
 {
     char path[1200];
@@ -164,7 +164,6 @@ static int exec_native(int argc, char **argv)
     free(nargv);
     return EXIT_INPUT;
 }
-#endif
 
 static int cmd_run(int argc, char **argv)
 {
@@ -189,11 +188,9 @@ static int cmd_run(int argc, char **argv)
             return 0;
         }
         if (strcmp(o, "--native") == 0) {
-#if LT_COST_MODE == LT_COST_SIM
-            return exec_native(argc, argv);
-#else
+            if (lt_meter_available())
+                return exec_native(argc, argv);
             continue;
-#endif
         }
         if (strcmp(o, "-q") == 0) {
             quiet = 1;
@@ -302,20 +299,16 @@ static int cmd_run(int argc, char **argv)
         report = sf.out_report;
     if (csv == NULL && sf.out_csv[0] != '\0')
         csv = sf.out_csv;
-#if LT_COST_MODE == LT_COST_SIM
-    {
-        const lt_machine_t *m = lt_sim_machine_find(sf.machine);
-        if (m == NULL) {
-            fprintf(stderr, "%s run: machine '%s' unknown (known: lrb16, mcu-m4)\n", prog,
-                    sf.machine);
-            return EXIT_USAGE;
-        }
-        if (lt_sim_init(m, sf.l1[0] ? sf.l1 : NULL, sf.l2[0] ? sf.l2 : NULL, err, sizeof err) != 0) {
-            fprintf(stderr, "%s run: %s\n", prog, err);
-            return EXIT_USAGE;
-        }
+    if (!lt_meter_machine_known(sf.machine)) {
+        fprintf(stderr, "%s run: machine '%s' unknown (known: %s)\n", prog, sf.machine,
+                lt_meter_machine_names());
+        return EXIT_USAGE;
     }
-#endif
+    if (lt_meter_init(sf.machine, sf.l1[0] ? sf.l1 : NULL, sf.l2[0] ? sf.l2 : NULL, err,
+                      sizeof err) != 0) {
+        fprintf(stderr, "%s run: %s\n", prog, err);
+        return EXIT_USAGE;
+    }
     if (lt_mesh_load(sf.mesh, &mesh, err, sizeof err) != 0) {
         fprintf(stderr, "%s\n", err);
         return EXIT_INPUT;
@@ -384,9 +377,7 @@ static int cmd_run(int argc, char **argv)
         uint64_t rays = (uint64_t)sf.width * sf.height * (uint64_t)repeat;
         if (!((unsigned)sf.numeric & (1u << path)))
             continue;
-#if LT_COST_MODE == LT_COST_SIM
-        lt_sim_reset();
-#endif
+        lt_meter_reset();
         acc = lt_accel_build(&sc, sf.structure, (lt_path_t)path, err, sizeof err);
         if (acc == NULL) {
             fprintf(stderr, "%s: %s\n", sf.path[0] ? sf.path : prog, err);
@@ -416,12 +407,10 @@ static int cmd_run(int argc, char **argv)
                 idbuf[path][i] = (float)fr.id[i];
             }
         }
-#if LT_COST_MODE != LT_COST_SIM
-        if (heat_out != NULL && path == 0)
+        if (!lt_meter_available() && heat_out != NULL && path == 0)
             fprintf(stderr, "%s run: --heatmap needs the simulator build (build/sim/lanetrace); "
                             "ignored\n", prog);
-#else
-        if (heat_out != NULL) {
+        if (lt_meter_available() && heat_out != NULL) {
             char hp[1100];
             lt_heatmap_opts_t ho = LT_HEATMAP_OPTS_DEFAULT;
             snprintf(hp, sizeof hp, "%s.%s.png", heat_out, pname);
@@ -452,14 +441,13 @@ static int cmd_run(int argc, char **argv)
                 }
             }
         }
-#endif
         memset(&ac, 0, sizeof ac);
         if (do_ref)
             lt_frame_compare(&fr, &ref, 1e-4 * sc.radius, &ac);
         if (!json) {
             printf("time      %-4s %.3f ms for %d frame(s) of %u rays (%s, %.2f Mrays/s host)\n",
                    pname, ms, repeat, sf.width * sf.height,
-                   LT_COST_MODE == LT_COST_SIM ? "counted" : "native",
+                   lt_meter_available() ? "counted" : "native",
                    (double)rays / (ms * 1e-3) / 1e6);
             printf("result    %-4s hash 0x%08x\n", pname, lt_frame_hash(&fr));
             if (do_ref)
@@ -493,21 +481,20 @@ static int cmd_run(int argc, char **argv)
             free(xs);
             cJSON_Delete(x);
         }
-#if LT_COST_MODE == LT_COST_SIM
-        {
+        if (lt_meter_available()) {
             char title[512], *js;
             snprintf(title, sizeof title, "%s %ux%u %s, %s, %d frame(s)", sf.mesh, sf.width,
                      sf.height, pname, sf.structure, repeat);
             if (!quiet) {
-                lt_sim_report_text(stdout, title, rays);
+                lt_meter_report_text(stdout, title, rays);
             } else if (!json) {
-                lt_sim_totals_t tt;
-                lt_sim_totals(&tt);
+                lt_meter_totals_t tt;
+                lt_meter_totals(&tt);
                 printf("cycles    %-4s %llu total, %.1f cycles/ray on %s\n", pname,
                        (unsigned long long)tt.total_cycles, (double)tt.total_cycles / (double)rays,
                        sf.machine);
             }
-            js = lt_sim_report_json_string(title, rays, extra);
+            js = lt_meter_report_json(title, rays, extra);
             jr = js != NULL ? cJSON_Parse(js) : NULL;
             if (report != NULL && js != NULL) {
                 char p[1100];
@@ -521,27 +508,27 @@ static int cmd_run(int argc, char **argv)
                 }
             }
             free(js);
-        }
-#else
-        /* native build: the report holds the run facts and accuracy, no cycle counts */
-        jr = cJSON_Parse(extra);
-        if (report != NULL) {
-            char p[1100];
-            snprintf(p, sizeof p, "%s%s%s", report, sf.numeric == LT_SF_NUM_BOTH ? "." : "",
-                     sf.numeric == LT_SF_NUM_BOTH ? pname : "");
-            if (write_atomic(p, extra, err, sizeof err) != 0) {
-                fprintf(stderr, "%s\n", err);
-                status = EXIT_INPUT;
-            } else if (!quiet) {
-                printf("report    %s\n", p);
+        } else {
+            /* native build: the report holds the run facts and accuracy, no cycle counts */
+            jr = cJSON_Parse(extra);
+            if (report != NULL) {
+                char p[1100];
+                snprintf(p, sizeof p, "%s%s%s", report, sf.numeric == LT_SF_NUM_BOTH ? "." : "",
+                         sf.numeric == LT_SF_NUM_BOTH ? pname : "");
+                if (write_atomic(p, extra, err, sizeof err) != 0) {
+                    fprintf(stderr, "%s\n", err);
+                    status = EXIT_INPUT;
+                } else if (!quiet) {
+                    printf("report    %s\n", p);
+                }
             }
         }
-#endif
-        if (csvf != NULL) {
-#if LT_COST_MODE == LT_COST_SIM
-            lt_sim_totals_t tt;
+        if (csvf != NULL && lt_meter_available()) {
+            lt_meter_machine_t mi;
+            lt_meter_totals_t tt;
             double util = 0.0;
-            lt_sim_totals(&tt);
+            (void)lt_meter_machine_info(sf.machine, &mi);
+            lt_meter_totals(&tt);
             if (jr != NULL && cJSON_GetObjectItem(jr, "lane_utilisation") != NULL)
                 util = cJSON_GetObjectItem(jr, "lane_utilisation")->valuedouble;
             fprintf(csvf,
@@ -550,7 +537,7 @@ static int cmd_run(int argc, char **argv)
                     sf.mesh, sf.structure, pname, sf.machine, sf.width, sf.height,
                     (unsigned long long)rays, (unsigned long long)tt.total_cycles,
                     (double)tt.total_cycles / (double)rays,
-                    (double)rays / ((double)tt.total_cycles / (lt_sim_machine()->clock_mhz * 1e6)) / 1e6,
+                    (double)rays / ((double)tt.total_cycles / (mi.clock_mhz * 1e6)) / 1e6,
                     util, ms, do_ref ? 100.0 * ac.same_id / ac.pixels : 0.0, ac.rmse, ac.max_err,
                     (unsigned long long)tt.cycles[LT_PH_BUILD],
                     (unsigned long long)tt.cycles[LT_PH_SETUP],
@@ -558,14 +545,13 @@ static int cmd_run(int argc, char **argv)
                     (unsigned long long)tt.cycles[LT_PH_INTERSECT],
                     (unsigned long long)tt.cycles[LT_PH_SHADE],
                     tt.l1_acc ? 100.0 * (double)tt.l1_hit / (double)tt.l1_acc : 0.0,
-                    (double)lt_sim_event_total(LT_EV_NODES) / (double)rays,
-                    (double)lt_sim_event_total(LT_EV_AABB_RAYS) / (double)rays,
-                    (double)lt_sim_event_total(LT_EV_TRI_RAYS) / (double)rays, acc_bytes);
-#else
+                    (double)tt.events[LT_EV_NODES] / (double)rays,
+                    (double)tt.events[LT_EV_AABB_RAYS] / (double)rays,
+                    (double)tt.events[LT_EV_TRI_RAYS] / (double)rays, acc_bytes);
+        } else if (csvf != NULL) {
             fprintf(csvf, "%s,%s,%s,native,%u,%u,%llu,,,,,%.3f,%.4f,%.6g,%.6g,,,,,,,,,,%zu\n", sf.mesh,
                     sf.structure, pname, sf.width, sf.height, (unsigned long long)rays, ms,
                     do_ref ? 100.0 * ac.same_id / ac.pixels : 0.0, ac.rmse, ac.max_err, acc_bytes);
-#endif
         }
         if (jr != NULL)
             cJSON_AddItemToArray(jout, jr);
@@ -624,9 +610,7 @@ done:
     lt_frame_free(&ref);
     lt_scene_free(&sc);
     lt_mesh_free(&mesh);
-#if LT_COST_MODE == LT_COST_SIM
-    lt_sim_shutdown();
-#endif
+    lt_meter_shutdown();
     return status;
 }
 
@@ -1064,13 +1048,11 @@ static int cmd_render(int argc, char **argv)
         fprintf(stderr, "%s render: --out PREFIX is required\n", prog);
         return EXIT_USAGE;
     }
-#if LT_COST_MODE != LT_COST_SIM
-    if (report != NULL) {
+    if (!lt_meter_available() && report != NULL) {
         fprintf(stderr, "%s render: --report needs the simulator build (build/sim/lanetrace); "
                         "this is the native build\n", prog);
         return EXIT_USAGE;
     }
-#endif
     if (scene_path != NULL && lt_sf_load(scene_path, &sf, err, sizeof err) != 0) {
         fprintf(stderr, "%s\n", err);
         return EXIT_INPUT;
@@ -1087,12 +1069,10 @@ static int cmd_render(int argc, char **argv)
         memcpy(lf, sf.lights[0].position, sizeof lf);
         have_light = 1;
     }
-#if LT_COST_MODE == LT_COST_SIM
-    if (lt_sim_init(lt_sim_machine_find(sf.machine), NULL, NULL, err, sizeof err) != 0) {
+    if (lt_meter_init(sf.machine, NULL, NULL, err, sizeof err) != 0) {
         fprintf(stderr, "%s\n", err);
         return EXIT_USAGE;
     }
-#endif
     if (lt_mesh_load(sf.mesh, &mesh, err, sizeof err) != 0) {
         fprintf(stderr, "%s\n", err);
         return EXIT_INPUT;
@@ -1263,17 +1243,16 @@ static int cmd_render(int argc, char **argv)
             goto done;
     }
     nrays += n + nshadow;
-#if LT_COST_MODE == LT_COST_SIM
-    {
+    if (lt_meter_available()) {
         /* every ray of the render: primary packets, shadow packets, peels (and the build) */
         char title[1400], extra[256], *js;
         snprintf(title, sizeof title, "render %s %ux%u %s, %s, %d layer(s), shadows", sf.mesh,
                  sf.width, sf.height, np == LT_PATH_Q16 ? "q16" : "f32", structure, layers);
         if (!quiet)
-            lt_sim_report_text(stdout, title, nrays);
+            lt_meter_report_text(stdout, title, nrays);
         snprintf(extra, sizeof extra, "{\"primary_rays\": %zu, \"shadow_rays\": %u, \"peel_rays\": %llu}",
                  n, nshadow, (unsigned long long)(nrays - n - nshadow));
-        js = lt_sim_report_json_string(title, nrays, extra);
+        js = lt_meter_report_json(title, nrays, extra);
         if (report != NULL) {
             if (js == NULL || write_atomic(report, js, err, sizeof err) != 0) {
                 fprintf(stderr, "%s\n", js == NULL ? "render: out of memory for the report" : err);
@@ -1286,7 +1265,6 @@ static int cmd_render(int argc, char **argv)
         }
         free(js);
     }
-#endif
     snprintf(path, sizeof path, "%s.png", out);
     if (lt_png_write(path, rgb, (int32_t)sf.width, (int32_t)sf.height, 3, 3 * sf.width, err,
                      sizeof err) != 0) {
@@ -1353,15 +1331,13 @@ static int cmd_render(int argc, char **argv)
         cJSON_AddNumberToObject(o, "shadow_rays", nshadow);
         cJSON_AddNumberToObject(o, "occluded", nocc);
         cJSON_AddNumberToObject(o, "rays", (double)nrays);
-#if LT_COST_MODE == LT_COST_SIM
-        {
-            lt_sim_totals_t tt;
-            lt_sim_totals(&tt);
+        if (lt_meter_available()) {
+            lt_meter_totals_t tt;
+            lt_meter_totals(&tt);
             cJSON_AddNumberToObject(o, "cycles", (double)tt.total_cycles);
             if (report != NULL)
                 cJSON_AddStringToObject(o, "report", report);
         }
-#endif
         js = cJSON_Print(o);
         if (js != NULL)
             puts(js);
@@ -1381,9 +1357,7 @@ done:
         lt_frame_free(&fr);
     lt_scene_free(&sc);
     lt_mesh_free(&mesh);
-#if LT_COST_MODE == LT_COST_SIM
-    lt_sim_shutdown();
-#endif
+    lt_meter_shutdown();
     return status;
 }
 
@@ -1427,6 +1401,168 @@ static int cmd_reproject(int argc, char **argv)
     return lt_rp_cli(argc, argv, prog, &h);
 }
 
+/* ---- machines: the machine models (sim/machines/<name>.def) ------------------------------- */
+
+static const char *const op_names[] = {
+#define LT_OP(name, unit, doc) #name,
+#define LT_EV(name, doc)
+#define LT_PH(name, doc)
+#include "lt/lt_ops.def"
+#undef LT_OP
+#undef LT_EV
+#undef LT_PH
+};
+
+static const char *const op_units[] = {
+#define LT_OP(name, unit, doc) #unit,
+#define LT_EV(name, doc)
+#define LT_PH(name, doc)
+#include "lt/lt_ops.def"
+#undef LT_OP
+#undef LT_EV
+#undef LT_PH
+};
+
+/* "64:8:64 32 KiB, 3 cy" or "none" */
+static void cache_text(char *buf, size_t n, const char *spec, uint32_t hit)
+{
+    unsigned sets, ways, line;
+    char c;
+    if (spec == NULL) {
+        snprintf(buf, n, "none");
+    } else if (sscanf(spec, "%u:%u:%u%c", &sets, &ways, &line, &c) == 3) {
+        unsigned long long b = (unsigned long long)sets * ways * line;
+        if (b >= 1024 && b % 1024 == 0)
+            snprintf(buf, n, "%s %llu KiB, %u cy", spec, b / 1024, hit);
+        else
+            snprintf(buf, n, "%s %llu B, %u cy", spec, b, hit);
+    } else {
+        snprintf(buf, n, "%s, %u cy", spec, hit);
+    }
+}
+
+static int cmd_machines(int argc, char **argv)
+{
+    int a, i, o, json = 0, ops = 0, nm;
+    size_t wn = strlen("machine"), w1 = strlen("L1"), w2 = strlen("L2");
+    const char *name;
+    char c1[96], c2[96];
+    lt_meter_machine_t m;
+    for (a = 2; a < argc; a++) {
+        if (strcmp(argv[a], "--help") == 0 || strcmp(argv[a], "-h") == 0) {
+            printf("usage: %s machines [--ops] [--json]\n"
+                   "The machine models of the cycle model, one per file sim/machines/<name>.def:\n"
+                   "name, clock, lanes, caches (sets:ways:line, size, hit latency), memory\n"
+                   "latency, description; --ops adds the price of every op class (latency/issue\n"
+                   "cycles; issue is what is charged); --json prints all of it as JSON. The native\n"
+                   "build knows the names only.\n",
+                   prog);
+            return 0;
+        } else if (strcmp(argv[a], "--json") == 0) {
+            json = 1;
+        } else if (strcmp(argv[a], "--ops") == 0) {
+            ops = 1;
+        } else {
+            fprintf(stderr, "%s machines: unknown option '%s'\n", prog, argv[a]);
+            return EXIT_USAGE;
+        }
+    }
+    for (nm = 0; lt_meter_machine_name(nm) != NULL; nm++)
+        ;
+    if (json) {
+        cJSON *root = cJSON_CreateObject(), *arr;
+        char *js;
+        cJSON_AddStringToObject(root, "build", lt_meter_available() ? "simulator" : "native");
+        arr = cJSON_AddArrayToObject(root, "machines");
+        for (i = 0; i < nm; i++) {
+            cJSON *x = cJSON_CreateObject(), *y;
+            name = lt_meter_machine_name(i);
+            cJSON_AddStringToObject(x, "name", name);
+            if (lt_meter_machine_info(name, &m) == 0) {
+                cJSON_AddStringToObject(x, "description", m.desc);
+                cJSON_AddNumberToObject(x, "clock_mhz", m.clock_mhz);
+                cJSON_AddNumberToObject(x, "lanes", m.lanes);
+                y = cJSON_AddObjectToObject(x, "l1");
+                cJSON_AddStringToObject(y, "spec", m.l1);
+                cJSON_AddNumberToObject(y, "hit_cycles", m.l1_hit);
+                if (m.l2 != NULL) {
+                    y = cJSON_AddObjectToObject(x, "l2");
+                    cJSON_AddStringToObject(y, "spec", m.l2);
+                    cJSON_AddNumberToObject(y, "hit_cycles", m.l2_hit);
+                } else {
+                    cJSON_AddNullToObject(x, "l2");
+                }
+                cJSON_AddNumberToObject(x, "memory_cycles", m.mem);
+                y = cJSON_AddObjectToObject(x, "ops");
+                for (o = 0; o < LT_OP__COUNT; o++) {
+                    cJSON *z = cJSON_AddObjectToObject(y, op_names[o]);
+                    cJSON_AddNumberToObject(z, "latency", m.latency[o]);
+                    cJSON_AddNumberToObject(z, "issue", m.issue[o]);
+                }
+            }
+            cJSON_AddItemToArray(arr, x);
+        }
+        js = cJSON_Print(root);
+        if (js != NULL)
+            puts(js);
+        free(js);
+        cJSON_Delete(root);
+        return js != NULL ? 0 : EXIT_INPUT;
+    }
+    if (!lt_meter_available()) {
+        /* names only, one per line; where the rest is on stderr */
+        for (i = 0; i < nm; i++)
+            printf("%s\n", lt_meter_machine_name(i));
+        fprintf(stderr, "%s machines: the native build has no cycle model; build/sim/lanetrace "
+                        "machines prints clocks, caches and op prices\n", prog);
+        return 0;
+    }
+    for (i = 0; i < nm; i++) {
+        name = lt_meter_machine_name(i);
+        (void)lt_meter_machine_info(name, &m);
+        cache_text(c1, sizeof c1, m.l1, m.l1_hit);
+        cache_text(c2, sizeof c2, m.l2, m.l2_hit);
+        wn = strlen(name) > wn ? strlen(name) : wn;
+        w1 = strlen(c1) > w1 ? strlen(c1) : w1;
+        w2 = strlen(c2) > w2 ? strlen(c2) : w2;
+    }
+    printf("%-*s %9s %5s  %-*s  %-*s %7s  %s\n", (int)wn, "machine", "clock", "lanes", (int)w1,
+           "L1", (int)w2, "L2", "memory", "description");
+    for (i = 0; i < nm; i++) {
+        char clk[32], mem[32];
+        name = lt_meter_machine_name(i);
+        (void)lt_meter_machine_info(name, &m);
+        cache_text(c1, sizeof c1, m.l1, m.l1_hit);
+        cache_text(c2, sizeof c2, m.l2, m.l2_hit);
+        snprintf(clk, sizeof clk, "%u MHz", m.clock_mhz);
+        snprintf(mem, sizeof mem, "%u cy", m.mem);
+        printf("%-*s %9s %5u  %-*s  %-*s %7s  %s\n", (int)wn, name, clk, m.lanes, (int)w1, c1,
+               (int)w2, c2, mem, m.desc);
+    }
+    if (!ops) {
+        printf("(caches: sets:ways:line, size, load-to-use cycles of a hit; op prices: %s "
+               "machines --ops)\n", prog);
+        return 0;
+    }
+    printf("\nop prices, latency/issue cycles (a phase's cycles = sum of count x issue + memory "
+           "stalls)\n");
+    printf("%-10s %-7s", "op class", "unit");
+    for (i = 0; i < nm; i++)
+        printf(" %12s", lt_meter_machine_name(i));
+    printf("\n");
+    for (o = 0; o < LT_OP__COUNT; o++) {
+        printf("%-10s %-7s", op_names[o], op_units[o]);
+        for (i = 0; i < nm; i++) {
+            char cell[32];
+            (void)lt_meter_machine_info(lt_meter_machine_name(i), &m);
+            snprintf(cell, sizeof cell, "%u/%u", m.latency[o], m.issue[o]);
+            printf(" %12s", cell);
+        }
+        printf("\n");
+    }
+    return 0;
+}
+
 /* ---- main ----------------------------------------------------------------------------------- */
 
 static void usage(FILE *f)
@@ -1444,9 +1580,10 @@ static void usage(FILE *f)
             "  info FILE          describe a mesh or EXR file\n"
             "  stream [SOURCE]    receive a device's report frames (see lt-stream --help)\n"
             "  diff A.json B.json compare two JSON reports\n"
+            "  machines [--ops]   the machine models: clock, lanes, caches, op prices (--json)\n"
             "  help               this text\n"
             "Every command takes --help. Exit codes: 0 ok, 1 input or runtime error, 2 usage.\n",
-            prog, LT_COST_MODE == LT_COST_SIM ? "simulator" : "native");
+            prog, lt_meter_available() ? "simulator" : "native");
 }
 
 int main(int argc, char **argv)
@@ -1472,6 +1609,8 @@ int main(int argc, char **argv)
         return cmd_diff(argc, argv);
     if (strcmp(argv[1], "shadows") == 0)
         return lt_shadows_cli(argc, argv, prog);
+    if (strcmp(argv[1], "machines") == 0)
+        return cmd_machines(argc, argv);
     fprintf(stderr, "%s: unknown command '%s'\n", prog, argv[1]);
     usage(stderr);
     return EXIT_USAGE;

@@ -10,14 +10,12 @@
 #include "io/lt_exr.h"
 #include "io/lt_heatmap.h"
 #include "io/lt_mesh.h"
+#include "lt_meter.h"
 #include "io/lt_png.h"
 #include "render/lt_render.h"
 #include "render/lt_reproject.h"
 #include "render/lt_scene.h"
 #include "io/lt_scenefile.h"
-#if LT_COST_MODE == LT_COST_SIM
-#include "lt_sim.h"
-#endif
 
 #include <cjson/cJSON.h>
 #include <math.h>
@@ -68,7 +66,7 @@ void lt_rp_cli_usage(const char *prog, FILE *f)
             "  --gamma-norm V       build: merge planes whose normals differ by < V (1e-3)\n"
             "  --gamma-dist V       build: merge when the proxy plane stays within V relative\n"
             "                       depth of its children (2^-17); w units, each in [0, 1]\n"
-            "  --machine NAME       (simulator build) machine model: lrb16, mcu-m4\n"
+            "  --machine NAME       (simulator build) machine model: %s\n"
             "ground truth (a mesh scene only; the target camera must keep the source's centred\n"
             "square-pixel intrinsics):\n"
             "  --truth              also render the target view with the object-space tracer (BVH,\n"
@@ -89,7 +87,8 @@ void lt_rp_cli_usage(const char *prog, FILE *f)
             "  -q                   quiet: no summary, no report text\n"
             "A scene file may give 'depth', 'camera' (the source) and a 'reproject' object\n"
             "(docs/scene-format.md); flags override it.\n",
-            prog, LT_RP_MAX_LAYERS, RP_DEFAULT_FOV, LT_QT_MAX_DIM, RP_DEFAULT_TRUTH_TOL);
+            prog, LT_RP_MAX_LAYERS, RP_DEFAULT_FOV, LT_QT_MAX_DIM, lt_meter_machine_names(),
+            RP_DEFAULT_TRUTH_TOL);
 }
 
 /* ---- small parsers ------------------------------------------------------------------------- */
@@ -283,9 +282,6 @@ int lt_rp_cli(int argc, char **argv, const char *prog, const lt_rp_cli_hooks_t *
     double qtp[4] = {-1.0, -1.0, -1.0, -1.0}; /* lambda_h, lambda_d, gamma_norm, gamma_dist */
     static const char *const qtp_flag[4] = {"--lambda-h", "--lambda-d", "--gamma-norm",
                                             "--gamma-dist"};
-#if LT_COST_MODE == LT_COST_SIM
-    const lt_machine_t *m = NULL;
-#endif
 
     memset(dl, 0, sizeof dl);
     memset(&dc, 0, sizeof dc);
@@ -462,14 +458,12 @@ int lt_rp_cli(int argc, char **argv, const char *prog, const lt_rp_cli_hooks_t *
             return EXIT_USAGE;
         }
     }
-#if LT_COST_MODE != LT_COST_SIM
-    if (heat_cycles != NULL || report != NULL || machine != NULL) {
+    if (!lt_meter_available() && (heat_cycles != NULL || report != NULL || machine != NULL)) {
         fprintf(stderr, "%s reproject: %s needs the simulator build (build/sim/lanetrace); this is "
                         "the native build\n", prog,
                 heat_cycles != NULL ? "--heat-cycles" : report != NULL ? "--report" : "--machine");
         return EXIT_USAGE;
     }
-#endif
     if (scene_path != NULL && lt_sf_load(scene_path, &sf, err, sizeof err) != 0) {
         fprintf(stderr, "%s\n", err);
         return EXIT_INPUT;
@@ -512,19 +506,15 @@ int lt_rp_cli(int argc, char **argv, const char *prog, const lt_rp_cli_hooks_t *
         enc = 0;
     if (machine == NULL)
         machine = sf.machine;
-#if LT_COST_MODE == LT_COST_SIM
-    {
-        m = lt_sim_machine_find(machine);
-        if (m == NULL) {
-            fprintf(stderr, "%s reproject: --machine %s: unknown (lrb16, mcu-m4)\n", prog, machine);
-            return EXIT_USAGE;
-        }
-        if (lt_sim_init(m, NULL, NULL, err, sizeof err) != 0) {
-            fprintf(stderr, "%s\n", err);
-            return EXIT_USAGE;
-        }
+    if (!lt_meter_machine_known(machine)) {
+        fprintf(stderr, "%s reproject: --machine %s: unknown (%s)\n", prog, machine,
+                lt_meter_machine_names());
+        return EXIT_USAGE;
     }
-#endif
+    if (lt_meter_init(machine, NULL, NULL, err, sizeof err) != 0) {
+        fprintf(stderr, "%s\n", err);
+        return EXIT_USAGE;
+    }
 
     /* ---- depth layers and colour ---- */
     if (layers == 0)
@@ -729,13 +719,11 @@ int lt_rp_cli(int argc, char **argv, const char *prog, const lt_rp_cli_hooks_t *
             goto done;
         }
         hk->end();
-#if LT_COST_MODE == LT_COST_SIM
-        if (lt_sim_init(m, NULL, NULL, err, sizeof err) != 0) {
+        if (lt_meter_init(machine, NULL, NULL, err, sizeof err) != 0) {
             fprintf(stderr, "%s\n", err);
             status = EXIT_INPUT;
             goto done;
         }
-#endif
     }
 
     /* ---- run ---- */
@@ -818,11 +806,11 @@ int lt_rp_cli(int argc, char **argv, const char *prog, const lt_rp_cli_hooks_t *
             ec[nc].name = "steps";
             ec[nc].type = LT_EXR_FLOAT;
             ec[nc++].data = res.steps;
-#if LT_COST_MODE == LT_COST_SIM
-            ec[nc].name = "cycles";
-            ec[nc].type = LT_EXR_FLOAT;
-            ec[nc++].data = res.cycles;
-#endif
+            if (lt_meter_available()) {
+                ec[nc].name = "cycles";
+                ec[nc].type = LT_EXR_FLOAT;
+                ec[nc++].data = res.cycles;
+            }
             if (truth) {
                 ec[nc].name = "Ztrue";
                 ec[nc].type = LT_EXR_FLOAT;
@@ -886,7 +874,6 @@ int lt_rp_cli(int argc, char **argv, const char *prog, const lt_rp_cli_hooks_t *
                                 st->cls[LT_RP_UNKNOWN]);
         double util = st->lane_ops > 0 ? (double)st->lanes_on / (16.0 * (double)st->lane_ops) : 0.0;
         char title[1400];
-        (void)util;
         snprintf(title, sizeof title, "reproject %s %ux%u x %d layer(s) -> %ux%u, %s%s%s", depth,
                  W, H, layers, res.width, res.height, enc_name[enc], tracer ? " " : "",
                  tracer ? tracer_name[tracer] : "");
@@ -955,16 +942,14 @@ int lt_rp_cli(int argc, char **argv, const char *prog, const lt_rp_cli_hooks_t *
                     printf("          holes %.2f%% of the pixels, not inpainted\n",
                            100.0 * (double)tr.inpainted / px);
             }
-#if LT_COST_MODE == LT_COST_SIM
-            printf("cycles    build %llu, setup %llu (%.1f per ray), traverse %llu (%.1f per ray); "
-                   "lane utilisation %.1f%%\n",
-                   (unsigned long long)st->cyc_build, (unsigned long long)st->cyc_setup,
-                   (double)st->cyc_setup / px, (unsigned long long)st->cyc_trace,
-                   (double)st->cyc_trace / rays, 100.0 * util);
-#endif
+            if (lt_meter_available())
+                printf("cycles    build %llu, setup %llu (%.1f per ray), traverse %llu (%.1f per "
+                       "ray); lane utilisation %.1f%%\n",
+                       (unsigned long long)st->cyc_build, (unsigned long long)st->cyc_setup,
+                       (double)st->cyc_setup / px, (unsigned long long)st->cyc_trace,
+                       (double)st->cyc_trace / rays, 100.0 * util);
         }
-#if LT_COST_MODE == LT_COST_SIM
-        {
+        if (lt_meter_available()) {
             char extra[2048], *js;
             int len = snprintf(extra, sizeof extra,
                      "{\"encoding\": \"%s\", \"tracer\": \"%s\", \"pixels\": %llu, \"traced_rays\": %llu, "
@@ -986,9 +971,9 @@ int lt_rp_cli(int argc, char **argv, const char *prog, const lt_rp_cli_hooks_t *
                 cJSON_Delete(tj);
             }
             if (!*hk->quiet)
-                lt_sim_report_text(stdout, title, st->pixels);
+                lt_meter_report_text(stdout, title, st->pixels);
             if (report != NULL) {
-                js = lt_sim_report_json_string(title, st->pixels, extra);
+                js = lt_meter_report_json(title, st->pixels, extra);
                 if (js == NULL || hk->write_text(report, js, err, sizeof err) != 0) {
                     fprintf(stderr, "%s\n", js == NULL ? "reproject: out of memory for the report"
                                                        : err);
@@ -999,11 +984,10 @@ int lt_rp_cli(int argc, char **argv, const char *prog, const lt_rp_cli_hooks_t *
                 free(js);
             }
         }
-#endif
         if (!*hk->quiet) {
             if (out != NULL)
                 printf("exr       %s (R G B Z hole steps%s%s)\n", out,
-                       LT_COST_MODE == LT_COST_SIM ? " cycles" : "", truth ? " Ztrue" : "");
+                       lt_meter_available() ? " cycles" : "", truth ? " Ztrue" : "");
             if (png != NULL)
                 printf("png       %s\n", png);
             if (heat_steps != NULL)
@@ -1054,14 +1038,14 @@ int lt_rp_cli(int argc, char **argv, const char *prog, const lt_rp_cli_hooks_t *
             cJSON_AddNumberToObject(o, "trace_seconds", st->t_trace);
             if (truth)
                 cJSON_AddItemToObject(o, "truth", truth_json(&tr));
-#if LT_COST_MODE == LT_COST_SIM
-            cJSON_AddNumberToObject(o, "build_cycles", (double)st->cyc_build);
-            cJSON_AddNumberToObject(o, "setup_cycles", (double)st->cyc_setup);
-            cJSON_AddNumberToObject(o, "traverse_cycles", (double)st->cyc_trace);
-            cJSON_AddNumberToObject(o, "cycles_per_ray",
-                                    (double)(st->cyc_setup + st->cyc_trace) / px);
-            cJSON_AddNumberToObject(o, "lane_utilisation", util);
-#endif
+            if (lt_meter_available()) {
+                cJSON_AddNumberToObject(o, "build_cycles", (double)st->cyc_build);
+                cJSON_AddNumberToObject(o, "setup_cycles", (double)st->cyc_setup);
+                cJSON_AddNumberToObject(o, "traverse_cycles", (double)st->cyc_trace);
+                cJSON_AddNumberToObject(o, "cycles_per_ray",
+                                        (double)(st->cyc_setup + st->cyc_trace) / px);
+                cJSON_AddNumberToObject(o, "lane_utilisation", util);
+            }
             js = cJSON_Print(o);
             if (js != NULL)
                 puts(js);
@@ -1086,8 +1070,6 @@ done:
         lt_scene_free(&sc);
     lt_mesh_free(&mesh);
     lt_rp_result_free(&res);
-#if LT_COST_MODE == LT_COST_SIM
-    lt_sim_shutdown();
-#endif
+    lt_meter_shutdown();
     return status;
 }

@@ -11,9 +11,7 @@
 #include "render/lt_softshadow.h"
 #include "cli/lt_cliutil.h"
 #include "cli/lt_shadows_cli.h"
-#if LT_COST_MODE == LT_COST_SIM
-#include "lt_sim.h"
-#endif
+#include "lt_meter.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -52,10 +50,10 @@ static void usage(const char *prog, FILE *f)
             "  --no-ref           skip the 256-sample reference and the quality metrics\n"
             "  --png PATH         filtered image; --raw-png PATH unfiltered; --ref-png PATH reference\n"
             "  --only frusta|packet  run one shadow method (default both, compared)\n"
-            "  --machine NAME     sim builds: machine model (default lrb16)\n"
+            "  --machine NAME     sim builds: machine model (%s; default lrb16)\n"
             "  --report           sim builds: the full cycle report of each shadow stage and the filter\n"
             "  -q                 only the result lines\n",
-            prog);
+            prog, lt_meter_machine_names());
 }
 
 static int parse3(const char *s, double v[3], double *extra)
@@ -74,31 +72,20 @@ typedef struct stage {
     uint64_t cycles;
 } stage_t;
 
-static void stage_begin(void)
-{
-#if LT_COST_MODE == LT_COST_SIM
-    lt_sim_reset();
-#endif
-}
+static void stage_begin(void) { lt_meter_reset(); }
 
 static void stage_end(stage_t *st, const char *name, double t0)
 {
     memset(st, 0, sizeof *st);
     st->name = name;
     st->seconds = lt_now_s() - t0;
-#if LT_COST_MODE == LT_COST_SIM
-    {
-        static lt_sim_totals_t t;
-        int e, p;
-        lt_sim_totals(&t);
-        for (p = 0; p < LT_PH__COUNT; p++) {
-            for (e = 0; e < LT_EV__COUNT; e++)
-                st->ev[e] += t.ctr[p][LT_OP__COUNT + e];
-            st->cyc[p] = t.cycles[p];
-        }
+    if (lt_meter_available()) {
+        lt_meter_totals_t t;
+        lt_meter_totals(&t);
+        memcpy(st->ev, t.events, sizeof st->ev);
+        memcpy(st->cyc, t.cycles, sizeof st->cyc);
         st->cycles = t.total_cycles;
     }
-#endif
 }
 
 static void stage_add(stage_t *d, const stage_t *a)
@@ -114,9 +101,7 @@ static void stage_add(stage_t *d, const stage_t *a)
 
 static double ratio(uint64_t a, uint64_t b) { return b != 0 ? (double)a / (double)b : 0.0; }
 
-#if LT_COST_MODE == LT_COST_SIM
 static double k_(uint64_t v) { return (double)v / 1000.0; }
-#endif
 
 int lt_shadows_cli(int argc, char **argv, const char *prog)
 {
@@ -389,20 +374,17 @@ int lt_shadows_cli(int argc, char **argv, const char *prog)
         rc = EXIT_INPUT;
         goto out_scene;
     }
-#if LT_COST_MODE == LT_COST_SIM
-    if (lt_sim_machine_find(machine) == NULL) {
-        fprintf(stderr, "%s: --machine %s: unknown machine\n", who, machine);
+    if (!lt_meter_machine_known(machine)) {
+        fprintf(stderr, "%s: --machine %s: unknown machine (known: %s)\n", who, machine,
+                lt_meter_machine_names());
         rc = EXIT_USAGE;
         goto out_scene;
     }
-    if (lt_sim_init(lt_sim_machine_find(machine), NULL, NULL, err, sizeof err) != 0) {
+    if (lt_meter_init(machine, NULL, NULL, err, sizeof err) != 0) {
         fprintf(stderr, "%s: %s\n", who, err);
         rc = EXIT_INPUT;
         goto out_scene;
     }
-#else
-    (void)machine;
-#endif
     lt_ss_opts_default(&sc, &o);
     o.path = num_f32 ? LT_PATH_F32 : LT_PATH_Q16;
     o.leaf = leaf;
@@ -444,10 +426,8 @@ int lt_shadows_cli(int argc, char **argv, const char *prog)
         lt_ss_primary(ss);
         stage_end(&sp, "P-Packet (+shad)", t0);
         hash_pp = lt_ss_primary_hash(ss);
-#if LT_COST_MODE == LT_COST_SIM
         if (report)
-            lt_sim_report_text(stdout, "P-Packet primary stage", 0);
-#endif
+            lt_meter_report_text(stdout, "P-Packet primary stage", 0);
     }
     for (i = 0; i < 2; i++) {
         /* S-Packet right after P-Packet (or, without P-Packet, after P-Frusta) */
@@ -456,10 +436,8 @@ int lt_shadows_cli(int argc, char **argv, const char *prog)
             t0 = lt_now_s();
             lt_ss_shadows_packet(ss);
             stage_end(&sshp, "S-Packet shadows", t0);
-#if LT_COST_MODE == LT_COST_SIM
             if (report)
-                lt_sim_report_text(stdout, "S-Packet shadow stage", 0);
-#endif
+                lt_meter_report_text(stdout, "S-Packet shadow stage", 0);
         }
         if (i == 0 && run_pf) {
             stage_begin();
@@ -467,10 +445,8 @@ int lt_shadows_cli(int argc, char **argv, const char *prog)
             lt_ss_primary_frusta(ss);
             stage_end(&spf, "P-Frusta (+shad)", t0);
             hash_pf = lt_ss_primary_hash(ss);
-#if LT_COST_MODE == LT_COST_SIM
             if (report)
-                lt_sim_report_text(stdout, "P-Frusta primary stage", 0);
-#endif
+                lt_meter_report_text(stdout, "P-Frusta primary stage", 0);
         }
     }
     if (run_fr) {
@@ -478,10 +454,8 @@ int lt_shadows_cli(int argc, char **argv, const char *prog)
         t0 = lt_now_s();
         lt_ss_shadows_frusta(ss);
         stage_end(&sshf, "S-Frusta shadows", t0);
-#if LT_COST_MODE == LT_COST_SIM
         if (report)
-            lt_sim_report_text(stdout, "S-Frusta shadow stage", 0);
-#endif
+            lt_meter_report_text(stdout, "S-Frusta shadow stage", 0);
     }
     stage_begin();
     t0 = lt_now_s();
@@ -491,10 +465,8 @@ int lt_shadows_cli(int argc, char **argv, const char *prog)
     t0 = lt_now_s();
     lt_ss_filter(ss);
     stage_end(&sfilt, "filter", t0);
-#if LT_COST_MODE == LT_COST_SIM
     if (report)
-        lt_sim_report_text(stdout, "filter stage", 0);
-#endif
+        lt_meter_report_text(stdout, "filter stage", 0);
     lt_ss_counts(ss, &cnt);
 
     printf("rays      %llu primary (%llu hits), %llu lit pixels x 16 = %llu shadow rays, %llu "
@@ -557,14 +529,15 @@ int lt_shadows_cli(int argc, char **argv, const char *prog)
     stage_add(&tot_fo, &sshf);
     stage_add(&tot_fo, &sshade);
     stage_add(&tot_fo, &sfilt);
-#if LT_COST_MODE == LT_COST_SIM
-    {
-        const lt_machine_t *mm = lt_sim_machine();
-        double mhz = (double)mm->clock_mhz;
+    if (lt_meter_available()) {
+        lt_meter_machine_t mm;
+        double mhz;
         const stage_t *rows[5];
         const char *names[5] = {"P-Packet (+shad)", "P-Frusta (+shad)", "S-Packet", "S-Frusta",
                                 "S-Frusta/P-Packet"};
         int r, show[5];
+        (void)lt_meter_machine_info(machine, &mm);
+        mhz = (double)mm.clock_mhz;
         rows[0] = &sp;
         rows[1] = &spf;
         rows[2] = &tot_p;
@@ -577,7 +550,7 @@ int lt_shadows_cli(int argc, char **argv, const char *prog)
         show[4] = run_fr && run_pp && run_pf;
         printf("\nTable 1 (simulated, %s at %.0f MHz, one core; P rows: cycles without shading "
                "(with it), as the paper's; S rows include primary rays, shading and filtering as "
-               "in the paper)\n", mm->name, mhz);
+               "in the paper)\n", mm.name, mhz);
         printf("%-18s %21s %10s %10s %22s %8s  %s\n", "", "#tris (+culling)", "#AABB", "#isec",
                "cycles", "lanes", "cycles: setup/traverse/intersect/shade/filter");
         for (r = 0; r < 5; r++) {
@@ -664,29 +637,27 @@ int lt_shadows_cli(int argc, char **argv, const char *prog)
                    "%.1f Mrays/s\n",
                    ratio(cnt.primary_rays + cnt.shadow_rays, tot_p.cycles) * mhz,
                    ratio(cnt.shadow_rays, sshp.cycles) * mhz);
+    } else {
+        if (run_pp)
+            printf("native    P-Packet %.3f s (%.2f Mrays/s with shading)", sp.seconds,
+                   (double)cnt.primary_rays / sp.seconds / 1e6);
+        if (run_pf)
+            printf("%s P-Frusta %.3f s (%.2f Mrays/s with shading)", run_pp ? "," : "native   ",
+                   spf.seconds, (double)cnt.primary_rays / spf.seconds / 1e6);
+        if (run_pk)
+            printf(", S-Packet shadows %.3f s (%.2f Mrays/s)", sshp.seconds,
+                   (double)cnt.shadow_rays / sshp.seconds / 1e6);
+        if (run_fr)
+            printf(", S-Frusta shadows %.3f s (%.2f Mrays/s)", sshf.seconds,
+                   (double)cnt.shadow_rays / sshf.seconds / 1e6);
+        printf(", shade %.3f s, filter %.3f s (one thread)\n", sshade.seconds, sfilt.seconds);
+        if (run_pk && run_fr)
+            printf("native    S-Frusta / S-Packet shadow speed-up %.2fx\n",
+                   sshp.seconds / sshf.seconds);
+        if (run_pp && run_pf)
+            printf("native    P-Frusta / P-Packet primary speed-up %.2fx (with shading)\n",
+                   sp.seconds / spf.seconds);
     }
-#else
-    (void)tot_fo;
-    if (run_pp)
-        printf("native    P-Packet %.3f s (%.2f Mrays/s with shading)", sp.seconds,
-               (double)cnt.primary_rays / sp.seconds / 1e6);
-    if (run_pf)
-        printf("%s P-Frusta %.3f s (%.2f Mrays/s with shading)", run_pp ? "," : "native   ",
-               spf.seconds, (double)cnt.primary_rays / spf.seconds / 1e6);
-    if (run_pk)
-        printf(", S-Packet shadows %.3f s (%.2f Mrays/s)", sshp.seconds,
-               (double)cnt.shadow_rays / sshp.seconds / 1e6);
-    if (run_fr)
-        printf(", S-Frusta shadows %.3f s (%.2f Mrays/s)", sshf.seconds,
-               (double)cnt.shadow_rays / sshf.seconds / 1e6);
-    printf(", shade %.3f s, filter %.3f s (one thread)\n", sshade.seconds, sfilt.seconds);
-    if (run_pk && run_fr)
-        printf("native    S-Frusta / S-Packet shadow speed-up %.2fx\n",
-               sshp.seconds / sshf.seconds);
-    if (run_pp && run_pf)
-        printf("native    P-Frusta / P-Packet primary speed-up %.2fx (with shading)\n",
-               sp.seconds / spf.seconds);
-#endif
     if (!no_ref) {
         lt_ss_quality_t q;
         t0 = lt_now_s();

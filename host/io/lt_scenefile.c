@@ -13,7 +13,31 @@
 
 const char *const lt_sf_structures[] = {"chunks", "bvh", "bvhq", "kd", "grid", NULL};
 
-static const char *const machines[] = {"lrb16", "mcu-m4", NULL};
+/* The machine models' names, from the same generated list as the simulator's table
+ * (sim/lt_machines.h): names only, so the validator links without the simulator. */
+const char *const lt_sf_machines[] = {
+#define LT_MACHINE(id, name, desc, clock_mhz, lanes) name,
+#include "lt_machines.h"
+    NULL};
+
+static const char machine_list[] = ""
+#define LT_MACHINE(id, name, desc, clock_mhz, lanes) ", " name
+#include "lt_machines.h"
+    ;
+
+const char *lt_sf_machine_list(void)
+{
+    return sizeof machine_list > 2 ? machine_list + 2 : machine_list;
+}
+
+int lt_sf_machine_known(const char *name)
+{
+    int i;
+    for (i = 0; lt_sf_machines[i] != NULL; i++)
+        if (strcmp(lt_sf_machines[i], name) == 0)
+            return 1;
+    return 0;
+}
 
 typedef struct ctx {
     const char *name;
@@ -291,7 +315,7 @@ static int parse_root(ctx_t *c, const cJSON *root, lt_scenefile_t *sf)
                       : strcmp(tmp, "f32") == 0 ? LT_SF_NUM_F32 : LT_SF_NUM_BOTH;
     }
     if ((it = cJSON_GetObjectItemCaseSensitive(root, "machine")) != NULL &&
-        get_choice(c, it, "machine", machines, sf->machine, sizeof sf->machine) != 0)
+        get_choice(c, it, "machine", lt_sf_machines, sf->machine, sizeof sf->machine) != 0)
         return -1;
     if ((it = cJSON_GetObjectItemCaseSensitive(root, "caches")) != NULL) {
         const cJSON *x;

@@ -30,7 +30,7 @@ typedef struct lt_scenefile {
     uint32_t width, height;        /* 1..LT_SF_MAX_RES */
     char structure[16];            /* "chunks" */
     lt_sf_num_t numeric;
-    char machine[32];              /* "lrb16", "mcu-m4" */
+    char machine[32];              /* one of lt_sf_machines ("lrb16") */
     char l1[32], l2[32];           /* cache overrides, "" = the machine's */
     int nlights;
     lt_sf_light_t lights[LT_SF_MAX_LIGHTS];
@@ -62,5 +62,15 @@ int lt_sf_parse(const char *text, const char *name, const char *base_dir, lt_sce
 
 /* Structure names the tracer accepts (NULL-terminated). */
 extern const char *const lt_sf_structures[];
+
+/* Machine model names (NULL-terminated, in file name order): one per sim/machines/<name>.def, known
+ * in every build (the native one runs no cycle model). */
+extern const char *const lt_sf_machines[];
+
+/* The same as one string for messages: "lrb16, mcu-m4". */
+const char *lt_sf_machine_list(void);
+
+/* 1 when name is one of lt_sf_machines. */
+int lt_sf_machine_known(const char *name);
 
 #endif /* LT_SCENEFILE_H */

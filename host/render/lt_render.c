@@ -1,11 +1,10 @@
 /* lt_render.c - frame tracing over the core's structures, reference frames, comparison.
- * Host only; in sim builds (LT_COST_SIM) it samples the simulator's cycle total per packet.
+ * Host only; in sim builds it samples the cycle model's total per packet (lt_meter.h; zeros
+ * natively).
  */
 #include "render/lt_render.h"
 #include "io/lt_fx_float.h"
-#if LT_COST_MODE == LT_COST_SIM
-#include "lt_sim.h"
-#endif
+#include "lt_meter.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -110,11 +109,9 @@ static lt_accel_t *build_bvh(const lt_scene_t *s, lt_accel_t *a, int quantised, 
         /* the quantised tree keeps its nodes plus the source tree's index array */
         a->bytes = a->bvhq.bytes + (size_t)s->ntris * sizeof(uint32_t);
     }
-#if LT_COST_MODE == LT_COST_SIM
-    lt_sim_region(a->arena, a->bvh.bytes, 0x20000000u);
+    lt_meter_region(a->arena, a->bvh.bytes, 0x20000000u);
     if (quantised)
-        lt_sim_region(a->qmem, a->bvhq.bytes, 0x30000000u);
-#endif
+        lt_meter_region(a->qmem, a->bvhq.bytes, 0x30000000u);
     return a;
 }
 
@@ -150,9 +147,7 @@ static lt_accel_t *build_kdgrid(const lt_scene_t *s, lt_accel_t *a, char *err, s
                  a->kind == ACC_KD ? "kd-tree" : "grid", s->ntris, lt_status_str(st));
         return NULL;
     }
-#if LT_COST_MODE == LT_COST_SIM
-    lt_sim_region(a->mem, a->bytes, 0x20000000u);
-#endif
+    lt_meter_region(a->mem, a->bytes, 0x20000000u);
     return a;
 }
 
@@ -187,12 +182,10 @@ lt_accel_t *lt_accel_build(const lt_scene_t *s, const char *structure, lt_path_t
     a->path = path;
     a->kind = kind;
     a->n = s->ntris;
-#if LT_COST_MODE == LT_COST_SIM
     if (path == LT_PATH_Q16)
-        lt_sim_region(s->tq, s->ntris * sizeof *s->tq, 0x10000000u);
+        lt_meter_region(s->tq, s->ntris * sizeof *s->tq, 0x10000000u);
     else
-        lt_sim_region(s->tf, s->ntris * sizeof *s->tf, 0x10000000u);
-#endif
+        lt_meter_region(s->tf, s->ntris * sizeof *s->tf, 0x10000000u);
     if (kind == ACC_KD || kind == ACC_GRID) {
         if (build_kdgrid(s, a, err, errlen) == NULL) {
             lt_accel_free(a);
@@ -209,18 +202,14 @@ lt_accel_t *lt_accel_build(const lt_scene_t *s, const char *structure, lt_path_t
     }
     if (path == LT_PATH_Q16) {
         a->boxes_q = malloc(nb * sizeof *a->boxes_q);
-#if LT_COST_MODE == LT_COST_SIM
         if (a->boxes_q != NULL)
-            lt_sim_region(a->boxes_q, nb * sizeof *a->boxes_q, 0x20000000u);
-#endif
+            lt_meter_region(a->boxes_q, nb * sizeof *a->boxes_q, 0x20000000u);
         st = a->boxes_q ? lt_chunks_build_q16(s->tq, s->ntris, a->boxes_q) : LT_E_SPACE;
         a->bytes = nb * sizeof *a->boxes_q;
     } else {
         a->boxes_f = malloc(nb * sizeof *a->boxes_f);
-#if LT_COST_MODE == LT_COST_SIM
         if (a->boxes_f != NULL)
-            lt_sim_region(a->boxes_f, nb * sizeof *a->boxes_f, 0x20000000u);
-#endif
+            lt_meter_region(a->boxes_f, nb * sizeof *a->boxes_f, 0x20000000u);
         st = a->boxes_f ? lt_chunks_build_f32(s->tf, s->ntris, a->boxes_f) : LT_E_SPACE;
         a->bytes = nb * sizeof *a->boxes_f;
     }
@@ -246,23 +235,9 @@ void lt_accel_free(lt_accel_t *a)
     free(a);
 }
 
-static uint64_t cycles_now(void)
-{
-#if LT_COST_MODE == LT_COST_SIM
-    return lt_sim_cycles_total();
-#else
-    return 0;
-#endif
-}
+static uint64_t cycles_now(void) { return lt_meter_cycles(); }
 
-static uint64_t nodes_now(void)
-{
-#if LT_COST_MODE == LT_COST_SIM
-    return lt_sim_event_total(LT_EV_NODES);
-#else
-    return 0;
-#endif
-}
+static uint64_t nodes_now(void) { return lt_meter_event(LT_EV_NODES); }
 
 /* Closest hit of one packet through the structure. */
 static void trace16(const lt_scene_t *s, const lt_accel_t *a, lt_ray16_q16_t *rq,

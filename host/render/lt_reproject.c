@@ -6,6 +6,7 @@
  */
 #include "render/lt_reproject.h"
 #include "cli/lt_cliutil.h"
+#include "lt_meter.h"
 #include "render/lt_qt_ref.h"
 
 #include <math.h>
@@ -13,22 +14,12 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
-#if LT_COST_MODE == LT_COST_SIM
-#include "lt_sim.h"
-#endif
 
 /* A segment start within this many pixels of the source's border was clipped by the screen (the
  * clip puts it on the border up to rounding in s15.16 or float32). */
 #define RP_EDGE_EPS (1.0 / 256.0)
 
-static uint64_t cycles_now(void)
-{
-#if LT_COST_MODE == LT_COST_SIM
-    return lt_sim_cycles_total();
-#else
-    return 0;
-#endif
-}
+static uint64_t cycles_now(void) { return lt_meter_cycles(); }
 
 void lt_rp_opts_default(lt_rp_opts_t *o)
 {
@@ -109,9 +100,7 @@ static int tracer_build(rp_tracer_t *t, const lt_rp_opts_t *o, uint32_t W, uint3
                      name[o->tracer]);
             return -1;
         }
-#if LT_COST_MODE == LT_COST_SIM
-        (void)lt_sim_region(*arena, *bytes, 0x40000000u);
-#endif
+        lt_meter_region(*arena, *bytes, 0x40000000u);
         if (o->tracer == LT_RP_HIZ)
             s = fenc ? lt_hiz_build_f32(&t->hiz, &sd, &o->ssb, wf, *arena, bytes)
                      : lt_hiz_build_q30(&t->hiz, &sd, &o->ssb, wq, *arena, bytes);
@@ -474,10 +463,7 @@ int lt_rp_run(const lt_rp_source_t *src, const lt_reproj_cam_t *dst, const lt_rp
     int e, status = -1, fenc;
     lt_status_t s;
     double t0;
-    uint64_t c0;
-#if LT_COST_MODE == LT_COST_SIM
-    lt_sim_totals_t tt0, tt1;
-#endif
+    uint64_t c0, lanes_on0, lane_ops0;
 
     memset(res, 0, sizeof *res);
     if (o == NULL) {
@@ -543,12 +529,10 @@ int lt_rp_run(const lt_rp_source_t *src, const lt_reproj_cam_t *dst, const lt_rp
 
     /* the tracer: quadtree (built), DDA (no structure) or Hi-Z (built) */
     t0 = lt_now_s();
-#if LT_COST_MODE == LT_COST_SIM
     if (wq != NULL)
-        (void)lt_sim_region(wq, n * sizeof *wq, 0x50000000u);
+        lt_meter_region(wq, n * sizeof *wq, 0x50000000u);
     else
-        (void)lt_sim_region(wf, n * sizeof *wf, 0x50000000u);
-#endif
+        lt_meter_region(wf, n * sizeof *wf, 0x50000000u);
     c0 = cycles_now();
     if (tracer_build(&tr, o, W, H, src->layers, wq, wf, &arena, &bytes, err, errlen) != 0)
         goto done;
@@ -598,9 +582,8 @@ int lt_rp_run(const lt_rp_source_t *src, const lt_reproj_cam_t *dst, const lt_rp
     res->st.pixels = np;
 
     t0 = lt_now_s();
-#if LT_COST_MODE == LT_COST_SIM
-    lt_sim_totals(&tt0);
-#endif
+    lanes_on0 = lt_meter_event(LT_EV_LANES_ON);
+    lane_ops0 = lt_meter_event(LT_EV_LANE_OPS);
     for (ty = 0; ty < dst->height; ty += 4) {
         for (tx = 0; tx < dst->width; tx += 4) {
             lt_mask16_t k = 0xFFFF, kon = 0;
@@ -720,18 +703,8 @@ int lt_rp_run(const lt_rp_source_t *src, const lt_reproj_cam_t *dst, const lt_rp
             o->progress((double)(ty + 4) / (double)dst->height);
     }
     res->st.t_trace = lt_now_s() - t0;
-#if LT_COST_MODE == LT_COST_SIM
-    lt_sim_totals(&tt1);
-    {
-        int ph;
-        for (ph = 0; ph < LT_PH__COUNT; ph++) {
-            res->st.lanes_on += tt1.ctr[ph][LT_OP__COUNT + LT_EV_LANES_ON] -
-                                tt0.ctr[ph][LT_OP__COUNT + LT_EV_LANES_ON];
-            res->st.lane_ops += tt1.ctr[ph][LT_OP__COUNT + LT_EV_LANE_OPS] -
-                                tt0.ctr[ph][LT_OP__COUNT + LT_EV_LANE_OPS];
-        }
-    }
-#endif
+    res->st.lanes_on += lt_meter_event(LT_EV_LANES_ON) - lanes_on0;
+    res->st.lane_ops += lt_meter_event(LT_EV_LANE_OPS) - lane_ops0;
     res->st.cyc_total = res->st.cyc_build + res->st.cyc_setup + res->st.cyc_trace;
     for (i = 0; i < np; i++) {
         res->st.cls[res->cls[i]]++;

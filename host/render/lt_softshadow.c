@@ -7,10 +7,8 @@
  */
 #include "render/lt_softshadow.h"
 #include "io/lt_fx_float.h"
+#include "lt_meter.h"
 #include "io/lt_png.h"
-#if LT_COST_MODE == LT_COST_SIM
-#include "lt_sim.h"
-#endif
 
 #include <math.h>
 #include <stdio.h>
@@ -280,14 +278,12 @@ void lt_ss_free(lt_softshadow_t *ss)
     free(ss);
 }
 
-#if LT_COST_MODE == LT_COST_SIM
 /* Fixed simulated addresses for every array the kernels touch (cache results independent of the
- * host allocator), 16 MiB apart. */
+ * host allocator), 16 MiB apart; no-ops without a cycle model. */
 static void region(const void *p, size_t bytes, unsigned slot)
 {
-    (void)lt_sim_region(p, bytes, 0x10000000u + (uint64_t)slot * 0x01000000u);
+    lt_meter_region(p, bytes, 0x10000000u + (uint64_t)slot * 0x01000000u);
 }
-#endif
 
 lt_softshadow_t *lt_ss_create(const lt_scene_t *s, const lt_camera_t *cam, const lt_ss_light_t *l,
                               const lt_ss_opts_t *o, char *err, size_t errlen)
@@ -449,7 +445,6 @@ lt_softshadow_t *lt_ss_create(const lt_scene_t *s, const lt_camera_t *cam, const
             return NULL;
         }
     }
-#if LT_COST_MODE == LT_COST_SIM
     if (o->path == LT_PATH_Q16) {
         region(s->tq, s->ntris * sizeof *s->tq, 0);
         region(ss->tnq, s->ntris * 3 * sizeof *ss->tnq, 3);
@@ -470,7 +465,6 @@ lt_softshadow_t *lt_ss_create(const lt_scene_t *s, const lt_camera_t *cam, const
         region(ss->vtq, sizeof *ss->vtq, 12);
     else
         region(ss->vtf, sizeof *ss->vtf, 12);
-#endif
     return ss;
 }
 

@@ -5,10 +5,11 @@
  * time spent waiting for link slots) at the machine's clock. Frames go to stdout or --out.
  * --direct traces the same frames without streaming and prints one summary line per frame in the
  * format of lt-stream --tiles, the reference the end-to-end test compares the stream against.
- * Exit: 0 ok, 1 device or output error, 2 usage. Host (sim build) only.
+ * Exit: 0 ok, 1 device or output error, 2 usage. Host (sim build) only; it reads the cycle model
+ * through lt_meter.h like the other programs.
  */
 #include "lt/lt.h"
-#include "lt_sim.h"
+#include "lt_meter.h"
 #include "stream_dev.h"
 
 #include <errno.h>
@@ -23,21 +24,10 @@ typedef struct simdev {
     int werr;           /* a write failed */
 } simdev_t;
 
-static uint64_t ev_total(const lt_sim_totals_t *t, int ev)
-{
-    uint64_t s = 0;
-    int p;
-    for (p = 0; p < LT_PH__COUNT; p++)
-        s += t->ctr[p][LT_OP__COUNT + ev];
-    return s;
-}
-
 static uint64_t sd_ticks(void *ctx)
 {
     simdev_t *d = ctx;
-    lt_sim_totals_t t;
-    lt_sim_totals(&t);
-    return t.total_cycles + d->idle;
+    return lt_meter_cycles() + d->idle;
 }
 
 static void sd_idle_until(void *ctx, uint64_t t)
@@ -50,20 +40,20 @@ static void sd_idle_until(void *ctx, uint64_t t)
 
 static void sd_counters(void *ctx, lt_sdev_ctr_t *c)
 {
-    lt_sim_totals_t t;
+    lt_meter_totals_t t;
     (void)ctx;
-    lt_sim_totals(&t);
+    lt_meter_totals(&t);
     c->cycles = t.total_cycles;
-    c->aabb = ev_total(&t, LT_EV_AABB);
-    c->aabb_rays = ev_total(&t, LT_EV_AABB_RAYS);
-    c->tris = ev_total(&t, LT_EV_TRIS);
-    c->tri_rays = ev_total(&t, LT_EV_TRI_RAYS);
+    c->aabb = t.events[LT_EV_AABB];
+    c->aabb_rays = t.events[LT_EV_AABB_RAYS];
+    c->tris = t.events[LT_EV_TRIS];
+    c->tri_rays = t.events[LT_EV_TRI_RAYS];
 }
 
 static void sd_region(void *ctx, const void *p, size_t bytes, uint64_t sim_base)
 {
     (void)ctx;
-    (void)lt_sim_region(p, bytes, sim_base);
+    lt_meter_region(p, bytes, sim_base);
 }
 
 static void sd_sink(void *ctx, const uint8_t *b, uint32_t n)
@@ -75,11 +65,19 @@ static void sd_sink(void *ctx, const uint8_t *b, uint32_t n)
 
 static void usage(FILE *f)
 {
+    const char *name;
+    int i;
+    fprintf(f, "usage: lt-stream-dev [--machine NAME] [--frames N] [--image-from N] [--cap N]\n"
+               "                     [--link BYTES_PER_S] [--out PATH] [--direct]\n"
+               "  --machine NAME   machine model (default mcu-m4):");
+    for (i = 0; (name = lt_meter_machine_name(i)) != NULL; i++) {
+        lt_meter_machine_t m;
+        (void)lt_meter_machine_info(name, &m);
+        fprintf(f, "%s %s (%u MHz)", i > 0 ? "," : "", name, m.clock_mhz);
+    }
     fprintf(
         f,
-        "usage: lt-stream-dev [--machine NAME] [--frames N] [--image-from N] [--cap N]\n"
-        "                     [--link BYTES_PER_S] [--out PATH] [--direct]\n"
-        "  --machine NAME   machine model: mcu-m4 (default, 168 MHz) or lrb16 (1 GHz)\n"
+        "\n"
         "  --frames N       image frames to trace, 1..%d (default 4)\n"
         "  --image-from N   frames >= N also stream IMAGE tiles (default 2; N >= frames: none)\n"
         "  --cap N          batcher ring capacity in frames, 4..64 (default 16; limits scale)\n"
@@ -105,7 +103,7 @@ int main(int argc, char **argv)
 {
     static lt_sdev_result_t res;
     const char *machine = "mcu-m4", *out = NULL;
-    const lt_machine_t *m;
+    lt_meter_machine_t m;
     lt_sdev_cfg_t cfg;
     lt_sdev_port_t port;
     simdev_t dev;
@@ -151,13 +149,12 @@ int main(int argc, char **argv)
             return 2;
         }
     }
-    m = lt_sim_machine_find(machine);
-    if (m == NULL) {
-        fprintf(stderr, "lt-stream-dev: --machine %s: unknown machine (known: mcu-m4, lrb16)\n",
-                machine);
+    if (lt_meter_machine_info(machine, &m) != 0) {
+        fprintf(stderr, "lt-stream-dev: --machine %s: unknown machine (known: %s)\n", machine,
+                lt_meter_machine_names());
         return 2;
     }
-    if (lt_sim_init(m, NULL, NULL, err, sizeof err) != 0) {
+    if (lt_meter_init(machine, NULL, NULL, err, sizeof err) != 0) {
         fprintf(stderr, "lt-stream-dev: %s\n", err);
         return 1;
     }
@@ -182,14 +179,14 @@ int main(int argc, char **argv)
             return 2;
         }
     }
-    snprintf(name, sizeof name, "sim:%s", m->name);
+    snprintf(name, sizeof name, "sim:%s", m.name);
     port.ticks = sd_ticks;
     port.idle_until = sd_idle_until;
     port.counters = sd_counters;
     port.region = sd_region;
     port.sink = sd_sink;
     port.ctx = &dev;
-    port.tick_hz = m->clock_mhz * 1000000u;
+    port.tick_hz = m.clock_mhz * 1000000u;
     port.valid = LT_STREAM_F_TICKS | LT_STREAM_F_CYCLES | LT_STREAM_F_AABB | LT_STREAM_F_TRIS;
     port.source = LT_STREAM_SRC_SIM;
     port.name = name;
@@ -218,7 +215,7 @@ int main(int argc, char **argv)
                 res.tx.dropped[2], res.tx.drop_records, res.tx.max_depth, cap, res.tx.full_waits,
                 (unsigned long long)res.link_done, (double)res.link_done / (double)port.tick_hz);
     }
-    lt_sim_shutdown();
+    lt_meter_shutdown();
     if (rc != 0)
         fprintf(stderr, "lt-stream-dev: device error %d\n", rc);
     return rc != 0 ? 1 : 0;

@@ -1,4 +1,4 @@
-/* test_exr.c - cmocka tests of host/lt_exr (OpenEXR writer and depth reader): half conversion
+/* test_exr.c - cmocka tests of host/io/lt_exr (OpenEXR writer and depth reader): half conversion
  * against a double-precision reference, FLOAT/HALF round trips over three compressions, data
  * windows inside and outside the display window, multi-layer names, NaN/inf/0 kept, tiled and
  * deep files made here with the raw C API (front-most sample checked by hand), size limits,

@@ -1,4 +1,4 @@
-/* test_mesh.c - cmocka tests of host/lt_mesh (assimp import, in-memory gunzip, OBJ line checks):
+/* test_mesh.c - cmocka tests of host/io/lt_mesh (assimp import, in-memory gunzip, OBJ line checks):
  * triangle counts of every shared scene (../shared/scenes; skipped when absent, failed under
  * CI=true) including the 53,627 zero-area triangles of conference.obj.gz, quads and negative
  * indices, .gz = plain (one and two gzip members), and malformed input made here: truncated,

@@ -1,4 +1,4 @@
-/* test_png.c - cmocka tests of host/lt_png (8-bit PNG writer) and host/lt_heatmap (Turbo false
+/* test_png.c - cmocka tests of host/io/lt_png (8-bit PNG writer) and host/io/lt_heatmap (Turbo false
  * colour, legend bar, min/max labels, PNG and EXR output). Every PNG is read back with libpng's
  * own simplified reader (png_image), independent of the writer's code path; heatmap pixels are
  * checked against lt_heatmap_color and the 5x7 glyph pixel counts. Builds: host, sim, asan.
