@@ -116,60 +116,6 @@ static lt_status_t qt_prepare(lt_qt_t *qt, const lt_qt_desc_t *d, const lt_qt_pa
     return LT_OK;
 }
 
-/* ---- lane helpers (each charges itself, as the lt_v16.h ops do) -------------------------------- */
-
-LT_INLINE int32_t qi_sub1(int32_t a, int32_t b) { return lt__wrap32((int64_t)a - b); }
-LT_INLINE int32_t qi_or1(int32_t a, int32_t b)
-{
-    return lt__wrap32((int64_t)((uint32_t)a | (uint32_t)b));
-}
-LT_INLINE int32_t qi_xor1(int32_t a, int32_t b)
-{
-    return lt__wrap32((int64_t)((uint32_t)a ^ (uint32_t)b));
-}
-LT__V16_BIN(lt_vi32_t, qi_sub, VALU, qi_sub1)
-LT__V16_BIN(lt_vi32_t, qi_or, VALU, qi_or1)
-LT__V16_BIN(lt_vi32_t, qi_xor, VALU, qi_xor1)
-LT__V16_BIN(lt_vi32_t, qi_min, VALU, lt__q16_min)
-LT__V16_CMP(lt_vi32_t, qi_cmpgt, VCMP, >)
-LT__V16_CMP(lt_vi32_t, qi_cmplt, VCMP, <)
-LT__V16_CMP(lt_vi32_t, qi_cmpge, VCMP, >=)
-#define qi_add lt_vi32_add_wrap
-#define qi_add_m lt_vi32_add_wrap_m
-
-/* a << s per lane for 0 <= a, a 2^s < 2^31 (node coordinates). Cost: VSHIFT x1. */
-static lt_vi32_t qi_shl_v(lt_vi32_t a, lt_vi32_t s)
-{
-    int i;
-    LT_COST(VSHIFT, 1);
-    for (i = 0; i < LT_LANES; i++)
-        a.l[i] = lt__wrap32((int64_t)a.l[i] * ((int64_t)1 << (s.l[i] & 31)));
-    return a;
-}
-
-/* a >> s per lane, rounding toward minus infinity (lt__asr32). Cost: VSHIFT x1. */
-static lt_vi32_t qi_asr_v(lt_vi32_t a, lt_vi32_t s)
-{
-    int i;
-    LT_COST(VSHIFT, 1);
-    for (i = 0; i < LT_LANES; i++)
-        a.l[i] = lt__asr32(a.l[i], (unsigned)s.l[i] & 31u);
-    return a;
-}
-
-/* findMSB per lane in k (31 - clz; x != 0), 0 elsewhere. Cost: VALU x1 (a lane count-leading-zeros,
- * AVX-512 vplzcntd). */
-static lt_vi32_t qi_msb(lt_mask16_t k, lt_vi32_t x)
-{
-    lt_vi32_t r;
-    int i;
-    LT_COST(VALU, 1);
-    LT_UTIL(k);
-    for (i = 0; i < LT_LANES; i++)
-        r.l[i] = LT__ON(k, i) ? 31 - (int32_t)lt__clz32((uint32_t)x.l[i]) : 0;
-    return r;
-}
-
 /* Node index and the outside-the-grid test: lt_qt_grid.inc (shared with lt_hiz.c's cells). */
 #include "lt_qt_grid.inc"
 
@@ -186,17 +132,6 @@ static lt_mask16_t qt_outside(const lt_qt_t *qt, lt_mask16_t k, lt_vi32_t lvl, l
 }
 
 /* ==== fixed point: s1.30 w and t, int64 wide values ============================================ */
-
-/* s1.30 lanes (int32): the scalar bodies are format-free integer ops. */
-LT__V16_BIN(lt_vq30_t, qq_add, VALU, lt__q16_add_sat)
-LT__V16_BIN(lt_vq30_t, qq_sub, VALU, lt__q16_sub_sat)
-LT__V16_BIN(lt_vq30_t, qq_min, VALU, lt__q16_min)
-LT__V16_BIN(lt_vq30_t, qq_max, VALU, lt__q16_max)
-LT__V16_UN(lt_vq30_t, qq_abs, VALU, lt__q16_abs_sat)
-LT__V16_CMP(lt_vq30_t, qq_cmplt, VCMP, <)
-LT__V16_CMP(lt_vq30_t, qq_cmple, VCMP, <=)
-LT__V16_CMP(lt_vq30_t, qq_cmpgt, VCMP, >)
-LT__V16_CMP(lt_vq30_t, qq_cmpge, VCMP, >=)
 
 /* int64 lanes. Inputs are bounded by the kernels (docs/quadtree.md), so no op here overflows;
  * wide min/max/abs/blend take the wide-op class like the adds. */
@@ -771,8 +706,8 @@ static lt_mask16_t q_child_side(const qsetup_t *S, int a, lt_mask16_t k, lt_vq30
     lt_mask16_t np = (lt_mask16_t)(k & ~S->par[a]), pp = (lt_mask16_t)(k & S->par[a]), r = 0;
     if (np != 0) {
         lt_vq30_t tm = q_tcross(S, a, np, xm);
-        r = (lt_mask16_t)(qq_cmpge_m((lt_mask16_t)(np & ~S->neg[a]), t, tm) |
-                          qq_cmplt_m((lt_mask16_t)(np & S->neg[a]), t, tm));
+        r = (lt_mask16_t)(lt_vq30_cmpge_m((lt_mask16_t)(np & ~S->neg[a]), t, tm) |
+                          lt_vq30_cmplt_m((lt_mask16_t)(np & S->neg[a]), t, tm));
     }
     if (pp != 0) {
         const lt_vq16_t *o = a ? &S->r->y : &S->r->x;
@@ -858,8 +793,8 @@ static lt_mask16_t q_setup(const lt_qt_t *qt, const lt_qray16_q30_t *r, lt_mask1
         hi = lt_vi32_blend(neg, lt_vi32_set1(ext), lt_vi32_set1(0));
         te = q_tcross(S, a, kn, lo);
         tx = q_tcross(S, a, kn, hi);
-        *t0 = lt_vq30_blend(kn, *t0, qq_max(*t0, te));
-        *t1 = lt_vq30_blend(kn, *t1, qq_min(*t1, tx));
+        *t0 = lt_vq30_blend(kn, *t0, lt_vq30_max(*t0, te));
+        *t1 = lt_vq30_blend(kn, *t1, lt_vq30_min(*t1, tx));
         /* parallel: inside the half-open [0, ext) or never */
         for (i = 0; i < LT_LANES; i++) {
             if (LT__ON(k & S->par[a], i)) {
@@ -869,7 +804,7 @@ static lt_mask16_t q_setup(const lt_qt_t *qt, const lt_qray16_q30_t *r, lt_mask1
             }
         }
     }
-    return qq_cmplt_m(k, *t0, *t1);
+    return lt_vq30_cmplt_m(k, *t0, *t1);
 }
 
 /* Angle test: (dSx^2 + dSy^2) / 2 <= gamma_norm with dS in s1.30 (rounded from LS_FRAC more bits);
@@ -911,16 +846,16 @@ static lt_mask16_t q_angle_ok(lt_mask16_t k, lt_vql_t dsx, lt_vql_t dsy, int64_t
 #define LTQ_W_ZERO lt_vql_set1(0)
 #define LTQ_V_PARAM(x) lt_vq30_set1(x)
 #define LTQ_V_SET1 lt_vq30_set1
-#define LTQ_V_ADD qq_add
-#define LTQ_V_SUB qq_sub
-#define LTQ_V_ABS qq_abs
-#define LTQ_V_MIN qq_min
-#define LTQ_V_MAX qq_max
+#define LTQ_V_ADD lt_vq30_add_sat
+#define LTQ_V_SUB lt_vq30_sub_sat
+#define LTQ_V_ABS lt_vq30_abs_sat
+#define LTQ_V_MIN lt_vq30_min
+#define LTQ_V_MAX lt_vq30_max
 #define LTQ_V_BLEND lt_vq30_blend
-#define LTQ_V_CMPLT_M qq_cmplt_m
-#define LTQ_V_CMPLE_M qq_cmple_m
-#define LTQ_V_CMPGT_M qq_cmpgt_m
-#define LTQ_V_CMPGE_M qq_cmpge_m
+#define LTQ_V_CMPLT_M lt_vq30_cmplt_m
+#define LTQ_V_CMPLE_M lt_vq30_cmple_m
+#define LTQ_V_CMPGT_M lt_vq30_cmpgt_m
+#define LTQ_V_CMPGE_M lt_vq30_cmpge_m
 #define LTQ_W_FROMV(v) ql_from_q30((v), LS_FRAC)
 #define LTQ_W_FROMNODE(v) ql_from_q30((v), 30u)
 #define LTQ_W_ADD lt_vql_add_wrap
@@ -945,7 +880,7 @@ static lt_mask16_t q_angle_ok(lt_mask16_t k, lt_vql_t dsx, lt_vql_t dsy, int64_t
 #define LTQ_WRAY q_wray
 #define LTQ_W_AT q_w_at
 #define LTQ_HIT_T q_hit_t
-#define LTQ_T_BACK(t) qq_sub((t), lt_vq30_set1(4))
+#define LTQ_T_BACK(t) lt_vq30_sub_sat((t), lt_vq30_set1(4))
 #define LTQ_CHILD_SIDE q_child_side
 #define LTQ_SETUP_FN q_setup
 
@@ -1013,19 +948,6 @@ lt_status_t lt_qt_trace16_q30(const lt_qt_t *qt, const lt_qray16_q30_t *r, lt_ma
 
 #define F_Q30 9.31322574615478515625e-10f /* 2^-30 */
 #define F_INF 3.40282347e38f
-
-LT_INLINE float f_mul3(float a) { return a * 3.0f; }
-LT__V16_UN(lt_vf32_t, f_mul3v, FMUL, f_mul3)
-
-/* a * 2^-s or a * 2^s (exact). Cost: FMUL x1. */
-static lt_vf32_t f_scale(lt_vf32_t a, unsigned s, int up)
-{
-    float f = 1.0f;
-    unsigned j;
-    for (j = 0; j < s; j++)
-        f = up ? f * 2.0f : f * 0.5f;
-    return lt_vf32_mul(a, lt_vf32_set1(f));
-}
 
 typedef struct fdec {
     lt_mask16_t aabb, o;
@@ -1363,9 +1285,9 @@ static lt_vf32_t f_w_at(const fsetup_t *S, lt_mask16_t k, lt_vf32_t t)
 #define LTQ_W_MIN lt_vf32_min
 #define LTQ_W_MAX lt_vf32_max
 #define LTQ_W_BLEND lt_vf32_blend
-#define LTQ_W_SHR(a, s) f_scale((a), (s), 0)
-#define LTQ_W_SHL(a, s) f_scale((a), (s), 1)
-#define LTQ_W_MUL3 f_mul3v
+#define LTQ_W_SHR(a, s) lt_vf32_mul_pow2((a), -(int)(s))
+#define LTQ_W_SHL(a, s) lt_vf32_mul_pow2((a), (int)(s))
+#define LTQ_W_MUL3 lt_vf32_mul3
 #define LTQ_W_CMPLE_M lt_vf32_cmple_m
 #define LTQ_W_CMPLT_M lt_vf32_cmplt_m
 #define LTQ_W_CMPGT_M lt_vf32_cmpgt_m
