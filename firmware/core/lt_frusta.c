@@ -149,31 +149,6 @@ static lt_vq16_t q_tmaxv(lt_vq16_t tend, uint32_t es)
     return r;
 }
 
-/* 1/d: 2^46 / d_raw (s1.30 -> s15.16), half up, saturating; d == 0 gives `zero` (+max for the
- * upper interval end, min for the lower: the side a vanishing direction approaches from). */
-static lt_vq16_t q_recip(lt_vq30_t d, lt_q16_t zero)
-{
-    lt_vq16_t r;
-    int i;
-    LT_COST(VDIV, 1);
-    for (i = 0; i < LT_LANES; i++) {
-        if (d.l[i] == 0) {
-            r.l[i] = zero;
-        } else {
-            int64_t q = lt__div_round64((int64_t)1 << 46, d.l[i]);
-            LT_EVENT(SAT, q != (int64_t)lt__ssat32(q));
-            r.l[i] = lt__ssat32(q);
-        }
-    }
-    return r;
-}
-
-LT_INLINE lt_mask16_t q_rsat(lt_vq16_t r)
-{
-    return (lt_mask16_t)(lt_vq16_cmpeq(r, lt_vq16_set1(LT_Q16_MAX)) |
-                         lt_vq16_cmpeq(r, lt_vq16_set1(LT_Q16_MIN)));
-}
-
 /* Box bound margins: lower bounds go down, upper bounds up by LT_FRUSTA_BOX_MARGIN_Q16. */
 #define Q_LOWER(x) lt_vq16_sub_sat((x), lt_vq16_set1(LT_FRUSTA_BOX_MARGIN_Q16))
 #define Q_UPPER(x) lt_vq16_add_sat((x), lt_vq16_set1(LT_FRUSTA_BOX_MARGIN_Q16))
@@ -481,40 +456,6 @@ LT_INLINE int32_t q_pdelta(const lt_frusta_vtable_q16_t *vt, uint32_t jx, uint32
     return lt__wrap32((int64_t)jx * vt->dx[a] + (int64_t)jy * vt->dy[a]);
 }
 
-/* s1.30 lanes: add (exact: the sums are pixel directions, in range), min, max, sign tests. */
-static lt_vq30_t q_dadd(lt_vq30_t a, lt_vq30_t b)
-{
-    int i;
-    LT_COST(VALU, 1);
-    for (i = 0; i < LT_LANES; i++)
-        a.l[i] = lt__wrap32((int64_t)a.l[i] + b.l[i]);
-    return a;
-}
-
-static lt_vq30_t q_dminmax(lt_vq30_t a, lt_vq30_t b, int want_max)
-{
-    int i;
-    LT_COST(VALU, 1);
-    for (i = 0; i < LT_LANES; i++)
-        a.l[i] = (want_max ? b.l[i] > a.l[i] : b.l[i] < a.l[i]) ? b.l[i] : a.l[i];
-    return a;
-}
-
-/* Lanes of k with a rel 0: rel = 0 (>=), 1 (<=), 2 (<), 3 (>). Cost: VCMP x1. */
-static lt_mask16_t q_dcmp0(lt_mask16_t k, lt_vq30_t a, int rel)
-{
-    unsigned m = 0;
-    int i;
-    LT_COST(VCMP, 1);
-    for (i = 0; i < LT_LANES; i++) {
-        int32_t v = a.l[i];
-        int on = rel == 0 ? v >= 0 : (rel == 1 ? v <= 0 : (rel == 2 ? v < 0 : v > 0));
-        if (LT__ON(k, i) && on)
-            m |= 1u << i;
-    }
-    return (lt_mask16_t)m;
-}
-
 #include "lt_traits_q16.h"
 #define LTN_VD lt_vq30_t
 #define LTN_NT lt_q30_t
@@ -536,9 +477,9 @@ static lt_mask16_t q_dcmp0(lt_mask16_t k, lt_vq30_t a, int rel)
 #define LTN_TEND1 q_tend1
 #define LTN_TMAX q_tmaxv
 #define LTN_TMAX1 q_tmax1
-#define LTN_RECIP_HI(d) q_recip((d), LT_Q16_MAX)
-#define LTN_RECIP_LO(d) q_recip((d), LT_Q16_MIN)
-#define LTN_RSAT q_rsat
+#define LTN_RECIP_HI(d) lt_vq16_recip_q30_sat((d), LT_Q16_MAX)
+#define LTN_RECIP_LO(d) lt_vq16_recip_q30_sat((d), LT_Q16_MIN)
+#define LTN_RSAT lt_vq16_cmpsat
 #define LTN_ABS lt_vq16_abs_sat
 #define LTN_SABS lt__q16_abs_sat
 #define LTN_MULLO lt_vq16_mul_sat_rd
@@ -609,14 +550,17 @@ static lt_mask16_t q_dcmp0(lt_mask16_t k, lt_vq30_t a, int rel)
 #define LTN_PDELTA q_pdelta
 #define LTN_PFINITE(x) ((void)(x), 1)
 #define LTN_PTMAX0 (LT_Q16_MAX - 1)
-#define LTN_DADD q_dadd
+/* s1.30 pixel directions: add (exact: the sums are directions, in range), min, max, sign tests.
+ * The sign tests are plain compares ANDed with k: one VCMP each and no lane-utilisation event,
+ * the tally this path has always had. */
+#define LTN_DADD lt_vq30_add_wrap
 #define LTN_DSADD(a, b) lt__wrap32((int64_t)(a) + (b))
-#define LTN_DMIN(a, b) q_dminmax((a), (b), 0)
-#define LTN_DMAX(a, b) q_dminmax((a), (b), 1)
-#define LTN_DCMPGE0(k, a) q_dcmp0((k), (a), 0)
-#define LTN_DCMPLE0(k, a) q_dcmp0((k), (a), 1)
-#define LTN_DCMPLT0(k, a) q_dcmp0((k), (a), 2)
-#define LTN_DCMPGT0(k, a) q_dcmp0((k), (a), 3)
+#define LTN_DMIN lt_vq30_min
+#define LTN_DMAX lt_vq30_max
+#define LTN_DCMPGE0(k, a) ((lt_mask16_t)(lt_vq30_cmpge0(a) & (k)))
+#define LTN_DCMPLE0(k, a) ((lt_mask16_t)(lt_vq30_cmple0(a) & (k)))
+#define LTN_DCMPLT0(k, a) ((lt_mask16_t)(lt_vq30_cmplt0(a) & (k)))
+#define LTN_DCMPGT0(k, a) ((lt_mask16_t)(lt_vq30_cmpgt0(a) & (k)))
 #define LTN_CMPEQ_M lt_vq16_cmpeq_m
 #define LTN_NEXTUP_M(src, k, a) lt_vq16_add_sat_m((src), (k), (a), lt_vq16_set1(1))
 LT_INLINE lt_vq30_t lt__frusta_q30_of(lt_vq16_t a)
@@ -865,24 +809,6 @@ static lt_vf32_t f_tmaxv(lt_vf32_t tend, uint32_t es)
     return r;
 }
 
-static lt_vf32_t f_recip(lt_vf32_t d, float zero)
-{
-    lt_vf32_t r;
-    int i;
-    LT_COST(FDIV, 1);
-    for (i = 0; i < LT_LANES; i++) {
-        float q = d.l[i] == 0.0f ? zero : 1.0f / d.l[i];
-        r.l[i] = q > F_MAX ? F_MAX : (q < -F_MAX ? -F_MAX : q);
-    }
-    return r;
-}
-
-LT_INLINE lt_mask16_t f_rsat(lt_vf32_t r)
-{
-    return (lt_mask16_t)(lt_vf32_cmpeq(r, lt_vf32_set1(F_MAX)) |
-                         lt_vf32_cmpeq(r, lt_vf32_set1(-F_MAX)));
-}
-
 /* Relative box-bound margins 2^-20 |x| (the product's own error is ~2^-23 relative; plane and
  * origin rounding are covered by the BVH's 2^-18 pad, as for lt_slab16_f32). */
 static lt_vf32_t f_lower(lt_vf32_t x)
@@ -893,17 +819,6 @@ static lt_vf32_t f_lower(lt_vf32_t x)
 static lt_vf32_t f_upper(lt_vf32_t x)
 {
     return lt_vf32_add(x, lt_vf32_mul(lt_vf32_abs(x), lt_vf32_set1(0x1p-20f)));
-}
-
-LT_INLINE lt_vf32_t f_cross(lt_vf32_t a, lt_vf32_t b, lt_vf32_t c, lt_vf32_t d)
-{
-    return lt_vf32_sub(lt_vf32_mul(a, b), lt_vf32_mul(c, d));
-}
-
-LT_INLINE lt_vf32_t f_dot(lt_vf32_t ax, lt_vf32_t ay, lt_vf32_t az, lt_vf32_t bx, lt_vf32_t by,
-                          lt_vf32_t bz)
-{
-    return lt_vf32_add(lt_vf32_add(lt_vf32_mul(ax, bx), lt_vf32_mul(ay, by)), lt_vf32_mul(az, bz));
 }
 
 /* Relative corner-culling margins, 2^-16 of each form's magnitude bound (the float kernel's error
@@ -946,7 +861,7 @@ static int f_tnum_sign1(const float o[3], const lt_tri_f32_t *tri)
 static lt_vf32_t f_gterm(lt_mask16_t k, lt_vf32_t a, lt_vf32_t b, lt_vf32_t wx, lt_vf32_t wy,
                          lt_vf32_t wz)
 {
-    lt_vf32_t den = f_dot(wx, wy, wz, wx, wy, wz);
+    lt_vf32_t den = lt_vf32_dot3(wx, wy, wz, wx, wy, wz);
     lt_vf32_t g = lt_vf32_div_z(k, lt_vf32_mul(a, b), den);
     int i;
     for (i = 0; i < LT_LANES; i++)
@@ -957,7 +872,8 @@ static lt_vf32_t f_gterm(lt_mask16_t k, lt_vf32_t a, lt_vf32_t b, lt_vf32_t wx, 
 
 static lt_mask16_t f_ncmp(lt_mask16_t k, const lt_vf32_t np[3], const lt_vf32_t nq[3], float c)
 {
-    return lt_vf32_cmpge_m(k, f_dot(np[0], np[1], np[2], nq[0], nq[1], nq[2]), lt_vf32_set1(c));
+    lt_vf32_t d = lt_vf32_dot3(np[0], np[1], np[2], nq[0], nq[1], nq[2]);
+    return lt_vf32_cmpge_m(k, d, lt_vf32_set1(c));
 }
 
 static lt_vf32_t f_mean(lt_mask16_t k, lt_vf32_t sum, lt_vi32_t n)
@@ -1111,9 +1027,9 @@ static lt_vf32_t f_nextup_m(lt_vf32_t src, lt_mask16_t k, lt_vf32_t a)
 #define LTN_TEND1 f_tend1
 #define LTN_TMAX f_tmaxv
 #define LTN_TMAX1 f_tmax1
-#define LTN_RECIP_HI(d) f_recip((d), F_MAX)
-#define LTN_RECIP_LO(d) f_recip((d), -F_MAX)
-#define LTN_RSAT f_rsat
+#define LTN_RECIP_HI(d) lt_vf32_recip_sat((d), F_MAX)
+#define LTN_RECIP_LO(d) lt_vf32_recip_sat((d), -F_MAX)
+#define LTN_RSAT lt_vf32_cmpsat
 #define LTN_ABS lt_vf32_abs
 #define LTN_SABS lt__f32_abs
 #define LTN_MULLO lt_vf32_mul
@@ -1121,11 +1037,11 @@ static lt_vf32_t f_nextup_m(lt_vf32_t src, lt_mask16_t k, lt_vf32_t a)
 #define LTN_UPPER f_upper
 #define LTN_MAX_M lt_vf32_max_m
 #define LTN_MIN_M lt_vf32_min_m
-#define LTN_CROSS_DP f_cross
-#define LTN_DOT_PP f_dot
-#define LTN_CROSS_PP f_cross
-#define LTN_DOT_DQ f_dot
-#define LTN_DOT_PQ f_dot
+#define LTN_CROSS_DP lt_vf32_cross
+#define LTN_DOT_PP lt_vf32_dot3
+#define LTN_CROSS_PP lt_vf32_cross
+#define LTN_DOT_DQ lt_vf32_dot3
+#define LTN_DOT_PQ lt_vf32_dot3
 #define LTN_W_SUB lt_vf32_sub
 #define LTN_W_NEG_M(k, a) lt_vf32_neg_m((a), (k), (a))
 #define LTN_W_CMPLT_M lt_vf32_cmplt_m
@@ -1141,7 +1057,7 @@ static lt_vf32_t f_nextup_m(lt_vf32_t src, lt_mask16_t k, lt_vf32_t a)
 #define LTN_W_CMPLE_M lt_vf32_cmple_m
 #define LTN_TDIV_M(src, k, n, d) lt_vf32_div_m((src), (k), (n), (d))
 #define LTN_TRI_A f_tri_a
-#define LTN_LDOT f_dot
+#define LTN_LDOT lt_vf32_dot3
 #define LTN_LINEAR_CORNERS 0
 #define LTN_NSAT(nx, ny, nz, ax, ay, az)                                                          \
     ((void)(nx), (void)(ny), (void)(nz), (void)(ax), (void)(ay), (void)(az), (lt_mask16_t)0)
@@ -1149,7 +1065,7 @@ static lt_vf32_t f_nextup_m(lt_vf32_t src, lt_mask16_t k, lt_vf32_t a)
 #define LTN_W_CMPLT0(k, a) lt_vf32_cmplt_m((k), (a), lt_vf32_set1(0.0f))
 #define LTN_MARGINS f_margins
 #define LTN_TNUM_SIGN1 f_tnum_sign1
-#define LTN_NDOT f_dot
+#define LTN_NDOT lt_vf32_dot3
 #define LTN_GTERM f_gterm
 #define LTN_NCMP f_ncmp
 #define LTN_MEAN f_mean
