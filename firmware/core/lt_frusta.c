@@ -157,17 +157,6 @@ static lt_vq16_t q_tmaxv(lt_vq16_t tend, uint32_t es)
  * kernel's tnum, det, u and v (tests/unit/test_frusta.c compares) */
 #include "lt_isect_q16.inc"
 
-/* int32 lanes widened to int64 lanes (a sign extension). Cost: VCVT x1. */
-static lt_vql_t q_widen(lt_vq16_t a)
-{
-    lt_vql_t r;
-    int i;
-    LT_COST(VCVT, 1);
-    for (i = 0; i < LT_LANES; i++)
-        r.l[i] = a.l[i];
-    return r;
-}
-
 /* Corner-culling margins, in the forms' 36 fractional bits (U = d . round6(e2 x tvec), D = d .
  * round6(e2 x e1), V = d . qvec). The kernel's u and det differ from the exact linear forms by
  * <= 1/2 |tvec|_1 and 1/2 |e1|_1 (pvec rounding, 32-bit units), each rounded normal puts U/16 or
@@ -176,50 +165,43 @@ static lt_vql_t q_widen(lt_vq16_t a)
  * and V itself needs V < 0 (sigma > 0) or V > 15 (sigma < 0). docs/frusta.md has the derivation.
  * |tvec|_1 <= 3 x 2^29 raw fits int32 within the geometry bound. */
 static void q_margins(lt_vq16_t tx, lt_vq16_t ty, lt_vq16_t tz, const lt_tri_q16_t *tri,
-                      lt_vql_t *mu, lt_vql_t *mw, lt_vql_t *mvp, lt_vql_t *mvn)
+                      lt_vql36_t *mu, lt_vql36_t *mw, lt_vql36_t *mvp, lt_vql36_t *mvn)
 {
     lt_vq16_t t1 = lt_vq16_add_sat(lt_vq16_add_sat(lt_vq16_abs_sat(tx), lt_vq16_abs_sat(ty)),
                                    lt_vq16_abs_sat(tz));
     int64_t e1 = (int64_t)lt__q16_abs_sat(tri->e1[0]) + lt__q16_abs_sat(tri->e1[1]) +
                  lt__q16_abs_sat(tri->e1[2]);
-    lt_vql_t w8 = lt_vql_asr(q_widen(t1), 0);
-    int i;
+    /* 8 |tvec|_1: |tvec|_1 (raw s15.16) counted in the forms' 2^-36 units, as the derivation
+     * does; sign-extended, then x 8. The shift by 0 does nothing and is charged (VSHIFT x1): it
+     * was always there, and removing it would change the cycle figures. */
+    lt_vql36_t w8 = lt_vql36_from_vql(lt_vql_from_vi32(lt_vi32_from_q16(t1)));
+    w8 = lt_vql36_shl_wrap(lt_vql36_asr(w8, 0), 3);
     LT_COST(SALU, 5);
-    LT_COST(VSHIFT, 1);
-    for (i = 0; i < LT_LANES; i++)
-        w8.l[i] *= 8; /* the shift charged above */
-    *mu = lt_vql_add_wrap(w8, lt_vql_set1(((int64_t)3 << 29) + 16));
-    *mw = lt_vql_add_wrap(w8, lt_vql_set1(8 * e1 + ((int64_t)3 << 30) + 32));
-    *mvp = lt_vql_set1(0);
-    *mvn = lt_vql_set1(15);
+    *mu = lt_vql36_add_wrap(w8, lt_vql36_set1(((int64_t)3 << 29) + 16));
+    *mw = lt_vql36_add_wrap(w8, lt_vql36_set1(8 * e1 + ((int64_t)3 << 30) + 32));
+    *mvp = lt_vql36_set1(0);
+    *mvn = lt_vql36_set1(15);
 }
 
 /* e2 x e1 of a triangle rounded to qvec's s25.6, broadcast (a per-triangle constant). */
-static void q_tri_a(const lt_tri_q16_t *t, lt_vi32_t *ax, lt_vi32_t *ay, lt_vi32_t *az)
+static void q_tri_a(const lt_tri_q16_t *t, lt_vq6_t *ax, lt_vq6_t *ay, lt_vq6_t *az)
 {
     LT_COST(SMUL, 6);
     LT_COST(SALU, 6);
-    *ax = lt_vi32_set1(lt__round_sat32(lt__l64_sub_wrap(lt__mul32x32_64(t->e2[1], t->e1[2]),
+    *ax = lt_vq6_set1(lt__round_sat32(lt__l64_sub_wrap(lt__mul32x32_64(t->e2[1], t->e1[2]),
                                                         lt__mul32x32_64(t->e2[2], t->e1[1])),
                                        32u - QV_FRAC));
-    *ay = lt_vi32_set1(lt__round_sat32(lt__l64_sub_wrap(lt__mul32x32_64(t->e2[2], t->e1[0]),
+    *ay = lt_vq6_set1(lt__round_sat32(lt__l64_sub_wrap(lt__mul32x32_64(t->e2[2], t->e1[0]),
                                                         lt__mul32x32_64(t->e2[0], t->e1[2])),
                                        32u - QV_FRAC));
-    *az = lt_vi32_set1(lt__round_sat32(lt__l64_sub_wrap(lt__mul32x32_64(t->e2[0], t->e1[1]),
+    *az = lt_vq6_set1(lt__round_sat32(lt__l64_sub_wrap(lt__mul32x32_64(t->e2[0], t->e1[1]),
                                                         lt__mul32x32_64(t->e2[1], t->e1[0])),
                                        32u - QV_FRAC));
 }
 
-/* d . n for s1.30 corner rays and an s25.6 normal: exact, 36 fractional bits. */
-LT_INLINE lt_vql_t q_ldot(lt_vq30_t dx, lt_vq30_t dy, lt_vq30_t dz, lt_vi32_t nx, lt_vi32_t ny,
-                          lt_vi32_t nz)
-{
-    return q_dot(lt_vi32_from_q30(dx), lt_vi32_from_q30(dy), lt_vi32_from_q30(dz), nx, ny, nz);
-}
-
 /* Lanes whose edge normal (or the triangle's e2 x e1) saturated its s25.6 range. */
-static lt_mask16_t q_nsat(lt_vi32_t nx, lt_vi32_t ny, lt_vi32_t nz, lt_vi32_t ax, lt_vi32_t ay,
-                          lt_vi32_t az)
+static lt_mask16_t q_nsat(lt_vq6_t nx, lt_vq6_t ny, lt_vq6_t nz, lt_vq6_t ax, lt_vq6_t ay,
+                          lt_vq6_t az)
 {
     unsigned m = 0;
     int i;
@@ -255,27 +237,13 @@ static int q_tnum_sign1(const lt_q16_t o[3], const lt_tri_q16_t *tri)
     return (t > 0) - (t < 0);
 }
 
-/* Direct-light term: n.w and nl.w rounded to s15.16 (q30 x q16 -> 46 bits), then
- * G = a b / |w|^2 (q16 x q16 = 32 bits over 32 bits) half up to s15.16, per lane. */
-static lt_vq16_t q_ndot(lt_vq30_t nx, lt_vq30_t ny, lt_vq30_t nz, lt_vq16_t wx, lt_vq16_t wy,
-                        lt_vq16_t wz)
-{
-    lt_vi32_t r = lt_vql_round_sat(q_dot(lt_vi32_from_q30(nx), lt_vi32_from_q30(ny),
-                                         lt_vi32_from_q30(nz), lt_vi32_from_q16(wx),
-                                         lt_vi32_from_q16(wy), lt_vi32_from_q16(wz)),
-                                   30);
-    lt_vq16_t o;
-    int i;
-    for (i = 0; i < LT_LANES; i++)
-        o.l[i] = r.l[i];
-    return o;
-}
-
+/* Direct-light term: n.w and nl.w rounded to s15.16 (lt_vq16_dot3_q30_sat: q30 x q16 -> 46 bits),
+ * then G = a b / |w|^2 (q16 x q16 = 32 bits over 32 bits) half up to s15.16, per lane. */
 static lt_vq16_t q_gterm(lt_mask16_t k, lt_vq16_t a, lt_vq16_t b, lt_vq16_t wx, lt_vq16_t wy,
                          lt_vq16_t wz)
 {
-    lt_vql_t num = lt_vql_mul(lt_vi32_from_q16(a), lt_vi32_from_q16(b));
-    lt_vql_t den = q_dot_pp(wx, wy, wz, wx, wy, wz);
+    lt_vql32_t num = lt_vql32_mul_q16(a, b);
+    lt_vql32_t den = lt_vql32_dot3_q16(wx, wy, wz, wx, wy, wz);
     lt_vq16_t g;
     int i;
     LT_COST(VDIV, 1);
@@ -300,9 +268,8 @@ static lt_vq16_t q_gterm(lt_mask16_t k, lt_vq16_t a, lt_vq16_t b, lt_vq16_t wx, 
 /* Filter: n_p . n_q >= cos_min for s1.30 unit normals: exact 60-bit dot against cos << 30. */
 static lt_mask16_t q_ncmp(lt_mask16_t k, const lt_vq30_t np[3], const lt_vq30_t nq[3], lt_q30_t c)
 {
-    lt_vql_t d = q_dot(lt_vi32_from_q30(np[0]), lt_vi32_from_q30(np[1]), lt_vi32_from_q30(np[2]),
-                       lt_vi32_from_q30(nq[0]), lt_vi32_from_q30(nq[1]), lt_vi32_from_q30(nq[2]));
-    return lt_vql_cmpge_m(k, d, lt_vql_set1((int64_t)c * ((int64_t)1 << 30)));
+    lt_vql60_t d = lt_vql60_dot3_q30(np[0], np[1], np[2], nq[0], nq[1], nq[2]);
+    return lt_vql60_cmpge_m(k, d, lt_vql60_set1((int64_t)c * ((int64_t)1 << 30)));
 }
 
 /* Mean of n (1..16) values: sum / n half up. */
@@ -398,7 +365,7 @@ static int q_pnrm1(const lt_tri_q16_t *tri, const int32_t t[3], int32_t n[3])
 }
 
 /* Whether the broadcast e2 x e1 (q_tri_a) saturated in any component. Cost: SALU x3. */
-static int q_asat(lt_vi32_t ax, lt_vi32_t ay, lt_vi32_t az)
+static int q_asat(lt_vq6_t ax, lt_vq6_t ay, lt_vq6_t az)
 {
     LT_COST(SALU, 3);
     return ax.l[0] == INT32_MAX || ax.l[0] == INT32_MIN || ay.l[0] == INT32_MAX ||
@@ -459,8 +426,10 @@ LT_INLINE int32_t q_pdelta(const lt_frusta_vtable_q16_t *vt, uint32_t jx, uint32
 #include "lt_traits_q16.h"
 #define LTN_VD lt_vq30_t
 #define LTN_NT lt_q30_t
-#define LTN_W lt_vql_t
-#define LTN_QV lt_vi32_t
+#define LTN_W lt_vql32_t  /* det, u, v: s31.32 */
+#define LTN_TN lt_vql22_t /* tnum: s41.22 */
+#define LTN_WC lt_vql36_t /* corner forms and margins: s27.36 */
+#define LTN_QV lt_vq6_t   /* qvec and edge normals: s25.6 */
 #define LTN_FR lt_frusta16_q16_t
 #define LTN_FRT lt_frusta_table_q16_t
 #define LTN_FRF lt_frusta_filter_q16_t
@@ -487,34 +456,42 @@ LT_INLINE int32_t q_pdelta(const lt_frusta_vtable_q16_t *vt, uint32_t jx, uint32
 #define LTN_UPPER Q_UPPER
 #define LTN_MAX_M lt_vq16_max_m
 #define LTN_MIN_M lt_vq16_min_m
-#define LTN_CROSS_DP q_cross_dp
-#define LTN_DOT_PP q_dot_pp
-#define LTN_CROSS_PP q_cross_pp
-#define LTN_DOT_DQ q_dot_dq
-#define LTN_DOT_PQ q_dot_pq
-#define LTN_W_SUB lt_vql_sub_wrap
-#define LTN_W_NEG_M(k, a) lt_vql_sub_wrap_m((a), (k), lt_vql_set1(0), (a))
-#define LTN_W_CMPLT_M lt_vql_cmplt_m
-#define LTN_W_CMPGT_M lt_vql_cmpgt_m
-#define LTN_W_ADD lt_vql_add_wrap
-#define LTN_W_ZERO lt_vql_set1(0)
-#define LTN_W_NEG(a) lt_vql_sub_wrap(lt_vql_set1(0), (a))
+/* the products of lt_tri16_q16 (lt_isect_q16.inc) */
+#define LTN_CROSS_DP lt_vq16_cross_q30_sat
+#define LTN_DOT_PP lt_vql32_dot3_q16
+#define LTN_CROSS_PP lt_vq6_cross_q16_sat
+#define LTN_DOT_DQ lt_vql32_dot3_q30_q6_rd
+#define LTN_DOT_PQ lt_vql22_dot3_q16_q6
+/* det, u, v (LTN_W, s31.32) */
+#define LTN_W_ADD lt_vql32_add_wrap
+#define LTN_W_NEG(a) lt_vql32_sub_wrap(lt_vql32_set1(0), (a))
 #define LTN_W_LANE(v, f) ((v).l[f])
 #define LTN_W_LANE0 ((int64_t)0)
-#define LTN_W_SET1 lt_vql_set1
-#define LTN_QV_SET1 lt_vi32_set1
-#define LTN_W_CMPGE0(k, a) lt_vql_cmpge_m((k), (a), lt_vql_set1(0))
-#define LTN_W_CMPLE_M lt_vql_cmple_m
+#define LTN_W_CMPGT0(k, a) lt_vql32_cmpgt_m((k), (a), lt_vql32_set1(0))
+#define LTN_W_CMPGE0(k, a) lt_vql32_cmpge_m((k), (a), lt_vql32_set1(0))
+#define LTN_W_CMPLE_M lt_vql32_cmple_m
+/* tnum (LTN_TN, s41.22) */
+#define LTN_TN_SET1 lt_vql22_set1
+#define LTN_TN_NEG(a) lt_vql22_sub_wrap(lt_vql22_set1(0), (a))
+#define LTN_TN_CMPGT0(k, a) lt_vql22_cmpgt_m((k), (a), lt_vql22_set1(0))
+#define LTN_TN_CMPLT0(k, a) lt_vql22_cmplt_m((k), (a), lt_vql22_set1(0))
+/* the corner forms U, V, D, W and their margins (LTN_WC, s27.36) */
+#define LTN_WC_SUB lt_vql36_sub_wrap
+#define LTN_WC_ADD lt_vql36_add_wrap
+#define LTN_WC_ZERO lt_vql36_set1(0)
+#define LTN_WC_SET1 lt_vql36_set1
+#define LTN_WC_CMPLT_M lt_vql36_cmplt_m
+#define LTN_WC_CMPGT_M lt_vql36_cmpgt_m
+#define LTN_QV_SET1 lt_vq6_set1
 #define LTN_TDIV_M q_tdiv_m
 #define LTN_TRI_A q_tri_a
-#define LTN_LDOT q_ldot
+/* d . n for s1.30 corner rays and an s25.6 normal: exact, 36 fractional bits */
+#define LTN_LDOT lt_vql36_dot3_q30_q6
 #define LTN_LINEAR_CORNERS 1
 #define LTN_NSAT q_nsat
-#define LTN_W_CMPGT0(k, a) lt_vql_cmpgt_m((k), (a), lt_vql_set1(0))
-#define LTN_W_CMPLT0(k, a) lt_vql_cmplt_m((k), (a), lt_vql_set1(0))
 #define LTN_MARGINS q_margins
 #define LTN_TNUM_SIGN1 q_tnum_sign1
-#define LTN_NDOT q_ndot
+#define LTN_NDOT lt_vq16_dot3_q30_sat
 #define LTN_GTERM q_gterm
 #define LTN_NCMP q_ncmp
 #define LTN_MEAN q_mean
@@ -576,6 +553,18 @@ LT_INLINE lt_vq30_t lt__frusta_q30_of(lt_vq16_t a)
 #undef LTN_VD
 #undef LTN_NT
 #undef LTN_W
+#undef LTN_TN
+#undef LTN_WC
+#undef LTN_TN_SET1
+#undef LTN_TN_NEG
+#undef LTN_TN_CMPGT0
+#undef LTN_TN_CMPLT0
+#undef LTN_WC_SUB
+#undef LTN_WC_ADD
+#undef LTN_WC_ZERO
+#undef LTN_WC_SET1
+#undef LTN_WC_CMPLT_M
+#undef LTN_WC_CMPGT_M
 #undef LTN_QV
 #undef LTN_FR
 #undef LTN_FRT
@@ -608,16 +597,10 @@ LT_INLINE lt_vq30_t lt__frusta_q30_of(lt_vq16_t a)
 #undef LTN_CROSS_PP
 #undef LTN_DOT_DQ
 #undef LTN_DOT_PQ
-#undef LTN_W_SUB
-#undef LTN_W_NEG_M
-#undef LTN_W_CMPLT_M
-#undef LTN_W_CMPGT_M
 #undef LTN_W_ADD
-#undef LTN_W_ZERO
 #undef LTN_W_NEG
 #undef LTN_W_LANE
 #undef LTN_W_LANE0
-#undef LTN_W_SET1
 #undef LTN_QV_SET1
 #undef LTN_W_CMPGE0
 #undef LTN_W_CMPLE_M
@@ -627,7 +610,6 @@ LT_INLINE lt_vq30_t lt__frusta_q30_of(lt_vq16_t a)
 #undef LTN_LINEAR_CORNERS
 #undef LTN_NSAT
 #undef LTN_W_CMPGT0
-#undef LTN_W_CMPLT0
 #undef LTN_MARGINS
 #undef LTN_TNUM_SIGN1
 #undef LTN_NDOT
@@ -1010,6 +992,8 @@ static lt_vf32_t f_nextup_m(lt_vf32_t src, lt_mask16_t k, lt_vf32_t a)
 #define LTN_VD lt_vf32_t
 #define LTN_NT float
 #define LTN_W lt_vf32_t
+#define LTN_TN lt_vf32_t
+#define LTN_WC lt_vf32_t
 #define LTN_QV lt_vf32_t
 #define LTN_FR lt_frusta16_f32_t
 #define LTN_FRT lt_frusta_table_f32_t
@@ -1042,16 +1026,20 @@ static lt_vf32_t f_nextup_m(lt_vf32_t src, lt_mask16_t k, lt_vf32_t a)
 #define LTN_CROSS_PP lt_vf32_cross
 #define LTN_DOT_DQ lt_vf32_dot3
 #define LTN_DOT_PQ lt_vf32_dot3
-#define LTN_W_SUB lt_vf32_sub
-#define LTN_W_NEG_M(k, a) lt_vf32_neg_m((a), (k), (a))
-#define LTN_W_CMPLT_M lt_vf32_cmplt_m
-#define LTN_W_CMPGT_M lt_vf32_cmpgt_m
 #define LTN_W_ADD lt_vf32_add
-#define LTN_W_ZERO lt_vf32_set1(0.0f)
 #define LTN_W_NEG lt_vf32_neg
 #define LTN_W_LANE(v, f) ((v).l[f])
 #define LTN_W_LANE0 0.0f
-#define LTN_W_SET1 lt_vf32_set1
+#define LTN_TN_SET1 lt_vf32_set1
+#define LTN_TN_NEG lt_vf32_neg
+#define LTN_TN_CMPGT0(k, a) lt_vf32_cmpgt_m((k), (a), lt_vf32_set1(0.0f))
+#define LTN_TN_CMPLT0(k, a) lt_vf32_cmplt_m((k), (a), lt_vf32_set1(0.0f))
+#define LTN_WC_SUB lt_vf32_sub
+#define LTN_WC_ADD lt_vf32_add
+#define LTN_WC_ZERO lt_vf32_set1(0.0f)
+#define LTN_WC_SET1 lt_vf32_set1
+#define LTN_WC_CMPLT_M lt_vf32_cmplt_m
+#define LTN_WC_CMPGT_M lt_vf32_cmpgt_m
 #define LTN_QV_SET1 lt_vf32_set1
 #define LTN_W_CMPGE0(k, a) lt_vf32_cmpge_m((k), (a), lt_vf32_set1(0.0f))
 #define LTN_W_CMPLE_M lt_vf32_cmple_m
@@ -1062,7 +1050,6 @@ static lt_vf32_t f_nextup_m(lt_vf32_t src, lt_mask16_t k, lt_vf32_t a)
 #define LTN_NSAT(nx, ny, nz, ax, ay, az)                                                          \
     ((void)(nx), (void)(ny), (void)(nz), (void)(ax), (void)(ay), (void)(az), (lt_mask16_t)0)
 #define LTN_W_CMPGT0(k, a) lt_vf32_cmpgt_m((k), (a), lt_vf32_set1(0.0f))
-#define LTN_W_CMPLT0(k, a) lt_vf32_cmplt_m((k), (a), lt_vf32_set1(0.0f))
 #define LTN_MARGINS f_margins
 #define LTN_TNUM_SIGN1 f_tnum_sign1
 #define LTN_NDOT lt_vf32_dot3

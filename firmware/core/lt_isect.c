@@ -53,21 +53,21 @@ static void q_slab_fix(lt_mask16_t par, lt_mask16_t rsat, lt_vq16_t o, lt_vq30_t
 #include "lt_isect_q16.inc"
 
 #include "lt_traits_q16.h"
-#define LTN_QV lt_vi32_t
-#define LTN_W lt_vql_t
-#define LTN_TN lt_vql_t
-#define LTN_CROSS_DP q_cross_dp
-#define LTN_DOT_PP q_dot_pp
-#define LTN_CROSS_PP q_cross_pp
-#define LTN_DOT_DQ q_dot_dq
-#define LTN_DOT_PQ q_dot_pq
-#define LTN_W_ADD lt_vql_add_wrap
-#define LTN_W_NEG_M(k, a) lt_vql_sub_wrap_m((a), (k), lt_vql_set1(0), (a))
-#define LTN_TN_NEG_M LTN_W_NEG_M
-#define LTN_W_CMPLT0(k, a) lt_vql_cmplt_m((k), (a), lt_vql_set1(0))
-#define LTN_W_CMPGT0(k, a) lt_vql_cmpgt_m((k), (a), lt_vql_set1(0))
-#define LTN_W_CMPGE0(k, a) lt_vql_cmpge_m((k), (a), lt_vql_set1(0))
-#define LTN_W_CMPLE_M lt_vql_cmple_m
+#define LTN_QV lt_vq6_t    /* qvec, s25.6 */
+#define LTN_W lt_vql32_t   /* det, u, v: s31.32 */
+#define LTN_TN lt_vql22_t  /* tnum: s41.22 */
+#define LTN_CROSS_DP lt_vq16_cross_q30_sat
+#define LTN_DOT_PP lt_vql32_dot3_q16
+#define LTN_CROSS_PP lt_vq6_cross_q16_sat
+#define LTN_DOT_DQ lt_vql32_dot3_q30_q6_rd
+#define LTN_DOT_PQ lt_vql22_dot3_q16_q6
+#define LTN_W_ADD lt_vql32_add_wrap
+#define LTN_W_NEG_M(k, a) lt_vql32_sub_wrap_m((a), (k), lt_vql32_set1(0), (a))
+#define LTN_TN_NEG_M(k, a) lt_vql22_sub_wrap_m((a), (k), lt_vql22_set1(0), (a))
+#define LTN_W_CMPLT0(k, a) lt_vql32_cmplt_m((k), (a), lt_vql32_set1(0))
+#define LTN_W_CMPGT0(k, a) lt_vql32_cmpgt_m((k), (a), lt_vql32_set1(0))
+#define LTN_W_CMPGE0(k, a) lt_vql32_cmpge_m((k), (a), lt_vql32_set1(0))
+#define LTN_W_CMPLE_M lt_vql32_cmple_m
 #define LTN_TDIV_M q_tdiv_m
 #define LTN_SLAB_FIX q_slab_fix
 #include "lt_isect.inc"

@@ -43,14 +43,6 @@ static lt_vq30_t q_recip(lt_vq30_t den, lt_mask16_t bad)
     return den;
 }
 
-/* ax * by - ay * bx exactly: s15.16 x s15.16 -> s31.32. |sheared| <= 2^14 units (2^30 raw) keeps
- * each product within 2^60 and the difference within 2^61. Cost: VMUL x2, VMULW x1. */
-LT_INLINE lt_vql_t q_cross2(lt_vq16_t ax, lt_vq16_t ay, lt_vq16_t bx, lt_vq16_t by)
-{
-    return lt_vql_sub_wrap(lt_vql_mul(lt_vi32_from_q16(ax), lt_vi32_from_q16(by)),
-                           lt_vql_mul(lt_vi32_from_q16(ay), lt_vi32_from_q16(bx)));
-}
-
 /* 16 signed 128-bit integers, two's complement in two unsigned words: value = hi 2^64 + lo
  * (the sign is bit 63 of hi). 256 bytes. */
 typedef struct wt_v128 {
@@ -74,7 +66,7 @@ LT_INLINE void q_mac128(uint64_t *h, uint64_t *l, int64_t a, int32_t b)
 
 /* T = U za + V zb + W zc exactly in 128 bits (s31.32 x s15.16 -> 48 fractional bits), lanes in k.
  * |U| <= 2^61, |z| < 2^30 raw: |T| < 2^93. Cost: VMUL x6, VMULW x10. */
-static wt_v128_t q_tsum(lt_mask16_t k, lt_vql_t u, lt_vql_t v, lt_vql_t w, lt_vq16_t za,
+static wt_v128_t q_tsum(lt_mask16_t k, lt_vql32_t u, lt_vql32_t v, lt_vql32_t w, lt_vq16_t za,
                         lt_vq16_t zb, lt_vq16_t zc)
 {
     wt_v128_t r;
@@ -115,7 +107,7 @@ static uint32_t q_udiv128(uint64_t nh, uint64_t nl, uint64_t d, uint64_t *rem)
 /* t = T / det as s15.16 (48 - 32 fractional bits), rounded half up from the exact quotient, for
  * lanes in k (det != 0 there); other lanes keep src. A hit has |t| <= max |z| < 2^30 raw; a
  * quotient >= 2^31 (only for out-of-range input) saturates. Cost: VDIV x2 (128/64 bits). */
-static lt_vq16_t q_tdiv_m(lt_vq16_t src, lt_mask16_t k, wt_v128_t tn, lt_vql_t det)
+static lt_vq16_t q_tdiv_m(lt_vq16_t src, lt_mask16_t k, wt_v128_t tn, lt_vql32_t det)
 {
     int i;
     LT_COST(VDIV, 2);
@@ -184,12 +176,14 @@ static int q_zero_area(lt_q16_t p[3][3])
 #define LTN_WT_RECIP q_recip
 /* round(S * a): s1.30 x s15.16 -> 46 fractional bits -> s15.16, half up. Cost: VMUL x1. */
 #define LTN_WT_MULS(s, a) lt_vq16_mul_q30_sat((a), (s))
-#define LTN_E lt_vql_t
-#define LTN_E_ADD lt_vql_add_wrap
-#define LTN_E_ZERO() lt_vql_set1(0)
-#define LTN_E_CMPLT_M lt_vql_cmplt_m
-#define LTN_E_CMPGT_M lt_vql_cmpgt_m
-#define LTN_WT_CROSS2 q_cross2
+#define LTN_E lt_vql32_t /* edge functions and det: s31.32 */
+#define LTN_E_ADD lt_vql32_add_wrap
+#define LTN_E_ZERO() lt_vql32_set1(0)
+#define LTN_E_CMPLT_M lt_vql32_cmplt_m
+#define LTN_E_CMPGT_M lt_vql32_cmpgt_m
+/* ax by - ay bx exactly: s15.16 x s15.16 -> s31.32. |sheared| <= 2^14 units (2^30 raw) keeps
+ * each product within 2^60 and the difference within 2^61. Cost: VMUL x2, VMULW x1. */
+#define LTN_WT_CROSS2(ax, ay, bx, by) lt_vql32_cross_q16((ax), (by), (ay), (bx))
 #define LTN_WT_EXACT_EDGES 1
 #define LTN_TT wt_v128_t
 #define LTN_WT_TSUM q_tsum

@@ -72,6 +72,20 @@ LT_INLINE lt_q16_t lt__q16_sub_wrap(lt_q16_t a, lt_q16_t b)
     return lt__wrap32((int64_t)a - b);
 }
 
+/* int64 (any fraction bits) add and subtract modulo 2^64, computed in unsigned arithmetic; min,
+ * max; |a| with |INT64_MIN| wrapping to itself. The bodies of the wide lane ops (lt_v16w.h). */
+LT_INLINE int64_t lt__l64_add_wrap(int64_t a, int64_t b)
+{
+    return (int64_t)((uint64_t)a + (uint64_t)b);
+}
+LT_INLINE int64_t lt__l64_sub_wrap(int64_t a, int64_t b)
+{
+    return (int64_t)((uint64_t)a - (uint64_t)b);
+}
+LT_INLINE int64_t lt__l64_min(int64_t a, int64_t b) { return a < b ? a : b; }
+LT_INLINE int64_t lt__l64_max(int64_t a, int64_t b) { return a > b ? a : b; }
+LT_INLINE int64_t lt__l64_abs_wrap(int64_t a) { return a < 0 ? lt__l64_sub_wrap(0, a) : a; }
+
 /* Round a signed value with f fractional bits (1..62) to an integer, half up, then saturate to int32. */
 LT_INLINE int32_t lt__round_sat32(int64_t v, unsigned f)
 {

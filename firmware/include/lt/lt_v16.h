@@ -24,12 +24,12 @@ typedef uint16_t lt_mask16_t; /* bit i = lane i */
 typedef struct { int32_t l[LT_LANES]; } lt_vq16_t;  /* 16 x s15.16, 64 bytes */
 typedef struct { int32_t l[LT_LANES]; } lt_vq30_t;  /* 16 x s1.30, 64 bytes */
 typedef struct { int32_t l[LT_LANES]; } lt_vi32_t;  /* 16 x int32 (indices, ids), 64 bytes */
-typedef struct { int64_t l[LT_LANES]; } lt_vql_t;   /* 16 x int64 wide accumulator, 128 bytes;
-                                                        fractional bits stated at each use */
 typedef struct { int16_t l[LT_LANES]; } lt_vh8_t;   /* 16 x s7.8, 32 bytes */
 #if LT_CFG_FLOAT32
 typedef struct { float l[LT_LANES]; } lt_vf32_t;    /* 16 x IEEE binary32, 64 bytes */
 #endif
+/* Wide lanes (int64, 128 bytes) and the s25.6 lanes of rounded products are lt_v16w.h's, which
+ * this header includes at its end: lt_vql<F>_t carries F fraction bits in its name. */
 
 #define LT__ON(k, i) ((((unsigned)(k)) >> (i)) & 1u)
 
@@ -455,63 +455,7 @@ LT_INLINE lt_vi32_t lt_vi32_msb_z(lt_mask16_t k, lt_vi32_t x) /* VALU x1 */
     return r;
 }
 
-/* ---- wide int64 lanes ---------------------------------------------------------------------- */
-/* Products and sums of products, kept exact. The fractional bit count is the caller's to track
- * (q16 x q16 -> 32 bits, q16 x q30 -> 46 bits); sums are _wrap because the kernels bound their
- * inputs so that no sum can overflow (docs/numerics.md). */
-LT_INLINE int64_t lt__l64_add_wrap(int64_t a, int64_t b) { return (int64_t)((uint64_t)a + (uint64_t)b); }
-LT_INLINE int64_t lt__l64_sub_wrap(int64_t a, int64_t b) { return (int64_t)((uint64_t)a - (uint64_t)b); }
-LT__V16_BIN(lt_vql_t, lt_vql_add_wrap, VMULW, lt__l64_add_wrap)
-LT__V16_BIN(lt_vql_t, lt_vql_sub_wrap, VMULW, lt__l64_sub_wrap)
-LT__V16_CMP(lt_vql_t, lt_vql_cmplt, VCMP, <)
-LT__V16_CMP(lt_vql_t, lt_vql_cmple, VCMP, <=)
-LT__V16_CMP(lt_vql_t, lt_vql_cmpgt, VCMP, >)
-LT__V16_CMP(lt_vql_t, lt_vql_cmpge, VCMP, >=)
-
-/* Exact product per lane. Format: int32 x int32 -> int64 (fractional bits add). Overflow: none.
- * Cost: VMUL x1. */
-LT_INLINE lt_vql_t lt_vql_mul(lt_vi32_t a, lt_vi32_t b)
-{
-    lt_vql_t r;
-    int i;
-    LT_COST(VMUL, 1);
-    for (i = 0; i < LT_LANES; i++)
-        r.l[i] = lt__mul32x32_64(a.l[i], b.l[i]);
-    return r;
-}
-
-/* Round away f fractional bits (1..31), half up, and saturate to int32. Cost: VSHIFT x1. */
-LT_INLINE lt_vi32_t lt_vql_round_sat(lt_vql_t a, unsigned f)
-{
-    lt_vi32_t r;
-    int i;
-    LT_COST(VSHIFT, 1);
-    for (i = 0; i < LT_LANES; i++)
-        r.l[i] = lt__round_sat32(a.l[i], f);
-    return r;
-}
-
-/* Arithmetic right shift by s (0..63), rounding toward minus infinity. Cost: VSHIFT x1. */
-LT_INLINE lt_vql_t lt_vql_asr(lt_vql_t a, unsigned s)
-{
-    int i;
-    LT_COST(VSHIFT, 1);
-    for (i = 0; i < LT_LANES; i++)
-        a.l[i] = lt__asr64(a.l[i], s);
-    return a;
-}
-
-LT_INLINE lt_vql_t lt_vql_set1(int64_t x)
-{
-    lt_vql_t r;
-    int i;
-    LT_COST(VBCAST, 1);
-    for (i = 0; i < LT_LANES; i++)
-        r.l[i] = x;
-    return r;
-}
-
-/* Reinterpret s15.16 or s1.30 lanes as plain int32 lanes for lt_vql_mul (no cost: a register rename). */
+/* Reinterpret s15.16 or s1.30 lanes as plain int32 lanes (no cost: a register rename). */
 LT_INLINE lt_vi32_t lt_vi32_from_q16(lt_vq16_t a)
 {
     lt_vi32_t r;
@@ -676,4 +620,7 @@ LT_INLINE lt_vf32_t lt_vf32_recip_sat(lt_vf32_t d, float zero) /* FDIV x1 */
 #ifdef __cplusplus
 }
 #endif
+
+#include "lt_v16w.h"
+
 #endif /* LT_V16_H */
