@@ -272,18 +272,6 @@ static lt_mask16_t q_ncmp(lt_mask16_t k, const lt_vq30_t np[3], const lt_vq30_t 
     return lt_vql60_cmpge_m(k, d, lt_vql60_set1((int64_t)c * ((int64_t)1 << 30)));
 }
 
-/* Mean of n (1..16) values: sum / n half up. */
-static lt_vq16_t q_mean(lt_mask16_t k, lt_vq16_t sum, lt_vi32_t n)
-{
-    lt_vq16_t r;
-    int i;
-    LT_COST(VDIV, 1);
-    LT_UTIL(k);
-    for (i = 0; i < LT_LANES; i++)
-        r.l[i] = LT__ON(k, i) && n.l[i] > 0 ? (lt_q16_t)lt__div_round64(sum.l[i], n.l[i]) : 0;
-    return r;
-}
-
 /* Row segment load of 16 lanes at x0 + i, lanes with x outside [0, w) or not in k read as 0
  * (a masked unaligned vector load: one VLOAD, memory charged for the span read). */
 static lt_vq16_t q_loadx(const int32_t *row, int64_t x0, uint32_t w, lt_mask16_t *k)
@@ -494,7 +482,8 @@ LT_INLINE int32_t q_pdelta(const lt_frusta_vtable_q16_t *vt, uint32_t jx, uint32
 #define LTN_NDOT lt_vq16_dot3_q30_sat
 #define LTN_GTERM q_gterm
 #define LTN_NCMP q_ncmp
-#define LTN_MEAN q_mean
+/* mean of n (1..16) values: sum / n half up */
+#define LTN_MEAN lt_vq16_div_i32_z
 #define LTN_LOADX(p, x0, w, k) q_loadx((p), (x0), (w), (k))
 #define LTN_LOADXN(p, x0, w, k) lt__frusta_q30_of(q_loadx((p), (x0), (w), (k)))
 #define LTN_VD_SET1 lt_vq30_set1
@@ -858,17 +847,6 @@ static lt_mask16_t f_ncmp(lt_mask16_t k, const lt_vf32_t np[3], const lt_vf32_t 
     return lt_vf32_cmpge_m(k, d, lt_vf32_set1(c));
 }
 
-static lt_vf32_t f_mean(lt_mask16_t k, lt_vf32_t sum, lt_vi32_t n)
-{
-    lt_vf32_t r;
-    int i;
-    LT_COST(FDIV, 1);
-    LT_UTIL(k);
-    for (i = 0; i < LT_LANES; i++)
-        r.l[i] = LT__ON(k, i) && n.l[i] > 0 ? sum.l[i] / (float)n.l[i] : 0.0f;
-    return r;
-}
-
 static lt_vf32_t f_loadx(const float *row, int64_t x0, uint32_t w, lt_mask16_t *k)
 {
     lt_vf32_t r;
@@ -1055,7 +1033,7 @@ static lt_vf32_t f_nextup_m(lt_vf32_t src, lt_mask16_t k, lt_vf32_t a)
 #define LTN_NDOT lt_vf32_dot3
 #define LTN_GTERM f_gterm
 #define LTN_NCMP f_ncmp
-#define LTN_MEAN f_mean
+#define LTN_MEAN lt_vf32_div_i32_z
 #define LTN_LOADX(p, x0, w, k) f_loadx((p), (x0), (w), (k))
 #define LTN_LOADXN(p, x0, w, k) f_loadx((p), (x0), (w), (k))
 #define LTN_VD_SET1 lt_vf32_set1

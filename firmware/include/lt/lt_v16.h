@@ -328,6 +328,20 @@ LT_INLINE lt_vq16_t lt_vq16_recip_q30_sat(lt_vq30_t d, lt_q16_t zero) /* VDIV x1
     return r;
 }
 
+/* a / n per lane for a count n (int32 lanes), lanes in k with n > 0; other lanes become 0 (the
+ * mean of n summed values). Format: s15.16 / int32 -> s15.16. Rounding: half up. Overflow: none
+ * (|a / n| <= |a|). Cost: VDIV x1. */
+LT_INLINE lt_vq16_t lt_vq16_div_i32_z(lt_mask16_t k, lt_vq16_t a, lt_vi32_t n) /* VDIV x1 */
+{
+    lt_vq16_t r;
+    int i;
+    LT_COST(VDIV, 1);
+    LT_UTIL(k);
+    for (i = 0; i < LT_LANES; i++)
+        r.l[i] = LT__ON(k, i) && n.l[i] > 0 ? (lt_q16_t)lt__div_round64(a.l[i], n.l[i]) : 0;
+    return r;
+}
+
 /* Lanes holding a saturated value (+max or min), e.g. a clamped reciprocal. Format: s15.16.
  * Cost: VBCAST x2, VCMP x2 (two broadcasts and two compares). */
 LT_INLINE lt_mask16_t lt_vq16_cmpsat(lt_vq16_t a) /* VBCAST x2, VCMP x2 */
@@ -579,6 +593,19 @@ LT_INLINE lt_mask16_t lt_vf32_cmpsat(lt_vf32_t a) /* VBCAST x2, FCMP x2 */
 {
     return (lt_mask16_t)(lt_vf32_cmpeq(a, lt_vf32_set1(3.40282347e38f)) |
                          lt_vf32_cmpeq(a, lt_vf32_set1(-3.40282347e38f)));
+}
+
+/* a / n per lane for a count n (int32 lanes, converted exactly below 2^24), lanes in k with
+ * n > 0; other lanes become 0. IEEE division. Cost: FDIV x1. */
+LT_INLINE lt_vf32_t lt_vf32_div_i32_z(lt_mask16_t k, lt_vf32_t a, lt_vi32_t n) /* FDIV x1 */
+{
+    lt_vf32_t r;
+    int i;
+    LT_COST(FDIV, 1);
+    LT_UTIL(k);
+    for (i = 0; i < LT_LANES; i++)
+        r.l[i] = LT__ON(k, i) && n.l[i] > 0 ? a.l[i] / (float)n.l[i] : 0.0f;
+    return r;
 }
 
 /* 1 / d per lane, IEEE, then clamped to +-FLT_MAX: +-0 gives +-FLT_MAX (the sign of -0.0 survives
