@@ -1,7 +1,9 @@
-/* lt_v16.h - the 16-lane SIMD model: lane vector types, 16-bit masks and lane ops.
- * Every op is a plain C loop over 16 lanes (the reference; GCC auto-vectorises it on the host) that
- * charges itself through the cost hook. Naming: lt_v<fmt>_<op>[_m|_z]: _m merges (inactive lanes keep
- * src, LRBni {k} semantics), _z zeroes inactive lanes. Compares return lt_mask16_t (bit i = lane i).
+/* lt_v16.h - the 16-lane SIMD model: lane vector types, 16-bit masks and lane ops; the wide
+ * (int64) lanes and exact products are lt_v16w.h's, included at the end. Every op is a plain C loop
+ * over 16 lanes (the reference; GCC auto-vectorises it on the host) that charges itself through
+ * the cost hook; its op class is on the line that defines it (a generator argument or a trailing
+ * comment). Naming: lt_v<fmt>_<op>[_m|_z]: _m merges (inactive lanes keep src, LRBni {k}
+ * semantics), _z zeroes inactive lanes. Compares return lt_mask16_t (bit i = lane i).
  * Builds: all. Float32 ops exist only with LT_CFG_FLOAT32.
  */
 #ifndef LT_V16_H
@@ -36,26 +38,26 @@ typedef struct { float l[LT_LANES]; } lt_vf32_t;    /* 16 x IEEE binary32, 64 by
 /* ---- masks --------------------------------------------------------------------------------- */
 
 /* Mask queries. Format: 16-bit mask. Cost: MASK x1 each. */
-LT_INLINE int lt_mask16_any(lt_mask16_t k)
+LT_INLINE int lt_mask16_any(lt_mask16_t k) /* MASK x1 */
 {
     LT_COST(MASK, 1);
     return k != 0;
 }
 
-LT_INLINE int lt_mask16_all(lt_mask16_t k)
+LT_INLINE int lt_mask16_all(lt_mask16_t k) /* MASK x1 */
 {
     LT_COST(MASK, 1);
     return k == LT_MASK_ALL;
 }
 
-LT_INLINE unsigned lt_mask16_popcount(lt_mask16_t k)
+LT_INLINE unsigned lt_mask16_popcount(lt_mask16_t k) /* MASK x1 */
 {
     LT_COST(MASK, 1);
     return lt__popcount32(k);
 }
 
 /* Index of the lowest set lane (bit-scan forward); 16 for an empty mask. Cost: MASK x1. */
-LT_INLINE unsigned lt_mask16_first(lt_mask16_t k)
+LT_INLINE unsigned lt_mask16_first(lt_mask16_t k) /* MASK x1 */
 {
     LT_COST(MASK, 1);
     return k != 0 ? lt__ctz32(k) : 16u;
@@ -63,7 +65,7 @@ LT_INLINE unsigned lt_mask16_first(lt_mask16_t k)
 
 /* k with its lowest set lane cleared: iterate active lanes with
  * for (m = k; m; m = lt_mask16_clear_first(m)) { i = lt_mask16_first(m); ... }. Cost: MASK x1. */
-LT_INLINE lt_mask16_t lt_mask16_clear_first(lt_mask16_t k)
+LT_INLINE lt_mask16_t lt_mask16_clear_first(lt_mask16_t k) /* MASK x1 */
 {
     LT_COST(MASK, 1);
     return (lt_mask16_t)(k & (k - 1u));
@@ -470,7 +472,7 @@ LT_INLINE lt_vi32_t lt_vi32_msb_z(lt_mask16_t k, lt_vi32_t x) /* VALU x1 */
 }
 
 /* Reinterpret s15.16 or s1.30 lanes as plain int32 lanes (no cost: a register rename). */
-LT_INLINE lt_vi32_t lt_vi32_from_q16(lt_vq16_t a)
+LT_INLINE lt_vi32_t lt_vi32_from_q16(lt_vq16_t a) /* no cost */
 {
     lt_vi32_t r;
     int i;
@@ -479,7 +481,7 @@ LT_INLINE lt_vi32_t lt_vi32_from_q16(lt_vq16_t a)
     return r;
 }
 
-LT_INLINE lt_vi32_t lt_vi32_from_q30(lt_vq30_t a)
+LT_INLINE lt_vi32_t lt_vi32_from_q30(lt_vq30_t a) /* no cost */
 {
     lt_vi32_t r;
     int i;
@@ -497,7 +499,7 @@ LT__V16_CMP(lt_vh8_t, lt_vh8_cmplt, VCMP, <)
 LT__V16_CMP(lt_vh8_t, lt_vh8_cmple, VCMP, <=)
 
 /* s7.8 -> s15.16 per lane (exact) and back (half up, saturating). Cost: VCVT x1. */
-LT_INLINE lt_vq16_t lt_vq16_from_h8(lt_vh8_t a)
+LT_INLINE lt_vq16_t lt_vq16_from_h8(lt_vh8_t a) /* VCVT x1 */
 {
     lt_vq16_t r;
     int i;
@@ -507,7 +509,7 @@ LT_INLINE lt_vq16_t lt_vq16_from_h8(lt_vh8_t a)
     return r;
 }
 
-LT_INLINE lt_vh8_t lt_vh8_from_q16_sat(lt_vq16_t a)
+LT_INLINE lt_vh8_t lt_vh8_from_q16_sat(lt_vq16_t a) /* VCVT x1 */
 {
     lt_vh8_t r;
     int i;
