@@ -367,7 +367,7 @@ static float f_cross1(float a, float b, float c, float d) { return a * b - c * d
 
 static float f_dot1(float ax, float ay, float az, float bx, float by, float bz)
 {
-    return ax * bx + ay * by + az * bz; /* ((ax bx + ay by) + az bz), as f_dot in lt_isect.c */
+    return ax * bx + ay * by + az * bz; /* ((ax bx + ay by) + az bz), as lt_vf32_dot3 */
 }
 
 #include "numerics/lt_traits_f32.h"
