@@ -135,8 +135,7 @@ static uint32_t bin_q16(lt_q16_t c, lt_q16_t cmin, uint64_t k, uint32_t nb)
 void lt_ray1_q16_setup(lt_ray1_q16_t *r)
 {
     unsigned a, par = 0, rsat = 0;
-    LT_COST(SDIV, 3);
-    LT_COST(SALU, 9);
+    LT_CHARGE(BVH_RAY1_SETUP);
     for (a = 0; a < 3; a++) {
         if (r->d[a] == 0) {
             r->rd[a] = LT_Q16_MAX;
@@ -161,12 +160,12 @@ static void slab_fix1_q16(unsigned par, lt_q16_t o, lt_q30_t d, lt_q16_t lo, lt_
 {
     if (par) {
         int in = o >= lo && o <= hi;
-        LT_COST(SALU, 4);
+        LT_CHARGE(BVH_SLAB1_FIX);
         *t0 = in ? LT_Q16_MIN : LT_Q16_MAX;
         *t1 = LT_Q16_MAX;
     } else {
         int64_t p0 = (int64_t)lo - o, p1 = (int64_t)hi - o;
-        LT_COST(SDIV, 2);
+        LT_CHARGE(BVH_SLAB1_FIX_DIV);
         *t0 = lt__ssat32(lt__div_round64(p0 * ((int64_t)1 << 30), d));
         *t1 = lt__ssat32(lt__div_round64(p1 * ((int64_t)1 << 30), d));
     }
@@ -208,7 +207,7 @@ static lt_q16_t s_tdiv(int64_t n, int64_t d)
     uint64_t an = n < 0 ? (uint64_t)0 - (uint64_t)n : (uint64_t)n;
     unsigned room = lt__clz64(an) - 2u, s = room >= S_TDIV_SHIFT ? S_TDIV_SHIFT : room;
     int64_t q;
-    LT_COST(SDIV, 1);
+    LT_CHARGE(BVH_TRI1_TDIV);
     n = (int64_t)((uint64_t)n << s); /* via unsigned: left shift of a negative is UB in C99 */
     if (s < S_TDIV_SHIFT)
         d = lt__asr64(d, S_TDIV_SHIFT - s);
@@ -337,8 +336,7 @@ void lt_ray1_f32_setup(lt_ray1_f32_t *r)
     unsigned a, par = 0;
     /* scalar float work is charged to the scalar classes: lt_ops.def has no scalar-float class,
      * and the F* classes are 16-lane ops */
-    LT_COST(SDIV, 3);
-    LT_COST(SALU, 9);
+    LT_CHARGE(BVH_RAY1_SETUP);
     for (a = 0; a < 3; a++) {
         float q = 1.0f / r->d[a];
         if (q > F32_MAX)
@@ -358,7 +356,7 @@ static void slab_fix1_f32(unsigned par, float o, float d, float lo, float hi, fl
 {
     (void)par; /* only parallel axes are flagged in float32 */
     (void)d;
-    LT_COST(SALU, 4);
+    LT_CHARGE(BVH_SLAB1_FIX);
     *t0 = o >= lo && o <= hi ? -F32_MAX : F32_MAX;
     *t1 = F32_MAX;
 }
@@ -431,8 +429,7 @@ static void q_decode(const lt_aabb_q16_t *f, const unsigned e[3], const lt_bvhq_
 {
     unsigned a;
     LT_MEM(n, 12, LT_MEM_READ);
-    LT_COST(SLOAD, 3);
-    LT_COST(SALU, 12);
+    LT_CHARGE(BVHQ_DECODE);
     for (a = 0; a < 3; a++) {
         out->lo[a] = lt__ssat32((int64_t)f->lo[a] + (int64_t)((uint64_t)n->qlo[a] << e[a]));
         out->hi[a] = lt__ssat32((int64_t)f->lo[a] + (int64_t)((uint64_t)n->qhi[a] << e[a]));
@@ -442,7 +439,7 @@ static void q_decode(const lt_aabb_q16_t *f, const unsigned e[3], const lt_bvhq_
 static void q_frame_exps(const lt_aabb_q16_t *f, unsigned e[3])
 {
     unsigned a;
-    LT_COST(SALU, 9);
+    LT_CHARGE(BVHQ_FRAME_EXPS);
     for (a = 0; a < 3; a++)
         e[a] = q_exp(f->lo[a], f->hi[a]);
 }
@@ -507,7 +504,7 @@ lt_status_t lt_bvhq_build_q16(lt_bvhq_t *out, const lt_bvh_t *src, void *mem, si
         const lt_bvh_node_q16_t *n = &sn[f.node];
         unsigned e[3], c;
         LT_MEM(n, sizeof *n, LT_MEM_READ);
-        LT_COST(SALU, 40);
+        LT_CHARGE(BVHQ_BUILD_NODE);
         if (LT_BVH_IS_LEAF(n)) {
             if (n->count > LT_BVHQ_MAX_LEAF) {
                 LT_PHASE_LEAVE(prev);
@@ -593,8 +590,7 @@ static lt_status_t bvhq_trav16(const lt_bvhq_t *bvh, const lt_tri_q16_t *tris, l
         uint32_t link = nodes[ni].link;
         LT_EVENT(NODES, 1);
         LT_MEM(&nodes[ni].link, sizeof link, LT_MEM_READ);
-        LT_COST(SLOAD, 1);
-        LT_COST(BRANCH, 1);
+        LT_CHARGE(BVH_TRAV_NODE1);
         if (stats != NULL) {
             stats->nodes++;
             stats->node_lanes += lt__popcount32(m);
@@ -607,8 +603,7 @@ static lt_status_t bvhq_trav16(const lt_bvhq_t *bvh, const lt_tri_q16_t *tris, l
                 uint32_t id;
                 lt_mask16_t got;
                 LT_MEM(&bvh->idx[i], sizeof bvh->idx[i], LT_MEM_READ);
-                LT_COST(SLOAD, 1);
-                LT_COST(BRANCH, 1);
+                LT_CHARGE(BVH_TRAV_LEAF_TRI);
                 id = bvh->idx[i];
                 if (stats != NULL) {
                     stats->tris++;
@@ -618,13 +613,13 @@ static lt_status_t bvhq_trav16(const lt_bvhq_t *bvh, const lt_tri_q16_t *tris, l
                 if (any) {
                     done = (lt_mask16_t)(done | got);
                     m = (lt_mask16_t)(m & ~got);
-                    LT_COST(MASK, 2);
+                    LT_CHARGE(BVH_TRAV_ANY_RETIRE);
                     if (m == 0)
                         break;
                 }
             }
             (void)LT_PHASE_ENTER(TRAVERSE);
-            LT_COST(MASK, 1);
+            LT_CHARGE(BVH_TRAV_ANY_EXIT);
             if (any && (k & ~done) == 0)
                 break;
         } else {
@@ -640,8 +635,7 @@ static lt_status_t bvhq_trav16(const lt_bvhq_t *bvh, const lt_tri_q16_t *tris, l
             mr = lt_slab16_q16(r, m, &br, &tr);
             if (stats != NULL)
                 stats->boxes += 2;
-            LT_COST(MASK, 2);
-            LT_COST(BRANCH, 2);
+            LT_CHARGE(BVH_TRAV_CHILDREN16);
             if (ml != 0 && mr != 0) {
                 lt_q16_t nl = lt_vq16_hmin(ml, tl, LT_Q16_MAX), nr = lt_vq16_hmin(mr, tr, LT_Q16_MAX);
                 int lfirst = nl <= nr;
@@ -653,7 +647,7 @@ static lt_status_t bvhq_trav16(const lt_bvhq_t *bvh, const lt_tri_q16_t *tris, l
                     stk[sp].tn = lfirst ? nr : nl;
                     sp++;
                     maxsp = sp > maxsp ? sp : maxsp;
-                    LT_COST(SSTORE, 9);
+                    LT_CHARGE(BVHQ_TRAV16_PUSH);
                 } else {
                     rc = LT_E_DEPTH;
                     if (stats != NULL)
@@ -674,13 +668,12 @@ static lt_status_t bvhq_trav16(const lt_bvhq_t *bvh, const lt_tri_q16_t *tris, l
         m = 0;
         while (sp > 0) {
             sp--;
-            LT_COST(SLOAD, 3);
-            LT_COST(MASK, 2);
+            LT_CHARGE(BVH_TRAV16_POP);
             m = (lt_mask16_t)(stk[sp].m & ~done);
             if (m != 0 && stk[sp].tn <= lt_vq16_hmax(m, r->tmax, LT_Q16_MIN)) {
                 ni = stk[sp].node;
                 cur = stk[sp].b;
-                LT_COST(SLOAD, 6);
+                LT_CHARGE(BVHQ_TRAV16_POP_BOX);
                 break;
             }
             m = 0;
@@ -751,8 +744,7 @@ lt_status_t lt_bvhq_trace1_q16(const lt_bvhq_t *bvh, const lt_tri_q16_t *tris, l
         uint32_t link = nodes[ni].link;
         LT_EVENT(NODES, 1);
         LT_MEM(&nodes[ni].link, sizeof link, LT_MEM_READ);
-        LT_COST(SLOAD, 1);
-        LT_COST(BRANCH, 1);
+        LT_CHARGE(BVH_TRAV_NODE1);
         if (stats != NULL) {
             stats->nodes++;
             stats->node_lanes++;
@@ -764,8 +756,7 @@ lt_status_t lt_bvhq_trace1_q16(const lt_bvhq_t *bvh, const lt_tri_q16_t *tris, l
             for (i = first; i < end; i++) {
                 uint32_t t;
                 LT_MEM(&bvh->idx[i], sizeof bvh->idx[i], LT_MEM_READ);
-                LT_COST(SLOAD, 1);
-                LT_COST(BRANCH, 1);
+                LT_CHARGE(BVH_TRAV_LEAF_TRI);
                 t = bvh->idx[i];
                 if (stats != NULL) {
                     stats->tris++;
@@ -788,7 +779,7 @@ lt_status_t lt_bvhq_trace1_q16(const lt_bvhq_t *bvh, const lt_tri_q16_t *tris, l
             hr = lt_slab1_q16(r, &br, &tr);
             if (stats != NULL)
                 stats->boxes += 2;
-            LT_COST(BRANCH, 2);
+            LT_CHARGE(BVH_TRAV1_CHILDREN);
             if (hl && hr) {
                 int lfirst = tl <= tr;
                 if (sp < LT_BVH_MAX_DEPTH) {
@@ -797,7 +788,7 @@ lt_status_t lt_bvhq_trace1_q16(const lt_bvhq_t *bvh, const lt_tri_q16_t *tris, l
                     stk[sp].tn = lfirst ? tr : tl;
                     sp++;
                     maxsp = sp > maxsp ? sp : maxsp;
-                    LT_COST(SSTORE, 8);
+                    LT_CHARGE(BVHQ_TRAV1_PUSH);
                 } else {
                     rc = LT_E_DEPTH;
                     if (stats != NULL)
@@ -816,8 +807,7 @@ lt_status_t lt_bvhq_trace1_q16(const lt_bvhq_t *bvh, const lt_tri_q16_t *tris, l
         live = 0;
         while (sp > 0) {
             sp--;
-            LT_COST(SLOAD, 2);
-            LT_COST(BRANCH, 1);
+            LT_CHARGE(BVH_TRAV1_POP);
             if (stk[sp].tn <= r->tmax) {
                 ni = stk[sp].node;
                 cur = stk[sp].b;

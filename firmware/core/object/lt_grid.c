@@ -27,8 +27,7 @@ static void g_resolution(const uint32_t rel[3], uint64_t target, uint32_t res[3]
     while (lo < hi) {
         uint32_t m = (lo + hi + 1u) / 2u;
         uint64_t cells = (uint64_t)g_res(rel[0], m) * g_res(rel[1], m) * g_res(rel[2], m);
-        LT_COST(SMUL, 5);
-        LT_COST(BRANCH, 1);
+        LT_CHARGE(GRID_RES_STEP);
         if (cells <= target)
             lo = m;
         else
@@ -45,8 +44,7 @@ static lt_vi32_t g_lin(lt_vi32_t x, lt_vi32_t y, lt_vi32_t z, uint32_t rx, uint3
 {
     lt_vi32_t r;
     int i;
-    LT_COST(VMUL, 2);
-    LT_COST(VALU, 2);
+    LT_CHARGE(GRID_LIN);
     for (i = 0; i < LT_LANES; i++)
         r.l[i] = x.l[i] + (int32_t)rx * (y.l[i] + (int32_t)ry * z.l[i]);
     return r;
@@ -57,8 +55,7 @@ static lt_mask16_t g_outside(lt_mask16_t k, lt_vi32_t c, uint32_t res)
 {
     unsigned m = 0;
     int i;
-    LT_COST(VCMP, 2);
-    LT_COST(MASK, 1);
+    LT_CHARGE(GRID_OUTSIDE);
     for (i = 0; i < LT_LANES; i++)
         m |= (unsigned)(c.l[i] < 0 || c.l[i] >= (int32_t)res) << i;
     return (lt_mask16_t)(m & k);
@@ -115,8 +112,7 @@ static lt_vq16_t q_g_boundv(lt_vi32_t c, int32_t off, lt_q16_t lo, lt_q16_t cs)
 {
     lt_vq16_t r;
     int i;
-    LT_COST(VMUL, 1);
-    LT_COST(VALU, 1);
+    LT_CHARGE(GRID_Q_BOUNDV);
     for (i = 0; i < LT_LANES; i++)
         r.l[i] = lt__ssat32((int64_t)lo + ((int64_t)c.l[i] + off) * cs);
     return r;
@@ -127,8 +123,7 @@ static lt_vi32_t q_g_cellv(lt_vq16_t p, lt_q16_t lo, lt_q16_t cs, uint32_t res)
 {
     lt_vi32_t r;
     int i;
-    LT_COST(VDIV, 1);
-    LT_COST(VALU, 2);
+    LT_CHARGE(GRID_Q_CELLV);
     for (i = 0; i < LT_LANES; i++)
         r.l[i] = (int32_t)q_g_cell(p.l[i], lo, cs, res);
     return r;
@@ -243,9 +238,7 @@ static lt_vf32_t f_g_boundv(lt_vi32_t c, int32_t off, float lo, float cs)
 {
     lt_vf32_t r;
     int i;
-    LT_COST(VCVT, 1);
-    LT_COST(FMUL, 1);
-    LT_COST(FADD, 1);
+    LT_CHARGE(GRID_F_BOUNDV);
     for (i = 0; i < LT_LANES; i++)
         r.l[i] = lo + (float)(c.l[i] + off) * cs;
     return r;
@@ -256,10 +249,7 @@ static lt_vi32_t f_g_cellv(lt_vf32_t p, float lo, float cs, uint32_t res)
 {
     lt_vi32_t r;
     int i;
-    LT_COST(FADD, 1);
-    LT_COST(FDIV, 1);
-    LT_COST(VCVT, 1);
-    LT_COST(FCMP, 2);
+    LT_CHARGE(GRID_F_CELLV);
     for (i = 0; i < LT_LANES; i++)
         r.l[i] = (int32_t)f_g_cell(p.l[i], lo, cs, res);
     return r;

@@ -34,9 +34,8 @@ static void q_slab_fix(lt_mask16_t par, lt_mask16_t rsat, lt_vq16_t o, lt_vq30_t
                        lt_q16_t hi, lt_vq16_t *t0, lt_vq16_t *t1)
 {
     int i;
-    LT_COST(VDIV, rsat != 0);
-    LT_COST(VCMP, (par != 0) * 2);
-    LT_COST(VALU, (par != 0) * 2);
+    LT_CHARGE_N(ISECT_Q_SLAB_RSAT, rsat != 0);
+    LT_CHARGE_N(ISECT_Q_SLAB_PAR, (par != 0));
     for (i = 0; i < LT_LANES; i++) {
         if (LT__ON(par, i)) {
             int in = o.l[i] >= lo && o.l[i] <= hi;
@@ -115,8 +114,7 @@ static void f_slab_fix(lt_mask16_t par, lt_mask16_t rsat, lt_vf32_t o, lt_vf32_t
     int i;
     (void)rsat;
     (void)d;
-    LT_COST(FCMP, 2);
-    LT_COST(FADD, 2);
+    LT_CHARGE(ISECT_F_SLAB_PAR);
     for (i = 0; i < LT_LANES; i++) {
         if (LT__ON(par, i)) {
             int in = o.l[i] >= lo && o.l[i] <= hi;

@@ -102,8 +102,7 @@ static void kd_move(uint32_t *base, uint32_t from, uint32_t to, uint32_t count)
     uint32_t i;
     LT_MEM(&base[from], count * 4u, LT_MEM_READ);
     LT_MEM(&base[to], count * 4u, LT_MEM_WRITE);
-    LT_COST(SLOAD, count);
-    LT_COST(SSTORE, count);
+    LT_CHARGE_N(KD_MOVE_REF, count);
     if (to > from) {
         for (i = count; i-- > 0;)
             base[to + i] = base[from + i];
@@ -156,7 +155,7 @@ static void q_kd_signs(lt_vq30_t d, lt_mask16_t *pos, lt_mask16_t *neg)
 static void q_kd_tfix(lt_mask16_t fx, lt_vq16_t o, lt_vq30_t d, lt_vq16_t plane, lt_vq16_t *t)
 {
     int i;
-    LT_COST(VDIV, 1);
+    LT_CHARGE(KD_Q_TFIX);
     LT_UTIL(fx);
     for (i = 0; i < LT_LANES; i++) {
         if (LT__ON(fx, i)) {

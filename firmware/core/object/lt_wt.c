@@ -23,7 +23,7 @@ static lt_mask16_t q_baddir(lt_vq30_t dkz)
 static lt_vq30_t q_ratio(lt_vq30_t num, lt_vq30_t den, lt_mask16_t bad)
 {
     int i;
-    LT_COST(VDIV, 1);
+    LT_CHARGE(WT_Q_RATIO);
     for (i = 0; i < LT_LANES; i++)
         num.l[i] = LT__ON(bad, i) ? 0
                                   : lt__ssat32(lt__div_round64((int64_t)num.l[i] * 1073741824,
@@ -36,7 +36,7 @@ static lt_vq30_t q_ratio(lt_vq30_t num, lt_vq30_t den, lt_mask16_t bad)
 static lt_vq30_t q_recip(lt_vq30_t den, lt_mask16_t bad)
 {
     int i;
-    LT_COST(VDIV, 1);
+    LT_CHARGE(WT_Q_RECIP);
     for (i = 0; i < LT_LANES; i++)
         den.l[i] = LT__ON(bad, i) ? 0
                                   : lt__ssat32(lt__div_round64((int64_t)1 << 60, den.l[i]));
@@ -71,8 +71,7 @@ static wt_v128_t q_tsum(lt_mask16_t k, lt_vql32_t u, lt_vql32_t v, lt_vql32_t w,
 {
     wt_v128_t r;
     int i;
-    LT_COST(VMUL, 6);
-    LT_COST(VMULW, 10);
+    LT_CHARGE(WT_Q_TSUM);
     LT_UTIL(k);
     for (i = 0; i < LT_LANES; i++) {
         r.hi[i] = 0;
@@ -110,7 +109,7 @@ static uint32_t q_udiv128(uint64_t nh, uint64_t nl, uint64_t d, uint64_t *rem)
 static lt_vq16_t q_tdiv_m(lt_vq16_t src, lt_mask16_t k, wt_v128_t tn, lt_vql32_t det)
 {
     int i;
-    LT_COST(VDIV, 2);
+    LT_CHARGE(WT_Q_TDIV);
     LT_UTIL(k);
     for (i = 0; i < LT_LANES; i++) {
         int64_t d = det.l[i];
@@ -153,8 +152,7 @@ static int q_zero_area(lt_q16_t p[3][3])
 {
     int32_t a[3], b[3];
     int i;
-    LT_COST(SALU, 9);
-    LT_COST(SMUL, 6);
+    LT_CHARGE(WT_ZERO_AREA);
     for (i = 0; i < 3; i++) {
         a[i] = lt__ssat32((int64_t)p[1][i] - p[0][i]);
         b[i] = lt__ssat32((int64_t)p[2][i] - p[0][i]);
@@ -226,7 +224,7 @@ static lt_mask16_t f_baddir(lt_vf32_t dkz)
 static lt_vf32_t f_ratio(lt_vf32_t num, lt_vf32_t den, lt_mask16_t bad)
 {
     int i;
-    LT_COST(FDIV, 1);
+    LT_CHARGE(WT_F_RATIO);
     for (i = 0; i < LT_LANES; i++)
         num.l[i] = LT__ON(bad, i) ? 0.0f : num.l[i] / den.l[i];
     return num;
@@ -235,7 +233,7 @@ static lt_vf32_t f_ratio(lt_vf32_t num, lt_vf32_t den, lt_mask16_t bad)
 static lt_vf32_t f_recip(lt_vf32_t den, lt_mask16_t bad)
 {
     int i;
-    LT_COST(FDIV, 1);
+    LT_CHARGE(WT_F_RECIP);
     for (i = 0; i < LT_LANES; i++)
         den.l[i] = LT__ON(bad, i) ? 0.0f : 1.0f / den.l[i];
     return den;
@@ -260,8 +258,7 @@ static void f_edge_fix(lt_mask16_t z, lt_vf32_t *u, lt_vf32_t *v, lt_vf32_t *w,
                        const lt_vf32_t x[3], const lt_vf32_t y[3])
 {
     int i;
-    LT_COST(FMUL, 6);
-    LT_COST(FADD, 3);
+    LT_CHARGE(WT_F_EDGE_FIX);
     LT_UTIL(z);
     for (i = 0; i < LT_LANES; i++) {
         double ax, ay, bx, by, cx, cy;
@@ -285,8 +282,7 @@ static int f_zero_area(float p[3][3])
 {
     double a[3], b[3];
     int i;
-    LT_COST(SALU, 9);
-    LT_COST(SMUL, 6);
+    LT_CHARGE(WT_ZERO_AREA);
     for (i = 0; i < 3; i++) {
         a[i] = (double)p[1][i] - (double)p[0][i];
         b[i] = (double)p[2][i] - (double)p[0][i];
@@ -301,8 +297,7 @@ static int f_zero_area(float p[3][3])
 {
     float a[3], b[3];
     int i;
-    LT_COST(SALU, 9);
-    LT_COST(SMUL, 6);
+    LT_CHARGE(WT_ZERO_AREA);
     for (i = 0; i < 3; i++) {
         a[i] = p[1][i] - p[0][i];
         b[i] = p[2][i] - p[0][i];

@@ -57,6 +57,14 @@ typedef enum lt_phase {
     LT_PH__COUNT
 } lt_phase_t;
 
+/* Recipes (lt_recipes.def): the named tallies a kernel charges in one call. */
+typedef enum lt_recipe {
+#define LT_RECIPE(name, doc, ops) LT_RC_##name,
+#include "lt_recipes.def"
+#undef LT_RECIPE
+    LT_RC__COUNT
+} lt_recipe_t;
+
 /* Number of counters kept per phase: ops first, then events. */
 #define LT_CTR__COUNT ((int)LT_OP__COUNT + (int)LT_EV__COUNT)
 
@@ -90,6 +98,24 @@ lt_phase_t lt_sim_phase(lt_phase_t ph);
 #else
 #error "LT_COST_MODE must be LT_COST_OFF, LT_COST_SIM or LT_COST_HANDLER"
 #endif
+
+/* LT_CHARGE(R) charges recipe R of lt_recipes.def once, LT_CHARGE_N(R, n) n times (every op count of
+ * the recipe times n). A kernel charges its scalar control and its own routines' fused lane work
+ * only through these: each tally is defined once, with its reason, in lt_recipes.def. In OFF mode
+ * nothing is evaluated; otherwise each recipe is an inline function of LT_COST increments (so in
+ * HANDLER mode the handler macros must be defined before this header is included). */
+#if LT_COST_MODE == LT_COST_OFF
+#define LT_CHARGE_N(r, n) ((void)sizeof(LT_RC_##r), (void)sizeof(n))
+#else
+#define LT_R(op, k) LT_COST(op, (uint64_t)(k) * n_);
+#define LT_RECIPE(name, doc, ops) \
+    LT_INLINE void lt__charge_##name(uint64_t n_) { ops }
+#include "lt_recipes.def"
+#undef LT_RECIPE
+#undef LT_R
+#define LT_CHARGE_N(r, n) lt__charge_##r((uint64_t)(n))
+#endif
+#define LT_CHARGE(r) LT_CHARGE_N(r, 1)
 
 /* Lane utilisation of a masked lane op: active lanes and one masked op. */
 #define LT_UTIL(k) (LT_EVENT(LANES_ON, lt__popcount32((uint32_t)(k))), LT_EVENT(LANE_OPS, 1))
