@@ -133,14 +133,15 @@ void lt_ray1_q16_setup(lt_ray1_q16_t *r);
 /* Slab test of one ray, bit-identical to one lane of lt_slab16_q16 (parallel and saturated axes
  * take the same exact path). Writes max(tmin, near planes) to *tnear on a hit.
  * Format: s15.16. Rounding: (plane - o) x (1/d) half up. Overflow: saturates (monotone, so the
- * classification survives). Cost: SALU x14, SMUL x6 (+ SDIV x2 per saturated axis).
+ * classification survives). Cost: SLOAD x6, SALU x14, SMUL x6, BRANCH x4 (+ SDIV x2 per saturated
+ * axis).
  * Returns: 1 if the ray meets the box within [tmin, tmax], else 0. */
 int lt_slab1_q16(const lt_ray1_q16_t *r, const lt_aabb_q16_t *b, lt_q16_t *tnear);
 
 /* Moller-Trumbore of one ray, two-sided, edges inclusive, bit-identical to one lane of
  * lt_tri16_q16 (same exact int64 products, qvec in s25.6, same t division).
  * Format: see docs/numerics.md. Rounding: t half up. Overflow: none within the geometry bound.
- * Cost: SMUL x24, SALU x24, BRANCH x2, SDIV x1 (hit candidates only).
+ * Cost: SLOAD x9, SMUL x24, SALU x24, BRANCH x2, SDIV x1 (hit candidates only).
  * Returns: 1 if tmin < t < tmax (then tmax = t), else 0. */
 int lt_tri1_q16(lt_ray1_q16_t *r, const lt_tri_q16_t *tri);
 
@@ -164,13 +165,15 @@ LT_STATIC_ASSERT(sizeof(lt_ray1_f32_t) == 48, "single f32 ray is 48 bytes");
 void lt_ray1_f32_setup(lt_ray1_f32_t *r);
 
 /* One lane of lt_slab16_f32, operation for operation. Format: float32. Rounding: each product and
- * difference to nearest even. Overflow: none (1/d is finite). Cost: SALU x14, SMUL x6.
+ * difference to nearest even. Overflow: none (1/d is finite).
+ * Cost: SLOAD x6, SALU x14, SMUL x6, BRANCH x4.
  * Returns: 1 if the ray meets the box within [tmin, tmax] (*tnear written), else 0. */
 int lt_slab1_f32(const lt_ray1_f32_t *r, const lt_aabb_f32_t *b, float *tnear);
 
 /* One lane of lt_tri16_f32, operation for operation (same products in the same order).
  * Format: float32. Rounding: to nearest even. Overflow: none for |x| <= 2^48.
- * Cost: SMUL x24, SALU x24. Returns: 1 if tmin < t < tmax (then tmax = t), else 0. */
+ * Cost: SLOAD x9, SMUL x24, SALU x24, BRANCH x2.
+ * Returns: 1 if tmin < t < tmax (then tmax = t), else 0. */
 int lt_tri1_f32(lt_ray1_f32_t *r, const lt_tri_f32_t *tri);
 #endif
 
@@ -210,8 +213,9 @@ lt_status_t lt_bvh_build_q16(lt_bvh_t *out, const lt_bvh_desc_t *desc, const lt_
  * tmax. Leaves run lt_tri16_q16 on their lanes. The stack holds LT_BVH_MAX_DEPTH entries, which a
  * built tree never exceeds; should a foreign tree need more, the far child is dropped (its lanes
  * may miss a closer hit), nothing is written past the stack, and LT_E_DEPTH is returned.
- * Format: as lt_slab16_q16 / lt_tri16_q16. Cost: TRAVERSE and INTERSECT phases; NODES per node,
- * LT_MEM per node read, VRED x2 per two-child node, the kernels' costs.
+ * Format: as lt_slab16_q16 / lt_tri16_q16. Cost: TRAVERSE and INTERSECT phases; VBCAST x2 per
+ * call; NODES per node, LT_MEM per node read, VRED x2 per two-child node, the kernels' costs and
+ * the BVH_TRAV_* recipes of lt_recipes.def.
  * Returns: LT_OK, LT_E_ARG (NULL, or a tree of the other numeric path), LT_E_DEPTH (see above). */
 lt_status_t lt_bvh_trace16_q16(const lt_bvh_t *bvh, const lt_tri_q16_t *tris, lt_ray16_q16_t *r,
                                lt_mask16_t k, lt_hit16_t *hit);

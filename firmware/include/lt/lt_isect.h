@@ -49,7 +49,8 @@ typedef struct lt_hit16 {
 
 /* Compute rx, ry, rz = 1/d and the par/rsat masks. Format: s1.30 -> s15.16 (2^46 / d_raw).
  * Rounding: half up. Overflow: |d| < 2^-15 saturates to +-max (d == 0 gives +max) and is flagged in
- * rsat (or par for d == 0), so the slab test can treat those lanes exactly. Cost: VDIV x3, VCMP x6. */
+ * rsat (or par for d == 0), so the slab test can treat those lanes exactly. Cost: VDIV x3, VCMP x9,
+ * VBCAST x9 (per axis: the reciprocal, the d == 0 compare, lt_vq16_cmpsat). */
 void lt_ray16_q16_setup(lt_ray16_q16_t *r);
 
 /* Slab test of the lanes in k against box b. Writes the entry distance max(tmin, near planes) to
@@ -110,7 +111,7 @@ typedef struct lt_tri_f32 {
     float e2[3];
 } lt_tri_f32_t;
 
-/* 1/d per lane, IEEE division; d == +-0 gives +-FLT_MAX. Cost: FDIV x3, FCMP x3, VALU x3. */
+/* 1/d per lane, IEEE division; d == +-0 gives +-FLT_MAX. Cost: FDIV x3, FCMP x6, VALU x3, VBCAST x3. */
 void lt_ray16_f32_setup(lt_ray16_f32_t *r);
 lt_mask16_t lt_slab16_f32(const lt_ray16_f32_t *r, lt_mask16_t k, const lt_aabb_f32_t *b,
                           lt_vf32_t *tnear);
