@@ -942,9 +942,11 @@ static void test_tri_lane_body_q16(void **state)
         vv = LT__TRI_V16_V(qa, qc, qd, q6a, q6b, q6c);
         tn = LT__TRI_V16_TNUM(a, b, c, q6a, q6b, q6c);
         for (i = 0; i < LT_LANES; i++) {
-            /* det > 0 and a tnum the kernel can make (|tnum| < 2^62) */
-            tnum.l[i] = ltt_rng_i64(&r) >> (1u + ltt_rng_below(&r, 62));
-            det.l[i] = (ltt_rng_i64(&r) >> (1u + ltt_rng_below(&r, 62))) & INT64_MAX;
+            /* det > 0; operands for which the division's 2 n' + d' stays inside int64 (as the
+             * geometry bound gives the kernel): any |tnum| < 2^60 with det < 2^27 (even lanes,
+             * both shift branches), or |tnum| < 2^35 with det < 2^54 (odd lanes) */
+            tnum.l[i] = ltt_rng_i64(&r) >> ((i & 1 ? 29u : 4u) + ltt_rng_below(&r, 30));
+            det.l[i] = (int64_t)(ltt_rng_u64(&r) >> ((i & 1 ? 10u : 37u) + ltt_rng_below(&r, 27)));
             det.l[i] += det.l[i] == 0;
         }
         td = lt__tri_tdiv16_q16(src, k, tnum, det);
