@@ -13,14 +13,14 @@ const lt_path_info_t lt_paths[] = {
      "fixed point: s15.16 positions and distances, s1.30 directions, exact int64 products",
      LT_PATHS_OBJECT | LT_PATHS_FRUSTA, 16, LT_PATH_Q16, (int)LT_BVH_NUM_Q16, LT_SF_NUM_Q16, -1,
      -1},
-    {"f32", "float32", "IEEE binary32, no FMA contraction (bit-identical on every build)",
-     LT_PATHS_OBJECT | LT_PATHS_FRUSTA | LT_PATHS_SCREEN, 0, LT_PATH_F32, (int)LT_BVH_NUM_F32,
-     LT_SF_NUM_F32, LT_QT_F32, LT_SSB_F32},
     {"n64", "s1.30",
      "screen space in s1.30 (w = z_ref / z, rays), 64-bit quadtree nodes (24-bit C)",
      LT_PATHS_SCREEN, 30, -1, 0, 0, LT_QT_N64, LT_SSB_Q30},
     {"n32", "s1.30", "screen space in s1.30, 32-bit quadtree nodes (12-bit C, minifloat boxes)",
      LT_PATHS_SCREEN, 30, -1, 0, 0, LT_QT_N32, LT_SSB_Q30},
+    {"f32", "float32", "IEEE binary32, no FMA contraction (bit-identical on every build)",
+     LT_PATHS_OBJECT | LT_PATHS_FRUSTA | LT_PATHS_SCREEN, 0, LT_PATH_F32, (int)LT_BVH_NUM_F32,
+     LT_SF_NUM_F32, LT_QT_F32, LT_SSB_F32},
     {NULL, NULL, NULL, 0, 0, -1, 0, 0, -1, -1},
 };
 

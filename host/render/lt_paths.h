@@ -8,13 +8,14 @@
  *
  *   name format  families               lt_path_t    BVH_NUM sf_num lt_qt_enc  lt_ssb_enc
  *   q16  s15.16  object, frusta         LT_PATH_Q16  _Q16    _Q16   -          -
- *   f32  float32 object, frusta, screen LT_PATH_F32  _F32    _F32   LT_QT_F32  LT_SSB_F32
  *   n64  s1.30   screen                 -            -       -      LT_QT_N64  LT_SSB_Q30
  *   n32  s1.30   screen                 -            -       -      LT_QT_N32  LT_SSB_Q30
+ *   f32  float32 object, frusta, screen LT_PATH_F32  _F32    _F32   LT_QT_F32  LT_SSB_F32
  *
  * (n64 and n32 are the quadtree's 64- and 32-bit node encodings of the s1.30 screen-space path;
- * the DDA and Hi-Z baselines trace both in s1.30.) Adding a path: a line in lt_paths.c, then the
- * families' enumerations and kernels (docs/architecture.md, "a numeric path"). Host only.
+ * the DDA and Hi-Z baselines trace both in s1.30; fixed point comes first, so lists read "q16 or
+ * f32" and "n64, n32 or f32".) Adding a path: a line in lt_paths.c, then the families'
+ * enumerations and kernels (docs/architecture.md, "a numeric path"). Host only.
  */
 #ifndef LT_PATHS_H
 #define LT_PATHS_H

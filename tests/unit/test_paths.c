@@ -81,11 +81,12 @@ static void test_lists(void **state)
     assert_string_equal(names[1], "f32");
     assert_null(names[2]);
     assert_int_equal(lt_paths_names(LT_PATHS_SCREEN, names, 8), 3);
-    assert_string_equal(names[0], "f32");
+    assert_string_equal(names[0], "n64");
+    assert_string_equal(names[2], "f32");
     assert_int_equal(lt_paths_names(LT_PATHS_SCREEN, names, 2), 1);
     assert_null(names[1]);
     lt_paths_list(LT_PATHS_SCREEN, buf, sizeof buf);
-    assert_string_equal(buf, "f32, n64 or n32");
+    assert_string_equal(buf, "n64, n32 or f32");
     lt_paths_list(LT_PATHS_FRUSTA, buf, sizeof buf);
     assert_string_equal(buf, "q16 or f32");
 }
