@@ -137,12 +137,12 @@ expect "shadows --light with trailing text refused" 2 "shadows: --light 0,5,0,1x
 expect "shadows --fov 60abc: trailing text refused" 2 "shadows: --fov 60abc: not a finite number" \
     "$LT" shadows --mesh scenes/teapot.obj --res 8 --no-ref --fov 60abc
 # the same messages from every subcommand
-for c in run render shadows info diff machines; do
+for c in run render reproject shadows info diff machines; do
     expect "$c --help is printed from the option table" 0 "usage: lanetrace $c" "$LT" $c --help
     expect "$c: unknown option, uniform message" 2 "lanetrace $c: unknown option '--frobnicate' (see 'lanetrace $c --help')" \
         "$LT" $c --frobnicate
 done
-for co in "run --res" "render --out" "shadows --mesh" "diff --threshold"; do
+for co in "run --res" "render --out" "reproject --depth" "shadows --mesh" "diff --threshold"; do
     set -- $co
     expect "$1 $2 without its value: missing value" 2 "lanetrace $1: $2: missing value" "$LT" $1 $2
 done
@@ -150,3 +150,6 @@ done
 expect "run --num lists the object paths" 2 "run: --num n64: expected q16, f32 or both" "$LT" run --num n64
 expect "render --num lists the object paths" 2 "render: --num both: expected q16 or f32" "$LT" render --num both --out "$tmp/x"
 expect "shadows --num lists the frusta paths" 2 "shadows: --num n32: expected q16 or f32" "$LT" shadows --mesh scenes/teapot.obj --num n32
+expect "reproject --num lists the screen paths" 2 "reproject: --num q16: expected n64, n32 or f32" "$LT" reproject --depth x.exr --num q16
+expect "reproject --enc (deprecated) still parses, with a note on stderr" 1 "reproject: note: --enc is deprecated, use --num" \
+    "$LT" reproject --depth /nonexistent.exr --enc n32
