@@ -194,8 +194,8 @@ typedef struct run {
     lt_camera_t cam;
     lt_frame_t ref, fr;
     /* outputs */
-    float *zbuf[2], *idbuf[2];
-    char zname[2][16], idname[2][16];
+    float *zbuf[LT_PATHS_MAX], *idbuf[LT_PATHS_MAX]; /* per lt_path_t */
+    char zname[LT_PATHS_MAX][16], idname[LT_PATHS_MAX][16];
     cJSON *jout;
     FILE *csvf;
     int status;
@@ -591,10 +591,10 @@ static int run_path(run_t *r, const lt_path_info_t *p)
 static void run_write_depth(run_t *r)
 {
     char err[1024];
-    lt_exr_channel_t ch[4];
+    lt_exr_channel_t ch[2 * LT_PATHS_MAX];
     lt_exr_image_t im;
     int nch = 0, path;
-    for (path = 0; path < 2; path++) {
+    for (path = 0; path < LT_PATHS_MAX; path++) {
         if (r->zbuf[path] == NULL)
             continue;
         ch[nch].name = r->zname[path];
@@ -691,7 +691,7 @@ static int cmd_run(int argc, char **argv)
         rc = run_load(&r);
     if (rc == 0)
         rc = run_trace(&r);
-    for (path = 0; path < 2; path++) {
+    for (path = 0; path < LT_PATHS_MAX; path++) {
         free(r.zbuf[path]);
         free(r.idbuf[path]);
     }

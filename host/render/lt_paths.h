@@ -31,6 +31,10 @@
 extern "C" {
 #endif
 
+/* More than the number of entries and than any path's value in a family's enumeration (arrays
+ * indexed by lt_path_t use it). */
+#define LT_PATHS_MAX 8
+
 /* The families of kernels a path can serve (bits). */
 #define LT_PATHS_OBJECT 1u /* object space: lanetrace run, render (lt_accel_build, lt_render_*) */
 #define LT_PATHS_FRUSTA 2u /* multi-frusta soft shadows: lanetrace shadows (lt_softshadow) */

@@ -40,8 +40,10 @@ static void test_names_unique_and_found(void **state)
         assert_int_equal((p->families & LT_PATHS_SCREEN) != 0, p->qt_enc >= 0);
         assert_int_equal((p->families & LT_PATHS_SCREEN) != 0, p->ssb_enc >= 0);
         assert_int_equal(p->frac_bits == 0, strcmp(p->format, "float32") == 0);
+        assert_true(p->path < LT_PATHS_MAX && p->qt_enc < LT_PATHS_MAX);
     }
     assert_int_equal(n, 4);
+    assert_true(n < LT_PATHS_MAX);
     assert_null(lt_paths_find("n64", LT_PATHS_OBJECT));
     assert_null(lt_paths_find("q16", LT_PATHS_SCREEN));
     assert_null(lt_paths_find("both", 0));
