@@ -292,7 +292,7 @@ static void test_malformed(void **state)
     write_bytes(tpath("garbage.obj"), garbage, sizeof garbage);
     expect_fail("garbage.obj", "binary data", &n);
     write_bytes(tpath("garbage.ply"), garbage, sizeof garbage);
-    expect_fail("garbage.ply", "assimp", &n);
+    expect_fail("garbage.ply", "not a PLY file", &n);
     write_bytes(tpath("garbage.bin"), garbage, sizeof garbage);
     expect_fail("garbage.bin", "assimp", &n);
     write_text(tpath("ctrl.obj"), "v 0 0 0\nv 1 0\x01 0\nv 0 1 0\nf 1 2 3\n");
