@@ -22,32 +22,32 @@ else
     am_t0=$(date +%s)
     am_n=0 am_ok=0 am_ref=0 am_bad=0 am_crash=0 am_slow=0
     declare -A am_tot=() am_load=()
-    while IFS= read -r -d '' f; do
-        b=$(basename "$f" | tr 'A-Z' 'a-z')
-        e=${b##*.}
-        case "$am_exts" in *" $e "*) ;; *) continue ;; esac
+    while IFS= read -r -d '' am_f; do
+        am_b=$(basename "$am_f" | tr 'A-Z' 'a-z')
+        am_e=${am_b##*.}
+        case "$am_exts" in *" $am_e "*) ;; *) continue ;; esac
         am_n=$((am_n + 1))
-        am_tot[$e]=$((${am_tot[$e]:-0} + 1))
-        LT_IMPORT_TIMEOUT=30 timeout 60 "$B/host/lanetrace-native" info "$f" \
+        am_tot[$am_e]=$((${am_tot[$am_e]:-0} + 1))
+        LT_IMPORT_TIMEOUT=30 timeout 60 "$B/host/lanetrace-native" info "$am_f" \
             >"$tmp/am.out" 2>"$tmp/am.err" </dev/null
-        rc=$?
-        if [ $rc -eq 0 ] && grep -q ' triangles' "$tmp/am.out"; then
+        am_rc=$?
+        if [ $am_rc -eq 0 ] && grep -q ' triangles' "$tmp/am.out"; then
             am_ok=$((am_ok + 1))
-            am_load[$e]=$((${am_load[$e]:-0} + 1))
-        elif [ $rc -eq 1 ] && [ "$(wc -l <"$tmp/am.err")" -eq 1 ] &&
-            [ "$(head -c ${#f} "$tmp/am.err")" = "$f" ]; then
+            am_load[$am_e]=$((${am_load[$am_e]:-0} + 1))
+        elif [ $am_rc -eq 1 ] && [ "$(wc -l <"$tmp/am.err")" -eq 1 ] &&
+            [ "$(head -c ${#am_f} "$tmp/am.err")" = "$am_f" ]; then
             am_ref=$((am_ref + 1))
             grep -q 'the importer (assimp) crashed' "$tmp/am.err" && am_crash=$((am_crash + 1))
             grep -q 'did not finish within' "$tmp/am.err" && am_slow=$((am_slow + 1))
         else
             am_bad=$((am_bad + 1))
-            echo "  BAD rc $rc ${f#"$am_root"/}: $(head -c 300 "$tmp/am.err" | tr '\n' '|')"
+            echo "  BAD rc $am_rc ${am_f#"$am_root"/}: $(head -c 300 "$tmp/am.err" | tr '\n' '|')"
         fi
     done < <(find "$am_root" -type f -print0 | sort -z)
     am_s=$(($(date +%s) - am_t0))
     am_line=""
-    for e in $(printf '%s\n' "${!am_tot[@]}" | sort); do
-        am_line+=" $e ${am_load[$e]:-0}/${am_tot[$e]}"
+    for am_e in $(printf '%s\n' "${!am_tot[@]}" | sort); do
+        am_line+=" $am_e ${am_load[$am_e]:-0}/${am_tot[$am_e]}"
     done
     echo "  loaded/files by extension:$am_line"
     echo "  $am_n model files: $am_ok loaded, $am_ref refused in one line naming the file" \

@@ -71,9 +71,9 @@ mi_refused() { # file, pattern: exit 1, one stderr line naming the file with the
         fi
     done
 }
-for f in ok.ply ok_le.ply ok.off ok.stl lamp.ogex; do
-    mi_run 60 "$B/host/lanetrace-native" info "$mi_dir/$f"
-    check "info $f loads ($(head -1 "$tmp/mi.out" | sed "s|^$mi_dir/||"))" \
+for mi_f in ok.ply ok_le.ply ok.off ok.stl lamp.ogex; do
+    mi_run 60 "$B/host/lanetrace-native" info "$mi_dir/$mi_f"
+    check "info $mi_f loads ($(head -1 "$tmp/mi.out" | sed "s|^$mi_dir/||"))" \
         bash -c "[ $mi_rc -eq 0 ] && grep -q ' triangles' '$tmp/mi.out'"
 done
 mi_refused cut_header.ply "without 'end_header' (truncated?)"
