@@ -119,6 +119,7 @@ static void child_main(int fd, const char *path, lt_import_child_fn fn, void *ct
 static const char *signal_name(int s)
 {
     switch (s) {
+    case SIGALRM: return "SIGALRM";
     case SIGABRT: return "SIGABRT";
     case SIGSEGV: return "SIGSEGV";
     case SIGFPE: return "SIGFPE";
@@ -273,16 +274,20 @@ int lt_import_isolated(const char *path, lt_import_child_fn fn, void *ctx, lt_me
 #ifdef SIGSYS
                                             SIGSYS,
 #endif
-                                            SIGPIPE};
+                                            SIGPIPE, SIGINT, SIGTERM, SIGALRM};
         struct rlimit nocore;
         size_t k;
         nocore.rlim_cur = 0;
         nocore.rlim_max = 0;
         (void)setrlimit(RLIMIT_CORE, &nocore); /* a crash leaves no core file */
-        /* a crash ends the child: no handler of the parent's (a test framework's, a
-         * sanitizer's) may catch it and carry on with the parent's work in here */
+        /* a crash or an interrupt ends the child: no handler of the parent's (a test
+         * framework's, a sanitizer's, the CLI's clean-up on Ctrl-C) may run in here */
         for (k = 0; k < sizeof crash_signals / sizeof crash_signals[0]; k++)
             (void)signal(crash_signals[k], SIG_DFL);
+        /* a backstop should the parent die without killing it (SIGKILL): the child ends
+         * shortly after the deadline on its own */
+        if (limit > 0)
+            (void)alarm(limit + 5);
         (void)close(dp[0]);
         (void)close(ep[0]);
         (void)dup2(ep[1], STDOUT_FILENO);
