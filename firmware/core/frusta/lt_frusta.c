@@ -1,12 +1,14 @@
 /* lt_frusta.c - instantiates the multi-frusta kernels of lt_frusta.inc (Benthin & Wald 2009
  * [Benthin09]) for s15.16 (exact integer rays, proven margins) and float32 (relative margins), and
  * holds what differs between the two paths: the per-frame tables, the direction scaling,
- * reciprocals, the triangle-kernel arithmetic replicated for culling (bit-identical to lt_isect.c's
- * lane math, which tests/unit/test_frusta.c checks) and the margins; for primary frusta the eye's
- * scalar terms, the exact linear camera (s1.30 integer directions; float32 on a 2^-23 grid) and its
- * lane helpers. Builds: all; float32 only with LT_CFG_FLOAT32.
+ * reciprocals, the scalar forms of the triangle test's arithmetic for culling (lt_tri.h's per-lane
+ * body, the one lt_isect.c's kernel uses, so they are the kernel's tnum, det, u and v) and the
+ * margins; for primary frusta the eye's scalar terms, the exact linear camera (s1.30 integer
+ * directions; float32 on a 2^-23 grid) and its lane helpers. Builds: all; float32 only with
+ * LT_CFG_FLOAT32.
  */
 #include "lt/lt_frusta.h"
+#include "object/lt_tri.h"
 
 /* ---- s15.16 --------------------------------------------------------------------------------- */
 
@@ -153,10 +155,6 @@ static lt_vq16_t q_tmaxv(lt_vq16_t tend, uint32_t es)
 #define Q_LOWER(x) lt_vq16_sub_sat((x), lt_vq16_set1(LT_FRUSTA_BOX_MARGIN_Q16))
 #define Q_UPPER(x) lt_vq16_add_sat((x), lt_vq16_set1(LT_FRUSTA_BOX_MARGIN_Q16))
 
-/* the lane arithmetic of lt_tri16_q16, shared with lt_isect.c so culling evaluates exactly the
- * kernel's tnum, det, u and v (tests/unit/test_frusta.c compares) */
-#include "object/lt_isect_q16.inc"
-
 /* Corner-culling margins, in the forms' 36 fractional bits (U = d . round6(e2 x tvec), D = d .
  * round6(e2 x e1), V = d . qvec). The kernel's u and det differ from the exact linear forms by
  * <= 1/2 |tvec|_1 and 1/2 |e1|_1 (pvec rounding, 32-bit units), each rounded normal puts U/16 or
@@ -188,15 +186,9 @@ static void q_tri_a(const lt_tri_q16_t *t, lt_vq6_t *ax, lt_vq6_t *ay, lt_vq6_t 
 {
     LT_COST(SMUL, 6);
     LT_COST(SALU, 6);
-    *ax = lt_vq6_set1(lt__round_sat32(lt__l64_sub_wrap(lt__mul32x32_64(t->e2[1], t->e1[2]),
-                                                        lt__mul32x32_64(t->e2[2], t->e1[1])),
-                                       32u - QV_FRAC));
-    *ay = lt_vq6_set1(lt__round_sat32(lt__l64_sub_wrap(lt__mul32x32_64(t->e2[2], t->e1[0]),
-                                                        lt__mul32x32_64(t->e2[0], t->e1[2])),
-                                       32u - QV_FRAC));
-    *az = lt_vq6_set1(lt__round_sat32(lt__l64_sub_wrap(lt__mul32x32_64(t->e2[0], t->e1[1]),
-                                                        lt__mul32x32_64(t->e2[1], t->e1[0])),
-                                       32u - QV_FRAC));
+    *ax = lt_vq6_set1(lt__tri_q16_qvec1(t->e2[1], t->e1[2], t->e2[2], t->e1[1]));
+    *ay = lt_vq6_set1(lt__tri_q16_qvec1(t->e2[2], t->e1[0], t->e2[0], t->e1[2]));
+    *az = lt_vq6_set1(lt__tri_q16_qvec1(t->e2[0], t->e1[1], t->e2[1], t->e1[0]));
 }
 
 /* Lanes whose edge normal (or the triangle's e2 x e1) saturated its s25.6 range. */
@@ -217,24 +209,15 @@ static lt_mask16_t q_nsat(lt_vq6_t nx, lt_vq6_t ny, lt_vq6_t nz, lt_vq6_t ax, lt
     return (lt_mask16_t)m;
 }
 
-/* Scalar sign of the kernel's tnum for one origin (lane arithmetic of lt_tri16_q16): a hit of any
+/* Scalar sign of the kernel's tnum for one origin (lt__tri_q16_org1, lt_tri.h): a hit of any
  * ray from o has det of this sign (t = tnum / det > tmin >= 0). Cost: SMUL x9, SALU x9. */
 static int q_tnum_sign1(const lt_q16_t o[3], const lt_tri_q16_t *tri)
 {
-    int32_t tx = lt__q16_sub_sat(o[0], tri->v0[0]), ty = lt__q16_sub_sat(o[1], tri->v0[1]);
-    int32_t tz = lt__q16_sub_sat(o[2], tri->v0[2]);
-    int32_t qx = lt__round_sat32(lt__l64_sub_wrap(lt__mul32x32_64(ty, tri->e1[2]),
-                                                  lt__mul32x32_64(tz, tri->e1[1])), 32u - QV_FRAC);
-    int32_t qy = lt__round_sat32(lt__l64_sub_wrap(lt__mul32x32_64(tz, tri->e1[0]),
-                                                  lt__mul32x32_64(tx, tri->e1[2])), 32u - QV_FRAC);
-    int32_t qz = lt__round_sat32(lt__l64_sub_wrap(lt__mul32x32_64(tx, tri->e1[1]),
-                                                  lt__mul32x32_64(ty, tri->e1[0])), 32u - QV_FRAC);
-    int64_t t = lt__l64_add_wrap(lt__l64_add_wrap(lt__mul32x32_64(tri->e2[0], qx),
-                                                  lt__mul32x32_64(tri->e2[1], qy)),
-                                 lt__mul32x32_64(tri->e2[2], qz));
+    lt__tri_q16_org_t s;
+    lt__tri_q16_org1(o, tri, &s);
     LT_COST(SMUL, 9);
     LT_COST(SALU, 9);
-    return (t > 0) - (t < 0);
+    return (s.tnum > 0) - (s.tnum < 0);
 }
 
 /* Direct-light term: n.w and nl.w rounded to s15.16 (lt_vq16_dot3_q30_sat: q30 x q16 -> 46 bits),
@@ -300,31 +283,13 @@ static lt_vq16_t q_loadx(const int32_t *row, int64_t x0, uint32_t w, lt_mask16_t
 /* ---- primary frusta, s15.16: the eye's scalar terms and s1.30 direction lanes --------------- */
 
 /* The kernel's origin-only terms for rays from one eye, as scalars: tvec = o - v0, qvec = tvec x
- * e1 rounded to s25.6 and tnum = e2 . qvec, the lane arithmetic of lt_tri16_q16 (so broadcasting
- * them gives exactly the kernel's lanes). Cost: SMUL x9, SALU x12. */
-typedef struct {
-    int32_t t[3];  /* tvec, s15.16 */
-    int32_t q[3];  /* qvec, s25.6 */
-    int64_t tnum;  /* e2 . qvec, 22 fractional bits */
-} q_stq_t;
+ * e1 rounded to s25.6 and tnum = e2 . qvec, lt_tri.h's lt__tri_q16_org1 (the lane arithmetic of
+ * lt_tri16_q16, so broadcasting them gives exactly the kernel's lanes). Cost: SMUL x9, SALU x12. */
+typedef lt__tri_q16_org_t q_stq_t; /* t: tvec s15.16, q: qvec s25.6, tnum: 22 fractional bits */
 
 static void q_ptq1(const lt_q16_t o[3], const lt_tri_q16_t *tri, q_stq_t *s)
 {
-    unsigned a;
-    for (a = 0; a < 3; a++)
-        s->t[a] = lt__q16_sub_sat(o[a], tri->v0[a]);
-    s->q[0] = lt__round_sat32(lt__l64_sub_wrap(lt__mul32x32_64(s->t[1], tri->e1[2]),
-                                               lt__mul32x32_64(s->t[2], tri->e1[1])),
-                              32u - QV_FRAC);
-    s->q[1] = lt__round_sat32(lt__l64_sub_wrap(lt__mul32x32_64(s->t[2], tri->e1[0]),
-                                               lt__mul32x32_64(s->t[0], tri->e1[2])),
-                              32u - QV_FRAC);
-    s->q[2] = lt__round_sat32(lt__l64_sub_wrap(lt__mul32x32_64(s->t[0], tri->e1[1]),
-                                               lt__mul32x32_64(s->t[1], tri->e1[0])),
-                              32u - QV_FRAC);
-    s->tnum = lt__l64_add_wrap(lt__l64_add_wrap(lt__mul32x32_64(tri->e2[0], s->q[0]),
-                                                lt__mul32x32_64(tri->e2[1], s->q[1])),
-                               lt__mul32x32_64(tri->e2[2], s->q[2]));
+    lt__tri_q16_org1(o, tri, s);
     LT_COST(SMUL, 9);
     LT_COST(SALU, 12);
 }
@@ -336,15 +301,9 @@ static int q_pnrm1(const lt_tri_q16_t *tri, const int32_t t[3], int32_t n[3])
 {
     unsigned a;
     int sat = 0;
-    n[0] = lt__round_sat32(lt__l64_sub_wrap(lt__mul32x32_64(tri->e2[1], t[2]),
-                                            lt__mul32x32_64(tri->e2[2], t[1])),
-                           32u - QV_FRAC);
-    n[1] = lt__round_sat32(lt__l64_sub_wrap(lt__mul32x32_64(tri->e2[2], t[0]),
-                                            lt__mul32x32_64(tri->e2[0], t[2])),
-                           32u - QV_FRAC);
-    n[2] = lt__round_sat32(lt__l64_sub_wrap(lt__mul32x32_64(tri->e2[0], t[1]),
-                                            lt__mul32x32_64(tri->e2[1], t[0])),
-                           32u - QV_FRAC);
+    n[0] = lt__tri_q16_qvec1(tri->e2[1], t[2], tri->e2[2], t[1]);
+    n[1] = lt__tri_q16_qvec1(tri->e2[2], t[0], tri->e2[0], t[2]);
+    n[2] = lt__tri_q16_qvec1(tri->e2[0], t[1], tri->e2[1], t[0]);
     for (a = 0; a < 3; a++)
         sat |= n[a] == INT32_MAX || n[a] == INT32_MIN;
     LT_COST(SMUL, 6);
@@ -444,12 +403,12 @@ LT_INLINE int32_t q_pdelta(const lt_frusta_vtable_q16_t *vt, uint32_t jx, uint32
 #define LTN_UPPER Q_UPPER
 #define LTN_MAX_M lt_vq16_max_m
 #define LTN_MIN_M lt_vq16_min_m
-/* the products of lt_tri16_q16 (lt_isect_q16.inc) */
-#define LTN_CROSS_DP lt_vq16_cross_q30_sat
-#define LTN_DOT_PP lt_vql32_dot3_q16
-#define LTN_CROSS_PP lt_vq6_cross_q16_sat
-#define LTN_DOT_DQ lt_vql32_dot3_q30_q6_rd
-#define LTN_DOT_PQ lt_vql22_dot3_q16_q6
+/* the products of lt_tri16_q16: the lane ops of lt_tri.h's per-lane body */
+#define LTN_CROSS_DP LT__TRI_V16_PVEC
+#define LTN_DOT_PP LT__TRI_V16_DOT
+#define LTN_CROSS_PP LT__TRI_V16_QVEC
+#define LTN_DOT_DQ LT__TRI_V16_V
+#define LTN_DOT_PQ LT__TRI_V16_TNUM
 /* det, u, v (LTN_W, s31.32) */
 #define LTN_W_ADD lt_vql32_add_wrap
 #define LTN_W_NEG(a) lt_vql32_sub_wrap(lt_vql32_set1(0), (a))
@@ -471,7 +430,7 @@ LT_INLINE int32_t q_pdelta(const lt_frusta_vtable_q16_t *vt, uint32_t jx, uint32
 #define LTN_WC_CMPLT_M lt_vql36_cmplt_m
 #define LTN_WC_CMPGT_M lt_vql36_cmpgt_m
 #define LTN_QV_SET1 lt_vq6_set1
-#define LTN_TDIV_M q_tdiv_m
+#define LTN_TDIV_M lt__tri_tdiv16_q16
 #define LTN_TRI_A q_tri_a
 /* d . n for s1.30 corner rays and an s25.6 normal: exact, 36 fractional bits */
 #define LTN_LDOT lt_vql36_dot3_q30_q6

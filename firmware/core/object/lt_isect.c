@@ -1,8 +1,10 @@
 /* lt_isect.c - instantiates the packet kernels of lt_isect.inc for each numeric path:
- * s15.16 fixed point (exact int64 products) and IEEE float32. The traits below are the only
- * place where the two paths differ. Builds: all; float32 only with LT_CFG_FLOAT32.
+ * s15.16 fixed point (exact int64 products; the triangle test's arithmetic is lt_tri.h's) and IEEE
+ * float32. The traits below are the only place where the two paths differ. Builds: all; float32
+ * only with LT_CFG_FLOAT32.
  */
 #include "lt/lt_isect.h"
+#include "lt_tri.h"
 
 /* ---- fixed point: s15.16 positions, s1.30 directions ---------------------------------------- */
 
@@ -49,17 +51,16 @@ static void q_slab_fix(lt_mask16_t par, lt_mask16_t rsat, lt_vq16_t o, lt_vq30_t
     }
 }
 
-#include "lt_isect_q16.inc"
-
 #include "numerics/lt_traits_q16.h"
 #define LTN_QV lt_vq6_t    /* qvec, s25.6 */
 #define LTN_W lt_vql32_t   /* det, u, v: s31.32 */
 #define LTN_TN lt_vql22_t  /* tnum: s41.22 */
-#define LTN_CROSS_DP lt_vq16_cross_q30_sat
-#define LTN_DOT_PP lt_vql32_dot3_q16
-#define LTN_CROSS_PP lt_vq6_cross_q16_sat
-#define LTN_DOT_DQ lt_vql32_dot3_q30_q6_rd
-#define LTN_DOT_PQ lt_vql22_dot3_q16_q6
+/* the products of the triangle test, one lane op per step of lt_tri.h's per-lane body */
+#define LTN_CROSS_DP LT__TRI_V16_PVEC
+#define LTN_DOT_PP LT__TRI_V16_DOT
+#define LTN_CROSS_PP LT__TRI_V16_QVEC
+#define LTN_DOT_DQ LT__TRI_V16_V
+#define LTN_DOT_PQ LT__TRI_V16_TNUM
 #define LTN_W_ADD lt_vql32_add_wrap
 #define LTN_W_NEG_M(k, a) lt_vql32_sub_wrap_m((a), (k), lt_vql32_set1(0), (a))
 #define LTN_TN_NEG_M(k, a) lt_vql22_sub_wrap_m((a), (k), lt_vql22_set1(0), (a))
@@ -67,7 +68,7 @@ static void q_slab_fix(lt_mask16_t par, lt_mask16_t rsat, lt_vq16_t o, lt_vq30_t
 #define LTN_W_CMPGT0(k, a) lt_vql32_cmpgt_m((k), (a), lt_vql32_set1(0))
 #define LTN_W_CMPGE0(k, a) lt_vql32_cmpge_m((k), (a), lt_vql32_set1(0))
 #define LTN_W_CMPLE_M lt_vql32_cmple_m
-#define LTN_TDIV_M q_tdiv_m
+#define LTN_TDIV_M lt__tri_tdiv16_q16
 #define LTN_SLAB_FIX q_slab_fix
 #include "lt_isect.inc"
 #include "numerics/lt_traits_undef.h"

@@ -6,6 +6,7 @@
  * LT_CFG_FLOAT32.
  */
 #include "lt/lt_qt.h"
+#include "lt_qt_grid.h"
 
 /* ---- parameters and layout ------------------------------------------------------------------- */
 
@@ -117,9 +118,8 @@ static lt_status_t qt_prepare(lt_qt_t *qt, const lt_qt_desc_t *d, const lt_qt_pa
     return LT_OK;
 }
 
-/* Node index and the outside-the-grid test: lt_qt_grid.inc (shared with lt_hiz.c's cells). */
-#include "lt_qt_grid.inc"
-
+/* Node index and the outside-the-grid test: lt__qtgrid_index / lt__qtgrid_outside (lt_qt_grid.h,
+ * shared with lt_hiz.c's cells). */
 static lt_vi32_t qt_node_index(const lt_qt_t *qt, lt_mask16_t k, lt_vi32_t lvl, lt_vi32_t qx,
                                lt_vi32_t qy)
 {
