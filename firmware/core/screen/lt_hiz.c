@@ -105,13 +105,13 @@ static lt_status_t hiz_prepare(lt_hiz_t *hz, const lt_ssb_desc_t *d, const lt_ss
 
 /* The cell codecs (pixel pair loads, cell pair loads, stores, gathers) are lt_hiz.inc's, written
  * once over the SS_* traits; the two paths differ only in what a hole is (SS_PIX_OK) and in the
- * compare class that tests it (SS_PIX_TEST_COST). */
+ * compare class that tests it (SS_PIX_TEST_COST, a recipe per path). */
 #include "lt_ssb_q30.inc"
 #define SS_CELL lt_hiz_cell_q30_t
 #define SS_ENC LT_SSB_Q30
 /* raw <= 0 is a hole (w > 0 is the valid range of the s1.30 input); one VCMP per pixel vector */
 #define SS_PIX_OK(v) ((v) > 0)
-#define SS_PIX_TEST_COST() LT_COST(VCMP, 2)
+#define SS_PIX_TEST_COST() LT_CHARGE(HIZ_Q_PIX_TEST)
 #include "lt_hiz.inc"
 #include "lt_ssb_undef.inc"
 
@@ -123,7 +123,7 @@ static lt_status_t hiz_prepare(lt_hiz_t *hz, const lt_ssb_desc_t *d, const lt_ss
 #define SS_ENC LT_SSB_F32
 /* NaN, +-inf and w <= 0 are holes: two FCMP per pixel vector (the test is false for NaN) */
 #define SS_PIX_OK(v) ((v) > 0.0f && (v) <= LT__SSB_F32_MAX)
-#define SS_PIX_TEST_COST() LT_COST(FCMP, 4)
+#define SS_PIX_TEST_COST() LT_CHARGE(HIZ_F_PIX_TEST)
 #include "lt_hiz.inc"
 #include "lt_ssb_undef.inc"
 

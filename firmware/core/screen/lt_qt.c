@@ -7,6 +7,7 @@
  */
 #include "lt/lt_qt.h"
 #include "lt_qt_grid.h"
+#include "lt_ssb.h"
 
 /* ---- parameters and layout ------------------------------------------------------------------- */
 
@@ -139,13 +140,12 @@ static lt_mask16_t qt_outside(const lt_qt_t *qt, lt_mask16_t k, lt_vi32_t lvl, l
  * and the kernels' bounds keep every sum of them below 2^62 (docs/quadtree.md). */
 
 /* gamma * max(lo, 0) as a wide build value: s1.30 x s1.30 -> s2.60 -> LS_FRAC fractional bits below
- * the raw unit (floor). Cost: VMUL x1, VSHIFT x1. */
+ * the raw unit (floor). Cost: QT_Q_RELTOL (VMUL x1, VSHIFT x1). */
 static lt_vql36_t q_reltol(lt_vq30_t lo, lt_vq30_t g)
 {
     lt_vql36_t r;
     int i;
-    LT_COST(VMUL, 1);
-    LT_COST(VSHIFT, 1);
+    LT_CHARGE(QT_Q_RELTOL);
     for (i = 0; i < LT_LANES; i++)
         r.l[i] = lt__asr64(lt__mul32x32_64(lo.l[i] > 0 ? lo.l[i] : 0, g.l[i]), 24);
     return r;
@@ -218,16 +218,17 @@ static void n64_dec1(lt_qt_n64_t n, int bounds, qdec_t *d, int i)
     }
 }
 
-/* Decode base[i0 + stride * lane] for the lanes in k. Cost: VGATHER per active lane, VSHIFT x4,
- * VALU x6 (+ VALU x4 with bounds). */
+/* Decode base[i0 + stride * lane] for the lanes in k (n64_decode_idx: base[idx]). Cost:
+ * LANE_GATHER per active lane, QT_N64_DECODE (VSHIFT x4, VALU x6), with bounds
+ * QT_N64_DECODE_BOUNDS (VALU x4). */
 static void n64_decode(const lt_qt_n64_t *base, uint32_t i0, uint32_t stride, lt_mask16_t k,
                        int bounds, qdec_t *d)
 {
     int i;
     qdec_zero(d);
-    LT_COST(VGATHER, lt__popcount32(k));
-    LT_COST(VSHIFT, 4);
-    LT_COST(VALU, bounds ? 10 : 6);
+    LT_CHARGE_N(LANE_GATHER, lt__popcount32(k));
+    LT_CHARGE(QT_N64_DECODE);
+    LT_CHARGE_N(QT_N64_DECODE_BOUNDS, bounds != 0);
     LT_UTIL(k);
     for (i = 0; i < LT_LANES; i++) {
         if (LT__ON(k, i)) {
@@ -242,9 +243,8 @@ static void n64_decode_idx(const lt_qt_n64_t *base, lt_vi32_t idx, lt_mask16_t k
 {
     int i;
     qdec_zero(d);
-    LT_COST(VGATHER, lt__popcount32(k));
-    LT_COST(VSHIFT, 4);
-    LT_COST(VALU, 6);
+    LT_CHARGE_N(LANE_GATHER, lt__popcount32(k));
+    LT_CHARGE(QT_N64_DECODE);
     LT_UTIL(k);
     for (i = 0; i < LT_LANES; i++) {
         if (LT__ON(k, i)) {
@@ -258,7 +258,8 @@ static void n64_decode_idx(const lt_qt_n64_t *base, lt_vi32_t idx, lt_mask16_t k
 /* Store the planes of the lanes in k (values with LS_FRAC fractional bits) at out[i0 + lane].
  * C is rounded half up to s1.30 and then to the smallest exponent Ec that fits 24 unsigned bits;
  * Al, Be get the smallest shift Es that fits 15 signed bits, each rounded half up.
- * Cost: VSHIFT x3, VALU x2 per exponent tried, VSTORE x2.
+ * Cost: QT_N64_ENC_PLANE (VSHIFT x3, VALU x6, VSTORE x2), QT_N64_ENC_TRY (VALU x2) per slope
+ * shift tried again, summed over the lanes.
  * Returns: the lanes stored (C < 0, a partial node extrapolated past w = 0, or a value outside
  * int32 is not encodable). */
 static lt_mask16_t n64_enc_plane(lt_qt_n64_t *out, uint32_t i0, lt_mask16_t k, lt_vql36_t cw,
@@ -266,7 +267,6 @@ static lt_mask16_t n64_enc_plane(lt_qt_n64_t *out, uint32_t i0, lt_mask16_t k, l
 {
     unsigned m = 0, tries = 0;
     int i;
-    LT_COST(VSHIFT, 3);
     LT_UTIL(k);
     for (i = 0; i < LT_LANES; i++) {
         int64_t c, a, b, cm, am = 0, bm = 0;
@@ -301,19 +301,19 @@ static lt_mask16_t n64_enc_plane(lt_qt_n64_t *out, uint32_t i0, lt_mask16_t k, l
         out[i0 + (uint32_t)i].lo = ((uint32_t)cm << 8) | (e << 3) | ec;
         m |= 1u << i;
     }
-    LT_COST(VALU, 6u + 2u * tries);
-    LT_COST(VSTORE, 2);
+    LT_CHARGE(QT_N64_ENC_PLANE);
+    LT_CHARGE_N(QT_N64_ENC_TRY, tries);
     LT_MEM(&out[i0], LT_LANES * sizeof *out, LT_MEM_WRITE);
     return (lt_mask16_t)m;
 }
 
-/* AABB nodes: wmin, wmax clamped to [0, 2^31) (rays never have w < 0). Cost: VALU x4, VSTORE x2. */
+/* AABB nodes: wmin, wmax clamped to [0, 2^31) (rays never have w < 0). Cost: QT_N64_ENC_AABB
+ * (VALU x4, VSTORE x2). */
 static void n64_enc_aabb(lt_qt_n64_t *out, uint32_t i0, lt_mask16_t k, lt_vq30_t lo,
                          lt_vq30_t hi)
 {
     int i;
-    LT_COST(VALU, 4);
-    LT_COST(VSTORE, 2);
+    LT_CHARGE(QT_N64_ENC_AABB);
     LT_UTIL(k);
     LT_MEM(&out[i0], LT_LANES * sizeof *out, LT_MEM_WRITE);
     for (i = 0; i < LT_LANES; i++) {
@@ -325,14 +325,13 @@ static void n64_enc_aabb(lt_qt_n64_t *out, uint32_t i0, lt_mask16_t k, lt_vq30_t
     }
 }
 
-/* Copy the lanes in k of a 16-node scratch row to out[i0 + lane]. Cost: VLOAD x1, VSTORE x1
- * per 64 bytes of the row. */
+/* Copy the lanes in k of a 16-node scratch row to out[i0 + lane]. Cost: QT_COPY_LINE (VLOAD x1,
+ * VSTORE x1) per 64 bytes of the row. */
 #define QT_COPY_FN(name, T)                                                                        \
     static void name(T *out, uint32_t i0, const T *tmp, lt_mask16_t k)                            \
     {                                                                                              \
         int i;                                                                                     \
-        LT_COST(VLOAD, (sizeof(T) * LT_LANES + 63u) / 64u);                                        \
-        LT_COST(VSTORE, (sizeof(T) * LT_LANES + 63u) / 64u);                                       \
+        LT_CHARGE_N(QT_COPY_LINE, (sizeof(T) * LT_LANES + 63u) / 64u);                             \
         LT_UTIL(k);                                                                                \
         LT_MEM(&out[i0], LT_LANES * sizeof(T), LT_MEM_WRITE);                                      \
         for (i = 0; i < LT_LANES; i++)                                                             \
@@ -393,14 +392,16 @@ static void n32_dec1(lt_qt_n32_t n, int bounds, qdec_t *d, int i)
     }
 }
 
+/* As n64_decode. Cost: LANE_GATHER per active lane, QT_N32_DECODE (VSHIFT x6, VALU x8), with
+ * bounds QT_N32_DECODE_BOUNDS (VALU x4). */
 static void n32_decode(const lt_qt_n32_t *base, uint32_t i0, uint32_t stride, lt_mask16_t k,
                        int bounds, qdec_t *d)
 {
     int i;
     qdec_zero(d);
-    LT_COST(VGATHER, lt__popcount32(k));
-    LT_COST(VSHIFT, 6);
-    LT_COST(VALU, bounds ? 12 : 8);
+    LT_CHARGE_N(LANE_GATHER, lt__popcount32(k));
+    LT_CHARGE(QT_N32_DECODE);
+    LT_CHARGE_N(QT_N32_DECODE_BOUNDS, bounds != 0);
     LT_UTIL(k);
     for (i = 0; i < LT_LANES; i++) {
         if (LT__ON(k, i)) {
@@ -415,9 +416,8 @@ static void n32_decode_idx(const lt_qt_n32_t *base, lt_vi32_t idx, lt_mask16_t k
 {
     int i;
     qdec_zero(d);
-    LT_COST(VGATHER, lt__popcount32(k));
-    LT_COST(VSHIFT, 6);
-    LT_COST(VALU, 8);
+    LT_CHARGE_N(LANE_GATHER, lt__popcount32(k));
+    LT_CHARGE(QT_N32_DECODE);
     LT_UTIL(k);
     for (i = 0; i < LT_LANES; i++) {
         if (LT__ON(k, i)) {
@@ -430,14 +430,14 @@ static void n32_decode_idx(const lt_qt_n32_t *base, lt_vi32_t idx, lt_mask16_t k
 
 /* Planes into 32 bits: the smallest E (and K) for which C fits 12 unsigned bits and both slopes 6
  * signed bits in units of 2^(E + 3K), each rounded half up. C < 0 (a partial node extrapolated
- * past zero) is not encodable. Cost: VSHIFT x3, VALU x3 per exponent tried, VSTORE x1.
+ * past zero) is not encodable. Cost: QT_N32_ENC_PLANE (VSHIFT x3, VSTORE x1), QT_N32_ENC_TRY
+ * (VALU x3) per exponent tried by the lane that tried the most.
  * Returns: the lanes stored. */
 static lt_mask16_t n32_enc_plane(lt_qt_n32_t *out, uint32_t i0, lt_mask16_t k, lt_vql36_t cw,
                                  lt_vql36_t aw, lt_vql36_t bw, lt_mask16_t o)
 {
     unsigned m = 0, tries = 0;
     int i;
-    LT_COST(VSHIFT, 3);
     LT_UTIL(k);
     for (i = 0; i < LT_LANES; i++) {
         int64_t c, a, b, cm = 0, am = 0, bm = 0;
@@ -473,17 +473,18 @@ static lt_mask16_t n32_enc_plane(lt_qt_n32_t *out, uint32_t i0, lt_mask16_t k, l
                                   (kk << 12) | (((uint32_t)am & 63u) << 6) | ((uint32_t)bm & 63u);
         m |= 1u << i;
     }
-    LT_COST(VALU, 3u * tries);
-    LT_COST(VSTORE, 1);
+    LT_CHARGE(QT_N32_ENC_PLANE);
+    LT_CHARGE_N(QT_N32_ENC_TRY, tries);
     LT_MEM(&out[i0], LT_LANES * sizeof *out, LT_MEM_WRITE);
     return (lt_mask16_t)m;
 }
 
+/* AABB nodes: wmin rounded down, wmax up to the 15-bit minifloat. Cost: QT_N32_ENC_AABB
+ * (VALU x8, VSTORE x1). */
 static void n32_enc_aabb(lt_qt_n32_t *out, uint32_t i0, lt_mask16_t k, lt_vq30_t lo, lt_vq30_t hi)
 {
     int i;
-    LT_COST(VALU, 8);
-    LT_COST(VSTORE, 1);
+    LT_CHARGE(QT_N32_ENC_AABB);
     LT_UTIL(k);
     LT_MEM(&out[i0], LT_LANES * sizeof *out, LT_MEM_WRITE);
     for (i = 0; i < LT_LANES; i++)
@@ -495,13 +496,12 @@ static void n32_enc_aabb(lt_qt_n32_t *out, uint32_t i0, lt_mask16_t k, lt_vq30_t
 /* ---- fixed-point pixels, rays, crossings and plane tests ------------------------------------- */
 
 /* row[start + lane] for the lanes in k (0 elsewhere); negative raws are holes (0).
- * Cost: VLOAD x1, VALU x1. */
+ * Cost: QT_Q_LOADPIX (VLOAD x1, VALU x1). */
 static lt_vq30_t q_loadpix_m(const lt_q30_t *row, int32_t start, lt_mask16_t k)
 {
     lt_vq30_t r;
     int i;
-    LT_COST(VLOAD, 1);
-    LT_COST(VALU, 1);
+    LT_CHARGE(QT_Q_LOADPIX);
     LT_UTIL(k);
     if (k != 0)
         LT_MEM(&row[start + (int32_t)lt__ctz32(k)], LT_LANES * sizeof *row, LT_MEM_READ);
@@ -515,14 +515,9 @@ static lt_vq30_t q_loadpix_m(const lt_q30_t *row, int32_t start, lt_mask16_t k)
     return r;
 }
 
-/* Per-lane ray state after setup (fixed point). */
-typedef struct qsetup {
-    const lt_qray16_q30_t *r;
-    lt_vi32_t m[2];         /* per axis: 2^62 / (|d| 2^n) rounded, in (2^30, 2^31) */
-    lt_vi32_t sh[2];        /* per axis: 32 - n, the right shift after the product */
-    lt_mask16_t par[2];     /* d == 0 on that axis */
-    lt_mask16_t neg[2];     /* d < 0 on that axis */
-} qsetup_t;
+/* Per-lane ray state after setup (fixed point): lt_ssb.h's, shared with the DDA and Hi-Z tracers
+ * (ymaj unused here). */
+typedef lt__ssb_setup_q30_t qsetup_t;
 
 /* Lanes' per-layer outputs (see qt_layer in lt_qt.inc). */
 typedef struct qlayer_out {
@@ -531,35 +526,10 @@ typedef struct qlayer_out {
     lt_vi32_t nodes, aabb, planes; /* running per-lane counters */
 } qlayer_out_t;
 
-/* t = (X - o) / d for the pixel coordinate X per lane in k: (X 2^16 - o) m >> sh, half up, negated
- * for d < 0, saturated to int32. Monotonic in X for a fixed ray, so every crossing and every child
- * choice agrees with every other; |error| <= 1 ulp for |X - o| <= 2^15 px.
- * Cost: VALU x2, VMUL x1, VSHIFT x2. */
-static lt_vq30_t q_tcross(const qsetup_t *S, int a, lt_mask16_t k, lt_vi32_t X)
-{
-    const lt_vq16_t *o = a ? &S->r->y : &S->r->x;
-    lt_vq30_t t;
-    int i;
-    LT_COST(VALU, 2);
-    LT_COST(VMUL, 1);
-    LT_COST(VSHIFT, 2);
-    LT_UTIL(k);
-    for (i = 0; i < LT_LANES; i++) {
-        t.l[i] = 0;
-        if (LT__ON(k, i)) {
-            int64_t num = (int64_t)X.l[i] * 65536 - o->l[i];
-            int64_t q = q_rnd(num * S->m[a].l[i], (unsigned)S->sh[a].l[i]);
-            t.l[i] = lt__ssat32(LT__ON(S->neg[a], i) ? -q : q);
-        }
-    }
-    return t;
-}
-
-/* w of the ray at t in s1.60: w 2^30 + dw t (exact). */
-LT_INLINE int64_t q_wray1(const lt_qray16_q30_t *r, int i, int32_t t)
-{
-    return (int64_t)r->w.l[i] * ((int64_t)1 << 30) + lt__mul32x32_64(r->dw.l[i], t);
-}
+/* The crossing t = (X - o) / d, w along the ray, the hit parameter, the child side and the ray
+ * setup and clip are lt_ssb.c's s1.30 routines (lt_ssb.h), one body for the three screen-space
+ * tracers: lt__ssb_tcross_q30, lt__ssb_wray_q30, lt__ssb_w_at_q30, lt__ssb_hit_t_q30,
+ * lt__ssb_child_side_q30, lt__ssb_clip_q30 (the traits below). */
 
 /* Offset of the ray at t from the node centre in units of the node size, s1.30:
  * (o 2^30 + d t - (2q + 1) 2^(L + 45)) / 2^(16 + L), half up (o, d in s15.16, so s.46 before). */
@@ -571,206 +541,47 @@ LT_INLINE int64_t q_uoff(int32_t o, int32_t d, int32_t t, int32_t q, int32_t L)
 }
 
 /* f(t) = w_ray(t) - w_plane(x(t), y(t)) in s1.60, for the lanes in k (0 elsewhere). Exact given
- * the rounded u, v: |w error| <= (|Al| + |Be|) 2^-31 raw. Cost: VMUL x5, VMULW x6, VSHIFT x2,
- * VALU x4. */
+ * the rounded u, v: |w error| <= (|Al| + |Be|) 2^-31 raw. Cost: QT_Q_PLANE_F (VMUL x5,
+ * VMULW x6, VSHIFT x2, VALU x4). */
 static lt_vql60_t q_plane_f(const qsetup_t *S, lt_mask16_t k, lt_vq30_t t, lt_vi32_t lvl,
                           lt_vi32_t qx, lt_vi32_t qy, const qdec_t *nd)
 {
     const lt_qray16_q30_t *r = S->r;
     lt_vql60_t f;
     int i;
-    LT_COST(VMUL, 5);
-    LT_COST(VMULW, 6);
-    LT_COST(VSHIFT, 2);
-    LT_COST(VALU, 4);
+    LT_CHARGE(QT_Q_PLANE_F);
     LT_UTIL(k);
     for (i = 0; i < LT_LANES; i++) {
         f.l[i] = 0;
         if (LT__ON(k, i)) {
             int64_t u = q_uoff(r->x.l[i], r->dx.l[i], t.l[i], qx.l[i], lvl.l[i]);
             int64_t v = q_uoff(r->y.l[i], r->dy.l[i], t.l[i], qy.l[i], lvl.l[i]);
-            f.l[i] = q_wray1(r, i, t.l[i]) - (int64_t)nd->c.l[i] * ((int64_t)1 << 30) -
+            f.l[i] = lt__ssb_wray1_q30(r, i, t.l[i]) - (int64_t)nd->c.l[i] * ((int64_t)1 << 30) -
                      nd->al.l[i] * u - nd->be.l[i] * v;
         }
     }
     return f;
 }
 
-/* w_ray(t) in s1.60 for the lanes in k. Cost: VMUL x1, VMULW x1, VSHIFT x1. */
-static lt_vql60_t q_wray(const qsetup_t *S, lt_mask16_t k, lt_vq30_t t)
-{
-    lt_vql60_t f;
-    int i;
-    LT_COST(VMUL, 1);
-    LT_COST(VMULW, 1);
-    LT_COST(VSHIFT, 1);
-    LT_UTIL(k);
-    for (i = 0; i < LT_LANES; i++)
-        f.l[i] = LT__ON(k, i) ? q_wray1(S->r, i, t.l[i]) : 0;
-    return f;
-}
-
-/* w_ray(t) rounded to s1.30 (saturating). Cost: VMUL x1, VMULW x1, VSHIFT x1. */
-static lt_vq30_t q_w_at(const qsetup_t *S, lt_mask16_t k, lt_vq30_t t)
-{
-    lt_vq30_t w;
-    int i;
-    LT_COST(VMUL, 1);
-    LT_COST(VMULW, 1);
-    LT_COST(VSHIFT, 1);
-    LT_UTIL(k);
-    for (i = 0; i < LT_LANES; i++)
-        w.l[i] = LT__ON(k, i) ? lt__ssat32(q_rnd(q_wray1(S->r, i, t.l[i]), 30u)) : 0;
-    return w;
-}
-
-/* The crossing t in [tn, tf] of f (fn >= 0 > ff, s1.60): tn + (tf - tn) fn / (fn - ff), with fn
- * and the denominator scaled down together below 2^31 so the product fits int64; half up.
- * Cost: VDIV x1, VALU x4, VMUL x1. */
-static lt_vq30_t q_hit_t(lt_mask16_t k, lt_vq30_t tn, lt_vq30_t tf, lt_vql60_t fn, lt_vql60_t ff)
-{
-    lt_vq30_t t = tn;
-    int i;
-    LT_COST(VDIV, 1);
-    LT_COST(VALU, 4);
-    LT_COST(VMUL, 1);
-    LT_UTIL(k);
-    for (i = 0; i < LT_LANES; i++) {
-        if (LT__ON(k, i)) {
-            uint64_t num = (uint64_t)fn.l[i], den = num + (uint64_t)(-ff.l[i]);
-            unsigned b = 64u - lt__clz64(den), s = b > 31u ? b - 31u : 0u;
-            int64_t n = (int64_t)(num >> s), dd = (int64_t)(den >> s), span;
-            span = (int64_t)tf.l[i] - tn.l[i];
-            if (dd == 0)
-                continue;
-            t.l[i] = lt__ssat32((int64_t)tn.l[i] + lt__div_round64(n * span, dd));
-        }
-    }
-    return t;
-}
-
-/* Lanes in k where the ray is in the upper half (cx = 1) of a node split at pixel coordinate xm at
- * parameter t: past the midline crossing for d > 0, before it for d < 0, by position for d == 0.
- * Uses q_tcross so that it agrees with the exit crossings of the stepping.
- * Cost: q_tcross + VCMP x2 (+ VCMP for parallel lanes). */
-static lt_mask16_t q_child_side(const qsetup_t *S, int a, lt_mask16_t k, lt_vq30_t t,
-                                lt_vi32_t xm)
-{
-    lt_mask16_t np = (lt_mask16_t)(k & ~S->par[a]), pp = (lt_mask16_t)(k & S->par[a]), r = 0;
-    if (np != 0) {
-        lt_vq30_t tm = q_tcross(S, a, np, xm);
-        r = (lt_mask16_t)(lt_vq30_cmpge_m((lt_mask16_t)(np & ~S->neg[a]), t, tm) |
-                          lt_vq30_cmplt_m((lt_mask16_t)(np & S->neg[a]), t, tm));
-    }
-    if (pp != 0) {
-        const lt_vq16_t *o = a ? &S->r->y : &S->r->x;
-        int i;
-        LT_COST(VCMP, 1);
-        for (i = 0; i < LT_LANES; i++)
-            if (LT__ON(pp, i) && (int64_t)o->l[i] >= (int64_t)xm.l[i] * 65536)
-                r = (lt_mask16_t)(r | (1u << i));
-    }
-    return r;
-}
-
-/* Ray setup: validity, reciprocals, and the clip of [tmin, tmax] to the image (x in [0, W],
- * y in [0, H], through q_tcross so the clip agrees with the stepping) and to w >= 0 (the point at
- * infinity: beyond it the projective line wraps behind the camera). Returns the lanes with a
- * non-empty interval; *bad receives the invalid lanes (t0 = 0 there).
- * Cost: VDIV x3, VCMP x12, VALU x12 and six crossings. */
+/* Ray setup: validity, reciprocals, and the clip of [tmin, tmax] to the image (through
+ * lt__ssb_tcross_q30, so the clip agrees with the stepping) and to w >= 0 (the point at infinity:
+ * beyond it the projective line wraps behind the camera): lt__ssb_clip_q30 over the image.
+ * Returns the lanes with a non-empty interval; *bad receives the invalid lanes (t0 = 0 there).
+ * Cost: lt__ssb_clip_q30 (SSB_Q_CLIP and four crossings). */
 static lt_mask16_t q_setup(const lt_qt_t *qt, const lt_qray16_q30_t *r, lt_mask16_t k,
                            qsetup_t *S, lt_vq30_t *t0, lt_vq30_t *t1, lt_mask16_t *bad)
 {
-    const int64_t lim = (int64_t)1 << (LT_QT_RAY_MAX_LOG2 + 16);
-    unsigned okm = 0;
-    int i, a;
-    lt_vi32_t lo, hi;
-
-    S->r = r;
-    S->par[0] = S->par[1] = S->neg[0] = S->neg[1] = 0;
-    LT_COST(VDIV, 3);
-    LT_COST(VCMP, 12);
-    LT_COST(VALU, 12);
-    for (i = 0; i < LT_LANES; i++) {
-        int64_t x = r->x.l[i], y = r->y.l[i], ex = x + r->dx.l[i], ey = y + r->dy.l[i];
-        const int32_t *d[2];
-        d[0] = &r->dx.l[i];
-        d[1] = &r->dy.l[i];
-        t0->l[i] = 0;
-        t1->l[i] = 0;
-        for (a = 0; a < 2; a++) {
-            S->m[a].l[i] = 0;
-            S->sh[a].l[i] = 1;
-        }
-        if (!LT__ON(k, i))
-            continue;
-        if (x < -lim || x > lim || y < -lim || y > lim || ex < -lim || ex > lim || ey < -lim ||
-            ey > lim || r->w.l[i] < 0 || r->tmin.l[i] < 0 || r->tmin.l[i] > r->tmax.l[i] ||
-            r->tmax.l[i] > LT_Q30_ONE)
-            continue;
-        okm |= 1u << i;
-        for (a = 0; a < 2; a++) {
-            int32_t dv = *d[a];
-            if (dv == 0) {
-                S->par[a] = (lt_mask16_t)(S->par[a] | (1u << i));
-            } else {
-                uint32_t dd = dv < 0 ? (uint32_t)0 - (uint32_t)dv : (uint32_t)dv;
-                unsigned n = lt__clz32(dd);
-                uint64_t D = (uint64_t)dd << n;
-                uint64_t m = (((uint64_t)1 << 62) + D / 2u) / D;
-                if (m > (uint64_t)INT32_MAX)
-                    m = (uint64_t)INT32_MAX;
-                S->m[a].l[i] = (int32_t)m;
-                S->sh[a].l[i] = (int32_t)(32u - n);
-                if (dv < 0)
-                    S->neg[a] = (lt_mask16_t)(S->neg[a] | (1u << i));
-            }
-        }
-        t0->l[i] = r->tmin.l[i];
-        t1->l[i] = r->tmax.l[i];
-        /* w >= 0: stop at the point at infinity (rounded down) */
-        if (r->dw.l[i] < 0) {
-            int64_t tw = lt__divfloor64((int64_t)r->w.l[i] * ((int64_t)1 << 30), -(int64_t)r->dw.l[i]);
-            if (tw < t1->l[i])
-                t1->l[i] = (int32_t)tw;
-        }
-    }
-    *bad = (lt_mask16_t)(k & ~okm);
-    k = (lt_mask16_t)okm;
-    /* image clip per axis: entering at the near edge, leaving at the far one */
-    for (a = 0; a < 2; a++) {
-        int32_t ext = (int32_t)(a ? qt->height : qt->width);
-        lt_mask16_t kn = (lt_mask16_t)(k & ~S->par[a]), neg = S->neg[a];
-        lt_vq30_t te, tx;
-        lo = lt_vi32_blend(neg, lt_vi32_set1(0), lt_vi32_set1(ext));
-        hi = lt_vi32_blend(neg, lt_vi32_set1(ext), lt_vi32_set1(0));
-        te = q_tcross(S, a, kn, lo);
-        tx = q_tcross(S, a, kn, hi);
-        *t0 = lt_vq30_blend(kn, *t0, lt_vq30_max(*t0, te));
-        *t1 = lt_vq30_blend(kn, *t1, lt_vq30_min(*t1, tx));
-        /* parallel: inside the half-open [0, ext) or never */
-        for (i = 0; i < LT_LANES; i++) {
-            if (LT__ON(k & S->par[a], i)) {
-                int32_t o = a ? r->y.l[i] : r->x.l[i];
-                if (o < 0 || (int64_t)o >= (int64_t)ext * 65536)
-                    t1->l[i] = -1;
-            }
-        }
-    }
-    return lt_vq30_cmplt_m(k, *t0, *t1);
+    return lt__ssb_clip_q30(qt->width, qt->height, r, k, S, t0, t1, bad);
 }
 
 /* Angle test: (dSx^2 + dSy^2) / 2 <= gamma_norm with dS in s1.30 (rounded from LS_FRAC more bits);
  * compared as squares against 2 gamma 2^30 in s2.60, so no square root is needed.
- * Cost: VSHIFT x2, VMUL x2, VMULW x1, VCMP x3. */
+ * Cost: QT_Q_ANGLE_OK (VSHIFT x2, VMUL x2, VMULW x1, VCMP x3). */
 static lt_mask16_t q_angle_ok(lt_mask16_t k, lt_vql36_t dsx, lt_vql36_t dsy, int64_t lim)
 {
     unsigned m = 0;
     int i;
-    LT_COST(VSHIFT, 2);
-    LT_COST(VMUL, 2);
-    LT_COST(VMULW, 1);
-    LT_COST(VCMP, 3);
+    LT_CHARGE(QT_Q_ANGLE_OK);
     LT_UTIL(k);
     for (i = 0; i < LT_LANES; i++) {
         int64_t x, y;
@@ -832,13 +643,13 @@ static lt_mask16_t q_angle_ok(lt_mask16_t k, lt_vql36_t dsx, lt_vql36_t dsy, int
 #define LTQ_ANGLE_LIM(g) ((int64_t)(g) * ((int64_t)1 << 31))
 #define LTQ_ANGLE_OK q_angle_ok
 #define LTQ_W_RELTOL q_reltol
-#define LTQ_TCROSS q_tcross
+#define LTQ_TCROSS lt__ssb_tcross_q30
 #define LTQ_PLANE_F q_plane_f
-#define LTQ_WRAY q_wray
-#define LTQ_W_AT q_w_at
-#define LTQ_HIT_T q_hit_t
+#define LTQ_WRAY lt__ssb_wray_q30
+#define LTQ_W_AT lt__ssb_w_at_q30
+#define LTQ_HIT_T lt__ssb_hit_t_q30
 #define LTQ_T_BACK(t) lt_vq30_sub_sat((t), lt_vq30_set1(4))
-#define LTQ_CHILD_SIDE q_child_side
+#define LTQ_CHILD_SIDE lt__ssb_child_side_q30
 #define LTQ_SETUP_FN q_setup
 
 /* 64-bit nodes */
@@ -939,15 +750,17 @@ static void f_dec1(const lt_qt_nf32_t *n, int bounds, fdec_t *d, int i)
     }
 }
 
+/* Decode a row of 16-byte float32 nodes (f_decode_idx: base[idx]). Cost: LANE_GATHER x2 per
+ * active lane (two 8-byte elements), QT_F_DECODE (VALU x2), with bounds QT_F_DECODE_BOUNDS
+ * (FADD x4). */
 static void f_decode(const lt_qt_nf32_t *base, uint32_t i0, uint32_t stride, lt_mask16_t k,
                      int bounds, fdec_t *d)
 {
     int i;
     fdec_zero(d);
-    LT_COST(VGATHER, 2u * lt__popcount32(k));
-    LT_COST(VALU, 2);
-    if (bounds)
-        LT_COST(FADD, 4);
+    LT_CHARGE_N(LANE_GATHER, 2u * lt__popcount32(k));
+    LT_CHARGE(QT_F_DECODE);
+    LT_CHARGE_N(QT_F_DECODE_BOUNDS, bounds != 0);
     LT_UTIL(k);
     for (i = 0; i < LT_LANES; i++) {
         if (LT__ON(k, i)) {
@@ -962,8 +775,8 @@ static void f_decode_idx(const lt_qt_nf32_t *base, lt_vi32_t idx, lt_mask16_t k,
 {
     int i;
     fdec_zero(d);
-    LT_COST(VGATHER, 2u * lt__popcount32(k));
-    LT_COST(VALU, 2);
+    LT_CHARGE_N(LANE_GATHER, 2u * lt__popcount32(k));
+    LT_CHARGE(QT_F_DECODE);
     LT_UTIL(k);
     for (i = 0; i < LT_LANES; i++) {
         if (LT__ON(k, i)) {
@@ -974,11 +787,13 @@ static void f_decode_idx(const lt_qt_nf32_t *base, lt_vi32_t idx, lt_mask16_t k,
     }
 }
 
+/* Planes and (f_enc_aabb) boxes as stored: every float32 value is encodable. Cost:
+ * QT_F_STORE_ROW (VSTORE x4). */
 static lt_mask16_t f_enc_plane(lt_qt_nf32_t *out, uint32_t i0, lt_mask16_t k, lt_vf32_t c,
                                lt_vf32_t al, lt_vf32_t be, lt_mask16_t o)
 {
     int i;
-    LT_COST(VSTORE, 4);
+    LT_CHARGE(QT_F_STORE_ROW);
     LT_UTIL(k);
     LT_MEM(&out[i0], LT_LANES * sizeof *out, LT_MEM_WRITE);
     for (i = 0; i < LT_LANES; i++) {
@@ -997,7 +812,7 @@ QT_COPY_FN(f_copy, lt_qt_nf32_t)
 static void f_enc_aabb(lt_qt_nf32_t *out, uint32_t i0, lt_mask16_t k, lt_vf32_t lo, lt_vf32_t hi)
 {
     int i;
-    LT_COST(VSTORE, 4);
+    LT_CHARGE(QT_F_STORE_ROW);
     LT_UTIL(k);
     LT_MEM(&out[i0], LT_LANES * sizeof *out, LT_MEM_WRITE);
     for (i = 0; i < LT_LANES; i++) {
@@ -1010,13 +825,13 @@ static void f_enc_aabb(lt_qt_nf32_t *out, uint32_t i0, lt_mask16_t k, lt_vf32_t 
     }
 }
 
-/* row[start + lane]; NaN, +-inf and negative values are holes (0). Cost: VLOAD x1, FCMP x2. */
+/* row[start + lane]; NaN, +-inf and negative values are holes (0). Cost: QT_F_LOADPIX (VLOAD x1,
+ * FCMP x2). */
 static lt_vf32_t f_loadpix_m(const float *row, int32_t start, lt_mask16_t k)
 {
     lt_vf32_t r;
     int i;
-    LT_COST(VLOAD, 1);
-    LT_COST(FCMP, 2);
+    LT_CHARGE(QT_F_LOADPIX);
     LT_UTIL(k);
     if (k != 0)
         LT_MEM(&row[start + (int32_t)lt__ctz32(k)], LT_LANES * sizeof *row, LT_MEM_READ);
@@ -1030,12 +845,8 @@ static lt_vf32_t f_loadpix_m(const float *row, int32_t start, lt_mask16_t k)
     return r;
 }
 
-typedef struct fsetup {
-    const lt_qray16_f32_t *r;
-    lt_vf32_t rcp[2];   /* 1 / d per axis (0 for parallel lanes) */
-    lt_mask16_t par[2]; /* d == +-0 */
-    lt_mask16_t neg[2]; /* d < 0 */
-} fsetup_t;
+/* lt_ssb.h's float32 ray state (ymaj unused here). */
+typedef lt__ssb_setup_f32_t fsetup_t;
 
 typedef struct flayer_out {
     lt_mask16_t hit, occ, unk;
@@ -1043,32 +854,18 @@ typedef struct flayer_out {
     lt_vi32_t nodes, aabb, planes;
 } flayer_out_t;
 
-/* t = (X - o) / d as (X - o) * (1 / d): monotonic in X. Cost: VCVT x1, FADD x1, FMUL x1. */
-static lt_vf32_t f_tcross(const fsetup_t *S, int a, lt_mask16_t k, lt_vi32_t X)
-{
-    const lt_vf32_t *o = a ? &S->r->y : &S->r->x;
-    lt_vf32_t t;
-    int i;
-    LT_COST(VCVT, 1);
-    LT_COST(FADD, 1);
-    LT_COST(FMUL, 1);
-    LT_UTIL(k);
-    for (i = 0; i < LT_LANES; i++)
-        t.l[i] = LT__ON(k, i) ? ((float)X.l[i] - o->l[i]) * S->rcp[a].l[i] : 0.0f;
-    return t;
-}
+/* The crossing, w along the ray, the child side and the setup are lt_ssb.c's float32 routines
+ * (lt__ssb_tcross_f32, lt__ssb_wray_f32, lt__ssb_child_side_f32, lt__ssb_clip_f32). */
 
-/* f(t) = (w + t dw) - (c + al u + be v), u = (x + t dx - xc) / 2^L. Cost: VCVT x2, FMUL x7,
- * FADD x8. */
+/* f(t) = (w + t dw) - (c + al u + be v), u = (x + t dx - xc) / 2^L. Cost: QT_F_PLANE_F (VCVT x2,
+ * FMUL x7, FADD x8). */
 static lt_vf32_t f_plane_f(const fsetup_t *S, lt_mask16_t k, lt_vf32_t t, lt_vi32_t lvl,
                            lt_vi32_t qx, lt_vi32_t qy, const fdec_t *nd)
 {
     const lt_qray16_f32_t *r = S->r;
     lt_vf32_t f;
     int i;
-    LT_COST(VCVT, 2);
-    LT_COST(FMUL, 7);
-    LT_COST(FADD, 8);
+    LT_CHARGE(QT_F_PLANE_F);
     LT_UTIL(k);
     for (i = 0; i < LT_LANES; i++) {
         f.l[i] = 0.0f;
@@ -1083,24 +880,14 @@ static lt_vf32_t f_plane_f(const fsetup_t *S, lt_mask16_t k, lt_vf32_t t, lt_vi3
     return f;
 }
 
-static lt_vf32_t f_wray(const fsetup_t *S, lt_mask16_t k, lt_vf32_t t)
-{
-    lt_vf32_t w;
-    int i;
-    LT_COST(FMUL, 1);
-    LT_COST(FADD, 1);
-    LT_UTIL(k);
-    for (i = 0; i < LT_LANES; i++)
-        w.l[i] = LT__ON(k, i) ? S->r->w.l[i] + t.l[i] * S->r->dw.l[i] : 0.0f;
-    return w;
-}
-
+/* The crossing t in [tn, tf] of f (fn >= 0 >= ff, fn - ff > 0 at every call site):
+ * tn + (tf - tn) (fn / (fn - ff)). lt__ssb_hit_t_f32 keeps tn where fn - ff > 0 fails (NaN
+ * values), this one divides regardless, so the two differ on non-finite input and this one stays
+ * the quadtree's own. Cost: QT_F_HIT_T (FDIV x1, FADD x3, FMUL x1). */
 static lt_vf32_t f_hit_t(lt_mask16_t k, lt_vf32_t tn, lt_vf32_t tf, lt_vf32_t fn, lt_vf32_t ff)
 {
     int i;
-    LT_COST(FDIV, 1);
-    LT_COST(FADD, 3);
-    LT_COST(FMUL, 1);
+    LT_CHARGE(QT_F_HIT_T);
     LT_UTIL(k);
     for (i = 0; i < LT_LANES; i++)
         if (LT__ON(k, i))
@@ -1108,99 +895,17 @@ static lt_vf32_t f_hit_t(lt_mask16_t k, lt_vf32_t tn, lt_vf32_t tf, lt_vf32_t fn
     return tn;
 }
 
-static lt_mask16_t f_child_side(const fsetup_t *S, int a, lt_mask16_t k, lt_vf32_t t,
-                                lt_vi32_t xm)
-{
-    lt_mask16_t np = (lt_mask16_t)(k & ~S->par[a]), pp = (lt_mask16_t)(k & S->par[a]), r = 0;
-    if (np != 0) {
-        lt_vf32_t tm = f_tcross(S, a, np, xm);
-        r = (lt_mask16_t)(lt_vf32_cmpge_m((lt_mask16_t)(np & ~S->neg[a]), t, tm) |
-                          lt_vf32_cmplt_m((lt_mask16_t)(np & S->neg[a]), t, tm));
-    }
-    if (pp != 0) {
-        const lt_vf32_t *o = a ? &S->r->y : &S->r->x;
-        int i;
-        LT_COST(FCMP, 1);
-        for (i = 0; i < LT_LANES; i++)
-            if (LT__ON(pp, i) && o->l[i] >= (float)xm.l[i])
-                r = (lt_mask16_t)(r | (1u << i));
-    }
-    return r;
-}
-
+/* Ray setup and clip: lt__ssb_clip_f32 over the image. Cost: lt__ssb_clip_f32. */
 static lt_mask16_t f_setup(const lt_qt_t *qt, const lt_qray16_f32_t *r, lt_mask16_t k,
                            fsetup_t *S, lt_vf32_t *t0, lt_vf32_t *t1, lt_mask16_t *bad)
 {
-    const float lim = (float)(1u << LT_QT_RAY_MAX_LOG2);
-    unsigned okm = 0;
-    int i, a;
-    S->r = r;
-    S->par[0] = S->par[1] = S->neg[0] = S->neg[1] = 0;
-    LT_COST(FDIV, 3);
-    LT_COST(FCMP, 12);
-    LT_COST(FADD, 6);
-    for (i = 0; i < LT_LANES; i++) {
-        float x = r->x.l[i], y = r->y.l[i], ex = x + r->dx.l[i], ey = y + r->dy.l[i];
-        t0->l[i] = 0.0f;
-        t1->l[i] = 0.0f;
-        S->rcp[0].l[i] = S->rcp[1].l[i] = 0.0f;
-        if (!LT__ON(k, i))
-            continue;
-        /* written as negations of the valid ranges so that NaN fails every test */
-        if (!(x >= -lim && x <= lim && y >= -lim && y <= lim && ex >= -lim && ex <= lim &&
-              ey >= -lim && ey <= lim && r->w.l[i] >= 0.0f && r->w.l[i] <= F_INF &&
-              r->dw.l[i] >= -F_INF && r->dw.l[i] <= F_INF && r->tmin.l[i] >= 0.0f &&
-              r->tmin.l[i] <= r->tmax.l[i] && r->tmax.l[i] <= 1.0f))
-            continue;
-        okm |= 1u << i;
-        for (a = 0; a < 2; a++) {
-            float dv = a ? r->dy.l[i] : r->dx.l[i];
-            if (dv == 0.0f) {
-                S->par[a] = (lt_mask16_t)(S->par[a] | (1u << i));
-            } else {
-                S->rcp[a].l[i] = 1.0f / dv;
-                if (dv < 0.0f)
-                    S->neg[a] = (lt_mask16_t)(S->neg[a] | (1u << i));
-            }
-        }
-        t0->l[i] = r->tmin.l[i];
-        t1->l[i] = r->tmax.l[i];
-        if (r->dw.l[i] < 0.0f) {
-            float tw = r->w.l[i] / -r->dw.l[i];
-            if (tw < t1->l[i])
-                t1->l[i] = tw;
-        }
-    }
-    *bad = (lt_mask16_t)(k & ~okm);
-    k = (lt_mask16_t)okm;
-    for (a = 0; a < 2; a++) {
-        int32_t ext = (int32_t)(a ? qt->height : qt->width);
-        lt_mask16_t kn = (lt_mask16_t)(k & ~S->par[a]), neg = S->neg[a];
-        lt_vi32_t lo = lt_vi32_blend(neg, lt_vi32_set1(0), lt_vi32_set1(ext));
-        lt_vi32_t hi = lt_vi32_blend(neg, lt_vi32_set1(ext), lt_vi32_set1(0));
-        lt_vf32_t te = f_tcross(S, a, kn, lo), tx = f_tcross(S, a, kn, hi);
-        *t0 = lt_vf32_blend(kn, *t0, lt_vf32_max(*t0, te));
-        *t1 = lt_vf32_blend(kn, *t1, lt_vf32_min(*t1, tx));
-        for (i = 0; i < LT_LANES; i++) {
-            if (LT__ON(k & S->par[a], i)) {
-                float o = a ? r->y.l[i] : r->x.l[i];
-                if (!(o >= 0.0f && o < (float)ext))
-                    t1->l[i] = -1.0f;
-            }
-        }
-    }
-    return lt_vf32_cmplt_m(k, *t0, *t1);
+    return lt__ssb_clip_f32(qt->width, qt->height, r, k, S, t0, t1, bad);
 }
 
 static lt_mask16_t f_angle_ok(lt_mask16_t k, lt_vf32_t dsx, lt_vf32_t dsy, float lim)
 {
     lt_vf32_t s = lt_vf32_add(lt_vf32_mul(dsx, dsx), lt_vf32_mul(dsy, dsy));
     return lt_vf32_cmple_m(k, s, lt_vf32_set1(lim));
-}
-
-static lt_vf32_t f_w_at(const fsetup_t *S, lt_mask16_t k, lt_vf32_t t)
-{
-    return f_wray(S, k, t);
 }
 
 #define LTQ_FN(name) name##_f32
@@ -1257,13 +962,13 @@ static lt_vf32_t f_w_at(const fsetup_t *S, lt_mask16_t k, lt_vf32_t t)
 #define LTQ_ANGLE_LIM(g) (2.0f * (float)(g) * F_Q30)
 #define LTQ_ANGLE_OK f_angle_ok
 #define LTQ_W_RELTOL(lo, g) lt_vf32_mul(lt_vf32_max((lo), lt_vf32_set1(0.0f)), (g))
-#define LTQ_TCROSS f_tcross
+#define LTQ_TCROSS lt__ssb_tcross_f32
 #define LTQ_PLANE_F f_plane_f
-#define LTQ_WRAY f_wray
-#define LTQ_W_AT f_w_at
+#define LTQ_WRAY lt__ssb_wray_f32
+#define LTQ_W_AT lt__ssb_wray_f32
 #define LTQ_HIT_T f_hit_t
 #define LTQ_T_BACK(t) lt_vf32_sub((t), lt_vf32_set1(4.76837158203125e-7f))
-#define LTQ_CHILD_SIDE f_child_side
+#define LTQ_CHILD_SIDE lt__ssb_child_side_f32
 #define LTQ_SETUP_FN f_setup
 #include "lt_qt.inc"
 #include "lt_qt_undef.inc"

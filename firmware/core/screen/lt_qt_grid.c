@@ -8,15 +8,15 @@
 /* Index off[L] + qy nx[L] + qx per lane in k (0 elsewhere; for Hi-Z level 0 is the pixels,
  * y W + x). The level tables (<= 15 entries) fit one register: two permutes, a multiply and two
  * adds. Format: int32 lanes, in range by the walk (LT_ASSERT: L < levels, qx < nx[L], qy < ny[L]).
- * Overflow: none (the index is below the arena's cell count). Cost: VALU x4, VMUL x1. */
+ * Overflow: none (the index is below the arena's cell count). Cost: QTGRID_INDEX (VALU x4,
+ * VMUL x1). */
 lt_vi32_t lt__qtgrid_index(const uint32_t *off, const uint32_t *nx, const uint32_t *ny,
                            uint32_t levels, lt_mask16_t k, lt_vi32_t lvl, lt_vi32_t qx,
                            lt_vi32_t qy)
 {
     lt_vi32_t r;
     int i;
-    LT_COST(VALU, 4);
-    LT_COST(VMUL, 1);
+    LT_CHARGE(QTGRID_INDEX);
     LT_UTIL(k);
     (void)ny;
     (void)levels;
@@ -32,14 +32,13 @@ lt_vi32_t lt__qtgrid_index(const uint32_t *off, const uint32_t *nx, const uint32
 }
 
 /* Lanes in k whose node / cell (L, qx, qy) lies outside the level's grid (qx or qy negative, or
- * >= nx[L], ny[L]). Cost: VALU x2, VCMP x4. */
+ * >= nx[L], ny[L]). Cost: QTGRID_OUTSIDE (VALU x2, VCMP x4). */
 lt_mask16_t lt__qtgrid_outside(const uint32_t *nx, const uint32_t *ny, lt_mask16_t k,
                                lt_vi32_t lvl, lt_vi32_t qx, lt_vi32_t qy)
 {
     unsigned m = 0;
     int i;
-    LT_COST(VALU, 2);
-    LT_COST(VCMP, 4);
+    LT_CHARGE(QTGRID_OUTSIDE);
     LT_UTIL(k);
     for (i = 0; i < LT_LANES; i++) {
         if (LT__ON(k, i)) {

@@ -156,14 +156,7 @@ static lt_status_t rpj_check_q30(const lt_reproj_q30_t *m)
 #define RPJ_Q30_OPS (45u + 22u + 48u + 58u + 21u + 12u) /* the masked lane ops above */
 static void rpj_charge_q30(unsigned k)
 {
-    LT_COST(VALU, 4 + 24 + 14 + 3);
-    LT_COST(VSHIFT, 2 + 12 + 8);
-    LT_COST(VMUL, 24 + 8 + 16);
-    LT_COST(VMULW, 16 + 20 + 16 + 6);
-    LT_COST(VCMP, 12 + 8 + 1);
-    LT_COST(VDIV, 6 + 6);
-    LT_COST(MASK, 8);
-    LT_COST(BRANCH, 1);
+    LT_CHARGE(RPJ_Q30_PACKET);
     LT_EVENT(LANES_ON, lt__popcount32(k) * RPJ_Q30_OPS);
     LT_EVENT(LANE_OPS, RPJ_Q30_OPS);
 }
@@ -267,13 +260,7 @@ static lt_status_t rpj_check_f32(const lt_reproj_f32_t *m)
 #define RPJ_F32_OPS (44u + 48u + 12u + 21u + 19u) /* the masked lane ops above */
 static void rpj_charge_f32(unsigned k)
 {
-    LT_COST(FMUL, 24 + 12 + 8);
-    LT_COST(FADD, 16 + 12 + 8 + 12);
-    LT_COST(FDIV, 6 + 6);
-    LT_COST(FCMP, 12 + 8 + 1);
-    LT_COST(VALU, 4 + 3 + 12);
-    LT_COST(MASK, 8);
-    LT_COST(BRANCH, 1);
+    LT_CHARGE(RPJ_F32_PACKET);
     LT_EVENT(LANES_ON, lt__popcount32(k) * RPJ_F32_OPS);
     LT_EVENT(LANE_OPS, RPJ_F32_OPS);
 }

@@ -3,10 +3,12 @@
  * sharing one ray-packet header (lt_ssb.h): ray setup and clip, the crossing function, w along the
  * ray, the hit parameter, surface-shell bounds and pixel gathers, for s1.30 (lt__ssb_*_q30) and
  * float32 (lt__ssb_*_f32). The setup and crossings follow lt_qt.c's (same clip, same
- * normalised-reciprocal crossing) so that all three tracers see the same segment. They are kernel
- * routines over the lane types of lt_v16.h / lt_v16w.h, each charging its own tally (Cost: lines),
- * defined here once; the kernels reach them through the SS_* traits (lt_ssb_q30.inc,
- * lt_ssb_f32.inc). Builds: all; the float32 half only with LT_CFG_FLOAT32.
+ * normalised-reciprocal crossing) so that all three tracers see the same segment; the quadtree
+ * calls the clip, the crossings, w along the ray, the s1.30 hit parameter and the child side
+ * itself. They are kernel routines over the lane types of lt_v16.h / lt_v16w.h, each charging its
+ * own recipe of lt_recipes.def (SSB_*, on the Cost: lines), defined here once; the baselines reach
+ * them through the SS_* traits (lt_ssb_q30.inc, lt_ssb_f32.inc), the quadtree through its LTQ_*
+ * traits (lt_qt.c). Builds: all; the float32 half only with LT_CFG_FLOAT32.
  */
 #include "lt_ssb.h"
 
@@ -20,16 +22,14 @@ LT_INLINE int64_t lt__ssb_rnd_q30(int64_t v, unsigned f)
 
 /* t = (X - o) / d on axis a for integer pixel coordinates X, lanes in k (0 elsewhere):
  * (X 2^16 - o) m >> sh, half up, negated for d < 0, saturated to int32. Monotonic in X, error
- * <= 1 ulp for |X - o| <= 2^15 px; the same function as lt_qt.c's q_tcross.
- * Cost: VALU x2, VMUL x1, VSHIFT x2. */
+ * <= 1 ulp for |X - o| <= 2^15 px. Every crossing and every child choice of the three tracers
+ * goes through it, so they all agree. Cost: SSB_Q_TCROSS (VALU x2, VMUL x1, VSHIFT x2). */
 lt_vq30_t lt__ssb_tcross_q30(const lt__ssb_setup_q30_t *S, int a, lt_mask16_t k, lt_vi32_t X)
 {
     const lt_vq16_t *o = a ? &S->r->y : &S->r->x;
     lt_vq30_t t;
     int i;
-    LT_COST(VALU, 2);
-    LT_COST(VMUL, 1);
-    LT_COST(VSHIFT, 2);
+    LT_CHARGE(SSB_Q_TCROSS);
     LT_UTIL(k);
     for (i = 0; i < LT_LANES; i++) {
         t.l[i] = 0;
@@ -44,15 +44,13 @@ lt_vq30_t lt__ssb_tcross_q30(const lt__ssb_setup_q30_t *S, int a, lt_mask16_t k,
 
 /* The t span of n half pixels (0 <= n < 2^16) along each lane's major axis (y for lanes in ky):
  * n 2^15 / |d| in s1.30 = (n 2^15) m >> sh, half up, saturated; monotonic in n. Parallel lanes
- * (m = 0) give 0. Cost: VALU x1 (axis select), VMUL x1, VSHIFT x2. */
+ * (m = 0) give 0. Cost: SSB_Q_TSPAN (VALU x1 (axis select), VMUL x1, VSHIFT x2). */
 lt_vq30_t lt__ssb_tspan_q30(const lt__ssb_setup_q30_t *S, lt_mask16_t ky, lt_mask16_t k,
                             lt_vi32_t n)
 {
     lt_vq30_t t;
     int i;
-    LT_COST(VALU, 1);
-    LT_COST(VMUL, 1);
-    LT_COST(VSHIFT, 2);
+    LT_CHARGE(SSB_Q_TSPAN);
     LT_UTIL(k);
     for (i = 0; i < LT_LANES; i++) {
         int a = (int)LT__ON(ky, i);
@@ -65,16 +63,14 @@ lt_vq30_t lt__ssb_tspan_q30(const lt__ssb_setup_q30_t *S, lt_mask16_t ky, lt_mas
 }
 
 /* floor(o + d t) on axis a: s15.16 2^30 + s15.16 x s1.30 is exact in s.46; the floor is the pixel.
- * Cost: VMUL x1, VMULW x1, VSHIFT x1. */
+ * Cost: SSB_Q_PIXEL (VMUL x1, VMULW x1, VSHIFT x1). */
 lt_vi32_t lt__ssb_pixel_q30(const lt__ssb_setup_q30_t *S, int a, lt_mask16_t k, lt_vq30_t t)
 {
     const lt_vq16_t *o = a ? &S->r->y : &S->r->x;
     const lt_vq16_t *d = a ? &S->r->dy : &S->r->dx;
     lt_vi32_t p;
     int i;
-    LT_COST(VMUL, 1);
-    LT_COST(VMULW, 1);
-    LT_COST(VSHIFT, 1);
+    LT_CHARGE(SSB_Q_PIXEL);
     LT_UTIL(k);
     for (i = 0; i < LT_LANES; i++) {
         int64_t v = (int64_t)o->l[i] * ((int64_t)1 << 30) + lt__mul32x32_64(d->l[i], t.l[i]);
@@ -83,34 +79,26 @@ lt_vi32_t lt__ssb_pixel_q30(const lt__ssb_setup_q30_t *S, int a, lt_mask16_t k, 
     return p;
 }
 
-/* w of the ray at t in s1.60: w 2^30 + dw t (exact, |.| < 2^62). */
-LT_INLINE int64_t lt__ssb_wray1_q30(const lt_qray16_q30_t *r, int i, int32_t t)
-{
-    return (int64_t)r->w.l[i] * ((int64_t)1 << 30) + lt__mul32x32_64(r->dw.l[i], t);
-}
-
-/* w_ray(t) in s1.60 for the lanes in k (0 elsewhere). Cost: VMUL x1, VMULW x1, VSHIFT x1. */
+/* w_ray(t) in s1.60 for the lanes in k (0 elsewhere). Cost: SSB_Q_WRAY (VMUL x1, VMULW x1,
+ * VSHIFT x1). */
 lt_vql60_t lt__ssb_wray_q30(const lt__ssb_setup_q30_t *S, lt_mask16_t k, lt_vq30_t t)
 {
     lt_vql60_t f;
     int i;
-    LT_COST(VMUL, 1);
-    LT_COST(VMULW, 1);
-    LT_COST(VSHIFT, 1);
+    LT_CHARGE(SSB_Q_WRAY);
     LT_UTIL(k);
     for (i = 0; i < LT_LANES; i++)
         f.l[i] = LT__ON(k, i) ? lt__ssb_wray1_q30(S->r, i, t.l[i]) : 0;
     return f;
 }
 
-/* w_ray(t) rounded half up to s1.30 (saturating). Cost: VMUL x1, VMULW x1, VSHIFT x1. */
+/* w_ray(t) rounded half up to s1.30 (saturating). Cost: SSB_Q_W_AT (VMUL x1, VMULW x1,
+ * VSHIFT x1). */
 lt_vq30_t lt__ssb_w_at_q30(const lt__ssb_setup_q30_t *S, lt_mask16_t k, lt_vq30_t t)
 {
     lt_vq30_t w;
     int i;
-    LT_COST(VMUL, 1);
-    LT_COST(VMULW, 1);
-    LT_COST(VSHIFT, 1);
+    LT_CHARGE(SSB_Q_W_AT);
     LT_UTIL(k);
     for (i = 0; i < LT_LANES; i++)
         w.l[i] = LT__ON(k, i) ? lt__ssat32(lt__ssb_rnd_q30(lt__ssb_wray1_q30(S->r, i, t.l[i]), 30u)) : 0;
@@ -119,16 +107,14 @@ lt_vq30_t lt__ssb_w_at_q30(const lt__ssb_setup_q30_t *S, lt_mask16_t k, lt_vq30_
 
 /* The zero of a linear function on [tn, tf] with values fn >= 0 at tn and ff <= 0 at tf (s1.60,
  * fn - ff > 0): tn + (tf - tn) fn / (fn - ff), the operands scaled down together below 2^31 so
- * the product fits int64; half up. Lanes with fn - ff == 0 keep tn. The same computation as
- * lt_qt.c's q_hit_t. Cost: VDIV x1, VALU x4, VMUL x1. */
+ * the product fits int64; half up. Lanes with fn - ff == 0 keep tn. The quadtree's crossing and
+ * box entry too. Cost: SSB_Q_HIT_T (VDIV x1, VALU x4, VMUL x1). */
 lt_vq30_t lt__ssb_hit_t_q30(lt_mask16_t k, lt_vq30_t tn, lt_vq30_t tf, lt_vql60_t fn,
                             lt_vql60_t ff)
 {
     lt_vq30_t t = tn;
     int i;
-    LT_COST(VDIV, 1);
-    LT_COST(VALU, 4);
-    LT_COST(VMUL, 1);
+    LT_CHARGE(SSB_Q_HIT_T);
     LT_UTIL(k);
     for (i = 0; i < LT_LANES; i++) {
         if (LT__ON(k, i)) {
@@ -147,7 +133,8 @@ lt_vq30_t lt__ssb_hit_t_q30(lt_mask16_t k, lt_vq30_t tn, lt_vq30_t tf, lt_vql60_
 /* Lanes in k where the ray at t lies in the upper half (coordinate >= xm) of a cell split at the
  * pixel coordinate xm: past the midline crossing for d > 0, before it for d < 0, by position for
  * d == 0. Uses lt__ssb_tcross_q30, so it agrees with every exit crossing.
- * Cost: lt__ssb_tcross_q30 + VCMP x2 (+ VCMP for parallel lanes). */
+ * Cost: lt__ssb_tcross_q30 + the two compares (lt_vq30_cmpge_m, lt_vq30_cmplt_m) when a lane
+ * moves on the axis; SSB_Q_SIDE_PAR (VCMP x1) when a lane is parallel to it. */
 lt_mask16_t lt__ssb_child_side_q30(const lt__ssb_setup_q30_t *S, int a, lt_mask16_t k,
                                    lt_vq30_t t, lt_vi32_t xm)
 {
@@ -160,7 +147,7 @@ lt_mask16_t lt__ssb_child_side_q30(const lt__ssb_setup_q30_t *S, int a, lt_mask1
     if (pp != 0) {
         const lt_vq16_t *o = a ? &S->r->y : &S->r->x;
         int i;
-        LT_COST(VCMP, 1);
+        LT_CHARGE(SSB_Q_SIDE_PAR);
         for (i = 0; i < LT_LANES; i++)
             if (LT__ON(pp, i) && (int64_t)o->l[i] >= (int64_t)xm.l[i] * 65536)
                 r = (lt_mask16_t)(r | (1u << i));
@@ -168,25 +155,24 @@ lt_mask16_t lt__ssb_child_side_q30(const lt__ssb_setup_q30_t *S, int a, lt_mask1
     return r;
 }
 
-/* Ray setup (as lt_qt.c's q_setup): validity (end points |x|, |y| <= 2^14 px, w >= 0,
- * 0 <= tmin <= tmax <= 1), normalised reciprocals per axis, the major axis, and the clip of
- * [tmin, tmax] to the image (x in [0, W], y in [0, H] through lt__ssb_tcross_q30; a parallel lane is inside
- * iff 0 <= o < ext) and to w >= 0 (rounded down). Returns the lanes with a non-empty interval;
- * *bad receives the invalid lanes (t0 = t1 = 0 there).
- * Cost: VDIV x3, VCMP x13, VALU x12 and four crossings. */
-lt_mask16_t lt__ssb_setup_q30(uint32_t width, uint32_t height, const lt_qray16_q30_t *r,
-                              lt_mask16_t k, lt__ssb_setup_q30_t *S, lt_vq30_t *t0,
-                              lt_vq30_t *t1, lt_mask16_t *bad)
+/* Ray setup and clip (the quadtree's setup; lt__ssb_setup_q30 adds the major axis): validity
+ * (end points |x|, |y| <= 2^14 px, w >= 0, 0 <= tmin <= tmax <= 1), normalised reciprocals per
+ * axis, and the clip of [tmin, tmax] to the image (x in [0, W], y in [0, H] through
+ * lt__ssb_tcross_q30; a parallel lane is inside iff 0 <= o < ext) and to w >= 0 (rounded down).
+ * Returns the lanes with a non-empty interval; *bad receives the invalid lanes (t0 = t1 = 0
+ * there); S->ymaj is 0. Cost: SSB_Q_CLIP (VDIV x3, VCMP x12, VALU x12) and four crossings. */
+lt_mask16_t lt__ssb_clip_q30(uint32_t width, uint32_t height, const lt_qray16_q30_t *r,
+                             lt_mask16_t k, lt__ssb_setup_q30_t *S, lt_vq30_t *t0,
+                             lt_vq30_t *t1, lt_mask16_t *bad)
 {
     const int64_t lim = (int64_t)1 << (LT_QT_RAY_MAX_LOG2 + 16);
-    unsigned okm = 0, ym = 0;
+    unsigned okm = 0;
     int i, a;
 
     S->r = r;
     S->par[0] = S->par[1] = S->neg[0] = S->neg[1] = 0;
-    LT_COST(VDIV, 3);
-    LT_COST(VCMP, 13);
-    LT_COST(VALU, 12);
+    S->ymaj = 0;
+    LT_CHARGE(SSB_Q_CLIP);
     for (i = 0; i < LT_LANES; i++) {
         int64_t x = r->x.l[i], y = r->y.l[i], ex = x + r->dx.l[i], ey = y + r->dy.l[i];
         t0->l[i] = 0;
@@ -219,14 +205,6 @@ lt_mask16_t lt__ssb_setup_q30(uint32_t width, uint32_t height, const lt_qray16_q
                     S->neg[a] = (lt_mask16_t)(S->neg[a] | (1u << i));
             }
         }
-        /* the major axis: |dy| > |dx| (ties and point rays: x) */
-        {
-            uint32_t ax = (uint32_t)r->dx.l[i], ay = (uint32_t)r->dy.l[i];
-            ax = r->dx.l[i] < 0 ? (uint32_t)0 - ax : ax;
-            ay = r->dy.l[i] < 0 ? (uint32_t)0 - ay : ay;
-            if (ay > ax)
-                ym |= 1u << i;
-        }
         t0->l[i] = r->tmin.l[i];
         t1->l[i] = r->tmax.l[i];
         /* w >= 0: stop at the point at infinity (rounded down) */
@@ -237,7 +215,6 @@ lt_mask16_t lt__ssb_setup_q30(uint32_t width, uint32_t height, const lt_qray16_q
                 t1->l[i] = (int32_t)tw;
         }
     }
-    S->ymaj = (lt_mask16_t)ym;
     *bad = (lt_mask16_t)(k & ~okm);
     k = (lt_mask16_t)okm;
     /* image clip per axis: entering at the near edge, leaving at the far one */
@@ -260,14 +237,39 @@ lt_mask16_t lt__ssb_setup_q30(uint32_t width, uint32_t height, const lt_qray16_q
     return lt_vq30_cmplt_m(k, *t0, *t1);
 }
 
+/* Ray setup and clip (lt__ssb_clip_q30), then the major axis of the valid lanes: |dy| > |dx|
+ * (ties and point rays: x). Cost: lt__ssb_clip_q30 + SSB_Q_MAJOR (VCMP x1). */
+lt_mask16_t lt__ssb_setup_q30(uint32_t width, uint32_t height, const lt_qray16_q30_t *r,
+                              lt_mask16_t k, lt__ssb_setup_q30_t *S, lt_vq30_t *t0,
+                              lt_vq30_t *t1, lt_mask16_t *bad)
+{
+    lt_mask16_t lanes = lt__ssb_clip_q30(width, height, r, k, S, t0, t1, bad);
+    lt_mask16_t ok = (lt_mask16_t)(k & ~*bad);
+    unsigned ym = 0;
+    int i;
+    LT_CHARGE(SSB_Q_MAJOR);
+    for (i = 0; i < LT_LANES; i++) {
+        if (LT__ON(ok, i)) {
+            uint32_t ax = (uint32_t)r->dx.l[i], ay = (uint32_t)r->dy.l[i];
+            ax = r->dx.l[i] < 0 ? (uint32_t)0 - ax : ax;
+            ay = r->dy.l[i] < 0 ? (uint32_t)0 - ay : ay;
+            if (ay > ax)
+                ym |= 1u << i;
+        }
+    }
+    S->ymaj = (lt_mask16_t)ym;
+    return lanes;
+}
+
 /* w of the pixels base[idx] for the lanes in k (0 elsewhere); negative raws are holes (0).
- * Cost: VGATHER per active lane (LT_MEM at each pixel's address), VALU x1. */
+ * Cost: LANE_GATHER per active lane (VGATHER x1; LT_MEM at each pixel's address),
+ * SSB_Q_PIX_HOLES (VALU x1). */
 lt_vq30_t lt__ssb_gather_pix_q30(const lt_q30_t *base, lt_vi32_t idx, lt_mask16_t k)
 {
     lt_vq30_t r;
     int i;
-    LT_COST(VGATHER, lt__popcount32(k));
-    LT_COST(VALU, 1);
+    LT_CHARGE_N(LANE_GATHER, lt__popcount32(k));
+    LT_CHARGE(SSB_Q_PIX_HOLES);
     LT_UTIL(k);
     for (i = 0; i < LT_LANES; i++) {
         r.l[i] = 0;
@@ -281,12 +283,12 @@ lt_vq30_t lt__ssb_gather_pix_q30(const lt_q30_t *base, lt_vi32_t idx, lt_mask16_
 }
 
 /* Shell bounds in s1.60: lo = w_s k (s1.30 x s1.30, exact), hi = w_s 2^30 (exact).
- * Cost: VMUL x1; VSHIFT x1. */
+ * Cost: SSB_Q_SHELL_LO (VMUL x1); SSB_Q_SHELL_HI (VSHIFT x1). */
 lt_vql60_t lt__ssb_shell_lo_q30(lt_mask16_t k, lt_vq30_t ws, lt_q30_t kq)
 {
     lt_vql60_t r;
     int i;
-    LT_COST(VMUL, 1);
+    LT_CHARGE(SSB_Q_SHELL_LO);
     LT_UTIL(k);
     for (i = 0; i < LT_LANES; i++)
         r.l[i] = LT__ON(k, i) ? lt__mul32x32_64(ws.l[i], kq) : 0;
@@ -297,7 +299,7 @@ lt_vql60_t lt__ssb_shell_hi_q30(lt_mask16_t k, lt_vq30_t ws)
 {
     lt_vql60_t r;
     int i;
-    LT_COST(VSHIFT, 1);
+    LT_CHARGE(SSB_Q_SHELL_HI);
     LT_UTIL(k);
     for (i = 0; i < LT_LANES; i++)
         r.l[i] = LT__ON(k, i) ? (int64_t)ws.l[i] * ((int64_t)1 << 30) : 0;
@@ -313,15 +315,13 @@ lt_q30_t lt__ssb_kthick_q30(lt_q30_t theta)
 /* ==== float32 ================================================================================= */
 #if LT_CFG_FLOAT32
 
-/* t = (X - o) * (1 / d): monotonic in X. Cost: VCVT x1, FADD x1, FMUL x1. */
+/* t = (X - o) * (1 / d): monotonic in X. Cost: SSB_F_TCROSS (VCVT x1, FADD x1, FMUL x1). */
 lt_vf32_t lt__ssb_tcross_f32(const lt__ssb_setup_f32_t *S, int a, lt_mask16_t k, lt_vi32_t X)
 {
     const lt_vf32_t *o = a ? &S->r->y : &S->r->x;
     lt_vf32_t t;
     int i;
-    LT_COST(VCVT, 1);
-    LT_COST(FADD, 1);
-    LT_COST(FMUL, 1);
+    LT_CHARGE(SSB_F_TCROSS);
     LT_UTIL(k);
     for (i = 0; i < LT_LANES; i++)
         t.l[i] = LT__ON(k, i) ? ((float)X.l[i] - o->l[i]) * S->rcp[a].l[i] : 0.0f;
@@ -329,16 +329,13 @@ lt_vf32_t lt__ssb_tcross_f32(const lt__ssb_setup_f32_t *S, int a, lt_mask16_t k,
 }
 
 /* n half pixels along each lane's major axis: (n * 0.5) * |1 / d|, monotonic in n.
- * Cost: VALU x1, VCVT x1, FMUL x2, FADD x1. */
+ * Cost: SSB_F_TSPAN (VALU x1, VCVT x1, FMUL x2, FADD x1). */
 lt_vf32_t lt__ssb_tspan_f32(const lt__ssb_setup_f32_t *S, lt_mask16_t ky, lt_mask16_t k,
                             lt_vi32_t n)
 {
     lt_vf32_t t;
     int i;
-    LT_COST(VALU, 1);
-    LT_COST(VCVT, 1);
-    LT_COST(FMUL, 2);
-    LT_COST(FADD, 1);
+    LT_CHARGE(SSB_F_TSPAN);
     LT_UTIL(k);
     for (i = 0; i < LT_LANES; i++) {
         int a = (int)LT__ON(ky, i);
@@ -348,17 +345,14 @@ lt_vf32_t lt__ssb_tspan_f32(const lt__ssb_setup_f32_t *S, lt_mask16_t ky, lt_mas
 }
 
 /* floor(o + t d) on axis a (|.| < 2^15 for valid rays, so the conversion is defined).
- * Cost: FMUL x1, FADD x1, VCVT x2, FCMP x1. */
+ * Cost: SSB_F_PIXEL (FMUL x1, FADD x1, VCVT x2, FCMP x1). */
 lt_vi32_t lt__ssb_pixel_f32(const lt__ssb_setup_f32_t *S, int a, lt_mask16_t k, lt_vf32_t t)
 {
     const lt_vf32_t *o = a ? &S->r->y : &S->r->x;
     const lt_vf32_t *d = a ? &S->r->dy : &S->r->dx;
     lt_vi32_t p;
     int i;
-    LT_COST(FMUL, 1);
-    LT_COST(FADD, 1);
-    LT_COST(VCVT, 2);
-    LT_COST(FCMP, 1);
+    LT_CHARGE(SSB_F_PIXEL);
     LT_UTIL(k);
     for (i = 0; i < LT_LANES; i++) {
         p.l[i] = 0;
@@ -378,13 +372,12 @@ lt_vi32_t lt__ssb_pixel_f32(const lt__ssb_setup_f32_t *S, int a, lt_mask16_t k, 
     return p;
 }
 
-/* w + t dw. Cost: FMUL x1, FADD x1. */
+/* w + t dw (also the float32 w_at). Cost: SSB_F_WRAY (FMUL x1, FADD x1). */
 lt_vf32_t lt__ssb_wray_f32(const lt__ssb_setup_f32_t *S, lt_mask16_t k, lt_vf32_t t)
 {
     lt_vf32_t w;
     int i;
-    LT_COST(FMUL, 1);
-    LT_COST(FADD, 1);
+    LT_CHARGE(SSB_F_WRAY);
     LT_UTIL(k);
     for (i = 0; i < LT_LANES; i++)
         w.l[i] = LT__ON(k, i) ? S->r->w.l[i] + t.l[i] * S->r->dw.l[i] : 0.0f;
@@ -392,14 +385,12 @@ lt_vf32_t lt__ssb_wray_f32(const lt__ssb_setup_f32_t *S, lt_mask16_t k, lt_vf32_
 }
 
 /* tn + (tf - tn) (fn / (fn - ff)), fn >= 0 >= ff, fn - ff > 0 (else tn).
- * Cost: FDIV x1, FADD x3, FMUL x1. */
+ * Cost: SSB_F_HIT_T (FDIV x1, FADD x3, FMUL x1). */
 lt_vf32_t lt__ssb_hit_t_f32(lt_mask16_t k, lt_vf32_t tn, lt_vf32_t tf, lt_vf32_t fn,
                             lt_vf32_t ff)
 {
     int i;
-    LT_COST(FDIV, 1);
-    LT_COST(FADD, 3);
-    LT_COST(FMUL, 1);
+    LT_CHARGE(SSB_F_HIT_T);
     LT_UTIL(k);
     for (i = 0; i < LT_LANES; i++) {
         if (LT__ON(k, i)) {
@@ -411,7 +402,8 @@ lt_vf32_t lt__ssb_hit_t_f32(lt_mask16_t k, lt_vf32_t tn, lt_vf32_t tf, lt_vf32_t
     return tn;
 }
 
-/* As lt__ssb_child_side_q30. Cost: lt__ssb_tcross_f32 + FCMP x2 (+ FCMP for parallel lanes). */
+/* As lt__ssb_child_side_q30. Cost: lt__ssb_tcross_f32 + lt_vf32_cmpge_m, lt_vf32_cmplt_m when a
+ * lane moves on the axis; SSB_F_SIDE_PAR (FCMP x1) when a lane is parallel to it. */
 lt_mask16_t lt__ssb_child_side_f32(const lt__ssb_setup_f32_t *S, int a, lt_mask16_t k,
                                    lt_vf32_t t, lt_vi32_t xm)
 {
@@ -424,7 +416,7 @@ lt_mask16_t lt__ssb_child_side_f32(const lt__ssb_setup_f32_t *S, int a, lt_mask1
     if (pp != 0) {
         const lt_vf32_t *o = a ? &S->r->y : &S->r->x;
         int i;
-        LT_COST(FCMP, 1);
+        LT_CHARGE(SSB_F_SIDE_PAR);
         for (i = 0; i < LT_LANES; i++)
             if (LT__ON(pp, i) && o->l[i] >= (float)xm.l[i])
                 r = (lt_mask16_t)(r | (1u << i));
@@ -432,20 +424,19 @@ lt_mask16_t lt__ssb_child_side_f32(const lt__ssb_setup_f32_t *S, int a, lt_mask1
     return r;
 }
 
-/* As lt__ssb_setup_q30 in float32 (lt_qt.c's f_setup): NaN or infinite inputs are BADRAY.
- * Cost: FDIV x3, FCMP x13, FADD x6 and four crossings. */
-lt_mask16_t lt__ssb_setup_f32(uint32_t width, uint32_t height, const lt_qray16_f32_t *r,
-                              lt_mask16_t k, lt__ssb_setup_f32_t *S, lt_vf32_t *t0,
-                              lt_vf32_t *t1, lt_mask16_t *bad)
+/* As lt__ssb_clip_q30 in float32 (the quadtree's float32 setup): NaN or infinite inputs are
+ * BADRAY. Cost: SSB_F_CLIP (FDIV x3, FCMP x12, FADD x6) and four crossings. */
+lt_mask16_t lt__ssb_clip_f32(uint32_t width, uint32_t height, const lt_qray16_f32_t *r,
+                             lt_mask16_t k, lt__ssb_setup_f32_t *S, lt_vf32_t *t0,
+                             lt_vf32_t *t1, lt_mask16_t *bad)
 {
     const float lim = (float)(1u << LT_QT_RAY_MAX_LOG2);
-    unsigned okm = 0, ym = 0;
+    unsigned okm = 0;
     int i, a;
     S->r = r;
     S->par[0] = S->par[1] = S->neg[0] = S->neg[1] = 0;
-    LT_COST(FDIV, 3);
-    LT_COST(FCMP, 13);
-    LT_COST(FADD, 6);
+    S->ymaj = 0;
+    LT_CHARGE(SSB_F_CLIP);
     for (i = 0; i < LT_LANES; i++) {
         float x = r->x.l[i], y = r->y.l[i], ex = x + r->dx.l[i], ey = y + r->dy.l[i];
         t0->l[i] = 0.0f;
@@ -470,8 +461,6 @@ lt_mask16_t lt__ssb_setup_f32(uint32_t width, uint32_t height, const lt_qray16_f
                     S->neg[a] = (lt_mask16_t)(S->neg[a] | (1u << i));
             }
         }
-        if (lt__f32_abs(r->dy.l[i]) > lt__f32_abs(r->dx.l[i]))
-            ym |= 1u << i;
         t0->l[i] = r->tmin.l[i];
         t1->l[i] = r->tmax.l[i];
         if (r->dw.l[i] < 0.0f) {
@@ -480,7 +469,6 @@ lt_mask16_t lt__ssb_setup_f32(uint32_t width, uint32_t height, const lt_qray16_f
                 t1->l[i] = tw;
         }
     }
-    S->ymaj = (lt_mask16_t)ym;
     *bad = (lt_mask16_t)(k & ~okm);
     k = (lt_mask16_t)okm;
     for (a = 0; a < 2; a++) {
@@ -502,14 +490,32 @@ lt_mask16_t lt__ssb_setup_f32(uint32_t width, uint32_t height, const lt_qray16_f
     return lt_vf32_cmplt_m(k, *t0, *t1);
 }
 
+/* As lt__ssb_setup_q30: lt__ssb_clip_f32, then the major axis |dy| > |dx| of the valid lanes.
+ * Cost: lt__ssb_clip_f32 + SSB_F_MAJOR (FCMP x1). */
+lt_mask16_t lt__ssb_setup_f32(uint32_t width, uint32_t height, const lt_qray16_f32_t *r,
+                              lt_mask16_t k, lt__ssb_setup_f32_t *S, lt_vf32_t *t0,
+                              lt_vf32_t *t1, lt_mask16_t *bad)
+{
+    lt_mask16_t lanes = lt__ssb_clip_f32(width, height, r, k, S, t0, t1, bad);
+    lt_mask16_t ok = (lt_mask16_t)(k & ~*bad);
+    unsigned ym = 0;
+    int i;
+    LT_CHARGE(SSB_F_MAJOR);
+    for (i = 0; i < LT_LANES; i++)
+        if (LT__ON(ok, i) && lt__f32_abs(r->dy.l[i]) > lt__f32_abs(r->dx.l[i]))
+            ym |= 1u << i;
+    S->ymaj = (lt_mask16_t)ym;
+    return lanes;
+}
+
 /* w of base[idx] for the lanes in k; NaN, +-inf and w <= 0 are holes (0).
- * Cost: VGATHER per active lane, FCMP x2. */
+ * Cost: LANE_GATHER per active lane (VGATHER x1), SSB_F_PIX_HOLES (FCMP x2). */
 lt_vf32_t lt__ssb_gather_pix_f32(const float *base, lt_vi32_t idx, lt_mask16_t k)
 {
     lt_vf32_t r;
     int i;
-    LT_COST(VGATHER, lt__popcount32(k));
-    LT_COST(FCMP, 2);
+    LT_CHARGE_N(LANE_GATHER, lt__popcount32(k));
+    LT_CHARGE(SSB_F_PIX_HOLES);
     LT_UTIL(k);
     for (i = 0; i < LT_LANES; i++) {
         r.l[i] = 0.0f;
@@ -524,11 +530,12 @@ lt_vf32_t lt__ssb_gather_pix_f32(const float *base, lt_vi32_t idx, lt_mask16_t k
     return r;
 }
 
-/* Shell bounds: lo = w_s k (hi = w_s: lt__ssb_shell_hi_f32, lt_ssb.h). Cost: FMUL x1. */
+/* Shell bounds: lo = w_s k (hi = w_s: lt__ssb_shell_hi_f32, lt_ssb.h). Cost: SSB_F_SHELL_LO
+ * (FMUL x1). */
 lt_vf32_t lt__ssb_shell_lo_f32(lt_mask16_t k, lt_vf32_t ws, float kf)
 {
     int i;
-    LT_COST(FMUL, 1);
+    LT_CHARGE(SSB_F_SHELL_LO);
     LT_UTIL(k);
     for (i = 0; i < LT_LANES; i++)
         ws.l[i] = LT__ON(k, i) ? ws.l[i] * kf : 0.0f;
