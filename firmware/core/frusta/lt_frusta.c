@@ -92,7 +92,7 @@ static lt_vi32_t q_scale(lt_vq16_t m)
 {
     lt_vi32_t r;
     int i;
-    LT_COST(VALU, 2); /* leading-zero count and subtract */
+    LT_CHARGE(FR_Q_SCALE);
     for (i = 0; i < LT_LANES; i++)
         r.l[i] = q_shift1(m.l[i]);
     return r;
@@ -108,7 +108,7 @@ static lt_vq30_t q_tod(lt_vq16_t a, lt_vi32_t L)
 {
     lt_vq30_t r;
     int i;
-    LT_COST(VSHIFT, 1);
+    LT_CHARGE(FR_Q_TOD);
     for (i = 0; i < LT_LANES; i++)
         r.l[i] = q_shl1(a.l[i], L.l[i]);
     return r;
@@ -118,7 +118,7 @@ static lt_vq30_t q_tod_s(lt_vq16_t a, int32_t L)
 {
     lt_vq30_t r;
     int i;
-    LT_COST(VSHIFT, 1);
+    LT_CHARGE(FR_Q_TOD);
     for (i = 0; i < LT_LANES; i++)
         r.l[i] = q_shl1(a.l[i], L);
     return r;
@@ -131,7 +131,7 @@ static lt_vq16_t q_tend(lt_vi32_t L)
 {
     lt_vq16_t r;
     int i;
-    LT_COST(VSHIFT, 1);
+    LT_CHARGE(FR_Q_TEND);
     for (i = 0; i < LT_LANES; i++)
         r.l[i] = q_tend1(L.l[i]);
     return r;
@@ -144,8 +144,7 @@ static lt_vq16_t q_tmaxv(lt_vq16_t tend, uint32_t es)
 {
     lt_vq16_t r;
     int i;
-    LT_COST(VSHIFT, 1);
-    LT_COST(VALU, 1);
+    LT_CHARGE(FR_Q_TMAX);
     for (i = 0; i < LT_LANES; i++)
         r.l[i] = q_tmax1(tend.l[i], es);
     return r;
@@ -174,7 +173,7 @@ static void q_margins(lt_vq16_t tx, lt_vq16_t ty, lt_vq16_t tz, const lt_tri_q16
      * was always there, and removing it would change the cycle figures. */
     lt_vql36_t w8 = lt_vql36_from_vql(lt_vql_from_vi32(lt_vi32_from_q16(t1)));
     w8 = lt_vql36_shl_wrap(lt_vql36_asr(w8, 0), 3);
-    LT_COST(SALU, 5);
+    LT_CHARGE(FR_Q_MARGINS);
     *mu = lt_vql36_add_wrap(w8, lt_vql36_set1(((int64_t)3 << 29) + 16));
     *mw = lt_vql36_add_wrap(w8, lt_vql36_set1(8 * e1 + ((int64_t)3 << 30) + 32));
     *mvp = lt_vql36_set1(0);
@@ -184,8 +183,7 @@ static void q_margins(lt_vq16_t tx, lt_vq16_t ty, lt_vq16_t tz, const lt_tri_q16
 /* e2 x e1 of a triangle rounded to qvec's s25.6, broadcast (a per-triangle constant). */
 static void q_tri_a(const lt_tri_q16_t *t, lt_vq6_t *ax, lt_vq6_t *ay, lt_vq6_t *az)
 {
-    LT_COST(SMUL, 6);
-    LT_COST(SALU, 6);
+    LT_CHARGE(FR_Q_TRI_A);
     *ax = lt_vq6_set1(lt__tri_q16_qvec1(t->e2[1], t->e1[2], t->e2[2], t->e1[1]));
     *ay = lt_vq6_set1(lt__tri_q16_qvec1(t->e2[2], t->e1[0], t->e2[0], t->e1[2]));
     *az = lt_vq6_set1(lt__tri_q16_qvec1(t->e2[0], t->e1[1], t->e2[1], t->e1[0]));
@@ -197,7 +195,7 @@ static lt_mask16_t q_nsat(lt_vq6_t nx, lt_vq6_t ny, lt_vq6_t nz, lt_vq6_t ax, lt
 {
     unsigned m = 0;
     int i;
-    LT_COST(VCMP, 2);
+    LT_CHARGE(FR_Q_NSAT);
     for (i = 0; i < LT_LANES; i++) {
         int32_t v[6];
         int j;
@@ -210,13 +208,13 @@ static lt_mask16_t q_nsat(lt_vq6_t nx, lt_vq6_t ny, lt_vq6_t nz, lt_vq6_t ax, lt
 }
 
 /* Scalar sign of the kernel's tnum for one origin (lt__tri_q16_org1, lt_tri.h): a hit of any
- * ray from o has det of this sign (t = tnum / det > tmin >= 0). Cost: SMUL x9, SALU x9. */
+ * ray from o has det of this sign (t = tnum / det > tmin >= 0). Cost: FR_TNUM_SIGN (SMUL x9,
+ * SALU x9). */
 static int q_tnum_sign1(const lt_q16_t o[3], const lt_tri_q16_t *tri)
 {
     lt__tri_q16_org_t s;
     lt__tri_q16_org1(o, tri, &s);
-    LT_COST(SMUL, 9);
-    LT_COST(SALU, 9);
+    LT_CHARGE(FR_TNUM_SIGN);
     return (s.tnum > 0) - (s.tnum < 0);
 }
 
@@ -229,7 +227,7 @@ static lt_vq16_t q_gterm(lt_mask16_t k, lt_vq16_t a, lt_vq16_t b, lt_vq16_t wx, 
     lt_vql32_t den = lt_vql32_dot3_q16(wx, wy, wz, wx, wy, wz);
     lt_vq16_t g;
     int i;
-    LT_COST(VDIV, 1);
+    LT_CHARGE(FR_Q_GTERM_DIV);
     LT_UTIL(k);
     for (i = 0; i < LT_LANES; i++) {
         g.l[i] = 0;
@@ -262,7 +260,7 @@ static lt_vq16_t q_loadx(const int32_t *row, int64_t x0, uint32_t w, lt_mask16_t
     lt_vq16_t r;
     int i;
     unsigned m = 0;
-    LT_COST(VLOAD, 1);
+    LT_CHARGE(FR_LOADX);
     for (i = 0; i < LT_LANES; i++) {
         int64_t x = x0 + i;
         r.l[i] = 0;
@@ -284,19 +282,19 @@ static lt_vq16_t q_loadx(const int32_t *row, int64_t x0, uint32_t w, lt_mask16_t
 
 /* The kernel's origin-only terms for rays from one eye, as scalars: tvec = o - v0, qvec = tvec x
  * e1 rounded to s25.6 and tnum = e2 . qvec, lt_tri.h's lt__tri_q16_org1 (the lane arithmetic of
- * lt_tri16_q16, so broadcasting them gives exactly the kernel's lanes). Cost: SMUL x9, SALU x12. */
+ * lt_tri16_q16, so broadcasting them gives exactly the kernel's lanes). Cost: FR_PTQ (SMUL x9,
+ * SALU x12). */
 typedef lt__tri_q16_org_t q_stq_t; /* t: tvec s15.16, q: qvec s25.6, tnum: 22 fractional bits */
 
 static void q_ptq1(const lt_q16_t o[3], const lt_tri_q16_t *tri, q_stq_t *s)
 {
     lt__tri_q16_org1(o, tri, s);
-    LT_COST(SMUL, 9);
-    LT_COST(SALU, 12);
+    LT_CHARGE(FR_PTQ);
 }
 
 /* The u edge's normal e2 x tvec rounded to s25.6 (fr_cull's per-lane normal, as a scalar).
  * Returns 1 if a component saturated (no error bound: the caller skips corner culling).
- * Cost: SMUL x6, SALU x6. */
+ * Cost: FR_Q_PNRM (SMUL x6, SALU x6). */
 static int q_pnrm1(const lt_tri_q16_t *tri, const int32_t t[3], int32_t n[3])
 {
     unsigned a;
@@ -306,22 +304,21 @@ static int q_pnrm1(const lt_tri_q16_t *tri, const int32_t t[3], int32_t n[3])
     n[2] = lt__tri_q16_qvec1(tri->e2[0], t[1], tri->e2[1], t[0]);
     for (a = 0; a < 3; a++)
         sat |= n[a] == INT32_MAX || n[a] == INT32_MIN;
-    LT_COST(SMUL, 6);
-    LT_COST(SALU, 6);
+    LT_CHARGE(FR_Q_PNRM);
     return sat;
 }
 
-/* Whether the broadcast e2 x e1 (q_tri_a) saturated in any component. Cost: SALU x3. */
+/* Whether the broadcast e2 x e1 (q_tri_a) saturated in any component. Cost: FR_Q_ASAT (SALU x3). */
 static int q_asat(lt_vq6_t ax, lt_vq6_t ay, lt_vq6_t az)
 {
-    LT_COST(SALU, 3);
+    LT_CHARGE(FR_Q_ASAT);
     return ax.l[0] == INT32_MAX || ax.l[0] == INT32_MIN || ay.l[0] == INT32_MAX ||
            ay.l[0] == INT32_MIN || az.l[0] == INT32_MAX || az.l[0] == INT32_MIN;
 }
 
 /* q_margins for one tvec (common eye), scalars: mu = 8 |tvec|_1 + C1 / 2 + 16, mw = 8 (|e1|_1 +
  * |tvec|_1) + C1 + 32, and V's 0 / 15, in the forms' 36 fractional bits (exact int64).
- * Cost: SALU x8. */
+ * Cost: FR_Q_PMARG (SALU x8). */
 static void q_pmarg1(const int32_t t[3], const lt_tri_q16_t *tri, int64_t *mu, int64_t *mw,
                      int64_t *mvp, int64_t *mvn)
 {
@@ -335,7 +332,7 @@ static void q_pmarg1(const int32_t t[3], const lt_tri_q16_t *tri, int64_t *mu, i
     *mw = 8 * (e1 + t1) + ((int64_t)3 << 30) + 32;
     *mvp = 0;
     *mvn = 15;
-    LT_COST(SALU, 8);
+    LT_CHARGE(FR_Q_PMARG);
 }
 
 /* Direction component of pixel (x, y): d0 + x dx + y dy, exact in int64 (in range by the view
@@ -345,14 +342,13 @@ LT_INLINE int32_t q_pbase1(const lt_frusta_vtable_q16_t *vt, uint32_t x, uint32_
     return lt__wrap32((int64_t)vt->d0[a] + (int64_t)x * vt->dx[a] + (int64_t)y * vt->dy[a]);
 }
 
-/* q_pbase1 per lane for tile coordinates x, y (lanes). Cost: VMUL x2, VMULW x2, VCVT x1. */
+/* q_pbase1 per lane for tile coordinates x, y (lanes). Cost: FR_Q_PBASEV (VMUL x2, VMULW x2,
+ * VCVT x1). */
 static lt_vq30_t q_pbasev(const lt_frusta_vtable_q16_t *vt, lt_vi32_t x, lt_vi32_t y, unsigned a)
 {
     lt_vq30_t r;
     int i;
-    LT_COST(VMUL, 2);
-    LT_COST(VMULW, 2);
-    LT_COST(VCVT, 1);
+    LT_CHARGE(FR_Q_PBASEV);
     for (i = 0; i < LT_LANES; i++)
         r.l[i] = q_pbase1(vt, (uint32_t)x.l[i], (uint32_t)y.l[i], a);
     return r;
@@ -695,7 +691,7 @@ static lt_vf32_t f_scale(lt_vf32_t m)
 {
     lt_vf32_t r;
     int i;
-    LT_COST(VALU, 2);
+    LT_CHARGE(FR_F_SCALE);
     for (i = 0; i < LT_LANES; i++)
         r.l[i] = f_scale1(m.l[i]);
     return r;
@@ -711,7 +707,7 @@ static lt_vf32_t f_tend(lt_vf32_t s)
 {
     lt_vf32_t r;
     int i;
-    LT_COST(FDIV, 1);
+    LT_CHARGE(FR_F_TEND);
     for (i = 0; i < LT_LANES; i++)
         r.l[i] = f_tend1(s.l[i]);
     return r;
@@ -732,8 +728,7 @@ static lt_vf32_t f_tmaxv(lt_vf32_t tend, uint32_t es)
 {
     lt_vf32_t r;
     int i;
-    LT_COST(FMUL, 1);
-    LT_COST(FADD, 1);
+    LT_CHARGE(FR_F_TMAX);
     for (i = 0; i < LT_LANES; i++)
         r.l[i] = f_tmax1(tend.l[i], es);
     return r;
@@ -760,7 +755,7 @@ static void f_margins(lt_vf32_t tx, lt_vf32_t ty, lt_vf32_t tz, const lt_tri_f32
     lt_vf32_t t1 = lt_vf32_add(lt_vf32_add(lt_vf32_abs(tx), lt_vf32_abs(ty)), lt_vf32_abs(tz));
     float e1 = lt__f32_abs(tri->e1[0]) + lt__f32_abs(tri->e1[1]) + lt__f32_abs(tri->e1[2]);
     float e2 = lt__f32_abs(tri->e2[0]) + lt__f32_abs(tri->e2[1]) + lt__f32_abs(tri->e2[2]);
-    LT_COST(SALU, 8);
+    LT_CHARGE(FR_F_MARGINS);
     *mu = lt_vf32_mul(t1, lt_vf32_set1(e2 * 0x1p-15f));
     *mvp = lt_vf32_mul(t1, lt_vf32_set1(e1 * 0x1p-15f));
     *mvn = *mvp;
@@ -769,8 +764,7 @@ static void f_margins(lt_vf32_t tx, lt_vf32_t ty, lt_vf32_t tz, const lt_tri_f32
 
 static void f_tri_a(const lt_tri_f32_t *t, lt_vf32_t *ax, lt_vf32_t *ay, lt_vf32_t *az)
 {
-    LT_COST(SMUL, 6);
-    LT_COST(SALU, 3);
+    LT_CHARGE(FR_F_TRI_A);
     *ax = lt_vf32_set1(t->e2[1] * t->e1[2] - t->e2[2] * t->e1[1]);
     *ay = lt_vf32_set1(t->e2[2] * t->e1[0] - t->e2[0] * t->e1[2]);
     *az = lt_vf32_set1(t->e2[0] * t->e1[1] - t->e2[1] * t->e1[0]);
@@ -783,8 +777,7 @@ static int f_tnum_sign1(const float o[3], const lt_tri_f32_t *tri)
     float qy = tz * tri->e1[0] - tx * tri->e1[2];
     float qz = tx * tri->e1[1] - ty * tri->e1[0];
     float t = (tri->e2[0] * qx + tri->e2[1] * qy) + tri->e2[2] * qz;
-    LT_COST(SMUL, 9);
-    LT_COST(SALU, 9);
+    LT_CHARGE(FR_TNUM_SIGN);
     return (t > 0.0f) - (t < 0.0f);
 }
 
@@ -811,7 +804,7 @@ static lt_vf32_t f_loadx(const float *row, int64_t x0, uint32_t w, lt_mask16_t *
     lt_vf32_t r;
     int i;
     unsigned m = 0;
-    LT_COST(VLOAD, 1);
+    LT_CHARGE(FR_LOADX);
     for (i = 0; i < LT_LANES; i++) {
         int64_t x = x0 + i;
         r.l[i] = 0.0f;
@@ -847,8 +840,7 @@ static void f_ptq1(const float o[3], const lt_tri_f32_t *tri, f_stq_t *s)
     s->q[1] = s->t[2] * tri->e1[0] - s->t[0] * tri->e1[2];
     s->q[2] = s->t[0] * tri->e1[1] - s->t[1] * tri->e1[0];
     s->tnum = (tri->e2[0] * s->q[0] + tri->e2[1] * s->q[1]) + tri->e2[2] * s->q[2];
-    LT_COST(SMUL, 9);
-    LT_COST(SALU, 12);
+    LT_CHARGE(FR_PTQ);
 }
 
 static int f_pnrm1(const lt_tri_f32_t *tri, const float t[3], float n[3])
@@ -856,8 +848,7 @@ static int f_pnrm1(const lt_tri_f32_t *tri, const float t[3], float n[3])
     n[0] = tri->e2[1] * t[2] - tri->e2[2] * t[1];
     n[1] = tri->e2[2] * t[0] - tri->e2[0] * t[2];
     n[2] = tri->e2[0] * t[1] - tri->e2[1] * t[0];
-    LT_COST(SMUL, 6);
-    LT_COST(SALU, 3);
+    LT_CHARGE(FR_F_PNRM);
     return 0;
 }
 
@@ -868,7 +859,7 @@ static void f_pmarg1(const float t[3], const lt_tri_f32_t *tri, float *mu, float
     float t1 = lt__f32_abs(t[0]) + lt__f32_abs(t[1]) + lt__f32_abs(t[2]);
     float e1 = lt__f32_abs(tri->e1[0]) + lt__f32_abs(tri->e1[1]) + lt__f32_abs(tri->e1[2]);
     float e2 = lt__f32_abs(tri->e2[0]) + lt__f32_abs(tri->e2[1]) + lt__f32_abs(tri->e2[2]);
-    LT_COST(SALU, 12);
+    LT_CHARGE(FR_F_PMARG);
     *mu = t1 * (e2 * 0x1p-15f);
     *mvp = t1 * (e1 * 0x1p-15f);
     *mvn = *mvp;
@@ -886,9 +877,7 @@ static lt_vf32_t f_pbasev(const lt_frusta_vtable_f32_t *vt, lt_vi32_t x, lt_vi32
 {
     lt_vf32_t r;
     int i;
-    LT_COST(VCVT, 2);
-    LT_COST(FMUL, 2);
-    LT_COST(FADD, 2);
+    LT_CHARGE(FR_F_PBASEV);
     for (i = 0; i < LT_LANES; i++)
         r.l[i] = f_pbase1(vt, (uint32_t)x.l[i], (uint32_t)y.l[i], a);
     return r;
@@ -907,11 +896,11 @@ LT_INLINE float f_pdelta(const lt_frusta_vtable_f32_t *vt, uint32_t jx, uint32_t
     return (float)jx * vt->dx[a] + (float)jy * vt->dy[a];
 }
 
-/* t one ulp up for lanes of k (a >= 0: the next float). Cost: VALU x1. */
+/* t one ulp up for lanes of k (a >= 0: the next float). Cost: FR_F_NEXTUP (VALU x1). */
 static lt_vf32_t f_nextup_m(lt_vf32_t src, lt_mask16_t k, lt_vf32_t a)
 {
     int i;
-    LT_COST(VALU, 1);
+    LT_CHARGE(FR_F_NEXTUP);
     for (i = 0; i < LT_LANES; i++)
         if (LT__ON(k, i)) {
             union {
