@@ -133,15 +133,16 @@ void lt_ray1_q16_setup(lt_ray1_q16_t *r);
 /* Slab test of one ray, bit-identical to one lane of lt_slab16_q16 (parallel and saturated axes
  * take the same exact path). Writes max(tmin, near planes) to *tnear on a hit.
  * Format: s15.16. Rounding: (plane - o) x (1/d) half up. Overflow: saturates (monotone, so the
- * classification survives). Cost: SLOAD x6, SALU x14, SMUL x6, BRANCH x4 (+ SDIV x2 per saturated
- * axis).
+ * classification survives). Cost: BVH_SLAB1 (SLOAD x6, SALU x14, SMUL x6, BRANCH x4); + per axis
+ * with d == 0 BVH_SLAB1_FIX (SALU x4), per saturated axis BVH_SLAB1_FIX_DIV (SDIV x2).
  * Returns: 1 if the ray meets the box within [tmin, tmax], else 0. */
 int lt_slab1_q16(const lt_ray1_q16_t *r, const lt_aabb_q16_t *b, lt_q16_t *tnear);
 
 /* Moller-Trumbore of one ray, two-sided, edges inclusive, bit-identical to one lane of
  * lt_tri16_q16 (same exact int64 products, qvec in s25.6, same t division).
  * Format: see docs/numerics.md. Rounding: t half up. Overflow: none within the geometry bound.
- * Cost: SLOAD x9, SMUL x24, SALU x24, BRANCH x2, SDIV x1 (hit candidates only).
+ * Cost: BVH_TRI1 (SLOAD x9, SMUL x24, SALU x24, BRANCH x2), BVH_TRI1_TDIV (SDIV x1) for hit
+ * candidates only.
  * Returns: 1 if tmin < t < tmax (then tmax = t), else 0. */
 int lt_tri1_q16(lt_ray1_q16_t *r, const lt_tri_q16_t *tri);
 
@@ -166,13 +167,14 @@ void lt_ray1_f32_setup(lt_ray1_f32_t *r);
 
 /* One lane of lt_slab16_f32, operation for operation. Format: float32. Rounding: each product and
  * difference to nearest even. Overflow: none (1/d is finite).
- * Cost: SLOAD x6, SALU x14, SMUL x6, BRANCH x4.
+ * Cost: BVH_SLAB1 (SLOAD x6, SALU x14, SMUL x6, BRANCH x4) + BVH_SLAB1_FIX (SALU x4) per axis
+ * with d == +-0.
  * Returns: 1 if the ray meets the box within [tmin, tmax] (*tnear written), else 0. */
 int lt_slab1_f32(const lt_ray1_f32_t *r, const lt_aabb_f32_t *b, float *tnear);
 
 /* One lane of lt_tri16_f32, operation for operation (same products in the same order).
  * Format: float32. Rounding: to nearest even. Overflow: none for |x| <= 2^48.
- * Cost: SLOAD x9, SMUL x24, SALU x24, BRANCH x2.
+ * Cost: BVH_TRI1 (SLOAD x9, SMUL x24, SALU x24, BRANCH x2).
  * Returns: 1 if tmin < t < tmax (then tmax = t), else 0. */
 int lt_tri1_f32(lt_ray1_f32_t *r, const lt_tri_f32_t *tri);
 #endif
@@ -182,7 +184,7 @@ int lt_tri1_f32(lt_ray1_f32_t *r, const lt_tri_f32_t *tri);
 /* Arena bytes lt_bvh_build_q16/_f32 need for ntris triangles with these parameters (the same for
  * both numeric paths): 2 ntris node slots (2n - 1 nodes at most, plus the unused slot 1), ntris
  * indices, and the builder's scratch (one box per triangle, 3 x bins bins, the SAH sweep and the
- * explicit build stack of max_depth + 1 entries). ntris == 0 needs 0 bytes.
+ * explicit build stack of max_depth + 1 entries). ntris == 0 needs 0 bytes. Cost: none.
  * Returns: LT_OK, LT_E_ARG (NULL bytes, or a desc field outside its range), LT_E_RANGE
  * (ntris > LT_BVH_MAX_TRIS, or the size does not fit size_t). */
 lt_status_t lt_bvh_size(uint32_t ntris, const lt_bvh_desc_t *desc, size_t *bytes);
@@ -196,7 +198,13 @@ lt_status_t lt_bvh_size(uint32_t ntris, const lt_bvh_desc_t *desc, size_t *bytes
  * a side product < 2^58 and the sum < 2^60), each node's areas shifted right until the parent's fits
  * 32 bits, costs = area x count < 2^60 (counts < 2^27). Rounding: areas truncated after the shift
  * (relative 2^-32 of the parent). Overflow: none within the geometry bound.
- * Cost: BUILD phase, SALU/BRANCH per triangle per level, LT_MEM on triangles and nodes.
+ * Cost: BUILD phase, the BVH_BUILD_* recipes of lt_recipes.def: per triangle BVH_BUILD_TRI_BOX and
+ * BVH_BUILD_IDX_MOVE; per node job BVH_BUILD_NODE_POP; a leaf's box BVH_BUILD_RANGE_BOX per
+ * triangle; a split: BVH_BUILD_CENTROID_BOUNDS, BVH_BUILD_BINNING and BVH_BUILD_PARTITION per
+ * triangle, BVH_BUILD_BIN_SCALE, BVH_BUILD_SAH_SWEEP and BVH_BUILD_CHILD_BOX per bin,
+ * BVH_BUILD_SPLIT_DECIDE (object median: BVH_BUILD_SELECT per element of each partition pass); at
+ * the end BVH_BUILD_NODE_FIX per node; LT_MEM on triangles and nodes. One triangle: TRI_BOX,
+ * NODE_POP, RANGE_BOX, NODE_FIX, IDX_MOVE.
  * Returns: LT_OK; LT_E_ARG (NULL out, tris with n > 0, arena misaligned, bad desc); LT_E_SPACE
  * (arena too small: out->bytes = the size needed, arena untouched); LT_E_RANGE (a vertex outside
  * |x| <= 2^LT_CFG_GEOM_MAX_LOG2 units: out->bad_tri names the triangle; n > LT_BVH_MAX_TRIS);
@@ -213,27 +221,36 @@ lt_status_t lt_bvh_build_q16(lt_bvh_t *out, const lt_bvh_desc_t *desc, const lt_
  * tmax. Leaves run lt_tri16_q16 on their lanes. The stack holds LT_BVH_MAX_DEPTH entries, which a
  * built tree never exceeds; should a foreign tree need more, the far child is dropped (its lanes
  * may miss a closer hit), nothing is written past the stack, and LT_E_DEPTH is returned.
- * Format: as lt_slab16_q16 / lt_tri16_q16. Cost: TRAVERSE and INTERSECT phases; VBCAST x2 per
- * call; NODES per node, LT_MEM per node read, VRED x2 per two-child node, the kernels' costs and
- * the BVH_TRAV_* recipes of lt_recipes.def.
+ * Format: as lt_slab16_q16 / lt_tri16_q16. Cost: VBCAST x1 in the caller's phase (hit->id = -1);
+ * TRAVERSE: VBCAST x2 per call, lt_slab16_q16 per box test, per node BVH_TRAV_NODE, interior:
+ * BVH_TRAV_CHILDREN16 (+ VRED x2, BVH_TRAV_ORDER, BVH_TRAV16_PUSH with both children entered),
+ * leaf: BVH_TRAV_ANY_EXIT after it; BVH_TRAV16_POP per entry popped (+ VRED x1 if it has live
+ * lanes); INTERSECT: BVH_TRAV_LEAF_TRI and lt_tri16_q16 per leaf triangle; NODES per node, LT_MEM
+ * per node read.
  * Returns: LT_OK, LT_E_ARG (NULL, or a tree of the other numeric path), LT_E_DEPTH (see above). */
 lt_status_t lt_bvh_trace16_q16(const lt_bvh_t *bvh, const lt_tri_q16_t *tris, lt_ray16_q16_t *r,
                                lt_mask16_t k, lt_hit16_t *hit);
 
 /* Any hit (shadow rays): *occluded = lanes of k with some triangle at tmin < t < tmax. Lanes leave
  * the packet at their first hit (their tmax becomes that hit's distance); traversal stops when
- * every lane of k is occluded. Cost and returns as lt_bvh_trace16_q16. */
+ * every lane of k is occluded. Cost: as lt_bvh_trace16_q16 (the caller-phase VBCAST x1 is the
+ * local hit record's) + BVH_TRAV_ANY_RETIRE per triangle that occludes lanes. Returns: as
+ * lt_bvh_trace16_q16. */
 lt_status_t lt_bvh_occluded16_q16(const lt_bvh_t *bvh, const lt_tri_q16_t *tris, lt_ray16_q16_t *r,
                                   lt_mask16_t k, lt_mask16_t *occluded);
 
 /* Closest hit of one ray: *id = original triangle id or -1, r->tmax = its distance. The same
  * ordered traversal with a stack of (node, tnear), scalar slab and triangle tests (bit-identical to
- * a packet lane, so the packet and single-ray paths return the same hit). Cost: SALU/SMUL per box,
- * NODES per node. Returns: as lt_bvh_trace16_q16. */
+ * a packet lane, so the packet and single-ray paths return the same hit). Cost: TRAVERSE
+ * lt_slab1_q16 per box test, per node BVH_TRAV_NODE, interior: BVH_TRAV1_CHILDREN (+
+ * BVH_TRAV_ORDER, BVH_TRAV1_PUSH with both children entered); BVH_TRAV1_POP per entry popped;
+ * INTERSECT BVH_TRAV_LEAF_TRI and lt_tri1_q16 per leaf triangle; NODES per node. Returns: as
+ * lt_bvh_trace16_q16. */
 lt_status_t lt_bvh_trace1_q16(const lt_bvh_t *bvh, const lt_tri_q16_t *tris, lt_ray1_q16_t *r,
                               int32_t *id);
 
-/* Any hit of one ray: *occluded = 1 if some triangle lies at tmin < t < tmax, else 0. */
+/* Any hit of one ray: *occluded = 1 if some triangle lies at tmin < t < tmax, else 0. Cost: as
+ * lt_bvh_trace1_q16, stopping at the first hit. */
 lt_status_t lt_bvh_occluded1_q16(const lt_bvh_t *bvh, const lt_tri_q16_t *tris, lt_ray1_q16_t *r,
                                  int *occluded);
 
@@ -290,7 +307,8 @@ typedef struct lt_bvhq {
 
 /* Bytes of the buffer lt_bvhq_build_q16 needs for src: 16 x src->nnodes for the nodes (kept, at
  * the buffer start) + (LT_BVH_MAX_DEPTH + 1) x 28 for the quantiser's explicit stack (free after the
- * build); 0 for an empty tree. Returns: LT_OK, LT_E_ARG (NULL, or src not a q16 tree). */
+ * build); 0 for an empty tree. Cost: none. Returns: LT_OK, LT_E_ARG (NULL, or src not a q16
+ * tree). */
 lt_status_t lt_bvhq_size(const lt_bvh_t *src, size_t *bytes);
 
 /* Quantise a built s15.16 tree into mem (4-byte aligned, >= lt_bvhq_size bytes), top-down with an
@@ -298,15 +316,18 @@ lt_status_t lt_bvhq_size(const lt_bvh_t *src, size_t *bytes);
  * bytes kept (16 x nnodes).
  * Format: uint16 steps of 2^e_a raw. Rounding: lo down, hi up (conservative). Overflow: decoded
  * corners saturate to int32 (never within the geometry bound).
- * Cost: BUILD phase, SALU x~40 per node. Returns: LT_OK, LT_E_ARG (NULL, src not q16, mem
- * misaligned), LT_E_SPACE (out->bytes = the size needed), LT_E_RANGE (a leaf of more than
+ * Cost: BUILD phase, BVHQ_BUILD_NODE (SALU x40) per node. Returns: LT_OK, LT_E_ARG (NULL, src not
+ * q16, mem misaligned), LT_E_SPACE (out->bytes = the size needed), LT_E_RANGE (a leaf of more than
  * LT_BVHQ_MAX_LEAF triangles: build the source with max_leaf <= 15). */
 lt_status_t lt_bvhq_build_q16(lt_bvhq_t *out, const lt_bvh_t *src, void *mem, size_t bytes);
 
 /* Closest hit / any hit of a packet, and closest hit of a single ray, over the quantised tree: the
  * algorithms of lt_bvh_trace16_q16 / lt_bvh_occluded16_q16 / lt_bvh_trace1_q16 with each child box
  * decoded from the frame carried on the stack (24 more bytes per stack entry).
- * Cost: as those, plus SALU x~20 per interior node for the decode. Returns: as those. */
+ * Cost: as those with BVH_TRAV_NODE1 (SLOAD x1) per node instead of BVH_TRAV_NODE and, per interior
+ * node, BVHQ_FRAME_EXPS + 2 BVHQ_DECODE (SLOAD x6, SALU x33); the packet walks push and pop the
+ * decoded box: BVHQ_TRAV16_PUSH instead of BVH_TRAV16_PUSH, + BVHQ_TRAV16_POP_BOX per entry taken;
+ * the single ray BVHQ_TRAV1_PUSH. Returns: as those. */
 lt_status_t lt_bvhq_trace16_q16(const lt_bvhq_t *bvh, const lt_tri_q16_t *tris, lt_ray16_q16_t *r,
                                 lt_mask16_t k, lt_hit16_t *hit);
 lt_status_t lt_bvhq_occluded16_q16(const lt_bvhq_t *bvh, const lt_tri_q16_t *tris,

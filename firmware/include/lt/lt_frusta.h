@@ -105,7 +105,8 @@ lt_status_t lt_frusta_table_q16(const lt_frusta_light_q16_t *light, const lt_qmc
  * A lane whose origin lies outside the geometry bound is dropped (LT_E_RANGE); a lane whose rays
  * all have zero length (origin on a zero-area light) is dropped as unoccluded.
  * Format: s15.16 / s1.30. Rounding: exact except the reciprocals (half up). Overflow: none in
- * range. Cost: SETUP phase; VALU, VSHIFT, VDIV x6, VCMP per call.
+ * range. Cost: SETUP phase, per call FR_SETUP, FR_Q_SCALE, FR_Q_TEND, FR_Q_TMAX, FR_Q_TOD x18 and
+ * VALU x57, VDIV x6 (the reciprocals), VCMP x24, VBCAST x32.
  * Returns: LT_OK, LT_E_ARG (NULL), LT_E_RANGE (some lane dropped; the others are set up). */
 lt_status_t lt_frusta_setup16_q16(const lt_frusta_table_q16_t *tb, lt_mask16_t k,
                                   lt_frusta16_q16_t *F);
@@ -119,6 +120,19 @@ lt_status_t lt_frusta_setup16_q16(const lt_frusta_table_q16_t *tb, lt_mask16_t k
  * and lt_tri16 on the live samples. Events: TRI_FETCH per triangle fetched per leaf visit,
  * TRI_KEPT per triangle surviving culling for some frustum, CULL_BACK / CULL_CORNER per
  * frustum-triangle pair culled, TRIS per 16-ray test.
+ * Cost (none when no frustum is active; a rounded cross product is VMUL x2, VMULW x1, VSHIFT x1, a
+ * dot product VMUL x3, VMULW x2, d . qvec + VSHIFT x1): TRAVERSE per call VBCAST x2; per box test
+ * (fr_box) FR_BOX_LOAD, VBCAST x10, VALU x22, VMUL x6, VCMP x1; per node BVH_TRAV_NODE, interior:
+ * BVH_TRAV_CHILDREN16 (+ BVH_TRAV_ORDER, FR_TRAV_PUSH with both children entered), leaf:
+ * FR_ACTIVE_EXIT after it; FR_TRAV_POP per entry popped. INTERSECT per leaf triangle: FR_LEAF_TRI
+ * and fr_cull: FR_CULL_BACK, VBCAST x11, VALU x3, 3 rounded cross products, a dot product,
+ * VCMP x2 (BACKFACE: VBCAST x10, VCMP x1) (+ with CORNER the corner rays: FR_Q_TRI_A, FR_Q_MARGINS,
+ * FR_Q_NSAT, FR_CULL_CORNER per corner evaluated and their lane ops); a bit-scan of the frusta
+ * keeping it (MASK x3 per frustum + 1) and per such frustum FR_LEAF_FRUSTUM, on first use its rays
+ * (fr_gen: FR_GEN, VBCAST x3, VALU x3, FR_Q_TOD x3), the test (fr_tri: FR_TRI, VBCAST x16, 3
+ * rounded cross products, 2 dot products, d . qvec, VCMP x4, VMULW x1; tnum < 0: VMULW x4,
+ * VBCAST x4; candidates: TRI_Q_TDIV16, VBCAST x3, VCMP x2), FR_LEAF_OCCLUDED when rays were newly
+ * occluded; with CR FR_RECORNER per such frustum after the leaf.
  * Format: as lt_slab16 / lt_tri16. Rounding: conservative (docs/frusta.md). Overflow: none.
  * Returns: LT_OK, LT_E_ARG (NULL, a tree of the other path), LT_E_DEPTH (foreign tree too deep). */
 lt_status_t lt_frusta_occluded16_q16(const lt_bvh_t *bvh, const lt_tri_q16_t *tris,
@@ -127,12 +141,14 @@ lt_status_t lt_frusta_occluded16_q16(const lt_bvh_t *bvh, const lt_tri_q16_t *tr
 /* The 16 rays of one frustum as a packet (lane j = sample j of set s) from origin o: exactly the
  * rays the frusta generate, with lt_ray16_q16_setup applied. *k = 0xFFFF, or 0 for zero-length
  * rays. Format: s15.16 origin, s1.30 direction. Rounding: exact. Overflow: none in range.
- * Cost: VALU, VSHIFT, VBCAST; the setup's VDIV x3. Returns: LT_OK, LT_E_ARG, LT_E_RANGE. */
+ * Cost (in the caller's phase): FR_RAYS, FR_Q_TOD x3, VALU x3, VBCAST x8 and lt_ray16_q16_setup
+ * (VDIV x3, VCMP x9, VBCAST x9). Returns: LT_OK, LT_E_ARG, LT_E_RANGE. */
 lt_status_t lt_frusta_rays16_q16(const lt_frusta_table_q16_t *tb, const lt_q16_t o[3],
                                  unsigned set, lt_ray16_q16_t *r, lt_mask16_t *k);
 
 /* One of those rays as a single ray (sample j of set s from origin o), with lt_ray1_q16_setup
  * applied; zero-length rays get tmax = 0 (never hit). The per-ray reference of the tests.
+ * Cost (in the caller's phase): lt_ray1_q16_setup's BVH_RAY1_SETUP (SDIV x3, SALU x9).
  * Returns: LT_OK, LT_E_ARG, LT_E_RANGE. */
 lt_status_t lt_frusta_ray1_q16(const lt_frusta_table_q16_t *tb, const lt_q16_t o[3], unsigned set,
                                unsigned j, lt_ray1_q16_t *r);
@@ -142,6 +158,11 @@ lt_status_t lt_frusta_ray1_q16(const lt_frusta_table_q16_t *tb, const lt_q16_t o
  * path of lt_bvh_occluded16_q16) and, with BACKFACE in flags, triangles facing away from o skipped
  * (decided by the sign of the kernel's own tnum, so it equals per-ray culling of det < 0).
  * Events: TRI_FETCH, TRI_KEPT, CULL_BACK. Without BACKFACE *occluded equals lt_bvh_occluded16_q16.
+ * Cost: TRAVERSE per call VBCAST x2; lt_slab16_q16 per box test; per node BVH_TRAV_NODE,
+ * interior: BVH_TRAV_CHILDREN16 (+ BVH_TRAV_ORDER, FR_TRAV_PUSH with both children entered),
+ * leaf: BVH_TRAV_ANY_EXIT after it; FR_TRAV_POP per entry popped. INTERSECT per leaf triangle:
+ * BVH_TRAV_LEAF_TRI (BACKFACE: + FR_PACKET_TRI_LOAD, FR_TNUM_SIGN), lt_tri16_q16 when kept,
+ * BVH_TRAV_ANY_RETIRE when it occludes lanes.
  * Returns: as lt_bvh_occluded16_q16. */
 lt_status_t lt_frusta_packet_occluded16_q16(const lt_bvh_t *bvh, const lt_tri_q16_t *tris,
                                             uint32_t flags, const lt_q16_t o[3],
@@ -152,7 +173,8 @@ lt_status_t lt_frusta_packet_occluded16_q16(const lt_bvh_t *bvh, const lt_tri_q1
  * w = m - p, G = max(0, n.w) max(0, -nl.w) / |w|^2 (the cosines at both ends; no distance
  * falloff, which keeps G in [0, 1]). Format: p s15.16, n and nl s1.30 unit -> G s15.16 in [0, 1];
  * dots exact in int64, one division. Rounding: dots half up to s15.16, G half up. Overflow: none
- * for |w| <= 2^(GEOM+1). Cost: VMUL x6, VMULW, VDIV x1 (SHADE phase is the caller's).
+ * for |w| <= 2^(GEOM+1). Cost (in the caller's phase, SHADE in the renderer): VMUL x10, VMULW x6,
+ * VSHIFT x2, VALU x4, VCMP x3, VBCAST x7 and FR_Q_GTERM_DIV (VDIV x1).
  * Returns: mask of lanes of k with G > 0 (those need shadow rays). */
 lt_mask16_t lt_frusta_direct16_q16(const lt_vq16_t p[3], const lt_vq30_t n[3], const lt_q16_t m[3],
                                    const lt_q30_t nl[3], lt_mask16_t k, lt_vq16_t *g);
@@ -169,8 +191,10 @@ typedef struct lt_frusta_filter_q16 {
  * joins. Every 4x4 window holds each interleaved set once, so a pixel with all 16 neighbours joined
  * averages all 256 samples. Invalid pixels output 0. Arrays are row-major w x h.
  * Format: e, z s15.16, n s1.30 (unit) -> out s15.16. Rounding: mean half up. Overflow: none
- * (sums of <= 16 values saturate; never for e in [0, 1]). Cost: FILTER phase; per window offset VLOAD x6, VMUL x3 and
- * VMULW x2 (normal dot), VCMP x3, VALU x4; VMUL x1 and VDIV x1 per row segment. */
+ * (sums of <= 16 values saturate; never for e in [0, 1]). Cost: VBCAST x1 in the caller's phase;
+ * FILTER per call: FR_VMASK, FR_LOADX x4, VMUL x1, VBCAST x2, VDIV x1 (the mean), VSTORE x1; per
+ * window offset on an image row: FR_FILTER_OFFSET, FR_VMASK, and with a valid neighbour
+ * FR_LOADX x5, VALU x4, VCMP x2, VMUL x3 and VMULW x2 (the normals' dot), VBCAST x2. */
 void lt_frusta_filter16_q16(const lt_q16_t *e, const lt_q16_t *z, const lt_q30_t *nx,
                             const lt_q30_t *ny, const lt_q30_t *nz, const uint8_t *valid,
                             uint32_t w, uint32_t h, uint32_t x0, uint32_t y,
@@ -247,7 +271,9 @@ lt_status_t lt_frusta_vtable_q16(const lt_frusta_view_q16_t *view, lt_frusta_vta
  * applied to the only event that removes primary rays: the image border); direction intervals
  * per axis = min / max over the corner rays (exact), and their reciprocals.
  * Format: s1.30 directions, s15.16 reciprocals. Rounding: exact except the reciprocals (half up).
- * Overflow: none. Cost: SETUP phase; VMUL, VALU, VCMP, VDIV x6 per call.
+ * Overflow: none. Cost: SETUP phase, per call FR_PSETUP_TILE x16, FR_PSETUP_CR x16,
+ * FR_PSETUP_CORNERS, FR_Q_PBASEV x3 and VALU x18, VDIV x6 (the reciprocals), VCMP x24,
+ * VBCAST x46.
  * Returns: LT_OK, LT_E_ARG (NULL, bx or by not a multiple of 4). */
 lt_status_t lt_frusta_psetup16_q16(const lt_frusta_vtable_q16_t *vt, uint32_t bx, uint32_t by,
                                    lt_frusta_prim16_q16_t *P);
@@ -265,6 +291,17 @@ lt_status_t lt_frusta_psetup16_q16(const lt_frusta_vtable_q16_t *vt, uint32_t bx
  * with t < its t, or t equal and a smaller id. After the leaf, frusta that took a hit set tmax to
  * the largest t of their live rays. Events: as lt_frusta_occluded16_q16 (TRI_FETCH, TRI_KEPT,
  * CULL_BACK, CULL_CORNER per frustum-triangle pair, TRIS per 16-ray test).
+ * Cost (as lt_frusta_occluded16_q16's terms): TRAVERSE per call VBCAST x2; per box test (pr_box)
+ * FR_PBOX_LOAD, VBCAST x10, VALU x16, VMUL x6, VCMP x1; per node BVH_TRAV_NODE, interior:
+ * BVH_TRAV_CHILDREN16 (+ BVH_TRAV_ORDER, BVH_TRAV16_PUSH with both children entered);
+ * FR_PTRAV_POP per entry popped. INTERSECT per leaf triangle: FR_PLEAF_TRI, FR_PTQ; past the sign
+ * test FR_PLEAF_KEPT (+ with CORNER pr_cull: FR_Q_TRI_A, FR_PCULL, FR_Q_PNRM, FR_Q_ASAT,
+ * FR_Q_PMARG, FR_PCULL_CORNER per corner evaluated and their lane ops); kept: VBCAST x13, a
+ * bit-scan of the frusta (MASK x3 per frustum + 1) and per frustum FR_PLEAF_FRUSTUM, on first use
+ * its rays (pr_gen: FR_PGEN, VBCAST x3, VALU x3), the test (pr_tri: FR_PTRI, 3 rounded cross
+ * products, 2 dot products, d . qvec, VCMP x4, VBCAST x3, VMULW x1; sigma < 0: VMULW x3,
+ * VBCAST x3; candidates: TRI_Q_TDIV16, VCMP x3, VBCAST x2, FR_PTRI_HITS, VALU x2, + FR_IDGT on a
+ * tie); then a bit-scan of the frusta that took a hit, per frustum FR_PLEAF_TMAX and VRED x1.
  * Format: as lt_slab16 / lt_tri16. Rounding: conservative (docs/frusta.md). Overflow: none.
  * Returns: LT_OK, LT_E_ARG (NULL, a tree of the other path), LT_E_DEPTH (foreign tree too deep). */
 lt_status_t lt_frusta_trace16_q16(const lt_bvh_t *bvh, const lt_tri_q16_t *tris,
@@ -273,13 +310,15 @@ lt_status_t lt_frusta_trace16_q16(const lt_bvh_t *bvh, const lt_tri_q16_t *tris,
 /* The 16 rays of the tile whose top-left pixel is (tx, ty) (multiples of 4) as a packet (lane j:
  * pixel (tx + (j & 3), ty + (j >> 2))): exactly the rays the frusta generate, tmin = 0, tmax =
  * LT_Q16_MAX - 1, lt_ray16_q16_setup applied; *k = lanes whose pixel lies on the image.
- * Format: s15.16 origin, s1.30 direction. Rounding: exact. Cost: VBCAST, VALU, the setup's VDIV x3.
+ * Format: s15.16 origin, s1.30 direction. Rounding: exact. Cost (in the caller's phase):
+ * FR_PRAYS, VALU x3, VBCAST x8 and lt_ray16_q16_setup (VDIV x3, VCMP x9, VBCAST x9).
  * Returns: LT_OK, LT_E_ARG (NULL, tx or ty not a multiple of 4). */
 lt_status_t lt_frusta_prays16_q16(const lt_frusta_vtable_q16_t *vt, uint32_t tx, uint32_t ty,
                                   lt_ray16_q16_t *r, lt_mask16_t *k);
 
 /* Pixel (x, y)'s ray as a single ray (the same bits as its packet lane), lt_ray1_q16_setup
- * applied: the per-ray reference of the tests. Returns: LT_OK, LT_E_ARG (NULL, off the image). */
+ * applied: the per-ray reference of the tests. Cost (in the caller's phase): lt_ray1_q16_setup's
+ * BVH_RAY1_SETUP (SDIV x3, SALU x9). Returns: LT_OK, LT_E_ARG (NULL, off the image). */
 lt_status_t lt_frusta_pray1_q16(const lt_frusta_vtable_q16_t *vt, uint32_t x, uint32_t y,
                                 lt_ray1_q16_t *r);
 
@@ -291,7 +330,12 @@ lt_status_t lt_frusta_pray1_q16(const lt_frusta_vtable_q16_t *vt, uint32_t x, ui
  * raised by one ulp around the kernel call), so ties resolve as in the per-ray reference.
  * hit->id = triangle or -1, r->tmax = its t. Without BACKFACE: the same t as lt_bvh_trace16_q16
  * bit for bit, and the same id except where two triangles give the same t.
- * Events: TRI_FETCH, TRI_KEPT, CULL_BACK. Returns: as lt_bvh_trace16_q16. */
+ * Events: TRI_FETCH, TRI_KEPT, CULL_BACK. Cost: VBCAST x1 in the caller's phase; TRAVERSE per
+ * call VBCAST x2; lt_slab16_q16 per box test; per node BVH_TRAV_NODE, interior:
+ * BVH_TRAV_CHILDREN16 (+ BVH_TRAV_ORDER, BVH_TRAV16_PUSH with both children entered);
+ * BVH_TRAV16_POP per entry popped. INTERSECT per leaf triangle: BVH_TRAV_LEAF_TRI (BACKFACE: +
+ * FR_PACKET_TRI_LOAD, FR_TNUM_SIGN), when kept FR_IDGT, FR_PACKET_TIE, lt_tri16_q16 (+ on ties
+ * lt_vq16_add_sat_m, lt_vq16_set1 and lt_vq16_blend around it). Returns: as lt_bvh_trace16_q16. */
 lt_status_t lt_frusta_packet_trace16_q16(const lt_bvh_t *bvh, const lt_tri_q16_t *tris,
                                          uint32_t flags, const lt_q16_t o[3], lt_ray16_q16_t *r,
                                          lt_mask16_t k, lt_hit16_t *hit);
@@ -337,7 +381,14 @@ LT_STATIC_ASSERT(sizeof(lt_frusta16_f32_t) == 1824, "f32 frusta packet is 1824 b
 /* float32 twins of the functions above, from the same source. The margins are relative (2^-20 on
  * box bounds, 2^-16 of the magnitude bound on edge functions) instead of proven; the tests check
  * frusta = per-ray visibility on the same cases as s15.16. Returns: as the q16 functions
- * (lt_frusta_table_f32: LT_E_ARG also for non-finite input). */
+ * (lt_frusta_table_f32: LT_E_ARG also for non-finite input). Cost: as the q16 functions with the
+ * float classes (FADD for VALU and the wide adds, FMUL for VMUL, FCMP for VCMP, FDIV for VDIV and
+ * TRI_Q_TDIV16; a cross product FMUL x2, FADD x1, a dot product FMUL x3, FADD x2) and FR_F_*
+ * recipes; the differences: setup16 FR_F_SCALE, FR_F_TEND, FR_F_TMAX, FMUL x18, FADD x57, FDIV
+ * x6, FCMP x24, VBCAST x32; fr_box + FADD x2, FMUL x2 (the relative margins); fr_gen VBCAST x6,
+ * FMUL x3; the tnum < 0 flip of fr_tri FADD x4 only; rays16 FR_RAYS, FADD x3, FMUL x3, VBCAST
+ * x11 and lt_ray16_f32_setup; direct16 FADD x10, FMUL x10, FDIV x1, FCMP x3, VBCAST x7; filter16
+ * per offset with a valid neighbour FR_LOADX x5, FADD x5, VALU x1, FCMP x2, FMUL x3, VBCAST x2. */
 lt_status_t lt_frusta_table_f32(const lt_frusta_light_f32_t *light, const lt_qmc_sets_t *sets,
                                 lt_frusta_table_f32_t *tb);
 lt_status_t lt_frusta_setup16_f32(const lt_frusta_table_f32_t *tb, lt_mask16_t k,
@@ -395,7 +446,10 @@ LT_STATIC_ASSERT(sizeof(lt_frusta_prim16_f32_t) == 3592, "f32 primary frusta are
 
 /* float32 twins of the primary-frusta functions (relative margins as for shadows; the tests
  * check frusta = per-ray closest hit on the same cases as s15.16). lt_frusta_vtable_f32 also
- * returns LT_E_ARG for non-finite input and LT_E_RANGE for |d| >= 1. */
+ * returns LT_E_ARG for non-finite input and LT_E_RANGE for |d| >= 1. Cost: as the q16 functions
+ * with the float classes of the shadow twins; psetup16 FR_F_PBASEV x3, FADD x18, FDIV x6,
+ * FCMP x24, VBCAST x58; pr_box FADD x18, FMUL x8, FCMP x1, VBCAST x10; prays16 FR_PRAYS, FADD x3,
+ * VBCAST x8 and lt_ray16_f32_setup; ties of the packet baseline FR_F_NEXTUP. */
 lt_status_t lt_frusta_vtable_f32(const lt_frusta_view_f32_t *view, lt_frusta_vtable_f32_t *vt);
 lt_status_t lt_frusta_psetup16_f32(const lt_frusta_vtable_f32_t *vt, uint32_t bx, uint32_t by,
                                    lt_frusta_prim16_f32_t *P);

@@ -46,7 +46,9 @@ void lt_grid_params_default(lt_grid_params_t *p);
 /* Exact arena bytes for the grid of these triangles: (cells + 1 + references) x 4, where a
  * triangle is referenced by every cell its bounding box touches (a box ending exactly on a cell
  * boundary touches both cells). One pass over the triangles, no memory. p may be NULL.
- * Cost: BUILD phase, SALU per triangle. Returns: LT_OK, LT_E_ARG (NULL, bad parameter),
+ * Cost: BUILD phase, GRID_BUILD_BOUNDS_TRI and GRID_TRANGE per triangle, GRID_RES_STEP per step of
+ * the resolution's bisection (about log2 LT_GRID_MAX_RES). Returns: LT_OK, LT_E_ARG (NULL, bad
+ * parameter),
  * LT_E_RANGE (a vertex outside the geometry range, n > LT_GRID_MAX_TRIS, references beyond
  * uint32 or bytes beyond size_t). */
 lt_status_t lt_grid_size_q16(const lt_tri_q16_t *tris, uint32_t n, const lt_grid_params_t *p,
@@ -57,7 +59,9 @@ lt_status_t lt_grid_size_q16(const lt_tri_q16_t *tris, uint32_t n, const lt_grid
  * cell count stays <= lambda x n; cell sizes are rounded up to whole s15.16 steps so all cells of
  * an axis are equal and cell boundaries are exact. Nothing past the reported size is written.
  * Format: s15.16. Rounding: cell size up (the grid box grows by < res s15.16 steps). Overflow: none.
- * Cost: BUILD phase. Returns: LT_OK, LT_E_ARG, LT_E_RANGE (as lt_grid_size_q16), LT_E_SPACE (*bytes
+ * Cost: BUILD phase, lt_grid_size_q16's and per triangle 2 GRID_TRANGE (count and fill passes), per
+ * (triangle, cell) GRID_BUILD_COUNT_REF and GRID_BUILD_FILL_REF, per cell GRID_BUILD_PREFIX x2.
+ * Returns: LT_OK, LT_E_ARG, LT_E_RANGE (as lt_grid_size_q16), LT_E_SPACE (*bytes
  * too small: the exact size is written back). On LT_OK *bytes = grid->bytes. */
 lt_status_t lt_grid_build_q16(lt_grid_q16_t *g, const lt_tri_q16_t *tris, uint32_t n,
                               const lt_grid_params_t *p, void *mem, size_t *bytes);
@@ -73,7 +77,9 @@ lt_status_t lt_grid_build_q16(lt_grid_q16_t *g, const lt_tri_q16_t *tris, uint32
  * origin, inside or outside the grid. Rounding: a hit within the plane rounding bound of a cell boundary
  * may be passed over for one equally close (docs/kdtree-grid.md). Overflow: none. Steps per lane
  * <= res[0] + res[1] + res[2] (a hard bound, also for degenerate rays). Cost: NODES per cell visited
- * by a lane group (TRAVERSE), lt_tri16_q16 per tested reference (INTERSECT), LT_MEM per cell.
+ * by a lane group (TRAVERSE), lt_tri16_q16 per tested reference (INTERSECT), LT_MEM per cell; the
+ * GRID_WALK_* and GRID_MAILBOX_CLEAR recipes, GRID_LIN, GRID_OUTSIDE and the GRID_Q_* cell
+ * routines with their lane ops (not checked by tests/unit/test_costs.c).
  * Returns: the mask of lanes that hit. */
 lt_mask16_t lt_grid_trace16_q16(const lt_grid_q16_t *g, lt_ray16_q16_t *r, lt_mask16_t k,
                                 lt_hit16_t *hit);

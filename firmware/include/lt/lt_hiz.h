@@ -72,7 +72,9 @@ lt_status_t lt_hiz_size(const lt_ssb_desc_t *d, size_t *bytes);
  * lt_hiz_size() bytes; nothing past them is written. Level L from level L - 1, 16 parents of a
  * row per pass: min over the valid children, max over all.
  * Format: s1.30, exact (min/max). Range: any raw; negative raws are holes. Overflow: none.
- * Cost: lane ops, loads and stores charged under phase BUILD.
+ * Cost (phase BUILD; docs/cost-model.md notation, V the s1.30 lanes VALU): none for a 1x1 image;
+ * per pass of 16 parents of level L >= 1: HIZ_LEVEL_PASS, VBCAST x2, HIZ_STORE_CELL and per child
+ * row HIZ_LOAD_PIX2 + HIZ_Q_PIX_TEST (L = 1) or HIZ_LOAD_CELL2 (L > 1), V x4.
  * Returns: LT_OK; LT_E_ARG (NULL, misaligned arena, bad desc/params); LT_E_SPACE when *arena_bytes
  * is too small (the needed size is written back, the arena untouched). */
 lt_status_t lt_hiz_build_q30(lt_hiz_t *hz, const lt_ssb_desc_t *d, const lt_ssb_params_t *p,
@@ -98,15 +100,33 @@ uint32_t lt_hiz_default_steps(const lt_hiz_t *hz);
  * test in (x, y, w)), planes = pixel tests at level 0.
  * Format: s1.30 t and w, s15.16 pixels; crossings by the normalised reciprocal (error <= 1 ulp,
  * monotonic), w(t) and shell products exact in int64 (s1.60). Range: as lt_qt_trace16_q30.
- * Rounding: hit t half up. Overflow: none within the ranges. Cost: SETUP, TRAVERSE; events RAYS,
- * NODES (per packet step), AABB / AABB_RAYS (cell tests at L > 0); one gather per layer per step.
+ * Rounding: hit t half up. Overflow: none within the ranges.
+ * Cost (notation of lt_qt_trace16_q30): VBCAST x5 in the caller's phase. SETUP: lt__ssb_setup_q30
+ * (the clip of lt_qt_trace16_q30 and SSB_Q_MAJOR), I x4, VBCAST x2, and per axis the start pixel:
+ * SSB_Q_PIXEL, I x2, VBCAST x2 (+ 2 SSB_Q_TCROSS, I x5, VBCAST x3, VC x4 when a lane moves on the
+ * axis). TRAVERSE per call: SSB_Q_W_AT, I x9, V x4, VBCAST x7; per cell visit: HIZ_WALK_STEP,
+ * HIZ_WALK_CELL, QTGRID_INDEX, 2 SSB_Q_TCROSS, 2 SSB_Q_WRAY, I x6, VSHIFT x2, VCMP x2, VBCAST x3,
+ * V x4, VC x1, W x2; per layer of a visit: HIZ_WALK_LAYER, VBCAST x2, SSB_Q_SHELL_LO,
+ * SSB_Q_SHELL_HI, WC x2 (the deepest: x3), with pixel lanes LANE_GATHER per lane,
+ * SSB_Q_PIX_HOLES, VC x1, VBCAST x1, with cell lanes LANE_GATHER per lane, HIZ_GATHER_SPLIT, V x2,
+ * VC x1, the deepest layer with cell lanes (unless LT_SSB_CONTINUE_BEHIND) SSB_Q_SHELL_LO, WC x1,
+ * W x4, VBCAST x1; pixel lanes inside a shell: HIZ_WALK_PIXEL_HIT, WC x2, VC x1, V x1, I x1,
+ * VBCAST x1 (+ W x6 and SSB_Q_HIT_T when the ray enters the shell inside the pixel); cell lanes
+ * inside a hull: W x4; hit lanes: V x1, I x1; occluded lanes: V x1, I x1, VBCAST x1; descending
+ * lanes: HIZ_WALK_DESCEND, WC x2, I x14, VSHIFT x2, per axis lt__ssb_child_side_q30 (SSB_Q_TCROSS
+ * and VC x2 for moving lanes, SSB_Q_SIDE_PAR for parallel ones) (+ W x6, SSB_Q_HIT_T, V x3,
+ * VBCAST x1 when the ray enters the hull inside the cell); advancing lanes: QTGRID_OUTSIDE,
+ * HIZ_WALK_ADVANCE, VC x2, VCMP x1, I x7, VSHIFT x2, V x1; HIZ_WALK_OVER when lanes reach
+ * max_steps. Events RAYS, NODES (per packet step), AABB / AABB_RAYS (cell tests at L > 0).
  * Returns: LT_OK, or LT_E_ARG (NULL, or not an s1.30 pyramid). */
 lt_status_t lt_hiz_trace16_q30(const lt_hiz_t *hz, const lt_qray16_q30_t *r, lt_mask16_t k,
                                uint32_t max_steps, lt_qhit16_q30_t *hit);
 
 #if LT_CFG_FLOAT32
 /* float32 twins (d->enc == LT_SSB_F32; NaN, +-inf and w <= 0 are holes). Format: binary32, no
- * contraction. Rounding: nearest even. Cost: as the q30 path with float ops.
+ * contraction. Rounding: nearest even. Cost: as the q30 functions with float ops (V FADD, VC
+ * FCMP, W FADD, WC FCMP), HIZ_F_PIX_TEST, and the float32 routines of lt_ssb.h (SSB_F_*; SSB_F_WRAY
+ * for w at t; the shell's upper bound costs nothing).
  * Returns: as the q30 functions. */
 lt_status_t lt_hiz_build_f32(lt_hiz_t *hz, const lt_ssb_desc_t *d, const lt_ssb_params_t *p,
                              const float *w, void *arena, size_t *arena_bytes);

@@ -59,15 +59,20 @@ void lt_ray16_q16_setup(lt_ray16_q16_t *r);
  * (plane - o) * (1/d) rounded half up, so a box whose true interval is shorter than the bound in
  * docs/numerics.md may be classified either way. Overflow: lanes whose 1/d saturated compute
  * t = (plane - o) / d by division instead (a rare path), so saturation keeps the classification.
- * Cost: VALU x19, VMUL x6, VCMP x1, SLOAD x6, VBCAST x6, MASK x3; + VDIV, VALU per axis with
- * flagged lanes. Returns: the mask of lanes in k whose ray meets the box within [tmin, tmax]. */
+ * Cost: ISECT_SLAB_LOAD (SLOAD x6), ISECT_SLAB_AXIS_FLAG x3 (MASK x3), VALU x19, VMUL x6, VCMP x1,
+ * VBCAST x6; + ISECT_Q_SLAB_PAR (VCMP x2, VALU x2) per axis with parallel lanes, ISECT_Q_SLAB_RSAT
+ * (VDIV x1) per axis with saturated lanes.
+ * Returns: the mask of lanes in k whose ray meets the box within [tmin, tmax]. */
 lt_mask16_t lt_slab16_q16(const lt_ray16_q16_t *r, lt_mask16_t k, const lt_aabb_q16_t *b,
                           lt_vq16_t *tnear);
 
 /* Moller-Trumbore test of the lanes in k against one triangle, two-sided, edges inclusive. Lanes
  * that hit at tmin < t < tmax get tmax = t and hit->id = id. Format: products kept exact in int64
  * (q30 x q16 -> 46 bits, q16 x q16 -> 32 bits), qvec rounded to s25.6, t = num / det rounded half up
- * to s15.16. Overflow: none for inputs within LT_CFG_GEOM_MAX_LOG2. Cost: see docs/numerics.md.
+ * to s15.16. Overflow: none for inputs within LT_CFG_GEOM_MAX_LOG2. Cost: ISECT_TRI_LOAD
+ * (SLOAD x9), ISECT_TRI_EARLY_OUT (MASK x1), VBCAST x17, VALU x3, VSHIFT x7, VMUL x24, VMULW x19,
+ * VCMP x5 (the products of docs/numerics.md, the flip, the barycentric tests); with candidate lanes
+ * + TRI_Q_TDIV16 (VDIV x1), VCMP x2, VALU x2, VBCAST x1.
  * Returns: the mask of lanes whose ray was shortened by this triangle. */
 lt_mask16_t lt_tri16_q16(lt_ray16_q16_t *r, lt_mask16_t k, const lt_tri_q16_t *tri, int32_t id,
                          lt_hit16_t *hit);
@@ -79,12 +84,15 @@ lt_mask16_t lt_tri16_q16(lt_ray16_q16_t *r, lt_mask16_t k, const lt_tri_q16_t *t
 /* Number of chunk boxes for n triangles. */
 #define LT_CHUNK_COUNT(n) (((n) + LT_CHUNK_TRIS - 1) / LT_CHUNK_TRIS)
 
-/* Bounds of each run of 16 triangles into boxes[LT_CHUNK_COUNT(n)]. Cost: SALU per vertex (BUILD).
+/* Bounds of each run of 16 triangles into boxes[LT_CHUNK_COUNT(n)]. Cost: BUILD phase,
+ * ISECT_CHUNK_BOX_TRI (SALU x24, BRANCH x10) per triangle.
  * Returns: LT_OK, or LT_E_ARG for NULL pointers or n == 0. */
 lt_status_t lt_chunks_build_q16(const lt_tri_q16_t *tris, uint32_t n, lt_aabb_q16_t *boxes);
 
 /* Closest hit of a packet against a chunk scene: slab test per chunk (TRAVERSE), triangle tests of
- * the hit chunks (INTERSECT). hit->id is reset to -1 first. Returns: mask of lanes that hit. */
+ * the hit chunks (INTERSECT). hit->id is reset to -1 first. Cost: TRAVERSE VBCAST x2 per call, per
+ * chunk ISECT_CHUNK_STEP, lt_slab16_q16 and MASK x1; INTERSECT per triangle of an entered chunk
+ * ISECT_CHUNK_TRI and lt_tri16_q16. Returns: mask of lanes that hit. */
 lt_mask16_t lt_chunks_trace16_q16(const lt_tri_q16_t *tris, uint32_t n, const lt_aabb_q16_t *boxes,
                                   lt_ray16_q16_t *r, lt_mask16_t k, lt_hit16_t *hit);
 
@@ -113,6 +121,11 @@ typedef struct lt_tri_f32 {
 
 /* 1/d per lane, IEEE division; d == +-0 gives +-FLT_MAX. Cost: FDIV x3, FCMP x6, VALU x3, VBCAST x3. */
 void lt_ray16_f32_setup(lt_ray16_f32_t *r);
+/* The float32 kernels, as the s15.16 ones. Cost: lt_slab16_f32 ISECT_SLAB_LOAD,
+ * ISECT_SLAB_AXIS_FLAG x3, FADD x19, FMUL x6, FCMP x1, VBCAST x6 (+ ISECT_F_SLAB_PAR per axis with
+ * parallel lanes); lt_tri16_f32 ISECT_TRI_LOAD, ISECT_TRI_EARLY_OUT, VBCAST x13, FADD x22,
+ * FMUL x24, FCMP x5 (+ FDIV x1, FCMP x2, FADD x1, VALU x1, VBCAST x1 with candidate lanes); the
+ * chunks as the s15.16 ones with these. */
 lt_mask16_t lt_slab16_f32(const lt_ray16_f32_t *r, lt_mask16_t k, const lt_aabb_f32_t *b,
                           lt_vf32_t *tnear);
 lt_mask16_t lt_tri16_f32(lt_ray16_f32_t *r, lt_mask16_t k, const lt_tri_f32_t *tri, int32_t id,

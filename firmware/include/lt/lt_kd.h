@@ -86,8 +86,10 @@ lt_status_t lt_kd_size(uint32_t n, const lt_kd_params_t *p, size_t *bytes);
  * Nothing past the size of lt_kd_size() is written; on success the tree is compacted to the first
  * kd->bytes bytes of mem and *bytes is set to kd->bytes (the rest of mem is free again).
  * Format: s15.16 vertices with |x| <= 2^LT_CFG_GEOM_MAX_LOG2. Rounding: none (planes are exact
- * s15.16 values between node bounds). Overflow: none. Cost: BUILD phase, SALU/BRANCH per
- * reference and bin. Returns: LT_OK; LT_E_ARG (NULL, misaligned, bad parameter); LT_E_RANGE (a
+ * s15.16 values between node bounds). Overflow: none. Cost: BUILD phase, KD_BUILD_BOUNDS_TRI per
+ * triangle, KD_BUILD_JOB per job, per job split KD_CHOOSE_BIN_REF per reference, KD_CHOOSE_SAH per
+ * candidate plane and KD_BUILD_SPLIT_REF per reference, KD_MOVE_REF per reference moved (into
+ * its leaf, in a split, and once more when the tree is compacted). Returns: LT_OK; LT_E_ARG (NULL, misaligned, bad parameter); LT_E_RANGE (a
  * vertex outside the geometry range, n > LT_KD_MAX_TRIS); LT_E_SPACE (*bytes too small: the
  * needed size is written back). */
 lt_status_t lt_kd_build_q16(lt_kd_q16_t *kd, const lt_tri_q16_t *tris, uint32_t n,
@@ -102,7 +104,9 @@ lt_status_t lt_kd_build_q16(lt_kd_q16_t *kd, const lt_tri_q16_t *tris, uint32_t 
  * lt_ray16_q16_setup, tmax < LT_Q16_MAX; any origin, inside or outside the tree. Rounding: a hit within the plane
  * rounding bound (docs/numerics.md slab bound) of a split plane may be passed over in favour of
  * one equally close. Overflow: none. Cost: NODES per node visited (TRAVERSE), lt_tri16_q16 per
- * leaf reference (INTERSECT), LT_MEM per node and leaf reference block.
+ * leaf reference (INTERSECT), LT_MEM per node and leaf reference block; the KD_WALK_* recipes,
+ * lt__kd_span16_q16 and lt__kd_tplane16_q16 with their lane ops (not checked by
+ * tests/unit/test_costs.c).
  * Returns: the mask of lanes that hit. */
 lt_mask16_t lt_kd_trace16_q16(const lt_kd_q16_t *kd, lt_ray16_q16_t *r, lt_mask16_t k,
                               lt_hit16_t *hit);

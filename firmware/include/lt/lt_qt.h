@@ -143,7 +143,21 @@ lt_status_t lt_qt_size(const lt_qt_desc_t *d, size_t *bytes);
  * The arena (4-byte aligned) receives exactly lt_qt_size() bytes; nothing past them is written.
  * Format: s1.30 in, s1.30 compute (int64 for products), nodes as documented above.
  * Range: w in [0, 2^31) raw. Rounding: proxies exact to 2^-6 raw, stored half up; AABB bounds
- * outward. Overflow: none (differences saturate). Cost: lane ops charged under phase BUILD.
+ * outward. Overflow: none (differences saturate).
+ * Cost (phase BUILD; recipes of lt_recipes.def and lane ops by class, in the notation of
+ * docs/cost-model.md: V the s1.30 lanes (VALU), VC their compares (VCMP), W the build values:
+ * add, sub, blend or abs VMULW, a shift VSHIFT, x3 VMULW x2, from V VCVT): per layer VBCAST x3;
+ * per leaf pass (16 pixels of a row): QT_LEAVES_PASS, QT_Q_LOADPIX x3 (+1 per neighbouring row),
+ * V x23, VC x5, VCVT x3 and the encoder: n64 QT_N64_ENC_PLANE + QT_N64_ENC_TRY per slope shift
+ * retried, n32 QT_N32_ENC_PLANE + QT_N32_ENC_TRY per exponent tried; per merge pass (16 parents
+ * of level L >= 1): QT_MERGE_PASS, VBCAST x8, four decodes with bounds (LANE_GATHER per present
+ * child's lane, QT_N64_DECODE + QT_N64_DECODE_BOUNDS; n32 QT_N32_*); parents whose children are
+ * all planes: QT_MERGE_PROXY, W: 20 adds and 12 from V (the sums), 8 add/blend, 10 shifts, one x3
+ * (means, x slope, offset), the y slope 3 add/blend, 2 shifts, one x3 (two child rows; one row:
+ * 1 add, 2 shifts), the encoder, a decode without bounds (LANE_GATHER per encoded lane), 4 W from
+ * V; per child position QT_MERGE_CHILD, per present child QT_MERGE_CHILD_TESTS, W: 12 add/abs,
+ * 7 shifts, 4 from V, QT_Q_RELTOL, QT_Q_ANGLE_OK, VCMP x1; the planes kept QT_COPY_LINE x2 (n32
+ * x1); the other parents as AABBs: V x12 and QT_N64_ENC_AABB (n32 QT_N32_ENC_AABB).
  * Returns: LT_OK; LT_E_ARG (NULL, misaligned arena, bad desc/params); LT_E_SPACE when *arena_bytes
  * is too small (the needed size is written back to *arena_bytes, the arena is untouched). */
 lt_status_t lt_qt_build_q30(lt_qt_t *qt, const lt_qt_desc_t *d, const lt_qt_params_t *p,
@@ -187,8 +201,21 @@ typedef struct lt_qhit16_q30 {
  * LT_QT_UNKNOWN. Format: s1.30 t and w, s15.16 pixels; node crossings t = (X - x) / dx by a
  * normalised 32-bit reciprocal (error <= 1 ulp, monotonic), plane tests exact in int64 at s1.60.
  * Range: see LT_QT_BADRAY. Rounding: t of a hit half up (<= 1 ulp + the plane's own error).
- * Overflow: none within the ranges. Cost: SETUP for clipping, TRAVERSE for the walk; events
- * NODES (per packet step), AABB / AABB_RAYS, RAYS; lane ops charge utilisation.
+ * Overflow: none within the ranges.
+ * Cost (docs/cost-model.md notation: I int32 lanes VALU, V the t and w lanes VALU, VC their
+ * compares VCMP, W and WC the s1.60 values along the ray VMULW and VCMP): VBCAST x1 in the caller's
+ * phase. SETUP: lt__ssb_clip_q30 = SSB_Q_CLIP, 4 SSB_Q_TCROSS, I x4, V x8, VC x1, VBCAST x8.
+ * TRAVERSE per call: SSB_Q_W_AT, I x11, V x3, VBCAST x6; per layer traced: QT_TRACE_LAYER, I x10,
+ * V x5, VBCAST x13 (the deepest: I x12, V x6, VBCAST x14); per node visit: QT_WALK_STEP,
+ * QT_WALK_NODE, QTGRID_INDEX, LANE_GATHER per active lane, QT_N64_DECODE (n32: QT_N32_DECODE),
+ * 2 SSB_Q_TCROSS, I x4, VSHIFT x2, VCMP x2, VBCAST x1, V x5, VC x1; with plane lanes:
+ * 2 QT_Q_PLANE_F, QT_WALK_PLANES, WC x2, VBCAST x2, I x1, V x2 (+ SSB_Q_HIT_T and V x1 with
+ * crossing lanes); with box lanes: 2 SSB_Q_WRAY, QT_WALK_BOXES, W x2, VCVT x2, WC x6, I x1 (+
+ * SSB_Q_HIT_T, W x6, V x3, VBCAST x1 with lanes entering the box); with descending lanes: I x14,
+ * VSHIFT x2 and per axis lt__ssb_child_side_q30 (SSB_Q_TCROSS and VC x2 for moving lanes,
+ * SSB_Q_SIDE_PAR for parallel ones); with advancing lanes: QTGRID_OUTSIDE, QT_WALK_ADVANCE, VC x2,
+ * I x12, V x2, VSHIFT x2, VBCAST x1; QT_WALK_OVER when lanes reach max_steps. Events: RAYS, NODES
+ * (per packet step), AABB / AABB_RAYS; lane ops charge utilisation.
  * Returns: LT_OK, or LT_E_ARG (NULL or an unbuilt / float quadtree). */
 lt_status_t lt_qt_trace16_q30(const lt_qt_t *qt, const lt_qray16_q30_t *r, lt_mask16_t k,
                               uint32_t max_steps, lt_qhit16_q30_t *hit);
@@ -200,7 +227,11 @@ uint32_t lt_qt_default_steps(const lt_qt_t *qt);
 /* float32 path: the same structure with lt_qt_nf32_t nodes (d->enc == LT_QT_F32), w = z_ref / z
  * as float; NaN, +-inf and negative values are holes (w = 0). Format: IEEE binary32, no
  * contraction. Range: any float. Rounding: to nearest even. Overflow: none for w < 2.
- * Cost: lane float ops under phase BUILD. Returns: as lt_qt_build_q30. */
+ * Cost: as lt_qt_build_q30 with float ops (V FADD, VC FCMP; W add/blend/abs FADD, a shift VBCAST
+ * + FMUL, x3 FMUL, from V nothing): QT_F_LOADPIX, every encode QT_F_STORE_ROW, decodes
+ * LANE_GATHER x2 per lane + QT_F_DECODE (+ QT_F_DECODE_BOUNDS), per present child FMUL x3,
+ * FADD x2, FCMP x2, VBCAST x2 in place of QT_Q_RELTOL, QT_Q_ANGLE_OK and the VCMP, the planes
+ * kept QT_COPY_LINE x4. Returns: as lt_qt_build_q30. */
 lt_status_t lt_qt_build_f32(lt_qt_t *qt, const lt_qt_desc_t *d, const lt_qt_params_t *p,
                             const float *w, void *arena, size_t *arena_bytes);
 
@@ -226,8 +257,12 @@ typedef struct lt_qhit16_f32 {
 
 /* The traversal of lt_qt_trace16_q30 in float32: crossings (X - x) * (1 / dx) (monotonic in X),
  * plane tests f(t) in float. Format: binary32. Range: as lt_qt_trace16_q30 (BADRAY also for NaN
- * or infinite inputs). Rounding: to nearest even. Overflow: none. Cost: SETUP, TRAVERSE; events
- * as lt_qt_trace16_q30. Returns: LT_OK, or LT_E_ARG (NULL or not a float32 quadtree). */
+ * or infinite inputs). Rounding: to nearest even. Overflow: none. Cost: as lt_qt_trace16_q30 with
+ * float ops (V FADD, VC FCMP, W FADD, WC FCMP; no VCVT) and the float32 routines:
+ * lt__ssb_clip_f32 (SSB_F_CLIP, SSB_F_TCROSS), SSB_F_WRAY for w at t and along the ray,
+ * QT_F_DECODE with LANE_GATHER x2 per lane, QT_F_PLANE_F, QT_F_HIT_T at crossings and box entries,
+ * SSB_F_SIDE_PAR; events as lt_qt_trace16_q30. Returns: LT_OK, or LT_E_ARG (NULL or not a float32
+ * quadtree). */
 lt_status_t lt_qt_trace16_f32(const lt_qt_t *qt, const lt_qray16_f32_t *r, lt_mask16_t k,
                               uint32_t max_steps, lt_qhit16_f32_t *hit);
 #endif

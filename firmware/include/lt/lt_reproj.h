@@ -61,8 +61,9 @@ LT_STATIC_ASSERT(sizeof(lt_reproj_q30_t) == 128, "s1.30 reprojection mapping is 
  * off the image are cleared). Rounding: end points to nearest (<= 1/2 ulp plus 2^-30 of the
  * homogeneous segment along the line from the clip parameter). Overflow: none for valid mappings
  * (clip products < 2^63); degenerate lanes (rays through the source camera centre) are cleared.
- * Cost: phase SETUP, charged per packet as a straight-line 16-lane program (VMUL 48, VMULW 58,
- * VDIV 12, VCMP 21, VALU 45, VSHIFT 22, MASK 8, BRANCH 1, VSTORE 8; docs/reproject.md).
+ * Cost: phase SETUP, charged per packet as a straight-line 16-lane program: RPJ_Q30_PACKET (VMUL
+ * 48, VMULW 58, VDIV 12, VCMP 21, VALU 45, VSHIFT 22, MASK 8, BRANCH 1) and RPJ_STORE_RAYS
+ * (VSTORE 8); docs/reproject.md.
  * Returns: LT_OK; LT_E_ARG (NULL pointer, dimensions or log2 sizes out of range, w_near outside
  * (0, 2) or w_far outside [0, w_near)). */
 lt_status_t lt_reproj_rays16_q30(const lt_reproj_q30_t *m, uint32_t tx, uint32_t ty,
@@ -85,7 +86,8 @@ LT_STATIC_ASSERT(sizeof(lt_reproj_f32_t) == 120, "float32 reprojection mapping i
  * P = m g, clip parameters s = da / (da - db), end points Pa + s (Pb - Pa), x = X / H, w = W / H.
  * Format: IEEE binary32, no contraction. Range: as lt_reproj_setup makes it. Rounding: to nearest
  * even per operation. Overflow: none for valid mappings; lanes with a non-finite end point are
- * cleared. Cost: phase SETUP, FMUL, FADD, FDIV, FCMP, VALU, VSTORE per packet.
+ * cleared. Cost: phase SETUP, per packet RPJ_F32_PACKET (FMUL 44, FADD 48, FDIV 12, FCMP 21,
+ * VALU 19, MASK 8, BRANCH 1) and RPJ_STORE_RAYS (VSTORE 8).
  * Returns: LT_OK; LT_E_ARG (NULL, bad dimensions, w_near / w_far out of range or not finite). */
 lt_status_t lt_reproj_rays16_f32(const lt_reproj_f32_t *m, uint32_t tx, uint32_t ty,
                                  lt_qray16_f32_t *r, lt_mask16_t *k);

@@ -100,8 +100,16 @@ uint32_t lt_ssdda_default_steps(const lt_ssdda_t *dda);
  * Format: s1.30 t and w, s15.16 pixels; step ends t0 + (2i + 1) 2^15 / |d| by the normalised
  * reciprocal (error <= 1 ulp, monotonic in i); w(t) and the shell products exact in int64 (s1.60).
  * Range: as lt_qt_trace16_q30. Rounding: hit t half up. Overflow: none within the ranges.
- * Cost: SETUP for clipping, TRAVERSE for the walk; events RAYS, NODES (per packet step); one
- * gather per layer per step (LT_MEM at each pixel's address); lane ops charge utilisation.
+ * Cost (notation of lt_qt_trace16_q30): VBCAST x6 in the caller's phase. SETUP: lt__ssb_setup_q30
+ * (the clip of lt_qt_trace16_q30 and SSB_Q_MAJOR) and DDA_POINT_LANES. TRAVERSE per call:
+ * SSB_Q_W_AT, I x9, V x4, VBCAST x8; per packet step: DDA_WALK_STEP, DDA_WALK_END, DDA_INDEX,
+ * 2 SSB_Q_TSPAN, 2 SSB_Q_PIXEL, 2 SSB_Q_WRAY, I x8, VCMP x1, VBCAST x5, V x7, VC x1, W x2; per
+ * layer of a step: LANE_GATHER per active lane (LT_MEM at each pixel's address),
+ * SSB_Q_PIX_HOLES, SSB_Q_SHELL_LO, SSB_Q_SHELL_HI, DDA_WALK_LAYER, VC x1, VBCAST x1, WC x2 (the
+ * deepest: x3); a layer whose shell the step meets: DDA_WALK_LAYER_HIT, WC x2, VC x1, V x1, I x1,
+ * VBCAST x1 (+ W x6 and SSB_Q_HIT_T when the ray enters the shell inside the step); hit lanes:
+ * V x1, I x1; lanes behind the deepest shell: V x1, I x1, VBCAST x1; DDA_WALK_OVER when lanes
+ * reach max_steps. Events RAYS, NODES (per packet step); lane ops charge utilisation.
  * Returns: LT_OK, or LT_E_ARG (NULL, or not an s1.30 DDA). */
 lt_status_t lt_ssdda_trace16_q30(const lt_ssdda_t *dda, const lt_qray16_q30_t *r, lt_mask16_t k,
                                  uint32_t max_steps, lt_qhit16_q30_t *hit);
@@ -115,7 +123,9 @@ lt_status_t lt_ssdda_init_f32(lt_ssdda_t *dda, const lt_ssb_desc_t *d, const lt_
 
 /* float32 twin of lt_ssdda_trace16_q30: step ends t0 + (2i + 1) (0.5 / |d|), w(t) = w + t dw,
  * shells w_s (1 / (1 + theta)) in binary32. Format: binary32, no contraction. Rounding: nearest
- * even. Cost: as the q30 path with float ops. Returns: LT_OK or LT_E_ARG. */
+ * even. Cost: as the q30 path with float ops (V FADD, VC FCMP, W FADD, WC FCMP) and the float32
+ * routines of lt_ssb.h (SSB_F_*; SSB_F_WRAY for w at t; the shell's upper bound costs nothing).
+ * Returns: LT_OK or LT_E_ARG. */
 lt_status_t lt_ssdda_trace16_f32(const lt_ssdda_t *dda, const lt_qray16_f32_t *r, lt_mask16_t k,
                                  uint32_t max_steps, lt_qhit16_f32_t *hit);
 #endif
