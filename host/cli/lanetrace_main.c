@@ -172,7 +172,7 @@ static int cmd_run(int argc, char **argv)
     lt_scene_t sc;
     lt_camera_t cam;
     lt_frame_t ref, fr;
-    char err[1024];
+    lt_diag_t diag;
     int a, json = 0, repeat = 1, do_ref = 1, status = 0, path;
     const char *scene_path = NULL, *mesh_over = NULL, *report = NULL, *csv = NULL;
     const char *depth_out = NULL, *heat_out = NULL;
@@ -270,8 +270,8 @@ static int cmd_run(int argc, char **argv)
     /* the scene file first, then the flags given on the command line override it */
     if (scene_path != NULL) {
         lt_scenefile_t fl = sf;
-        if (lt_sf_load(scene_path, &sf, err, sizeof err) != 0) {
-            fprintf(stderr, "%s\n", err);
+        if (lt_sf_load(scene_path, &sf, &diag) != 0) {
+            fprintf(stderr, "%s\n", diag.msg);
             return EXIT_INPUT;
         }
         for (a = 2; a < argc; a++) {
@@ -304,30 +304,29 @@ static int cmd_run(int argc, char **argv)
                 lt_meter_machine_names());
         return EXIT_USAGE;
     }
-    if (lt_meter_init(sf.machine, sf.l1[0] ? sf.l1 : NULL, sf.l2[0] ? sf.l2 : NULL, err,
-                      sizeof err) != 0) {
-        fprintf(stderr, "%s run: %s\n", prog, err);
+    if (lt_meter_init(sf.machine, sf.l1[0] ? sf.l1 : NULL, sf.l2[0] ? sf.l2 : NULL, diag.msg, sizeof diag.msg) != 0) {
+        fprintf(stderr, "%s run: %s\n", prog, diag.msg);
         return EXIT_USAGE;
     }
-    if (lt_mesh_load(sf.mesh, &mesh, err, sizeof err) != 0) {
-        fprintf(stderr, "%s\n", err);
+    if (lt_mesh_load(sf.mesh, &mesh, &diag) != 0) {
+        fprintf(stderr, "%s\n", diag.msg);
         return EXIT_INPUT;
     }
-    if (lt_scene_prepare(&mesh, &sc, err, sizeof err) != 0) {
-        fprintf(stderr, "%s: %s\n", sf.mesh, err);
+    if (lt_scene_prepare(&mesh, &sc, &diag) != 0) {
+        fprintf(stderr, "%s: %s\n", sf.mesh, diag.msg);
         lt_mesh_free(&mesh);
         return EXIT_INPUT;
     }
-    if (((unsigned)sf.numeric & (1u << LT_PATH_Q16)) && lt_scene_check_q16(&sc, sf.mesh, err, sizeof err) != 0) {
-        fprintf(stderr, "%s\n", err);
+    if (((unsigned)sf.numeric & (1u << LT_PATH_Q16)) && lt_scene_check_q16(&sc, sf.mesh, &diag) != 0) {
+        fprintf(stderr, "%s\n", diag.msg);
         lt_scene_free(&sc);
         lt_mesh_free(&mesh);
         return EXIT_INPUT;
     }
     if (sf.has_camera) {
         if (lt_camera_look(&sc, sf.eye, sf.target, sf.up, sf.fov_y_deg, sf.width, sf.height, &cam,
-                           err, sizeof err) != 0) {
-            fprintf(stderr, "%s: %s\n", sf.path[0] ? sf.path : sf.mesh, err);
+                           &diag) != 0) {
+            fprintf(stderr, "%s: %s\n", sf.path[0] ? sf.path : sf.mesh, diag.msg);
             lt_scene_free(&sc);
             lt_mesh_free(&mesh);
             return EXIT_INPUT;
@@ -340,9 +339,9 @@ static int cmd_run(int argc, char **argv)
                "%ux%u pixels, %u packets, structure %s\n",
                sf.mesh, sc.ntris, sc.scale, sc.radius, sf.width, sf.height,
                ((sf.width + 3) / 4) * ((sf.height + 3) / 4), sf.structure);
-    if (lt_frame_alloc(&ref, sf.width, sf.height, err, sizeof err) != 0 ||
-        lt_frame_alloc(&fr, sf.width, sf.height, err, sizeof err) != 0) {
-        fprintf(stderr, "%s\n", err);
+    if (lt_frame_alloc(&ref, sf.width, sf.height, &diag) != 0 ||
+        lt_frame_alloc(&fr, sf.width, sf.height, &diag) != 0) {
+        fprintf(stderr, "%s\n", diag.msg);
         return EXIT_INPUT;
     }
     if (do_ref) {
@@ -378,9 +377,9 @@ static int cmd_run(int argc, char **argv)
         if (!((unsigned)sf.numeric & (1u << path)))
             continue;
         lt_meter_reset();
-        acc = lt_accel_build(&sc, sf.structure, (lt_path_t)path, err, sizeof err);
+        acc = lt_accel_build(&sc, sf.structure, (lt_path_t)path, &diag);
         if (acc == NULL) {
-            fprintf(stderr, "%s: %s\n", sf.path[0] ? sf.path : prog, err);
+            fprintf(stderr, "%s: %s\n", sf.path[0] ? sf.path : prog, diag.msg);
             status = EXIT_INPUT;
             break;
         }
@@ -414,26 +413,26 @@ static int cmd_run(int argc, char **argv)
             char hp[1100];
             lt_heatmap_opts_t ho = LT_HEATMAP_OPTS_DEFAULT;
             snprintf(hp, sizeof hp, "%s.%s.png", heat_out, pname);
-            if (lt_heatmap_write_png(hp, fr.cost, (int32_t)sf.width, (int32_t)sf.height, &ho, err,
-                                     sizeof err) != 0) {
-                fprintf(stderr, "%s\n", err);
+            if (lt_heatmap_write_png(hp, fr.cost, (int32_t)sf.width, (int32_t)sf.height, &ho,
+                                     &diag) != 0) {
+                fprintf(stderr, "%s\n", diag.msg);
                 status = EXIT_INPUT;
             } else {
                 if (!quiet)
                     printf("heatmap   %s (simulated cycles per pixel)\n", hp);
                 snprintf(hp, sizeof hp, "%s.%s.exr", heat_out, pname);
                 if (lt_heatmap_write_exr(hp, fr.cost, (int32_t)sf.width, (int32_t)sf.height,
-                                         "cycles", err, sizeof err) != 0) {
-                    fprintf(stderr, "%s\n", err);
+                                         "cycles", &diag) != 0) {
+                    fprintf(stderr, "%s\n", diag.msg);
                     status = EXIT_INPUT;
                 }
                 snprintf(hp, sizeof hp, "%s.%s.steps.png", heat_out, pname);
                 if (lt_heatmap_write_png(hp, fr.steps, (int32_t)sf.width, (int32_t)sf.height, &ho,
-                                         err, sizeof err) != 0 ||
+                                         &diag) != 0 ||
                     (snprintf(hp, sizeof hp, "%s.%s.steps.exr", heat_out, pname),
                      lt_heatmap_write_exr(hp, fr.steps, (int32_t)sf.width, (int32_t)sf.height,
-                                          "steps", err, sizeof err)) != 0) {
-                    fprintf(stderr, "%s\n", err);
+                                          "steps", &diag)) != 0) {
+                    fprintf(stderr, "%s\n", diag.msg);
                     status = EXIT_INPUT;
                 } else if (!quiet) {
                     printf("heatmap   %s.%s.steps.png (traversal steps per pixel's packet)\n",
@@ -500,8 +499,8 @@ static int cmd_run(int argc, char **argv)
                 char p[1100];
                 snprintf(p, sizeof p, "%s%s%s", report, sf.numeric == LT_SF_NUM_BOTH ? "." : "",
                          sf.numeric == LT_SF_NUM_BOTH ? pname : "");
-                if (write_atomic(p, js, err, sizeof err) != 0) {
-                    fprintf(stderr, "%s\n", err);
+                if (write_atomic(p, js, diag.msg, sizeof diag.msg) != 0) {
+                    fprintf(stderr, "%s\n", diag.msg);
                     status = EXIT_INPUT;
                 } else if (!quiet) {
                     printf("report    %s\n", p);
@@ -515,8 +514,8 @@ static int cmd_run(int argc, char **argv)
                 char p[1100];
                 snprintf(p, sizeof p, "%s%s%s", report, sf.numeric == LT_SF_NUM_BOTH ? "." : "",
                          sf.numeric == LT_SF_NUM_BOTH ? pname : "");
-                if (write_atomic(p, extra, err, sizeof err) != 0) {
-                    fprintf(stderr, "%s\n", err);
+                if (write_atomic(p, extra, diag.msg, sizeof diag.msg) != 0) {
+                    fprintf(stderr, "%s\n", diag.msg);
                     status = EXIT_INPUT;
                 } else if (!quiet) {
                     printf("report    %s\n", p);
@@ -577,8 +576,8 @@ static int cmd_run(int argc, char **argv)
         im.nchannels = nch;
         im.channels = ch;
         im.compression = LT_EXR_COMP_ZIP;
-        if (lt_exr_write(depth_out, &im, err, sizeof err) != 0) {
-            fprintf(stderr, "%s\n", err);
+        if (lt_exr_write(depth_out, &im, &diag) != 0) {
+            fprintf(stderr, "%s\n", diag.msg);
             status = EXIT_INPUT;
         } else if (!quiet) {
             printf("depth     %s (%d channels)\n", depth_out, nch);
@@ -624,16 +623,16 @@ static int info_exr(const char *path, int json)
     lt_exr_probe_t pr;
     lt_exr_depth_t d;
     lt_exr_read_opts_t ro = LT_EXR_READ_OPTS_DEFAULT;
-    char err[1024];
+    lt_diag_t diag;
     int c, have_depth;
     double mn = INFINITY, mx = -INFINITY, sum = 0.0;
     size_t k, n = 0, holes = 0;
-    if (lt_exr_probe(path, &pr, err, sizeof err) != 0) {
-        fprintf(stderr, "%s\n", err);
+    if (lt_exr_probe(path, &pr, &diag) != 0) {
+        fprintf(stderr, "%s\n", diag.msg);
         return EXIT_INPUT;
     }
     ro.deep = LT_EXR_DEEP_FRONT;
-    have_depth = lt_exr_read_depth(path, NULL, &ro, &d, err, sizeof err) == 0;
+    have_depth = lt_exr_read_depth(path, NULL, &ro, &d, &diag) == 0;
     if (have_depth) {
         for (k = 0; k < (size_t)d.width * (size_t)d.height; k++) {
             double z = d.z[k];
@@ -674,7 +673,7 @@ static int info_exr(const char *path, int json)
                    d.channel, d.deep ? " (deep: front-most sample)" : "", n, holes,
                    n ? mn : 0.0, n ? mx : 0.0, n ? sum / (double)n : 0.0);
         else
-            printf("depth     none readable: %s\n", err);
+            printf("depth     none readable: %s\n", diag.msg);
     }
     if (have_depth)
         lt_exr_depth_free(&d);
@@ -685,7 +684,7 @@ static int cmd_info(int argc, char **argv)
 {
     lt_mesh_t m;
     lt_scene_t sc;
-    char err[1024];
+    lt_diag_t diag;
     uint32_t i, zero = 0;
     int json = 0, a;
     const char *path = NULL;
@@ -714,8 +713,8 @@ static int cmd_info(int argc, char **argv)
         if (l > 4 && strcmp(path + l - 4, ".exr") == 0)
             return info_exr(path, json);
     }
-    if (lt_mesh_load(path, &m, err, sizeof err) != 0) {
-        fprintf(stderr, "%s\n", err);
+    if (lt_mesh_load(path, &m, &diag) != 0) {
+        fprintf(stderr, "%s\n", diag.msg);
         return EXIT_INPUT;
     }
     for (i = 0; i < m.ntris; i++) {
@@ -731,8 +730,8 @@ static int cmd_info(int argc, char **argv)
         c[2] = e1[0] * e2[1] - e1[1] * e2[0];
         zero += c[0] == 0.0 && c[1] == 0.0 && c[2] == 0.0;
     }
-    if (lt_scene_prepare(&m, &sc, err, sizeof err) != 0) {
-        fprintf(stderr, "%s: %s\n", path, err);
+    if (lt_scene_prepare(&m, &sc, &diag) != 0) {
+        fprintf(stderr, "%s: %s\n", path, diag.msg);
         lt_mesh_free(&m);
         return EXIT_INPUT;
     }
@@ -742,7 +741,7 @@ static int cmd_info(int argc, char **argv)
                "\"q16_representable\":%s}\n",
                path, m.ntris, zero, m.lo[0], m.lo[1], m.lo[2], m.hi[0], m.hi[1], m.hi[2],
                sc.scale, sc.radius, sc.collapsed_q16,
-               lt_scene_check_q16(&sc, path, err, sizeof err) == 0 ? "true" : "false");
+               lt_scene_check_q16(&sc, path, &diag) == 0 ? "true" : "false");
     else
         printf("%s: mesh, %u triangles (%u zero-area), bounds [%g %g %g] .. [%g %g %g]\n"
                "fixed point: scale %g (a power of two), scene radius %.2f units of s15.16, "
@@ -752,7 +751,7 @@ static int cmd_info(int argc, char **argv)
                path, m.ntris, zero, m.lo[0], m.lo[1], m.lo[2], m.hi[0], m.hi[1], m.hi[2], sc.scale,
                sc.radius, 1.0 / 65536.0 / sc.scale, sc.collapsed_q16, sc.nonzero,
                LT_SCENE_MAX_COLLAPSED_PPM / 1e4,
-               lt_scene_check_q16(&sc, path, err, sizeof err) == 0 ? "representable"
+               lt_scene_check_q16(&sc, path, &diag) == 0 ? "representable"
                                                                  : "NOT representable, float32 only",
                sc.min_edge);
     lt_scene_free(&sc);
@@ -966,7 +965,8 @@ static int cmd_render(int argc, char **argv)
     lt_camera_t cam;
     lt_frame_t fr, lay[16];
     lt_accel_t *acc = NULL;
-    char err[1024], path[1200];
+    char path[1200];
+    lt_diag_t diag;
     const char *scene_path = NULL, *mesh_over = NULL, *out = NULL, *structure = "bvh";
     const char *report = NULL;
     uint64_t nrays = 0;
@@ -1053,8 +1053,8 @@ static int cmd_render(int argc, char **argv)
                         "this is the native build\n", prog);
         return EXIT_USAGE;
     }
-    if (scene_path != NULL && lt_sf_load(scene_path, &sf, err, sizeof err) != 0) {
-        fprintf(stderr, "%s\n", err);
+    if (scene_path != NULL && lt_sf_load(scene_path, &sf, &diag) != 0) {
+        fprintf(stderr, "%s\n", diag.msg);
         return EXIT_INPUT;
     }
     if (w != 0) {
@@ -1069,28 +1069,28 @@ static int cmd_render(int argc, char **argv)
         memcpy(lf, sf.lights[0].position, sizeof lf);
         have_light = 1;
     }
-    if (lt_meter_init(sf.machine, NULL, NULL, err, sizeof err) != 0) {
-        fprintf(stderr, "%s\n", err);
+    if (lt_meter_init(sf.machine, NULL, NULL, diag.msg, sizeof diag.msg) != 0) {
+        fprintf(stderr, "%s\n", diag.msg);
         return EXIT_USAGE;
     }
-    if (lt_mesh_load(sf.mesh, &mesh, err, sizeof err) != 0) {
-        fprintf(stderr, "%s\n", err);
+    if (lt_mesh_load(sf.mesh, &mesh, &diag) != 0) {
+        fprintf(stderr, "%s\n", diag.msg);
         return EXIT_INPUT;
     }
-    if (lt_scene_prepare(&mesh, &sc, err, sizeof err) != 0) {
-        fprintf(stderr, "%s: %s\n", sf.mesh, err);
+    if (lt_scene_prepare(&mesh, &sc, &diag) != 0) {
+        fprintf(stderr, "%s: %s\n", sf.mesh, diag.msg);
         lt_mesh_free(&mesh);
         return EXIT_INPUT;
     }
-    if (np == LT_PATH_Q16 && lt_scene_check_q16(&sc, sf.mesh, err, sizeof err) != 0) {
-        fprintf(stderr, "%s\n", err);
+    if (np == LT_PATH_Q16 && lt_scene_check_q16(&sc, sf.mesh, &diag) != 0) {
+        fprintf(stderr, "%s\n", diag.msg);
         status = EXIT_INPUT;
         goto done;
     }
     if (sf.has_camera) {
         if (lt_camera_look(&sc, sf.eye, sf.target, sf.up, sf.fov_y_deg, sf.width, sf.height, &cam,
-                           err, sizeof err) != 0) {
-            fprintf(stderr, "%s: %s\n", sf.path, err);
+                           &diag) != 0) {
+            fprintf(stderr, "%s: %s\n", sf.path, diag.msg);
             status = EXIT_INPUT;
             goto done;
         }
@@ -1116,14 +1116,14 @@ static int cmd_render(int argc, char **argv)
     }
     memset(lay, 0, sizeof lay);
     memset(ch, 0, sizeof ch);
-    if (lt_frame_alloc(&fr, sf.width, sf.height, err, sizeof err) != 0) {
-        fprintf(stderr, "%s\n", err);
+    if (lt_frame_alloc(&fr, sf.width, sf.height, &diag) != 0) {
+        fprintf(stderr, "%s\n", diag.msg);
         status = EXIT_INPUT;
         goto done;
     }
-    acc = lt_accel_build(&sc, structure, np, err, sizeof err);
+    acc = lt_accel_build(&sc, structure, np, &diag);
     if (acc == NULL) {
-        fprintf(stderr, "%s render: %s\n", prog, err);
+        fprintf(stderr, "%s render: %s\n", prog, diag.msg);
         status = EXIT_USAGE;
         goto done;
     }
@@ -1143,8 +1143,8 @@ static int cmd_render(int argc, char **argv)
             goto done;
         }
     if (strcmp(structure, "chunks") != 0 &&
-        lt_render_shadows(&sc, acc, &cam, &fr, light, &nshadow, &nocc, occ, err, sizeof err) != 0) {
-        fprintf(stderr, "%s render: %s\n", prog, err);
+        lt_render_shadows(&sc, acc, &cam, &fr, light, &nshadow, &nocc, occ, &diag) != 0) {
+        fprintf(stderr, "%s render: %s\n", prog, diag.msg);
         status = EXIT_INPUT;
         goto done;
     }
@@ -1202,7 +1202,7 @@ static int cmd_render(int argc, char **argv)
         /* depth peels: layer 0 is the primary hit */
         for (l = 0; l < layers && layers > 1; l++) {
             float *z = malloc(n * sizeof(float));
-            if (z == NULL || lt_frame_alloc(&lay[l], sf.width, sf.height, err, sizeof err) != 0) {
+            if (z == NULL || lt_frame_alloc(&lay[l], sf.width, sf.height, &diag) != 0) {
                 free(z);
                 fprintf(stderr, "%s render: out of memory for layer %d\n", prog, l);
                 status = EXIT_INPUT;
@@ -1212,9 +1212,9 @@ static int cmd_render(int argc, char **argv)
                 memcpy(lay[0].id, fr.id, n * sizeof *fr.id);
                 memcpy(lay[0].t, fr.t, n * sizeof *fr.t);
             } else if ((nrays += count_hits(&lay[l - 1]), 0) ||
-                       lt_render_peel(&sc, acc, &cam, &lay[l - 1], &lay[l], err, sizeof err) != 0) {
+                       lt_render_peel(&sc, acc, &cam, &lay[l - 1], &lay[l], &diag) != 0) {
                 free(z);
-                fprintf(stderr, "%s render: %s\n", prog, err);
+                fprintf(stderr, "%s render: %s\n", prog, diag.msg);
                 status = EXIT_USAGE;
                 goto done;
             }
@@ -1231,8 +1231,8 @@ static int cmd_render(int argc, char **argv)
         im.nchannels = nc;
         im.channels = ec;
         snprintf(path, sizeof path, "%s.exr", out);
-        if (lt_exr_write(path, &im, err, sizeof err) != 0) {
-            fprintf(stderr, "%s\n", err);
+        if (lt_exr_write(path, &im, &diag) != 0) {
+            fprintf(stderr, "%s\n", diag.msg);
             status = EXIT_INPUT;
         } else if (!quiet) {
             printf("exr       %s (%d channels%s)\n", path, nc, layers > 1 ? ", depth peels" : "");
@@ -1254,8 +1254,8 @@ static int cmd_render(int argc, char **argv)
                  n, nshadow, (unsigned long long)(nrays - n - nshadow));
         js = lt_meter_report_json(title, nrays, extra);
         if (report != NULL) {
-            if (js == NULL || write_atomic(report, js, err, sizeof err) != 0) {
-                fprintf(stderr, "%s\n", js == NULL ? "render: out of memory for the report" : err);
+            if (js == NULL || write_atomic(report, js, diag.msg, sizeof diag.msg) != 0) {
+                fprintf(stderr, "%s\n", js == NULL ? "render: out of memory for the report" : diag.msg);
                 free(js);
                 status = EXIT_INPUT;
                 goto done;
@@ -1266,9 +1266,9 @@ static int cmd_render(int argc, char **argv)
         free(js);
     }
     snprintf(path, sizeof path, "%s.png", out);
-    if (lt_png_write(path, rgb, (int32_t)sf.width, (int32_t)sf.height, 3, 3 * sf.width, err,
-                     sizeof err) != 0) {
-        fprintf(stderr, "%s\n", err);
+    if (lt_png_write(path, rgb, (int32_t)sf.width, (int32_t)sf.height, 3, 3 * sf.width,
+                     &diag) != 0) {
+        fprintf(stderr, "%s\n", diag.msg);
         status = EXIT_INPUT;
         goto done;
     }
@@ -1303,8 +1303,8 @@ static int cmd_render(int argc, char **argv)
             }
             snprintf(path, sizeof path, "%s.%s.png", out, kinds[kk]);
             if (lt_png_write(path, rgb, (int32_t)sf.width, (int32_t)sf.height, 3, 3 * sf.width,
-                             err, sizeof err) != 0) {
-                fprintf(stderr, "%s\n", err);
+                             &diag) != 0) {
+                fprintf(stderr, "%s\n", diag.msg);
                 status = EXIT_INPUT;
                 goto done;
             }

@@ -160,8 +160,8 @@ static void cam_from_camera(const lt_camera_t *cam, uint32_t w, uint32_t h, lt_r
 /* Ground truth: the target view rendered by the object-space tracer (float32 BVH packets, the
  * path lanetrace render uses) as z-depths along the target's optical axis, +inf on a miss. The
  * tracer's camera is centred with square pixels, so the target's intrinsics must be too. */
-static int render_truth(const lt_scene_t *sc, const lt_reproj_cam_t *d, float *ztrue, char *err,
-                        size_t errlen)
+static int render_truth(const lt_scene_t *sc, const lt_reproj_cam_t *d, float *ztrue,
+                        lt_diag_t *diag)
 {
     lt_camera_t cam;
     lt_frame_t fr;
@@ -171,10 +171,10 @@ static int render_truth(const lt_scene_t *sc, const lt_reproj_cam_t *d, float *z
     int k;
     if (fabs(d->fx - d->fy) > 1e-9 * d->fy || fabs(d->cx - 0.5 * w) > 1e-9 * w ||
         fabs(d->cy - 0.5 * h) > 1e-9 * h) {
-        snprintf(err, errlen, "--truth: the target camera (f %.6g,%.6g c %.6g,%.6g, %ux%u) is not "
+        lt_diag_fail(diag, "--truth: the target camera (f %.6g,%.6g c %.6g,%.6g, %ux%u) is not "
                               "centred with square pixels, which the object-space tracer's camera "
                               "needs (drop --dst-cam, keep the aspect in --res)",
-                 d->fx, d->fy, d->cx, d->cy, d->width, d->height);
+                     d->fx, d->fy, d->cx, d->cy, d->width, d->height);
         return -1;
     }
     memset(&cam, 0, sizeof cam);
@@ -187,9 +187,9 @@ static int render_truth(const lt_scene_t *sc, const lt_reproj_cam_t *d, float *z
     cam.tan_half_fov = 0.5 * h / d->fy;
     cam.width = d->width;
     cam.height = d->height;
-    if (lt_frame_alloc(&fr, d->width, d->height, err, errlen) != 0)
+    if (lt_frame_alloc(&fr, d->width, d->height, diag) != 0)
         return -1;
-    acc = lt_accel_build(sc, "bvh", LT_PATH_F32, err, errlen);
+    acc = lt_accel_build(sc, "bvh", LT_PATH_F32, diag);
     if (acc == NULL) {
         lt_frame_free(&fr);
         return -1;
@@ -257,7 +257,7 @@ int lt_rp_cli(int argc, char **argv, const char *prog, const lt_rp_cli_hooks_t *
     lt_rp_result_t res;
     lt_exr_depth_t dl[LT_RP_MAX_LAYERS], dc;
     lt_exr_read_opts_t xo = LT_EXR_READ_OPTS_DEFAULT;
-    char err[1024];
+    lt_diag_t diag;
     const char *scene_path = NULL, *depth = NULL, *channel = NULL, *out = NULL, *png = NULL;
     const char *heat_steps = NULL, *heat_cycles = NULL, *report = NULL, *machine = NULL;
     const char *heat_error = NULL;
@@ -464,8 +464,8 @@ int lt_rp_cli(int argc, char **argv, const char *prog, const lt_rp_cli_hooks_t *
                 heat_cycles != NULL ? "--heat-cycles" : report != NULL ? "--report" : "--machine");
         return EXIT_USAGE;
     }
-    if (scene_path != NULL && lt_sf_load(scene_path, &sf, err, sizeof err) != 0) {
-        fprintf(stderr, "%s\n", err);
+    if (scene_path != NULL && lt_sf_load(scene_path, &sf, &diag) != 0) {
+        fprintf(stderr, "%s\n", diag.msg);
         return EXIT_INPUT;
     }
     if (depth == NULL && sf.depth[0] != '\0')
@@ -511,8 +511,8 @@ int lt_rp_cli(int argc, char **argv, const char *prog, const lt_rp_cli_hooks_t *
                 lt_meter_machine_names());
         return EXIT_USAGE;
     }
-    if (lt_meter_init(machine, NULL, NULL, err, sizeof err) != 0) {
-        fprintf(stderr, "%s\n", err);
+    if (lt_meter_init(machine, NULL, NULL, diag.msg, sizeof diag.msg) != 0) {
+        fprintf(stderr, "%s\n", diag.msg);
         return EXIT_USAGE;
     }
 
@@ -527,8 +527,8 @@ int lt_rp_cli(int argc, char **argv, const char *prog, const lt_rp_cli_hooks_t *
             ch = name;
         }
         xo.color = color && layers > 1 && l > 0;
-        if (lt_exr_read_depth(depth, ch, &xo, &dl[l], err, sizeof err) != 0) {
-            fprintf(stderr, "%s\n", err);
+        if (lt_exr_read_depth(depth, ch, &xo, &dl[l], &diag) != 0) {
+            fprintf(stderr, "%s\n", diag.msg);
             status = EXIT_INPUT;
             goto done;
         }
@@ -551,8 +551,7 @@ int lt_rp_cli(int argc, char **argv, const char *prog, const lt_rp_cli_hooks_t *
     if (color) {
         /* layer 0's colour: R G B next to the base depth channel (the render's primary hit) */
         xo.color = 1;
-        if (lt_exr_read_depth(depth, layers > 1 ? channel : dl[0].channel, &xo, &dc, err,
-                              sizeof err) == 0 &&
+        if (lt_exr_read_depth(depth, layers > 1 ? channel : dl[0].channel, &xo, &dc, &diag) == 0 &&
             dc.width == (int32_t)W && dc.height == (int32_t)H && dc.rgba[0] != NULL &&
             dc.rgba[1] != NULL && dc.rgba[2] != NULL) {
             dl[0].rgba[0] = dc.rgba[0];
@@ -603,13 +602,13 @@ int lt_rp_cli(int argc, char **argv, const char *prog, const lt_rp_cli_hooks_t *
         /* lanetrace render's camera for this scene, in its scaled units; the scene stays loaded
            for --truth */
         lt_camera_t cam;
-        if (lt_mesh_load(sf.mesh, &mesh, err, sizeof err) != 0) {
-            fprintf(stderr, "%s\n", err);
+        if (lt_mesh_load(sf.mesh, &mesh, &diag) != 0) {
+            fprintf(stderr, "%s\n", diag.msg);
             status = EXIT_INPUT;
             goto done;
         }
-        if (lt_scene_prepare(&mesh, &sc, err, sizeof err) != 0) {
-            fprintf(stderr, "%s: %s\n", sf.mesh, err);
+        if (lt_scene_prepare(&mesh, &sc, &diag) != 0) {
+            fprintf(stderr, "%s: %s\n", sf.mesh, diag.msg);
             lt_mesh_free(&mesh);
             memset(&mesh, 0, sizeof mesh);
             status = EXIT_INPUT;
@@ -617,9 +616,9 @@ int lt_rp_cli(int argc, char **argv, const char *prog, const lt_rp_cli_hooks_t *
         }
         have_scene = 1;
         if (sf.has_camera) {
-            if (lt_camera_look(&sc, sf.eye, sf.target, sf.up, sf.fov_y_deg, W, H, &cam, err,
-                               sizeof err) != 0) {
-                fprintf(stderr, "%s: %s\n", sf.path, err);
+            if (lt_camera_look(&sc, sf.eye, sf.target, sf.up, sf.fov_y_deg, W, H, &cam,
+                               &diag) != 0) {
+                fprintf(stderr, "%s: %s\n", sf.path, diag.msg);
                 status = EXIT_INPUT;
                 goto done;
             }
@@ -712,15 +711,15 @@ int lt_rp_cli(int argc, char **argv, const char *prog, const lt_rp_cli_hooks_t *
             goto done;
         }
         hk->begin("ground truth");
-        if (render_truth(&sc, &dcam, ztrue, err, sizeof err) != 0) {
+        if (render_truth(&sc, &dcam, ztrue, &diag) != 0) {
             hk->end();
-            fprintf(stderr, "%s reproject: %s\n", prog, err);
+            fprintf(stderr, "%s reproject: %s\n", prog, diag.msg);
             status = EXIT_USAGE;
             goto done;
         }
         hk->end();
-        if (lt_meter_init(machine, NULL, NULL, err, sizeof err) != 0) {
-            fprintf(stderr, "%s\n", err);
+        if (lt_meter_init(machine, NULL, NULL, diag.msg, sizeof diag.msg) != 0) {
+            fprintf(stderr, "%s\n", diag.msg);
             status = EXIT_INPUT;
             goto done;
         }
@@ -748,9 +747,9 @@ int lt_rp_cli(int argc, char **argv, const char *prog, const lt_rp_cli_hooks_t *
     }
     ro.progress = hk->progress;
     hk->begin("reproject");
-    if (lt_rp_run(&src, &dcam, &ro, &res, err, sizeof err) != 0) {
+    if (lt_rp_run(&src, &dcam, &ro, &res, &diag) != 0) {
         hk->end();
-        fprintf(stderr, "%s: %s\n", depth, err);
+        fprintf(stderr, "%s: %s\n", depth, diag.msg);
         status = EXIT_INPUT;
         goto done;
     }
@@ -821,8 +820,8 @@ int lt_rp_cli(int argc, char **argv, const char *prog, const lt_rp_cli_hooks_t *
             im.height = (int32_t)res.height;
             im.nchannels = nc;
             im.channels = ec;
-            if (lt_exr_write(out, &im, err, sizeof err) != 0) {
-                fprintf(stderr, "%s\n", err);
+            if (lt_exr_write(out, &im, &diag) != 0) {
+                fprintf(stderr, "%s\n", diag.msg);
                 status = EXIT_INPUT;
             }
         }
@@ -834,9 +833,9 @@ int lt_rp_cli(int argc, char **argv, const char *prog, const lt_rp_cli_hooks_t *
             } else {
                 for (i = 0; i < np * 3; i++)
                     px[i] = lt_gamma8((double)res.rgb[i]);
-                if (lt_png_write(png, px, (int32_t)res.width, (int32_t)res.height, 3, 0, err,
-                                 sizeof err) != 0) {
-                    fprintf(stderr, "%s\n", err);
+                if (lt_png_write(png, px, (int32_t)res.width, (int32_t)res.height, 3, 0,
+                                 &diag) != 0) {
+                    fprintf(stderr, "%s\n", diag.msg);
                     status = EXIT_INPUT;
                 }
                 free(px);
@@ -844,20 +843,20 @@ int lt_rp_cli(int argc, char **argv, const char *prog, const lt_rp_cli_hooks_t *
         }
         if (status == 0 && heat_steps != NULL &&
             lt_heatmap_write_png(heat_steps, res.steps, (int32_t)res.width, (int32_t)res.height,
-                                 NULL, err, sizeof err) != 0) {
-            fprintf(stderr, "%s\n", err);
+                                 NULL, &diag) != 0) {
+            fprintf(stderr, "%s\n", diag.msg);
             status = EXIT_INPUT;
         }
         if (status == 0 && heat_error != NULL &&
             lt_heatmap_write_png(heat_error, relerr, (int32_t)res.width, (int32_t)res.height,
-                                 &eo, err, sizeof err) != 0) {
-            fprintf(stderr, "%s\n", err);
+                                 &eo, &diag) != 0) {
+            fprintf(stderr, "%s\n", diag.msg);
             status = EXIT_INPUT;
         }
         if (status == 0 && heat_cycles != NULL &&
             lt_heatmap_write_png(heat_cycles, res.cycles, (int32_t)res.width, (int32_t)res.height,
-                                 NULL, err, sizeof err) != 0) {
-            fprintf(stderr, "%s\n", err);
+                                 NULL, &diag) != 0) {
+            fprintf(stderr, "%s\n", diag.msg);
             status = EXIT_INPUT;
         }
         for (k = 0; k < 5; k++)
@@ -974,9 +973,9 @@ int lt_rp_cli(int argc, char **argv, const char *prog, const lt_rp_cli_hooks_t *
                 lt_meter_report_text(stdout, title, st->pixels);
             if (report != NULL) {
                 js = lt_meter_report_json(title, st->pixels, extra);
-                if (js == NULL || hk->write_text(report, js, err, sizeof err) != 0) {
+                if (js == NULL || hk->write_text(report, js, diag.msg, sizeof diag.msg) != 0) {
                     fprintf(stderr, "%s\n", js == NULL ? "reproject: out of memory for the report"
-                                                       : err);
+                                                       : diag.msg);
                     free(js);
                     status = EXIT_INPUT;
                     goto done;

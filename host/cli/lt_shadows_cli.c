@@ -126,7 +126,7 @@ int lt_shadows_cli(int argc, char **argv, const char *prog)
     lt_ss_light_t light;
     lt_softshadow_t *ss;
     lt_ss_counts_t cnt;
-    char err[512];
+    lt_diag_t diag;
     stage_t sp, spf, sshp, sshf, sshade, sfilt, tot_p, tot_f, tot_fo;
     double t0;
     int run_fr, run_pk, rc = 0;
@@ -325,8 +325,8 @@ int lt_shadows_cli(int argc, char **argv, const char *prog)
     (void)report;
     if (lt_ss_view_for(mesh_path, &view))
         pre = &view;
-    if (lt_mesh_load(mesh_path, &m, err, sizeof err) != 0) {
-        fprintf(stderr, "%s: %s\n", who, err);
+    if (lt_mesh_load(mesh_path, &m, &diag) != 0) {
+        fprintf(stderr, "%s: %s\n", who, diag.msg);
         return EXIT_INPUT;
     }
     if (ground < 0)
@@ -343,13 +343,13 @@ int lt_shadows_cli(int argc, char **argv, const char *prog)
             light_s = 0.2 * (m.hi[0] - m.lo[0]);
         }
     }
-    if (ground && lt_ss_add_ground(&m, 0.6, err, sizeof err) != 0) {
-        fprintf(stderr, "%s: %s\n", who, err);
+    if (ground && lt_ss_add_ground(&m, 0.6, &diag) != 0) {
+        fprintf(stderr, "%s: %s\n", who, diag.msg);
         lt_mesh_free(&m);
         return EXIT_INPUT;
     }
-    if (lt_scene_prepare(&m, &sc, err, sizeof err) != 0) {
-        fprintf(stderr, "%s: %s: %s\n", who, mesh_path, err);
+    if (lt_scene_prepare(&m, &sc, &diag) != 0) {
+        fprintf(stderr, "%s: %s: %s\n", who, mesh_path, diag.msg);
         lt_mesh_free(&m);
         return EXIT_INPUT;
     }
@@ -361,16 +361,16 @@ int lt_shadows_cli(int argc, char **argv, const char *prog)
                    sizeof target);
         if (pre != NULL && pre->has_camera && fov == 60)
             fov = pre->fov;
-        if (lt_camera_look(&sc, eye, target, up, fov, res, res, &cam, err, sizeof err) != 0) {
-            fprintf(stderr, "%s: %s\n", who, err);
+        if (lt_camera_look(&sc, eye, target, up, fov, res, res, &cam, &diag) != 0) {
+            fprintf(stderr, "%s: %s\n", who, diag.msg);
             rc = EXIT_INPUT;
             goto out_scene;
         }
     } else {
         lt_camera_default(&sc, res, res, &cam);
     }
-    if (lt_ss_light_square(&sc, light_c, light_s, &light, err, sizeof err) != 0) {
-        fprintf(stderr, "%s: %s\n", who, err);
+    if (lt_ss_light_square(&sc, light_c, light_s, &light, &diag) != 0) {
+        fprintf(stderr, "%s: %s\n", who, diag.msg);
         rc = EXIT_INPUT;
         goto out_scene;
     }
@@ -380,8 +380,8 @@ int lt_shadows_cli(int argc, char **argv, const char *prog)
         rc = EXIT_USAGE;
         goto out_scene;
     }
-    if (lt_meter_init(machine, NULL, NULL, err, sizeof err) != 0) {
-        fprintf(stderr, "%s: %s\n", who, err);
+    if (lt_meter_init(machine, NULL, NULL, diag.msg, sizeof diag.msg) != 0) {
+        fprintf(stderr, "%s: %s\n", who, diag.msg);
         rc = EXIT_INPUT;
         goto out_scene;
     }
@@ -394,9 +394,9 @@ int lt_shadows_cli(int argc, char **argv, const char *prog)
     o.cos_min = cos_min;
     o.filter_vis = filter_vis;
     o.pflags = pflags;
-    ss = lt_ss_create(&sc, &cam, &light, &o, err, sizeof err);
+    ss = lt_ss_create(&sc, &cam, &light, &o, &diag);
     if (ss == NULL) {
-        fprintf(stderr, "%s: %s\n", who, err);
+        fprintf(stderr, "%s: %s\n", who, diag.msg);
         rc = EXIT_INPUT;
         goto out_scene;
     }
@@ -670,17 +670,17 @@ int lt_shadows_cli(int argc, char **argv, const char *prog)
                q.psnr_vs_filtered_ref,
                (unsigned long long)q.penumbra, q.tol, 100.0 * ratio(q.penumbra_ok, q.penumbra),
                100.0 * ratio(q.penumbra_raw_ok, q.penumbra));
-        if (ref_png != NULL && lt_ss_write_png(ss, ref_png, 2, err, sizeof err) != 0) {
-            fprintf(stderr, "%s: %s\n", who, err);
+        if (ref_png != NULL && lt_ss_write_png(ss, ref_png, 2, &diag) != 0) {
+            fprintf(stderr, "%s: %s\n", who, diag.msg);
             rc = EXIT_INPUT;
         }
     }
-    if (png != NULL && lt_ss_write_png(ss, png, 0, err, sizeof err) != 0) {
-        fprintf(stderr, "%s: %s\n", who, err);
+    if (png != NULL && lt_ss_write_png(ss, png, 0, &diag) != 0) {
+        fprintf(stderr, "%s: %s\n", who, diag.msg);
         rc = EXIT_INPUT;
     }
-    if (raw_png != NULL && lt_ss_write_png(ss, raw_png, 1, err, sizeof err) != 0) {
-        fprintf(stderr, "%s: %s\n", who, err);
+    if (raw_png != NULL && lt_ss_write_png(ss, raw_png, 1, &diag) != 0) {
+        fprintf(stderr, "%s: %s\n", who, diag.msg);
         rc = EXIT_INPUT;
     }
     lt_ss_free(ss);

@@ -42,19 +42,18 @@ int lt_sf_machine_known(const char *name)
 typedef struct ctx {
     const char *name;
     const char *base;
-    char *err;
-    size_t errlen;
+    lt_diag_t *diag;
 } ctx_t;
 
+/* The message, with the scene file's name in front. Returns -1. */
+static int fail(ctx_t *c, const char *fmt, ...) LT_DIAG_PRINTF(2, 3);
 static int fail(ctx_t *c, const char *fmt, ...)
 {
-    char msg[768];
     va_list ap;
     va_start(ap, fmt);
-    vsnprintf(msg, sizeof msg, fmt, ap);
+    (void)lt_diag_vfail(c->diag, fmt, ap);
     va_end(ap);
-    snprintf(c->err, c->errlen, "%s: %s", c->name, msg);
-    return -1;
+    return lt_diag_prefix(c->diag, "%s: ", c->name);
 }
 
 void lt_sf_defaults(lt_scenefile_t *sf)
@@ -383,7 +382,7 @@ static int parse_root(ctx_t *c, const cJSON *root, lt_scenefile_t *sf)
 }
 
 int lt_sf_parse(const char *text, const char *name, const char *base_dir, lt_scenefile_t *sf,
-                char *err, size_t errlen)
+                lt_diag_t *diag)
 {
     ctx_t c;
     cJSON *root;
@@ -391,8 +390,7 @@ int lt_sf_parse(const char *text, const char *name, const char *base_dir, lt_sce
     int r;
     c.name = name;
     c.base = base_dir != NULL ? base_dir : "";
-    c.err = err;
-    c.errlen = errlen;
+    c.diag = diag;
     lt_sf_defaults(sf);
     root = cJSON_ParseWithOpts(text, &end, 1);
     if (root == NULL) {
@@ -414,7 +412,7 @@ int lt_sf_parse(const char *text, const char *name, const char *base_dir, lt_sce
     return r;
 }
 
-int lt_sf_load(const char *path, lt_scenefile_t *sf, char *err, size_t errlen)
+int lt_sf_load(const char *path, lt_scenefile_t *sf, lt_diag_t *diag)
 {
     FILE *f;
     char *text, base[LT_SF_PATH_MAX];
@@ -426,24 +424,24 @@ int lt_sf_load(const char *path, lt_scenefile_t *sf, char *err, size_t errlen)
 
     f = fopen(path, "rb");
     if (f == NULL) {
-        snprintf(err, errlen, "%s: cannot open the scene file", path);
+        lt_diag_fail(diag, "%s: cannot open the scene file", path);
         return -1;
     }
     if (fseek(f, 0, SEEK_END) != 0 || (n = ftell(f)) < 0 || fseek(f, 0, SEEK_SET) != 0) {
         fclose(f);
-        snprintf(err, errlen, "%s: cannot read the scene file", path);
+        lt_diag_fail(diag, "%s: cannot read the scene file", path);
         return -1;
     }
     if (n > max) {
         fclose(f);
-        snprintf(err, errlen, "%s: %ld bytes exceeds the scene file limit of %ld", path, n, max);
+        lt_diag_fail(diag, "%s: %ld bytes exceeds the scene file limit of %ld", path, n, max);
         return -1;
     }
     text = malloc((size_t)n + 1);
     if (text == NULL || fread(text, 1, (size_t)n, f) != (size_t)n) {
         fclose(f);
         free(text);
-        snprintf(err, errlen, "%s: cannot read the scene file", path);
+        lt_diag_fail(diag, "%s: cannot read the scene file", path);
         return -1;
     }
     fclose(f);
@@ -453,7 +451,7 @@ int lt_sf_load(const char *path, lt_scenefile_t *sf, char *err, size_t errlen)
         base[0] = '\0';
     else
         snprintf(base, sizeof base, "%.*s", (int)(slash - path), path);
-    r = lt_sf_parse(text, path, slash == path ? "/" : base, sf, err, errlen);
+    r = lt_sf_parse(text, path, slash == path ? "/" : base, sf, diag);
     free(text);
     if (r == 0)
         snprintf(sf->path, sizeof sf->path, "%s", path);

@@ -66,7 +66,7 @@ static void trace_f32(const rp_tracer_t *t, const lt_qray16_f32_t *r, lt_mask16_
  * (NULL for the DDA), *bytes its size. Returns 0 or -1 with a message. */
 static int tracer_build(rp_tracer_t *t, const lt_rp_opts_t *o, uint32_t W, uint32_t H,
                         uint32_t layers, const lt_q30_t *wq, const float *wf, void **arena,
-                        size_t *bytes, char *err, size_t errlen)
+                        size_t *bytes, lt_diag_t *diag)
 {
     int fenc = o->enc == LT_QT_F32;
     lt_status_t s;
@@ -90,14 +90,14 @@ static int tracer_build(rp_tracer_t *t, const lt_rp_opts_t *o, uint32_t W, uint3
         qd.enc = (uint32_t)o->enc;
         s = o->tracer == LT_RP_HIZ ? lt_hiz_size(&sd, bytes) : lt_qt_size(&qd, bytes);
         if (s != LT_OK) {
-            snprintf(err, errlen, "reproject: %s size query failed for %ux%u x %u layers (%s)",
-                     name[o->tracer], W, H, layers, lt_status_str(s));
+            lt_diag_fail(diag, "reproject: %s size query failed for %ux%u x %u layers (%s)",
+                         name[o->tracer], W, H, layers, lt_status_str(s));
             return -1;
         }
         *arena = malloc(*bytes > 0 ? *bytes : 1);
         if (*arena == NULL) {
-            snprintf(err, errlen, "reproject: out of memory for the %zu-byte %s", *bytes,
-                     name[o->tracer]);
+            lt_diag_fail(diag, "reproject: out of memory for the %zu-byte %s", *bytes,
+                         name[o->tracer]);
             return -1;
         }
         lt_meter_region(*arena, *bytes, 0x40000000u);
@@ -109,8 +109,8 @@ static int tracer_build(rp_tracer_t *t, const lt_rp_opts_t *o, uint32_t W, uint3
                      : lt_qt_build_q30(&t->qt, &qd, &o->params, wq, *arena, bytes);
     }
     if (s != LT_OK) {
-        snprintf(err, errlen, "reproject: %s build failed (%s)", name[o->tracer],
-                 lt_status_str(s));
+        lt_diag_fail(diag, "reproject: %s build failed (%s)", name[o->tracer],
+                     lt_status_str(s));
         return -1;
     }
     return 0;
@@ -442,7 +442,7 @@ static void fetch(const fetch_ctx_t *f, uint32_t layer, double x, double y, doub
 /* ---- the run ------------------------------------------------------------------------------- */
 
 int lt_rp_run(const lt_rp_source_t *src, const lt_reproj_cam_t *dst, const lt_rp_opts_t *o,
-              lt_rp_result_t *res, char *err, size_t errlen)
+              lt_rp_result_t *res, lt_diag_t *diag)
 {
     lt_rp_opts_t od;
     static rp_tracer_t tr;
@@ -472,20 +472,19 @@ int lt_rp_run(const lt_rp_source_t *src, const lt_reproj_cam_t *dst, const lt_rp
     }
     if (src == NULL || dst == NULL || src->z == NULL || src->layers < 1 ||
         src->layers > LT_RP_MAX_LAYERS) {
-        snprintf(err, errlen, "reproject: bad source (layers must be 1..%d)", LT_RP_MAX_LAYERS);
+        lt_diag_fail(diag, "reproject: bad source (layers must be 1..%d)", LT_RP_MAX_LAYERS);
         return -1;
     }
     if (src->width < 1 || src->height < 1 || src->width > LT_QT_MAX_DIM ||
         src->height > LT_QT_MAX_DIM || dst->width < 1 || dst->height < 1 ||
         dst->width > LT_QT_MAX_DIM || dst->height > LT_QT_MAX_DIM) {
-        snprintf(err, errlen,
-                 "reproject: source %ux%u or target %ux%u outside 1..%u (LT_QT_MAX_DIM) per side",
-                 src->width, src->height, dst->width, dst->height, LT_QT_MAX_DIM);
+        lt_diag_fail(diag, "reproject: source %ux%u or target %ux%u outside 1..%u (LT_QT_MAX_DIM) "
+                     "per side", src->width, src->height, dst->width, dst->height, LT_QT_MAX_DIM);
         return -1;
     }
     if ((unsigned)o->enc > (unsigned)LT_QT_F32 || (unsigned)o->tracer > (unsigned)LT_RP_HIZ) {
-        snprintf(err, errlen, "reproject: unknown node encoding %d or tracer %d (0..2 each)",
-                 (int)o->enc, (int)o->tracer);
+        lt_diag_fail(diag, "reproject: unknown node encoding %d or tracer %d (0..2 each)",
+                     (int)o->enc, (int)o->tracer);
         return -1;
     }
     fenc = o->enc == LT_QT_F32;
@@ -493,7 +492,7 @@ int lt_rp_run(const lt_rp_source_t *src, const lt_reproj_cam_t *dst, const lt_rp
     H = src->height;
     n = (size_t)W * H * src->layers;
     if (lt_qt_zref_exp(src->z, n, &e) != 0) {
-        snprintf(err, errlen, "reproject: the depth image has no valid depth (all NaN, inf or <= 0)");
+        lt_diag_fail(diag, "reproject: the depth image has no valid depth (all NaN, inf or <= 0)");
         return -1;
     }
     res->st.zref = ldexp(1.0, e);
@@ -503,7 +502,7 @@ int lt_rp_run(const lt_rp_source_t *src, const lt_reproj_cam_t *dst, const lt_rp
     if (!fenc)
         wq = malloc(n * sizeof *wq);
     if (wf == NULL || (!fenc && wq == NULL)) {
-        snprintf(err, errlen, "reproject: out of memory for %zu depth samples", n);
+        lt_diag_fail(diag, "reproject: out of memory for %zu depth samples", n);
         goto done;
     }
     if (fenc) {
@@ -520,10 +519,10 @@ int lt_rp_run(const lt_rp_source_t *src, const lt_reproj_cam_t *dst, const lt_rp
     ro.z_near_dst = o->z_near_dst;
     s = lt_reproj_setup(&src->cam, dst, &ro, &mq, &mf);
     if (s != LT_OK) {
-        snprintf(err, errlen,
-                 "reproject: camera setup failed (%s): focal lengths must be > 0 and finite, "
-                 "rotations orthonormal, sizes 1..%u, z_ref / near < 2",
-                 lt_status_str(s), LT_QT_MAX_DIM);
+        lt_diag_fail(diag,
+                     "reproject: camera setup failed (%s): focal lengths must be > 0 and finite, "
+                     "rotations orthonormal, sizes 1..%u, z_ref / near < 2",
+                     lt_status_str(s), LT_QT_MAX_DIM);
         goto done;
     }
 
@@ -534,7 +533,7 @@ int lt_rp_run(const lt_rp_source_t *src, const lt_reproj_cam_t *dst, const lt_rp
     else
         lt_meter_region(wf, n * sizeof *wf, 0x50000000u);
     c0 = cycles_now();
-    if (tracer_build(&tr, o, W, H, src->layers, wq, wf, &arena, &bytes, err, errlen) != 0)
+    if (tracer_build(&tr, o, W, H, src->layers, wq, wf, &arena, &bytes, diag) != 0)
         goto done;
     res->st.cyc_build = cycles_now() - c0;
     res->st.t_build = lt_now_s() - t0;
@@ -565,8 +564,8 @@ int lt_rp_run(const lt_rp_source_t *src, const lt_reproj_cam_t *dst, const lt_rp
     if (res->rgb == NULL || res->z == NULL || res->cls == NULL || res->steps == NULL ||
         res->cycles == NULL || res->sx == NULL || res->sy == NULL || res->layer == NULL ||
         valid == NULL) {
-        snprintf(err, errlen, "reproject: out of memory for a %ux%u target", dst->width,
-                 dst->height);
+        lt_diag_fail(diag, "reproject: out of memory for a %ux%u target", dst->width,
+                     dst->height);
         goto done;
     }
     for (i = 0; i < np; i++) {

@@ -14,6 +14,7 @@
 #include <stdint.h>
 #include "lt/lt_hiz.h"
 #include "lt/lt_reproj.h"
+#include "io/lt_diag.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -96,10 +97,10 @@ typedef struct lt_rp_result {
 } lt_rp_result_t;
 
 /* Synthesise the view of camera dst (dst->width x dst->height) from src. Returns 0, or -1 with a
- * message naming the input and the limit in err (bad camera, image too large, no valid depth,
+ * message naming the input and the limit in diag (bad camera, image too large, no valid depth,
  * out of memory, layers not front to back is not checked: layer k+1 must lie behind layer k). */
 int lt_rp_run(const lt_rp_source_t *src, const lt_reproj_cam_t *dst, const lt_rp_opts_t *o,
-              lt_rp_result_t *res, char *err, size_t errlen);
+              lt_rp_result_t *res, lt_diag_t *diag);
 void lt_rp_result_free(lt_rp_result_t *r);
 
 /* Background-biased pull-push inpainting of rgb (w x h x 3) and z (w x h) where valid[i] == 0:

@@ -210,7 +210,7 @@ int main(int argc, char **argv)
     lt_scene_t s;
     lt_camera_t cam;
     lt_frame_t ref, fr[4][2];
-    char err[1024];
+    lt_diag_t diag;
     int i, st, path, bad = 0, ran[4][2];
 
     for (i = 1; i < argc; i++) {
@@ -231,18 +231,18 @@ int main(int argc, char **argv)
         fprintf(stderr, "usage: lt-agree MESH [--res N (4..4096)] [--min PCT] [--structures a,b,..]\n");
         return 2;
     }
-    if (lt_mesh_load(mesh_path, &m, err, sizeof err) != 0) {
-        fprintf(stderr, "%s\n", err);
+    if (lt_mesh_load(mesh_path, &m, &diag) != 0) {
+        fprintf(stderr, "%s\n", diag.msg);
         return 1;
     }
-    if (lt_scene_prepare(&m, &s, err, sizeof err) != 0) {
-        fprintf(stderr, "%s: %s\n", mesh_path, err);
+    if (lt_scene_prepare(&m, &s, &diag) != 0) {
+        fprintf(stderr, "%s: %s\n", mesh_path, diag.msg);
         lt_mesh_free(&m);
         return 1;
     }
     lt_camera_default(&s, res, res, &cam);
-    if (lt_frame_alloc(&ref, res, res, err, sizeof err) != 0) {
-        fprintf(stderr, "%s\n", err);
+    if (lt_frame_alloc(&ref, res, res, &diag) != 0) {
+        fprintf(stderr, "%s\n", diag.msg);
         return 1;
     }
     lt_render_reference(&s, &cam, &ref, NULL);
@@ -258,9 +258,9 @@ int main(int argc, char **argv)
             const char *base;
             if (st == 3 && path == 1)
                 continue; /* the quantised BVH is s15.16 only */
-            acc = lt_accel_build(&s, all[st], (lt_path_t)path, err, sizeof err);
-            if (acc == NULL || lt_frame_alloc(&fr[st][path], res, res, err, sizeof err) != 0) {
-                fprintf(stderr, "%s: %s\n", mesh_path, err);
+            acc = lt_accel_build(&s, all[st], (lt_path_t)path, &diag);
+            if (acc == NULL || lt_frame_alloc(&fr[st][path], res, res, &diag) != 0) {
+                fprintf(stderr, "%s: %s\n", mesh_path, diag.msg);
                 return 1;
             }
             lt_render_primary(&s, acc, &cam, &fr[st][path], NULL);
@@ -268,9 +268,9 @@ int main(int argc, char **argv)
                 /* single rays (scalar BVH kernels; one-lane packets elsewhere) = packet lanes */
                 lt_frame_t one;
                 size_t p, n = (size_t)res * res, same1 = 0, tie1 = 0;
-                if (lt_frame_alloc(&one, res, res, err, sizeof err) != 0 ||
-                    lt_render_primary1(&s, acc, &cam, &one, err, sizeof err) != 0) {
-                    fprintf(stderr, "%s: %s\n", mesh_path, err);
+                if (lt_frame_alloc(&one, res, res, &diag) != 0 ||
+                    lt_render_primary1(&s, acc, &cam, &one, &diag) != 0) {
+                    fprintf(stderr, "%s: %s\n", mesh_path, diag.msg);
                     return 1;
                 }
                 for (p = 0; p < n; p++) {

@@ -575,12 +575,12 @@ static void ctr_end(uint64_t *nodes, uint64_t *tris, uint64_t *tri_rays, uint64_
 static int load_scene(const char *path, lt_scene_t *s, mesh_t *m)
 {
     lt_mesh_t mesh;
-    char err[256];
-    if (lt_mesh_load(path, &mesh, err, sizeof err) != 0) {
-        ltt_report("  (%s)\n", err);
+    lt_diag_t diag;
+    if (lt_mesh_load(path, &mesh, &diag) != 0) {
+        ltt_report("  (%s)\n", diag.msg);
         return -1;
     }
-    assert_int_equal(lt_scene_prepare(&mesh, s, err, sizeof err), 0);
+    assert_int_equal(lt_scene_prepare(&mesh, s, &diag), 0);
     lt_mesh_free(&mesh);
     mesh_init(m, s->vd, s->ntris);
     return 0;

@@ -214,7 +214,8 @@ static void test_known_values(void **state)
 
 static void test_names_everywhere(void **state)
 {
-    char list[1024] = "", err[512];
+    char list[1024] = "";
+    lt_diag_t diag;
     lt_scenefile_t sf;
     int i;
     (void)state;
@@ -240,9 +241,9 @@ static void test_names_everywhere(void **state)
     assert_false(lt_meter_machine_known(""));
 
     /* the meter refuses an unknown machine in every build, naming the known ones */
-    assert_int_equal(lt_meter_init("nosuch", NULL, NULL, err, sizeof err), -1);
-    assert_non_null(strstr(err, "nosuch"));
-    assert_non_null(strstr(err, list));
+    assert_int_equal(lt_meter_init("nosuch", NULL, NULL, diag.msg, sizeof diag.msg), -1);
+    assert_non_null(strstr(diag.msg, "nosuch"));
+    assert_non_null(strstr(diag.msg, list));
 
     /* the scene-file validator: every machine accepted, an unknown one refused with the list (run
      * from the repository root, as make test does: the mesh must exist) */
@@ -250,14 +251,14 @@ static void test_names_everywhere(void **state)
         char text[160];
         snprintf(text, sizeof text, "{\"mesh\": \"scenes/teapot.obj\", \"machine\": \"%s\"}",
                  tm[i].name);
-        if (lt_sf_parse(text, "t.json", ".", &sf, err, sizeof err) != 0)
-            fail_msg("scene file with machine %s: %s", tm[i].name, err);
+        if (lt_sf_parse(text, "t.json", ".", &sf, &diag) != 0)
+            fail_msg("scene file with machine %s: %s", tm[i].name, diag.msg);
         assert_string_equal(sf.machine, tm[i].name);
     }
     assert_int_equal(lt_sf_parse("{\"mesh\": \"scenes/teapot.obj\", \"machine\": \"nosuch\"}",
-                                 "t.json", ".", &sf, err, sizeof err),
+                                 "t.json", ".", &sf, &diag),
                      -1);
-    assert_non_null(strstr(err, list));
+    assert_non_null(strstr(diag.msg, list));
 }
 
 /* ---- the meter without and with the cycle model -------------------------------------------------- */

@@ -151,14 +151,14 @@ static void test_shared_scenes(void **state)
     for (i = 0; i < sizeof sc / sizeof sc[0]; i++) {
         const char *p = shared_file(sc[i].file);
         lt_mesh_t m;
-        char err[512];
+        lt_diag_t diag;
         unsigned long z;
         if (p == NULL) {
             assert_int_equal(shared_missing(sc[i].file), 0);
             continue;
         }
-        if (lt_mesh_load(p, &m, err, sizeof err) != 0) {
-            ltt_report("  FAIL %s\n", err);
+        if (lt_mesh_load(p, &m, &diag) != 0) {
+            ltt_report("  FAIL %s\n", diag.msg);
             bad++;
             continue;
         }
@@ -188,7 +188,8 @@ static const char *quad_obj = "# quad and a relative triangle\n"
 static void test_good_and_gz(void **state)
 {
     lt_mesh_t a, b, c;
-    char err[512], *two;
+    char *two;
+    lt_diag_t diag;
     size_t n1, n2, half = strlen(quad_obj) / 2;
     int k;
     (void)state;
@@ -209,9 +210,9 @@ static void test_good_and_gz(void **state)
         free(p2);
         free(two);
     }
-    assert_int_equal(lt_mesh_load(tpath("quad.obj"), &a, err, sizeof err), 0);
-    assert_int_equal(lt_mesh_load(tpath("quad.obj.gz"), &b, err, sizeof err), 0);
-    assert_int_equal(lt_mesh_load(tpath("two.obj.gz"), &c, err, sizeof err), 0);
+    assert_int_equal(lt_mesh_load(tpath("quad.obj"), &a, &diag), 0);
+    assert_int_equal(lt_mesh_load(tpath("quad.obj.gz"), &b, &diag), 0);
+    assert_int_equal(lt_mesh_load(tpath("two.obj.gz"), &c, &diag), 0);
     assert_int_equal(a.ntris, 3);
     assert_int_equal(b.ntris, 3);
     assert_int_equal(c.ntris, 3);
@@ -234,11 +235,11 @@ static void test_good_and_gz(void **state)
 static void expect_fail(const char *name, const char *want, unsigned *n)
 {
     lt_mesh_t m;
-    char err[512];
-    assert_int_equal(lt_mesh_load(tpath(name), &m, err, sizeof err), -1);
-    ltt_report("  %s\n", err);
-    assert_non_null(strstr(err, name));
-    assert_non_null(strstr(err, want));
+    lt_diag_t diag;
+    assert_int_equal(lt_mesh_load(tpath(name), &m, &diag), -1);
+    ltt_report("  %s\n", diag.msg);
+    assert_non_null(strstr(diag.msg, name));
+    assert_non_null(strstr(diag.msg, want));
     assert_null(m.v);
     assert_int_equal(m.ntris, 0);
     lt_mesh_free(&m); /* safe after a failed load */
@@ -310,8 +311,8 @@ static void test_malformed(void **state)
     gz = slurp(tpath("ok.obj.gz"), &glen);
     {
         lt_mesh_t m;
-        char err[512];
-        assert_int_equal(lt_mesh_load(tpath("ok.obj.gz"), &m, err, sizeof err), 0);
+        lt_diag_t diag;
+        assert_int_equal(lt_mesh_load(tpath("ok.obj.gz"), &m, &diag), 0);
         assert_int_equal(m.ntris, 1);
         lt_mesh_free(&m);
     }

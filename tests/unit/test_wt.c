@@ -625,16 +625,16 @@ static int mesh_file(wmesh_t *m, const char *name, const char *path)
 {
     lt_mesh_t mesh;
     lt_scene_t sc;
-    char err[256];
+    lt_diag_t diag;
     corner_t *c;
     uint32_t i, n;
     memset(m, 0, sizeof *m);
-    if (lt_mesh_load(path, &mesh, err, sizeof err) != 0) {
-        ltt_report("  %s: %s\n", name, err);
+    if (lt_mesh_load(path, &mesh, &diag) != 0) {
+        ltt_report("  %s: %s\n", name, diag.msg);
         return -1;
     }
-    if (lt_scene_prepare(&mesh, &sc, err, sizeof err) != 0) {
-        ltt_report("  %s: %s\n", name, err);
+    if (lt_scene_prepare(&mesh, &sc, &diag) != 0) {
+        ltt_report("  %s: %s\n", name, diag.msg);
         lt_mesh_free(&mesh);
         return -1;
     }
