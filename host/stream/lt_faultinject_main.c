@@ -51,7 +51,7 @@ int main(int argc, char **argv)
     const lt_faults_truth_t *t;
     const char *in = NULL, *out = NULL, *json = NULL;
     FILE *fin = stdin, *fout = stdout;
-    char err[256];
+    lt_diag_t diag;
     uint8_t buf[65536];
     size_t n;
     int a, quiet = 0, status = 0;
@@ -115,8 +115,8 @@ int main(int argc, char **argv)
             return 2;
         }
     }
-    if (lt_faults_check(&cfg, err, sizeof err) != 0) {
-        fprintf(stderr, "lt-faultinject: %s\n", err);
+    if (lt_faults_check(&cfg, &diag) != 0) {
+        fprintf(stderr, "lt-faultinject: %s\n", diag.msg);
         return 2;
     }
     if (in != NULL && strcmp(in, "-") != 0 && (fin = fopen(in, "rb")) == NULL) {
@@ -127,9 +127,9 @@ int main(int argc, char **argv)
         fprintf(stderr, "lt-faultinject: %s: cannot write: %s\n", out, strerror(errno));
         return 1;
     }
-    fi = lt_faults_new(&cfg, out_file, fout, err, sizeof err);
+    fi = lt_faults_new(&cfg, out_file, fout, &diag);
     if (fi == NULL) {
-        fprintf(stderr, "lt-faultinject: %s\n", err);
+        fprintf(stderr, "lt-faultinject: %s\n", diag.msg);
         return 1;
     }
     while ((n = fread(buf, 1, sizeof buf, fin)) > 0)

@@ -253,7 +253,7 @@ int main(int argc, char **argv)
     lt_rx_src_t *src = NULL;
     lt_rx_t *rx;
     FILE *tiles = NULL;
-    char err[512];
+    lt_diag_t diag;
     uint8_t buf[4096];
     double t0, last_live = 0.0, last_byte;
     int a, nsrc = 0, status = 0, tty;
@@ -318,15 +318,15 @@ int main(int argc, char **argv)
         return 2;
     }
     if (o.serial != NULL)
-        src = lt_rx_src_serial(o.serial, o.baud, err, sizeof err);
+        src = lt_rx_src_serial(o.serial, o.baud, &diag);
     else if (o.tcp != NULL)
-        src = lt_rx_src_tcp(o.tcp, 5000, err, sizeof err);
+        src = lt_rx_src_tcp(o.tcp, 5000, &diag);
     else if (o.hid != NULL || o.hid_path != NULL)
-        src = lt_rx_src_hid(o.hid, o.hid_path, err, sizeof err);
+        src = lt_rx_src_hid(o.hid, o.hid_path, &diag);
     else
-        src = lt_rx_src_file(o.file != NULL ? o.file : "-", err, sizeof err);
+        src = lt_rx_src_file(o.file != NULL ? o.file : "-", &diag);
     if (src == NULL) {
-        fprintf(stderr, "lt-stream: %s\n", err);
+        fprintf(stderr, "lt-stream: %s\n", diag.msg);
         return 1;
     }
     if (o.tiles != NULL) {
@@ -345,7 +345,7 @@ int main(int argc, char **argv)
     tty = !o.quiet && isatty(2);
     t0 = last_byte = lt_now_s();
     for (;;) {
-        long n = lt_rx_src_read(src, buf, sizeof buf, tty ? 250 : 1000, err, sizeof err);
+        long n = lt_rx_src_read(src, buf, sizeof buf, tty ? 250 : 1000, &diag);
         double t = lt_now_s();
         if (n > 0) {
             lt_rx_feed(rx, buf, (size_t)n);
@@ -353,7 +353,7 @@ int main(int argc, char **argv)
         } else if (n == LT_RX_EOF) {
             break;
         } else if (n == LT_RX_ERROR) {
-            fprintf(stderr, "%slt-stream: %s\n", tty ? "\n" : "", err);
+            fprintf(stderr, "%slt-stream: %s\n", tty ? "\n" : "", diag.msg);
             status = 1;
             break;
         }
