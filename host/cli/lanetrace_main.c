@@ -304,7 +304,7 @@ static int cmd_run(int argc, char **argv)
                 lt_meter_machine_names());
         return EXIT_USAGE;
     }
-    if (lt_meter_init(sf.machine, sf.l1[0] ? sf.l1 : NULL, sf.l2[0] ? sf.l2 : NULL, diag.msg, sizeof diag.msg) != 0) {
+    if (lt_meter_init(sf.machine, sf.l1[0] ? sf.l1 : NULL, sf.l2[0] ? sf.l2 : NULL, &diag) != 0) {
         fprintf(stderr, "%s run: %s\n", prog, diag.msg);
         return EXIT_USAGE;
     }
@@ -1069,7 +1069,7 @@ static int cmd_render(int argc, char **argv)
         memcpy(lf, sf.lights[0].position, sizeof lf);
         have_light = 1;
     }
-    if (lt_meter_init(sf.machine, NULL, NULL, diag.msg, sizeof diag.msg) != 0) {
+    if (lt_meter_init(sf.machine, NULL, NULL, &diag) != 0) {
         fprintf(stderr, "%s\n", diag.msg);
         return EXIT_USAGE;
     }

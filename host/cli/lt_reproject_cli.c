@@ -511,7 +511,7 @@ int lt_rp_cli(int argc, char **argv, const char *prog, const lt_rp_cli_hooks_t *
                 lt_meter_machine_names());
         return EXIT_USAGE;
     }
-    if (lt_meter_init(machine, NULL, NULL, diag.msg, sizeof diag.msg) != 0) {
+    if (lt_meter_init(machine, NULL, NULL, &diag) != 0) {
         fprintf(stderr, "%s\n", diag.msg);
         return EXIT_USAGE;
     }
@@ -718,7 +718,7 @@ int lt_rp_cli(int argc, char **argv, const char *prog, const lt_rp_cli_hooks_t *
             goto done;
         }
         hk->end();
-        if (lt_meter_init(machine, NULL, NULL, diag.msg, sizeof diag.msg) != 0) {
+        if (lt_meter_init(machine, NULL, NULL, &diag) != 0) {
             fprintf(stderr, "%s\n", diag.msg);
             status = EXIT_INPUT;
             goto done;

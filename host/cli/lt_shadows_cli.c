@@ -380,7 +380,7 @@ int lt_shadows_cli(int argc, char **argv, const char *prog)
         rc = EXIT_USAGE;
         goto out_scene;
     }
-    if (lt_meter_init(machine, NULL, NULL, diag.msg, sizeof diag.msg) != 0) {
+    if (lt_meter_init(machine, NULL, NULL, &diag) != 0) {
         fprintf(stderr, "%s: %s\n", who, diag.msg);
         rc = EXIT_INPUT;
         goto out_scene;

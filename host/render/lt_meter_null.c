@@ -33,12 +33,12 @@ int lt_meter_machine_info(const char *name, lt_meter_machine_t *m)
     return -1;
 }
 
-int lt_meter_init(const char *machine, const char *l1, const char *l2, char *err, size_t errlen)
+int lt_meter_init(const char *machine, const char *l1, const char *l2, lt_diag_t *diag)
 {
     (void)l1;
     (void)l2;
     if (!lt_sf_machine_known(machine)) {
-        snprintf(err, errlen, "machine '%s' unknown (known: %s)", machine, lt_sf_machine_list());
+        lt_diag_fail(diag, "machine '%s' unknown (known: %s)", machine, lt_sf_machine_list());
         return -1;
     }
     return 0;

@@ -107,7 +107,8 @@ int main(int argc, char **argv)
     lt_sdev_cfg_t cfg;
     lt_sdev_port_t port;
     simdev_t dev;
-    char err[256], name[32];
+    char name[32];
+    lt_diag_t diag;
     uint32_t cap = 16, link = LT_STREAM_HID_BYTES_PER_S, f;
     int a, rc;
 
@@ -154,8 +155,8 @@ int main(int argc, char **argv)
                 lt_meter_machine_names());
         return 2;
     }
-    if (lt_meter_init(machine, NULL, NULL, err, sizeof err) != 0) {
-        fprintf(stderr, "lt-stream-dev: %s\n", err);
+    if (lt_meter_init(machine, NULL, NULL, &diag) != 0) {
+        fprintf(stderr, "lt-stream-dev: %s\n", diag.msg);
         return 1;
     }
     /* the default limits (16/12/8) scaled to the ring: TILE 3/4, IMAGE 1/2 of it */

@@ -78,7 +78,7 @@ int main(int argc, char **argv)
         return 1;
     }
     lt_mesh_free(&m);
-    if (lt_sim_init(lt_sim_machine_find("lrb16"), NULL, NULL, diag.msg, sizeof diag.msg) != 0) {
+    if (lt_sim_init(lt_sim_machine_find("lrb16"), NULL, NULL, &diag) != 0) {
         fprintf(stderr, "kdgrid-sweep: %s\n", diag.msg);
         return 1;
     }

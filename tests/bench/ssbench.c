@@ -639,9 +639,9 @@ static int run_scene(sctx_t *c, size_t nrays)
     size_t nr;
     row_t rows[NCFG];
 #if LT_COST_MODE == LT_COST_SIM
-    char err[128];
-    if (lt_sim_init(lt_sim_machine_find("lrb16"), NULL, NULL, err, sizeof err) != 0) {
-        fprintf(stderr, "ssbench: %s\n", err);
+    lt_diag_t diag;
+    if (lt_sim_init(lt_sim_machine_find("lrb16"), NULL, NULL, &diag) != 0) {
+        fprintf(stderr, "ssbench: %s\n", diag.msg);
         return -1;
     }
 #endif

@@ -2021,7 +2021,7 @@ static void test_sim_cycles(void **state)
             double cpr[M_N];
             uint64_t hits[M_N];
             int meth;
-            assert_int_equal(lt_sim_init(lt_sim_machine_find(machines[ma]), NULL, NULL, diag.msg, sizeof diag.msg), 0);
+            assert_int_equal(lt_sim_init(lt_sim_machine_find(machines[ma]), NULL, NULL, &diag), 0);
             /* fixed simulated addresses: cache results independent of the host allocator */
             (void)lt_sim_region(s.tq, s.ntris * sizeof *s.tq, 0x10000000u);
             (void)lt_sim_region(s.tf, s.ntris * sizeof *s.tf, 0x20000000u);

@@ -1656,8 +1656,8 @@ static int setup_sets(void **state)
     (void)state;
 #if LT_COST_MODE == LT_COST_SIM
     {
-        char err[128];
-        if (lt_sim_init(lt_sim_machine_find("lrb16"), NULL, NULL, err, sizeof err) != 0)
+        lt_diag_t diag;
+        if (lt_sim_init(lt_sim_machine_find("lrb16"), NULL, NULL, &diag) != 0)
             return -1;
     }
 #endif

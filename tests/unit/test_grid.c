@@ -711,8 +711,8 @@ static void scene_run(const char *path, const char *name, uint32_t res, int bund
     {
         uint64_t nd, tr, trr, cy, rays = 0, npk = 0, nd1, tr1, trr1, cy1;
         unsigned f32;
-        char e2[128];
-        assert_int_equal(lt_sim_init(lt_sim_machine_find("lrb16"), NULL, NULL, e2, sizeof e2), 0);
+        lt_diag_t d2;
+        assert_int_equal(lt_sim_init(lt_sim_machine_find("lrb16"), NULL, NULL, &d2), 0);
         for (f32 = 0; f32 < 2; f32++) {
             rays = npk = 0;
             ctr_begin();

@@ -241,7 +241,7 @@ static void test_names_everywhere(void **state)
     assert_false(lt_meter_machine_known(""));
 
     /* the meter refuses an unknown machine in every build, naming the known ones */
-    assert_int_equal(lt_meter_init("nosuch", NULL, NULL, diag.msg, sizeof diag.msg), -1);
+    assert_int_equal(lt_meter_init("nosuch", NULL, NULL, &diag), -1);
     assert_non_null(strstr(diag.msg, "nosuch"));
     assert_non_null(strstr(diag.msg, list));
 
@@ -268,14 +268,14 @@ static void test_meter_null(void **state)
 {
     lt_meter_machine_t m;
     lt_meter_totals_t t;
-    char err[256];
+    lt_diag_t diag;
     int i;
     (void)state;
     tm_read();
     assert_int_equal(lt_meter_available(), 0);
     for (i = 0; i < ntm; i++) {
         assert_int_equal(lt_meter_machine_info(tm[i].name, &m), -1);
-        assert_int_equal(lt_meter_init(tm[i].name, "63:8:64", NULL, err, sizeof err), 0);
+        assert_int_equal(lt_meter_init(tm[i].name, "63:8:64", NULL, &diag), 0);
     }
     lt_meter_region(&m, sizeof m, 0x10000000u);
     lt_meter_reset();
@@ -293,7 +293,7 @@ static void test_meter_null(void **state)
 static void test_sim_table(void **state)
 {
     int i, n, o;
-    char err[256];
+    lt_diag_t diag;
     (void)state;
     tm_read();
     assert_int_equal(lt_meter_available(), 1);
@@ -324,15 +324,15 @@ static void test_sim_table(void **state)
             assert_int_equal(s->issue[o], f->issue[o]);
         }
         /* its caches parse and it initialises, directly and through the meter */
-        if (lt_cache_parse(s->l1, &cfg, err, sizeof err) != 0)
-            fail_msg("%s: L1 %s: %s", s->name, s->l1, err);
-        if (s->l2 != NULL && lt_cache_parse(s->l2, &cfg, err, sizeof err) != 0)
-            fail_msg("%s: L2 %s: %s", s->name, s->l2, err);
-        if (lt_sim_init(s, NULL, NULL, err, sizeof err) != 0)
-            fail_msg("%s: lt_sim_init: %s", s->name, err);
+        if (lt_cache_parse(s->l1, &cfg, &diag) != 0)
+            fail_msg("%s: L1 %s: %s", s->name, s->l1, diag.msg);
+        if (s->l2 != NULL && lt_cache_parse(s->l2, &cfg, &diag) != 0)
+            fail_msg("%s: L2 %s: %s", s->name, s->l2, diag.msg);
+        if (lt_sim_init(s, NULL, NULL, &diag) != 0)
+            fail_msg("%s: lt_sim_init: %s", s->name, diag.msg);
         assert_ptr_equal(lt_sim_machine(), s);
-        if (lt_meter_init(s->name, NULL, NULL, err, sizeof err) != 0)
-            fail_msg("%s: lt_meter_init: %s", s->name, err);
+        if (lt_meter_init(s->name, NULL, NULL, &diag) != 0)
+            fail_msg("%s: lt_meter_init: %s", s->name, diag.msg);
         assert_int_equal(lt_meter_machine_info(s->name, &m), 0);
         assert_string_equal(m.name, s->name);
         assert_int_equal(m.clock_mhz, s->clock_mhz);
@@ -345,8 +345,8 @@ static void test_sim_table(void **state)
         lt_meter_shutdown();
     }
     /* a bad override is refused with the spec in the message */
-    assert_int_equal(lt_meter_init(tm[0].name, "63:8:64", NULL, err, sizeof err), -1);
-    assert_non_null(strstr(err, "63:8:64"));
+    assert_int_equal(lt_meter_init(tm[0].name, "63:8:64", NULL, &diag), -1);
+    assert_non_null(strstr(diag.msg, "63:8:64"));
     lt_meter_shutdown();
 }
 #endif

@@ -1000,9 +1000,9 @@ int main(void)
     };
 #if LT_COST_MODE == LT_COST_SIM
     {
-        char err[256];
-        if (lt_sim_init(lt_sim_machine_find("lrb16"), NULL, NULL, err, sizeof err) != 0) {
-            fprintf(stderr, "%s\n", err);
+        lt_diag_t diag;
+        if (lt_sim_init(lt_sim_machine_find("lrb16"), NULL, NULL, &diag) != 0) {
+            fprintf(stderr, "%s\n", diag.msg);
             return 1;
         }
     }

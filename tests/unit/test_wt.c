@@ -1888,11 +1888,11 @@ static void test_bad_dir(void **state)
 static void cost_run(const char *machine, int coherent, double out[6][2])
 {
     const lt_machine_t *mach = lt_sim_machine_find(machine);
-    char err[128];
+    lt_diag_t diag;
     ltt_rng_t r;
     int kern, pk, i, a;
     assert_non_null(mach);
-    assert_int_equal(lt_sim_init(mach, NULL, NULL, err, sizeof err), 0);
+    assert_int_equal(lt_sim_init(mach, NULL, NULL, &diag), 0);
     for (kern = 0; kern < 6; kern++) {
         lt_sim_totals_t t, t0;
         uint64_t ops = 0;
