@@ -85,24 +85,25 @@ static void on_signal(int sig)
     raise(sig);
 }
 
-static int write_atomic(const char *path, const char *text, char *err, size_t errlen)
+static int write_atomic(const char *path, const char *text, lt_diag_t *diag)
 {
     FILE *f;
     snprintf(pending_tmp, sizeof pending_tmp, "%s.tmp%ld", path, (long)getpid());
     f = fopen(pending_tmp, "w");
     if (f == NULL) {
-        snprintf(err, errlen, "%s: cannot create the output (directory missing or not writable)", path);
+        lt_diag_fail(diag, "%s: cannot create the output (directory missing or not writable)",
+                     path);
         pending_tmp[0] = '\0';
         return -1;
     }
     if (fputs(text, f) < 0 || fclose(f) != 0) {
-        snprintf(err, errlen, "%s: write failed (disk full?)", path);
+        lt_diag_fail(diag, "%s: write failed (disk full?)", path);
         unlink(pending_tmp);
         pending_tmp[0] = '\0';
         return -1;
     }
     if (rename(pending_tmp, path) != 0) {
-        snprintf(err, errlen, "%s: cannot rename the output into place", path);
+        lt_diag_fail(diag, "%s: cannot rename the output into place", path);
         unlink(pending_tmp);
         pending_tmp[0] = '\0';
         return -1;
@@ -499,7 +500,7 @@ static int cmd_run(int argc, char **argv)
                 char p[1100];
                 snprintf(p, sizeof p, "%s%s%s", report, sf.numeric == LT_SF_NUM_BOTH ? "." : "",
                          sf.numeric == LT_SF_NUM_BOTH ? pname : "");
-                if (write_atomic(p, js, diag.msg, sizeof diag.msg) != 0) {
+                if (write_atomic(p, js, &diag) != 0) {
                     fprintf(stderr, "%s\n", diag.msg);
                     status = EXIT_INPUT;
                 } else if (!quiet) {
@@ -514,7 +515,7 @@ static int cmd_run(int argc, char **argv)
                 char p[1100];
                 snprintf(p, sizeof p, "%s%s%s", report, sf.numeric == LT_SF_NUM_BOTH ? "." : "",
                          sf.numeric == LT_SF_NUM_BOTH ? pname : "");
-                if (write_atomic(p, extra, diag.msg, sizeof diag.msg) != 0) {
+                if (write_atomic(p, extra, &diag) != 0) {
                     fprintf(stderr, "%s\n", diag.msg);
                     status = EXIT_INPUT;
                 } else if (!quiet) {
@@ -761,14 +762,14 @@ static int cmd_info(int argc, char **argv)
 
 /* ---- diff ----------------------------------------------------------------------------------- */
 
-static cJSON *load_json(const char *path, char *err, size_t errlen)
+static cJSON *load_json(const char *path, lt_diag_t *diag)
 {
     FILE *f = fopen(path, "rb");
     char *buf;
     long n;
     cJSON *j;
     if (f == NULL) {
-        snprintf(err, errlen, "%s: cannot open", path);
+        lt_diag_fail(diag, "%s: cannot open", path);
         return NULL;
     }
     fseek(f, 0, SEEK_END);
@@ -776,14 +777,14 @@ static cJSON *load_json(const char *path, char *err, size_t errlen)
     fseek(f, 0, SEEK_SET);
     if (n < 0 || n > (64L << 20)) {
         fclose(f);
-        snprintf(err, errlen, "%s: not a report (size %ld, limit 64 MiB)", path, n);
+        lt_diag_fail(diag, "%s: not a report (size %ld, limit 64 MiB)", path, n);
         return NULL;
     }
     buf = malloc((size_t)n + 1);
     if (buf == NULL || fread(buf, 1, (size_t)n, f) != (size_t)n) {
         fclose(f);
         free(buf);
-        snprintf(err, errlen, "%s: cannot read", path);
+        lt_diag_fail(diag, "%s: cannot read", path);
         return NULL;
     }
     fclose(f);
@@ -792,7 +793,7 @@ static cJSON *load_json(const char *path, char *err, size_t errlen)
     free(buf);
     if (j == NULL || !cJSON_IsObject(j)) {
         cJSON_Delete(j);
-        snprintf(err, errlen, "%s: not a JSON report object", path);
+        lt_diag_fail(diag, "%s: not a JSON report object", path);
         return NULL;
     }
     return j;
@@ -847,7 +848,7 @@ static int cmd_diff(int argc, char **argv)
     const char *pa = NULL, *pb = NULL;
     double threshold = 0.0;
     int json = 0, a, changed = 0, total = 0;
-    char err[1024];
+    lt_diag_t diag;
     cJSON *ja, *jb, *rows;
     const cJSON *r;
     for (a = 2; a < argc; a++) {
@@ -882,9 +883,9 @@ static int cmd_diff(int argc, char **argv)
         fprintf(stderr, "%s diff: two reports are required\n", prog);
         return EXIT_USAGE;
     }
-    if ((ja = load_json(pa, err, sizeof err)) == NULL ||
-        (jb = load_json(pb, err, sizeof err)) == NULL) {
-        fprintf(stderr, "%s\n", err);
+    if ((ja = load_json(pa, &diag)) == NULL ||
+        (jb = load_json(pb, &diag)) == NULL) {
+        fprintf(stderr, "%s\n", diag.msg);
         return EXIT_INPUT;
     }
     rows = cJSON_CreateArray();
@@ -1254,7 +1255,7 @@ static int cmd_render(int argc, char **argv)
                  n, nshadow, (unsigned long long)(nrays - n - nshadow));
         js = lt_meter_report_json(title, nrays, extra);
         if (report != NULL) {
-            if (js == NULL || write_atomic(report, js, diag.msg, sizeof diag.msg) != 0) {
+            if (js == NULL || write_atomic(report, js, &diag) != 0) {
                 fprintf(stderr, "%s\n", js == NULL ? "render: out of memory for the report" : diag.msg);
                 free(js);
                 status = EXIT_INPUT;

@@ -973,7 +973,7 @@ int lt_rp_cli(int argc, char **argv, const char *prog, const lt_rp_cli_hooks_t *
                 lt_meter_report_text(stdout, title, st->pixels);
             if (report != NULL) {
                 js = lt_meter_report_json(title, st->pixels, extra);
-                if (js == NULL || hk->write_text(report, js, diag.msg, sizeof diag.msg) != 0) {
+                if (js == NULL || hk->write_text(report, js, &diag) != 0) {
                     fprintf(stderr, "%s\n", js == NULL ? "reproject: out of memory for the report"
                                                        : diag.msg);
                     free(js);
