@@ -4,7 +4,8 @@
 set -euo pipefail
 PKGS=(gcc make pkg-config gcc-arm-none-eabi libnewlib-arm-none-eabi gcc-riscv64-unknown-elf
       qemu-system-arm qemu-system-misc libcmocka-dev libcjson-dev libassimp-dev
-      libopenexr-dev libpng-dev zlib1g-dev libembree-dev libhidapi-dev gnuplot-nox clang)
+      libopenexr-dev libpng-dev zlib1g-dev libembree-dev libhidapi-dev gnuplot-nox clang
+      assimp-testmodels)
 missing=()
 for p in "${PKGS[@]}"; do
     if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then

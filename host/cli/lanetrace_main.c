@@ -6,11 +6,13 @@
  */
 #include "lt/lt.h"
 #include "cli/lt_cliutil.h"
+#include "cli/lt_opt.h"
 #include "io/lt_exr.h"
 #include "io/lt_heatmap.h"
 #include "io/lt_mesh.h"
 #include "lt_meter.h"
 #include "io/lt_png.h"
+#include "render/lt_paths.h"
 #include "render/lt_render.h"
 #include "cli/lt_reproject_cli.h"
 #include "cli/lt_shadows_cli.h"
@@ -91,8 +93,7 @@ static int write_atomic(const char *path, const char *text, lt_diag_t *diag)
     snprintf(pending_tmp, sizeof pending_tmp, "%s.tmp%ld", path, (long)getpid());
     f = fopen(pending_tmp, "w");
     if (f == NULL) {
-        lt_diag_fail(diag, "%s: cannot create the output (directory missing or not writable)",
-                     path);
+        lt_diag_fail(diag, "%s: cannot create the output (directory missing or not writable)", path);
         pending_tmp[0] = '\0';
         return -1;
     }
@@ -112,34 +113,7 @@ static int write_atomic(const char *path, const char *text, lt_diag_t *diag)
     return 0;
 }
 
-/* ---- run ------------------------------------------------------------------------------------ */
-
-static void run_usage(FILE *f)
-{
-    fprintf(f,
-            "usage: %s run [SCENE.json] [options]\n"
-            "Trace primary rays of a scene in s15.16 and/or float32, print accuracy against a\n"
-            "double-precision reference and (simulator build) the cycle report.\n"
-            "  --mesh PATH        mesh file (overrides the scene's \"mesh\"; default scenes/teapot.obj)\n"
-            "  --res WxH|N        image size (1..%d per side)\n"
-            "  --num q16|f32|both numeric path\n"
-            "  --structure NAME   acceleration structure (chunks)\n"
-            "  --machine NAME     machine model: %s (lanetrace machines)\n"
-            "  --l1 S:W:B --l2 S:W:B  cache geometry overrides (sets:ways:line)\n"
-            "  --report PATH      write the report JSON (PATH.q16 / PATH.f32 with both paths)\n"
-            "  --csv PATH         write one CSV row per path\n"
-            "  --depth PATH.exr   write distance and triangle id per pixel (EXR, FLOAT channels\n"
-            "                     <path>.Z and <path>.id)\n"
-            "  --heatmap PREFIX   (sim build) per-pixel simulated cycles: PREFIX.<path>.png with a\n"
-            "                     legend and PREFIX.<path>.exr with the values; traversal steps:\n"
-            "                     PREFIX.<path>.steps.png / .steps.exr\n"
-            "  --repeat N         trace the frame N times (timing)\n"
-            "  --no-ref           skip the reference and the accuracy figures\n"
-            "  --native           run the native build (no cycle model; wall-clock speed)\n"
-            "  --json             machine-readable JSON on stdout\n"
-            "  -q                 quiet: summary lines only\n",
-            prog, LT_SF_MAX_RES, lt_meter_machine_names());
-}
+/* ---- run --native ------------------------------------------------------------------------- */
 
 /* The simulator build's kernels charge every op (LT_COST_SIM is a compile-time mode): native
  * speed is the other binary, build/host/lanetrace-native, which this hands over to. */
@@ -166,452 +140,566 @@ static int exec_native(int argc, char **argv)
     return EXIT_INPUT;
 }
 
-static int cmd_run(int argc, char **argv)
+/* ---- --num: the names of the numeric-path registry (host/render/lt_paths.c) ------------------- */
+
+/* The --num choices for a family: the registry's names (and "both" for run, every path in turn),
+ * each with the scene file's lt_sf_num_t bits; the help line names each path's format. Returns
+ * the number of names (names[] ends with NULL). */
+static int num_choices(unsigned families, int with_both, const char **names, unsigned *sets,
+                       char *help, size_t helplen)
 {
+    const lt_path_info_t *p;
+    unsigned all = 0;
+    size_t len;
+    int n = 0;
+    len = (size_t)snprintf(help, helplen, "numeric path:");
+    for (p = lt_paths; p->name != NULL && n < 6; p++) {
+        if ((p->families & families) == 0)
+            continue;
+        names[n] = p->name;
+        sets[n++] = (unsigned)p->sf_num;
+        all |= (unsigned)p->sf_num;
+        if (len < helplen)
+            len += (size_t)snprintf(help + len, helplen - len, "%s %s (%s)", n > 1 ? "," : "",
+                                    p->name, p->format);
+    }
+    if (with_both) {
+        names[n] = "both";
+        sets[n++] = all;
+        if (len < helplen)
+            snprintf(help + len, helplen - len, ", both (each in turn)");
+    }
+    names[n] = NULL;
+    return n;
+}
+
+/* ---- run ------------------------------------------------------------------------------------ */
+
+/* lanetrace run: the options (the flags override the scene file), the inputs, then per numeric
+ * path a trace and its outputs. */
+typedef struct run {
+    /* options */
     lt_scenefile_t sf;
+    const char *scene_path;
+    int npos;
+    const char *mesh_over, *report, *csv, *depth_out, *heat_out, *machine, *l1, *l2;
+    uint32_t wh[2];
+    int num, structure, json, repeat, do_ref, native;
+    int seen_res, seen_num, seen_structure, seen_machine, seen_l1, seen_l2;
+    const char *num_names[8];
+    unsigned num_sets[8];
+    /* inputs */
     lt_mesh_t mesh;
     lt_scene_t sc;
     lt_camera_t cam;
     lt_frame_t ref, fr;
-    lt_diag_t diag;
-    int a, json = 0, repeat = 1, do_ref = 1, status = 0, path;
-    const char *scene_path = NULL, *mesh_over = NULL, *report = NULL, *csv = NULL;
-    const char *depth_out = NULL, *heat_out = NULL;
-    float *zbuf[2] = {NULL, NULL}, *idbuf[2] = {NULL, NULL};
-    cJSON *jout = cJSON_CreateArray();
-    FILE *csvf = NULL;
+    /* outputs */
+    float *zbuf[LT_PATHS_MAX], *idbuf[LT_PATHS_MAX]; /* per lt_path_t */
+    char zname[LT_PATHS_MAX][16], idname[LT_PATHS_MAX][16];
+    cJSON *jout;
+    FILE *csvf;
+    int status;
+} run_t;
 
-    lt_sf_defaults(&sf);
-    for (a = 2; a < argc; a++) {
-        const char *o = argv[a], *v = a + 1 < argc ? argv[a + 1] : NULL;
-        if (strcmp(o, "--help") == 0 || strcmp(o, "-h") == 0) {
-            run_usage(stdout);
-            return 0;
-        }
-        if (strcmp(o, "--native") == 0) {
-            if (lt_meter_available())
-                return exec_native(argc, argv);
-            continue;
-        }
-        if (strcmp(o, "-q") == 0) {
-            quiet = 1;
-            continue;
-        }
-        if (strcmp(o, "--json") == 0) {
-            json = 1;
-            quiet = 1;
-            continue;
-        }
-        if (strcmp(o, "--no-ref") == 0) {
-            do_ref = 0;
-            continue;
-        }
-        if (o[0] != '-') {
-            if (scene_path != NULL) {
-                fprintf(stderr, "%s run: more than one scene file ('%s', '%s')\n", prog,
-                        scene_path, o);
-                return EXIT_USAGE;
-            }
-            scene_path = o;
-            continue;
-        }
-        if (v == NULL) {
-            fprintf(stderr, "%s run: unknown option '%s' or missing value\n", prog, o);
-            run_usage(stderr);
-            return EXIT_USAGE;
-        }
-        a++;
-        if (strcmp(o, "--mesh") == 0) {
-            mesh_over = v;
-        } else if (strcmp(o, "--res") == 0) {
-            if (lt_parse_wh(v, LT_SF_MAX_RES, &sf.width, &sf.height) != 0) {
-                fprintf(stderr, "%s run: --res %s: expected WxH or N, 1..%d\n", prog, v,
-                        LT_SF_MAX_RES);
-                return EXIT_USAGE;
-            }
-        } else if (strcmp(o, "--num") == 0) {
-            if (strcmp(v, "q16") == 0)
-                sf.numeric = LT_SF_NUM_Q16;
-            else if (strcmp(v, "f32") == 0)
-                sf.numeric = LT_SF_NUM_F32;
-            else if (strcmp(v, "both") == 0)
-                sf.numeric = LT_SF_NUM_BOTH;
-            else {
-                fprintf(stderr, "%s run: --num %s: expected q16, f32 or both\n", prog, v);
-                return EXIT_USAGE;
-            }
-        } else if (strcmp(o, "--structure") == 0) {
-            snprintf(sf.structure, sizeof sf.structure, "%s", v);
-        } else if (strcmp(o, "--machine") == 0) {
-            snprintf(sf.machine, sizeof sf.machine, "%s", v);
-        } else if (strcmp(o, "--l1") == 0) {
-            snprintf(sf.l1, sizeof sf.l1, "%s", v);
-        } else if (strcmp(o, "--l2") == 0) {
-            snprintf(sf.l2, sizeof sf.l2, "%s", v);
-        } else if (strcmp(o, "--report") == 0) {
-            report = v;
-        } else if (strcmp(o, "--csv") == 0) {
-            csv = v;
-        } else if (strcmp(o, "--depth") == 0) {
-            depth_out = v;
-        } else if (strcmp(o, "--heatmap") == 0) {
-            heat_out = v;
-        } else if (strcmp(o, "--repeat") == 0) {
-            repeat = atoi(v);
-            if (repeat < 1 || repeat > 100000) {
-                fprintf(stderr, "%s run: --repeat %s: expected 1..100000\n", prog, v);
-                return EXIT_USAGE;
-            }
-        } else {
-            fprintf(stderr, "%s run: unknown option '%s'\n", prog, o);
-            run_usage(stderr);
-            return EXIT_USAGE;
-        }
-    }
-    /* the scene file first, then the flags given on the command line override it */
-    if (scene_path != NULL) {
-        lt_scenefile_t fl = sf;
-        if (lt_sf_load(scene_path, &sf, &diag) != 0) {
+/* The options into r; LT_OPT_OK, LT_OPT_HELP or LT_OPT_USAGE. */
+static int run_parse(run_t *r, int argc, char **argv)
+{
+    char who[64], num_help[256], machine_help[256];
+    const lt_opt_t opts[] = {
+        LT_OPT_STR("--mesh", "PATH", &r->mesh_over,
+                   "mesh file (overrides the scene's \"mesh\"; default scenes/teapot.obj)"),
+        {.name = "--res", .kind = LT_OPT_SIZE, .dest = r->wh, .seen = &r->seen_res,
+         .meta = "WxH|N", .help = "image size ({range} per side)", .lo = 1, .hi = LT_SF_MAX_RES},
+        {.name = "--num", .kind = LT_OPT_ENUM, .dest = &r->num, .seen = &r->seen_num,
+         .names = r->num_names, .help = num_help},
+        {.name = "--structure", .kind = LT_OPT_ENUM, .dest = &r->structure,
+         .seen = &r->seen_structure, .meta = "NAME", .names = lt_render_structures,
+         .help = "acceleration structure: {choices} (default chunks)"},
+        {.name = "--machine", .kind = LT_OPT_STRING, .dest = &r->machine,
+         .seen = &r->seen_machine, .meta = "NAME", .help = machine_help},
+        {.name = "--l1", .kind = LT_OPT_STRING, .dest = &r->l1, .seen = &r->seen_l1,
+         .meta = "S:W:B", .help = "L1 cache geometry override (sets:ways:line)"},
+        {.name = "--l2", .kind = LT_OPT_STRING, .dest = &r->l2, .seen = &r->seen_l2,
+         .meta = "S:W:B", .help = "L2 cache geometry override (sets:ways:line)"},
+        LT_OPT_STR("--report", "PATH", &r->report,
+                   "write the report JSON (PATH.q16 / PATH.f32 with both paths)"),
+        LT_OPT_STR("--csv", "PATH", &r->csv, "write one CSV row per path"),
+        LT_OPT_STR("--depth", "PATH.exr", &r->depth_out,
+                   "write distance and triangle id per pixel (EXR, FLOAT channels\n"
+                   "<path>.Z and <path>.id)"),
+        LT_OPT_STR("--heatmap", "PREFIX", &r->heat_out,
+                   "(sim build) per-pixel simulated cycles: PREFIX.<path>.png with a\n"
+                   "legend and PREFIX.<path>.exr with the values; traversal steps:\n"
+                   "PREFIX.<path>.steps.png / .steps.exr"),
+        LT_OPT_INT("--repeat", "N", &r->repeat, 1, 100000, "trace the frame N times (timing), {range}"),
+        LT_OPT_SET_("--no-ref", &r->do_ref, 0, "skip the reference and the accuracy figures"),
+        LT_OPT_FLAG_("--native", &r->native, "run the native build (no cycle model; wall-clock speed)"),
+        LT_OPT_FLAG_("--json", &r->json, "machine-readable JSON on stdout"),
+        LT_OPT_FLAG_("-q", &quiet, "quiet: summary lines only"),
+        LT_OPT_END_};
+    lt_opt_cmd_t cmd = {who, "[SCENE.json] [options]",
+                        "Trace primary rays of a scene in s15.16 and/or float32, print accuracy "
+                        "against a\ndouble-precision reference and (simulator build) the cycle "
+                        "report.\n",
+                        NULL, opts, &r->scene_path, 1, &r->npos};
+    int rc;
+    snprintf(who, sizeof who, "%s run", prog);
+    num_choices(LT_PATHS_OBJECT, 1, r->num_names, r->num_sets, num_help, sizeof num_help);
+    snprintf(machine_help, sizeof machine_help, "machine model: %s (lanetrace machines)",
+             lt_meter_machine_names());
+    rc = lt_opt_parse(&cmd, argc, argv, 2);
+    if (r->json)
+        quiet = 1;
+    return rc;
+}
+
+/* The scene file, then the flags given on the command line over it; the machine model.
+ * Returns 0 or an exit code. */
+static int run_settle(run_t *r)
+{
+    lt_scenefile_t *sf = &r->sf;
+    lt_diag_t diag;
+    if (r->scene_path != NULL) {
+        if (lt_sf_load(r->scene_path, sf, &diag) != 0) {
             fprintf(stderr, "%s\n", diag.msg);
             return EXIT_INPUT;
         }
-        for (a = 2; a < argc; a++) {
-            if (strcmp(argv[a], "--res") == 0) {
-                sf.width = fl.width;
-                sf.height = fl.height;
-            }
-            if (strcmp(argv[a], "--num") == 0)
-                sf.numeric = fl.numeric;
-            if (strcmp(argv[a], "--structure") == 0)
-                memcpy(sf.structure, fl.structure, sizeof sf.structure);
-            if (strcmp(argv[a], "--machine") == 0)
-                memcpy(sf.machine, fl.machine, sizeof sf.machine);
-            if (strcmp(argv[a], "--l1") == 0)
-                memcpy(sf.l1, fl.l1, sizeof sf.l1);
-            if (strcmp(argv[a], "--l2") == 0)
-                memcpy(sf.l2, fl.l2, sizeof sf.l2);
-        }
     }
-    if (mesh_over != NULL)
-        snprintf(sf.mesh, sizeof sf.mesh, "%s", mesh_over);
-    if (sf.mesh[0] == '\0')
-        snprintf(sf.mesh, sizeof sf.mesh, "scenes/teapot.obj");
-    if (report == NULL && sf.out_report[0] != '\0')
-        report = sf.out_report;
-    if (csv == NULL && sf.out_csv[0] != '\0')
-        csv = sf.out_csv;
-    if (!lt_meter_machine_known(sf.machine)) {
-        fprintf(stderr, "%s run: machine '%s' unknown (known: %s)\n", prog, sf.machine,
+    if (r->seen_res) {
+        sf->width = r->wh[0];
+        sf->height = r->wh[1];
+    }
+    if (r->seen_num)
+        sf->numeric = (lt_sf_num_t)r->num_sets[r->num];
+    if (r->seen_structure)
+        snprintf(sf->structure, sizeof sf->structure, "%s", lt_render_structures[r->structure]);
+    if (r->seen_machine)
+        snprintf(sf->machine, sizeof sf->machine, "%s", r->machine);
+    if (r->seen_l1)
+        snprintf(sf->l1, sizeof sf->l1, "%s", r->l1);
+    if (r->seen_l2)
+        snprintf(sf->l2, sizeof sf->l2, "%s", r->l2);
+    if (r->mesh_over != NULL)
+        snprintf(sf->mesh, sizeof sf->mesh, "%s", r->mesh_over);
+    if (sf->mesh[0] == '\0')
+        snprintf(sf->mesh, sizeof sf->mesh, "scenes/teapot.obj");
+    if (r->report == NULL && sf->out_report[0] != '\0')
+        r->report = sf->out_report;
+    if (r->csv == NULL && sf->out_csv[0] != '\0')
+        r->csv = sf->out_csv;
+    if (!lt_meter_machine_known(sf->machine)) {
+        fprintf(stderr, "%s run: machine '%s' unknown (known: %s)\n", prog, sf->machine,
                 lt_meter_machine_names());
         return EXIT_USAGE;
     }
-    if (lt_meter_init(sf.machine, sf.l1[0] ? sf.l1 : NULL, sf.l2[0] ? sf.l2 : NULL, &diag) != 0) {
+    if (lt_meter_init(sf->machine, sf->l1[0] ? sf->l1 : NULL, sf->l2[0] ? sf->l2 : NULL, &diag) != 0) {
         fprintf(stderr, "%s run: %s\n", prog, diag.msg);
         return EXIT_USAGE;
     }
-    if (lt_mesh_load(sf.mesh, &mesh, &diag) != 0) {
+    return 0;
+}
+
+/* The mesh, the prepared scene and the camera. Returns 0 or an exit code. */
+static int run_load(run_t *r)
+{
+    lt_scenefile_t *sf = &r->sf;
+    lt_diag_t diag;
+    if (lt_mesh_load(sf->mesh, &r->mesh, &diag) != 0) {
         fprintf(stderr, "%s\n", diag.msg);
         return EXIT_INPUT;
     }
-    if (lt_scene_prepare(&mesh, &sc, &diag) != 0) {
-        fprintf(stderr, "%s: %s\n", sf.mesh, diag.msg);
-        lt_mesh_free(&mesh);
+    if (lt_scene_prepare(&r->mesh, &r->sc, &diag) != 0) {
+        fprintf(stderr, "%s: %s\n", sf->mesh, diag.msg);
         return EXIT_INPUT;
     }
-    if (((unsigned)sf.numeric & (1u << LT_PATH_Q16)) && lt_scene_check_q16(&sc, sf.mesh, &diag) != 0) {
+    if (((unsigned)sf->numeric & (unsigned)lt_paths_of_path(LT_PATH_Q16)->sf_num) &&
+        lt_scene_check_q16(&r->sc, sf->mesh, &diag) != 0) {
         fprintf(stderr, "%s\n", diag.msg);
-        lt_scene_free(&sc);
-        lt_mesh_free(&mesh);
         return EXIT_INPUT;
     }
-    if (sf.has_camera) {
-        if (lt_camera_look(&sc, sf.eye, sf.target, sf.up, sf.fov_y_deg, sf.width, sf.height, &cam,
-                           &diag) != 0) {
-            fprintf(stderr, "%s: %s\n", sf.path[0] ? sf.path : sf.mesh, diag.msg);
-            lt_scene_free(&sc);
-            lt_mesh_free(&mesh);
+    if (sf->has_camera) {
+        if (lt_camera_look(&r->sc, sf->eye, sf->target, sf->up, sf->fov_y_deg, sf->width,
+                           sf->height, &r->cam, &diag) != 0) {
+            fprintf(stderr, "%s: %s\n", sf->path[0] ? sf->path : sf->mesh, diag.msg);
             return EXIT_INPUT;
         }
     } else {
-        lt_camera_default(&sc, sf.width, sf.height, &cam);
+        lt_camera_default(&r->sc, sf->width, sf->height, &r->cam);
     }
+    return 0;
+}
+
+/* The CSV output, written under a temporary name row by row. */
+static int run_csv_open(run_t *r)
+{
+    snprintf(csv_tmp, sizeof csv_tmp, "%s.tmp%ld", r->csv, (long)getpid());
+    r->csvf = fopen(csv_tmp, "w");
+    if (r->csvf == NULL) {
+        fprintf(stderr, "%s: cannot create the CSV output\n", r->csv);
+        csv_tmp[0] = '\0';
+        return -1;
+    }
+    fprintf(r->csvf, "scene,structure,path,machine,width,height,rays,total_cycles,cycles_per_ray,"
+                     "mrays_per_s_modelled,lane_utilisation,host_ms,same_triangle_pct,depth_rmse,"
+                     "depth_max_err,cycles_build,cycles_setup,cycles_traverse,cycles_intersect,"
+                     "cycles_shade,l1_hit_pct,nodes_per_ray,aabb_tests_per_ray,tri_tests_per_ray,"
+                     "structure_bytes\n");
+    return 0;
+}
+
+/* Keep one path's distances and ids for --depth; -1 when out of memory. */
+static int run_keep_depth(run_t *r, const lt_path_info_t *p)
+{
+    size_t i, np = (size_t)r->sf.width * r->sf.height;
+    int path = p->path;
+    r->zbuf[path] = malloc(np * sizeof(float));
+    r->idbuf[path] = malloc(np * sizeof(float));
+    if (r->zbuf[path] == NULL || r->idbuf[path] == NULL) {
+        fprintf(stderr, "%s: out of memory for the depth output\n", r->depth_out);
+        return -1;
+    }
+    /* misses: distance +inf, id -1 (ids up to 2^24 are exact in float) */
+    for (i = 0; i < np; i++) {
+        r->zbuf[path][i] = r->fr.id[i] >= 0 ? (float)r->fr.t[i] : (float)INFINITY;
+        r->idbuf[path][i] = (float)r->fr.id[i];
+    }
+    snprintf(r->zname[path], sizeof r->zname[path], "%s.Z", p->name);
+    snprintf(r->idname[path], sizeof r->idname[path], "%s.id", p->name);
+    return 0;
+}
+
+/* --heatmap: the simulated cycles and traversal steps per pixel of one path (PNG and EXR). */
+static void run_heatmaps(run_t *r, const lt_path_info_t *p)
+{
+    const lt_scenefile_t *sf = &r->sf;
+    const char *pname = p->name, *heat_out = r->heat_out;
+    lt_diag_t diag;
+    char hp[1100];
+    lt_heatmap_opts_t ho = LT_HEATMAP_OPTS_DEFAULT;
+    if (!lt_meter_available()) {
+        if (p->path == LT_PATH_Q16)
+            fprintf(stderr, "%s run: --heatmap needs the simulator build (build/sim/lanetrace); "
+                            "ignored\n", prog);
+        return;
+    }
+    snprintf(hp, sizeof hp, "%s.%s.png", heat_out, pname);
+    if (lt_heatmap_write_png(hp, r->fr.cost, (int32_t)sf->width, (int32_t)sf->height, &ho, &diag) != 0) {
+        fprintf(stderr, "%s\n", diag.msg);
+        r->status = EXIT_INPUT;
+        return;
+    }
+    if (!quiet)
+        printf("heatmap   %s (simulated cycles per pixel)\n", hp);
+    snprintf(hp, sizeof hp, "%s.%s.exr", heat_out, pname);
+    if (lt_heatmap_write_exr(hp, r->fr.cost, (int32_t)sf->width, (int32_t)sf->height,
+                             "cycles", &diag) != 0) {
+        fprintf(stderr, "%s\n", diag.msg);
+        r->status = EXIT_INPUT;
+    }
+    snprintf(hp, sizeof hp, "%s.%s.steps.png", heat_out, pname);
+    if (lt_heatmap_write_png(hp, r->fr.steps, (int32_t)sf->width, (int32_t)sf->height, &ho,
+                             &diag) != 0 ||
+        (snprintf(hp, sizeof hp, "%s.%s.steps.exr", heat_out, pname),
+         lt_heatmap_write_exr(hp, r->fr.steps, (int32_t)sf->width, (int32_t)sf->height,
+                              "steps", &diag)) != 0) {
+        fprintf(stderr, "%s\n", diag.msg);
+        r->status = EXIT_INPUT;
+    } else if (!quiet) {
+        printf("heatmap   %s.%s.steps.png (traversal steps per pixel's packet)\n", heat_out,
+               pname);
+    }
+}
+
+/* The run facts merged into the report (cJSON escapes the path) into extra. */
+static void run_facts(const run_t *r, const char *pname, double ms, size_t acc_bytes,
+                      const lt_accuracy_t *ac, char *extra, size_t extralen)
+{
+    const lt_scenefile_t *sf = &r->sf;
+    cJSON *x = cJSON_CreateObject();
+    char *xs;
+    cJSON_AddStringToObject(x, "path", pname);
+    cJSON_AddStringToObject(x, "structure", sf->structure);
+    cJSON_AddStringToObject(x, "scene", sf->mesh);
+    cJSON_AddNumberToObject(x, "width", sf->width);
+    cJSON_AddNumberToObject(x, "height", sf->height);
+    cJSON_AddNumberToObject(x, "host_ms", ms);
+    cJSON_AddNumberToObject(x, "frame_hash", lt_frame_hash(&r->fr));
+    cJSON_AddNumberToObject(x, "structure_bytes", (double)acc_bytes);
+    if (r->do_ref) {
+        cJSON *y = cJSON_AddObjectToObject(x, "accuracy");
+        cJSON_AddNumberToObject(y, "same_triangle_pct", 100.0 * ac->same_id / ac->pixels);
+        cJSON_AddNumberToObject(y, "depth_rmse", ac->rmse);
+        cJSON_AddNumberToObject(y, "depth_max_err", ac->max_err);
+        cJSON_AddNumberToObject(y, "scene_radius", r->sc.radius);
+    }
+    xs = cJSON_PrintUnformatted(x);
+    snprintf(extra, extralen, "%s", xs != NULL ? xs : "{}");
+    free(xs);
+    cJSON_Delete(x);
+}
+
+/* --report: PATH, or PATH.<path> when both paths run. */
+static void run_write_report(run_t *r, const char *pname, const char *text)
+{
+    lt_diag_t diag;
+    char p[1100];
+    int both = r->sf.numeric == LT_SF_NUM_BOTH;
+    snprintf(p, sizeof p, "%s%s%s", r->report, both ? "." : "", both ? pname : "");
+    if (write_atomic(p, text, &diag) != 0) {
+        fprintf(stderr, "%s\n", diag.msg);
+        r->status = EXIT_INPUT;
+    } else if (!quiet) {
+        printf("report    %s\n", p);
+    }
+}
+
+/* The report of one path: the cycle report (sim build: text, and JSON with the run facts) or the
+ * run facts alone (native build). Returns the JSON for --json, or NULL. */
+static cJSON *run_report(run_t *r, const char *pname, uint64_t rays, const char *extra)
+{
+    const lt_scenefile_t *sf = &r->sf;
+    cJSON *jr;
+    if (lt_meter_available()) {
+        char title[512], *js;
+        snprintf(title, sizeof title, "%s %ux%u %s, %s, %d frame(s)", sf->mesh, sf->width,
+                 sf->height, pname, sf->structure, r->repeat);
+        if (!quiet) {
+            lt_meter_report_text(stdout, title, rays);
+        } else if (!r->json) {
+            lt_meter_totals_t tt;
+            lt_meter_totals(&tt);
+            printf("cycles    %-4s %llu total, %.1f cycles/ray on %s\n", pname,
+                   (unsigned long long)tt.total_cycles, (double)tt.total_cycles / (double)rays,
+                   sf->machine);
+        }
+        js = lt_meter_report_json(title, rays, extra);
+        jr = js != NULL ? cJSON_Parse(js) : NULL;
+        if (r->report != NULL && js != NULL)
+            run_write_report(r, pname, js);
+        free(js);
+    } else {
+        /* native build: the report holds the run facts and accuracy, no cycle counts */
+        jr = cJSON_Parse(extra);
+        if (r->report != NULL)
+            run_write_report(r, pname, extra);
+    }
+    return jr;
+}
+
+/* One CSV row of a path. */
+static void run_csv_row(run_t *r, const char *pname, uint64_t rays, double ms,
+                        const lt_accuracy_t *ac, size_t acc_bytes, const cJSON *jr)
+{
+    const lt_scenefile_t *sf = &r->sf;
+    if (lt_meter_available()) {
+        lt_meter_machine_t mi;
+        lt_meter_totals_t tt;
+        double util = 0.0;
+        (void)lt_meter_machine_info(sf->machine, &mi);
+        lt_meter_totals(&tt);
+        if (jr != NULL && cJSON_GetObjectItem(jr, "lane_utilisation") != NULL)
+            util = cJSON_GetObjectItem(jr, "lane_utilisation")->valuedouble;
+        fprintf(r->csvf,
+                "%s,%s,%s,%s,%u,%u,%llu,%llu,%.3f,%.4f,%.4f,%.3f,%.4f,%.6g,%.6g,%llu,%llu,"
+                "%llu,%llu,%llu,%.3f,%.3f,%.3f,%.3f,%zu\n",
+                sf->mesh, sf->structure, pname, sf->machine, sf->width, sf->height,
+                (unsigned long long)rays, (unsigned long long)tt.total_cycles,
+                (double)tt.total_cycles / (double)rays,
+                (double)rays / ((double)tt.total_cycles / (mi.clock_mhz * 1e6)) / 1e6,
+                util, ms, r->do_ref ? 100.0 * ac->same_id / ac->pixels : 0.0, ac->rmse,
+                ac->max_err,
+                (unsigned long long)tt.cycles[LT_PH_BUILD],
+                (unsigned long long)tt.cycles[LT_PH_SETUP],
+                (unsigned long long)tt.cycles[LT_PH_TRAVERSE],
+                (unsigned long long)tt.cycles[LT_PH_INTERSECT],
+                (unsigned long long)tt.cycles[LT_PH_SHADE],
+                tt.l1_acc ? 100.0 * (double)tt.l1_hit / (double)tt.l1_acc : 0.0,
+                (double)tt.events[LT_EV_NODES] / (double)rays,
+                (double)tt.events[LT_EV_AABB_RAYS] / (double)rays,
+                (double)tt.events[LT_EV_TRI_RAYS] / (double)rays, acc_bytes);
+    } else {
+        fprintf(r->csvf, "%s,%s,%s,native,%u,%u,%llu,,,,,%.3f,%.4f,%.6g,%.6g,,,,,,,,,,%zu\n",
+                sf->mesh, sf->structure, pname, sf->width, sf->height, (unsigned long long)rays,
+                ms, r->do_ref ? 100.0 * ac->same_id / ac->pixels : 0.0, ac->rmse, ac->max_err,
+                acc_bytes);
+    }
+}
+
+/* One numeric path: build, trace (--repeat times), depth and heatmaps, accuracy, the report, the
+ * CSV row. Returns -1 when the other paths should not run (r->status says why). */
+static int run_path(run_t *r, const lt_path_info_t *p)
+{
+    const lt_scenefile_t *sf = &r->sf;
+    const char *pname = p->name;
+    lt_diag_t diag;
+    lt_accel_t *acc;
+    lt_accuracy_t ac;
+    double t0, ms;
+    int rep;
+    cJSON *jr;
+    char extra[2048];
+    size_t acc_bytes;
+    uint64_t rays = (uint64_t)sf->width * sf->height * (uint64_t)r->repeat;
+    lt_meter_reset();
+    acc = lt_accel_build(&r->sc, sf->structure, (lt_path_t)p->path, &diag);
+    if (acc == NULL) {
+        fprintf(stderr, "%s: %s\n", sf->path[0] ? sf->path : prog, diag.msg);
+        r->status = EXIT_INPUT;
+        return -1;
+    }
+    progress_begin(pname);
+    t0 = lt_now_s();
+    for (rep = 0; rep < r->repeat; rep++)
+        lt_render_primary(&r->sc, acc, &r->cam, &r->fr, progress);
+    ms = 1e3 * (lt_now_s() - t0);
+    progress_end();
+    acc_bytes = lt_accel_bytes(acc);
+    lt_accel_free(acc);
+    if (r->depth_out != NULL && run_keep_depth(r, p) != 0) {
+        r->status = EXIT_INPUT;
+        return -1;
+    }
+    if (r->heat_out != NULL)
+        run_heatmaps(r, p);
+    memset(&ac, 0, sizeof ac);
+    if (r->do_ref)
+        lt_frame_compare(&r->fr, &r->ref, 1e-4 * r->sc.radius, &ac);
+    if (!r->json) {
+        printf("time      %-4s %.3f ms for %d frame(s) of %u rays (%s, %.2f Mrays/s host)\n",
+               pname, ms, r->repeat, sf->width * sf->height,
+               lt_meter_available() ? "counted" : "native", (double)rays / (ms * 1e-3) / 1e6);
+        printf("result    %-4s hash 0x%08x\n", pname, lt_frame_hash(&r->fr));
+        if (r->do_ref)
+            printf("accuracy  %-4s vs double: same triangle %.3f%% of %u pixels, depth RMSE "
+                   "%.3g, max %.3g (scene radius %.1f), %.2f%% of common hits within 1e-4 "
+                   "radius\n",
+                   pname, 100.0 * ac.same_id / ac.pixels, ac.pixels, ac.rmse, ac.max_err,
+                   r->sc.radius, ac.both_hit ? 100.0 * ac.within_tol / ac.both_hit : 100.0);
+    }
+    run_facts(r, pname, ms, acc_bytes, &ac, extra, sizeof extra);
+    jr = run_report(r, pname, rays, extra);
+    if (r->csvf != NULL)
+        run_csv_row(r, pname, rays, ms, &ac, acc_bytes, jr);
+    if (jr != NULL)
+        cJSON_AddItemToArray(r->jout, jr);
+    return 0;
+}
+
+/* --depth: every traced path's distance and id channels in one EXR. */
+static void run_write_depth(run_t *r)
+{
+    lt_diag_t diag;
+    lt_exr_channel_t ch[2 * LT_PATHS_MAX];
+    lt_exr_image_t im;
+    int nch = 0, path;
+    for (path = 0; path < LT_PATHS_MAX; path++) {
+        if (r->zbuf[path] == NULL)
+            continue;
+        ch[nch].name = r->zname[path];
+        ch[nch].type = LT_EXR_FLOAT;
+        ch[nch++].data = r->zbuf[path];
+        ch[nch].name = r->idname[path];
+        ch[nch].type = LT_EXR_FLOAT;
+        ch[nch++].data = r->idbuf[path];
+    }
+    memset(&im, 0, sizeof im);
+    im.width = (int32_t)r->sf.width;
+    im.height = (int32_t)r->sf.height;
+    im.nchannels = nch;
+    im.channels = ch;
+    im.compression = LT_EXR_COMP_ZIP;
+    if (lt_exr_write(r->depth_out, &im, &diag) != 0) {
+        fprintf(stderr, "%s\n", diag.msg);
+        r->status = EXIT_INPUT;
+    } else if (!quiet) {
+        printf("depth     %s (%d channels)\n", r->depth_out, nch);
+    }
+}
+
+/* The CSV renamed into place. */
+static void run_csv_close(run_t *r)
+{
+    if (fclose(r->csvf) != 0 || rename(csv_tmp, r->csv) != 0) {
+        fprintf(stderr, "%s: cannot write the CSV output\n", r->csv);
+        unlink(csv_tmp);
+        r->status = EXIT_INPUT;
+    } else if (!quiet) {
+        printf("csv       %s\n", r->csv);
+    }
+    csv_tmp[0] = '\0';
+    r->csvf = NULL;
+}
+
+/* The traces: the scene line, the reference, each selected path, then the outputs of all. */
+static int run_trace(run_t *r)
+{
+    const lt_scenefile_t *sf = &r->sf;
+    const lt_path_info_t *p;
+    lt_diag_t diag;
     if (!quiet)
         printf("scene     %s: %u triangles, scale %g (file units -> s15.16 units), radius %.1f, "
                "%ux%u pixels, %u packets, structure %s\n",
-               sf.mesh, sc.ntris, sc.scale, sc.radius, sf.width, sf.height,
-               ((sf.width + 3) / 4) * ((sf.height + 3) / 4), sf.structure);
-    if (lt_frame_alloc(&ref, sf.width, sf.height, &diag) != 0 ||
-        lt_frame_alloc(&fr, sf.width, sf.height, &diag) != 0) {
+               sf->mesh, r->sc.ntris, r->sc.scale, r->sc.radius, sf->width, sf->height,
+               ((sf->width + 3) / 4) * ((sf->height + 3) / 4), sf->structure);
+    if (lt_frame_alloc(&r->ref, sf->width, sf->height, &diag) != 0 ||
+        lt_frame_alloc(&r->fr, sf->width, sf->height, &diag) != 0) {
         fprintf(stderr, "%s\n", diag.msg);
         return EXIT_INPUT;
     }
-    if (do_ref) {
+    if (r->do_ref) {
         progress_begin("reference");
-        lt_render_reference(&sc, &cam, &ref, progress);
+        lt_render_reference(&r->sc, &r->cam, &r->ref, progress);
         progress_end();
     }
-    if (csv != NULL) {
-        snprintf(csv_tmp, sizeof csv_tmp, "%s.tmp%ld", csv, (long)getpid());
-        csvf = fopen(csv_tmp, "w");
-        if (csvf == NULL) {
-            fprintf(stderr, "%s: cannot create the CSV output\n", csv);
-            csv_tmp[0] = '\0';
-            status = EXIT_INPUT;
-            goto done;
-        }
-        fprintf(csvf, "scene,structure,path,machine,width,height,rays,total_cycles,cycles_per_ray,"
-                      "mrays_per_s_modelled,lane_utilisation,host_ms,same_triangle_pct,depth_rmse,"
-                      "depth_max_err,cycles_build,cycles_setup,cycles_traverse,cycles_intersect,"
-                      "cycles_shade,l1_hit_pct,nodes_per_ray,aabb_tests_per_ray,tri_tests_per_ray,"
-                      "structure_bytes\n");
-    }
-    for (path = 0; path < 2; path++) {
-        lt_accel_t *acc;
-        lt_accuracy_t ac;
-        const char *pname = path == 0 ? "q16" : "f32";
-        double t0, ms;
-        int rep;
-        cJSON *jr = NULL;
-        char extra[2048];
-        size_t acc_bytes;
-        uint64_t rays = (uint64_t)sf.width * sf.height * (uint64_t)repeat;
-        if (!((unsigned)sf.numeric & (1u << path)))
-            continue;
-        lt_meter_reset();
-        acc = lt_accel_build(&sc, sf.structure, (lt_path_t)path, &diag);
-        if (acc == NULL) {
-            fprintf(stderr, "%s: %s\n", sf.path[0] ? sf.path : prog, diag.msg);
-            status = EXIT_INPUT;
+    if (r->csv != NULL && run_csv_open(r) != 0)
+        return EXIT_INPUT;
+    for (p = lt_paths; p->name != NULL; p++)
+        if ((p->families & LT_PATHS_OBJECT) && ((unsigned)sf->numeric & (unsigned)p->sf_num) &&
+            run_path(r, p) != 0)
             break;
-        }
-        progress_begin(pname);
-        t0 = lt_now_s();
-        for (rep = 0; rep < repeat; rep++)
-            lt_render_primary(&sc, acc, &cam, &fr, progress);
-        ms = 1e3 * (lt_now_s() - t0);
-        progress_end();
-        acc_bytes = lt_accel_bytes(acc);
-        lt_accel_free(acc);
-        if (depth_out != NULL) {
-            size_t i, np = (size_t)sf.width * sf.height;
-            zbuf[path] = malloc(np * sizeof(float));
-            idbuf[path] = malloc(np * sizeof(float));
-            if (zbuf[path] == NULL || idbuf[path] == NULL) {
-                fprintf(stderr, "%s: out of memory for the depth output\n", depth_out);
-                status = EXIT_INPUT;
-                break;
-            }
-            /* misses: distance +inf, id -1 (ids up to 2^24 are exact in float) */
-            for (i = 0; i < np; i++) {
-                zbuf[path][i] = fr.id[i] >= 0 ? (float)fr.t[i] : (float)INFINITY;
-                idbuf[path][i] = (float)fr.id[i];
-            }
-        }
-        if (!lt_meter_available() && heat_out != NULL && path == 0)
-            fprintf(stderr, "%s run: --heatmap needs the simulator build (build/sim/lanetrace); "
-                            "ignored\n", prog);
-        if (lt_meter_available() && heat_out != NULL) {
-            char hp[1100];
-            lt_heatmap_opts_t ho = LT_HEATMAP_OPTS_DEFAULT;
-            snprintf(hp, sizeof hp, "%s.%s.png", heat_out, pname);
-            if (lt_heatmap_write_png(hp, fr.cost, (int32_t)sf.width, (int32_t)sf.height, &ho,
-                                     &diag) != 0) {
-                fprintf(stderr, "%s\n", diag.msg);
-                status = EXIT_INPUT;
-            } else {
-                if (!quiet)
-                    printf("heatmap   %s (simulated cycles per pixel)\n", hp);
-                snprintf(hp, sizeof hp, "%s.%s.exr", heat_out, pname);
-                if (lt_heatmap_write_exr(hp, fr.cost, (int32_t)sf.width, (int32_t)sf.height,
-                                         "cycles", &diag) != 0) {
-                    fprintf(stderr, "%s\n", diag.msg);
-                    status = EXIT_INPUT;
-                }
-                snprintf(hp, sizeof hp, "%s.%s.steps.png", heat_out, pname);
-                if (lt_heatmap_write_png(hp, fr.steps, (int32_t)sf.width, (int32_t)sf.height, &ho,
-                                         &diag) != 0 ||
-                    (snprintf(hp, sizeof hp, "%s.%s.steps.exr", heat_out, pname),
-                     lt_heatmap_write_exr(hp, fr.steps, (int32_t)sf.width, (int32_t)sf.height,
-                                          "steps", &diag)) != 0) {
-                    fprintf(stderr, "%s\n", diag.msg);
-                    status = EXIT_INPUT;
-                } else if (!quiet) {
-                    printf("heatmap   %s.%s.steps.png (traversal steps per pixel's packet)\n",
-                           heat_out, pname);
-                }
-            }
-        }
-        memset(&ac, 0, sizeof ac);
-        if (do_ref)
-            lt_frame_compare(&fr, &ref, 1e-4 * sc.radius, &ac);
-        if (!json) {
-            printf("time      %-4s %.3f ms for %d frame(s) of %u rays (%s, %.2f Mrays/s host)\n",
-                   pname, ms, repeat, sf.width * sf.height,
-                   lt_meter_available() ? "counted" : "native",
-                   (double)rays / (ms * 1e-3) / 1e6);
-            printf("result    %-4s hash 0x%08x\n", pname, lt_frame_hash(&fr));
-            if (do_ref)
-                printf("accuracy  %-4s vs double: same triangle %.3f%% of %u pixels, depth RMSE "
-                       "%.3g, max %.3g (scene radius %.1f), %.2f%% of common hits within 1e-4 "
-                       "radius\n",
-                       pname, 100.0 * ac.same_id / ac.pixels, ac.pixels, ac.rmse, ac.max_err,
-                       sc.radius, ac.both_hit ? 100.0 * ac.within_tol / ac.both_hit : 100.0);
-        }
-        {
-            /* run facts merged into the report; cJSON escapes the path */
-            cJSON *x = cJSON_CreateObject();
-            char *xs;
-            cJSON_AddStringToObject(x, "path", pname);
-            cJSON_AddStringToObject(x, "structure", sf.structure);
-            cJSON_AddStringToObject(x, "scene", sf.mesh);
-            cJSON_AddNumberToObject(x, "width", sf.width);
-            cJSON_AddNumberToObject(x, "height", sf.height);
-            cJSON_AddNumberToObject(x, "host_ms", ms);
-            cJSON_AddNumberToObject(x, "frame_hash", lt_frame_hash(&fr));
-            cJSON_AddNumberToObject(x, "structure_bytes", (double)acc_bytes);
-            if (do_ref) {
-                cJSON *y = cJSON_AddObjectToObject(x, "accuracy");
-                cJSON_AddNumberToObject(y, "same_triangle_pct", 100.0 * ac.same_id / ac.pixels);
-                cJSON_AddNumberToObject(y, "depth_rmse", ac.rmse);
-                cJSON_AddNumberToObject(y, "depth_max_err", ac.max_err);
-                cJSON_AddNumberToObject(y, "scene_radius", sc.radius);
-            }
-            xs = cJSON_PrintUnformatted(x);
-            snprintf(extra, sizeof extra, "%s", xs != NULL ? xs : "{}");
-            free(xs);
-            cJSON_Delete(x);
-        }
-        if (lt_meter_available()) {
-            char title[512], *js;
-            snprintf(title, sizeof title, "%s %ux%u %s, %s, %d frame(s)", sf.mesh, sf.width,
-                     sf.height, pname, sf.structure, repeat);
-            if (!quiet) {
-                lt_meter_report_text(stdout, title, rays);
-            } else if (!json) {
-                lt_meter_totals_t tt;
-                lt_meter_totals(&tt);
-                printf("cycles    %-4s %llu total, %.1f cycles/ray on %s\n", pname,
-                       (unsigned long long)tt.total_cycles, (double)tt.total_cycles / (double)rays,
-                       sf.machine);
-            }
-            js = lt_meter_report_json(title, rays, extra);
-            jr = js != NULL ? cJSON_Parse(js) : NULL;
-            if (report != NULL && js != NULL) {
-                char p[1100];
-                snprintf(p, sizeof p, "%s%s%s", report, sf.numeric == LT_SF_NUM_BOTH ? "." : "",
-                         sf.numeric == LT_SF_NUM_BOTH ? pname : "");
-                if (write_atomic(p, js, &diag) != 0) {
-                    fprintf(stderr, "%s\n", diag.msg);
-                    status = EXIT_INPUT;
-                } else if (!quiet) {
-                    printf("report    %s\n", p);
-                }
-            }
-            free(js);
-        } else {
-            /* native build: the report holds the run facts and accuracy, no cycle counts */
-            jr = cJSON_Parse(extra);
-            if (report != NULL) {
-                char p[1100];
-                snprintf(p, sizeof p, "%s%s%s", report, sf.numeric == LT_SF_NUM_BOTH ? "." : "",
-                         sf.numeric == LT_SF_NUM_BOTH ? pname : "");
-                if (write_atomic(p, extra, &diag) != 0) {
-                    fprintf(stderr, "%s\n", diag.msg);
-                    status = EXIT_INPUT;
-                } else if (!quiet) {
-                    printf("report    %s\n", p);
-                }
-            }
-        }
-        if (csvf != NULL && lt_meter_available()) {
-            lt_meter_machine_t mi;
-            lt_meter_totals_t tt;
-            double util = 0.0;
-            (void)lt_meter_machine_info(sf.machine, &mi);
-            lt_meter_totals(&tt);
-            if (jr != NULL && cJSON_GetObjectItem(jr, "lane_utilisation") != NULL)
-                util = cJSON_GetObjectItem(jr, "lane_utilisation")->valuedouble;
-            fprintf(csvf,
-                    "%s,%s,%s,%s,%u,%u,%llu,%llu,%.3f,%.4f,%.4f,%.3f,%.4f,%.6g,%.6g,%llu,%llu,"
-                    "%llu,%llu,%llu,%.3f,%.3f,%.3f,%.3f,%zu\n",
-                    sf.mesh, sf.structure, pname, sf.machine, sf.width, sf.height,
-                    (unsigned long long)rays, (unsigned long long)tt.total_cycles,
-                    (double)tt.total_cycles / (double)rays,
-                    (double)rays / ((double)tt.total_cycles / (mi.clock_mhz * 1e6)) / 1e6,
-                    util, ms, do_ref ? 100.0 * ac.same_id / ac.pixels : 0.0, ac.rmse, ac.max_err,
-                    (unsigned long long)tt.cycles[LT_PH_BUILD],
-                    (unsigned long long)tt.cycles[LT_PH_SETUP],
-                    (unsigned long long)tt.cycles[LT_PH_TRAVERSE],
-                    (unsigned long long)tt.cycles[LT_PH_INTERSECT],
-                    (unsigned long long)tt.cycles[LT_PH_SHADE],
-                    tt.l1_acc ? 100.0 * (double)tt.l1_hit / (double)tt.l1_acc : 0.0,
-                    (double)tt.events[LT_EV_NODES] / (double)rays,
-                    (double)tt.events[LT_EV_AABB_RAYS] / (double)rays,
-                    (double)tt.events[LT_EV_TRI_RAYS] / (double)rays, acc_bytes);
-        } else if (csvf != NULL) {
-            fprintf(csvf, "%s,%s,%s,native,%u,%u,%llu,,,,,%.3f,%.4f,%.6g,%.6g,,,,,,,,,,%zu\n", sf.mesh,
-                    sf.structure, pname, sf.width, sf.height, (unsigned long long)rays, ms,
-                    do_ref ? 100.0 * ac.same_id / ac.pixels : 0.0, ac.rmse, ac.max_err, acc_bytes);
-        }
-        if (jr != NULL)
-            cJSON_AddItemToArray(jout, jr);
-    }
-    if (depth_out != NULL && status == 0) {
-        lt_exr_channel_t ch[4];
-        lt_exr_image_t im;
-        int nch = 0;
-        static const char *const zn[2] = {"q16.Z", "f32.Z"}, *const idn[2] = {"q16.id", "f32.id"};
-        for (path = 0; path < 2; path++) {
-            if (zbuf[path] == NULL)
-                continue;
-            ch[nch].name = zn[path];
-            ch[nch].type = LT_EXR_FLOAT;
-            ch[nch++].data = zbuf[path];
-            ch[nch].name = idn[path];
-            ch[nch].type = LT_EXR_FLOAT;
-            ch[nch++].data = idbuf[path];
-        }
-        memset(&im, 0, sizeof im);
-        im.width = (int32_t)sf.width;
-        im.height = (int32_t)sf.height;
-        im.nchannels = nch;
-        im.channels = ch;
-        im.compression = LT_EXR_COMP_ZIP;
-        if (lt_exr_write(depth_out, &im, &diag) != 0) {
-            fprintf(stderr, "%s\n", diag.msg);
-            status = EXIT_INPUT;
-        } else if (!quiet) {
-            printf("depth     %s (%d channels)\n", depth_out, nch);
-        }
-    }
-    for (path = 0; path < 2; path++) {
-        free(zbuf[path]);
-        free(idbuf[path]);
-    }
-    if (csvf != NULL) {
-        if (fclose(csvf) != 0 || rename(csv_tmp, csv) != 0) {
-            fprintf(stderr, "%s: cannot write the CSV output\n", csv);
-            unlink(csv_tmp);
-            status = EXIT_INPUT;
-        } else if (!quiet) {
-            printf("csv       %s\n", csv);
-        }
-        csv_tmp[0] = '\0';
-    }
-    if (json) {
-        char *s = cJSON_Print(jout);
+    if (r->depth_out != NULL && r->status == 0)
+        run_write_depth(r);
+    if (r->csvf != NULL)
+        run_csv_close(r);
+    if (r->json) {
+        char *s = cJSON_Print(r->jout);
         if (s != NULL)
             puts(s);
         free(s);
     }
-done:
-    cJSON_Delete(jout);
-    lt_frame_free(&fr);
-    lt_frame_free(&ref);
-    lt_scene_free(&sc);
-    lt_mesh_free(&mesh);
+    return r->status;
+}
+
+static int cmd_run(int argc, char **argv)
+{
+    run_t r;
+    int rc, path;
+    memset(&r, 0, sizeof r);
+    lt_sf_defaults(&r.sf);
+    r.repeat = 1;
+    r.do_ref = 1;
+    rc = run_parse(&r, argc, argv);
+    if (rc != LT_OPT_OK)
+        return rc == LT_OPT_HELP ? 0 : EXIT_USAGE;
+    if (r.native && lt_meter_available())
+        return exec_native(argc, argv);
+    r.jout = cJSON_CreateArray();
+    rc = run_settle(&r);
+    if (rc == 0)
+        rc = run_load(&r);
+    if (rc == 0)
+        rc = run_trace(&r);
+    for (path = 0; path < LT_PATHS_MAX; path++) {
+        free(r.zbuf[path]);
+        free(r.idbuf[path]);
+    }
+    cJSON_Delete(r.jout);
+    lt_frame_free(&r.fr);
+    lt_frame_free(&r.ref);
+    lt_scene_free(&r.sc);
+    lt_mesh_free(&r.mesh);
     lt_meter_shutdown();
-    return status;
+    return rc;
 }
 
 /* ---- info ----------------------------------------------------------------------------------- */
@@ -685,26 +773,22 @@ static int cmd_info(int argc, char **argv)
 {
     lt_mesh_t m;
     lt_scene_t sc;
+    char who[64];
     lt_diag_t diag;
     uint32_t i, zero = 0;
-    int json = 0, a;
+    int json = 0, rc;
     const char *path = NULL;
-    for (a = 2; a < argc; a++) {
-        if (strcmp(argv[a], "--help") == 0 || strcmp(argv[a], "-h") == 0) {
-            printf("usage: %s info FILE [--json]\nDescribe a mesh (triangles, zero-area "
-                   "triangles, bounds, the fixed-point scale lanetrace picks) or an EXR file\n"
-                   "(parts, windows, channels, depth statistics).\n",
-                   prog);
-            return 0;
-        } else if (strcmp(argv[a], "--json") == 0) {
-            json = 1;
-        } else if (argv[a][0] == '-' || path != NULL) {
-            fprintf(stderr, "%s info: unexpected argument '%s'\n", prog, argv[a]);
-            return EXIT_USAGE;
-        } else {
-            path = argv[a];
-        }
-    }
+    const lt_opt_t opts[] = {LT_OPT_FLAG_("--json", &json, "one JSON object on stdout"),
+                             LT_OPT_END_};
+    lt_opt_cmd_t cmd = {who, "FILE [--json]",
+                        "Describe a mesh (triangles, zero-area triangles, bounds, the fixed-point "
+                        "scale lanetrace\npicks) or an EXR file (parts, windows, channels, depth "
+                        "statistics).\n",
+                        NULL, opts, &path, 1, NULL};
+    snprintf(who, sizeof who, "%s info", prog);
+    rc = lt_opt_parse(&cmd, argc, argv, 2);
+    if (rc != LT_OPT_OK)
+        return rc == LT_OPT_HELP ? 0 : EXIT_USAGE;
     if (path == NULL) {
         fprintf(stderr, "%s info: a FILE is required\n", prog);
         return EXIT_USAGE;
@@ -750,7 +834,8 @@ static int cmd_info(int argc, char **argv)
                "s15.16: %u of %u non-degenerate triangles collapse to zero area (limit %.1f%%: %s), "
                "shortest edge %.3g units\n",
                path, m.ntris, zero, m.lo[0], m.lo[1], m.lo[2], m.hi[0], m.hi[1], m.hi[2], sc.scale,
-               sc.radius, 1.0 / 65536.0 / sc.scale, sc.collapsed_q16, sc.nonzero,
+               sc.radius, lt_path_to_double(lt_paths_of_path(LT_PATH_Q16), 1) / sc.scale,
+               sc.collapsed_q16, sc.nonzero,
                LT_SCENE_MAX_COLLAPSED_PPM / 1e4,
                lt_scene_check_q16(&sc, path, &diag) == 0 ? "representable"
                                                                  : "NOT representable, float32 only",
@@ -845,44 +930,32 @@ static void diff_walk(const cJSON *a, const cJSON *b, const char *prefix, double
 
 static int cmd_diff(int argc, char **argv)
 {
-    const char *pa = NULL, *pb = NULL;
+    const char *pos[2] = {NULL, NULL}, *pa, *pb;
     double threshold = 0.0;
-    int json = 0, a, changed = 0, total = 0;
+    int json = 0, changed = 0, total = 0, npos = 0, rc;
+    char who[64];
     lt_diag_t diag;
     cJSON *ja, *jb, *rows;
     const cJSON *r;
-    for (a = 2; a < argc; a++) {
-        if (strcmp(argv[a], "--help") == 0 || strcmp(argv[a], "-h") == 0) {
-            printf("usage: %s diff A.json B.json [--threshold PCT] [--json]\nCompare two JSON "
-                   "reports: every numeric counter that moved by more than PCT%% (default 0).\n",
-                   prog);
-            return 0;
-        } else if (strcmp(argv[a], "--json") == 0) {
-            json = 1;
-        } else if (strcmp(argv[a], "--threshold") == 0 && a + 1 < argc) {
-            char *end;
-            threshold = strtod(argv[++a], &end);
-            if (*end != '\0' || !(threshold >= 0.0)) {
-                fprintf(stderr, "%s diff: --threshold %s: expected a percentage >= 0\n", prog,
-                        argv[a]);
-                return EXIT_USAGE;
-            }
-        } else if (argv[a][0] == '-') {
-            fprintf(stderr, "%s diff: unknown option '%s'\n", prog, argv[a]);
-            return EXIT_USAGE;
-        } else if (pa == NULL) {
-            pa = argv[a];
-        } else if (pb == NULL) {
-            pb = argv[a];
-        } else {
-            fprintf(stderr, "%s diff: more than two reports\n", prog);
-            return EXIT_USAGE;
-        }
-    }
-    if (pb == NULL) {
+    const lt_opt_t opts[] = {
+        LT_OPT_DBL("--threshold", "PCT", &threshold, 0.0, HUGE_VAL,
+                   "only counters that moved by more than PCT% ({range}, default 0)"),
+        LT_OPT_FLAG_("--json", &json, "the counters and rows as JSON"),
+        LT_OPT_END_};
+    lt_opt_cmd_t cmd = {who, "A.json B.json [--threshold PCT] [--json]",
+                        "Compare two JSON reports: every numeric counter that moved by more than "
+                        "PCT% (default 0).\n",
+                        NULL, opts, pos, 2, &npos};
+    snprintf(who, sizeof who, "%s diff", prog);
+    rc = lt_opt_parse(&cmd, argc, argv, 2);
+    if (rc != LT_OPT_OK)
+        return rc == LT_OPT_HELP ? 0 : EXIT_USAGE;
+    if (npos < 2) {
         fprintf(stderr, "%s diff: two reports are required\n", prog);
         return EXIT_USAGE;
     }
+    pa = pos[0];
+    pb = pos[1];
     if ((ja = load_json(pa, &diag)) == NULL ||
         (jb = load_json(pb, &diag)) == NULL) {
         fprintf(stderr, "%s\n", diag.msg);
@@ -928,27 +1001,6 @@ static int cmd_diff(int argc, char **argv)
 
 /* ---- render --------------------------------------------------------------------------------- */
 
-static void render_usage(FILE *f)
-{
-    fprintf(f,
-            "usage: %s render [SCENE.json] --out PREFIX [options]\n"
-            "Render a mesh through a structure in one numeric path and write images:\n"
-            "  PREFIX.exr  FLOAT channels Z (distance), id, N.x N.y N.z (normal), R G B (shaded:\n"
-            "              one point light, hard shadows) and, with --layers K, layer0.Z ..\n"
-            "              layer<K-1>.Z (the first K surfaces along each primary ray)\n"
-            "  PREFIX.png  the shaded image; PREFIX.depth.png, PREFIX.normals.png, PREFIX.ids.png\n"
-            "  --mesh PATH  --res WxH|N  --num q16|f32 (default q16)\n"
-            "  --structure bvh|bvhq|kd|grid|chunks (default bvh; chunks: no shadows, no peels)\n"
-            "  --layers K   depth peels, 1..16 (default 1)\n"
-            "  --report PATH  (simulator build) write the cycle report of the whole render as JSON;\n"
-            "               the text report is printed unless -q or --json\n"
-            "  --light X,Y,Z  point light in mesh file units (default: the scene's first light,\n"
-            "               else centre + 2 radius normalize(-0.5, 1.5, 0.8))\n"
-            "  --json       print what was written as JSON on stdout\n"
-            "  -q           quiet\n",
-            prog);
-}
-
 static uint64_t count_hits(const lt_frame_t *f)
 {
     size_t i, n = (size_t)f->width * f->height;
@@ -958,204 +1010,206 @@ static uint64_t count_hits(const lt_frame_t *f)
     return c;
 }
 
-static int cmd_render(int argc, char **argv)
-{
+/* lanetrace render: options, inputs, the trace (primary, shadow and peel rays), the images. */
+typedef struct render {
+    /* options */
     lt_scenefile_t sf;
+    const char *scene_path;
+    int npos;
+    const char *mesh_over, *out, *report;
+    uint32_t wh[2];
+    double lf[3];
+    int seen_res, seen_light, num, structure, layers, json;
+    const char *num_names[8];
+    unsigned num_sets[8];
+    const lt_path_info_t *path;
+    /* inputs */
     lt_mesh_t mesh;
     lt_scene_t sc;
     lt_camera_t cam;
+    double light[3]; /* scaled units */
+    /* the trace and the images */
+    lt_accel_t *acc;
     lt_frame_t fr, lay[16];
-    lt_accel_t *acc = NULL;
-    char path[1200];
-    lt_diag_t diag;
-    const char *scene_path = NULL, *mesh_over = NULL, *out = NULL, *structure = "bvh";
-    const char *report = NULL;
-    uint64_t nrays = 0;
-    int a, layers = 1, l, status = 0, have_light = 0, json = 0;
-    double light[3], lf[3];
-    lt_path_t np = LT_PATH_Q16;
-    uint32_t w = 0, h = 0, nshadow = 0, nocc = 0;
-    size_t i, n;
+    size_t n;
     float *ch[10];
-    uint8_t *occ = NULL, *rgb = NULL;
+    uint8_t *occ, *rgb;
+    uint64_t nrays;
+    uint32_t nshadow, nocc;
+} render_t;
 
-    memset(&fr, 0, sizeof fr);
-    memset(lay, 0, sizeof lay);
-    memset(ch, 0, sizeof ch);
-    lt_sf_defaults(&sf);
-    for (a = 2; a < argc; a++) {
-        const char *o = argv[a], *v = a + 1 < argc ? argv[a + 1] : NULL;
-        if (strcmp(o, "--help") == 0 || strcmp(o, "-h") == 0) {
-            render_usage(stdout);
-            return 0;
-        }
-        if (strcmp(o, "-q") == 0) {
-            quiet = 1;
-            continue;
-        }
-        if (strcmp(o, "--json") == 0) {
-            json = quiet = 1;
-            continue;
-        }
-        if (o[0] != '-') {
-            scene_path = o;
-            continue;
-        }
-        if (v == NULL) {
-            fprintf(stderr, "%s render: unknown option '%s' or missing value\n", prog, o);
-            return EXIT_USAGE;
-        }
-        a++;
-        if (strcmp(o, "--mesh") == 0) {
-            mesh_over = v;
-        } else if (strcmp(o, "--out") == 0) {
-            out = v;
-        } else if (strcmp(o, "--report") == 0) {
-            report = v;
-        } else if (strcmp(o, "--res") == 0) {
-            if (lt_parse_wh(v, LT_SF_MAX_RES, &w, &h) != 0) {
-                fprintf(stderr, "%s render: --res %s: expected WxH or N, 1..%d\n", prog, v,
-                        LT_SF_MAX_RES);
-                return EXIT_USAGE;
-            }
-        } else if (strcmp(o, "--num") == 0) {
-            if (strcmp(v, "q16") != 0 && strcmp(v, "f32") != 0) {
-                fprintf(stderr, "%s render: --num %s: expected q16 or f32\n", prog, v);
-                return EXIT_USAGE;
-            }
-            np = strcmp(v, "q16") == 0 ? LT_PATH_Q16 : LT_PATH_F32;
-        } else if (strcmp(o, "--structure") == 0) {
-            structure = v;
-        } else if (strcmp(o, "--layers") == 0) {
-            layers = atoi(v);
-            if (layers < 1 || layers > 16) {
-                fprintf(stderr, "%s render: --layers %s: expected 1..16\n", prog, v);
-                return EXIT_USAGE;
-            }
-        } else if (strcmp(o, "--light") == 0) {
-            if (sscanf(v, "%lf,%lf,%lf", &lf[0], &lf[1], &lf[2]) != 3 || !isfinite(lf[0]) ||
-                !isfinite(lf[1]) || !isfinite(lf[2])) {
-                fprintf(stderr, "%s render: --light %s: expected X,Y,Z\n", prog, v);
-                return EXIT_USAGE;
-            }
-            have_light = 1;
-        } else {
-            fprintf(stderr, "%s render: unknown option '%s'\n", prog, o);
-            render_usage(stderr);
-            return EXIT_USAGE;
-        }
-    }
-    if (out == NULL) {
-        fprintf(stderr, "%s render: --out PREFIX is required\n", prog);
-        return EXIT_USAGE;
-    }
-    if (!lt_meter_available() && report != NULL) {
+/* The options into r; LT_OPT_OK, LT_OPT_HELP or LT_OPT_USAGE. */
+static int render_parse(render_t *r, int argc, char **argv)
+{
+    char who[64], num_help[256];
+    const lt_opt_t opts[] = {
+        {.name = "--out", .kind = LT_OPT_STRING, .dest = &r->out, .meta = "PREFIX",
+         .help = "the images' path prefix", .flags = LT_OPT_REQUIRED},
+        LT_OPT_STR("--mesh", "PATH", &r->mesh_over,
+                   "mesh file (overrides the scene's \"mesh\"; default scenes/teapot.obj)"),
+        {.name = "--res", .kind = LT_OPT_SIZE, .dest = r->wh, .seen = &r->seen_res,
+         .meta = "WxH|N", .help = "image size ({range} per side)", .lo = 1, .hi = LT_SF_MAX_RES},
+        {.name = "--num", .kind = LT_OPT_ENUM, .dest = &r->num, .names = r->num_names,
+         .help = num_help},
+        {.name = "--structure", .kind = LT_OPT_ENUM, .dest = &r->structure, .meta = "NAME",
+         .names = lt_render_structures,
+         .help = "acceleration structure: {choices}\n(default bvh; chunks: no shadows, no peels)"},
+        LT_OPT_INT("--layers", "K", &r->layers, 1, 16, "depth peels, {range} (default 1)"),
+        LT_OPT_STR("--report", "PATH",
+                   &r->report, "(simulator build) write the cycle report of the whole render as\n"
+                               "JSON; the text report is printed unless -q or --json"),
+        {.name = "--light", .kind = LT_OPT_VEC, .dest = r->lf, .seen = &r->seen_light,
+         .meta = "X,Y,Z", .lo = -HUGE_VAL, .hi = HUGE_VAL, .n = 3,
+         .help = "point light in mesh file units (default: the scene's first light,\n"
+                 "else centre + 2 radius normalize(-0.5, 1.5, 0.8))"},
+        LT_OPT_FLAG_("--json", &r->json, "print what was written as JSON on stdout"),
+        LT_OPT_FLAG_("-q", &quiet, "quiet"),
+        LT_OPT_END_};
+    lt_opt_cmd_t cmd = {
+        who, "[SCENE.json] --out PREFIX [options]",
+        "Render a mesh through a structure in one numeric path and write images:\n"
+        "  PREFIX.exr  FLOAT channels Z (distance), id, N.x N.y N.z (normal), R G B (shaded:\n"
+        "              one point light, hard shadows) and, with --layers K, layer0.Z ..\n"
+        "              layer<K-1>.Z (the first K surfaces along each primary ray)\n"
+        "  PREFIX.png  the shaded image; PREFIX.depth.png, PREFIX.normals.png, PREFIX.ids.png\n"
+        "options:\n",
+        NULL, opts, &r->scene_path, 1, &r->npos};
+    int rc;
+    snprintf(who, sizeof who, "%s render", prog);
+    num_choices(LT_PATHS_OBJECT, 0, r->num_names, r->num_sets, num_help, sizeof num_help);
+    strncat(num_help, "; default q16", sizeof num_help - strlen(num_help) - 1);
+    rc = lt_opt_parse(&cmd, argc, argv, 2);
+    if (r->json)
+        quiet = 1;
+    r->path = lt_paths_find(r->num_names[r->num], LT_PATHS_OBJECT);
+    return rc;
+}
+
+/* The scene file under the flags, the mesh, the prepared scene, the camera and the light.
+ * Returns 0 or an exit code. */
+static int render_load(render_t *r)
+{
+    lt_scenefile_t *sf = &r->sf;
+    lt_diag_t diag;
+    int a;
+    if (!lt_meter_available() && r->report != NULL) {
         fprintf(stderr, "%s render: --report needs the simulator build (build/sim/lanetrace); "
                         "this is the native build\n", prog);
         return EXIT_USAGE;
     }
-    if (scene_path != NULL && lt_sf_load(scene_path, &sf, &diag) != 0) {
+    if (r->scene_path != NULL && lt_sf_load(r->scene_path, sf, &diag) != 0) {
         fprintf(stderr, "%s\n", diag.msg);
         return EXIT_INPUT;
     }
-    if (w != 0) {
-        sf.width = w;
-        sf.height = h;
+    if (r->seen_res) {
+        sf->width = r->wh[0];
+        sf->height = r->wh[1];
     }
-    if (mesh_over != NULL)
-        snprintf(sf.mesh, sizeof sf.mesh, "%s", mesh_over);
-    if (sf.mesh[0] == '\0')
-        snprintf(sf.mesh, sizeof sf.mesh, "scenes/teapot.obj");
-    if (!have_light && sf.nlights > 0) {
-        memcpy(lf, sf.lights[0].position, sizeof lf);
-        have_light = 1;
+    if (r->mesh_over != NULL)
+        snprintf(sf->mesh, sizeof sf->mesh, "%s", r->mesh_over);
+    if (sf->mesh[0] == '\0')
+        snprintf(sf->mesh, sizeof sf->mesh, "scenes/teapot.obj");
+    if (!r->seen_light && sf->nlights > 0) {
+        memcpy(r->lf, sf->lights[0].position, sizeof r->lf);
+        r->seen_light = 1;
     }
-    if (lt_meter_init(sf.machine, NULL, NULL, &diag) != 0) {
+    if (lt_meter_init(sf->machine, NULL, NULL, &diag) != 0) {
         fprintf(stderr, "%s\n", diag.msg);
         return EXIT_USAGE;
     }
-    if (lt_mesh_load(sf.mesh, &mesh, &diag) != 0) {
+    if (lt_mesh_load(sf->mesh, &r->mesh, &diag) != 0) {
         fprintf(stderr, "%s\n", diag.msg);
         return EXIT_INPUT;
     }
-    if (lt_scene_prepare(&mesh, &sc, &diag) != 0) {
-        fprintf(stderr, "%s: %s\n", sf.mesh, diag.msg);
-        lt_mesh_free(&mesh);
+    if (lt_scene_prepare(&r->mesh, &r->sc, &diag) != 0) {
+        fprintf(stderr, "%s: %s\n", sf->mesh, diag.msg);
         return EXIT_INPUT;
     }
-    if (np == LT_PATH_Q16 && lt_scene_check_q16(&sc, sf.mesh, &diag) != 0) {
+    if (r->path->path == LT_PATH_Q16 && lt_scene_check_q16(&r->sc, sf->mesh, &diag) != 0) {
         fprintf(stderr, "%s\n", diag.msg);
-        status = EXIT_INPUT;
-        goto done;
+        return EXIT_INPUT;
     }
-    if (sf.has_camera) {
-        if (lt_camera_look(&sc, sf.eye, sf.target, sf.up, sf.fov_y_deg, sf.width, sf.height, &cam,
-                           &diag) != 0) {
-            fprintf(stderr, "%s: %s\n", sf.path, diag.msg);
-            status = EXIT_INPUT;
-            goto done;
+    if (sf->has_camera) {
+        if (lt_camera_look(&r->sc, sf->eye, sf->target, sf->up, sf->fov_y_deg, sf->width,
+                           sf->height, &r->cam, &diag) != 0) {
+            fprintf(stderr, "%s: %s\n", sf->path, diag.msg);
+            return EXIT_INPUT;
         }
     } else {
-        lt_camera_default(&sc, sf.width, sf.height, &cam);
+        lt_camera_default(&r->sc, sf->width, sf->height, &r->cam);
     }
-    if (have_light) {
+    if (r->seen_light) {
         for (a = 0; a < 3; a++)
-            light[a] = (lf[a] - sc.center[a]) * sc.scale;
+            r->light[a] = (r->lf[a] - r->sc.center[a]) * r->sc.scale;
     } else {
         double d[3] = {-0.5, 1.5, 0.8}, ln = sqrt(0.25 + 2.25 + 0.64);
         for (a = 0; a < 3; a++)
-            light[a] = 2.0 * sc.radius * d[a] / ln;
+            r->light[a] = 2.0 * r->sc.radius * d[a] / ln;
     }
     for (a = 0; a < 3; a++) {
-        if (fabs(light[a]) > ldexp(1.0, LT_CFG_GEOM_MAX_LOG2)) {
+        if (fabs(r->light[a]) > ldexp(1.0, LT_CFG_GEOM_MAX_LOG2)) {
             fprintf(stderr, "%s render: the light lies outside the fixed-point range (|x| <= %g "
                             "scaled units, %.3g scene radii)\n",
-                    prog, ldexp(1.0, LT_CFG_GEOM_MAX_LOG2), ldexp(1.0, LT_CFG_GEOM_MAX_LOG2) / sc.radius);
-            status = EXIT_INPUT;
-            goto done;
+                    prog, ldexp(1.0, LT_CFG_GEOM_MAX_LOG2),
+                    ldexp(1.0, LT_CFG_GEOM_MAX_LOG2) / r->sc.radius);
+            return EXIT_INPUT;
         }
     }
-    memset(lay, 0, sizeof lay);
-    memset(ch, 0, sizeof ch);
-    if (lt_frame_alloc(&fr, sf.width, sf.height, &diag) != 0) {
+    return 0;
+}
+
+/* The structure, the primary rays, the image buffers and the shadow rays. Returns 0 or an exit
+ * code. */
+static int render_trace(render_t *r)
+{
+    const lt_scenefile_t *sf = &r->sf;
+    const char *structure = lt_render_structures[r->structure];
+    lt_diag_t diag;
+    int a;
+    if (lt_frame_alloc(&r->fr, sf->width, sf->height, &diag) != 0) {
         fprintf(stderr, "%s\n", diag.msg);
-        status = EXIT_INPUT;
-        goto done;
+        return EXIT_INPUT;
     }
-    acc = lt_accel_build(&sc, structure, np, &diag);
-    if (acc == NULL) {
+    r->acc = lt_accel_build(&r->sc, structure, (lt_path_t)r->path->path, &diag);
+    if (r->acc == NULL) {
         fprintf(stderr, "%s render: %s\n", prog, diag.msg);
-        status = EXIT_USAGE;
-        goto done;
+        return EXIT_USAGE;
     }
     progress_begin("render");
-    lt_render_primary(&sc, acc, &cam, &fr, progress);
+    lt_render_primary(&r->sc, r->acc, &r->cam, &r->fr, progress);
     progress_end();
-    n = (size_t)sf.width * sf.height;
-    occ = calloc(n, 1);
-    rgb = malloc(n * 3);
+    r->n = (size_t)sf->width * sf->height;
+    r->occ = calloc(r->n, 1);
+    r->rgb = malloc(r->n * 3);
     for (a = 0; a < 10; a++)
-        ch[a] = malloc(n * sizeof(float));
+        r->ch[a] = malloc(r->n * sizeof(float));
     for (a = 0; a < 10; a++)
-        if (ch[a] == NULL || occ == NULL || rgb == NULL) {
-            fprintf(stderr, "%s render: out of memory for %ux%u images\n", prog, sf.width,
-                    sf.height);
-            status = EXIT_INPUT;
-            goto done;
+        if (r->ch[a] == NULL || r->occ == NULL || r->rgb == NULL) {
+            fprintf(stderr, "%s render: out of memory for %ux%u images\n", prog, sf->width,
+                    sf->height);
+            return EXIT_INPUT;
         }
     if (strcmp(structure, "chunks") != 0 &&
-        lt_render_shadows(&sc, acc, &cam, &fr, light, &nshadow, &nocc, occ, &diag) != 0) {
+        lt_render_shadows(&r->sc, r->acc, &r->cam, &r->fr, r->light, &r->nshadow, &r->nocc,
+                          r->occ, &diag) != 0) {
         fprintf(stderr, "%s render: %s\n", prog, diag.msg);
-        status = EXIT_INPUT;
-        goto done;
+        return EXIT_INPUT;
     }
-    /* channels: Z id N.x N.y N.z R G B, then layer K.Z as needed */
-    for (i = 0; i < n; i++) {
-        uint32_t x = (uint32_t)(i % sf.width), y = (uint32_t)(i / sf.width);
-        int32_t id = fr.id[i];
+    return 0;
+}
+
+/* The channels Z id N.x N.y N.z R G B (shaded: one point light, hard shadows, two-sided normals
+ * facing the camera) and the 8-bit shaded image. */
+static void render_shade(render_t *r)
+{
+    const lt_frame_t *fr = &r->fr;
+    size_t i;
+    for (i = 0; i < r->n; i++) {
+        uint32_t x = (uint32_t)(i % r->sf.width), y = (uint32_t)(i / r->sf.width);
+        int32_t id = fr->id[i];
         double nrm[3] = {0, 0, 0}, d[3], shade = 0.0;
         if (id >= 0) {
-            const double *v = &sc.vd[(size_t)id * 9];
+            const double *v = &r->sc.vd[(size_t)id * 9];
             double e1[3], e2[3], ln, p[3], L[3], ll;
             int k;
             for (k = 0; k < 3; k++) {
@@ -1166,7 +1220,7 @@ static int cmd_render(int argc, char **argv)
             nrm[1] = e1[2] * e2[0] - e1[0] * e2[2];
             nrm[2] = e1[0] * e2[1] - e1[1] * e2[0];
             ln = sqrt(nrm[0] * nrm[0] + nrm[1] * nrm[1] + nrm[2] * nrm[2]);
-            lt_camera_dir(&cam, x, y, d);
+            lt_camera_dir(&r->cam, x, y, d);
             if (ln > 0.0) {
                 /* two-sided: the normal faces the camera */
                 double s1 = (nrm[0] * d[0] + nrm[1] * d[1] + nrm[2] * d[2]) > 0.0 ? -1.0 : 1.0;
@@ -1174,170 +1228,202 @@ static int cmd_render(int argc, char **argv)
                     nrm[k] *= s1 / ln;
             }
             for (k = 0; k < 3; k++) {
-                p[k] = cam.eye[k] + fr.t[i] * d[k];
-                L[k] = light[k] - p[k];
+                p[k] = r->cam.eye[k] + fr->t[i] * d[k];
+                L[k] = r->light[k] - p[k];
             }
             ll = sqrt(L[0] * L[0] + L[1] * L[1] + L[2] * L[2]);
-            shade = 0.08 + (occ[i] ? 0.0
-                                   : 0.92 * fmax(0.0, (nrm[0] * L[0] + nrm[1] * L[1] + nrm[2] * L[2]) / ll));
+            shade = 0.08 + (r->occ[i] ? 0.0
+                                      : 0.92 * fmax(0.0, (nrm[0] * L[0] + nrm[1] * L[1] +
+                                                          nrm[2] * L[2]) / ll));
         }
-        ch[0][i] = id >= 0 ? (float)fr.t[i] : (float)INFINITY;
-        ch[1][i] = (float)id;
-        ch[2][i] = (float)nrm[0];
-        ch[3][i] = (float)nrm[1];
-        ch[4][i] = (float)nrm[2];
-        ch[5][i] = ch[6][i] = ch[7][i] = (float)shade;
-        rgb[3 * i] = rgb[3 * i + 1] = rgb[3 * i + 2] = id >= 0 ? lt_gamma8(shade) : 24;
+        r->ch[0][i] = id >= 0 ? (float)fr->t[i] : (float)INFINITY;
+        r->ch[1][i] = (float)id;
+        r->ch[2][i] = (float)nrm[0];
+        r->ch[3][i] = (float)nrm[1];
+        r->ch[4][i] = (float)nrm[2];
+        r->ch[5][i] = r->ch[6][i] = r->ch[7][i] = (float)shade;
+        r->rgb[3 * i] = r->rgb[3 * i + 1] = r->rgb[3 * i + 2] = id >= 0 ? lt_gamma8(shade) : 24;
     }
-    {
-        lt_exr_channel_t ec[8 + 16];
-        lt_exr_image_t im;
-        static const char *const names[8] = {"Z", "id", "N.x", "N.y", "N.z", "R", "G", "B"};
-        static char lname[16][16];
-        int nc = 0;
-        for (a = 0; a < 8; a++) {
-            ec[nc].name = names[a];
-            ec[nc].type = LT_EXR_FLOAT;
-            ec[nc++].data = ch[a];
+}
+
+/* PREFIX.exr: the channels and, with --layers K > 1, the depth peels layer0.Z .. (layer 0 is the
+ * primary hit; each further layer traces peel rays from the hits of the one before). Returns 0
+ * or an exit code. */
+static int render_write_exr(render_t *r)
+{
+    const lt_scenefile_t *sf = &r->sf;
+    size_t n = r->n, i;
+    char path[1200];
+    lt_diag_t diag;
+    lt_exr_channel_t ec[8 + 16];
+    lt_exr_image_t im;
+    static const char *const names[8] = {"Z", "id", "N.x", "N.y", "N.z", "R", "G", "B"};
+    static char lname[16][16];
+    int nc = 0, a, l, status = 0;
+    for (a = 0; a < 8; a++) {
+        ec[nc].name = names[a];
+        ec[nc].type = LT_EXR_FLOAT;
+        ec[nc++].data = r->ch[a];
+    }
+    for (l = 0; l < r->layers && r->layers > 1; l++) {
+        float *z = malloc(n * sizeof(float));
+        if (z == NULL || lt_frame_alloc(&r->lay[l], sf->width, sf->height, &diag) != 0) {
+            free(z);
+            fprintf(stderr, "%s render: out of memory for layer %d\n", prog, l);
+            status = EXIT_INPUT;
+            break;
         }
-        /* depth peels: layer 0 is the primary hit */
-        for (l = 0; l < layers && layers > 1; l++) {
-            float *z = malloc(n * sizeof(float));
-            if (z == NULL || lt_frame_alloc(&lay[l], sf.width, sf.height, &diag) != 0) {
-                free(z);
-                fprintf(stderr, "%s render: out of memory for layer %d\n", prog, l);
-                status = EXIT_INPUT;
-                goto done;
-            }
-            if (l == 0) {
-                memcpy(lay[0].id, fr.id, n * sizeof *fr.id);
-                memcpy(lay[0].t, fr.t, n * sizeof *fr.t);
-            } else if ((nrays += count_hits(&lay[l - 1]), 0) ||
-                       lt_render_peel(&sc, acc, &cam, &lay[l - 1], &lay[l], &diag) != 0) {
-                free(z);
-                fprintf(stderr, "%s render: %s\n", prog, diag.msg);
-                status = EXIT_USAGE;
-                goto done;
-            }
-            for (i = 0; i < n; i++)
-                z[i] = lay[l].id[i] >= 0 ? (float)lay[l].t[i] : (float)INFINITY;
-            snprintf(lname[l], sizeof lname[l], "layer%d.Z", l);
-            ec[nc].name = lname[l];
-            ec[nc].type = LT_EXR_FLOAT;
-            ec[nc++].data = z;
+        if (l == 0) {
+            memcpy(r->lay[0].id, r->fr.id, n * sizeof *r->fr.id);
+            memcpy(r->lay[0].t, r->fr.t, n * sizeof *r->fr.t);
+        } else if ((r->nrays += count_hits(&r->lay[l - 1]), 0) ||
+                   lt_render_peel(&r->sc, r->acc, &r->cam, &r->lay[l - 1], &r->lay[l], &diag) != 0) {
+            free(z);
+            fprintf(stderr, "%s render: %s\n", prog, diag.msg);
+            status = EXIT_USAGE;
+            break;
         }
+        for (i = 0; i < n; i++)
+            z[i] = r->lay[l].id[i] >= 0 ? (float)r->lay[l].t[i] : (float)INFINITY;
+        snprintf(lname[l], sizeof lname[l], "layer%d.Z", l);
+        ec[nc].name = lname[l];
+        ec[nc].type = LT_EXR_FLOAT;
+        ec[nc++].data = z;
+    }
+    if (status == 0) {
         memset(&im, 0, sizeof im);
-        im.width = (int32_t)sf.width;
-        im.height = (int32_t)sf.height;
+        im.width = (int32_t)sf->width;
+        im.height = (int32_t)sf->height;
         im.nchannels = nc;
         im.channels = ec;
-        snprintf(path, sizeof path, "%s.exr", out);
+        snprintf(path, sizeof path, "%s.exr", r->out);
         if (lt_exr_write(path, &im, &diag) != 0) {
             fprintf(stderr, "%s\n", diag.msg);
             status = EXIT_INPUT;
         } else if (!quiet) {
-            printf("exr       %s (%d channels%s)\n", path, nc, layers > 1 ? ", depth peels" : "");
+            printf("exr       %s (%d channels%s)\n", path, nc,
+                   r->layers > 1 ? ", depth peels" : "");
         }
-        for (a = 8; a < nc; a++)
-            free((void *)ec[a].data);
-        if (status != 0)
-            goto done;
     }
-    nrays += n + nshadow;
-    if (lt_meter_available()) {
-        /* every ray of the render: primary packets, shadow packets, peels (and the build) */
-        char title[1400], extra[256], *js;
-        snprintf(title, sizeof title, "render %s %ux%u %s, %s, %d layer(s), shadows", sf.mesh,
-                 sf.width, sf.height, np == LT_PATH_Q16 ? "q16" : "f32", structure, layers);
+    for (a = 8; a < nc; a++)
+        free((void *)ec[a].data);
+    return status;
+}
+
+/* (sim build) the cycle report of every ray of the render: primary packets, shadow packets,
+ * peels (and the build); --report writes it as JSON. Returns 0 or an exit code. */
+static int render_report(render_t *r)
+{
+    const lt_scenefile_t *sf = &r->sf;
+    lt_diag_t diag;
+    char title[1400], extra[256], *js;
+    if (!lt_meter_available())
+        return 0;
+    snprintf(title, sizeof title, "render %s %ux%u %s, %s, %d layer(s), shadows", sf->mesh,
+             sf->width, sf->height, r->path->name, lt_render_structures[r->structure], r->layers);
+    if (!quiet)
+        lt_meter_report_text(stdout, title, r->nrays);
+    snprintf(extra, sizeof extra, "{\"primary_rays\": %zu, \"shadow_rays\": %u, \"peel_rays\": %llu}",
+             r->n, r->nshadow, (unsigned long long)(r->nrays - r->n - r->nshadow));
+    js = lt_meter_report_json(title, r->nrays, extra);
+    if (r->report != NULL) {
+        if (js == NULL || write_atomic(r->report, js, &diag) != 0) {
+            fprintf(stderr, "%s\n", js == NULL ? "render: out of memory for the report" : diag.msg);
+            free(js);
+            return EXIT_INPUT;
+        }
         if (!quiet)
-            lt_meter_report_text(stdout, title, nrays);
-        snprintf(extra, sizeof extra, "{\"primary_rays\": %zu, \"shadow_rays\": %u, \"peel_rays\": %llu}",
-                 n, nshadow, (unsigned long long)(nrays - n - nshadow));
-        js = lt_meter_report_json(title, nrays, extra);
-        if (report != NULL) {
-            if (js == NULL || write_atomic(report, js, &diag) != 0) {
-                fprintf(stderr, "%s\n", js == NULL ? "render: out of memory for the report" : diag.msg);
-                free(js);
-                status = EXIT_INPUT;
-                goto done;
-            }
-            if (!quiet)
-                printf("report    %s\n", report);
-        }
-        free(js);
+            printf("report    %s\n", r->report);
     }
-    snprintf(path, sizeof path, "%s.png", out);
-    if (lt_png_write(path, rgb, (int32_t)sf.width, (int32_t)sf.height, 3, 3 * sf.width,
+    free(js);
+    return 0;
+}
+
+/* PREFIX.png (shaded) and the quick looks: depth (near bright), normals (0.5 + 0.5 n), ids
+ * (hashed colours). Returns 0 or an exit code. */
+static int render_write_pngs(render_t *r)
+{
+    const lt_scenefile_t *sf = &r->sf;
+    const lt_frame_t *fr = &r->fr;
+    char path[1200];
+    lt_diag_t diag;
+    double zmin = INFINITY, zmax = 0.0;
+    static const char *const kinds[3] = {"depth", "normals", "ids"};
+    size_t i;
+    int kk;
+    snprintf(path, sizeof path, "%s.png", r->out);
+    if (lt_png_write(path, r->rgb, (int32_t)sf->width, (int32_t)sf->height, 3, 3 * sf->width,
                      &diag) != 0) {
         fprintf(stderr, "%s\n", diag.msg);
-        status = EXIT_INPUT;
-        goto done;
+        return EXIT_INPUT;
     }
-    {
-        /* quick looks: depth (near bright), normals (0.5 + 0.5 n), ids (hashed colours) */
-        double zmin = INFINITY, zmax = 0.0;
-        static const char *const kinds[3] = {"depth", "normals", "ids"};
-        int kk;
-        for (i = 0; i < n; i++)
-            if (fr.id[i] >= 0) {
-                zmin = fmin(zmin, fr.t[i]);
-                zmax = fmax(zmax, fr.t[i]);
-            }
-        for (kk = 0; kk < 3; kk++) {
-            for (i = 0; i < n; i++) {
-                uint8_t *px = &rgb[3 * i];
-                if (fr.id[i] < 0) {
-                    px[0] = px[1] = px[2] = 0;
-                } else if (kk == 0) {
-                    double v = zmax > zmin ? 1.0 - (fr.t[i] - zmin) / (zmax - zmin) : 1.0;
-                    px[0] = px[1] = px[2] = (uint8_t)(40.0 + 215.0 * v);
-                } else if (kk == 1) {
-                    px[0] = (uint8_t)(127.5 + 127.0 * (double)ch[2][i]);
-                    px[1] = (uint8_t)(127.5 + 127.0 * (double)ch[3][i]);
-                    px[2] = (uint8_t)(127.5 + 127.0 * (double)ch[4][i]);
-                } else {
-                    uint32_t hsh = (uint32_t)fr.id[i] * 2654435761u;
-                    px[0] = (uint8_t)(64 + (hsh >> 24) % 192);
-                    px[1] = (uint8_t)(64 + (hsh >> 16) % 192);
-                    px[2] = (uint8_t)(64 + (hsh >> 8) % 192);
-                }
-            }
-            snprintf(path, sizeof path, "%s.%s.png", out, kinds[kk]);
-            if (lt_png_write(path, rgb, (int32_t)sf.width, (int32_t)sf.height, 3, 3 * sf.width,
-                             &diag) != 0) {
-                fprintf(stderr, "%s\n", diag.msg);
-                status = EXIT_INPUT;
-                goto done;
+    for (i = 0; i < r->n; i++)
+        if (fr->id[i] >= 0) {
+            zmin = fmin(zmin, fr->t[i]);
+            zmax = fmax(zmax, fr->t[i]);
+        }
+    for (kk = 0; kk < 3; kk++) {
+        for (i = 0; i < r->n; i++) {
+            uint8_t *px = &r->rgb[3 * i];
+            if (fr->id[i] < 0) {
+                px[0] = px[1] = px[2] = 0;
+            } else if (kk == 0) {
+                double v = zmax > zmin ? 1.0 - (fr->t[i] - zmin) / (zmax - zmin) : 1.0;
+                px[0] = px[1] = px[2] = (uint8_t)(40.0 + 215.0 * v);
+            } else if (kk == 1) {
+                px[0] = (uint8_t)(127.5 + 127.0 * (double)r->ch[2][i]);
+                px[1] = (uint8_t)(127.5 + 127.0 * (double)r->ch[3][i]);
+                px[2] = (uint8_t)(127.5 + 127.0 * (double)r->ch[4][i]);
+            } else {
+                uint32_t hsh = (uint32_t)fr->id[i] * 2654435761u;
+                px[0] = (uint8_t)(64 + (hsh >> 24) % 192);
+                px[1] = (uint8_t)(64 + (hsh >> 16) % 192);
+                px[2] = (uint8_t)(64 + (hsh >> 8) % 192);
             }
         }
+        snprintf(path, sizeof path, "%s.%s.png", r->out, kinds[kk]);
+        if (lt_png_write(path, r->rgb, (int32_t)sf->width, (int32_t)sf->height, 3, 3 * sf->width,
+                         &diag) != 0) {
+            fprintf(stderr, "%s\n", diag.msg);
+            return EXIT_INPUT;
+        }
     }
+    return 0;
+}
+
+/* The summary line, and with --json what was written. */
+static void render_summary(const render_t *r)
+{
+    const char *out = r->out;
+    char path[1200];
     if (!quiet)
         printf("png       %s.png (shaded), %s.depth.png, %s.normals.png, %s.ids.png; %u shadow "
                "rays, %u occluded\n",
-               out, out, out, out, nshadow, nocc);
-    if (json) {
+               out, out, out, out, r->nshadow, r->nocc);
+    if (r->json) {
         cJSON *o = cJSON_CreateObject(), *files = cJSON_AddArrayToObject(o, "files");
         static const char *const sfx[5] = {".exr", ".png", ".depth.png", ".normals.png", ".ids.png"};
         char *js;
+        int a;
         for (a = 0; a < 5; a++) {
             snprintf(path, sizeof path, "%s%s", out, sfx[a]);
             cJSON_AddItemToArray(files, cJSON_CreateString(path));
         }
-        cJSON_AddStringToObject(o, "mesh", sf.mesh);
-        cJSON_AddStringToObject(o, "structure", structure);
-        cJSON_AddStringToObject(o, "path", np == LT_PATH_Q16 ? "q16" : "f32");
-        cJSON_AddNumberToObject(o, "width", sf.width);
-        cJSON_AddNumberToObject(o, "height", sf.height);
-        cJSON_AddNumberToObject(o, "layers", layers);
-        cJSON_AddNumberToObject(o, "shadow_rays", nshadow);
-        cJSON_AddNumberToObject(o, "occluded", nocc);
-        cJSON_AddNumberToObject(o, "rays", (double)nrays);
+        cJSON_AddStringToObject(o, "mesh", r->sf.mesh);
+        cJSON_AddStringToObject(o, "structure", lt_render_structures[r->structure]);
+        cJSON_AddStringToObject(o, "path", r->path->name);
+        cJSON_AddNumberToObject(o, "width", r->sf.width);
+        cJSON_AddNumberToObject(o, "height", r->sf.height);
+        cJSON_AddNumberToObject(o, "layers", r->layers);
+        cJSON_AddNumberToObject(o, "shadow_rays", r->nshadow);
+        cJSON_AddNumberToObject(o, "occluded", r->nocc);
+        cJSON_AddNumberToObject(o, "rays", (double)r->nrays);
         if (lt_meter_available()) {
             lt_meter_totals_t tt;
             lt_meter_totals(&tt);
             cJSON_AddNumberToObject(o, "cycles", (double)tt.total_cycles);
-            if (report != NULL)
-                cJSON_AddStringToObject(o, "report", report);
+            if (r->report != NULL)
+                cJSON_AddStringToObject(o, "report", r->report);
         }
         js = cJSON_Print(o);
         if (js != NULL)
@@ -1345,21 +1431,47 @@ static int cmd_render(int argc, char **argv)
         free(js);
         cJSON_Delete(o);
     }
-done:
+}
+
+static int cmd_render(int argc, char **argv)
+{
+    render_t r;
+    int rc, a;
+    memset(&r, 0, sizeof r);
+    lt_sf_defaults(&r.sf);
+    r.layers = 1;
+    for (r.structure = 0; strcmp(lt_render_structures[r.structure], "bvh") != 0; r.structure++)
+        ;
+    rc = render_parse(&r, argc, argv);
+    if (rc != LT_OPT_OK)
+        return rc == LT_OPT_HELP ? 0 : EXIT_USAGE;
+    rc = render_load(&r);
+    if (rc == 0)
+        rc = render_trace(&r);
+    if (rc == 0) {
+        render_shade(&r);
+        rc = render_write_exr(&r);
+    }
+    if (rc == 0) {
+        r.nrays += r.n + r.nshadow;
+        rc = render_report(&r);
+    }
+    if (rc == 0)
+        rc = render_write_pngs(&r);
+    if (rc == 0)
+        render_summary(&r);
     for (a = 0; a < 10; a++)
-        free(ch[a]);
-    for (l = 0; l < 16; l++)
-        if (lay[l].id != NULL)
-            lt_frame_free(&lay[l]);
-    free(occ);
-    free(rgb);
-    lt_accel_free(acc);
-    if (fr.id != NULL)
-        lt_frame_free(&fr);
-    lt_scene_free(&sc);
-    lt_mesh_free(&mesh);
+        free(r.ch[a]);
+    for (a = 0; a < 16; a++)
+        lt_frame_free(&r.lay[a]);
+    free(r.occ);
+    free(r.rgb);
+    lt_accel_free(r.acc);
+    lt_frame_free(&r.fr);
+    lt_scene_free(&r.sc);
+    lt_mesh_free(&r.mesh);
     lt_meter_shutdown();
-    return status;
+    return rc;
 }
 
 /* ---- stream: the receiver is its own program (host/stream/lt_stream_main.c); hand over to it ---------- */
@@ -1442,82 +1554,59 @@ static void cache_text(char *buf, size_t n, const char *spec, uint32_t hit)
     }
 }
 
-static int cmd_machines(int argc, char **argv)
+/* --json: everything about every machine (the native build: the names). */
+static int machines_json(int nm)
 {
-    int a, i, o, json = 0, ops = 0, nm;
+    cJSON *root = cJSON_CreateObject(), *arr;
+    lt_meter_machine_t m;
+    char *js;
+    int i, o;
+    cJSON_AddStringToObject(root, "build", lt_meter_available() ? "simulator" : "native");
+    arr = cJSON_AddArrayToObject(root, "machines");
+    for (i = 0; i < nm; i++) {
+        cJSON *x = cJSON_CreateObject(), *y;
+        const char *name = lt_meter_machine_name(i);
+        cJSON_AddStringToObject(x, "name", name);
+        if (lt_meter_machine_info(name, &m) == 0) {
+            cJSON_AddStringToObject(x, "description", m.desc);
+            cJSON_AddNumberToObject(x, "clock_mhz", m.clock_mhz);
+            cJSON_AddNumberToObject(x, "lanes", m.lanes);
+            y = cJSON_AddObjectToObject(x, "l1");
+            cJSON_AddStringToObject(y, "spec", m.l1);
+            cJSON_AddNumberToObject(y, "hit_cycles", m.l1_hit);
+            if (m.l2 != NULL) {
+                y = cJSON_AddObjectToObject(x, "l2");
+                cJSON_AddStringToObject(y, "spec", m.l2);
+                cJSON_AddNumberToObject(y, "hit_cycles", m.l2_hit);
+            } else {
+                cJSON_AddNullToObject(x, "l2");
+            }
+            cJSON_AddNumberToObject(x, "memory_cycles", m.mem);
+            y = cJSON_AddObjectToObject(x, "ops");
+            for (o = 0; o < LT_OP__COUNT; o++) {
+                cJSON *z = cJSON_AddObjectToObject(y, op_names[o]);
+                cJSON_AddNumberToObject(z, "latency", m.latency[o]);
+                cJSON_AddNumberToObject(z, "issue", m.issue[o]);
+            }
+        }
+        cJSON_AddItemToArray(arr, x);
+    }
+    js = cJSON_Print(root);
+    if (js != NULL)
+        puts(js);
+    free(js);
+    cJSON_Delete(root);
+    return js != NULL ? 0 : EXIT_INPUT;
+}
+
+/* The table (simulator build): one row per machine, then with --ops the op prices. */
+static void machines_table(int nm, int ops)
+{
     size_t wn = strlen("machine"), w1 = strlen("L1"), w2 = strlen("L2");
     const char *name;
     char c1[96], c2[96];
     lt_meter_machine_t m;
-    for (a = 2; a < argc; a++) {
-        if (strcmp(argv[a], "--help") == 0 || strcmp(argv[a], "-h") == 0) {
-            printf("usage: %s machines [--ops] [--json]\n"
-                   "The machine models of the cycle model, one per file sim/machines/<name>.def:\n"
-                   "name, clock, lanes, caches (sets:ways:line, size, hit latency), memory\n"
-                   "latency, description; --ops adds the price of every op class (latency/issue\n"
-                   "cycles; issue is what is charged); --json prints all of it as JSON. The native\n"
-                   "build knows the names only.\n",
-                   prog);
-            return 0;
-        } else if (strcmp(argv[a], "--json") == 0) {
-            json = 1;
-        } else if (strcmp(argv[a], "--ops") == 0) {
-            ops = 1;
-        } else {
-            fprintf(stderr, "%s machines: unknown option '%s'\n", prog, argv[a]);
-            return EXIT_USAGE;
-        }
-    }
-    for (nm = 0; lt_meter_machine_name(nm) != NULL; nm++)
-        ;
-    if (json) {
-        cJSON *root = cJSON_CreateObject(), *arr;
-        char *js;
-        cJSON_AddStringToObject(root, "build", lt_meter_available() ? "simulator" : "native");
-        arr = cJSON_AddArrayToObject(root, "machines");
-        for (i = 0; i < nm; i++) {
-            cJSON *x = cJSON_CreateObject(), *y;
-            name = lt_meter_machine_name(i);
-            cJSON_AddStringToObject(x, "name", name);
-            if (lt_meter_machine_info(name, &m) == 0) {
-                cJSON_AddStringToObject(x, "description", m.desc);
-                cJSON_AddNumberToObject(x, "clock_mhz", m.clock_mhz);
-                cJSON_AddNumberToObject(x, "lanes", m.lanes);
-                y = cJSON_AddObjectToObject(x, "l1");
-                cJSON_AddStringToObject(y, "spec", m.l1);
-                cJSON_AddNumberToObject(y, "hit_cycles", m.l1_hit);
-                if (m.l2 != NULL) {
-                    y = cJSON_AddObjectToObject(x, "l2");
-                    cJSON_AddStringToObject(y, "spec", m.l2);
-                    cJSON_AddNumberToObject(y, "hit_cycles", m.l2_hit);
-                } else {
-                    cJSON_AddNullToObject(x, "l2");
-                }
-                cJSON_AddNumberToObject(x, "memory_cycles", m.mem);
-                y = cJSON_AddObjectToObject(x, "ops");
-                for (o = 0; o < LT_OP__COUNT; o++) {
-                    cJSON *z = cJSON_AddObjectToObject(y, op_names[o]);
-                    cJSON_AddNumberToObject(z, "latency", m.latency[o]);
-                    cJSON_AddNumberToObject(z, "issue", m.issue[o]);
-                }
-            }
-            cJSON_AddItemToArray(arr, x);
-        }
-        js = cJSON_Print(root);
-        if (js != NULL)
-            puts(js);
-        free(js);
-        cJSON_Delete(root);
-        return js != NULL ? 0 : EXIT_INPUT;
-    }
-    if (!lt_meter_available()) {
-        /* names only, one per line; where the rest is on stderr */
-        for (i = 0; i < nm; i++)
-            printf("%s\n", lt_meter_machine_name(i));
-        fprintf(stderr, "%s machines: the native build has no cycle model; build/sim/lanetrace "
-                        "machines prints clocks, caches and op prices\n", prog);
-        return 0;
-    }
+    int i, o;
     for (i = 0; i < nm; i++) {
         name = lt_meter_machine_name(i);
         (void)lt_meter_machine_info(name, &m);
@@ -1543,7 +1632,7 @@ static int cmd_machines(int argc, char **argv)
     if (!ops) {
         printf("(caches: sets:ways:line, size, load-to-use cycles of a hit; op prices: %s "
                "machines --ops)\n", prog);
-        return 0;
+        return;
     }
     printf("\nop prices, latency/issue cycles (a phase's cycles = sum of count x issue + memory "
            "stalls)\n");
@@ -1561,6 +1650,40 @@ static int cmd_machines(int argc, char **argv)
         }
         printf("\n");
     }
+}
+
+static int cmd_machines(int argc, char **argv)
+{
+    int i, json = 0, ops = 0, nm, rc;
+    char who[64];
+    const lt_opt_t opts[] = {
+        LT_OPT_FLAG_("--ops", &ops, "the price of every op class (latency/issue cycles;\n"
+                                    "issue is what is charged)"),
+        LT_OPT_FLAG_("--json", &json, "all of it as JSON"),
+        LT_OPT_END_};
+    lt_opt_cmd_t cmd = {who, "[--ops] [--json]",
+                        "The machine models of the cycle model, one per file "
+                        "sim/machines/<name>.def:\nname, clock, lanes, caches (sets:ways:line, "
+                        "size, hit latency), memory\nlatency, description. The native build "
+                        "knows the names only.\n",
+                        NULL, opts, NULL, 0, NULL};
+    snprintf(who, sizeof who, "%s machines", prog);
+    rc = lt_opt_parse(&cmd, argc, argv, 2);
+    if (rc != LT_OPT_OK)
+        return rc == LT_OPT_HELP ? 0 : EXIT_USAGE;
+    for (nm = 0; lt_meter_machine_name(nm) != NULL; nm++)
+        ;
+    if (json)
+        return machines_json(nm);
+    if (!lt_meter_available()) {
+        /* names only, one per line; where the rest is on stderr */
+        for (i = 0; i < nm; i++)
+            printf("%s\n", lt_meter_machine_name(i));
+        fprintf(stderr, "%s machines: the native build has no cycle model; build/sim/lanetrace "
+                        "machines prints clocks, caches and op prices\n", prog);
+        return 0;
+    }
+    machines_table(nm, ops);
     return 0;
 }
 

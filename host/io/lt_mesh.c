@@ -5,6 +5,8 @@
  */
 #include "io/lt_mesh.h"
 
+#include "io/lt_import.h"
+
 #include <assimp/cimport.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
@@ -507,14 +509,17 @@ int lt_mesh_load(const char *path, lt_mesh_t *m, lt_diag_t *diag)
         }
         (void)fclose(probe);
     }
-    if (text != NULL) {
-        /* OBJ (checked, blanks stripped) and unpacked .gz: from memory. Material files are not
-         * found from there, which only costs assimp a warning: we keep geometry only. */
-        sc = aiImportFileFromMemory(text, (unsigned)textlen, IMPORT_FLAGS, hint);
-    } else {
-        /* other formats from the path, so that assimp finds the files they refer to (.bin) */
-        sc = aiImportFile(path, IMPORT_FLAGS);
+    if (!obj) {
+        /* every other format in a child process (lt_import.c): PLY, OFF and STL checked first
+         * (lt_meshcheck.c); the rest from the path, so that assimp finds the files they refer
+         * to (.bin), or the unpacked .gz from memory */
+        rc = lt_import_mesh(path, text, textlen, hint, IMPORT_FLAGS, scene_to_mesh, m, diag);
+        goto done;
     }
+    /* OBJ (checked, blanks stripped; plain or unpacked from .gz): in process, from memory.
+     * Material files are not found from there, which only costs assimp a warning: we keep
+     * geometry only. */
+    sc = aiImportFileFromMemory(text, (unsigned)textlen, IMPORT_FLAGS, hint);
     if (sc == NULL || sc->mNumMeshes == 0) {
         lt_diag_fail(diag, "%s: not a readable mesh (assimp: %s)", path,
                      sc == NULL ? aiGetErrorString() : "no meshes in the scene");

@@ -1,6 +1,7 @@
 /* lt_mesh.h - triangle meshes loaded on the host through assimp's C API, in double precision;
  * gzip'd files (<name>.<ext>.gz) are unpacked in memory with zlib first, and OBJ text is checked
- * line by line before assimp sees it. Host only; see docs/io.md.
+ * line by line before assimp sees it; other formats go through io/lt_import (checks, a child
+ * process). Host only; see docs/io.md.
  */
 #ifndef LT_MESH_H
 #define LT_MESH_H
@@ -33,10 +34,13 @@ typedef struct lt_mesh {
  * (binary data), a "v" line with fewer than 3 numbers or a non-finite one, a face with fewer
  * than 3 vertices, index 0, or a v/vt/vn index outside the vertices defined (negative indices:
  * relative to those defined so far) are errors naming the line.
+ * Every other format is imported in a child process (io/lt_import.h): PLY, OFF and STL are
+ * checked first (io/lt_meshcheck.h: counts against the file size, complete elements and faces),
+ * and a crash or hang inside assimp becomes an error (time limit LT_IMPORT_TIMEOUT, 120 s).
  * Returns 0, or -1 with a message naming the file and the problem (unreadable, empty, corrupt or
- * truncated gzip stream, an OBJ line as above, assimp's own error text, no triangles, a
- * non-finite vertex, an out-of-range index, more than LT_MESH_MAX_TRIS triangles or more than
- * LT_MESH_MAX_BYTES bytes). */
+ * truncated gzip stream, an OBJ line as above, a PLY/OFF/STL element or count, assimp's own
+ * error text, an importer crash or time-out, no triangles, a non-finite vertex, an out-of-range
+ * index, more than LT_MESH_MAX_TRIS triangles or more than LT_MESH_MAX_BYTES bytes). */
 int lt_mesh_load(const char *path, lt_mesh_t *m, lt_diag_t *diag);
 
 void lt_mesh_free(lt_mesh_t *m);

@@ -22,10 +22,13 @@ int lt_qt_zref_exp(const float *z, size_t n, int *e)
     if (!isfinite(zmin))
         return -1;
     *e = (int)floor(log2(zmin));
-    /* log2 may round across an integer: make 2^e <= zmin < 2^(e+1) exact */
-    while (ldexp(1.0, *e) > zmin)
+    /* log2 may round across an integer: make 2^e < zmin <= 2^(e+1) exact. Strictly below: with
+       z_ref = zmin a surface there has w = 1 exactly, on the reprojection's default near plane
+       (w <= 1), where the fixed-point paths lost it (a flat image at a power-of-two depth
+       reprojected to 0% hits in n64 and n32). */
+    while (ldexp(1.0, *e) >= zmin)
         (*e)--;
-    while (ldexp(1.0, *e + 1) <= zmin)
+    while (ldexp(1.0, *e + 1) < zmin)
         (*e)++;
     return 0;
 }

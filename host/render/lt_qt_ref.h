@@ -16,9 +16,10 @@
 extern "C" {
 #endif
 
-/* The exponent e of z_ref = 2^e: the largest power of two <= the smallest valid (finite, > 0)
- * depth of z[0..n), so every valid w = z_ref / z lies in (0, 1]. Returns 0, or -1 when no depth is
- * valid (then *e = 0). */
+/* The exponent e of z_ref = 2^e: the largest power of two strictly below the smallest valid
+ * (finite, > 0) depth of z[0..n), so every valid w = z_ref / z lies in (0, 1): no surface sits on
+ * the reprojection's default near plane w = 1 (lt_reproj_opts_t.z_near_src = 0). Returns 0, or -1
+ * when no depth is valid (then *e = 0). */
 int lt_qt_zref_exp(const float *z, size_t n, int *e);
 
 /* w = 2^zexp / z per pixel. s1.30: rounded half up in double, saturated to INT32_MAX (w >= 2);

@@ -40,7 +40,7 @@ awk -v p="$pred" -v c="$cnt" 'BEGIN{printf "lt_slab16_q16 x256: predicted %d cyc
 pred=$("$B/sim/tri-model" mcu-m4 | awk '{print $NF}')
 out=$(mktemp)
 # the triangle kernel's own instructions plus the helpers it calls (struct copies, 64-bit divides)
-syms="lt_tri16_q16 q_tdiv_m lt__memcpy memcpy __aeabi_ldivmod __udivmoddi4"
+syms="lt_tri16_q16 lt__tri_tdiv16_q16 lt__memcpy memcpy __aeabi_ldivmod __udivmoddi4"
 timeout 60 $QEMU_cm4 "$B/fw/cm4/tri.elf" -plugin "$B/plugin/lt_icount.so,$(printf 'sym=%s,' $syms)out=$out" >/dev/null
 cnt=$(awk '/^icount sym/{s += $4} END{print s}' "$out")
 awk '/^icount sym/{printf "   %-16s %d\n", $3, $4}' "$out"

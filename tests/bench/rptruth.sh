@@ -39,7 +39,7 @@ row() {
     local n=$1 s=$2 e=$3 mv=$4 rt=$5 lab=$6
     shift 6
     "$B/sim/lanetrace" reproject "$tmp/s.json" --depth "$tmp/d.exr" --layers 2 --move-rel "$mv" \
-        --rot "$rt" --enc $e --truth --truth-tol "$TOL" --json "$@" >"$tmp/o.json"
+        --rot "$rt" --num $e --truth --truth-tol "$TOL" --json "$@" >"$tmp/o.json"
     awk -v n="$n" -v s=$s -v e=$e -v vw="$mv/$rt" -v lab="$lab" -v px="$(jget pixels "$tmp/o.json")" \
         -v cyc="$(jget cycles_per_ray "$tmp/o.json")" -v hit="$(jget hit "$tmp/o.json")" \
         -v kn="$(jget known_pixels "$tmp/o.json")" -v sp="$(jget spurious_hits "$tmp/o.json")" \

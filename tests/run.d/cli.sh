@@ -118,3 +118,38 @@ expect "render: the same error for the s15.16 path" 1 "cannot be represented in 
 check "render: nothing written for the unrepresentable scene" test ! -e "$tmp/wide.exr"
 expect "run --num f32 traces the same scene" 0 "result    f32" "$LT" run --mesh "$tmp/wide.obj" --res 8 -q --num f32 --no-ref
 expect "info says which paths can represent a mesh" 0 "10 of 11 non-degenerate triangles collapse.*NOT representable" "$B/host/lanetrace-native" info "$tmp/wide.obj"
+# ---- option parsing (host/cli/lt_opt): values are read whole, numbers must be finite, ranges are
+# named; each of these was accepted before (atoi read "1e9" as 1, sscanf ignored trailing text,
+# NaN passed the range checks, --tol had none)
+expect "render --layers 1e9 is refused, not read as 1" 2 "render: --layers 1e9: not an integer; expected 1..16" \
+    "$LT" render --res 8 --layers 1e9 --out "$tmp/opt_l"
+check "render --layers 1e9: nothing written" test ! -e "$tmp/opt_l.exr"
+expect "render --light 1,2,3xyz: trailing text refused" 2 "render: --light 1,2,3xyz: expected X,Y,Z" \
+    "$LT" render --res 8 --light 1,2,3xyz --out "$tmp/opt_g"
+expect "run --repeat 1e9 is refused, not read as 1" 2 "run: --repeat 1e9: not an integer; expected 1..100000" \
+    "$LT" run --res 4 --num q16 --no-ref --repeat 1e9
+expect "shadows --tol -1: out of range" 2 "shadows: --tol -1: out of range; expected \[0, 1\]" \
+    "$LT" shadows --mesh scenes/teapot.obj --res 8 --no-ref --tol -1
+expect "shadows --light nan,...: not a finite light" 2 "shadows: --light nan,0,0,1: expected X,Y,Z,SIZE" \
+    "$LT" shadows --mesh scenes/teapot.obj --res 8 --no-ref --light nan,0,0,1
+expect "shadows --light with trailing text refused" 2 "shadows: --light 0,5,0,1xyz: expected X,Y,Z,SIZE" \
+    "$LT" shadows --mesh scenes/teapot.obj --res 8 --no-ref --light 0,5,0,1xyz
+expect "shadows --fov 60abc: trailing text refused" 2 "shadows: --fov 60abc: not a finite number" \
+    "$LT" shadows --mesh scenes/teapot.obj --res 8 --no-ref --fov 60abc
+# the same messages from every subcommand
+for c in run render reproject shadows info diff machines; do
+    expect "$c --help is printed from the option table" 0 "usage: lanetrace $c" "$LT" $c --help
+    expect "$c: unknown option, uniform message" 2 "lanetrace $c: unknown option '--frobnicate' (see 'lanetrace $c --help')" \
+        "$LT" $c --frobnicate
+done
+for co in "run --res" "render --out" "reproject --depth" "shadows --mesh" "diff --threshold"; do
+    set -- $co
+    expect "$1 $2 without its value: missing value" 2 "lanetrace $1: $2: missing value" "$LT" $1 $2
+done
+# --num takes the names of the numeric-path registry (host/render/lt_paths.c) in every subcommand
+expect "run --num lists the object paths" 2 "run: --num n64: expected q16, f32 or both" "$LT" run --num n64
+expect "render --num lists the object paths" 2 "render: --num both: expected q16 or f32" "$LT" render --num both --out "$tmp/x"
+expect "shadows --num lists the frusta paths" 2 "shadows: --num n32: expected q16 or f32" "$LT" shadows --mesh scenes/teapot.obj --num n32
+expect "reproject --num lists the screen paths" 2 "reproject: --num q16: expected n64, n32 or f32" "$LT" reproject --depth x.exr --num q16
+expect "reproject --enc (deprecated) still parses, with a note on stderr" 1 "reproject: note: --enc is deprecated, use --num" \
+    "$LT" reproject --depth /nonexistent.exr --enc n32

@@ -38,11 +38,11 @@ rp_expect "lanetrace --help lists reproject" 0 "reproject --depth" "$RP_SIM" --h
 rp_expect "reproject: no --depth" 2 "--depth FILE.exr is required" "$RP_NAT" reproject
 rp_expect "reproject: unknown flag" 2 "unknown option '--frob'" "$RP_NAT" reproject --depth x.exr --frob 1
 rp_expect "reproject: flag without value" 2 "missing value" "$RP_NAT" reproject --depth
-rp_expect "reproject: bad --enc" 2 "expected n64, n32 or f32" "$RP_NAT" reproject --depth x.exr --enc n16
+rp_expect "reproject: bad --num names the screen paths" 2 "expected n64, n32 or f32" "$RP_NAT" reproject --depth x.exr --num n16
 rp_expect "reproject: bad --layers names the limit" 2 "1..16" "$RP_NAT" reproject --depth x.exr --layers 17
 rp_expect "reproject: bad --move" 2 "X,Y,Z" "$RP_NAT" reproject --depth x.exr --move 1,2
 rp_expect "reproject: NaN in --move" 2 "X,Y,Z" "$RP_NAT" reproject --depth x.exr --move 1,nan,2
-rp_expect "reproject: --rot out of range" 2 "-180..180" "$RP_NAT" reproject --depth x.exr --rot 200,0,0
+rp_expect "reproject: --rot out of range" 2 "each in \[-180, 180\]" "$RP_NAT" reproject --depth x.exr --rot 200,0,0
 rp_expect "reproject: zero focal length" 2 "FX and FY > 0" "$RP_NAT" reproject --depth x.exr --src-cam 0,10,5,5
 rp_expect "reproject: --res names LT_QT_MAX_DIM" 2 "LT_QT_MAX_DIM" "$RP_NAT" reproject --depth x.exr --res 20000
 rp_expect "reproject: --heat-cycles needs the sim build" 2 "simulator build" \
@@ -71,7 +71,7 @@ rp_expect "reproject: unwritable --report names the path (sim)" 1 "/nonexistent-
     "$RP_SIM" reproject scenes/teapot.json --depth "$tmp/tp.exr" --layers 2 --report /nonexistent-dir/r.json
 for e in n64 n32 f32; do
     args=(reproject scenes/teapot.json --depth "$tmp/tp.exr" --layers 2 --color --move-rel 0.08,0,0
-        --rot -3,0,0 --enc $e --json)
+        --rot -3,0,0 --num $e --json)
     "$RP_NAT" "${args[@]}" --out "$tmp/rp_$e.exr" --png "$tmp/rp_$e.png" --heat-steps "$tmp/rps_$e.png" \
         >"$tmp/rpn.$e" 2>&1
     rcn=$?
@@ -86,6 +86,13 @@ for e in n64 n32 f32; do
     check "reproject teapot $e: cycle report JSON with the reprojection figures" \
         grep -q '"setup_cycles"' "$tmp/rpr_$e.json"
 done
+# the deprecated spelling --enc: the same view, and a note on stderr
+"$RP_NAT" reproject scenes/teapot.json --depth "$tmp/tp.exr" --layers 2 --color --move-rel 0.08,0,0 \
+    --rot -3,0,0 --enc n32 --json >"$tmp/rpenc.out" 2>"$tmp/rpenc.err"
+a=$(grep -e '"encoding"' -e '"traced_rays"' -e '"hole_fraction"' -e '"nodes_per_ray"' -e '"hit"' "$tmp/rpenc.out" | tr -d ' \t\n')
+b=$(grep -e '"encoding"' -e '"traced_rays"' -e '"hole_fraction"' -e '"nodes_per_ray"' -e '"hit"' "$tmp/rpn.n32" | tr -d ' \t\n')
+check "reproject --enc n32 (deprecated) = --num n32 ($a), with a note on stderr" \
+    bash -c "grep -q 'note: --enc is deprecated, use --num' '$tmp/rpenc.err' && [ -n '$a' ] && [ '$a' = '$b' ]"
 "$RP_NAT" info "$tmp/rp_n64.exr" >"$tmp/rpi.txt" 2>&1
 check "reproject: output EXR holds R G B Z hole steps" \
     bash -c "grep -q 'hole(HALF)' '$tmp/rpi.txt' && grep -q 'Z(FLOAT)' '$tmp/rpi.txt' && grep -q 'steps(FLOAT)' '$tmp/rpi.txt'"
@@ -115,7 +122,7 @@ check "reproject --truth, identity view: every pixel traced, 0 wrong hit/miss, d
     'BEGIN{exit !(k == 9216 && s == 0 && m == 0 && x != "" && x <= 1e-4)}'
 for e in n64 n32 f32; do
     args=(reproject scenes/teapot.json --depth "$tmp/tp96.exr" --layers 2 --move-rel 0.08,0,0 --rot -3,0,0
-        --enc $e --truth --json)
+        --num $e --truth --json)
     "$RP_NAT" "${args[@]}" --heat-error "$tmp/he_$e.png" --out "$tmp/tr_$e.exr" >"$tmp/tr_$e.json" 2>&1
     rcn=$?
     "$RP_SIM" "${args[@]}" >"$tmp/trs_$e.json" 2>&1
@@ -169,7 +176,7 @@ if [ -f "$bun" ]; then
     printf '{"mesh": "%s/%s"}\n' "$PWD" "$bun" >"$tmp/bun.json"
     "$RP_NAT" render "$tmp/bun.json" --res 128 --layers 2 --out "$tmp/bun" -q >/dev/null 2>&1
     "$RP_NAT" reproject "$tmp/bun.json" --depth "$tmp/bun.exr" --layers 2 --move-rel 0.05,0,0 \
-        --rot -2,0,0 --enc n32 --truth --json >"$tmp/trb.json" 2>&1
+        --rot -2,0,0 --num n32 --truth --json >"$tmp/trb.json" 2>&1
     f="$tmp/trb.json"
     kn=$(jnum known_pixels "$f"); wr=$(( $(jnum spurious_hits "$f") + $(jnum missed_hits "$f") ))
     ch=$(jnum common_hits "$f"); wi=$(jnum within_tolerance "$f")
@@ -190,7 +197,7 @@ if [ -f "$bb" ]; then
         --out "$tmp/bb.exr" --png "$tmp/bb.png" --heat-steps "$tmp/bbs.png"
     check "reproject: beachball outputs written" test -s "$tmp/bb.exr" -a -s "$tmp/bb.png" -a -s "$tmp/bbs.png"
     rp_expect "reproject: beachball f32 in the simulator, cycle report" 0 "^== cycle report" \
-        "$RP_SIM" reproject --depth "$bb" --enc f32 --move-rel 0.05,0,0 --res 228x219
+        "$RP_SIM" reproject --depth "$bb" --num f32 --move-rel 0.05,0,0 --res 228x219
 elif [ "${CI:-}" = "true" ]; then
     ko "reproject: shared depth file missing under CI: $bb"
 else

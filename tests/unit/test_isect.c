@@ -40,6 +40,8 @@
 #include <string.h>
 
 #include "lt/lt_isect.h"
+/* the core's internal triangle header (the per-lane body the kernels share) */
+#include "../../firmware/core/object/lt_tri.h"
 #include "io/lt_fx_float.h"
 #include "lt_test_util.h"
 
@@ -894,6 +896,113 @@ static void test_tri_random_q16(void **state)
     assert_int_equal(ty.bad + ty.t_bad + id_bad, 0);
 }
 
+
+/* lt_tri.h: every 16-lane op of the triangle test computes lt_tri.h's per-lane function on each
+ * lane (the documented equivalence of the lane form), on random operands over the whole int32
+ * range (saturating lanes included) and on the kernel's own operands; and lt_tri16_q16 takes
+ * exactly the hits and t of the per-lane body (lt__tri_q16_cand1, lt__tri_q16_tdiv1). */
+static lt_vq16_t body_rnd16(ltt_rng_t *r, unsigned sh)
+{
+    lt_vq16_t v;
+    int i;
+    for (i = 0; i < LT_LANES; i++)
+        v.l[i] = ltt_rng_i32(r) >> (ltt_rng_below(r, sh + 1u));
+    return v;
+}
+
+static void test_tri_lane_body_q16(void **state)
+{
+    ltt_rng_t r;
+    unsigned n, pk;
+    unsigned long bad = 0, hits = 0;
+    int i;
+    (void)state;
+    ltt_rng_seed(&r, 1616);
+    for (n = 0; n < 4000; n++) {
+        lt_vq16_t a = body_rnd16(&r, 31), b = body_rnd16(&r, 31), c = body_rnd16(&r, 31);
+        lt_vq16_t d = body_rnd16(&r, 31), e = body_rnd16(&r, 31), f = body_rnd16(&r, 31);
+        lt_vq30_t qa, qc, qd;
+        lt_vq6_t q6a, q6b, q6c;
+        lt_vq16_t pv;
+        lt_vq6_t qv;
+        lt_vql32_t dt, vv;
+        lt_vql22_t tn, tnum;
+        lt_vql32_t det;
+        lt_vq16_t td, src = body_rnd16(&r, 0);
+        lt_mask16_t k = (lt_mask16_t)ltt_rng_u32(&r);
+        memcpy(&qa, &a, sizeof a);
+        memcpy(&qc, &c, sizeof c);
+        memcpy(&qd, &d, sizeof d);
+        memcpy(&q6a, &d, sizeof d);
+        memcpy(&q6b, &e, sizeof e);
+        memcpy(&q6c, &f, sizeof f);
+        pv = LT__TRI_V16_PVEC(qa, b, qc, d);
+        qv = LT__TRI_V16_QVEC(a, b, c, d);
+        dt = LT__TRI_V16_DOT(a, b, c, d, e, f);
+        vv = LT__TRI_V16_V(qa, qc, qd, q6a, q6b, q6c);
+        tn = LT__TRI_V16_TNUM(a, b, c, q6a, q6b, q6c);
+        for (i = 0; i < LT_LANES; i++) {
+            /* det > 0; operands for which the division's 2 n' + d' stays inside int64 (as the
+             * geometry bound gives the kernel): any |tnum| < 2^60 with det < 2^27 (even lanes,
+             * both shift branches), or |tnum| < 2^35 with det < 2^54 (odd lanes) */
+            tnum.l[i] = ltt_rng_i64(&r) >> ((i & 1 ? 29u : 4u) + ltt_rng_below(&r, 30));
+            det.l[i] = (int64_t)(ltt_rng_u64(&r) >> ((i & 1 ? 10u : 37u) + ltt_rng_below(&r, 27)));
+            det.l[i] += det.l[i] == 0;
+        }
+        td = lt__tri_tdiv16_q16(src, k, tnum, det);
+        for (i = 0; i < LT_LANES; i++) {
+            bad += pv.l[i] != lt__tri_q16_pvec1(a.l[i], b.l[i], c.l[i], d.l[i]);
+            bad += qv.l[i] != lt__tri_q16_qvec1(a.l[i], b.l[i], c.l[i], d.l[i]);
+            bad += dt.l[i] != lt__tri_q16_dot1(a.l[i], b.l[i], c.l[i], d.l[i], e.l[i], f.l[i]);
+            bad += vv.l[i] != lt__tri_q16_v1(a.l[i], c.l[i], d.l[i], d.l[i], e.l[i], f.l[i]);
+            bad += tn.l[i] != lt__tri_q16_dot1(a.l[i], b.l[i], c.l[i], d.l[i], e.l[i], f.l[i]);
+            bad += td.l[i] != (LTT_ON(k, i) ? lt__tri_q16_tdiv1(tnum.l[i], det.l[i]) : src.l[i]);
+        }
+    }
+    /* the packet kernel against the per-lane body on aimed rays (as test_tri_random_q16) */
+    for (pk = 0; pk < TRI_PACKETS; pk++) {
+        lt_ray16_q16_t p;
+        lt_tri_q16_t tq;
+        dtri_t dtr;
+        dray_t dr;
+        lt_hit16_t h;
+        lt_mask16_t got;
+        lt_vq16_t tmax0;
+        double v[3][3], o[3], dd[3];
+        memset(&p, 0, sizeof p);
+        tri_make(&r, v);
+        q16_tri((const double(*)[3])v, &tq, &dtr);
+        for (i = 0; i < LT_LANES; i++) {
+            tri_aim(&r, (const double(*)[3])v, (pk + (unsigned)i) % 3u, o, dd);
+            q16_lane(&p, i, o, dd, rng_tmax(&r), i & 1, &dr);
+        }
+        lt_ray16_q16_setup(&p);
+        h.id = lt_vi32_set1(-1);
+        tmax0 = p.tmax;
+        got = lt_tri16_q16(&p, LT_MASK_ALL, &tq, 7, &h);
+        for (i = 0; i < LT_LANES; i++) {
+            lt_q16_t o1[3], t = 0;
+            lt_q30_t d1[3];
+            int64_t tnum1, det1;
+            int hit;
+            o1[0] = p.ox.l[i], o1[1] = p.oy.l[i], o1[2] = p.oz.l[i];
+            d1[0] = p.dx.l[i], d1[1] = p.dy.l[i], d1[2] = p.dz.l[i];
+            hit = lt__tri_q16_cand1(o1, d1, &tq, &tnum1, &det1);
+            if (hit) {
+                t = lt__tri_q16_tdiv1(tnum1, det1);
+                hit = t > p.tmin.l[i] && t < tmax0.l[i];
+            }
+            hits += (unsigned long)hit;
+            bad += hit != (int)LTT_ON(got, i);
+            bad += hit ? p.tmax.l[i] != t : p.tmax.l[i] != tmax0.l[i];
+        }
+    }
+    ltt_report("lt_tri.h per-lane body: %lu mismatches against the lane ops and lt_tri16_q16 "
+               "(%lu body hits)\n", bad, hits);
+    assert_int_equal(bad, 0);
+    assert_true(hits > 0);
+}
+
 #if LT_CFG_FLOAT32
 static void test_tri_random_f32(void **state)
 {
@@ -1442,6 +1551,7 @@ int main(void)
         cmocka_unit_test(test_slab_parallel),
         cmocka_unit_test(test_slab_near_parallel),
         cmocka_unit_test(test_tri_random_q16),
+        cmocka_unit_test(test_tri_lane_body_q16),
 #if LT_CFG_FLOAT32
         cmocka_unit_test(test_tri_random_f32),
 #endif

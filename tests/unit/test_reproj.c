@@ -746,6 +746,61 @@ static void test_errors(void **state)
 
 /* ---- view synthesis end to end ---------------------------------------------------------------- */
 
+/* Flat depth exactly at a power of two (z_ref chosen from it) and a checkerboard of depths 1 and 3,
+ * reprojected through the identity camera: every pixel hits, in every node encoding and with the
+ * DDA and Hi-Z. With z_ref = the nearest depth the surface sat at w = 1, on the default near plane,
+ * and n64/n32 lost it (0% and 50% hits). */
+static void test_flat_zref(void **state)
+{
+    static const float flats[5] = {2.0f, 1.0f, 4.0f, 1024.0f, 0.5f};
+    static const lt_qt_enc_t encs[3] = {LT_QT_N64, LT_QT_N32, LT_QT_F32};
+    const uint32_t W = 40, H = 24;
+    float *z = malloc(W * H * sizeof *z);
+    lt_rp_source_t src;
+    lt_rp_opts_t o;
+    lt_rp_result_t res;
+    lt_diag_t diag;
+    int f, e, tr, runs = 0, bad = 0;
+    size_t i;
+    (void)state;
+    assert_non_null(z);
+    for (f = 0; f < 6; f++) {
+        for (i = 0; i < (size_t)W * H; i++) {
+            uint32_t x = (uint32_t)(i % W), y = (uint32_t)(i / W);
+            z[i] = f < 5 ? flats[f] : (((x / 4) + (y / 4)) % 2 ? 3.0f : 1.0f);
+        }
+        memset(&src, 0, sizeof src);
+        src.width = W;
+        src.height = H;
+        src.layers = 1;
+        src.z = z;
+        lt_rp_cam_default(W, H, 0, 0, 0, 0, 60.0, &src.cam);
+        for (tr = 0; tr < 3; tr++)
+            for (e = 0; e < 3; e++) {
+                if (tr > 0 && e == 1)
+                    continue; /* the baselines have s1.30 and float32 only */
+                lt_rp_opts_default(&o);
+                o.enc = encs[e];
+                o.tracer = tr == 0 ? LT_RP_QUADTREE : tr == 1 ? LT_RP_DDA : LT_RP_HIZ;
+                assert_int_equal(lt_rp_run(&src, &src.cam, &o, &res, &diag), 0);
+                runs++;
+                if (res.st.cls[LT_RP_HIT] != res.st.pixels) {
+                    bad++;
+                    printf("  FAIL %s depth, tracer %d, encoding %d: %llu hits of %llu\n",
+                           f < 5 ? "flat" : "checkerboard", tr, e,
+                           (unsigned long long)res.st.cls[LT_RP_HIT],
+                           (unsigned long long)res.st.pixels);
+                }
+                lt_rp_result_free(&res);
+            }
+    }
+    printf("reproj flat depth at a power of two (0.5, 1, 2, 4, 1024) and a 1/3 checkerboard, "
+           "identity view: %d runs (quadtree n64/n32/f32, DDA and Hi-Z s1.30/f32), %d with a "
+           "pixel not hit (bound 0)\n", runs, bad);
+    assert_int_equal(bad, 0);
+    free(z);
+}
+
 static void test_view_synthesis(void **state)
 {
     const uint32_t W = 48, H = 40;
@@ -994,7 +1049,7 @@ int main(void)
         cmocka_unit_test(test_reference),
         cmocka_unit_test(test_clipping),
         cmocka_unit_test(test_errors),
-        cmocka_unit_test(test_view_synthesis),
+        cmocka_unit_test(test_flat_zref), cmocka_unit_test(test_view_synthesis),
         cmocka_unit_test(test_inpaint),
         cmocka_unit_test(test_truth),
     };

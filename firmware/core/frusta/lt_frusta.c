@@ -1,12 +1,14 @@
 /* lt_frusta.c - instantiates the multi-frusta kernels of lt_frusta.inc (Benthin & Wald 2009
  * [Benthin09]) for s15.16 (exact integer rays, proven margins) and float32 (relative margins), and
  * holds what differs between the two paths: the per-frame tables, the direction scaling,
- * reciprocals, the triangle-kernel arithmetic replicated for culling (bit-identical to lt_isect.c's
- * lane math, which tests/unit/test_frusta.c checks) and the margins; for primary frusta the eye's
- * scalar terms, the exact linear camera (s1.30 integer directions; float32 on a 2^-23 grid) and its
- * lane helpers. Builds: all; float32 only with LT_CFG_FLOAT32.
+ * reciprocals, the scalar forms of the triangle test's arithmetic for culling (lt_tri.h's per-lane
+ * body, the one lt_isect.c's kernel uses, so they are the kernel's tnum, det, u and v) and the
+ * margins; for primary frusta the eye's scalar terms, the exact linear camera (s1.30 integer
+ * directions; float32 on a 2^-23 grid) and its lane helpers. Builds: all; float32 only with
+ * LT_CFG_FLOAT32.
  */
 #include "lt/lt_frusta.h"
+#include "object/lt_tri.h"
 
 /* ---- s15.16 --------------------------------------------------------------------------------- */
 
@@ -149,49 +151,9 @@ static lt_vq16_t q_tmaxv(lt_vq16_t tend, uint32_t es)
     return r;
 }
 
-/* 1/d: 2^46 / d_raw (s1.30 -> s15.16), half up, saturating; d == 0 gives `zero` (+max for the
- * upper interval end, min for the lower: the side a vanishing direction approaches from). */
-static lt_vq16_t q_recip(lt_vq30_t d, lt_q16_t zero)
-{
-    lt_vq16_t r;
-    int i;
-    LT_COST(VDIV, 1);
-    for (i = 0; i < LT_LANES; i++) {
-        if (d.l[i] == 0) {
-            r.l[i] = zero;
-        } else {
-            int64_t q = lt__div_round64((int64_t)1 << 46, d.l[i]);
-            LT_EVENT(SAT, q != (int64_t)lt__ssat32(q));
-            r.l[i] = lt__ssat32(q);
-        }
-    }
-    return r;
-}
-
-LT_INLINE lt_mask16_t q_rsat(lt_vq16_t r)
-{
-    return (lt_mask16_t)(lt_vq16_cmpeq(r, lt_vq16_set1(LT_Q16_MAX)) |
-                         lt_vq16_cmpeq(r, lt_vq16_set1(LT_Q16_MIN)));
-}
-
 /* Box bound margins: lower bounds go down, upper bounds up by LT_FRUSTA_BOX_MARGIN_Q16. */
 #define Q_LOWER(x) lt_vq16_sub_sat((x), lt_vq16_set1(LT_FRUSTA_BOX_MARGIN_Q16))
 #define Q_UPPER(x) lt_vq16_add_sat((x), lt_vq16_set1(LT_FRUSTA_BOX_MARGIN_Q16))
-
-/* the lane arithmetic of lt_tri16_q16, shared with lt_isect.c so culling evaluates exactly the
- * kernel's tnum, det, u and v (tests/unit/test_frusta.c compares) */
-#include "object/lt_isect_q16.inc"
-
-/* int32 lanes widened to int64 lanes (a sign extension). Cost: VCVT x1. */
-static lt_vql_t q_widen(lt_vq16_t a)
-{
-    lt_vql_t r;
-    int i;
-    LT_COST(VCVT, 1);
-    for (i = 0; i < LT_LANES; i++)
-        r.l[i] = a.l[i];
-    return r;
-}
 
 /* Corner-culling margins, in the forms' 36 fractional bits (U = d . round6(e2 x tvec), D = d .
  * round6(e2 x e1), V = d . qvec). The kernel's u and det differ from the exact linear forms by
@@ -201,50 +163,37 @@ static lt_vql_t q_widen(lt_vq16_t a)
  * and V itself needs V < 0 (sigma > 0) or V > 15 (sigma < 0). docs/frusta.md has the derivation.
  * |tvec|_1 <= 3 x 2^29 raw fits int32 within the geometry bound. */
 static void q_margins(lt_vq16_t tx, lt_vq16_t ty, lt_vq16_t tz, const lt_tri_q16_t *tri,
-                      lt_vql_t *mu, lt_vql_t *mw, lt_vql_t *mvp, lt_vql_t *mvn)
+                      lt_vql36_t *mu, lt_vql36_t *mw, lt_vql36_t *mvp, lt_vql36_t *mvn)
 {
     lt_vq16_t t1 = lt_vq16_add_sat(lt_vq16_add_sat(lt_vq16_abs_sat(tx), lt_vq16_abs_sat(ty)),
                                    lt_vq16_abs_sat(tz));
     int64_t e1 = (int64_t)lt__q16_abs_sat(tri->e1[0]) + lt__q16_abs_sat(tri->e1[1]) +
                  lt__q16_abs_sat(tri->e1[2]);
-    lt_vql_t w8 = lt_vql_asr(q_widen(t1), 0);
-    int i;
+    /* 8 |tvec|_1: |tvec|_1 (raw s15.16) counted in the forms' 2^-36 units, as the derivation
+     * does; sign-extended, then x 8. The shift by 0 does nothing and is charged (VSHIFT x1): it
+     * was always there, and removing it would change the cycle figures. */
+    lt_vql36_t w8 = lt_vql36_from_vql(lt_vql_from_vi32(lt_vi32_from_q16(t1)));
+    w8 = lt_vql36_shl_wrap(lt_vql36_asr(w8, 0), 3);
     LT_COST(SALU, 5);
-    LT_COST(VSHIFT, 1);
-    for (i = 0; i < LT_LANES; i++)
-        w8.l[i] *= 8; /* the shift charged above */
-    *mu = lt_vql_add_wrap(w8, lt_vql_set1(((int64_t)3 << 29) + 16));
-    *mw = lt_vql_add_wrap(w8, lt_vql_set1(8 * e1 + ((int64_t)3 << 30) + 32));
-    *mvp = lt_vql_set1(0);
-    *mvn = lt_vql_set1(15);
+    *mu = lt_vql36_add_wrap(w8, lt_vql36_set1(((int64_t)3 << 29) + 16));
+    *mw = lt_vql36_add_wrap(w8, lt_vql36_set1(8 * e1 + ((int64_t)3 << 30) + 32));
+    *mvp = lt_vql36_set1(0);
+    *mvn = lt_vql36_set1(15);
 }
 
 /* e2 x e1 of a triangle rounded to qvec's s25.6, broadcast (a per-triangle constant). */
-static void q_tri_a(const lt_tri_q16_t *t, lt_vi32_t *ax, lt_vi32_t *ay, lt_vi32_t *az)
+static void q_tri_a(const lt_tri_q16_t *t, lt_vq6_t *ax, lt_vq6_t *ay, lt_vq6_t *az)
 {
     LT_COST(SMUL, 6);
     LT_COST(SALU, 6);
-    *ax = lt_vi32_set1(lt__round_sat32(lt__l64_sub_wrap(lt__mul32x32_64(t->e2[1], t->e1[2]),
-                                                        lt__mul32x32_64(t->e2[2], t->e1[1])),
-                                       32u - QV_FRAC));
-    *ay = lt_vi32_set1(lt__round_sat32(lt__l64_sub_wrap(lt__mul32x32_64(t->e2[2], t->e1[0]),
-                                                        lt__mul32x32_64(t->e2[0], t->e1[2])),
-                                       32u - QV_FRAC));
-    *az = lt_vi32_set1(lt__round_sat32(lt__l64_sub_wrap(lt__mul32x32_64(t->e2[0], t->e1[1]),
-                                                        lt__mul32x32_64(t->e2[1], t->e1[0])),
-                                       32u - QV_FRAC));
-}
-
-/* d . n for s1.30 corner rays and an s25.6 normal: exact, 36 fractional bits. */
-LT_INLINE lt_vql_t q_ldot(lt_vq30_t dx, lt_vq30_t dy, lt_vq30_t dz, lt_vi32_t nx, lt_vi32_t ny,
-                          lt_vi32_t nz)
-{
-    return q_dot(lt_vi32_from_q30(dx), lt_vi32_from_q30(dy), lt_vi32_from_q30(dz), nx, ny, nz);
+    *ax = lt_vq6_set1(lt__tri_q16_qvec1(t->e2[1], t->e1[2], t->e2[2], t->e1[1]));
+    *ay = lt_vq6_set1(lt__tri_q16_qvec1(t->e2[2], t->e1[0], t->e2[0], t->e1[2]));
+    *az = lt_vq6_set1(lt__tri_q16_qvec1(t->e2[0], t->e1[1], t->e2[1], t->e1[0]));
 }
 
 /* Lanes whose edge normal (or the triangle's e2 x e1) saturated its s25.6 range. */
-static lt_mask16_t q_nsat(lt_vi32_t nx, lt_vi32_t ny, lt_vi32_t nz, lt_vi32_t ax, lt_vi32_t ay,
-                          lt_vi32_t az)
+static lt_mask16_t q_nsat(lt_vq6_t nx, lt_vq6_t ny, lt_vq6_t nz, lt_vq6_t ax, lt_vq6_t ay,
+                          lt_vq6_t az)
 {
     unsigned m = 0;
     int i;
@@ -260,47 +209,24 @@ static lt_mask16_t q_nsat(lt_vi32_t nx, lt_vi32_t ny, lt_vi32_t nz, lt_vi32_t ax
     return (lt_mask16_t)m;
 }
 
-/* Scalar sign of the kernel's tnum for one origin (lane arithmetic of lt_tri16_q16): a hit of any
+/* Scalar sign of the kernel's tnum for one origin (lt__tri_q16_org1, lt_tri.h): a hit of any
  * ray from o has det of this sign (t = tnum / det > tmin >= 0). Cost: SMUL x9, SALU x9. */
 static int q_tnum_sign1(const lt_q16_t o[3], const lt_tri_q16_t *tri)
 {
-    int32_t tx = lt__q16_sub_sat(o[0], tri->v0[0]), ty = lt__q16_sub_sat(o[1], tri->v0[1]);
-    int32_t tz = lt__q16_sub_sat(o[2], tri->v0[2]);
-    int32_t qx = lt__round_sat32(lt__l64_sub_wrap(lt__mul32x32_64(ty, tri->e1[2]),
-                                                  lt__mul32x32_64(tz, tri->e1[1])), 32u - QV_FRAC);
-    int32_t qy = lt__round_sat32(lt__l64_sub_wrap(lt__mul32x32_64(tz, tri->e1[0]),
-                                                  lt__mul32x32_64(tx, tri->e1[2])), 32u - QV_FRAC);
-    int32_t qz = lt__round_sat32(lt__l64_sub_wrap(lt__mul32x32_64(tx, tri->e1[1]),
-                                                  lt__mul32x32_64(ty, tri->e1[0])), 32u - QV_FRAC);
-    int64_t t = lt__l64_add_wrap(lt__l64_add_wrap(lt__mul32x32_64(tri->e2[0], qx),
-                                                  lt__mul32x32_64(tri->e2[1], qy)),
-                                 lt__mul32x32_64(tri->e2[2], qz));
+    lt__tri_q16_org_t s;
+    lt__tri_q16_org1(o, tri, &s);
     LT_COST(SMUL, 9);
     LT_COST(SALU, 9);
-    return (t > 0) - (t < 0);
+    return (s.tnum > 0) - (s.tnum < 0);
 }
 
-/* Direct-light term: n.w and nl.w rounded to s15.16 (q30 x q16 -> 46 bits), then
- * G = a b / |w|^2 (q16 x q16 = 32 bits over 32 bits) half up to s15.16, per lane. */
-static lt_vq16_t q_ndot(lt_vq30_t nx, lt_vq30_t ny, lt_vq30_t nz, lt_vq16_t wx, lt_vq16_t wy,
-                        lt_vq16_t wz)
-{
-    lt_vi32_t r = lt_vql_round_sat(q_dot(lt_vi32_from_q30(nx), lt_vi32_from_q30(ny),
-                                         lt_vi32_from_q30(nz), lt_vi32_from_q16(wx),
-                                         lt_vi32_from_q16(wy), lt_vi32_from_q16(wz)),
-                                   30);
-    lt_vq16_t o;
-    int i;
-    for (i = 0; i < LT_LANES; i++)
-        o.l[i] = r.l[i];
-    return o;
-}
-
+/* Direct-light term: n.w and nl.w rounded to s15.16 (lt_vq16_dot3_q30_sat: q30 x q16 -> 46 bits),
+ * then G = a b / |w|^2 (q16 x q16 = 32 bits over 32 bits) half up to s15.16, per lane. */
 static lt_vq16_t q_gterm(lt_mask16_t k, lt_vq16_t a, lt_vq16_t b, lt_vq16_t wx, lt_vq16_t wy,
                          lt_vq16_t wz)
 {
-    lt_vql_t num = lt_vql_mul(lt_vi32_from_q16(a), lt_vi32_from_q16(b));
-    lt_vql_t den = q_dot_pp(wx, wy, wz, wx, wy, wz);
+    lt_vql32_t num = lt_vql32_mul_q16(a, b);
+    lt_vql32_t den = lt_vql32_dot3_q16(wx, wy, wz, wx, wy, wz);
     lt_vq16_t g;
     int i;
     LT_COST(VDIV, 1);
@@ -325,21 +251,8 @@ static lt_vq16_t q_gterm(lt_mask16_t k, lt_vq16_t a, lt_vq16_t b, lt_vq16_t wx, 
 /* Filter: n_p . n_q >= cos_min for s1.30 unit normals: exact 60-bit dot against cos << 30. */
 static lt_mask16_t q_ncmp(lt_mask16_t k, const lt_vq30_t np[3], const lt_vq30_t nq[3], lt_q30_t c)
 {
-    lt_vql_t d = q_dot(lt_vi32_from_q30(np[0]), lt_vi32_from_q30(np[1]), lt_vi32_from_q30(np[2]),
-                       lt_vi32_from_q30(nq[0]), lt_vi32_from_q30(nq[1]), lt_vi32_from_q30(nq[2]));
-    return lt_vql_cmpge_m(k, d, lt_vql_set1((int64_t)c * ((int64_t)1 << 30)));
-}
-
-/* Mean of n (1..16) values: sum / n half up. */
-static lt_vq16_t q_mean(lt_mask16_t k, lt_vq16_t sum, lt_vi32_t n)
-{
-    lt_vq16_t r;
-    int i;
-    LT_COST(VDIV, 1);
-    LT_UTIL(k);
-    for (i = 0; i < LT_LANES; i++)
-        r.l[i] = LT__ON(k, i) && n.l[i] > 0 ? (lt_q16_t)lt__div_round64(sum.l[i], n.l[i]) : 0;
-    return r;
+    lt_vql60_t d = lt_vql60_dot3_q30(np[0], np[1], np[2], nq[0], nq[1], nq[2]);
+    return lt_vql60_cmpge_m(k, d, lt_vql60_set1((int64_t)c * ((int64_t)1 << 30)));
 }
 
 /* Row segment load of 16 lanes at x0 + i, lanes with x outside [0, w) or not in k read as 0
@@ -370,31 +283,13 @@ static lt_vq16_t q_loadx(const int32_t *row, int64_t x0, uint32_t w, lt_mask16_t
 /* ---- primary frusta, s15.16: the eye's scalar terms and s1.30 direction lanes --------------- */
 
 /* The kernel's origin-only terms for rays from one eye, as scalars: tvec = o - v0, qvec = tvec x
- * e1 rounded to s25.6 and tnum = e2 . qvec, the lane arithmetic of lt_tri16_q16 (so broadcasting
- * them gives exactly the kernel's lanes). Cost: SMUL x9, SALU x12. */
-typedef struct {
-    int32_t t[3];  /* tvec, s15.16 */
-    int32_t q[3];  /* qvec, s25.6 */
-    int64_t tnum;  /* e2 . qvec, 22 fractional bits */
-} q_stq_t;
+ * e1 rounded to s25.6 and tnum = e2 . qvec, lt_tri.h's lt__tri_q16_org1 (the lane arithmetic of
+ * lt_tri16_q16, so broadcasting them gives exactly the kernel's lanes). Cost: SMUL x9, SALU x12. */
+typedef lt__tri_q16_org_t q_stq_t; /* t: tvec s15.16, q: qvec s25.6, tnum: 22 fractional bits */
 
 static void q_ptq1(const lt_q16_t o[3], const lt_tri_q16_t *tri, q_stq_t *s)
 {
-    unsigned a;
-    for (a = 0; a < 3; a++)
-        s->t[a] = lt__q16_sub_sat(o[a], tri->v0[a]);
-    s->q[0] = lt__round_sat32(lt__l64_sub_wrap(lt__mul32x32_64(s->t[1], tri->e1[2]),
-                                               lt__mul32x32_64(s->t[2], tri->e1[1])),
-                              32u - QV_FRAC);
-    s->q[1] = lt__round_sat32(lt__l64_sub_wrap(lt__mul32x32_64(s->t[2], tri->e1[0]),
-                                               lt__mul32x32_64(s->t[0], tri->e1[2])),
-                              32u - QV_FRAC);
-    s->q[2] = lt__round_sat32(lt__l64_sub_wrap(lt__mul32x32_64(s->t[0], tri->e1[1]),
-                                               lt__mul32x32_64(s->t[1], tri->e1[0])),
-                              32u - QV_FRAC);
-    s->tnum = lt__l64_add_wrap(lt__l64_add_wrap(lt__mul32x32_64(tri->e2[0], s->q[0]),
-                                                lt__mul32x32_64(tri->e2[1], s->q[1])),
-                               lt__mul32x32_64(tri->e2[2], s->q[2]));
+    lt__tri_q16_org1(o, tri, s);
     LT_COST(SMUL, 9);
     LT_COST(SALU, 12);
 }
@@ -406,15 +301,9 @@ static int q_pnrm1(const lt_tri_q16_t *tri, const int32_t t[3], int32_t n[3])
 {
     unsigned a;
     int sat = 0;
-    n[0] = lt__round_sat32(lt__l64_sub_wrap(lt__mul32x32_64(tri->e2[1], t[2]),
-                                            lt__mul32x32_64(tri->e2[2], t[1])),
-                           32u - QV_FRAC);
-    n[1] = lt__round_sat32(lt__l64_sub_wrap(lt__mul32x32_64(tri->e2[2], t[0]),
-                                            lt__mul32x32_64(tri->e2[0], t[2])),
-                           32u - QV_FRAC);
-    n[2] = lt__round_sat32(lt__l64_sub_wrap(lt__mul32x32_64(tri->e2[0], t[1]),
-                                            lt__mul32x32_64(tri->e2[1], t[0])),
-                           32u - QV_FRAC);
+    n[0] = lt__tri_q16_qvec1(tri->e2[1], t[2], tri->e2[2], t[1]);
+    n[1] = lt__tri_q16_qvec1(tri->e2[2], t[0], tri->e2[0], t[2]);
+    n[2] = lt__tri_q16_qvec1(tri->e2[0], t[1], tri->e2[1], t[0]);
     for (a = 0; a < 3; a++)
         sat |= n[a] == INT32_MAX || n[a] == INT32_MIN;
     LT_COST(SMUL, 6);
@@ -423,7 +312,7 @@ static int q_pnrm1(const lt_tri_q16_t *tri, const int32_t t[3], int32_t n[3])
 }
 
 /* Whether the broadcast e2 x e1 (q_tri_a) saturated in any component. Cost: SALU x3. */
-static int q_asat(lt_vi32_t ax, lt_vi32_t ay, lt_vi32_t az)
+static int q_asat(lt_vq6_t ax, lt_vq6_t ay, lt_vq6_t az)
 {
     LT_COST(SALU, 3);
     return ax.l[0] == INT32_MAX || ax.l[0] == INT32_MIN || ay.l[0] == INT32_MAX ||
@@ -481,45 +370,13 @@ LT_INLINE int32_t q_pdelta(const lt_frusta_vtable_q16_t *vt, uint32_t jx, uint32
     return lt__wrap32((int64_t)jx * vt->dx[a] + (int64_t)jy * vt->dy[a]);
 }
 
-/* s1.30 lanes: add (exact: the sums are pixel directions, in range), min, max, sign tests. */
-static lt_vq30_t q_dadd(lt_vq30_t a, lt_vq30_t b)
-{
-    int i;
-    LT_COST(VALU, 1);
-    for (i = 0; i < LT_LANES; i++)
-        a.l[i] = lt__wrap32((int64_t)a.l[i] + b.l[i]);
-    return a;
-}
-
-static lt_vq30_t q_dminmax(lt_vq30_t a, lt_vq30_t b, int want_max)
-{
-    int i;
-    LT_COST(VALU, 1);
-    for (i = 0; i < LT_LANES; i++)
-        a.l[i] = (want_max ? b.l[i] > a.l[i] : b.l[i] < a.l[i]) ? b.l[i] : a.l[i];
-    return a;
-}
-
-/* Lanes of k with a rel 0: rel = 0 (>=), 1 (<=), 2 (<), 3 (>). Cost: VCMP x1. */
-static lt_mask16_t q_dcmp0(lt_mask16_t k, lt_vq30_t a, int rel)
-{
-    unsigned m = 0;
-    int i;
-    LT_COST(VCMP, 1);
-    for (i = 0; i < LT_LANES; i++) {
-        int32_t v = a.l[i];
-        int on = rel == 0 ? v >= 0 : (rel == 1 ? v <= 0 : (rel == 2 ? v < 0 : v > 0));
-        if (LT__ON(k, i) && on)
-            m |= 1u << i;
-    }
-    return (lt_mask16_t)m;
-}
-
 #include "numerics/lt_traits_q16.h"
 #define LTN_VD lt_vq30_t
 #define LTN_NT lt_q30_t
-#define LTN_W lt_vql_t
-#define LTN_QV lt_vi32_t
+#define LTN_W lt_vql32_t  /* det, u, v: s31.32 */
+#define LTN_TN lt_vql22_t /* tnum: s41.22 */
+#define LTN_WC lt_vql36_t /* corner forms and margins: s27.36 */
+#define LTN_QV lt_vq6_t   /* qvec and edge normals: s25.6 */
 #define LTN_FR lt_frusta16_q16_t
 #define LTN_FRT lt_frusta_table_q16_t
 #define LTN_FRF lt_frusta_filter_q16_t
@@ -536,9 +393,9 @@ static lt_mask16_t q_dcmp0(lt_mask16_t k, lt_vq30_t a, int rel)
 #define LTN_TEND1 q_tend1
 #define LTN_TMAX q_tmaxv
 #define LTN_TMAX1 q_tmax1
-#define LTN_RECIP_HI(d) q_recip((d), LT_Q16_MAX)
-#define LTN_RECIP_LO(d) q_recip((d), LT_Q16_MIN)
-#define LTN_RSAT q_rsat
+#define LTN_RECIP_HI(d) lt_vq16_recip_q30_sat((d), LT_Q16_MAX)
+#define LTN_RECIP_LO(d) lt_vq16_recip_q30_sat((d), LT_Q16_MIN)
+#define LTN_RSAT lt_vq16_cmpsat
 #define LTN_ABS lt_vq16_abs_sat
 #define LTN_SABS lt__q16_abs_sat
 #define LTN_MULLO lt_vq16_mul_sat_rd
@@ -546,37 +403,46 @@ static lt_mask16_t q_dcmp0(lt_mask16_t k, lt_vq30_t a, int rel)
 #define LTN_UPPER Q_UPPER
 #define LTN_MAX_M lt_vq16_max_m
 #define LTN_MIN_M lt_vq16_min_m
-#define LTN_CROSS_DP q_cross_dp
-#define LTN_DOT_PP q_dot_pp
-#define LTN_CROSS_PP q_cross_pp
-#define LTN_DOT_DQ q_dot_dq
-#define LTN_DOT_PQ q_dot_pq
-#define LTN_W_SUB lt_vql_sub_wrap
-#define LTN_W_NEG_M(k, a) lt_vql_sub_wrap_m((a), (k), lt_vql_set1(0), (a))
-#define LTN_W_CMPLT_M lt_vql_cmplt_m
-#define LTN_W_CMPGT_M lt_vql_cmpgt_m
-#define LTN_W_ADD lt_vql_add_wrap
-#define LTN_W_ZERO lt_vql_set1(0)
-#define LTN_W_NEG(a) lt_vql_sub_wrap(lt_vql_set1(0), (a))
+/* the products of lt_tri16_q16: the lane ops of lt_tri.h's per-lane body */
+#define LTN_CROSS_DP LT__TRI_V16_PVEC
+#define LTN_DOT_PP LT__TRI_V16_DOT
+#define LTN_CROSS_PP LT__TRI_V16_QVEC
+#define LTN_DOT_DQ LT__TRI_V16_V
+#define LTN_DOT_PQ LT__TRI_V16_TNUM
+/* det, u, v (LTN_W, s31.32) */
+#define LTN_W_ADD lt_vql32_add_wrap
+#define LTN_W_NEG(a) lt_vql32_sub_wrap(lt_vql32_set1(0), (a))
 #define LTN_W_LANE(v, f) ((v).l[f])
 #define LTN_W_LANE0 ((int64_t)0)
-#define LTN_W_SET1 lt_vql_set1
-#define LTN_QV_SET1 lt_vi32_set1
-#define LTN_W_CMPGE0(k, a) lt_vql_cmpge_m((k), (a), lt_vql_set1(0))
-#define LTN_W_CMPLE_M lt_vql_cmple_m
-#define LTN_TDIV_M q_tdiv_m
+#define LTN_W_CMPGT0(k, a) lt_vql32_cmpgt_m((k), (a), lt_vql32_set1(0))
+#define LTN_W_CMPGE0(k, a) lt_vql32_cmpge_m((k), (a), lt_vql32_set1(0))
+#define LTN_W_CMPLE_M lt_vql32_cmple_m
+/* tnum (LTN_TN, s41.22) */
+#define LTN_TN_SET1 lt_vql22_set1
+#define LTN_TN_NEG(a) lt_vql22_sub_wrap(lt_vql22_set1(0), (a))
+#define LTN_TN_CMPGT0(k, a) lt_vql22_cmpgt_m((k), (a), lt_vql22_set1(0))
+#define LTN_TN_CMPLT0(k, a) lt_vql22_cmplt_m((k), (a), lt_vql22_set1(0))
+/* the corner forms U, V, D, W and their margins (LTN_WC, s27.36) */
+#define LTN_WC_SUB lt_vql36_sub_wrap
+#define LTN_WC_ADD lt_vql36_add_wrap
+#define LTN_WC_ZERO lt_vql36_set1(0)
+#define LTN_WC_SET1 lt_vql36_set1
+#define LTN_WC_CMPLT_M lt_vql36_cmplt_m
+#define LTN_WC_CMPGT_M lt_vql36_cmpgt_m
+#define LTN_QV_SET1 lt_vq6_set1
+#define LTN_TDIV_M lt__tri_tdiv16_q16
 #define LTN_TRI_A q_tri_a
-#define LTN_LDOT q_ldot
+/* d . n for s1.30 corner rays and an s25.6 normal: exact, 36 fractional bits */
+#define LTN_LDOT lt_vql36_dot3_q30_q6
 #define LTN_LINEAR_CORNERS 1
 #define LTN_NSAT q_nsat
-#define LTN_W_CMPGT0(k, a) lt_vql_cmpgt_m((k), (a), lt_vql_set1(0))
-#define LTN_W_CMPLT0(k, a) lt_vql_cmplt_m((k), (a), lt_vql_set1(0))
 #define LTN_MARGINS q_margins
 #define LTN_TNUM_SIGN1 q_tnum_sign1
-#define LTN_NDOT q_ndot
+#define LTN_NDOT lt_vq16_dot3_q30_sat
 #define LTN_GTERM q_gterm
 #define LTN_NCMP q_ncmp
-#define LTN_MEAN q_mean
+/* mean of n (1..16) values: sum / n half up */
+#define LTN_MEAN lt_vq16_div_i32_z
 #define LTN_LOADX(p, x0, w, k) q_loadx((p), (x0), (w), (k))
 #define LTN_LOADXN(p, x0, w, k) lt__frusta_q30_of(q_loadx((p), (x0), (w), (k)))
 #define LTN_VD_SET1 lt_vq30_set1
@@ -609,14 +475,17 @@ static lt_mask16_t q_dcmp0(lt_mask16_t k, lt_vq30_t a, int rel)
 #define LTN_PDELTA q_pdelta
 #define LTN_PFINITE(x) ((void)(x), 1)
 #define LTN_PTMAX0 (LT_Q16_MAX - 1)
-#define LTN_DADD q_dadd
+/* s1.30 pixel directions: add (exact: the sums are directions, in range), min, max, sign tests.
+ * The sign tests are plain compares ANDed with k: one VCMP each and no lane-utilisation event,
+ * the tally this path has always had. */
+#define LTN_DADD lt_vq30_add_wrap
 #define LTN_DSADD(a, b) lt__wrap32((int64_t)(a) + (b))
-#define LTN_DMIN(a, b) q_dminmax((a), (b), 0)
-#define LTN_DMAX(a, b) q_dminmax((a), (b), 1)
-#define LTN_DCMPGE0(k, a) q_dcmp0((k), (a), 0)
-#define LTN_DCMPLE0(k, a) q_dcmp0((k), (a), 1)
-#define LTN_DCMPLT0(k, a) q_dcmp0((k), (a), 2)
-#define LTN_DCMPGT0(k, a) q_dcmp0((k), (a), 3)
+#define LTN_DMIN lt_vq30_min
+#define LTN_DMAX lt_vq30_max
+#define LTN_DCMPGE0(k, a) ((lt_mask16_t)(lt_vq30_cmpge0(a) & (k)))
+#define LTN_DCMPLE0(k, a) ((lt_mask16_t)(lt_vq30_cmple0(a) & (k)))
+#define LTN_DCMPLT0(k, a) ((lt_mask16_t)(lt_vq30_cmplt0(a) & (k)))
+#define LTN_DCMPGT0(k, a) ((lt_mask16_t)(lt_vq30_cmpgt0(a) & (k)))
 #define LTN_CMPEQ_M lt_vq16_cmpeq_m
 #define LTN_NEXTUP_M(src, k, a) lt_vq16_add_sat_m((src), (k), (a), lt_vq16_set1(1))
 LT_INLINE lt_vq30_t lt__frusta_q30_of(lt_vq16_t a)
@@ -632,6 +501,18 @@ LT_INLINE lt_vq30_t lt__frusta_q30_of(lt_vq16_t a)
 #undef LTN_VD
 #undef LTN_NT
 #undef LTN_W
+#undef LTN_TN
+#undef LTN_WC
+#undef LTN_TN_SET1
+#undef LTN_TN_NEG
+#undef LTN_TN_CMPGT0
+#undef LTN_TN_CMPLT0
+#undef LTN_WC_SUB
+#undef LTN_WC_ADD
+#undef LTN_WC_ZERO
+#undef LTN_WC_SET1
+#undef LTN_WC_CMPLT_M
+#undef LTN_WC_CMPGT_M
 #undef LTN_QV
 #undef LTN_FR
 #undef LTN_FRT
@@ -664,16 +545,10 @@ LT_INLINE lt_vq30_t lt__frusta_q30_of(lt_vq16_t a)
 #undef LTN_CROSS_PP
 #undef LTN_DOT_DQ
 #undef LTN_DOT_PQ
-#undef LTN_W_SUB
-#undef LTN_W_NEG_M
-#undef LTN_W_CMPLT_M
-#undef LTN_W_CMPGT_M
 #undef LTN_W_ADD
-#undef LTN_W_ZERO
 #undef LTN_W_NEG
 #undef LTN_W_LANE
 #undef LTN_W_LANE0
-#undef LTN_W_SET1
 #undef LTN_QV_SET1
 #undef LTN_W_CMPGE0
 #undef LTN_W_CMPLE_M
@@ -683,7 +558,6 @@ LT_INLINE lt_vq30_t lt__frusta_q30_of(lt_vq16_t a)
 #undef LTN_LINEAR_CORNERS
 #undef LTN_NSAT
 #undef LTN_W_CMPGT0
-#undef LTN_W_CMPLT0
 #undef LTN_MARGINS
 #undef LTN_TNUM_SIGN1
 #undef LTN_NDOT
@@ -865,24 +739,6 @@ static lt_vf32_t f_tmaxv(lt_vf32_t tend, uint32_t es)
     return r;
 }
 
-static lt_vf32_t f_recip(lt_vf32_t d, float zero)
-{
-    lt_vf32_t r;
-    int i;
-    LT_COST(FDIV, 1);
-    for (i = 0; i < LT_LANES; i++) {
-        float q = d.l[i] == 0.0f ? zero : 1.0f / d.l[i];
-        r.l[i] = q > F_MAX ? F_MAX : (q < -F_MAX ? -F_MAX : q);
-    }
-    return r;
-}
-
-LT_INLINE lt_mask16_t f_rsat(lt_vf32_t r)
-{
-    return (lt_mask16_t)(lt_vf32_cmpeq(r, lt_vf32_set1(F_MAX)) |
-                         lt_vf32_cmpeq(r, lt_vf32_set1(-F_MAX)));
-}
-
 /* Relative box-bound margins 2^-20 |x| (the product's own error is ~2^-23 relative; plane and
  * origin rounding are covered by the BVH's 2^-18 pad, as for lt_slab16_f32). */
 static lt_vf32_t f_lower(lt_vf32_t x)
@@ -893,17 +749,6 @@ static lt_vf32_t f_lower(lt_vf32_t x)
 static lt_vf32_t f_upper(lt_vf32_t x)
 {
     return lt_vf32_add(x, lt_vf32_mul(lt_vf32_abs(x), lt_vf32_set1(0x1p-20f)));
-}
-
-LT_INLINE lt_vf32_t f_cross(lt_vf32_t a, lt_vf32_t b, lt_vf32_t c, lt_vf32_t d)
-{
-    return lt_vf32_sub(lt_vf32_mul(a, b), lt_vf32_mul(c, d));
-}
-
-LT_INLINE lt_vf32_t f_dot(lt_vf32_t ax, lt_vf32_t ay, lt_vf32_t az, lt_vf32_t bx, lt_vf32_t by,
-                          lt_vf32_t bz)
-{
-    return lt_vf32_add(lt_vf32_add(lt_vf32_mul(ax, bx), lt_vf32_mul(ay, by)), lt_vf32_mul(az, bz));
 }
 
 /* Relative corner-culling margins, 2^-16 of each form's magnitude bound (the float kernel's error
@@ -946,7 +791,7 @@ static int f_tnum_sign1(const float o[3], const lt_tri_f32_t *tri)
 static lt_vf32_t f_gterm(lt_mask16_t k, lt_vf32_t a, lt_vf32_t b, lt_vf32_t wx, lt_vf32_t wy,
                          lt_vf32_t wz)
 {
-    lt_vf32_t den = f_dot(wx, wy, wz, wx, wy, wz);
+    lt_vf32_t den = lt_vf32_dot3(wx, wy, wz, wx, wy, wz);
     lt_vf32_t g = lt_vf32_div_z(k, lt_vf32_mul(a, b), den);
     int i;
     for (i = 0; i < LT_LANES; i++)
@@ -957,18 +802,8 @@ static lt_vf32_t f_gterm(lt_mask16_t k, lt_vf32_t a, lt_vf32_t b, lt_vf32_t wx, 
 
 static lt_mask16_t f_ncmp(lt_mask16_t k, const lt_vf32_t np[3], const lt_vf32_t nq[3], float c)
 {
-    return lt_vf32_cmpge_m(k, f_dot(np[0], np[1], np[2], nq[0], nq[1], nq[2]), lt_vf32_set1(c));
-}
-
-static lt_vf32_t f_mean(lt_mask16_t k, lt_vf32_t sum, lt_vi32_t n)
-{
-    lt_vf32_t r;
-    int i;
-    LT_COST(FDIV, 1);
-    LT_UTIL(k);
-    for (i = 0; i < LT_LANES; i++)
-        r.l[i] = LT__ON(k, i) && n.l[i] > 0 ? sum.l[i] / (float)n.l[i] : 0.0f;
-    return r;
+    lt_vf32_t d = lt_vf32_dot3(np[0], np[1], np[2], nq[0], nq[1], nq[2]);
+    return lt_vf32_cmpge_m(k, d, lt_vf32_set1(c));
 }
 
 static lt_vf32_t f_loadx(const float *row, int64_t x0, uint32_t w, lt_mask16_t *k)
@@ -1094,6 +929,8 @@ static lt_vf32_t f_nextup_m(lt_vf32_t src, lt_mask16_t k, lt_vf32_t a)
 #define LTN_VD lt_vf32_t
 #define LTN_NT float
 #define LTN_W lt_vf32_t
+#define LTN_TN lt_vf32_t
+#define LTN_WC lt_vf32_t
 #define LTN_QV lt_vf32_t
 #define LTN_FR lt_frusta16_f32_t
 #define LTN_FRT lt_frusta_table_f32_t
@@ -1111,9 +948,9 @@ static lt_vf32_t f_nextup_m(lt_vf32_t src, lt_mask16_t k, lt_vf32_t a)
 #define LTN_TEND1 f_tend1
 #define LTN_TMAX f_tmaxv
 #define LTN_TMAX1 f_tmax1
-#define LTN_RECIP_HI(d) f_recip((d), F_MAX)
-#define LTN_RECIP_LO(d) f_recip((d), -F_MAX)
-#define LTN_RSAT f_rsat
+#define LTN_RECIP_HI(d) lt_vf32_recip_sat((d), F_MAX)
+#define LTN_RECIP_LO(d) lt_vf32_recip_sat((d), -F_MAX)
+#define LTN_RSAT lt_vf32_cmpsat
 #define LTN_ABS lt_vf32_abs
 #define LTN_SABS lt__f32_abs
 #define LTN_MULLO lt_vf32_mul
@@ -1121,38 +958,41 @@ static lt_vf32_t f_nextup_m(lt_vf32_t src, lt_mask16_t k, lt_vf32_t a)
 #define LTN_UPPER f_upper
 #define LTN_MAX_M lt_vf32_max_m
 #define LTN_MIN_M lt_vf32_min_m
-#define LTN_CROSS_DP f_cross
-#define LTN_DOT_PP f_dot
-#define LTN_CROSS_PP f_cross
-#define LTN_DOT_DQ f_dot
-#define LTN_DOT_PQ f_dot
-#define LTN_W_SUB lt_vf32_sub
-#define LTN_W_NEG_M(k, a) lt_vf32_neg_m((a), (k), (a))
-#define LTN_W_CMPLT_M lt_vf32_cmplt_m
-#define LTN_W_CMPGT_M lt_vf32_cmpgt_m
+#define LTN_CROSS_DP lt_vf32_cross
+#define LTN_DOT_PP lt_vf32_dot3
+#define LTN_CROSS_PP lt_vf32_cross
+#define LTN_DOT_DQ lt_vf32_dot3
+#define LTN_DOT_PQ lt_vf32_dot3
 #define LTN_W_ADD lt_vf32_add
-#define LTN_W_ZERO lt_vf32_set1(0.0f)
 #define LTN_W_NEG lt_vf32_neg
 #define LTN_W_LANE(v, f) ((v).l[f])
 #define LTN_W_LANE0 0.0f
-#define LTN_W_SET1 lt_vf32_set1
+#define LTN_TN_SET1 lt_vf32_set1
+#define LTN_TN_NEG lt_vf32_neg
+#define LTN_TN_CMPGT0(k, a) lt_vf32_cmpgt_m((k), (a), lt_vf32_set1(0.0f))
+#define LTN_TN_CMPLT0(k, a) lt_vf32_cmplt_m((k), (a), lt_vf32_set1(0.0f))
+#define LTN_WC_SUB lt_vf32_sub
+#define LTN_WC_ADD lt_vf32_add
+#define LTN_WC_ZERO lt_vf32_set1(0.0f)
+#define LTN_WC_SET1 lt_vf32_set1
+#define LTN_WC_CMPLT_M lt_vf32_cmplt_m
+#define LTN_WC_CMPGT_M lt_vf32_cmpgt_m
 #define LTN_QV_SET1 lt_vf32_set1
 #define LTN_W_CMPGE0(k, a) lt_vf32_cmpge_m((k), (a), lt_vf32_set1(0.0f))
 #define LTN_W_CMPLE_M lt_vf32_cmple_m
 #define LTN_TDIV_M(src, k, n, d) lt_vf32_div_m((src), (k), (n), (d))
 #define LTN_TRI_A f_tri_a
-#define LTN_LDOT f_dot
+#define LTN_LDOT lt_vf32_dot3
 #define LTN_LINEAR_CORNERS 0
 #define LTN_NSAT(nx, ny, nz, ax, ay, az)                                                          \
     ((void)(nx), (void)(ny), (void)(nz), (void)(ax), (void)(ay), (void)(az), (lt_mask16_t)0)
 #define LTN_W_CMPGT0(k, a) lt_vf32_cmpgt_m((k), (a), lt_vf32_set1(0.0f))
-#define LTN_W_CMPLT0(k, a) lt_vf32_cmplt_m((k), (a), lt_vf32_set1(0.0f))
 #define LTN_MARGINS f_margins
 #define LTN_TNUM_SIGN1 f_tnum_sign1
-#define LTN_NDOT f_dot
+#define LTN_NDOT lt_vf32_dot3
 #define LTN_GTERM f_gterm
 #define LTN_NCMP f_ncmp
-#define LTN_MEAN f_mean
+#define LTN_MEAN lt_vf32_div_i32_z
 #define LTN_LOADX(p, x0, w, k) f_loadx((p), (x0), (w), (k))
 #define LTN_LOADXN(p, x0, w, k) f_loadx((p), (x0), (w), (k))
 #define LTN_VD_SET1 lt_vf32_set1

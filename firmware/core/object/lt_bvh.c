@@ -4,6 +4,7 @@
  * 16-byte node variant (s15.16 only). Builds: all; float32 only with LT_CFG_FLOAT32.
  */
 #include "lt/lt_bvh.h"
+#include "lt_tri.h"
 
 /* ---- shared: parameters, arena layout, depth budget ------------------------------------------ */
 
@@ -172,53 +173,11 @@ static void slab_fix1_q16(unsigned par, lt_q16_t o, lt_q30_t d, lt_q16_t lo, lt_
     }
 }
 
-/* The products of lt_tri16_q16 for one lane (see lt_isect.c): a*b - c*d exact in int64, rounded by
- * f bits; dot products summed exactly (wrapping adds, inputs bounded so no sum overflows). */
-static int64_t s_dot(int32_t ax, int32_t ay, int32_t az, int32_t bx, int32_t by, int32_t bz)
-{
-    return lt__l64_add_wrap(lt__l64_add_wrap(lt__mul32x32_64(ax, bx), lt__mul32x32_64(ay, by)),
-                            lt__mul32x32_64(az, bz));
-}
-
-/* pvec: s1.30 x s15.16 -> 46 fractional bits -> s15.16 */
-static lt_q16_t s_cross_dp(lt_q30_t a, lt_q16_t b, lt_q30_t c, lt_q16_t d)
-{
-    return lt__round_sat32(lt__l64_sub_wrap(lt__mul32x32_64(a, b), lt__mul32x32_64(c, d)), 30);
-}
-
-/* qvec: s15.16 x s15.16 -> 32 fractional bits -> s25.6 (QV_FRAC = 6 in lt_isect.c) */
-#define S_QV_FRAC 6u
-static int32_t s_cross_pp(lt_q16_t a, lt_q16_t b, lt_q16_t c, lt_q16_t d)
-{
-    return lt__round_sat32(lt__l64_sub_wrap(lt__mul32x32_64(a, b), lt__mul32x32_64(c, d)),
-                           32u - S_QV_FRAC);
-}
-
-/* v = d . qvec: 36 fractional bits floored to 32 */
-static int64_t s_dot_dq(lt_q30_t dx, lt_q30_t dy, lt_q30_t dz, int32_t qx, int32_t qy, int32_t qz)
-{
-    return lt__asr64(s_dot(dx, dy, dz, qx, qy, qz), 30u + S_QV_FRAC - 32u);
-}
-
-/* t = tnum / det (det > 0), the lane body of q_tdiv_m in lt_isect.c: tnum pre-shifted by up to
- * 26 bits, det shifted down when tnum has no room, half up, saturating. */
-#define S_TDIV_SHIFT (32u - S_QV_FRAC)
+/* t = tnum / det for one ray: lt_tri.h's lane body, charged as a scalar division. */
 static lt_q16_t s_tdiv(int64_t n, int64_t d)
 {
-    uint64_t an = n < 0 ? (uint64_t)0 - (uint64_t)n : (uint64_t)n;
-    unsigned room = lt__clz64(an) - 2u, s = room >= S_TDIV_SHIFT ? S_TDIV_SHIFT : room;
-    int64_t q;
     LT_COST(SDIV, 1);
-    n = (int64_t)((uint64_t)n << s); /* via unsigned: left shift of a negative is UB in C99 */
-    if (s < S_TDIV_SHIFT)
-        d = lt__asr64(d, S_TDIV_SHIFT - s);
-    if (d == 0) {
-        LT_EVENT(SAT, 1);
-        return n >= 0 ? LT_Q16_MAX : LT_Q16_MIN;
-    }
-    q = lt__div_round64(n, d);
-    LT_EVENT(SAT, q != (int64_t)lt__ssat32(q));
-    return lt__ssat32(q);
+    return lt__tri_q16_tdiv1(n, d);
 }
 
 #include "numerics/lt_traits_q16.h"
@@ -240,18 +199,9 @@ static lt_q16_t s_tdiv(int64_t n, int64_t d)
 #define LTN_RAY1 lt_ray1_q16_t
 #define LTS_MULR lt__q16_mul_sat
 #define LTS_SLAB_FIX slab_fix1_q16
-#define LTS_QV int32_t
 #define LTS_W int64_t
 #define LTS_TN int64_t
-#define LTS_CROSS_DP s_cross_dp
-#define LTS_DOT_PP s_dot
-#define LTS_CROSS_PP s_cross_pp
-#define LTS_DOT_DQ s_dot_dq
-#define LTS_DOT_PQ s_dot
-#define LTS_W_ZERO ((int64_t)0)
-#define LTS_W_NEG(a) lt__l64_sub_wrap(0, (a))
-#define LTS_TN_NEG LTS_W_NEG
-#define LTS_W_ADD lt__l64_add_wrap
+#define LTS_TRI_CAND lt__tri_q16_cand1
 #define LTS_TDIV s_tdiv
 #include "lt_bvh.inc"
 /* named compile-time checks (LT_STATIC_ASSERT names its typedef by __LINE__, which could meet a
@@ -276,18 +226,9 @@ typedef char bvh_check_area_q16[sizeof(uint64_t) <= BVH_AREA_BYTES ? 1 : -1];
 #undef LTN_RAY1
 #undef LTS_MULR
 #undef LTS_SLAB_FIX
-#undef LTS_QV
 #undef LTS_W
 #undef LTS_TN
-#undef LTS_CROSS_DP
-#undef LTS_DOT_PP
-#undef LTS_CROSS_PP
-#undef LTS_DOT_DQ
-#undef LTS_DOT_PQ
-#undef LTS_W_ZERO
-#undef LTS_W_NEG
-#undef LTS_TN_NEG
-#undef LTS_W_ADD
+#undef LTS_TRI_CAND
 #undef LTS_TDIV
 
 /* ---- float32 ---------------------------------------------------------------------------------- */
@@ -363,13 +304,6 @@ static void slab_fix1_f32(unsigned par, float o, float d, float lo, float hi, fl
     *t1 = F32_MAX;
 }
 
-static float f_cross1(float a, float b, float c, float d) { return a * b - c * d; }
-
-static float f_dot1(float ax, float ay, float az, float bx, float by, float bz)
-{
-    return ax * bx + ay * by + az * bz; /* ((ax bx + ay by) + az bz), as f_dot in lt_isect.c */
-}
-
 #include "numerics/lt_traits_f32.h"
 #define LTB_NUM LT_BVH_NUM_F32
 #define LTB_NODE lt_bvh_node_f32_t
@@ -388,18 +322,9 @@ static float f_dot1(float ax, float ay, float az, float bx, float by, float bz)
 #define LTN_RAY1 lt_ray1_f32_t
 #define LTS_MULR lt__f32_mul
 #define LTS_SLAB_FIX slab_fix1_f32
-#define LTS_QV float
 #define LTS_W float
 #define LTS_TN float
-#define LTS_CROSS_DP f_cross1
-#define LTS_DOT_PP f_dot1
-#define LTS_CROSS_PP f_cross1
-#define LTS_DOT_DQ f_dot1
-#define LTS_DOT_PQ f_dot1
-#define LTS_W_ZERO 0.0f
-#define LTS_W_NEG(a) (-(a))
-#define LTS_TN_NEG(a) (-(a))
-#define LTS_W_ADD(a, b) ((a) + (b))
+#define LTS_TRI_CAND lt__tri_f32_cand1
 #define LTS_TDIV(n, d) ((n) / (d))
 #include "lt_bvh.inc"
 typedef char bvh_check_bin_f32[sizeof(lt__bvh_bin_t_f32) == BVH_BIN_BYTES ? 1 : -1];

@@ -1,28 +1,12 @@
 /* lt_isect.c - instantiates the packet kernels of lt_isect.inc for each numeric path:
- * s15.16 fixed point (exact int64 products) and IEEE float32. The traits below are the only
- * place where the two paths differ. Builds: all; float32 only with LT_CFG_FLOAT32.
+ * s15.16 fixed point (exact int64 products; the triangle test's arithmetic is lt_tri.h's) and IEEE
+ * float32. The traits below are the only place where the two paths differ. Builds: all; float32
+ * only with LT_CFG_FLOAT32.
  */
 #include "lt/lt_isect.h"
+#include "lt_tri.h"
 
 /* ---- fixed point: s15.16 positions, s1.30 directions ---------------------------------------- */
-
-/* 1/d per lane: 2^46 / d_raw (s1.30 -> s15.16), half up, saturated; d == 0 gives +max. */
-static lt_vq16_t recip_q30(lt_vq30_t d)
-{
-    lt_vq16_t r;
-    int i;
-    LT_COST(VDIV, 1);
-    for (i = 0; i < LT_LANES; i++) {
-        if (d.l[i] == 0) {
-            r.l[i] = LT_Q16_MAX;
-        } else {
-            int64_t q = lt__div_round64((int64_t)1 << 46, d.l[i]);
-            LT_EVENT(SAT, q != (int64_t)lt__ssat32(q));
-            r.l[i] = lt__ssat32(q);
-        }
-    }
-    return r;
-}
 
 void lt_ray16_q16_setup(lt_ray16_q16_t *r)
 {
@@ -36,11 +20,10 @@ void lt_ray16_q16_setup(lt_ray16_q16_t *r)
     rc[1] = &r->ry;
     rc[2] = &r->rz;
     for (a = 0; a < 3; a++) {
-        *rc[a] = recip_q30(*d[a]);
+        /* 1/d: 2^46 / d_raw, half up, saturated; d == 0 gives +max */
+        *rc[a] = lt_vq16_recip_q30_sat(*d[a], LT_Q16_MAX);
         r->par[a] = lt_vq30_cmpeq(*d[a], lt_vq30_set1(0));
-        r->rsat[a] = (lt_mask16_t)((lt_vq16_cmpeq(*rc[a], lt_vq16_set1(LT_Q16_MAX)) |
-                                    lt_vq16_cmpeq(*rc[a], lt_vq16_set1(LT_Q16_MIN))) &
-                                   (unsigned)~r->par[a]);
+        r->rsat[a] = (lt_mask16_t)(lt_vq16_cmpsat(*rc[a]) & (unsigned)~r->par[a]);
     }
     r->pad_[0] = r->pad_[1] = 0;
 }
@@ -69,25 +52,24 @@ static void q_slab_fix(lt_mask16_t par, lt_mask16_t rsat, lt_vq16_t o, lt_vq30_t
     }
 }
 
-#include "lt_isect_q16.inc"
-
 #include "numerics/lt_traits_q16.h"
-#define LTN_QV lt_vi32_t
-#define LTN_W lt_vql_t
-#define LTN_TN lt_vql_t
-#define LTN_CROSS_DP q_cross_dp
-#define LTN_DOT_PP q_dot_pp
-#define LTN_CROSS_PP q_cross_pp
-#define LTN_DOT_DQ q_dot_dq
-#define LTN_DOT_PQ q_dot_pq
-#define LTN_W_ADD lt_vql_add_wrap
-#define LTN_W_NEG_M(k, a) lt_vql_sub_wrap_m((a), (k), lt_vql_set1(0), (a))
-#define LTN_TN_NEG_M LTN_W_NEG_M
-#define LTN_W_CMPLT0(k, a) lt_vql_cmplt_m((k), (a), lt_vql_set1(0))
-#define LTN_W_CMPGT0(k, a) lt_vql_cmpgt_m((k), (a), lt_vql_set1(0))
-#define LTN_W_CMPGE0(k, a) lt_vql_cmpge_m((k), (a), lt_vql_set1(0))
-#define LTN_W_CMPLE_M lt_vql_cmple_m
-#define LTN_TDIV_M q_tdiv_m
+#define LTN_QV lt_vq6_t    /* qvec, s25.6 */
+#define LTN_W lt_vql32_t   /* det, u, v: s31.32 */
+#define LTN_TN lt_vql22_t  /* tnum: s41.22 */
+/* the products of the triangle test, one lane op per step of lt_tri.h's per-lane body */
+#define LTN_CROSS_DP LT__TRI_V16_PVEC
+#define LTN_DOT_PP LT__TRI_V16_DOT
+#define LTN_CROSS_PP LT__TRI_V16_QVEC
+#define LTN_DOT_DQ LT__TRI_V16_V
+#define LTN_DOT_PQ LT__TRI_V16_TNUM
+#define LTN_W_ADD lt_vql32_add_wrap
+#define LTN_W_NEG_M(k, a) lt_vql32_sub_wrap_m((a), (k), lt_vql32_set1(0), (a))
+#define LTN_TN_NEG_M(k, a) lt_vql22_sub_wrap_m((a), (k), lt_vql22_set1(0), (a))
+#define LTN_W_CMPLT0(k, a) lt_vql32_cmplt_m((k), (a), lt_vql32_set1(0))
+#define LTN_W_CMPGT0(k, a) lt_vql32_cmpgt_m((k), (a), lt_vql32_set1(0))
+#define LTN_W_CMPGE0(k, a) lt_vql32_cmpge_m((k), (a), lt_vql32_set1(0))
+#define LTN_W_CMPLE_M lt_vql32_cmple_m
+#define LTN_TDIV_M lt__tri_tdiv16_q16
 #define LTN_SLAB_FIX q_slab_fix
 #include "lt_isect.inc"
 #include "numerics/lt_traits_undef.h"
@@ -112,30 +94,12 @@ static void q_slab_fix(lt_mask16_t par, lt_mask16_t rsat, lt_vq16_t o, lt_vq30_t
 /* ---- float32 -------------------------------------------------------------------------------- */
 #if LT_CFG_FLOAT32
 
-static lt_vf32_t recip_f32(lt_vf32_t d)
-{
-    lt_vf32_t r;
-    int i;
-    LT_COST(FDIV, 1);
-    LT_COST(FCMP, 1);
-    LT_COST(VALU, 1);
-    for (i = 0; i < LT_LANES; i++) {
-        /* +-0 -> +-FLT_MAX (the sign bit of -0.0 is tested through 1/d = -inf) */
-        float q = 1.0f / d.l[i];
-        if (q > 3.40282347e38f)
-            q = 3.40282347e38f;
-        else if (q < -3.40282347e38f)
-            q = -3.40282347e38f;
-        r.l[i] = q;
-    }
-    return r;
-}
-
 void lt_ray16_f32_setup(lt_ray16_f32_t *r)
 {
-    r->rx = recip_f32(r->dx);
-    r->ry = recip_f32(r->dy);
-    r->rz = recip_f32(r->dz);
+    /* +-0 -> +-FLT_MAX (the sign bit of -0.0 is tested through 1/d = -inf) */
+    r->rx = lt_vf32_rcp_sat(r->dx);
+    r->ry = lt_vf32_rcp_sat(r->dy);
+    r->rz = lt_vf32_rcp_sat(r->dz);
     /* == compares -0.0 equal to +0.0: both are parallel */
     r->par[0] = lt_vf32_cmpeq(r->dx, lt_vf32_set1(0.0f));
     r->par[1] = lt_vf32_cmpeq(r->dy, lt_vf32_set1(0.0f));
@@ -163,27 +127,16 @@ static void f_slab_fix(lt_mask16_t par, lt_mask16_t rsat, lt_vf32_t o, lt_vf32_t
     }
 }
 
-LT_INLINE lt_vf32_t f_cross(lt_vf32_t a, lt_vf32_t b, lt_vf32_t c, lt_vf32_t d)
-{
-    return lt_vf32_sub(lt_vf32_mul(a, b), lt_vf32_mul(c, d));
-}
-
-LT_INLINE lt_vf32_t f_dot(lt_vf32_t ax, lt_vf32_t ay, lt_vf32_t az, lt_vf32_t bx, lt_vf32_t by,
-                          lt_vf32_t bz)
-{
-    return lt_vf32_add(lt_vf32_add(lt_vf32_mul(ax, bx), lt_vf32_mul(ay, by)), lt_vf32_mul(az, bz));
-}
-
 
 #include "numerics/lt_traits_f32.h"
 #define LTN_QV lt_vf32_t
 #define LTN_W lt_vf32_t
 #define LTN_TN lt_vf32_t
-#define LTN_CROSS_DP f_cross
-#define LTN_DOT_PP f_dot
-#define LTN_CROSS_PP f_cross
-#define LTN_DOT_DQ f_dot
-#define LTN_DOT_PQ f_dot
+#define LTN_CROSS_DP lt_vf32_cross
+#define LTN_DOT_PP lt_vf32_dot3
+#define LTN_CROSS_PP lt_vf32_cross
+#define LTN_DOT_DQ lt_vf32_dot3
+#define LTN_DOT_PQ lt_vf32_dot3
 #define LTN_W_ADD lt_vf32_add
 #define LTN_W_NEG_M(k, a) lt_vf32_neg_m((a), (k), (a))
 #define LTN_TN_NEG_M LTN_W_NEG_M

@@ -147,15 +147,8 @@ static int q_kd_coord_ok(int64_t x)
 /* Lane signs of an s1.30 direction component. Cost: VCMP x2. */
 static void q_kd_signs(lt_vq30_t d, lt_mask16_t *pos, lt_mask16_t *neg)
 {
-    unsigned p = 0, m = 0;
-    int i;
-    LT_COST(VCMP, 2);
-    for (i = 0; i < LT_LANES; i++) {
-        p |= (unsigned)(d.l[i] > 0) << i;
-        m |= (unsigned)(d.l[i] < 0) << i;
-    }
-    *pos = (lt_mask16_t)p;
-    *neg = (lt_mask16_t)m;
+    *pos = lt_vq30_cmpgt0(d);
+    *neg = lt_vq30_cmplt0(d);
 }
 
 /* Lanes whose 1/d saturated: t = (plane - o) / d by a 64-bit division, s15.16 / s1.30 -> s15.16,

@@ -11,43 +11,12 @@ LT_STATIC_ASSERT(LT_CFG_GEOM_MAX_LOG2 <= 12, "lt_wt's exact int64 edge functions
 
 /* ---- fixed point: s15.16 positions, s1.30 directions and shear ------------------------------- */
 
-/* |d| per lane, s1.30; |min| saturates to max (never reached by a unit vector). Cost: VALU x1. */
-static lt_vq30_t q_dabs(lt_vq30_t a)
-{
-    int i;
-    LT_COST(VALU, 1);
-    for (i = 0; i < LT_LANES; i++)
-        a.l[i] = lt__q16_abs_sat(a.l[i]);
-    return a;
-}
-
-/* Mask of lanes with a >= b (s1.30). Cost: VCMP x1. */
-static lt_mask16_t q_dcmpge(lt_vq30_t a, lt_vq30_t b)
-{
-    unsigned m = 0;
-    int i;
-    LT_COST(VCMP, 1);
-    for (i = 0; i < LT_LANES; i++)
-        m |= (unsigned)(a.l[i] >= b.l[i]) << i;
-    return (lt_mask16_t)m;
-}
-
-/* Mask of lanes with a < 0. Cost: VCMP x1. */
-static lt_mask16_t q_dcmplt0(lt_vq30_t a)
-{
-    unsigned m = 0;
-    int i;
-    LT_COST(VCMP, 1);
-    for (i = 0; i < LT_LANES; i++)
-        m |= (unsigned)(a.l[i] < 0) << i;
-    return (lt_mask16_t)m;
-}
-
 /* Lanes whose d[kz] cannot be sheared in s1.30: |d[kz]| <= 1/2 (a unit vector has its largest
- * component >= 1/sqrt3), so Sz = 1/d[kz] < 2 always fits. Cost: VALU x1, VCMP x1. */
+ * component >= 1/sqrt3), so Sz = 1/d[kz] < 2 always fits. Cost: VBCAST x1, VALU x1, VCMP x1. */
 static lt_mask16_t q_baddir(lt_vq30_t dkz)
 {
-    return (lt_mask16_t)~q_dcmpge(q_dabs(dkz), lt_vq30_set1((lt_q30_t)((1 << 29) + 1)));
+    lt_vq30_t half = lt_vq30_set1((lt_q30_t)((1 << 29) + 1));
+    return (lt_mask16_t)~lt_vq30_cmpge(lt_vq30_abs_sat(dkz), half);
 }
 
 /* num / den in s1.30, half up, for |num| <= |den| (so |S| <= 1); bad lanes get 0. Cost: VDIV x1. */
@@ -74,20 +43,6 @@ static lt_vq30_t q_recip(lt_vq30_t den, lt_mask16_t bad)
     return den;
 }
 
-/* round(S * a): s1.30 x s15.16 -> 46 fractional bits -> s15.16, half up. Cost: VMUL x1. */
-LT_INLINE lt_vq16_t q_muls(lt_vq30_t s, lt_vq16_t a)
-{
-    return lt_vq16_mul_q30_sat(a, s);
-}
-
-/* ax * by - ay * bx exactly: s15.16 x s15.16 -> s31.32. |sheared| <= 2^14 units (2^30 raw) keeps
- * each product within 2^60 and the difference within 2^61. Cost: VMUL x2, VMULW x1. */
-LT_INLINE lt_vql_t q_cross2(lt_vq16_t ax, lt_vq16_t ay, lt_vq16_t bx, lt_vq16_t by)
-{
-    return lt_vql_sub_wrap(lt_vql_mul(lt_vi32_from_q16(ax), lt_vi32_from_q16(by)),
-                           lt_vql_mul(lt_vi32_from_q16(ay), lt_vi32_from_q16(bx)));
-}
-
 /* 16 signed 128-bit integers, two's complement in two unsigned words: value = hi 2^64 + lo
  * (the sign is bit 63 of hi). 256 bytes. */
 typedef struct wt_v128 {
@@ -111,7 +66,7 @@ LT_INLINE void q_mac128(uint64_t *h, uint64_t *l, int64_t a, int32_t b)
 
 /* T = U za + V zb + W zc exactly in 128 bits (s31.32 x s15.16 -> 48 fractional bits), lanes in k.
  * |U| <= 2^61, |z| < 2^30 raw: |T| < 2^93. Cost: VMUL x6, VMULW x10. */
-static wt_v128_t q_tsum(lt_mask16_t k, lt_vql_t u, lt_vql_t v, lt_vql_t w, lt_vq16_t za,
+static wt_v128_t q_tsum(lt_mask16_t k, lt_vql32_t u, lt_vql32_t v, lt_vql32_t w, lt_vq16_t za,
                         lt_vq16_t zb, lt_vq16_t zc)
 {
     wt_v128_t r;
@@ -152,7 +107,7 @@ static uint32_t q_udiv128(uint64_t nh, uint64_t nl, uint64_t d, uint64_t *rem)
 /* t = T / det as s15.16 (48 - 32 fractional bits), rounded half up from the exact quotient, for
  * lanes in k (det != 0 there); other lanes keep src. A hit has |t| <= max |z| < 2^30 raw; a
  * quotient >= 2^31 (only for out-of-range input) saturates. Cost: VDIV x2 (128/64 bits). */
-static lt_vq16_t q_tdiv_m(lt_vq16_t src, lt_mask16_t k, wt_v128_t tn, lt_vql_t det)
+static lt_vq16_t q_tdiv_m(lt_vq16_t src, lt_mask16_t k, wt_v128_t tn, lt_vql32_t det)
 {
     int i;
     LT_COST(VDIV, 2);
@@ -212,20 +167,23 @@ static int q_zero_area(lt_q16_t p[3][3])
 #include "numerics/lt_traits_q16.h"
 #define LTN_WT lt_wt16_q16_t
 #define LTN_DV lt_vq30_t
-#define LTN_D_ABS q_dabs
-#define LTN_D_CMPGE q_dcmpge
-#define LTN_D_CMPLT0 q_dcmplt0
+#define LTN_D_ABS lt_vq30_abs_sat
+#define LTN_D_CMPGE lt_vq30_cmpge
+#define LTN_D_CMPLT0 lt_vq30_cmplt0
 #define LTN_D_BLEND lt_vq30_blend
 #define LTN_WT_BADDIR q_baddir
 #define LTN_WT_RATIO q_ratio
 #define LTN_WT_RECIP q_recip
-#define LTN_WT_MULS q_muls
-#define LTN_E lt_vql_t
-#define LTN_E_ADD lt_vql_add_wrap
-#define LTN_E_ZERO() lt_vql_set1(0)
-#define LTN_E_CMPLT_M lt_vql_cmplt_m
-#define LTN_E_CMPGT_M lt_vql_cmpgt_m
-#define LTN_WT_CROSS2 q_cross2
+/* round(S * a): s1.30 x s15.16 -> 46 fractional bits -> s15.16, half up. Cost: VMUL x1. */
+#define LTN_WT_MULS(s, a) lt_vq16_mul_q30_sat((a), (s))
+#define LTN_E lt_vql32_t /* edge functions and det: s31.32 */
+#define LTN_E_ADD lt_vql32_add_wrap
+#define LTN_E_ZERO() lt_vql32_set1(0)
+#define LTN_E_CMPLT_M lt_vql32_cmplt_m
+#define LTN_E_CMPGT_M lt_vql32_cmpgt_m
+/* ax by - ay bx exactly: s15.16 x s15.16 -> s31.32. |sheared| <= 2^14 units (2^30 raw) keeps
+ * each product within 2^60 and the difference within 2^61. Cost: VMUL x2, VMULW x1. */
+#define LTN_WT_CROSS2(ax, ay, bx, by) lt_vql32_cross_q16((ax), (by), (ay), (bx))
 #define LTN_WT_EXACT_EDGES 1
 #define LTN_TT wt_v128_t
 #define LTN_WT_TSUM q_tsum
@@ -281,23 +239,6 @@ static lt_vf32_t f_recip(lt_vf32_t den, lt_mask16_t bad)
     for (i = 0; i < LT_LANES; i++)
         den.l[i] = LT__ON(bad, i) ? 0.0f : 1.0f / den.l[i];
     return den;
-}
-
-LT_INLINE lt_vf32_t f_muls(lt_vf32_t s, lt_vf32_t a)
-{
-    return lt_vf32_mul(s, a);
-}
-
-LT_INLINE lt_vf32_t f_cross2(lt_vf32_t ax, lt_vf32_t ay, lt_vf32_t bx, lt_vf32_t by)
-{
-    return lt_vf32_sub(lt_vf32_mul(ax, by), lt_vf32_mul(ay, bx));
-}
-
-LT_INLINE lt_vf32_t f_tsum(lt_mask16_t k, lt_vf32_t u, lt_vf32_t v, lt_vf32_t w, lt_vf32_t za,
-                           lt_vf32_t zb, lt_vf32_t zc)
-{
-    (void)k;
-    return lt_vf32_add(lt_vf32_add(lt_vf32_mul(u, za), lt_vf32_mul(v, zb)), lt_vf32_mul(w, zc));
 }
 
 #if LT_CFG_WT_F64_FALLBACK
@@ -381,18 +322,20 @@ static int f_zero_area(float p[3][3])
 #define LTN_WT_BADDIR f_baddir
 #define LTN_WT_RATIO f_ratio
 #define LTN_WT_RECIP f_recip
-#define LTN_WT_MULS f_muls
+#define LTN_WT_MULS lt_vf32_mul
 #define LTN_E lt_vf32_t
 #define LTN_E_ADD lt_vf32_add
 #define LTN_E_ZERO() lt_vf32_set1(0.0f)
 #define LTN_E_CMPLT_M lt_vf32_cmplt_m
 #define LTN_E_CMPGT_M lt_vf32_cmpgt_m
 #define LTN_E_CMPEQ_M lt_vf32_cmpeq_m
-#define LTN_WT_CROSS2 f_cross2
+/* ax by - ay bx */
+#define LTN_WT_CROSS2(ax, ay, bx, by) lt_vf32_cross((ax), (by), (ay), (bx))
 #define LTN_WT_EXACT_EDGES F_EXACT_EDGES
 #define LTN_WT_EDGE_FIX f_edge_fix
 #define LTN_TT lt_vf32_t
-#define LTN_WT_TSUM f_tsum
+#define LTN_WT_TSUM(k, u, v, w, za, zb, zc)                                                       \
+    ((void)(k), lt_vf32_dot3((u), (v), (w), (za), (zb), (zc)))
 #define LTN_WT_TDIV_M(src, k, n, d) lt_vf32_div_m((src), (k), (n), (d))
 #define LTN_WT_ZERO_AREA f_zero_area
 #include "lt_wt.inc"

@@ -3,13 +3,13 @@
  * (lt_qt.c): pyramid layout and size query, the set-up checks, and the s1.30 and float32
  * instantiations of lt_hiz.inc (traits lt_ssb_q30.inc / lt_ssb_f32.inc plus the cell type and hole
  * test), which holds the cell codecs, build, walk and entry points. The ray helpers are
- * lt_ssb_common.inc's, shared with the DDA (lt_ssdda.c); the level-grid index and bounds test are
- * lt_qt_grid.inc's, shared with lt_qt.c. Formats and rules: lt_hiz.h, docs/ss-baselines.md.
+ * lt_ssb.c's (lt_ssb.h), shared with the DDA (lt_ssdda.c); the level-grid index and bounds test
+ * are lt_qt_grid.c's (lt_qt_grid.h), shared with lt_qt.c. Formats and rules: lt_hiz.h, docs/ss-baselines.md.
  * Builds: all; float32 only with LT_CFG_FLOAT32.
  */
 #include "lt/lt_hiz.h"
-
-#include "lt_ssb_common.inc"
+#include "lt_qt_grid.h"
+#include "lt_ssb.h"
 
 /* ---- layout ---------------------------------------------------------------------------------- */
 
@@ -86,7 +86,7 @@ static lt_status_t hiz_prepare(lt_hiz_t *hz, const lt_ssb_desc_t *d, const lt_ss
     if ((need != 0 && arena == NULL) || ((uintptr_t)arena & 3u) != 0)
         return LT_E_ARG;
     hz->params = *p;
-    hz->kq = ssq_kthick(p->thickness);
+    hz->kq = lt__ssb_kthick_q30(p->thickness);
 #if LT_CFG_FLOAT32
     hz->kf = 1.0f / (1.0f + (float)p->thickness * 9.31322574615478515625e-10f);
 #endif
@@ -97,9 +97,9 @@ static lt_status_t hiz_prepare(lt_hiz_t *hz, const lt_ssb_desc_t *d, const lt_ss
 
 /* ---- format-free lane helpers ---------------------------------------------------------------- */
 
-/* Cell index (level 0: a pixel, y W + x) and the outside-the-grid test: lt_qt_grid.inc, shared
- * with lt_qt.c's nodes (the same row-major level layout). */
-#include "lt_qt_grid.inc"
+/* Cell index (level 0: a pixel, y W + x) and the outside-the-grid test: lt__qtgrid_index /
+ * lt__qtgrid_outside (lt_qt_grid.h), shared with lt_qt.c's nodes (the same row-major level
+ * layout). */
 
 /* ==== s1.30 cells ============================================================================= */
 
@@ -122,7 +122,7 @@ static lt_status_t hiz_prepare(lt_hiz_t *hz, const lt_ssb_desc_t *d, const lt_ss
 #define SS_CELL lt_hiz_cell_f32_t
 #define SS_ENC LT_SSB_F32
 /* NaN, +-inf and w <= 0 are holes: two FCMP per pixel vector (the test is false for NaN) */
-#define SS_PIX_OK(v) ((v) > 0.0f && (v) <= SSF_MAX)
+#define SS_PIX_OK(v) ((v) > 0.0f && (v) <= LT__SSB_F32_MAX)
 #define SS_PIX_TEST_COST() LT_COST(FCMP, 4)
 #include "lt_hiz.inc"
 #include "lt_ssb_undef.inc"

@@ -1,10 +1,12 @@
 /* lt_qt.c - the screen-space quadtree of Widmer et al. 2015 [Widmer15]: layout and size query, the
- * lane helpers the kernels need beyond lt_v16.h, and the traits that instantiate lt_qt.inc three
+ * format-specific kernel routines (node codecs, crossings, plane tests, ray setup; the lane ops
+ * themselves are lt_v16.h's and lt_v16w.h's), and the traits that instantiate lt_qt.inc three
  * times: 64-bit and 32-bit fixed-point nodes (s1.30 compute, int64 products) and float32 nodes.
  * Node formats are documented in lt_qt.h and docs/quadtree.md. Builds: all; float32 only with
  * LT_CFG_FLOAT32.
  */
 #include "lt/lt_qt.h"
+#include "lt_qt_grid.h"
 
 /* ---- parameters and layout ------------------------------------------------------------------- */
 
@@ -116,63 +118,8 @@ static lt_status_t qt_prepare(lt_qt_t *qt, const lt_qt_desc_t *d, const lt_qt_pa
     return LT_OK;
 }
 
-/* ---- lane helpers (each charges itself, as the lt_v16.h ops do) -------------------------------- */
-
-LT_INLINE int32_t qi_sub1(int32_t a, int32_t b) { return lt__wrap32((int64_t)a - b); }
-LT_INLINE int32_t qi_or1(int32_t a, int32_t b)
-{
-    return lt__wrap32((int64_t)((uint32_t)a | (uint32_t)b));
-}
-LT_INLINE int32_t qi_xor1(int32_t a, int32_t b)
-{
-    return lt__wrap32((int64_t)((uint32_t)a ^ (uint32_t)b));
-}
-LT__V16_BIN(lt_vi32_t, qi_sub, VALU, qi_sub1)
-LT__V16_BIN(lt_vi32_t, qi_or, VALU, qi_or1)
-LT__V16_BIN(lt_vi32_t, qi_xor, VALU, qi_xor1)
-LT__V16_BIN(lt_vi32_t, qi_min, VALU, lt__q16_min)
-LT__V16_CMP(lt_vi32_t, qi_cmpgt, VCMP, >)
-LT__V16_CMP(lt_vi32_t, qi_cmplt, VCMP, <)
-LT__V16_CMP(lt_vi32_t, qi_cmpge, VCMP, >=)
-#define qi_add lt_vi32_add_wrap
-#define qi_add_m lt_vi32_add_wrap_m
-
-/* a << s per lane for 0 <= a, a 2^s < 2^31 (node coordinates). Cost: VSHIFT x1. */
-static lt_vi32_t qi_shl_v(lt_vi32_t a, lt_vi32_t s)
-{
-    int i;
-    LT_COST(VSHIFT, 1);
-    for (i = 0; i < LT_LANES; i++)
-        a.l[i] = lt__wrap32((int64_t)a.l[i] * ((int64_t)1 << (s.l[i] & 31)));
-    return a;
-}
-
-/* a >> s per lane, rounding toward minus infinity (lt__asr32). Cost: VSHIFT x1. */
-static lt_vi32_t qi_asr_v(lt_vi32_t a, lt_vi32_t s)
-{
-    int i;
-    LT_COST(VSHIFT, 1);
-    for (i = 0; i < LT_LANES; i++)
-        a.l[i] = lt__asr32(a.l[i], (unsigned)s.l[i] & 31u);
-    return a;
-}
-
-/* findMSB per lane in k (31 - clz; x != 0), 0 elsewhere. Cost: VALU x1 (a lane count-leading-zeros,
- * AVX-512 vplzcntd). */
-static lt_vi32_t qi_msb(lt_mask16_t k, lt_vi32_t x)
-{
-    lt_vi32_t r;
-    int i;
-    LT_COST(VALU, 1);
-    LT_UTIL(k);
-    for (i = 0; i < LT_LANES; i++)
-        r.l[i] = LT__ON(k, i) ? 31 - (int32_t)lt__clz32((uint32_t)x.l[i]) : 0;
-    return r;
-}
-
-/* Node index and the outside-the-grid test: lt_qt_grid.inc (shared with lt_hiz.c's cells). */
-#include "lt_qt_grid.inc"
-
+/* Node index and the outside-the-grid test: lt__qtgrid_index / lt__qtgrid_outside (lt_qt_grid.h,
+ * shared with lt_hiz.c's cells). */
 static lt_vi32_t qt_node_index(const lt_qt_t *qt, lt_mask16_t k, lt_vi32_t lvl, lt_vi32_t qx,
                                lt_vi32_t qy)
 {
@@ -187,75 +134,15 @@ static lt_mask16_t qt_outside(const lt_qt_t *qt, lt_mask16_t k, lt_vi32_t lvl, l
 
 /* ==== fixed point: s1.30 w and t, int64 wide values ============================================ */
 
-/* s1.30 lanes (int32): the scalar bodies are format-free integer ops. */
-LT__V16_BIN(lt_vq30_t, qq_add, VALU, lt__q16_add_sat)
-LT__V16_BIN(lt_vq30_t, qq_sub, VALU, lt__q16_sub_sat)
-LT__V16_BIN(lt_vq30_t, qq_min, VALU, lt__q16_min)
-LT__V16_BIN(lt_vq30_t, qq_max, VALU, lt__q16_max)
-LT__V16_UN(lt_vq30_t, qq_abs, VALU, lt__q16_abs_sat)
-LT__V16_CMP(lt_vq30_t, qq_cmplt, VCMP, <)
-LT__V16_CMP(lt_vq30_t, qq_cmple, VCMP, <=)
-LT__V16_CMP(lt_vq30_t, qq_cmpgt, VCMP, >)
-LT__V16_CMP(lt_vq30_t, qq_cmpge, VCMP, >=)
-
-/* int64 lanes. Inputs are bounded by the kernels (docs/quadtree.md), so no op here overflows;
- * wide min/max/abs/blend take the wide-op class like the adds. */
-LT_INLINE int64_t ql_min1(int64_t a, int64_t b) { return a < b ? a : b; }
-LT_INLINE int64_t ql_max1(int64_t a, int64_t b) { return a > b ? a : b; }
-LT_INLINE int64_t ql_abs1(int64_t a) { return a < 0 ? -a : a; }
-LT__V16_BIN(lt_vql_t, ql_min, VMULW, ql_min1)
-LT__V16_BIN(lt_vql_t, ql_max, VMULW, ql_max1)
-LT__V16_UN(lt_vql_t, ql_abs, VMULW, ql_abs1)
-LT__V16_CMP(lt_vql_t, ql_cmplt, VCMP, <)
-LT__V16_CMP(lt_vql_t, ql_cmple, VCMP, <=)
-LT__V16_CMP(lt_vql_t, ql_cmpgt, VCMP, >)
-
-static lt_vql_t ql_blend(lt_mask16_t k, lt_vql_t a, lt_vql_t b)
-{
-    int i;
-    LT_COST(VMULW, 1);
-    LT_UTIL(k);
-    for (i = 0; i < LT_LANES; i++)
-        if (LT__ON(k, i))
-            a.l[i] = b.l[i];
-    return a;
-}
-
-/* a * 2^s (s <= 31), a * 3: exact for the bounded inputs. Cost: VSHIFT x1; VMULW x2. */
-static lt_vql_t ql_shl(lt_vql_t a, unsigned s)
-{
-    int i;
-    LT_COST(VSHIFT, 1);
-    for (i = 0; i < LT_LANES; i++)
-        a.l[i] = a.l[i] * ((int64_t)1 << s);
-    return a;
-}
-
-static lt_vql_t ql_mul3(lt_vql_t a)
-{
-    int i;
-    LT_COST(VMULW, 2);
-    for (i = 0; i < LT_LANES; i++)
-        a.l[i] = a.l[i] * 3;
-    return a;
-}
-
-/* s1.30 raw -> int64 with f extra fractional bits (exact). Cost: VCVT x1. */
-static lt_vql_t ql_from_q30(lt_vq30_t v, unsigned f)
-{
-    lt_vql_t r;
-    int i;
-    LT_COST(VCVT, 1);
-    for (i = 0; i < LT_LANES; i++)
-        r.l[i] = (int64_t)v.l[i] * ((int64_t)1 << f);
-    return r;
-}
+/* Wide values: build values are lt_vql36_t (s1.30 with LS_FRAC = 6 more fraction bits), values
+ * along a ray (w_ray(t), plane functions, AABB bounds) lt_vql60_t (s3.60); both are lt_v16w.h's,
+ * and the kernels' bounds keep every sum of them below 2^62 (docs/quadtree.md). */
 
 /* gamma * max(lo, 0) as a wide build value: s1.30 x s1.30 -> s2.60 -> LS_FRAC fractional bits below
  * the raw unit (floor). Cost: VMUL x1, VSHIFT x1. */
-static lt_vql_t q_reltol(lt_vq30_t lo, lt_vq30_t g)
+static lt_vql36_t q_reltol(lt_vq30_t lo, lt_vq30_t g)
 {
-    lt_vql_t r;
+    lt_vql36_t r;
     int i;
     LT_COST(VMUL, 1);
     LT_COST(VSHIFT, 1);
@@ -267,6 +154,7 @@ static lt_vql_t q_reltol(lt_vq30_t lo, lt_vq30_t g)
 /* Build values carry LS_FRAC fractional bits below the s1.30 raw unit: the least-squares proxy
  * divides by 2, 4 and 8, which then stays exact (up to the 2^-6 floor of the partial-node shift). */
 #define LS_FRAC 6u
+LT_STATIC_ASSERT(LS_FRAC == 6u, "build values are lt_vql36_t: 30 + 6 fraction bits");
 
 /* Round a value with f fractional bits to an integer, half up (f >= 1). */
 LT_INLINE int64_t q_rnd(int64_t v, unsigned f)
@@ -300,7 +188,7 @@ static void qdec_zero(qdec_t *d)
 static void qdec_bounds1(qdec_t *d, int i)
 {
     int64_t c2 = 2 * (int64_t)d->c.l[i];
-    int64_t s = ql_abs1(d->al.l[i]) + ql_abs1(d->be.l[i]);
+    int64_t s = lt__l64_abs_wrap(d->al.l[i]) + lt__l64_abs_wrap(d->be.l[i]);
     d->lo.l[i] = lt__ssat32(lt__asr64(c2 - s, 1));
     d->hi.l[i] = lt__ssat32(lt__asr64(c2 + s + 1, 1));
 }
@@ -373,8 +261,8 @@ static void n64_decode_idx(const lt_qt_n64_t *base, lt_vi32_t idx, lt_mask16_t k
  * Cost: VSHIFT x3, VALU x2 per exponent tried, VSTORE x2.
  * Returns: the lanes stored (C < 0, a partial node extrapolated past w = 0, or a value outside
  * int32 is not encodable). */
-static lt_mask16_t n64_enc_plane(lt_qt_n64_t *out, uint32_t i0, lt_mask16_t k, lt_vql_t cw,
-                                 lt_vql_t aw, lt_vql_t bw, lt_mask16_t o)
+static lt_mask16_t n64_enc_plane(lt_qt_n64_t *out, uint32_t i0, lt_mask16_t k, lt_vql36_t cw,
+                                 lt_vql36_t aw, lt_vql36_t bw, lt_mask16_t o)
 {
     unsigned m = 0, tries = 0;
     int i;
@@ -398,7 +286,7 @@ static lt_mask16_t n64_enc_plane(lt_qt_n64_t *out, uint32_t i0, lt_mask16_t k, l
         }
         /* start at the shift the larger slope needs, then one more if rounding overflows */
         {
-            int64_t mx = ql_abs1(a) > ql_abs1(b) ? ql_abs1(a) : ql_abs1(b);
+            int64_t mx = lt__l64_max(lt__l64_abs_wrap(a), lt__l64_abs_wrap(b));
             e = mx > 16383 ? 32u - lt__clz32((uint32_t)mx) - 14u : 0u;
         }
         for (; e < 32u; e++) {
@@ -544,8 +432,8 @@ static void n32_decode_idx(const lt_qt_n32_t *base, lt_vi32_t idx, lt_mask16_t k
  * signed bits in units of 2^(E + 3K), each rounded half up. C < 0 (a partial node extrapolated
  * past zero) is not encodable. Cost: VSHIFT x3, VALU x3 per exponent tried, VSTORE x1.
  * Returns: the lanes stored. */
-static lt_mask16_t n32_enc_plane(lt_qt_n32_t *out, uint32_t i0, lt_mask16_t k, lt_vql_t cw,
-                                 lt_vql_t aw, lt_vql_t bw, lt_mask16_t o)
+static lt_mask16_t n32_enc_plane(lt_qt_n32_t *out, uint32_t i0, lt_mask16_t k, lt_vql36_t cw,
+                                 lt_vql36_t aw, lt_vql36_t bw, lt_mask16_t o)
 {
     unsigned m = 0, tries = 0;
     int i;
@@ -685,11 +573,11 @@ LT_INLINE int64_t q_uoff(int32_t o, int32_t d, int32_t t, int32_t q, int32_t L)
 /* f(t) = w_ray(t) - w_plane(x(t), y(t)) in s1.60, for the lanes in k (0 elsewhere). Exact given
  * the rounded u, v: |w error| <= (|Al| + |Be|) 2^-31 raw. Cost: VMUL x5, VMULW x6, VSHIFT x2,
  * VALU x4. */
-static lt_vql_t q_plane_f(const qsetup_t *S, lt_mask16_t k, lt_vq30_t t, lt_vi32_t lvl,
+static lt_vql60_t q_plane_f(const qsetup_t *S, lt_mask16_t k, lt_vq30_t t, lt_vi32_t lvl,
                           lt_vi32_t qx, lt_vi32_t qy, const qdec_t *nd)
 {
     const lt_qray16_q30_t *r = S->r;
-    lt_vql_t f;
+    lt_vql60_t f;
     int i;
     LT_COST(VMUL, 5);
     LT_COST(VMULW, 6);
@@ -709,9 +597,9 @@ static lt_vql_t q_plane_f(const qsetup_t *S, lt_mask16_t k, lt_vq30_t t, lt_vi32
 }
 
 /* w_ray(t) in s1.60 for the lanes in k. Cost: VMUL x1, VMULW x1, VSHIFT x1. */
-static lt_vql_t q_wray(const qsetup_t *S, lt_mask16_t k, lt_vq30_t t)
+static lt_vql60_t q_wray(const qsetup_t *S, lt_mask16_t k, lt_vq30_t t)
 {
-    lt_vql_t f;
+    lt_vql60_t f;
     int i;
     LT_COST(VMUL, 1);
     LT_COST(VMULW, 1);
@@ -739,7 +627,7 @@ static lt_vq30_t q_w_at(const qsetup_t *S, lt_mask16_t k, lt_vq30_t t)
 /* The crossing t in [tn, tf] of f (fn >= 0 > ff, s1.60): tn + (tf - tn) fn / (fn - ff), with fn
  * and the denominator scaled down together below 2^31 so the product fits int64; half up.
  * Cost: VDIV x1, VALU x4, VMUL x1. */
-static lt_vq30_t q_hit_t(lt_mask16_t k, lt_vq30_t tn, lt_vq30_t tf, lt_vql_t fn, lt_vql_t ff)
+static lt_vq30_t q_hit_t(lt_mask16_t k, lt_vq30_t tn, lt_vq30_t tf, lt_vql60_t fn, lt_vql60_t ff)
 {
     lt_vq30_t t = tn;
     int i;
@@ -771,8 +659,8 @@ static lt_mask16_t q_child_side(const qsetup_t *S, int a, lt_mask16_t k, lt_vq30
     lt_mask16_t np = (lt_mask16_t)(k & ~S->par[a]), pp = (lt_mask16_t)(k & S->par[a]), r = 0;
     if (np != 0) {
         lt_vq30_t tm = q_tcross(S, a, np, xm);
-        r = (lt_mask16_t)(qq_cmpge_m((lt_mask16_t)(np & ~S->neg[a]), t, tm) |
-                          qq_cmplt_m((lt_mask16_t)(np & S->neg[a]), t, tm));
+        r = (lt_mask16_t)(lt_vq30_cmpge_m((lt_mask16_t)(np & ~S->neg[a]), t, tm) |
+                          lt_vq30_cmplt_m((lt_mask16_t)(np & S->neg[a]), t, tm));
     }
     if (pp != 0) {
         const lt_vq16_t *o = a ? &S->r->y : &S->r->x;
@@ -858,8 +746,8 @@ static lt_mask16_t q_setup(const lt_qt_t *qt, const lt_qray16_q30_t *r, lt_mask1
         hi = lt_vi32_blend(neg, lt_vi32_set1(ext), lt_vi32_set1(0));
         te = q_tcross(S, a, kn, lo);
         tx = q_tcross(S, a, kn, hi);
-        *t0 = lt_vq30_blend(kn, *t0, qq_max(*t0, te));
-        *t1 = lt_vq30_blend(kn, *t1, qq_min(*t1, tx));
+        *t0 = lt_vq30_blend(kn, *t0, lt_vq30_max(*t0, te));
+        *t1 = lt_vq30_blend(kn, *t1, lt_vq30_min(*t1, tx));
         /* parallel: inside the half-open [0, ext) or never */
         for (i = 0; i < LT_LANES; i++) {
             if (LT__ON(k & S->par[a], i)) {
@@ -869,13 +757,13 @@ static lt_mask16_t q_setup(const lt_qt_t *qt, const lt_qray16_q30_t *r, lt_mask1
             }
         }
     }
-    return qq_cmplt_m(k, *t0, *t1);
+    return lt_vq30_cmplt_m(k, *t0, *t1);
 }
 
 /* Angle test: (dSx^2 + dSy^2) / 2 <= gamma_norm with dS in s1.30 (rounded from LS_FRAC more bits);
  * compared as squares against 2 gamma 2^30 in s2.60, so no square root is needed.
  * Cost: VSHIFT x2, VMUL x2, VMULW x1, VCMP x3. */
-static lt_mask16_t q_angle_ok(lt_mask16_t k, lt_vql_t dsx, lt_vql_t dsy, int64_t lim)
+static lt_mask16_t q_angle_ok(lt_mask16_t k, lt_vql36_t dsx, lt_vql36_t dsy, int64_t lim)
 {
     unsigned m = 0;
     int i;
@@ -888,8 +776,8 @@ static lt_mask16_t q_angle_ok(lt_mask16_t k, lt_vql_t dsx, lt_vql_t dsy, int64_t
         int64_t x, y;
         if (!LT__ON(k, i))
             continue;
-        x = ql_abs1(q_rnd(dsx.l[i], LS_FRAC));
-        y = ql_abs1(q_rnd(dsy.l[i], LS_FRAC));
+        x = lt__l64_abs_wrap(q_rnd(dsx.l[i], LS_FRAC));
+        y = lt__l64_abs_wrap(q_rnd(dsy.l[i], LS_FRAC));
         if (x < ((int64_t)1 << 31) && y < ((int64_t)1 << 31) && x * x + y * y <= lim)
             m |= 1u << i;
     }
@@ -899,7 +787,8 @@ static lt_mask16_t q_angle_ok(lt_mask16_t k, lt_vql_t dsx, lt_vql_t dsy, int64_t
 /* ---- fixed-point traits shared by both node formats ---------------------------------------- */
 #define LTQ_PIX lt_q30_t
 #define LTQ_V lt_vq30_t
-#define LTQ_W lt_vql_t
+#define LTQ_W lt_vql36_t  /* build values */
+#define LTQ_WT lt_vql60_t /* values along a ray */
 #define LTQ_DEC qdec_t
 #define LTQ_SETUP qsetup_t
 #define LTQ_LAYER_OUT qlayer_out_t
@@ -908,34 +797,37 @@ static lt_mask16_t q_angle_ok(lt_mask16_t k, lt_vql_t dsx, lt_vql_t dsy, int64_t
 #define LTQ_ALIM_T int64_t
 #define LTQ_ZERO 0
 #define LTQ_TINF LT_Q30_MAX
-#define LTQ_W_ZERO lt_vql_set1(0)
+#define LTQ_W_ZERO lt_vql36_set1(0)
 #define LTQ_V_PARAM(x) lt_vq30_set1(x)
 #define LTQ_V_SET1 lt_vq30_set1
-#define LTQ_V_ADD qq_add
-#define LTQ_V_SUB qq_sub
-#define LTQ_V_ABS qq_abs
-#define LTQ_V_MIN qq_min
-#define LTQ_V_MAX qq_max
+#define LTQ_V_ADD lt_vq30_add_sat
+#define LTQ_V_SUB lt_vq30_sub_sat
+#define LTQ_V_ABS lt_vq30_abs_sat
+#define LTQ_V_MIN lt_vq30_min
+#define LTQ_V_MAX lt_vq30_max
 #define LTQ_V_BLEND lt_vq30_blend
-#define LTQ_V_CMPLT_M qq_cmplt_m
-#define LTQ_V_CMPLE_M qq_cmple_m
-#define LTQ_V_CMPGT_M qq_cmpgt_m
-#define LTQ_V_CMPGE_M qq_cmpge_m
-#define LTQ_W_FROMV(v) ql_from_q30((v), LS_FRAC)
-#define LTQ_W_FROMNODE(v) ql_from_q30((v), 30u)
-#define LTQ_W_ADD lt_vql_add_wrap
-#define LTQ_W_SUB lt_vql_sub_wrap
-#define LTQ_W_ABS ql_abs
-#define LTQ_W_MIN ql_min
-#define LTQ_W_MAX ql_max
-#define LTQ_W_BLEND ql_blend
-#define LTQ_W_SHR(a, s) lt_vql_asr((a), (s))
-#define LTQ_W_SHL(a, s) ql_shl((a), (s))
-#define LTQ_W_MUL3 ql_mul3
-#define LTQ_W_CMPLE_M ql_cmple_m
-#define LTQ_W_CMPLT_M ql_cmplt_m
-#define LTQ_W_CMPGT_M ql_cmpgt_m
-#define LTQ_W_CMPLT0(k, a) ql_cmplt_m((k), (a), lt_vql_set1(0))
+#define LTQ_V_CMPLT_M lt_vq30_cmplt_m
+#define LTQ_V_CMPLE_M lt_vq30_cmple_m
+#define LTQ_V_CMPGT_M lt_vq30_cmpgt_m
+#define LTQ_V_CMPGE_M lt_vq30_cmpge_m
+#define LTQ_W_FROMV lt_vql36_from_q30
+#define LTQ_W_ADD lt_vql36_add_wrap
+#define LTQ_W_SUB lt_vql36_sub_wrap
+#define LTQ_W_ABS lt_vql36_abs_wrap
+#define LTQ_W_BLEND lt_vql36_blend
+#define LTQ_W_SHR(a, s) lt_vql36_asr((a), (s))
+#define LTQ_W_SHL(a, s) lt_vql36_shl_wrap((a), (s))
+#define LTQ_W_MUL3 lt_vql36_mul3_wrap
+#define LTQ_W_CMPLE_M lt_vql36_cmple_m
+#define LTQ_WT_FROMNODE lt_vql60_from_q30
+#define LTQ_WT_SUB lt_vql60_sub_wrap
+#define LTQ_WT_MIN lt_vql60_min
+#define LTQ_WT_MAX lt_vql60_max
+#define LTQ_WT_BLEND lt_vql60_blend
+#define LTQ_WT_CMPLE_M lt_vql60_cmple_m
+#define LTQ_WT_CMPLT_M lt_vql60_cmplt_m
+#define LTQ_WT_CMPGT_M lt_vql60_cmpgt_m
+#define LTQ_WT_CMPLT0(k, a) lt_vql60_cmplt_m((k), (a), lt_vql60_set1(0))
 #define LTQ_LOADPIX_M q_loadpix_m
 #define LTQ_ANGLE_LIM(g) ((int64_t)(g) * ((int64_t)1 << 31))
 #define LTQ_ANGLE_OK q_angle_ok
@@ -945,7 +837,7 @@ static lt_mask16_t q_angle_ok(lt_mask16_t k, lt_vql_t dsx, lt_vql_t dsy, int64_t
 #define LTQ_WRAY q_wray
 #define LTQ_W_AT q_w_at
 #define LTQ_HIT_T q_hit_t
-#define LTQ_T_BACK(t) qq_sub((t), lt_vq30_set1(4))
+#define LTQ_T_BACK(t) lt_vq30_sub_sat((t), lt_vq30_set1(4))
 #define LTQ_CHILD_SIDE q_child_side
 #define LTQ_SETUP_FN q_setup
 
@@ -1013,19 +905,6 @@ lt_status_t lt_qt_trace16_q30(const lt_qt_t *qt, const lt_qray16_q30_t *r, lt_ma
 
 #define F_Q30 9.31322574615478515625e-10f /* 2^-30 */
 #define F_INF 3.40282347e38f
-
-LT_INLINE float f_mul3(float a) { return a * 3.0f; }
-LT__V16_UN(lt_vf32_t, f_mul3v, FMUL, f_mul3)
-
-/* a * 2^-s or a * 2^s (exact). Cost: FMUL x1. */
-static lt_vf32_t f_scale(lt_vf32_t a, unsigned s, int up)
-{
-    float f = 1.0f;
-    unsigned j;
-    for (j = 0; j < s; j++)
-        f = up ? f * 2.0f : f * 0.5f;
-    return lt_vf32_mul(a, lt_vf32_set1(f));
-}
 
 typedef struct fdec {
     lt_mask16_t aabb, o;
@@ -1334,6 +1213,7 @@ static lt_vf32_t f_w_at(const fsetup_t *S, lt_mask16_t k, lt_vf32_t t)
 #define LTQ_PIX float
 #define LTQ_V lt_vf32_t
 #define LTQ_W lt_vf32_t
+#define LTQ_WT lt_vf32_t
 #define LTQ_DEC fdec_t
 #define LTQ_SETUP fsetup_t
 #define LTQ_LAYER_OUT flayer_out_t
@@ -1356,20 +1236,23 @@ static lt_vf32_t f_w_at(const fsetup_t *S, lt_mask16_t k, lt_vf32_t t)
 #define LTQ_V_CMPGT_M lt_vf32_cmpgt_m
 #define LTQ_V_CMPGE_M lt_vf32_cmpge_m
 #define LTQ_W_FROMV(v) (v)
-#define LTQ_W_FROMNODE(v) (v)
 #define LTQ_W_ADD lt_vf32_add
 #define LTQ_W_SUB lt_vf32_sub
 #define LTQ_W_ABS lt_vf32_abs
-#define LTQ_W_MIN lt_vf32_min
-#define LTQ_W_MAX lt_vf32_max
 #define LTQ_W_BLEND lt_vf32_blend
-#define LTQ_W_SHR(a, s) f_scale((a), (s), 0)
-#define LTQ_W_SHL(a, s) f_scale((a), (s), 1)
-#define LTQ_W_MUL3 f_mul3v
+#define LTQ_W_SHR(a, s) lt_vf32_mul_pow2((a), -(int)(s))
+#define LTQ_W_SHL(a, s) lt_vf32_mul_pow2((a), (int)(s))
+#define LTQ_W_MUL3 lt_vf32_mul3
 #define LTQ_W_CMPLE_M lt_vf32_cmple_m
-#define LTQ_W_CMPLT_M lt_vf32_cmplt_m
-#define LTQ_W_CMPGT_M lt_vf32_cmpgt_m
-#define LTQ_W_CMPLT0(k, a) lt_vf32_cmplt_m((k), (a), lt_vf32_set1(0.0f))
+#define LTQ_WT_FROMNODE(v) (v)
+#define LTQ_WT_SUB lt_vf32_sub
+#define LTQ_WT_MIN lt_vf32_min
+#define LTQ_WT_MAX lt_vf32_max
+#define LTQ_WT_BLEND lt_vf32_blend
+#define LTQ_WT_CMPLE_M lt_vf32_cmple_m
+#define LTQ_WT_CMPLT_M lt_vf32_cmplt_m
+#define LTQ_WT_CMPGT_M lt_vf32_cmpgt_m
+#define LTQ_WT_CMPLT0(k, a) lt_vf32_cmplt_m((k), (a), lt_vf32_set1(0.0f))
 #define LTQ_LOADPIX_M f_loadpix_m
 #define LTQ_ANGLE_LIM(g) (2.0f * (float)(g) * F_Q30)
 #define LTQ_ANGLE_OK f_angle_ok

@@ -7,7 +7,7 @@
  */
 #include "lt/lt_ssdda.h"
 
-#include "lt_ssb_common.inc"
+#include "lt_ssb.h"
 
 void lt_ssb_params_default(lt_ssb_params_t *p)
 {
@@ -36,7 +36,7 @@ static lt_status_t dda_prepare(lt_ssdda_t *dda, const lt_ssb_desc_t *d, const lt
     dda->layers = d->layers;
     dda->enc = enc;
     dda->params = *p;
-    dda->kq = ssq_kthick(p->thickness);
+    dda->kq = lt__ssb_kthick_q30(p->thickness);
 #if LT_CFG_FLOAT32
     dda->kf = 1.0f / (1.0f + (float)p->thickness * 9.31322574615478515625e-10f);
 #endif

@@ -12,6 +12,15 @@
  * | lt_ql32_t   | int64   | s31.32  | [-2^31, 2^31 - 2^-32]     | 2^-32 = 2.33e-10 | products/accumulators  |
  * | lt_h8_t     | int16   | s7.8    | [-128, 128 - 2^-8]        | 2^-8 = 3.91e-3   | narrow coordinates     |
  * | lt_h14_t    | int16   | s1.14   | [-2, 2 - 2^-14]           | 2^-14 = 6.10e-5  | narrow unit vectors    |
+ * Lane-only formats (lt_v16w.h; no scalar type): the number in a name is the count of fractional
+ * bits, q for int32 and ql for int64 storage, as in lt_q16_t and lt_ql32_t (lt_vql32_t is the lane
+ * twin of lt_ql32_t). They hold exact products between the formats above:
+ * | lt_vq6_t    | int32   | s25.6   | [-2^25, 2^25 - 2^-6]      | 2^-6 = 1.56e-2   | qvec = tvec x e1       |
+ * | lt_vql22_t  | int64   | s41.22  | [-2^41, 2^41 - 2^-22]     | 2^-22 = 2.38e-7  | tnum = e2 . qvec       |
+ * | lt_vql32_t  | int64   | s31.32  | [-2^31, 2^31 - 2^-32]     | 2^-32 = 2.33e-10 | det, u, v, edge fns    |
+ * | lt_vql36_t  | int64   | s27.36  | [-2^27, 2^27 - 2^-36]     | 2^-36 = 1.46e-11 | corner forms, qt build |
+ * | lt_vql46_t  | int64   | s17.46  | [-2^17, 2^17 - 2^-46]     | 2^-46 = 1.42e-14 | s1.30 x s15.16 exact   |
+ * | lt_vql60_t  | int64   | s3.60   | [-8, 8 - 2^-60]           | 2^-60 = 8.67e-19 | w along a ray (s1.30^2)|
  */
 #ifndef LT_FX_H
 #define LT_FX_H
@@ -71,6 +80,20 @@ LT_INLINE lt_q16_t lt__q16_sub_wrap(lt_q16_t a, lt_q16_t b)
 {
     return lt__wrap32((int64_t)a - b);
 }
+
+/* int64 (any fraction bits) add and subtract modulo 2^64, computed in unsigned arithmetic; min,
+ * max; |a| with |INT64_MIN| wrapping to itself. The bodies of the wide lane ops (lt_v16w.h). */
+LT_INLINE int64_t lt__l64_add_wrap(int64_t a, int64_t b)
+{
+    return (int64_t)((uint64_t)a + (uint64_t)b);
+}
+LT_INLINE int64_t lt__l64_sub_wrap(int64_t a, int64_t b)
+{
+    return (int64_t)((uint64_t)a - (uint64_t)b);
+}
+LT_INLINE int64_t lt__l64_min(int64_t a, int64_t b) { return a < b ? a : b; }
+LT_INLINE int64_t lt__l64_max(int64_t a, int64_t b) { return a > b ? a : b; }
+LT_INLINE int64_t lt__l64_abs_wrap(int64_t a) { return a < 0 ? lt__l64_sub_wrap(0, a) : a; }
 
 /* Round a signed value with f fractional bits (1..62) to an integer, half up, then saturate to int32. */
 LT_INLINE int32_t lt__round_sat32(int64_t v, unsigned f)

@@ -1,7 +1,9 @@
-/* lt_v16.h - the 16-lane SIMD model: lane vector types, 16-bit masks and lane ops.
- * Every op is a plain C loop over 16 lanes (the reference; GCC auto-vectorises it on the host) that
- * charges itself through the cost hook. Naming: lt_v<fmt>_<op>[_m|_z]: _m merges (inactive lanes keep
- * src, LRBni {k} semantics), _z zeroes inactive lanes. Compares return lt_mask16_t (bit i = lane i).
+/* lt_v16.h - the 16-lane SIMD model: lane vector types, 16-bit masks and lane ops; the wide
+ * (int64) lanes and exact products are lt_v16w.h's, included at the end. Every op is a plain C loop
+ * over 16 lanes (the reference; GCC auto-vectorises it on the host) that charges itself through
+ * the cost hook; its op class is on the line that defines it (a generator argument or a trailing
+ * comment). Naming: lt_v<fmt>_<op>[_m|_z]: _m merges (inactive lanes keep src, LRBni {k}
+ * semantics), _z zeroes inactive lanes. Compares return lt_mask16_t (bit i = lane i).
  * Builds: all. Float32 ops exist only with LT_CFG_FLOAT32.
  */
 #ifndef LT_V16_H
@@ -24,38 +26,38 @@ typedef uint16_t lt_mask16_t; /* bit i = lane i */
 typedef struct { int32_t l[LT_LANES]; } lt_vq16_t;  /* 16 x s15.16, 64 bytes */
 typedef struct { int32_t l[LT_LANES]; } lt_vq30_t;  /* 16 x s1.30, 64 bytes */
 typedef struct { int32_t l[LT_LANES]; } lt_vi32_t;  /* 16 x int32 (indices, ids), 64 bytes */
-typedef struct { int64_t l[LT_LANES]; } lt_vql_t;   /* 16 x int64 wide accumulator, 128 bytes;
-                                                        fractional bits stated at each use */
 typedef struct { int16_t l[LT_LANES]; } lt_vh8_t;   /* 16 x s7.8, 32 bytes */
 #if LT_CFG_FLOAT32
 typedef struct { float l[LT_LANES]; } lt_vf32_t;    /* 16 x IEEE binary32, 64 bytes */
 #endif
+/* Wide lanes (int64, 128 bytes) and the s25.6 lanes of rounded products are lt_v16w.h's, which
+ * this header includes at its end: lt_vql<F>_t carries F fraction bits in its name. */
 
 #define LT__ON(k, i) ((((unsigned)(k)) >> (i)) & 1u)
 
 /* ---- masks --------------------------------------------------------------------------------- */
 
 /* Mask queries. Format: 16-bit mask. Cost: MASK x1 each. */
-LT_INLINE int lt_mask16_any(lt_mask16_t k)
+LT_INLINE int lt_mask16_any(lt_mask16_t k) /* MASK x1 */
 {
     LT_COST(MASK, 1);
     return k != 0;
 }
 
-LT_INLINE int lt_mask16_all(lt_mask16_t k)
+LT_INLINE int lt_mask16_all(lt_mask16_t k) /* MASK x1 */
 {
     LT_COST(MASK, 1);
     return k == LT_MASK_ALL;
 }
 
-LT_INLINE unsigned lt_mask16_popcount(lt_mask16_t k)
+LT_INLINE unsigned lt_mask16_popcount(lt_mask16_t k) /* MASK x1 */
 {
     LT_COST(MASK, 1);
     return lt__popcount32(k);
 }
 
 /* Index of the lowest set lane (bit-scan forward); 16 for an empty mask. Cost: MASK x1. */
-LT_INLINE unsigned lt_mask16_first(lt_mask16_t k)
+LT_INLINE unsigned lt_mask16_first(lt_mask16_t k) /* MASK x1 */
 {
     LT_COST(MASK, 1);
     return k != 0 ? lt__ctz32(k) : 16u;
@@ -63,7 +65,7 @@ LT_INLINE unsigned lt_mask16_first(lt_mask16_t k)
 
 /* k with its lowest set lane cleared: iterate active lanes with
  * for (m = k; m; m = lt_mask16_clear_first(m)) { i = lt_mask16_first(m); ... }. Cost: MASK x1. */
-LT_INLINE lt_mask16_t lt_mask16_clear_first(lt_mask16_t k)
+LT_INLINE lt_mask16_t lt_mask16_clear_first(lt_mask16_t k) /* MASK x1 */
 {
     LT_COST(MASK, 1);
     return (lt_mask16_t)(k & (k - 1u));
@@ -160,6 +162,29 @@ LT_INLINE lt_mask16_t lt_mask16_clear_first(lt_mask16_t k)
         LT_UTIL(k);                                                                                 \
         for (i = 0; i < LT_LANES; i++)                                                             \
             m |= (unsigned)(a.l[i] rel b.l[i]) << i;                                               \
+        return (lt_mask16_t)(m & k);                                                               \
+    }
+
+/* Compare with zero: mask of lanes where a REL 0 (against a zero register: nothing is broadcast);
+ * the _m form compares only lanes in k (others give 0). */
+#define LT__V16_CMP0(VT, name, op, rel)                                                            \
+    LT_INLINE lt_mask16_t name(VT a)                                                               \
+    {                                                                                              \
+        unsigned m = 0;                                                                            \
+        int i;                                                                                     \
+        LT_COST(op, 1);                                                                            \
+        for (i = 0; i < LT_LANES; i++)                                                             \
+            m |= (unsigned)(a.l[i] rel 0) << i;                                                    \
+        return (lt_mask16_t)m;                                                                     \
+    }                                                                                              \
+    LT_INLINE lt_mask16_t name##_m(lt_mask16_t k, VT a)                                            \
+    {                                                                                              \
+        unsigned m = 0;                                                                            \
+        int i;                                                                                     \
+        LT_COST(op, 1);                                                                            \
+        LT_UTIL(k);                                                                                \
+        for (i = 0; i < LT_LANES; i++)                                                             \
+            m |= (unsigned)(a.l[i] rel 0) << i;                                                    \
         return (lt_mask16_t)(m & k);                                                               \
     }
 
@@ -276,7 +301,7 @@ LT__V16_UN(lt_vq16_t, lt_vq16_recip_sat, VDIV, lt__q16_recip_sat)
 
 /* a * b per lane. Format: s15.16 x s1.30 -> s17.46 (exact) -> s15.16. Rounding: half up.
  * Overflow: saturates. Cost: VMUL x1. */
-LT_INLINE lt_vq16_t lt_vq16_mul_q30_sat(lt_vq16_t a, lt_vq30_t b)
+LT_INLINE lt_vq16_t lt_vq16_mul_q30_sat(lt_vq16_t a, lt_vq30_t b) /* VMUL x1 */
 {
     int i;
     LT_COST(VMUL, 1);
@@ -285,13 +310,72 @@ LT_INLINE lt_vq16_t lt_vq16_mul_q30_sat(lt_vq16_t a, lt_vq30_t b)
     return a;
 }
 
+/* 1 / d per lane for an s1.30 d (a ray direction): 2^46 / d_raw. Format: s1.30 -> s15.16.
+ * Range: any; d == 0 gives `zero` (the caller's choice of side, e.g. +max), |d| < 2^-15
+ * saturates. Rounding: half up. Overflow: saturates (a SAT event). Cost: VDIV x1. */
+LT_INLINE lt_vq16_t lt_vq16_recip_q30_sat(lt_vq30_t d, lt_q16_t zero) /* VDIV x1 */
+{
+    lt_vq16_t r;
+    int i;
+    LT_COST(VDIV, 1);
+    for (i = 0; i < LT_LANES; i++) {
+        if (d.l[i] == 0) {
+            r.l[i] = zero;
+        } else {
+            int64_t q = lt__div_round64((int64_t)1 << 46, d.l[i]);
+            LT_EVENT(SAT, q != (int64_t)lt__ssat32(q));
+            r.l[i] = lt__ssat32(q);
+        }
+    }
+    return r;
+}
+
+/* a / n per lane for a count n (int32 lanes), lanes in k with n > 0; other lanes become 0 (the
+ * mean of n summed values). Format: s15.16 / int32 -> s15.16. Rounding: half up. Overflow: none
+ * (|a / n| <= |a|). Cost: VDIV x1. */
+LT_INLINE lt_vq16_t lt_vq16_div_i32_z(lt_mask16_t k, lt_vq16_t a, lt_vi32_t n) /* VDIV x1 */
+{
+    lt_vq16_t r;
+    int i;
+    LT_COST(VDIV, 1);
+    LT_UTIL(k);
+    for (i = 0; i < LT_LANES; i++)
+        r.l[i] = LT__ON(k, i) && n.l[i] > 0 ? (lt_q16_t)lt__div_round64(a.l[i], n.l[i]) : 0;
+    return r;
+}
+
+/* Lanes holding a saturated value (+max or min), e.g. a clamped reciprocal. Format: s15.16.
+ * Cost: VBCAST x2, VCMP x2 (two broadcasts and two compares). */
+LT_INLINE lt_mask16_t lt_vq16_cmpsat(lt_vq16_t a) /* VBCAST x2, VCMP x2 */
+{
+    return (lt_mask16_t)(lt_vq16_cmpeq(a, lt_vq16_set1(LT_Q16_MAX)) |
+                         lt_vq16_cmpeq(a, lt_vq16_set1(LT_Q16_MIN)));
+}
+
 /* ---- s1.30 lanes --------------------------------------------------------------------------- */
+/* The s15.16 bodies of lt_fx.h are format-free integer ops, so add, sub, min, max, abs and the
+ * compares have the contract of their lt_vq16_* twins per lane, in s1.30. */
 LT__V16_MOVE(lt_vq30_t, int32_t, lt_vq30, VALU, VRED)
 LT__V16_BIN(lt_vq30_t, lt_vq30_mul_sat, VMUL, lt__q30_mul_sat)
+LT__V16_BIN(lt_vq30_t, lt_vq30_add_sat, VALU, lt__q16_add_sat)
+LT__V16_BIN(lt_vq30_t, lt_vq30_sub_sat, VALU, lt__q16_sub_sat)
+LT__V16_BIN(lt_vq30_t, lt_vq30_add_wrap, VALU, lt__q16_add_wrap)
+LT__V16_BIN(lt_vq30_t, lt_vq30_min, VALU, lt__q16_min)
+LT__V16_BIN(lt_vq30_t, lt_vq30_max, VALU, lt__q16_max)
+LT__V16_UN(lt_vq30_t, lt_vq30_abs_sat, VALU, lt__q16_abs_sat)
 LT__V16_CMP(lt_vq30_t, lt_vq30_cmpeq, VCMP, ==)
+LT__V16_CMP(lt_vq30_t, lt_vq30_cmplt, VCMP, <)
+LT__V16_CMP(lt_vq30_t, lt_vq30_cmple, VCMP, <=)
+LT__V16_CMP(lt_vq30_t, lt_vq30_cmpgt, VCMP, >)
+LT__V16_CMP(lt_vq30_t, lt_vq30_cmpge, VCMP, >=)
+/* Signs of s1.30 lanes (direction components): a REL 0. Cost: VCMP x1. */
+LT__V16_CMP0(lt_vq30_t, lt_vq30_cmplt0, VCMP, <)
+LT__V16_CMP0(lt_vq30_t, lt_vq30_cmple0, VCMP, <=)
+LT__V16_CMP0(lt_vq30_t, lt_vq30_cmpgt0, VCMP, >)
+LT__V16_CMP0(lt_vq30_t, lt_vq30_cmpge0, VCMP, >=)
 
 /* s1.30 -> s15.16 per lane. Rounding: half up. Overflow: none. Cost: VCVT x1. */
-LT_INLINE lt_vq16_t lt_vq16_from_q30(lt_vq30_t a)
+LT_INLINE lt_vq16_t lt_vq16_from_q30(lt_vq30_t a) /* VCVT x1 */
 {
     lt_vq16_t r;
     int i;
@@ -302,13 +386,36 @@ LT_INLINE lt_vq16_t lt_vq16_from_q30(lt_vq30_t a)
 }
 
 /* ---- int32 lanes --------------------------------------------------------------------------- */
+/* Indices, pixel and node coordinates, counters. add/sub wrap modulo 2^32 (computed in int64 and
+ * wrapped: no undefined behaviour); or/xor act on the two's complement bits. Cost: one op of the
+ * class named (VALU, VCMP). */
 LT_INLINE int32_t lt__i32_add_wrap(int32_t a, int32_t b) { return lt__wrap32((int64_t)a + b); }
+LT_INLINE int32_t lt__i32_sub_wrap(int32_t a, int32_t b) { return lt__wrap32((int64_t)a - b); }
+LT_INLINE int32_t lt__i32_or(int32_t a, int32_t b)
+{
+    return lt__wrap32((int64_t)((uint32_t)a | (uint32_t)b));
+}
+LT_INLINE int32_t lt__i32_xor(int32_t a, int32_t b)
+{
+    return lt__wrap32((int64_t)((uint32_t)a ^ (uint32_t)b));
+}
+LT_INLINE int32_t lt__i32_min(int32_t a, int32_t b) { return a < b ? a : b; }
+LT_INLINE int32_t lt__i32_max(int32_t a, int32_t b) { return a > b ? a : b; }
 LT__V16_MOVE(lt_vi32_t, int32_t, lt_vi32, VALU, VRED)
 LT__V16_BIN(lt_vi32_t, lt_vi32_add_wrap, VALU, lt__i32_add_wrap)
+LT__V16_BIN(lt_vi32_t, lt_vi32_sub_wrap, VALU, lt__i32_sub_wrap)
+LT__V16_BIN(lt_vi32_t, lt_vi32_or, VALU, lt__i32_or)
+LT__V16_BIN(lt_vi32_t, lt_vi32_xor, VALU, lt__i32_xor)
+LT__V16_BIN(lt_vi32_t, lt_vi32_min, VALU, lt__i32_min)
+LT__V16_BIN(lt_vi32_t, lt_vi32_max, VALU, lt__i32_max)
 LT__V16_CMP(lt_vi32_t, lt_vi32_cmpeq, VCMP, ==)
+LT__V16_CMP(lt_vi32_t, lt_vi32_cmplt, VCMP, <)
+LT__V16_CMP(lt_vi32_t, lt_vi32_cmple, VCMP, <=)
+LT__V16_CMP(lt_vi32_t, lt_vi32_cmpgt, VCMP, >)
+LT__V16_CMP(lt_vi32_t, lt_vi32_cmpge, VCMP, >=)
 
 /* 0, 1, ..., 15. Cost: VALU x1. */
-LT_INLINE lt_vi32_t lt_vi32_iota(void)
+LT_INLINE lt_vi32_t lt_vi32_iota(void) /* VALU x1 */
 {
     lt_vi32_t r;
     int i;
@@ -318,64 +425,54 @@ LT_INLINE lt_vi32_t lt_vi32_iota(void)
     return r;
 }
 
-/* ---- wide int64 lanes ---------------------------------------------------------------------- */
-/* Products and sums of products, kept exact. The fractional bit count is the caller's to track
- * (q16 x q16 -> 32 bits, q16 x q30 -> 46 bits); sums are _wrap because the kernels bound their
- * inputs so that no sum can overflow (docs/numerics.md). */
-LT_INLINE int64_t lt__l64_add_wrap(int64_t a, int64_t b) { return (int64_t)((uint64_t)a + (uint64_t)b); }
-LT_INLINE int64_t lt__l64_sub_wrap(int64_t a, int64_t b) { return (int64_t)((uint64_t)a - (uint64_t)b); }
-LT__V16_BIN(lt_vql_t, lt_vql_add_wrap, VMULW, lt__l64_add_wrap)
-LT__V16_BIN(lt_vql_t, lt_vql_sub_wrap, VMULW, lt__l64_sub_wrap)
-LT__V16_CMP(lt_vql_t, lt_vql_cmplt, VCMP, <)
-LT__V16_CMP(lt_vql_t, lt_vql_cmple, VCMP, <=)
-LT__V16_CMP(lt_vql_t, lt_vql_cmpgt, VCMP, >)
-LT__V16_CMP(lt_vql_t, lt_vql_cmpge, VCMP, >=)
-
-/* Exact product per lane. Format: int32 x int32 -> int64 (fractional bits add). Overflow: none.
- * Cost: VMUL x1. */
-LT_INLINE lt_vql_t lt_vql_mul(lt_vi32_t a, lt_vi32_t b)
-{
-    lt_vql_t r;
-    int i;
-    LT_COST(VMUL, 1);
-    for (i = 0; i < LT_LANES; i++)
-        r.l[i] = lt__mul32x32_64(a.l[i], b.l[i]);
-    return r;
-}
-
-/* Round away f fractional bits (1..31), half up, and saturate to int32. Cost: VSHIFT x1. */
-LT_INLINE lt_vi32_t lt_vql_round_sat(lt_vql_t a, unsigned f)
-{
-    lt_vi32_t r;
-    int i;
-    LT_COST(VSHIFT, 1);
-    for (i = 0; i < LT_LANES; i++)
-        r.l[i] = lt__round_sat32(a.l[i], f);
-    return r;
-}
-
-/* Arithmetic right shift by s (0..63), rounding toward minus infinity. Cost: VSHIFT x1. */
-LT_INLINE lt_vql_t lt_vql_asr(lt_vql_t a, unsigned s)
+/* a * 2^(s mod 32) per lane, s a lane of its own (the count is taken modulo 32, as a hardware
+ * variable shift does). Format: int32. Overflow: wraps modulo 2^32. Cost: VSHIFT x1. */
+LT_INLINE lt_vi32_t lt_vi32_shlv_wrap(lt_vi32_t a, lt_vi32_t s) /* VSHIFT x1 */
 {
     int i;
     LT_COST(VSHIFT, 1);
     for (i = 0; i < LT_LANES; i++)
-        a.l[i] = lt__asr64(a.l[i], s);
+        a.l[i] = lt__wrap32((int64_t)a.l[i] * ((int64_t)1 << (s.l[i] & 31)));
     return a;
 }
 
-LT_INLINE lt_vql_t lt_vql_set1(int64_t x)
+/* a >> (s mod 32) per lane, s a lane of its own. Rounding: toward minus infinity (lt__asr32).
+ * Overflow: none. Cost: VSHIFT x1. */
+LT_INLINE lt_vi32_t lt_vi32_asrv(lt_vi32_t a, lt_vi32_t s) /* VSHIFT x1 */
 {
-    lt_vql_t r;
     int i;
-    LT_COST(VBCAST, 1);
+    LT_COST(VSHIFT, 1);
     for (i = 0; i < LT_LANES; i++)
-        r.l[i] = x;
+        a.l[i] = lt__asr32(a.l[i], (unsigned)s.l[i] & 31u);
+    return a;
+}
+
+/* a >> s per lane for one count s (0..31). Rounding: toward minus infinity. Overflow: none.
+ * Cost: VSHIFT x1. */
+LT_INLINE lt_vi32_t lt_vi32_asr(lt_vi32_t a, unsigned s) /* VSHIFT x1 */
+{
+    int i;
+    LT_COST(VSHIFT, 1);
+    for (i = 0; i < LT_LANES; i++)
+        a.l[i] = lt__asr32(a.l[i], s);
+    return a;
+}
+
+/* findMSB per lane in k: 31 - clz(x), the index of the highest set bit (-1 for x == 0); lanes not
+ * in k become 0. Cost: VALU x1 (a lane count-leading-zeros, AVX-512 vplzcntd). */
+LT_INLINE lt_vi32_t lt_vi32_msb_z(lt_mask16_t k, lt_vi32_t x) /* VALU x1 */
+{
+    lt_vi32_t r;
+    int i;
+    LT_COST(VALU, 1);
+    LT_UTIL(k);
+    for (i = 0; i < LT_LANES; i++)
+        r.l[i] = LT__ON(k, i) ? 31 - (int32_t)lt__clz32((uint32_t)x.l[i]) : 0;
     return r;
 }
 
-/* Reinterpret s15.16 or s1.30 lanes as plain int32 lanes for lt_vql_mul (no cost: a register rename). */
-LT_INLINE lt_vi32_t lt_vi32_from_q16(lt_vq16_t a)
+/* Reinterpret s15.16 or s1.30 lanes as plain int32 lanes (no cost: a register rename). */
+LT_INLINE lt_vi32_t lt_vi32_from_q16(lt_vq16_t a) /* no cost */
 {
     lt_vi32_t r;
     int i;
@@ -384,7 +481,7 @@ LT_INLINE lt_vi32_t lt_vi32_from_q16(lt_vq16_t a)
     return r;
 }
 
-LT_INLINE lt_vi32_t lt_vi32_from_q30(lt_vq30_t a)
+LT_INLINE lt_vi32_t lt_vi32_from_q30(lt_vq30_t a) /* no cost */
 {
     lt_vi32_t r;
     int i;
@@ -402,7 +499,7 @@ LT__V16_CMP(lt_vh8_t, lt_vh8_cmplt, VCMP, <)
 LT__V16_CMP(lt_vh8_t, lt_vh8_cmple, VCMP, <=)
 
 /* s7.8 -> s15.16 per lane (exact) and back (half up, saturating). Cost: VCVT x1. */
-LT_INLINE lt_vq16_t lt_vq16_from_h8(lt_vh8_t a)
+LT_INLINE lt_vq16_t lt_vq16_from_h8(lt_vh8_t a) /* VCVT x1 */
 {
     lt_vq16_t r;
     int i;
@@ -412,7 +509,7 @@ LT_INLINE lt_vq16_t lt_vq16_from_h8(lt_vh8_t a)
     return r;
 }
 
-LT_INLINE lt_vh8_t lt_vh8_from_q16_sat(lt_vq16_t a)
+LT_INLINE lt_vh8_t lt_vh8_from_q16_sat(lt_vq16_t a) /* VCVT x1 */
 {
     lt_vh8_t r;
     int i;
@@ -461,9 +558,98 @@ LT__V16_CMP(lt_vf32_t, lt_vf32_cmple, FCMP, <=)
 LT__V16_CMP(lt_vf32_t, lt_vf32_cmpgt, FCMP, >)
 LT__V16_CMP(lt_vf32_t, lt_vf32_cmpge, FCMP, >=)
 LT__V16_CMP(lt_vf32_t, lt_vf32_cmpeq, FCMP, ==)
+LT_INLINE float lt__f32_mul3(float a) { return a * 3.0f; }
+/* 3 a per lane (one rounding). Cost: FMUL x1. */
+LT__V16_UN(lt_vf32_t, lt_vf32_mul3, FMUL, lt__f32_mul3)
+
+/* a * 2^e per lane (exact while the result stays normal; 2^e is built by doubling or halving, so
+ * |e| <= 126). Cost: VBCAST x1, FMUL x1 (a broadcast of 2^e and a multiply). */
+LT_INLINE lt_vf32_t lt_vf32_mul_pow2(lt_vf32_t a, int e) /* VBCAST x1, FMUL x1 */
+{
+    float f = 1.0f;
+    int j;
+    for (j = 0; j < e; j++)
+        f = f * 2.0f;
+    for (j = 0; j > e; j--)
+        f = f * 0.5f;
+    return lt_vf32_mul(a, lt_vf32_set1(f));
+}
+
+/* a b - c d per lane (one component of a cross product), each product and the difference rounded
+ * once, in this order. Cost: FMUL x2, FADD x1. */
+LT_INLINE lt_vf32_t lt_vf32_cross(lt_vf32_t a, lt_vf32_t b, lt_vf32_t c,
+                                  lt_vf32_t d) /* FMUL x2, FADD x1 */
+{
+    return lt_vf32_sub(lt_vf32_mul(a, b), lt_vf32_mul(c, d));
+}
+
+/* (ax bx + ay by) + az bz per lane, rounded in this order. Cost: FMUL x3, FADD x2. */
+LT_INLINE lt_vf32_t lt_vf32_dot3(lt_vf32_t ax, lt_vf32_t ay, lt_vf32_t az, lt_vf32_t bx,
+                                 lt_vf32_t by, lt_vf32_t bz) /* FMUL x3, FADD x2 */
+{
+    return lt_vf32_add(lt_vf32_add(lt_vf32_mul(ax, bx), lt_vf32_mul(ay, by)), lt_vf32_mul(az, bz));
+}
+
+/* Lanes holding +-FLT_MAX (a clamped reciprocal). Cost: VBCAST x2, FCMP x2. */
+LT_INLINE lt_mask16_t lt_vf32_cmpsat(lt_vf32_t a) /* VBCAST x2, FCMP x2 */
+{
+    return (lt_mask16_t)(lt_vf32_cmpeq(a, lt_vf32_set1(3.40282347e38f)) |
+                         lt_vf32_cmpeq(a, lt_vf32_set1(-3.40282347e38f)));
+}
+
+/* a / n per lane for a count n (int32 lanes, converted exactly below 2^24), lanes in k with
+ * n > 0; other lanes become 0. IEEE division. Cost: FDIV x1. */
+LT_INLINE lt_vf32_t lt_vf32_div_i32_z(lt_mask16_t k, lt_vf32_t a, lt_vi32_t n) /* FDIV x1 */
+{
+    lt_vf32_t r;
+    int i;
+    LT_COST(FDIV, 1);
+    LT_UTIL(k);
+    for (i = 0; i < LT_LANES; i++)
+        r.l[i] = LT__ON(k, i) && n.l[i] > 0 ? a.l[i] / (float)n.l[i] : 0.0f;
+    return r;
+}
+
+/* 1 / d per lane, IEEE, then clamped to +-FLT_MAX: +-0 gives +-FLT_MAX (the sign of -0.0 survives
+ * through 1/d = -inf), NaN stays NaN. Cost: FDIV x1, FCMP x1, VALU x1 (divide, compare, select). */
+LT_INLINE lt_vf32_t lt_vf32_rcp_sat(lt_vf32_t d) /* FDIV x1, FCMP x1, VALU x1 */
+{
+    lt_vf32_t r;
+    int i;
+    LT_COST(FDIV, 1);
+    LT_COST(FCMP, 1);
+    LT_COST(VALU, 1);
+    for (i = 0; i < LT_LANES; i++) {
+        float q = 1.0f / d.l[i];
+        if (q > 3.40282347e38f)
+            q = 3.40282347e38f;
+        else if (q < -3.40282347e38f)
+            q = -3.40282347e38f;
+        r.l[i] = q;
+    }
+    return r;
+}
+
+/* 1 / d per lane clamped to +-FLT_MAX, with d == +-0 giving `zero` (the caller's side, e.g.
+ * +FLT_MAX for an upper interval end), the float twin of lt_vq16_recip_q30_sat. Cost: FDIV x1
+ * (the clamp and the zero select ride on the divide: the tally lt_frusta.c always charged). */
+LT_INLINE lt_vf32_t lt_vf32_recip_sat(lt_vf32_t d, float zero) /* FDIV x1 */
+{
+    lt_vf32_t r;
+    int i;
+    LT_COST(FDIV, 1);
+    for (i = 0; i < LT_LANES; i++) {
+        float q = d.l[i] == 0.0f ? zero : 1.0f / d.l[i];
+        r.l[i] = q > 3.40282347e38f ? 3.40282347e38f : (q < -3.40282347e38f ? -3.40282347e38f : q);
+    }
+    return r;
+}
 #endif
 
 #ifdef __cplusplus
 }
 #endif
+
+#include "lt_v16w.h"
+
 #endif /* LT_V16_H */

@@ -1,16 +1,17 @@
-/* lt_qt_grid.inc - lane helpers of a screen-space level grid, shared by the quadtree (lt_qt.c) and
+/* lt_qt_grid.c - lane helpers of a screen-space level grid, shared by the quadtree (lt_qt.c) and
  * the Hi-Z pyramid (lt_hiz.c): both store level L of a layer as an nx[L] x ny[L] row-major grid
- * starting at off[L] (lt_qt.h, lt_hiz.h), so index and bounds test are one function each.
- * Included once by each of the two .c files (static: no symbol leaves the file). Builds: all.
+ * starting at off[L] (lt_qt.h, lt_hiz.h), so index and bounds test are one function each, defined
+ * here once and declared in lt_qt_grid.h. Builds: all.
  */
+#include "lt_qt_grid.h"
 
 /* Index off[L] + qy nx[L] + qx per lane in k (0 elsewhere; for Hi-Z level 0 is the pixels,
  * y W + x). The level tables (<= 15 entries) fit one register: two permutes, a multiply and two
  * adds. Format: int32 lanes, in range by the walk (LT_ASSERT: L < levels, qx < nx[L], qy < ny[L]).
  * Overflow: none (the index is below the arena's cell count). Cost: VALU x4, VMUL x1. */
-static lt_vi32_t lt__qtgrid_index(const uint32_t *off, const uint32_t *nx, const uint32_t *ny,
-                                  uint32_t levels, lt_mask16_t k, lt_vi32_t lvl, lt_vi32_t qx,
-                                  lt_vi32_t qy)
+lt_vi32_t lt__qtgrid_index(const uint32_t *off, const uint32_t *nx, const uint32_t *ny,
+                           uint32_t levels, lt_mask16_t k, lt_vi32_t lvl, lt_vi32_t qx,
+                           lt_vi32_t qy)
 {
     lt_vi32_t r;
     int i;
@@ -32,8 +33,8 @@ static lt_vi32_t lt__qtgrid_index(const uint32_t *off, const uint32_t *nx, const
 
 /* Lanes in k whose node / cell (L, qx, qy) lies outside the level's grid (qx or qy negative, or
  * >= nx[L], ny[L]). Cost: VALU x2, VCMP x4. */
-static lt_mask16_t lt__qtgrid_outside(const uint32_t *nx, const uint32_t *ny, lt_mask16_t k,
-                                      lt_vi32_t lvl, lt_vi32_t qx, lt_vi32_t qy)
+lt_mask16_t lt__qtgrid_outside(const uint32_t *nx, const uint32_t *ny, lt_mask16_t k,
+                               lt_vi32_t lvl, lt_vi32_t qx, lt_vi32_t qy)
 {
     unsigned m = 0;
     int i;

@@ -1,102 +1,28 @@
-/* lt_ssb_common.inc - lane helpers shared by the two screen-space baselines (lt_ssdda.c: the DDA of
- * McGuire & Mara; lt_hiz.c: the Hi-Z tracer of Uludag / FidelityFX SSSR): ray setup and clip, the
- * crossing function, w along the ray, the hit parameter, surface-shell bounds and pixel gathers,
- * for s1.30 (ssq_*) and float32 (ssf_*). The setup and crossings follow lt_qt.c's (same clip, same
- * normalised-reciprocal crossing) so that all three tracers see the same segment. Every helper
- * charges itself, as the lt_v16.h ops do. Included once at the top of each of the two .c files;
- * helpers are static inline or LT_UNUSED so a file that needs only some of them compiles clean.
- * Builds: all; the float32 half only with LT_CFG_FLOAT32.
+/* lt_ssb.c - ray helpers shared by the two screen-space baselines (lt_ssdda.c: the DDA of McGuire &
+ * Mara; lt_hiz.c: the Hi-Z tracer of Uludag / FidelityFX SSSR), sibling screen-space tracers
+ * sharing one ray-packet header (lt_ssb.h): ray setup and clip, the crossing function, w along the
+ * ray, the hit parameter, surface-shell bounds and pixel gathers, for s1.30 (lt__ssb_*_q30) and
+ * float32 (lt__ssb_*_f32). The setup and crossings follow lt_qt.c's (same clip, same
+ * normalised-reciprocal crossing) so that all three tracers see the same segment. They are kernel
+ * routines over the lane types of lt_v16.h / lt_v16w.h, each charging its own tally (Cost: lines),
+ * defined here once; the kernels reach them through the SS_* traits (lt_ssb_q30.inc,
+ * lt_ssb_f32.inc). Builds: all; the float32 half only with LT_CFG_FLOAT32.
  */
+#include "lt_ssb.h"
 
 /* ==== s1.30 w and t, s15.16 pixels, int64 wide values ========================================= */
 
-/* Per-lane ray state after setup. */
-typedef struct ssq_setup {
-    const lt_qray16_q30_t *r;
-    lt_vi32_t m[2];      /* per axis: 2^62 / (|d| 2^n) rounded, in (2^30, 2^31] */
-    lt_vi32_t sh[2];     /* per axis: 32 - n, the right shift after the product */
-    lt_mask16_t par[2];  /* d == 0 on that axis */
-    lt_mask16_t neg[2];  /* d < 0 on that axis */
-    lt_mask16_t ymaj;    /* |dy| > |dx|: y is the DDA's major axis */
-} ssq_setup_t;
-
 /* Round a value with f >= 1 fractional bits to an integer, half up. */
-LT_INLINE int64_t ssq_rnd(int64_t v, unsigned f)
+LT_INLINE int64_t lt__ssb_rnd_q30(int64_t v, unsigned f)
 {
     return lt__asr64(v + ((int64_t)1 << (f - 1u)), f);
-}
-
-LT_INLINE int64_t ssq_min1(int64_t a, int64_t b) { return a < b ? a : b; }
-LT_INLINE int64_t ssq_max1(int64_t a, int64_t b) { return a > b ? a : b; }
-LT_INLINE int32_t ssq_isub1(int32_t a, int32_t b) { return lt__wrap32((int64_t)a - b); }
-
-/* s1.30 lanes (int32; the scalar bodies are format-free integer ops) */
-LT__V16_BIN(lt_vq30_t, ssq_vadd, VALU, lt__q16_add_sat)
-LT__V16_BIN(lt_vq30_t, ssq_vsub, VALU, lt__q16_sub_sat)
-LT__V16_BIN(lt_vq30_t, ssq_vmin, VALU, lt__q16_min)
-LT__V16_BIN(lt_vq30_t, ssq_vmax, VALU, lt__q16_max)
-LT__V16_CMP(lt_vq30_t, ssq_vcmplt, VCMP, <)
-LT__V16_CMP(lt_vq30_t, ssq_vcmple, VCMP, <=)
-LT__V16_CMP(lt_vq30_t, ssq_vcmpgt, VCMP, >)
-LT__V16_CMP(lt_vq30_t, ssq_vcmpge, VCMP, >=)
-/* int64 lanes: bounded by the kernels (w(t) and shells below 2^62), no op here overflows */
-LT__V16_BIN(lt_vql_t, ssq_wmin, VMULW, ssq_min1)
-LT__V16_BIN(lt_vql_t, ssq_wmax, VMULW, ssq_max1)
-LT__V16_CMP(lt_vql_t, ssq_wcmplt, VCMP, <)
-LT__V16_CMP(lt_vql_t, ssq_wcmple, VCMP, <=)
-LT__V16_CMP(lt_vql_t, ssq_wcmpgt, VCMP, >)
-LT__V16_CMP(lt_vql_t, ssq_wcmpge, VCMP, >=)
-/* int32 lanes (pixel and cell coordinates, counters) */
-LT__V16_BIN(lt_vi32_t, ss_isub, VALU, ssq_isub1)
-LT__V16_BIN(lt_vi32_t, ss_imin, VALU, lt__q16_min)
-LT__V16_BIN(lt_vi32_t, ss_imax, VALU, lt__q16_max)
-LT__V16_CMP(lt_vi32_t, ss_icmpgt, VCMP, >)
-LT__V16_CMP(lt_vi32_t, ss_icmpeq, VCMP, ==)
-#define ss_iadd lt_vi32_add_wrap
-#define ss_iadd_m lt_vi32_add_wrap_m
-
-/* Lane i = b where k, else a (int64 lanes). Cost: VMULW x1 (the wide-op class). */
-LT_INLINE lt_vql_t ssq_wblend(lt_mask16_t k, lt_vql_t a, lt_vql_t b)
-{
-    int i;
-    LT_COST(VMULW, 1);
-    LT_UTIL(k);
-    for (i = 0; i < LT_LANES; i++)
-        if (LT__ON(k, i))
-            a.l[i] = b.l[i];
-    return a;
-}
-
-/* a - b on int64 lanes. Cost: VMULW x1. */
-LT_INLINE lt_vql_t ssq_wsub(lt_vql_t a, lt_vql_t b)
-{
-    return lt_vql_sub_wrap(a, b);
-}
-
-/* a << s and a >> s per lane for 0 <= a, a 2^s < 2^31 (cell coordinates). Cost: VSHIFT x1. */
-LT_INLINE lt_vi32_t ss_ishl_v(lt_vi32_t a, lt_vi32_t s)
-{
-    int i;
-    LT_COST(VSHIFT, 1);
-    for (i = 0; i < LT_LANES; i++)
-        a.l[i] = lt__wrap32((int64_t)a.l[i] * ((int64_t)1 << (s.l[i] & 31)));
-    return a;
-}
-
-LT_INLINE lt_vi32_t ss_iasr1(lt_vi32_t a)
-{
-    int i;
-    LT_COST(VSHIFT, 1);
-    for (i = 0; i < LT_LANES; i++)
-        a.l[i] = lt__asr32(a.l[i], 1u);
-    return a;
 }
 
 /* t = (X - o) / d on axis a for integer pixel coordinates X, lanes in k (0 elsewhere):
  * (X 2^16 - o) m >> sh, half up, negated for d < 0, saturated to int32. Monotonic in X, error
  * <= 1 ulp for |X - o| <= 2^15 px; the same function as lt_qt.c's q_tcross.
  * Cost: VALU x2, VMUL x1, VSHIFT x2. */
-static LT_UNUSED lt_vq30_t ssq_tcross(const ssq_setup_t *S, int a, lt_mask16_t k, lt_vi32_t X)
+lt_vq30_t lt__ssb_tcross_q30(const lt__ssb_setup_q30_t *S, int a, lt_mask16_t k, lt_vi32_t X)
 {
     const lt_vq16_t *o = a ? &S->r->y : &S->r->x;
     lt_vq30_t t;
@@ -109,7 +35,7 @@ static LT_UNUSED lt_vq30_t ssq_tcross(const ssq_setup_t *S, int a, lt_mask16_t k
         t.l[i] = 0;
         if (LT__ON(k, i)) {
             int64_t num = (int64_t)X.l[i] * 65536 - o->l[i];
-            int64_t q = ssq_rnd(num * S->m[a].l[i], (unsigned)S->sh[a].l[i]);
+            int64_t q = lt__ssb_rnd_q30(num * S->m[a].l[i], (unsigned)S->sh[a].l[i]);
             t.l[i] = lt__ssat32(LT__ON(S->neg[a], i) ? -q : q);
         }
     }
@@ -119,8 +45,8 @@ static LT_UNUSED lt_vq30_t ssq_tcross(const ssq_setup_t *S, int a, lt_mask16_t k
 /* The t span of n half pixels (0 <= n < 2^16) along each lane's major axis (y for lanes in ky):
  * n 2^15 / |d| in s1.30 = (n 2^15) m >> sh, half up, saturated; monotonic in n. Parallel lanes
  * (m = 0) give 0. Cost: VALU x1 (axis select), VMUL x1, VSHIFT x2. */
-static LT_UNUSED lt_vq30_t ssq_tspan(const ssq_setup_t *S, lt_mask16_t ky, lt_mask16_t k,
-                                     lt_vi32_t n)
+lt_vq30_t lt__ssb_tspan_q30(const lt__ssb_setup_q30_t *S, lt_mask16_t ky, lt_mask16_t k,
+                            lt_vi32_t n)
 {
     lt_vq30_t t;
     int i;
@@ -132,7 +58,7 @@ static LT_UNUSED lt_vq30_t ssq_tspan(const ssq_setup_t *S, lt_mask16_t ky, lt_ma
         int a = (int)LT__ON(ky, i);
         t.l[i] = 0;
         if (LT__ON(k, i))
-            t.l[i] = lt__ssat32(ssq_rnd((int64_t)n.l[i] * 32768 * S->m[a].l[i],
+            t.l[i] = lt__ssat32(lt__ssb_rnd_q30((int64_t)n.l[i] * 32768 * S->m[a].l[i],
                                         (unsigned)S->sh[a].l[i]));
     }
     return t;
@@ -140,7 +66,7 @@ static LT_UNUSED lt_vq30_t ssq_tspan(const ssq_setup_t *S, lt_mask16_t ky, lt_ma
 
 /* floor(o + d t) on axis a: s15.16 2^30 + s15.16 x s1.30 is exact in s.46; the floor is the pixel.
  * Cost: VMUL x1, VMULW x1, VSHIFT x1. */
-static LT_UNUSED lt_vi32_t ssq_pixel(const ssq_setup_t *S, int a, lt_mask16_t k, lt_vq30_t t)
+lt_vi32_t lt__ssb_pixel_q30(const lt__ssb_setup_q30_t *S, int a, lt_mask16_t k, lt_vq30_t t)
 {
     const lt_vq16_t *o = a ? &S->r->y : &S->r->x;
     const lt_vq16_t *d = a ? &S->r->dy : &S->r->dx;
@@ -158,27 +84,27 @@ static LT_UNUSED lt_vi32_t ssq_pixel(const ssq_setup_t *S, int a, lt_mask16_t k,
 }
 
 /* w of the ray at t in s1.60: w 2^30 + dw t (exact, |.| < 2^62). */
-LT_INLINE int64_t ssq_wray1(const lt_qray16_q30_t *r, int i, int32_t t)
+LT_INLINE int64_t lt__ssb_wray1_q30(const lt_qray16_q30_t *r, int i, int32_t t)
 {
     return (int64_t)r->w.l[i] * ((int64_t)1 << 30) + lt__mul32x32_64(r->dw.l[i], t);
 }
 
 /* w_ray(t) in s1.60 for the lanes in k (0 elsewhere). Cost: VMUL x1, VMULW x1, VSHIFT x1. */
-static LT_UNUSED lt_vql_t ssq_wray(const ssq_setup_t *S, lt_mask16_t k, lt_vq30_t t)
+lt_vql60_t lt__ssb_wray_q30(const lt__ssb_setup_q30_t *S, lt_mask16_t k, lt_vq30_t t)
 {
-    lt_vql_t f;
+    lt_vql60_t f;
     int i;
     LT_COST(VMUL, 1);
     LT_COST(VMULW, 1);
     LT_COST(VSHIFT, 1);
     LT_UTIL(k);
     for (i = 0; i < LT_LANES; i++)
-        f.l[i] = LT__ON(k, i) ? ssq_wray1(S->r, i, t.l[i]) : 0;
+        f.l[i] = LT__ON(k, i) ? lt__ssb_wray1_q30(S->r, i, t.l[i]) : 0;
     return f;
 }
 
 /* w_ray(t) rounded half up to s1.30 (saturating). Cost: VMUL x1, VMULW x1, VSHIFT x1. */
-static LT_UNUSED lt_vq30_t ssq_w_at(const ssq_setup_t *S, lt_mask16_t k, lt_vq30_t t)
+lt_vq30_t lt__ssb_w_at_q30(const lt__ssb_setup_q30_t *S, lt_mask16_t k, lt_vq30_t t)
 {
     lt_vq30_t w;
     int i;
@@ -187,7 +113,7 @@ static LT_UNUSED lt_vq30_t ssq_w_at(const ssq_setup_t *S, lt_mask16_t k, lt_vq30
     LT_COST(VSHIFT, 1);
     LT_UTIL(k);
     for (i = 0; i < LT_LANES; i++)
-        w.l[i] = LT__ON(k, i) ? lt__ssat32(ssq_rnd(ssq_wray1(S->r, i, t.l[i]), 30u)) : 0;
+        w.l[i] = LT__ON(k, i) ? lt__ssat32(lt__ssb_rnd_q30(lt__ssb_wray1_q30(S->r, i, t.l[i]), 30u)) : 0;
     return w;
 }
 
@@ -195,8 +121,8 @@ static LT_UNUSED lt_vq30_t ssq_w_at(const ssq_setup_t *S, lt_mask16_t k, lt_vq30
  * fn - ff > 0): tn + (tf - tn) fn / (fn - ff), the operands scaled down together below 2^31 so
  * the product fits int64; half up. Lanes with fn - ff == 0 keep tn. The same computation as
  * lt_qt.c's q_hit_t. Cost: VDIV x1, VALU x4, VMUL x1. */
-static LT_UNUSED lt_vq30_t ssq_hit_t(lt_mask16_t k, lt_vq30_t tn, lt_vq30_t tf, lt_vql_t fn,
-                                     lt_vql_t ff)
+lt_vq30_t lt__ssb_hit_t_q30(lt_mask16_t k, lt_vq30_t tn, lt_vq30_t tf, lt_vql60_t fn,
+                            lt_vql60_t ff)
 {
     lt_vq30_t t = tn;
     int i;
@@ -220,16 +146,16 @@ static LT_UNUSED lt_vq30_t ssq_hit_t(lt_mask16_t k, lt_vq30_t tn, lt_vq30_t tf, 
 
 /* Lanes in k where the ray at t lies in the upper half (coordinate >= xm) of a cell split at the
  * pixel coordinate xm: past the midline crossing for d > 0, before it for d < 0, by position for
- * d == 0. Uses ssq_tcross, so it agrees with every exit crossing.
- * Cost: ssq_tcross + VCMP x2 (+ VCMP for parallel lanes). */
-static LT_UNUSED lt_mask16_t ssq_child_side(const ssq_setup_t *S, int a, lt_mask16_t k,
-                                            lt_vq30_t t, lt_vi32_t xm)
+ * d == 0. Uses lt__ssb_tcross_q30, so it agrees with every exit crossing.
+ * Cost: lt__ssb_tcross_q30 + VCMP x2 (+ VCMP for parallel lanes). */
+lt_mask16_t lt__ssb_child_side_q30(const lt__ssb_setup_q30_t *S, int a, lt_mask16_t k,
+                                   lt_vq30_t t, lt_vi32_t xm)
 {
     lt_mask16_t np = (lt_mask16_t)(k & ~S->par[a]), pp = (lt_mask16_t)(k & S->par[a]), r = 0;
     if (np != 0) {
-        lt_vq30_t tm = ssq_tcross(S, a, np, xm);
-        r = (lt_mask16_t)(ssq_vcmpge_m((lt_mask16_t)(np & ~S->neg[a]), t, tm) |
-                          ssq_vcmplt_m((lt_mask16_t)(np & S->neg[a]), t, tm));
+        lt_vq30_t tm = lt__ssb_tcross_q30(S, a, np, xm);
+        r = (lt_mask16_t)(lt_vq30_cmpge_m((lt_mask16_t)(np & ~S->neg[a]), t, tm) |
+                          lt_vq30_cmplt_m((lt_mask16_t)(np & S->neg[a]), t, tm));
     }
     if (pp != 0) {
         const lt_vq16_t *o = a ? &S->r->y : &S->r->x;
@@ -244,13 +170,13 @@ static LT_UNUSED lt_mask16_t ssq_child_side(const ssq_setup_t *S, int a, lt_mask
 
 /* Ray setup (as lt_qt.c's q_setup): validity (end points |x|, |y| <= 2^14 px, w >= 0,
  * 0 <= tmin <= tmax <= 1), normalised reciprocals per axis, the major axis, and the clip of
- * [tmin, tmax] to the image (x in [0, W], y in [0, H] through ssq_tcross; a parallel lane is inside
+ * [tmin, tmax] to the image (x in [0, W], y in [0, H] through lt__ssb_tcross_q30; a parallel lane is inside
  * iff 0 <= o < ext) and to w >= 0 (rounded down). Returns the lanes with a non-empty interval;
  * *bad receives the invalid lanes (t0 = t1 = 0 there).
  * Cost: VDIV x3, VCMP x13, VALU x12 and four crossings. */
-static LT_UNUSED lt_mask16_t ssq_setup(uint32_t width, uint32_t height, const lt_qray16_q30_t *r,
-                                       lt_mask16_t k, ssq_setup_t *S, lt_vq30_t *t0,
-                                       lt_vq30_t *t1, lt_mask16_t *bad)
+lt_mask16_t lt__ssb_setup_q30(uint32_t width, uint32_t height, const lt_qray16_q30_t *r,
+                              lt_mask16_t k, lt__ssb_setup_q30_t *S, lt_vq30_t *t0,
+                              lt_vq30_t *t1, lt_mask16_t *bad)
 {
     const int64_t lim = (int64_t)1 << (LT_QT_RAY_MAX_LOG2 + 16);
     unsigned okm = 0, ym = 0;
@@ -320,9 +246,9 @@ static LT_UNUSED lt_mask16_t ssq_setup(uint32_t width, uint32_t height, const lt
         lt_mask16_t kn = (lt_mask16_t)(k & ~S->par[a]), neg = S->neg[a];
         lt_vi32_t lo = lt_vi32_blend(neg, lt_vi32_set1(0), lt_vi32_set1(ext));
         lt_vi32_t hi = lt_vi32_blend(neg, lt_vi32_set1(ext), lt_vi32_set1(0));
-        lt_vq30_t te = ssq_tcross(S, a, kn, lo), tx = ssq_tcross(S, a, kn, hi);
-        *t0 = lt_vq30_blend(kn, *t0, ssq_vmax(*t0, te));
-        *t1 = lt_vq30_blend(kn, *t1, ssq_vmin(*t1, tx));
+        lt_vq30_t te = lt__ssb_tcross_q30(S, a, kn, lo), tx = lt__ssb_tcross_q30(S, a, kn, hi);
+        *t0 = lt_vq30_blend(kn, *t0, lt_vq30_max(*t0, te));
+        *t1 = lt_vq30_blend(kn, *t1, lt_vq30_min(*t1, tx));
         for (i = 0; i < LT_LANES; i++) {
             if (LT__ON(k & S->par[a], i)) {
                 int32_t o = a ? r->y.l[i] : r->x.l[i];
@@ -331,12 +257,12 @@ static LT_UNUSED lt_mask16_t ssq_setup(uint32_t width, uint32_t height, const lt
             }
         }
     }
-    return ssq_vcmplt_m(k, *t0, *t1);
+    return lt_vq30_cmplt_m(k, *t0, *t1);
 }
 
 /* w of the pixels base[idx] for the lanes in k (0 elsewhere); negative raws are holes (0).
  * Cost: VGATHER per active lane (LT_MEM at each pixel's address), VALU x1. */
-static LT_UNUSED lt_vq30_t ssq_gather_pix(const lt_q30_t *base, lt_vi32_t idx, lt_mask16_t k)
+lt_vq30_t lt__ssb_gather_pix_q30(const lt_q30_t *base, lt_vi32_t idx, lt_mask16_t k)
 {
     lt_vq30_t r;
     int i;
@@ -356,9 +282,9 @@ static LT_UNUSED lt_vq30_t ssq_gather_pix(const lt_q30_t *base, lt_vi32_t idx, l
 
 /* Shell bounds in s1.60: lo = w_s k (s1.30 x s1.30, exact), hi = w_s 2^30 (exact).
  * Cost: VMUL x1; VSHIFT x1. */
-static LT_UNUSED lt_vql_t ssq_shell_lo(lt_mask16_t k, lt_vq30_t ws, lt_q30_t kq)
+lt_vql60_t lt__ssb_shell_lo_q30(lt_mask16_t k, lt_vq30_t ws, lt_q30_t kq)
 {
-    lt_vql_t r;
+    lt_vql60_t r;
     int i;
     LT_COST(VMUL, 1);
     LT_UTIL(k);
@@ -367,9 +293,9 @@ static LT_UNUSED lt_vql_t ssq_shell_lo(lt_mask16_t k, lt_vq30_t ws, lt_q30_t kq)
     return r;
 }
 
-static LT_UNUSED lt_vql_t ssq_shell_hi(lt_mask16_t k, lt_vq30_t ws)
+lt_vql60_t lt__ssb_shell_hi_q30(lt_mask16_t k, lt_vq30_t ws)
 {
-    lt_vql_t r;
+    lt_vql60_t r;
     int i;
     LT_COST(VSHIFT, 1);
     LT_UTIL(k);
@@ -379,7 +305,7 @@ static LT_UNUSED lt_vql_t ssq_shell_hi(lt_mask16_t k, lt_vq30_t ws)
 }
 
 /* 1 / (1 + theta) in s1.30, half up: 2^60 / (2^30 + theta) (theta >= 0, so in (1/3, 1]). */
-static LT_UNUSED lt_q30_t ssq_kthick(lt_q30_t theta)
+lt_q30_t lt__ssb_kthick_q30(lt_q30_t theta)
 {
     return (lt_q30_t)lt__div_round64((int64_t)1 << 60, (int64_t)LT_Q30_ONE + theta);
 }
@@ -387,18 +313,8 @@ static LT_UNUSED lt_q30_t ssq_kthick(lt_q30_t theta)
 /* ==== float32 ================================================================================= */
 #if LT_CFG_FLOAT32
 
-#define SSF_MAX 3.40282347e38f
-
-typedef struct ssf_setup {
-    const lt_qray16_f32_t *r;
-    lt_vf32_t rcp[2];    /* 1 / d per axis (0 for parallel lanes) */
-    lt_mask16_t par[2];  /* d == +-0 */
-    lt_mask16_t neg[2];  /* d < 0 */
-    lt_mask16_t ymaj;    /* |dy| > |dx| */
-} ssf_setup_t;
-
 /* t = (X - o) * (1 / d): monotonic in X. Cost: VCVT x1, FADD x1, FMUL x1. */
-static LT_UNUSED lt_vf32_t ssf_tcross(const ssf_setup_t *S, int a, lt_mask16_t k, lt_vi32_t X)
+lt_vf32_t lt__ssb_tcross_f32(const lt__ssb_setup_f32_t *S, int a, lt_mask16_t k, lt_vi32_t X)
 {
     const lt_vf32_t *o = a ? &S->r->y : &S->r->x;
     lt_vf32_t t;
@@ -414,8 +330,8 @@ static LT_UNUSED lt_vf32_t ssf_tcross(const ssf_setup_t *S, int a, lt_mask16_t k
 
 /* n half pixels along each lane's major axis: (n * 0.5) * |1 / d|, monotonic in n.
  * Cost: VALU x1, VCVT x1, FMUL x2, FADD x1. */
-static LT_UNUSED lt_vf32_t ssf_tspan(const ssf_setup_t *S, lt_mask16_t ky, lt_mask16_t k,
-                                     lt_vi32_t n)
+lt_vf32_t lt__ssb_tspan_f32(const lt__ssb_setup_f32_t *S, lt_mask16_t ky, lt_mask16_t k,
+                            lt_vi32_t n)
 {
     lt_vf32_t t;
     int i;
@@ -433,7 +349,7 @@ static LT_UNUSED lt_vf32_t ssf_tspan(const ssf_setup_t *S, lt_mask16_t ky, lt_ma
 
 /* floor(o + t d) on axis a (|.| < 2^15 for valid rays, so the conversion is defined).
  * Cost: FMUL x1, FADD x1, VCVT x2, FCMP x1. */
-static LT_UNUSED lt_vi32_t ssf_pixel(const ssf_setup_t *S, int a, lt_mask16_t k, lt_vf32_t t)
+lt_vi32_t lt__ssb_pixel_f32(const lt__ssb_setup_f32_t *S, int a, lt_mask16_t k, lt_vf32_t t)
 {
     const lt_vf32_t *o = a ? &S->r->y : &S->r->x;
     const lt_vf32_t *d = a ? &S->r->dy : &S->r->dx;
@@ -463,7 +379,7 @@ static LT_UNUSED lt_vi32_t ssf_pixel(const ssf_setup_t *S, int a, lt_mask16_t k,
 }
 
 /* w + t dw. Cost: FMUL x1, FADD x1. */
-static LT_UNUSED lt_vf32_t ssf_wray(const ssf_setup_t *S, lt_mask16_t k, lt_vf32_t t)
+lt_vf32_t lt__ssb_wray_f32(const lt__ssb_setup_f32_t *S, lt_mask16_t k, lt_vf32_t t)
 {
     lt_vf32_t w;
     int i;
@@ -477,8 +393,8 @@ static LT_UNUSED lt_vf32_t ssf_wray(const ssf_setup_t *S, lt_mask16_t k, lt_vf32
 
 /* tn + (tf - tn) (fn / (fn - ff)), fn >= 0 >= ff, fn - ff > 0 (else tn).
  * Cost: FDIV x1, FADD x3, FMUL x1. */
-static LT_UNUSED lt_vf32_t ssf_hit_t(lt_mask16_t k, lt_vf32_t tn, lt_vf32_t tf, lt_vf32_t fn,
-                                     lt_vf32_t ff)
+lt_vf32_t lt__ssb_hit_t_f32(lt_mask16_t k, lt_vf32_t tn, lt_vf32_t tf, lt_vf32_t fn,
+                            lt_vf32_t ff)
 {
     int i;
     LT_COST(FDIV, 1);
@@ -495,13 +411,13 @@ static LT_UNUSED lt_vf32_t ssf_hit_t(lt_mask16_t k, lt_vf32_t tn, lt_vf32_t tf, 
     return tn;
 }
 
-/* As ssq_child_side. Cost: ssf_tcross + FCMP x2 (+ FCMP for parallel lanes). */
-static LT_UNUSED lt_mask16_t ssf_child_side(const ssf_setup_t *S, int a, lt_mask16_t k,
-                                            lt_vf32_t t, lt_vi32_t xm)
+/* As lt__ssb_child_side_q30. Cost: lt__ssb_tcross_f32 + FCMP x2 (+ FCMP for parallel lanes). */
+lt_mask16_t lt__ssb_child_side_f32(const lt__ssb_setup_f32_t *S, int a, lt_mask16_t k,
+                                   lt_vf32_t t, lt_vi32_t xm)
 {
     lt_mask16_t np = (lt_mask16_t)(k & ~S->par[a]), pp = (lt_mask16_t)(k & S->par[a]), r = 0;
     if (np != 0) {
-        lt_vf32_t tm = ssf_tcross(S, a, np, xm);
+        lt_vf32_t tm = lt__ssb_tcross_f32(S, a, np, xm);
         r = (lt_mask16_t)(lt_vf32_cmpge_m((lt_mask16_t)(np & ~S->neg[a]), t, tm) |
                           lt_vf32_cmplt_m((lt_mask16_t)(np & S->neg[a]), t, tm));
     }
@@ -516,11 +432,11 @@ static LT_UNUSED lt_mask16_t ssf_child_side(const ssf_setup_t *S, int a, lt_mask
     return r;
 }
 
-/* As ssq_setup in float32 (lt_qt.c's f_setup): NaN or infinite inputs are BADRAY.
+/* As lt__ssb_setup_q30 in float32 (lt_qt.c's f_setup): NaN or infinite inputs are BADRAY.
  * Cost: FDIV x3, FCMP x13, FADD x6 and four crossings. */
-static LT_UNUSED lt_mask16_t ssf_setup(uint32_t width, uint32_t height, const lt_qray16_f32_t *r,
-                                       lt_mask16_t k, ssf_setup_t *S, lt_vf32_t *t0,
-                                       lt_vf32_t *t1, lt_mask16_t *bad)
+lt_mask16_t lt__ssb_setup_f32(uint32_t width, uint32_t height, const lt_qray16_f32_t *r,
+                              lt_mask16_t k, lt__ssb_setup_f32_t *S, lt_vf32_t *t0,
+                              lt_vf32_t *t1, lt_mask16_t *bad)
 {
     const float lim = (float)(1u << LT_QT_RAY_MAX_LOG2);
     unsigned okm = 0, ym = 0;
@@ -539,8 +455,8 @@ static LT_UNUSED lt_mask16_t ssf_setup(uint32_t width, uint32_t height, const lt
             continue;
         /* written as negations of the valid ranges so that NaN fails every test */
         if (!(x >= -lim && x <= lim && y >= -lim && y <= lim && ex >= -lim && ex <= lim &&
-              ey >= -lim && ey <= lim && r->w.l[i] >= 0.0f && r->w.l[i] <= SSF_MAX &&
-              r->dw.l[i] >= -SSF_MAX && r->dw.l[i] <= SSF_MAX && r->tmin.l[i] >= 0.0f &&
+              ey >= -lim && ey <= lim && r->w.l[i] >= 0.0f && r->w.l[i] <= LT__SSB_F32_MAX &&
+              r->dw.l[i] >= -LT__SSB_F32_MAX && r->dw.l[i] <= LT__SSB_F32_MAX && r->tmin.l[i] >= 0.0f &&
               r->tmin.l[i] <= r->tmax.l[i] && r->tmax.l[i] <= 1.0f))
             continue;
         okm |= 1u << i;
@@ -572,7 +488,7 @@ static LT_UNUSED lt_mask16_t ssf_setup(uint32_t width, uint32_t height, const lt
         lt_mask16_t kn = (lt_mask16_t)(k & ~S->par[a]), neg = S->neg[a];
         lt_vi32_t lo = lt_vi32_blend(neg, lt_vi32_set1(0), lt_vi32_set1(ext));
         lt_vi32_t hi = lt_vi32_blend(neg, lt_vi32_set1(ext), lt_vi32_set1(0));
-        lt_vf32_t te = ssf_tcross(S, a, kn, lo), tx = ssf_tcross(S, a, kn, hi);
+        lt_vf32_t te = lt__ssb_tcross_f32(S, a, kn, lo), tx = lt__ssb_tcross_f32(S, a, kn, hi);
         *t0 = lt_vf32_blend(kn, *t0, lt_vf32_max(*t0, te));
         *t1 = lt_vf32_blend(kn, *t1, lt_vf32_min(*t1, tx));
         for (i = 0; i < LT_LANES; i++) {
@@ -588,7 +504,7 @@ static LT_UNUSED lt_mask16_t ssf_setup(uint32_t width, uint32_t height, const lt
 
 /* w of base[idx] for the lanes in k; NaN, +-inf and w <= 0 are holes (0).
  * Cost: VGATHER per active lane, FCMP x2. */
-static LT_UNUSED lt_vf32_t ssf_gather_pix(const float *base, lt_vi32_t idx, lt_mask16_t k)
+lt_vf32_t lt__ssb_gather_pix_f32(const float *base, lt_vi32_t idx, lt_mask16_t k)
 {
     lt_vf32_t r;
     int i;
@@ -602,26 +518,20 @@ static LT_UNUSED lt_vf32_t ssf_gather_pix(const float *base, lt_vi32_t idx, lt_m
             float v;
             LT_MEM(p, sizeof *p, LT_MEM_READ);
             v = *p;
-            r.l[i] = (v > 0.0f && v <= SSF_MAX) ? v : 0.0f;
+            r.l[i] = (v > 0.0f && v <= LT__SSB_F32_MAX) ? v : 0.0f;
         }
     }
     return r;
 }
 
-/* Shell bounds: lo = w_s k, hi = w_s. Cost: FMUL x1; none. */
-static LT_UNUSED lt_vf32_t ssf_shell_lo(lt_mask16_t k, lt_vf32_t ws, float kf)
+/* Shell bounds: lo = w_s k (hi = w_s: lt__ssb_shell_hi_f32, lt_ssb.h). Cost: FMUL x1. */
+lt_vf32_t lt__ssb_shell_lo_f32(lt_mask16_t k, lt_vf32_t ws, float kf)
 {
     int i;
     LT_COST(FMUL, 1);
     LT_UTIL(k);
     for (i = 0; i < LT_LANES; i++)
         ws.l[i] = LT__ON(k, i) ? ws.l[i] * kf : 0.0f;
-    return ws;
-}
-
-LT_INLINE lt_vf32_t ssf_shell_hi(lt_mask16_t k, lt_vf32_t ws)
-{
-    (void)k;
     return ws;
 }
 
