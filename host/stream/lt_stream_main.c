@@ -5,6 +5,7 @@
  * Exit: 0 clean stream (END received, nothing lost, damaged, duplicated or reordered, no garbage,
  * device status 0), 1 any fault or input error, 2 usage. Host only.
  */
+#include "cli/lt_opt.h"
 #include "stream/lt_rx.h"
 #include "cli/lt_cliutil.h"
 #include "stream/usb/lt_rx_hid.h"
@@ -22,24 +23,6 @@ typedef struct opts {
     double timeout_s;
     int json, quiet;
 } opts_t;
-
-static void usage(FILE *f)
-{
-    fprintf(
-        f, "usage: lt-stream [--file F | --serial DEV | --tcp HOST:PORT | --hid VID:PID |\n"
-           "                  --hid-path P] [--baud N] [--timeout S] [--tiles PATH] [--json] [-q]\n"
-           "  --file F         read a recorded stream (default: - = stdin, e.g. a pipe from QEMU)\n"
-           "  --serial DEV     a tty in raw 8N1 mode (e.g. /dev/ttyACM0); --baud N sets its speed\n"
-           "  --tcp HOST:PORT  connect (retrying 5 s while refused), e.g. QEMU -serial tcp:...\n"
-           "  --hid VID:PID    a USB HID device by hex ids (hidapi), e.g. 1209:0001\n"
-           "  --hid-path P     a USB HID device by hidapi path (hidraw: /dev/hidrawN)\n"
-           "  --timeout S      stop after S seconds without a byte (default: none; serial and\n"
-           "                   HID stop at the END record)\n"
-           "  --tiles PATH     write one line per TILE, SUMMARY, DROP and END record received\n"
-           "  --json           print the summary as JSON on stdout\n"
-           "  -q               no live line on stderr\n"
-           "exit status: 0 clean stream, 1 faults found or input error, 2 usage\n");
-}
 
 /* --tiles output: the device's records, one line each, in arrival order (first copies only). */
 static void on_frame(void *ctx, const lt_stream_frame_t *f, lt_rx_kind_t kind)
@@ -247,6 +230,49 @@ static void print_json(const char *src, const lt_rx_stats_t *s, double dt)
     printf("}\n");
 }
 
+/* The options into o and how many sources were named. LT_OPT_OK, LT_OPT_HELP or LT_OPT_USAGE. */
+static int parse_args(opts_t *o, int argc, char **argv, int *nsrc)
+{
+    int seen[5] = {0, 0, 0, 0, 0}, i, rc;
+    int baud = 0;
+    const lt_opt_t opts[] = {
+        LT_OPT_SECTION_("sources (at most one; default --file -):"),
+        {.name = "--file", .kind = LT_OPT_STRING, .dest = &o->file, .seen = &seen[0],
+         .meta = "F", .help = "read a recorded stream (- = stdin, e.g. a pipe from QEMU)"},
+        {.name = "--serial", .kind = LT_OPT_STRING, .dest = &o->serial, .seen = &seen[1],
+         .meta = "DEV", .help = "a tty in raw 8N1 mode (e.g. /dev/ttyACM0); --baud sets its speed"},
+        {.name = "--tcp", .kind = LT_OPT_STRING, .dest = &o->tcp, .seen = &seen[2],
+         .meta = "HOST:PORT", .help = "connect (retrying 5 s while refused), e.g. QEMU -serial tcp:..."},
+        {.name = "--hid", .kind = LT_OPT_STRING, .dest = &o->hid, .seen = &seen[3],
+         .meta = "VID:PID", .help = "a USB HID device by hex ids (hidapi), e.g. 1209:0001"},
+        {.name = "--hid-path", .kind = LT_OPT_STRING, .dest = &o->hid_path, .seen = &seen[4],
+         .meta = "P", .help = "a USB HID device by hidapi path (hidraw: /dev/hidrawN)"},
+        LT_OPT_SECTION_("options:"),
+        LT_OPT_INT("--baud", "N", &baud, 1, 4000000, "serial speed in baud, {range} (--serial only)"),
+        {.name = "--timeout", .kind = LT_OPT_DOUBLE, .dest = &o->timeout_s, .meta = "S",
+         .help = "stop after S seconds without a byte, {range} (default: none; serial and\n"
+                 "HID stop at the END record)",
+         .lo = 0.0, .hi = 86400.0, .flags = LT_OPT_LO_OPEN},
+        LT_OPT_STR("--tiles", "PATH", &o->tiles,
+                   "write one line per TILE, SUMMARY, DROP and END record received"),
+        LT_OPT_FLAG_("--json", &o->json, "print the summary as JSON on stdout"),
+        LT_OPT_FLAG_("-q", &o->quiet, "no live line on stderr"),
+        LT_OPT_END_};
+    const lt_opt_cmd_t cmd = {"lt-stream", "[SOURCE] [options]",
+                              "Receive the device's 64-byte report frames and check the stream "
+                              "(lost, damaged,\nduplicated, reordered frames, the device's own "
+                              "status).\n",
+                              "exit status: 0 clean stream, 1 faults found or input error, 2 usage\n",
+                              opts, NULL, 0, NULL};
+    rc = lt_opt_parse(&cmd, argc, argv, 1);
+    if (rc != LT_OPT_OK)
+        return rc;
+    for (i = 0, *nsrc = 0; i < 5; i++)
+        *nsrc += seen[i] != 0;
+    o->baud = (uint32_t)baud;
+    return LT_OPT_OK;
+}
+
 int main(int argc, char **argv)
 {
     opts_t o;
@@ -256,57 +282,17 @@ int main(int argc, char **argv)
     lt_diag_t diag;
     uint8_t buf[4096];
     double t0, last_live = 0.0, last_byte;
-    int a, nsrc = 0, status = 0, tty;
+    int nsrc = 0, status = 0, tty;
     const lt_rx_stats_t *s;
 
     memset(&o, 0, sizeof o);
-    for (a = 1; a < argc; a++) {
-        const char *v = a + 1 < argc ? argv[a + 1] : NULL;
-        if (strcmp(argv[a], "--help") == 0 || strcmp(argv[a], "-h") == 0) {
-            usage(stdout);
-            return 0;
-        } else if (strcmp(argv[a], "-q") == 0) {
-            o.quiet = 1;
-        } else if (strcmp(argv[a], "--json") == 0) {
-            o.json = 1;
-        } else if (v == NULL) {
-            fprintf(stderr, "lt-stream: %s: unknown option or missing value\n", argv[a]);
-            usage(stderr);
-            return 2;
-        } else if (strcmp(argv[a], "--file") == 0) {
-            o.file = v, nsrc++, a++;
-        } else if (strcmp(argv[a], "--serial") == 0) {
-            o.serial = v, nsrc++, a++;
-        } else if (strcmp(argv[a], "--tcp") == 0) {
-            o.tcp = v, nsrc++, a++;
-        } else if (strcmp(argv[a], "--hid") == 0) {
-            o.hid = v, nsrc++, a++;
-        } else if (strcmp(argv[a], "--hid-path") == 0) {
-            o.hid_path = v, nsrc++, a++;
-        } else if (strcmp(argv[a], "--tiles") == 0) {
-            o.tiles = v, a++;
-        } else if (strcmp(argv[a], "--baud") == 0) {
-            char *end;
-            unsigned long b = strtoul(v, &end, 10);
-            if (*end != '\0' || b == 0 || b > 4000000) {
-                fprintf(stderr, "lt-stream: --baud %s: expected 1..4000000\n", v);
-                return 2;
-            }
-            o.baud = (uint32_t)b;
-            a++;
-        } else if (strcmp(argv[a], "--timeout") == 0) {
-            char *end;
-            o.timeout_s = strtod(v, &end);
-            if (*end != '\0' || !(o.timeout_s > 0.0) || o.timeout_s > 86400.0) {
-                fprintf(stderr, "lt-stream: --timeout %s: expected seconds in (0, 86400]\n", v);
-                return 2;
-            }
-            a++;
-        } else {
-            fprintf(stderr, "lt-stream: %s: unknown option\n", argv[a]);
-            usage(stderr);
-            return 2;
-        }
+    switch (parse_args(&o, argc, argv, &nsrc)) {
+    case LT_OPT_HELP:
+        return 0;
+    case LT_OPT_USAGE:
+        return 2;
+    default:
+        break;
     }
     if (nsrc > 1) {
         fprintf(stderr, "lt-stream: give at most one of --file, --serial, --tcp, --hid, "

@@ -112,6 +112,35 @@ check "lt-faultinject --rate 0.3 (sum 1.5): exit 2 with the reason" \
     bash -c "[ $rc -eq 2 ] && grep -q 'sum' '$S/e.txt'"
 "$B/sim/lt-stream-dev" --frames 0 >/dev/null 2>"$S/e.txt"
 check "lt-stream-dev --frames 0: exit 2" test $? -eq 2
+# the three programs parse options with the CLI's table parser (host/cli/lt_opt): the same
+# messages (value, range, option named) and --help from the table
+for p in host/lt-stream host/lt-faultinject sim/lt-stream-dev; do
+    "$B/$p" --help >"$S/h.txt" 2>&1
+    rc=$?
+    check "$(basename $p) --help: exit 0, usage and options from the table" \
+        bash -c "[ $rc -eq 0 ] && grep -q '^usage: $(basename $p)' '$S/h.txt' && grep -q 'exit status' '$S/h.txt'"
+    "$B/$p" --frobnicate >/dev/null 2>"$S/e.txt"
+    rc=$?
+    check "$(basename $p) --frobnicate: exit 2, names the option" \
+        bash -c "[ $rc -eq 2 ] && grep -q -- \"unknown option '--frobnicate'\" '$S/e.txt'"
+done
+for c in "host/lt-stream --baud 9600x:--baud 9600x" "host/lt-stream --timeout nan:--timeout nan" \
+    "host/lt-faultinject --flips 9:1..8" "host/lt-faultinject --seed -1:--seed -1" \
+    "host/lt-faultinject --drop 1e300:[0, 1]" "sim/lt-stream-dev --cap 3:4..64" \
+    "sim/lt-stream-dev --link 1e6:--link 1e6"; do
+    cmdline=${c%%:*} want=${c#*:}
+    # shellcheck disable=SC2086
+    "$B"/$cmdline </dev/null >/dev/null 2>"$S/e.txt"
+    rc=$?
+    check "${cmdline#*/}: exit 2 ($(head -n 1 "$S/e.txt" | cut -c 1-90))" \
+        bash -c "[ $rc -eq 2 ] && grep -qF -- '$want' '$S/e.txt'"
+done
+"$B/host/lt-faultinject" --rate 0.1 --drop 0.5 --json "$S/rates.json" <"$S/sim.bin" >/dev/null 2>&1
+check "lt-faultinject --rate 0.1 --drop 0.5: the later --drop wins ($(grep rates "$S/rates.json" | tr -d ' '))" \
+    grep -q '"rates": \[0.5, 0.1, 0.1, 0.1, 0.1\]' "$S/rates.json"
+"$B/host/lt-faultinject" --drop 0.5 --rate 0.1 --json "$S/rates.json" <"$S/sim.bin" >/dev/null 2>&1
+check "lt-faultinject --drop 0.5 --rate 0.1: the later --rate wins ($(grep rates "$S/rates.json" | tr -d ' '))" \
+    grep -q '"rates": \[0.1, 0.1, 0.1, 0.1, 0.1\]' "$S/rates.json"
 head -c 5000 /dev/urandom | "$B/host/lt-stream" -q --json >"$S/rand.json"
 rc=$?
 check "random bytes: lt-stream exit 1, all $(jget garbage_bytes "$S/rand.json") bytes reported as garbage, no HELLO" \
