@@ -239,6 +239,11 @@ static int shadows_load(shadows_t *s)
         fprintf(stderr, "%s: %s: %s\n", who, s->mesh_path, diag.msg);
         return EXIT_INPUT;
     }
+    /* the same representability rule as run and render (the ground plane included) */
+    if (s->path->path == LT_PATH_Q16 && lt_scene_check_q16(&s->sc, s->mesh_path, &diag) != 0) {
+        fprintf(stderr, "%s: %s\n", who, diag.msg);
+        return EXIT_INPUT;
+    }
     if (s->seen_eye || (s->pre != NULL && s->pre->has_camera)) {
         if (!s->seen_eye)
             memcpy(s->eye, s->pre->eye, sizeof s->eye);

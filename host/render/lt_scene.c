@@ -47,8 +47,10 @@ int lt_scene_prepare(const lt_mesh_t *m, lt_scene_t *s, lt_diag_t *diag)
                 q[j][a] = lt_q16_from_double_sat(c);
             }
         {
-            /* area in double (the file's geometry) and of the quantised vertices (exact) */
-            const double *v = &s->vd[i * 9];
+            /* area in double of the file's own coordinates (before centring: a unit triangle
+               beside a 1e30 one keeps its area there, and loses it to the centring and to the
+               quantisation alike) and of the quantised vertices (exact) */
+            const double *v = &m->v[(size_t)i * 9];
             double e1[3], e2[3], nx, ny, nz;
             int64_t q1[3], q2[3];
             for (a = 0; a < 3; a++) {
@@ -65,8 +67,9 @@ int lt_scene_prepare(const lt_mesh_t *m, lt_scene_t *s, lt_diag_t *diag)
                 s->nonzero++;
                 for (a = 0; a < 3; a++) {
                     const double *p0 = &v[3 * a], *p1 = &v[3 * ((a + 1) % 3)];
-                    l[a] = sqrt((p1[0] - p0[0]) * (p1[0] - p0[0]) + (p1[1] - p0[1]) * (p1[1] - p0[1]) +
-                                (p1[2] - p0[2]) * (p1[2] - p0[2]));
+                    l[a] = s->scale * sqrt((p1[0] - p0[0]) * (p1[0] - p0[0]) +
+                                           (p1[1] - p0[1]) * (p1[1] - p0[1]) +
+                                           (p1[2] - p0[2]) * (p1[2] - p0[2]));
                     if (l[a] > 0.0 && (s->min_edge == 0.0 || l[a] < s->min_edge))
                         s->min_edge = l[a];
                 }

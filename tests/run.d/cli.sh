@@ -118,6 +118,16 @@ expect "render: the same error for the s15.16 path" 1 "cannot be represented in 
 check "render: nothing written for the unrepresentable scene" test ! -e "$tmp/wide.exr"
 expect "run --num f32 traces the same scene" 0 "result    f32" "$LT" run --mesh "$tmp/wide.obj" --res 8 -q --num f32 --no-ref
 expect "info says which paths can represent a mesh" 0 "10 of 11 non-degenerate triangles collapse.*NOT representable" "$B/host/lanetrace-native" info "$tmp/wide.obj"
+expect "shadows: the same error for the s15.16 path" 1 "wide.obj: cannot be represented in s15.16" "$LT" shadows --mesh "$tmp/wide.obj" --res 8 --no-ref
+expect "lt-agree: the same error (it traces s15.16)" 1 "wide.obj: cannot be represented in s15.16" "$B/host/lt-agree" "$tmp/wide.obj" --res 8
+# a unit triangle beside a 1e30 one: centring in double alone erases it (range above 2^53); the
+# check measures area on the file's coordinates, so it counts as collapsed (it was "representable")
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1e30 0 0\nv 0 1e30 0\nv 0 0 1e30\nf 1 2 3\nf 4 5 6\n' >"$tmp/huge.obj"
+expect "info: a unit triangle beside a 1e30 one is not representable in s15.16" 0 "1 of 2 non-degenerate triangles collapse.*NOT representable" "$B/host/lanetrace-native" info "$tmp/huge.obj"
+expect "run: ... and refused for s15.16" 1 "huge.obj: cannot be represented in s15.16: 1 of 2" "$LT" run --mesh "$tmp/huge.obj" --res 8 -q --num q16
+expect "lt-agree --help exits 0 with the options" 0 "usage: lt-agree MESH" "$B/host/lt-agree" --help
+expect "lt-agree without a mesh: usage error" 2 "no mesh given" "$B/host/lt-agree"
+expect "lt-agree --res 2: the range named" 2 "--res 2: out of range; expected 4..4096" "$B/host/lt-agree" scenes/teapot.obj --res 2
 # ---- option parsing (host/cli/lt_opt): values are read whole, numbers must be finite, ranges are
 # named; each of these was accepted before (atoi read "1e9" as 1, sscanf ignored trailing text,
 # NaN passed the range checks, --tol had none)
