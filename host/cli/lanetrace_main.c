@@ -18,6 +18,7 @@
 #include "cli/lt_shadows_cli.h"
 #include "render/lt_scene.h"
 #include "io/lt_scenefile.h"
+#include "io/lt_sniff.h"
 
 #include <cjson/cJSON.h>
 #include <math.h>
@@ -705,7 +706,7 @@ static int cmd_run(int argc, char **argv)
 /* ---- info ----------------------------------------------------------------------------------- */
 
 /* EXR: the header (parts, storage, windows, channels) and statistics of the depth channel. */
-static int info_exr(const char *path, int json)
+static int info_exr(const char *path, const lt_sniff_t *sn, int json)
 {
     static const char *const storage[] = {"scanline", "tiled", "deep scanline", "deep tiled"};
     static const char *const types[] = {"?", "HALF", "FLOAT", "UINT"};
@@ -736,17 +737,37 @@ static int info_exr(const char *path, int json)
         }
     }
     if (json) {
-        printf("{\"file\":\"%s\",\"parts\":%d,\"storage\":\"%s\",\"data_window\":[%d,%d,%d,%d],"
-               "\"display_window\":[%d,%d,%d,%d],\"channels\":%d",
-               path, pr.parts, storage[pr.storage & 3], pr.data_window.x0, pr.data_window.y0,
-               pr.data_window.x1, pr.data_window.y1, pr.display_window.x0, pr.display_window.y0,
-               pr.display_window.x1, pr.display_window.y1, pr.nchannels);
-        if (have_depth)
-            printf(",\"depth\":{\"channel\":\"%s\",\"pixels\":%zu,\"holes\":%zu,\"min\":%g,"
-                   "\"max\":%g,\"mean\":%g}",
-                   d.channel, n, holes, n ? mn : 0.0, n ? mx : 0.0, n ? sum / (double)n : 0.0);
-        printf("}\n");
+        cJSON *j = cJSON_CreateObject(), *a;
+        char *txt;
+        const int dw[4] = {pr.data_window.x0, pr.data_window.y0, pr.data_window.x1,
+                           pr.data_window.y1},
+                  vw[4] = {pr.display_window.x0, pr.display_window.y0, pr.display_window.x1,
+                           pr.display_window.y1};
+        cJSON_AddStringToObject(j, "file", path);
+        cJSON_AddStringToObject(j, "detected", sn->what);
+        cJSON_AddBoolToObject(j, "name_agrees", sn->name_agrees);
+        cJSON_AddNumberToObject(j, "parts", pr.parts);
+        cJSON_AddStringToObject(j, "storage", storage[pr.storage & 3]);
+        cJSON_AddItemToObject(j, "data_window", cJSON_CreateIntArray(dw, 4));
+        cJSON_AddItemToObject(j, "display_window", cJSON_CreateIntArray(vw, 4));
+        cJSON_AddNumberToObject(j, "channels", pr.nchannels);
+        if (have_depth) {
+            a = cJSON_AddObjectToObject(j, "depth");
+            cJSON_AddStringToObject(a, "channel", d.channel);
+            cJSON_AddNumberToObject(a, "pixels", (double)n);
+            cJSON_AddNumberToObject(a, "holes", (double)holes);
+            cJSON_AddNumberToObject(a, "min", n ? mn : 0.0);
+            cJSON_AddNumberToObject(a, "max", n ? mx : 0.0);
+            cJSON_AddNumberToObject(a, "mean", n ? sum / (double)n : 0.0);
+        }
+        txt = cJSON_PrintUnformatted(j);
+        if (txt != NULL)
+            printf("%s\n", txt);
+        cJSON_free(txt);
+        cJSON_Delete(j);
     } else {
+        printf("detected  %s by its content%s\n", sn->what,
+               sn->name_agrees ? "" : " (its name says otherwise)");
         printf("%s: OpenEXR, %d part(s), %s, data window (%d,%d)-(%d,%d), display window "
                "(%d,%d)-(%d,%d)\n",
                path, pr.parts, storage[pr.storage & 3], pr.data_window.x0, pr.data_window.y0,
@@ -775,6 +796,7 @@ static int cmd_info(int argc, char **argv)
     lt_scene_t sc;
     char who[64];
     lt_diag_t diag;
+    lt_sniff_t sn;
     uint32_t i, zero = 0;
     int json = 0, rc;
     const char *path = NULL;
@@ -793,13 +815,14 @@ static int cmd_info(int argc, char **argv)
         fprintf(stderr, "%s info: a FILE is required\n", prog);
         return EXIT_USAGE;
     }
-    {
-        size_t l = strlen(path);
-        if (l > 4 && strcmp(path + l - 4, ".exr") == 0)
-            return info_exr(path, json);
-    }
-    if (lt_mesh_load(path, &m, &diag) != 0) {
+    if (lt_sniff_file(path, &sn, &diag) != 0) {
         fprintf(stderr, "%s\n", diag.msg);
+        return EXIT_INPUT;
+    }
+    if (sn.kind == LT_SNIFF_EXR)
+        return info_exr(path, &sn, json);
+    if (lt_mesh_load(path, &m, &diag) != 0) {
+        fprintf(stderr, "%s (detected by content: %s)\n", diag.msg, sn.what);
         return EXIT_INPUT;
     }
     for (i = 0; i < m.ntris; i++) {
@@ -820,14 +843,29 @@ static int cmd_info(int argc, char **argv)
         lt_mesh_free(&m);
         return EXIT_INPUT;
     }
-    if (json)
-        printf("{\"file\":\"%s\",\"triangles\":%u,\"zero_area\":%u,\"lo\":[%g,%g,%g],"
-               "\"hi\":[%g,%g,%g],\"scale\":%g,\"radius_scaled\":%g,\"collapsed_q16\":%u,"
-               "\"q16_representable\":%s}\n",
-               path, m.ntris, zero, m.lo[0], m.lo[1], m.lo[2], m.hi[0], m.hi[1], m.hi[2],
-               sc.scale, sc.radius, sc.collapsed_q16,
-               lt_scene_check_q16(&sc, path, &diag) == 0 ? "true" : "false");
-    else
+    if (json) {
+        cJSON *j = cJSON_CreateObject();
+        char *txt;
+        cJSON_AddStringToObject(j, "file", path);
+        cJSON_AddStringToObject(j, "detected", sn.what);
+        cJSON_AddBoolToObject(j, "name_agrees", sn.name_agrees);
+        cJSON_AddNumberToObject(j, "triangles", m.ntris);
+        cJSON_AddNumberToObject(j, "zero_area", zero);
+        cJSON_AddItemToObject(j, "lo", cJSON_CreateDoubleArray(m.lo, 3));
+        cJSON_AddItemToObject(j, "hi", cJSON_CreateDoubleArray(m.hi, 3));
+        cJSON_AddNumberToObject(j, "scale", sc.scale);
+        cJSON_AddNumberToObject(j, "radius_scaled", sc.radius);
+        cJSON_AddNumberToObject(j, "collapsed_q16", sc.collapsed_q16);
+        cJSON_AddNumberToObject(j, "nonzero", sc.nonzero);
+        cJSON_AddBoolToObject(j, "q16_representable", lt_scene_check_q16(&sc, path, &diag) == 0);
+        txt = cJSON_PrintUnformatted(j);
+        if (txt != NULL)
+            printf("%s\n", txt);
+        cJSON_free(txt);
+        cJSON_Delete(j);
+    } else {
+        printf("detected  %s by its content%s\n", sn.what,
+               sn.name_agrees ? "" : " (its name says otherwise)");
         printf("%s: mesh, %u triangles (%u zero-area), bounds [%g %g %g] .. [%g %g %g]\n"
                "fixed point: scale %g (a power of two), scene radius %.2f units of s15.16, "
                "resolution %.3g file units\n"
@@ -840,6 +878,7 @@ static int cmd_info(int argc, char **argv)
                lt_scene_check_q16(&sc, path, &diag) == 0 ? "representable"
                                                                  : "NOT representable, float32 only",
                sc.min_edge);
+    }
     lt_scene_free(&sc);
     lt_mesh_free(&m);
     return 0;

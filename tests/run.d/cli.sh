@@ -69,6 +69,16 @@ expect "info on the depth EXR lists its channels" 0 "q16.Z(FLOAT)" "$LT" info "$
 expect "run --heatmap writes PNG and EXR per path" 0 "" "$LT" run --res 16 --num q16 --heatmap "$tmp/h" -q
 check "heatmap files exist (cycles and steps)" test -s "$tmp/h.q16.png" -a -s "$tmp/h.q16.exr" -a -s "$tmp/h.q16.steps.png"
 expect "info on the heatmap EXR" 0 "cycles(FLOAT)" "$LT" info "$tmp/h.q16.exr"
+# info decides EXR vs mesh by the first bytes, not the name, and says what it found
+cp "$tmp/d.exr" "$tmp/depth.bin"
+expect "info: an EXR named .bin is read as OpenEXR (magic bytes)" 0 "detected  OpenEXR (magic bytes 76 2f 31 01) by its content (its name says otherwise)" "$LT" info "$tmp/depth.bin"
+cp scenes/teapot.obj "$tmp/teapot.exr"
+expect "info: OBJ text named .exr is read as a mesh" 0 "detected  OBJ text by its content (its name says otherwise)" "$LT" info "$tmp/teapot.exr"
+expect "info on a directory: one line, not a size overflow" 1 "is a directory, not a file" "$LT" info "$tmp"
+cp "$tmp/d.exr" "$tmp/a \"q\" \\ b.exr"
+"$LT" info "$tmp/a \"q\" \\ b.exr" --json >"$tmp/infoj.json" 2>&1
+check "info --json escapes the path (a quote and a backslash in the name): valid JSON" \
+    python3 -c "import json,sys; j=json.load(open(sys.argv[1])); sys.exit(0 if j['file'].endswith('a \"q\" \\\\ b.exr') and j['detected'].startswith('OpenEXR') else 1)" "$tmp/infoj.json"
 if [ -f ../shared/depth/beachball_singlepart.0001.exr ]; then
     expect "info on the shared beachball EXR: 20 channels, Z stats" 0 "mean 9.385" \
         "$LT" info ../shared/depth/beachball_singlepart.0001.exr
