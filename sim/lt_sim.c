@@ -5,6 +5,7 @@
  * an L1 hit). Host only.
  */
 #include "lt_sim.h"
+#include "lt_rate.h"
 #include "lt_cache.h"
 
 #include <cjson/cJSON.h>
@@ -314,12 +315,15 @@ void lt_sim_report_text(FILE *f, const char *title, uint64_t rays)
             100.0 * utilisation(&t), (unsigned long long)ev_total(&t, LT_EV_LANE_OPS));
     if (rays != 0) {
         uint64_t tr = t.total_cycles - t.cycles[LT_PH_BUILD];
-        fprintf(f, "rays      %llu rays, %.1f cycles/ray, %.2f Mrays/s at %u MHz; without the "
-                   "build: %.1f cycles/ray, %.2f Mrays/s\n",
+        char r1[LT_RATE_TEXT], r2[LT_RATE_TEXT];
+        fprintf(f, "rays      %llu rays, %.1f cycles/ray, %s at %u MHz; without the build: %.1f "
+                   "cycles/ray, %s\n",
                 (unsigned long long)rays, (double)t.total_cycles / (double)rays,
-                secs > 0 ? (double)rays / secs / 1e6 : 0.0, mach->clock_mhz,
+                lt_rate_text(secs > 0 ? (double)rays / secs : 0.0, r1), mach->clock_mhz,
                 (double)tr / (double)rays,
-                tr ? (double)rays / ((double)tr / ((double)mach->clock_mhz * 1e6)) / 1e6 : 0.0);
+                lt_rate_text(tr ? (double)rays / ((double)tr / ((double)mach->clock_mhz * 1e6))
+                                : 0.0,
+                             r2));
     }
 }
 

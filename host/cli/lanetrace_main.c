@@ -6,6 +6,7 @@
  */
 #include "lt/lt.h"
 #include "cli/lt_cliutil.h"
+#include "lt_rate.h"
 #include "cli/lt_opt.h"
 #include "io/lt_exr.h"
 #include "io/lt_heatmap.h"
@@ -566,9 +567,10 @@ static int run_path(run_t *r, const lt_path_info_t *p)
     if (r->do_ref)
         lt_frame_compare(&r->fr, &r->ref, 1e-4 * r->sc.radius, &ac);
     if (!r->json) {
-        printf("time      %-4s %.3f ms for %d frame(s) of %u rays (%s, %.2f Mrays/s host)\n",
-               pname, ms, r->repeat, sf->width * sf->height,
-               lt_meter_available() ? "counted" : "native", (double)rays / (ms * 1e-3) / 1e6);
+        char rt[LT_RATE_TEXT];
+        printf("time      %-4s %.3f ms for %d frame(s) of %u rays (%s, %s host)\n", pname, ms,
+               r->repeat, sf->width * sf->height, lt_meter_available() ? "counted" : "native",
+               lt_rate_text(ms > 0.0 ? (double)rays / (ms * 1e-3) : -1.0, rt));
         printf("result    %-4s hash 0x%08x\n", pname, lt_frame_hash(&r->fr));
         if (r->do_ref)
             printf("accuracy  %-4s vs double: same triangle %.3f%% of %u pixels, depth RMSE "

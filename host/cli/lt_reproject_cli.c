@@ -7,6 +7,7 @@
  */
 #include "cli/lt_reproject_cli.h"
 #include "cli/lt_cliutil.h"
+#include "lt_rate.h"
 #include "cli/lt_opt.h"
 #include "io/lt_exr.h"
 #include "io/lt_heatmap.h"
@@ -853,6 +854,7 @@ static void rp_print_summary(const rp_t *r, const rp_figs_t *f)
     const lt_reproj_cam_t *sc = &r->src.cam, *dc = &r->dcam;
     const char *enc = r->path->name;
     double rays = f->rays, px = f->px;
+    char rt[LT_RATE_TEXT];
     printf("source    %s: %ux%u, %d layer(s), channel %s%s, z_ref %g, median depth %.4g\n",
            r->depth, r->W, r->H, r->layers, r->dl[0].channel, r->dist == 1 ? " (distances)" : "",
            st->zref, r->median);
@@ -868,10 +870,10 @@ static void rp_print_summary(const rp_t *r, const rp_figs_t *f)
         printf("tracer    %s, %s: %zu bytes besides the w buffer, build %.3f s; "
                "thickness %.4g\n", r->tracer == LT_RP_DDA ? "DDA" : "Hi-Z", r->path->format,
                st->qt_bytes, st->t_build, (double)r->ro.ssb.thickness / 1073741824.0);
-    printf("rays      %llu of %llu pixels traced in %llu packets, %.3f s (%.2f Mrays/s)\n",
+    printf("rays      %llu of %llu pixels traced in %llu packets, %.3f s (%s)\n",
            (unsigned long long)st->rays, (unsigned long long)st->pixels,
            (unsigned long long)st->packets, st->t_trace,
-           st->t_trace > 0 ? (double)st->rays / st->t_trace * 1e-6 : 0.0);
+           lt_rate_text(st->t_trace > 0 ? (double)st->rays / st->t_trace : -1.0, rt));
     printf("per ray   nodes %.2f (max %u), AABB tests %.2f (max %u), plane tests %.2f "
            "(max %u)\n",
            (double)st->nodes / rays, st->nodes_max, (double)st->aabb / rays, st->aabb_max,

@@ -10,6 +10,7 @@
  */
 #include "render/lt_softshadow.h"
 #include "cli/lt_cliutil.h"
+#include "lt_rate.h"
 #include "cli/lt_opt.h"
 #include "cli/lt_shadows_cli.h"
 #include "lt_meter.h"
@@ -64,6 +65,9 @@ static void stage_add(stage_t *d, const stage_t *a)
 }
 
 static double ratio(uint64_t a, uint64_t b) { return b != 0 ? (double)a / (double)b : 0.0; }
+
+/* rays per second; -1 (printed "n/a") when no time was measured */
+static double rate(uint64_t rays, double seconds) { return seconds > 0.0 ? (double)rays / seconds : -1.0; }
 
 static double k_(uint64_t v) { return (double)v / 1000.0; }
 
@@ -522,9 +526,11 @@ static void shadows_simulated(const shadows_t *s)
     const stage_t *sp = &s->sp, *spf = &s->spf, *sshp = &s->sshp, *sshf = &s->sshf;
     const lt_ss_counts_t *cnt = &s->cnt;
     lt_meter_machine_t mm;
-    double mhz;
+    char r1[LT_RATE_TEXT], r2[LT_RATE_TEXT], r3[LT_RATE_TEXT], r4[LT_RATE_TEXT];
+    double mhz, hz;
     (void)lt_meter_machine_info(s->machine, &mm);
     mhz = (double)mm.clock_mhz;
+    hz = mhz * 1e6; /* rays per cycle x cycles per second */
     shadows_table(s, mm.name, mhz);
     if (s->run_pk && s->run_fr)
         printf("why       fewer cycles saved than the paper: the s15.16 kernels keep products "
@@ -541,22 +547,21 @@ static void shadows_simulated(const shadows_t *s)
            k_(spf->ev[LT_EV_CULL_CORNER]), k_(sshp->ev[LT_EV_CULL_BACK]),
            k_(sshf->ev[LT_EV_CULL_BACK]), k_(sshf->ev[LT_EV_CULL_CORNER]));
     if (s->run_pp || s->run_pf)
-        printf("speed     primary rays per simulated %.0f MHz core: P-Packet %.1f Mrays/s "
-               "(%.1f with shading), P-Frusta %.1f Mrays/s (%.1f with shading)\n", mhz,
-               ratio(cnt->primary_rays, sp->cycles - sp->cyc[LT_PH_SHADE]) * mhz,
-               ratio(cnt->primary_rays, sp->cycles) * mhz,
-               ratio(cnt->primary_rays, spf->cycles - spf->cyc[LT_PH_SHADE]) * mhz,
-               ratio(cnt->primary_rays, spf->cycles) * mhz);
+        printf("speed     primary rays per simulated %.0f MHz core: P-Packet %s "
+               "(%s with shading), P-Frusta %s (%s with shading)\n", mhz,
+               lt_rate_text(ratio(cnt->primary_rays, sp->cycles - sp->cyc[LT_PH_SHADE]) * hz, r1),
+               lt_rate_text(ratio(cnt->primary_rays, sp->cycles) * hz, r2),
+               lt_rate_text(ratio(cnt->primary_rays, spf->cycles - spf->cyc[LT_PH_SHADE]) * hz, r3),
+               lt_rate_text(ratio(cnt->primary_rays, spf->cycles) * hz, r4));
     if (s->run_fr)
-        printf("speed     S-Frusta: %.1f Mrays/s per simulated %.0f MHz core (primary + shadow "
-               "rays over all stages); shadow stage alone %.1f Mrays/s\n",
-               ratio(cnt->primary_rays + cnt->shadow_rays, s->tot_f.cycles) * mhz,
-               mhz, ratio(cnt->shadow_rays, sshf->cycles) * mhz);
+        printf("speed     S-Frusta: %s per simulated %.0f MHz core (primary + shadow "
+               "rays over all stages); shadow stage alone %s\n",
+               lt_rate_text(ratio(cnt->primary_rays + cnt->shadow_rays, s->tot_f.cycles) * hz, r1),
+               mhz, lt_rate_text(ratio(cnt->shadow_rays, sshf->cycles) * hz, r2));
     if (s->run_pk)
-        printf("speed     S-Packet: %.1f Mrays/s per simulated core; shadow stage alone "
-               "%.1f Mrays/s\n",
-               ratio(cnt->primary_rays + cnt->shadow_rays, s->tot_p.cycles) * mhz,
-               ratio(cnt->shadow_rays, sshp->cycles) * mhz);
+        printf("speed     S-Packet: %s per simulated core; shadow stage alone %s\n",
+               lt_rate_text(ratio(cnt->primary_rays + cnt->shadow_rays, s->tot_p.cycles) * hz, r1),
+               lt_rate_text(ratio(cnt->shadow_rays, sshp->cycles) * hz, r2));
 }
 
 /* (native build) the stage times and speed-ups. */
@@ -564,18 +569,19 @@ static void shadows_native(const shadows_t *s)
 {
     const stage_t *sp = &s->sp, *spf = &s->spf, *sshp = &s->sshp, *sshf = &s->sshf;
     const lt_ss_counts_t *cnt = &s->cnt;
+    char r1[LT_RATE_TEXT];
     if (s->run_pp)
-        printf("native    P-Packet %.3f s (%.2f Mrays/s with shading)", sp->seconds,
-               (double)cnt->primary_rays / sp->seconds / 1e6);
+        printf("native    P-Packet %.3f s (%s with shading)", sp->seconds,
+               lt_rate_text(rate(cnt->primary_rays, sp->seconds), r1));
     if (s->run_pf)
-        printf("%s P-Frusta %.3f s (%.2f Mrays/s with shading)", s->run_pp ? "," : "native   ",
-               spf->seconds, (double)cnt->primary_rays / spf->seconds / 1e6);
+        printf("%s P-Frusta %.3f s (%s with shading)", s->run_pp ? "," : "native   ",
+               spf->seconds, lt_rate_text(rate(cnt->primary_rays, spf->seconds), r1));
     if (s->run_pk)
-        printf(", S-Packet shadows %.3f s (%.2f Mrays/s)", sshp->seconds,
-               (double)cnt->shadow_rays / sshp->seconds / 1e6);
+        printf(", S-Packet shadows %.3f s (%s)", sshp->seconds,
+               lt_rate_text(rate(cnt->shadow_rays, sshp->seconds), r1));
     if (s->run_fr)
-        printf(", S-Frusta shadows %.3f s (%.2f Mrays/s)", sshf->seconds,
-               (double)cnt->shadow_rays / sshf->seconds / 1e6);
+        printf(", S-Frusta shadows %.3f s (%s)", sshf->seconds,
+               lt_rate_text(rate(cnt->shadow_rays, sshf->seconds), r1));
     printf(", shade %.3f s, filter %.3f s (one thread)\n", s->sshade.seconds, s->sfilt.seconds);
     if (s->run_pk && s->run_fr)
         printf("native    S-Frusta / S-Packet shadow speed-up %.2fx\n",

@@ -138,6 +138,9 @@ expect "run: ... and refused for s15.16" 1 "huge.obj: cannot be represented in s
 expect "lt-agree --help exits 0 with the options" 0 "usage: lt-agree MESH" "$B/host/lt-agree" --help
 expect "lt-agree without a mesh: usage error" 2 "no mesh given" "$B/host/lt-agree"
 expect "lt-agree --res 2: the range named" 2 "--res 2: out of range; expected 4..4096" "$B/host/lt-agree" scenes/teapot.obj --res 2
+# a slow run prints a rate in a unit that fits (it printed "0.00 Mrays/s")
+expect "run on mcu-m4 (grid, s15.16): the report's rate in krays/s" 0 "cycles/ray, [0-9.]* krays/s at 168 MHz" "$LT" run scenes/teapot.json --res 16 --machine mcu-m4 --num q16 --structure grid --no-ref
+check "... and no '0.00 Mrays/s' anywhere" bash -c "! grep -q '0\.00 Mrays/s' '$tmp/o.txt'"
 # ---- option parsing (host/cli/lt_opt): values are read whole, numbers must be finite, ranges are
 # named; each of these was accepted before (atoi read "1e9" as 1, sscanf ignored trailing text,
 # NaN passed the range checks, --tol had none)
