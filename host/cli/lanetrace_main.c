@@ -223,13 +223,13 @@ static int run_parse(run_t *r, int argc, char **argv)
          .meta = "S:W:B", .help = "L1 cache geometry override (sets:ways:line)"},
         {.name = "--l2", .kind = LT_OPT_STRING, .dest = &r->l2, .seen = &r->seen_l2,
          .meta = "S:W:B", .help = "L2 cache geometry override (sets:ways:line)"},
-        LT_OPT_STR("--report", "PATH", &r->report,
-                   "write the report JSON (PATH.q16 / PATH.f32 with both paths)"),
-        LT_OPT_STR("--csv", "PATH", &r->csv, "write one CSV row per path"),
-        LT_OPT_STR("--depth", "PATH.exr", &r->depth_out,
+        LT_OPT_OUT("--report", "PATH.json", &r->report, "json",
+                   "write the report JSON (PATH.q16.json / PATH.f32.json with both paths)"),
+        LT_OPT_OUT("--csv", "PATH.csv", &r->csv, "csv", "write one CSV row per path"),
+        LT_OPT_OUT("--depth", "PATH.exr", &r->depth_out, "exr",
                    "write distance and triangle id per pixel (EXR, FLOAT channels\n"
                    "<path>.Z and <path>.id)"),
-        LT_OPT_STR("--heatmap", "PREFIX", &r->heat_out,
+        LT_OPT_OUT("--heatmap", "PREFIX", &r->heat_out, "",
                    "(sim build) per-pixel simulated cycles: PREFIX.<path>.png with a\n"
                    "legend and PREFIX.<path>.exr with the values; traversal steps:\n"
                    "PREFIX.<path>.steps.png / .steps.exr"),
@@ -440,13 +440,20 @@ static void run_facts(const run_t *r, const char *pname, double ms, size_t acc_b
     cJSON_Delete(x);
 }
 
-/* --report: PATH, or PATH.<path> when both paths run. */
+/* --report: PATH, or PATH with .<path> before its extension when both paths run
+ * (report.json -> report.q16.json, report.f32.json). */
 static void run_write_report(run_t *r, const char *pname, const char *text)
 {
     lt_diag_t diag;
-    char p[1100];
+    char p[4096];
     int both = r->sf.numeric == LT_SF_NUM_BOTH;
-    snprintf(p, sizeof p, "%s%s%s", r->report, both ? "." : "", both ? pname : "");
+    if (both ? lt_path_tagged(p, sizeof p, r->report, pname) != 0
+             : snprintf(p, sizeof p, "%s", r->report) >= (int)sizeof p) {
+        fprintf(stderr, "%s run: --report %.60s...: the path is longer than %zu bytes\n", prog,
+                r->report, sizeof p - 1);
+        r->status = EXIT_INPUT;
+        return;
+    }
     if (write_atomic(p, text, &diag) != 0) {
         fprintf(stderr, "%s\n", diag.msg);
         r->status = EXIT_INPUT;
@@ -1085,7 +1092,8 @@ static int render_parse(render_t *r, int argc, char **argv)
     char who[64], num_help[256];
     const lt_opt_t opts[] = {
         {.name = "--out", .kind = LT_OPT_STRING, .dest = &r->out, .meta = "PREFIX",
-         .help = "the images' path prefix", .flags = LT_OPT_REQUIRED},
+         .help = "the images' path prefix (PREFIX.exr, PREFIX.png, PREFIX.<kind>.png)",
+         .flags = LT_OPT_REQUIRED, .ext = ""},
         LT_OPT_STR("--mesh", "PATH", &r->mesh_over,
                    "mesh file (overrides the scene's \"mesh\"; default scenes/teapot.obj)"),
         {.name = "--res", .kind = LT_OPT_SIZE, .dest = r->wh, .seen = &r->seen_res,
@@ -1096,8 +1104,8 @@ static int render_parse(render_t *r, int argc, char **argv)
          .names = lt_render_structures,
          .help = "acceleration structure: {choices}\n(default bvh; chunks: no shadows, no peels)"},
         LT_OPT_INT("--layers", "K", &r->layers, 1, 16, "depth peels, {range} (default 1)"),
-        LT_OPT_STR("--report", "PATH",
-                   &r->report, "(simulator build) write the cycle report of the whole render as\n"
+        LT_OPT_OUT("--report", "PATH.json",
+                   &r->report, "json", "(simulator build) write the cycle report of the whole render as\n"
                                "JSON; the text report is printed unless -q or --json"),
         {.name = "--light", .kind = LT_OPT_VEC, .dest = r->lf, .seen = &r->seen_light,
          .meta = "X,Y,Z", .lo = -HUGE_VAL, .hi = HUGE_VAL, .n = 3,

@@ -141,6 +141,15 @@ expect "lt-agree --res 2: the range named" 2 "--res 2: out of range; expected 4.
 # a slow run prints a rate in a unit that fits (it printed "0.00 Mrays/s")
 expect "run on mcu-m4 (grid, s15.16): the report's rate in krays/s" 0 "cycles/ray, [0-9.]* krays/s at 168 MHz" "$LT" run scenes/teapot.json --res 16 --machine mcu-m4 --num q16 --structure grid --no-ref
 check "... and no '0.00 Mrays/s' anywhere" bash -c "! grep -q '0\.00 Mrays/s' '$tmp/o.txt'"
+# output names follow their kind (render --out a.png wrote a.png.exr, reproject --out x.png an EXR
+# named x.png); run --report with both paths puts the path before the extension
+expect "render --out a.png: a prefix takes no image extension" 2 "render: --out $tmp/a.png: a path prefix" "$LT" render --res 8 --out "$tmp/a.png"
+check "... and nothing is written" test ! -e "$tmp/a.png.exr" -a ! -e "$tmp/a.png"
+expect "reproject --out x.png: the EXR output refuses a .png name" 2 "this output is a .exr file; its name ends in '.png'" "$LT" reproject scenes/teapot.json --depth "$tmp/d.exr" --out "$tmp/x.png"
+expect "run --depth d.png: refused" 2 "--depth $tmp/d.png: this output is a .exr file" "$LT" run --res 8 --depth "$tmp/d.png"
+expect "shadows --png s.exr: refused" 2 "--png $tmp/s.exr: this output is a .png file" "$LT" shadows --mesh scenes/teapot.obj --res 8 --png "$tmp/s.exr"
+expect "run --report r.json with both paths" 0 "report    $tmp/rb.q16.json" "$LT" run scenes/teapot.json --res 8 --report "$tmp/rb.json"
+check "... writes r.q16.json and r.f32.json" test -s "$tmp/rb.q16.json" -a -s "$tmp/rb.f32.json"
 # ---- option parsing (host/cli/lt_opt): values are read whole, numbers must be finite, ranges are
 # named; each of these was accepted before (atoi read "1e9" as 1, sscanf ignored trailing text,
 # NaN passed the range checks, --tol had none)
