@@ -216,7 +216,7 @@ static int run_parse(run_t *r, int argc, char **argv)
          .names = r->num_names, .help = num_help},
         {.name = "--structure", .kind = LT_OPT_ENUM, .dest = &r->structure,
          .seen = &r->seen_structure, .meta = "NAME", .names = lt_render_structures,
-         .help = "acceleration structure: {choices} (default chunks)"},
+         .help = "acceleration structure: {choices} (default bvh)"},
         {.name = "--machine", .kind = LT_OPT_STRING, .dest = &r->machine,
          .seen = &r->seen_machine, .meta = "NAME", .help = machine_help},
         {.name = "--l1", .kind = LT_OPT_STRING, .dest = &r->l1, .seen = &r->seen_l1,

@@ -62,7 +62,7 @@ void lt_sf_defaults(lt_scenefile_t *sf)
     sf->fov_y_deg = 40.0;
     sf->up[1] = 1.0;
     sf->width = sf->height = 128;
-    snprintf(sf->structure, sizeof sf->structure, "chunks");
+    snprintf(sf->structure, sizeof sf->structure, "bvh");
     sf->numeric = LT_SF_NUM_BOTH;
     snprintf(sf->machine, sizeof sf->machine, "lrb16");
 }
