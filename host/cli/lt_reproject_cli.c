@@ -889,11 +889,12 @@ static void rp_print_summary(const rp_t *r, const rp_figs_t *f)
     if (r->truth)
         rp_print_truth(r, px);
     if (lt_meter_available())
-        printf("cycles    build %llu, setup %llu (%.1f per ray), traverse %llu (%.1f per "
-               "ray); lane utilisation %.1f%%\n",
+        printf("cycles    build %llu, setup %llu (%.1f per pixel), traverse %llu (%.1f per "
+               "ray), other %llu; total %llu; lane utilisation %.1f%% (the report's phases)\n",
                (unsigned long long)st->cyc_build, (unsigned long long)st->cyc_setup,
                (double)st->cyc_setup / px, (unsigned long long)st->cyc_trace,
-               (double)st->cyc_trace / rays, 100.0 * f->util);
+               (double)st->cyc_trace / rays, (unsigned long long)st->cyc_other,
+               (unsigned long long)st->cyc_total, 100.0 * f->util);
 }
 
 /* (sim build) the cycle report: the text unless quiet, --report as JSON with the reprojection's

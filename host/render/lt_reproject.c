@@ -463,7 +463,7 @@ int lt_rp_run(const lt_rp_source_t *src, const lt_reproj_cam_t *dst, const lt_rp
     int e, status = -1, fenc;
     lt_status_t s;
     double t0;
-    uint64_t c0, lanes_on0, lane_ops0;
+    lt_meter_totals_t m0, m1;
 
     memset(res, 0, sizeof *res);
     if (o == NULL) {
@@ -532,10 +532,9 @@ int lt_rp_run(const lt_rp_source_t *src, const lt_reproj_cam_t *dst, const lt_rp
         lt_meter_region(wq, n * sizeof *wq, 0x50000000u);
     else
         lt_meter_region(wf, n * sizeof *wf, 0x50000000u);
-    c0 = cycles_now();
+    lt_meter_totals(&m0);
     if (tracer_build(&tr, o, W, H, src->layers, wq, wf, &arena, &bytes, diag) != 0)
         goto done;
-    res->st.cyc_build = cycles_now() - c0;
     res->st.t_build = lt_now_s() - t0;
     res->st.qt_bytes = bytes;
     if (o->tracer == LT_RP_QUADTREE) {
@@ -581,12 +580,10 @@ int lt_rp_run(const lt_rp_source_t *src, const lt_reproj_cam_t *dst, const lt_rp
     res->st.pixels = np;
 
     t0 = lt_now_s();
-    lanes_on0 = lt_meter_event(LT_EV_LANES_ON);
-    lane_ops0 = lt_meter_event(LT_EV_LANE_OPS);
     for (ty = 0; ty < dst->height; ty += 4) {
         for (tx = 0; tx < dst->width; tx += 4) {
             lt_mask16_t k = 0xFFFF, kon = 0;
-            uint64_t p0 = cycles_now(), p1;
+            uint64_t p0 = cycles_now();
             float per;
             int l;
             for (l = 0; l < LT_LANES; l++)
@@ -595,17 +592,13 @@ int lt_rp_run(const lt_rp_source_t *src, const lt_reproj_cam_t *dst, const lt_rp
             k = kon;
             if (fenc) {
                 (void)lt_reproj_rays16_f32(&mf, tx, ty, &rf, &k);
-                p1 = cycles_now();
                 if (k != 0)
                     trace_f32(&tr, &rf, k, o->max_steps, &hf);
             } else {
                 (void)lt_reproj_rays16_q30(&mq, tx, ty, &rq, &k);
-                p1 = cycles_now();
                 if (k != 0)
                     trace_q30(&tr, &rq, k, o->max_steps, &hq);
             }
-            res->st.cyc_setup += p1 - p0;
-            res->st.cyc_trace += cycles_now() - p1;
             res->st.packets += k != 0;
             per = (float)(cycles_now() - p0) / (float)lt__popcount32(kon);
             for (l = 0; l < LT_LANES; l++) {
@@ -702,9 +695,17 @@ int lt_rp_run(const lt_rp_source_t *src, const lt_reproj_cam_t *dst, const lt_rp
             o->progress((double)(ty + 4) / (double)dst->height);
     }
     res->st.t_trace = lt_now_s() - t0;
-    res->st.lanes_on += lt_meter_event(LT_EV_LANES_ON) - lanes_on0;
-    res->st.lane_ops += lt_meter_event(LT_EV_LANE_OPS) - lane_ops0;
-    res->st.cyc_total = res->st.cyc_build + res->st.cyc_setup + res->st.cyc_trace;
+    /* one source of truth with the cycle report: the model's phase totals over the call */
+    lt_meter_totals(&m1);
+    res->st.cyc_build = m1.cycles[LT_PH_BUILD] - m0.cycles[LT_PH_BUILD];
+    res->st.cyc_setup = m1.cycles[LT_PH_SETUP] - m0.cycles[LT_PH_SETUP];
+    res->st.cyc_trace = m1.cycles[LT_PH_TRAVERSE] - m0.cycles[LT_PH_TRAVERSE] +
+                        m1.cycles[LT_PH_INTERSECT] - m0.cycles[LT_PH_INTERSECT];
+    res->st.cyc_total = m1.total_cycles - m0.total_cycles;
+    res->st.cyc_other = res->st.cyc_total - res->st.cyc_build - res->st.cyc_setup -
+                        res->st.cyc_trace;
+    res->st.lanes_on += m1.events[LT_EV_LANES_ON] - m0.events[LT_EV_LANES_ON];
+    res->st.lane_ops += m1.events[LT_EV_LANE_OPS] - m0.events[LT_EV_LANE_OPS];
     for (i = 0; i < np; i++) {
         res->st.cls[res->cls[i]]++;
         valid[i] = res->cls[i] == LT_RP_HIT || res->cls[i] == LT_RP_BACKGROUND;

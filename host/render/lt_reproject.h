@@ -76,8 +76,10 @@ typedef struct lt_rp_stats {
     double zref;                        /* z_ref = 2^e used for w */
     size_t qt_bytes;                    /* the tracer's arena: quadtree, Hi-Z levels 1.. (0: DDA) */
     uint64_t qt_planes, qt_nodes;       /* plane nodes / all nodes of the quadtree (0 otherwise) */
-    uint64_t cyc_build, cyc_setup, cyc_trace, cyc_total; /* simulated cycles (sim build) */
-    uint64_t lanes_on, lane_ops;        /* utilisation events of setup + trace (sim build) */
+    /* simulated cycles (sim build): the cycle model's phase totals over the whole call, the
+       figures of its report: BUILD, SETUP, TRAVERSE + INTERSECT, the rest (OTHER), their sum */
+    uint64_t cyc_build, cyc_setup, cyc_trace, cyc_other, cyc_total;
+    uint64_t lanes_on, lane_ops;        /* utilisation events over the whole call (sim build) */
     double t_build, t_trace, t_shade, t_inpaint; /* wall seconds */
 } lt_rp_stats_t;
 

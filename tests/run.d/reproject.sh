@@ -85,6 +85,19 @@ for e in n64 n32 f32; do
         test -s "$tmp/rp_$e.exr" -a -s "$tmp/rp_$e.png" -a -s "$tmp/rps_$e.png" -a -s "$tmp/rpc_$e.png"
     check "reproject teapot $e: cycle report JSON with the reprojection figures" \
         grep -q '"setup_cycles"' "$tmp/rpr_$e.json"
+    # one source of truth: the summary's build/setup/traverse and utilisation are the report's
+    check "reproject teapot $e: the figures = the report's phases (build, setup, traverse + intersect, total, utilisation)" \
+        python3 -c "
+import json, sys
+j = json.load(open(sys.argv[1])); x = j.get('extra', j); ph = j['phases']
+c = lambda k: ph.get(k, {}).get('cycles', 0)
+ok = (x['build_cycles'] == c('BUILD') and x['setup_cycles'] == c('SETUP')
+      and x['traverse_cycles'] == c('TRAVERSE') + c('INTERSECT')
+      and abs(x['lane_utilisation'] - j['lane_utilisation']) < 1e-12)
+print('  summary build %d setup %d traverse %d util %.4f; report %d %d %d %.4f' % (x['build_cycles'],
+      x['setup_cycles'], x['traverse_cycles'], x['lane_utilisation'], c('BUILD'), c('SETUP'),
+      c('TRAVERSE') + c('INTERSECT'), j['lane_utilisation']))
+sys.exit(0 if ok else 1)" "$tmp/rpr_$e.json"
 done
 # the deprecated spelling --enc: the same view, and a note on stderr
 "$RP_NAT" reproject scenes/teapot.json --depth "$tmp/tp.exr" --layers 2 --color --move-rel 0.08,0,0 \
