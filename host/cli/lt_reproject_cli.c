@@ -37,6 +37,7 @@ typedef struct rp {
     /* options */
     lt_scenefile_t sf;
     const char *scene_path, *depth, *channel, *out, *png, *heat_steps, *heat_cycles, *heat_error;
+    const char *mesh_over; /* --mesh: the scene's mesh without a scene file */
     const char *report, *machine;
     int npos, truth, color, dist, json, layers, enc, tracer, sample, inpaint, max_steps;
     int seen_move, seen_move_rel, seen_rot, seen_enc, seen_srck, seen_dstk, seen_res;
@@ -88,6 +89,10 @@ static int rp_options(rp_t *r, int *quiet, const char *prog, int argc, char **ar
         LT_OPT_SECTION_("input:"),
         LT_OPT_STR("--depth", "FILE.exr", &r->depth,
                    "source depth (z along the optical axis unless --dist)"),
+        LT_OPT_STR("--mesh", "PATH", &r->mesh_over,
+                   "the mesh the depth was rendered from (lanetrace render --mesh PATH):\n"
+                   "its render camera is the source camera and --truth renders it\n"
+                   "(overrides the scene file's \"mesh\")"),
         LT_OPT_STR("--channel", "NAME", &r->channel,
                    "depth channel (default: Z, depth, the default view's Z)"),
         LT_OPT_INT("--layers", "K", &r->layers, 1, LT_RP_MAX_LAYERS,
@@ -371,13 +376,20 @@ static int rp_settle(rp_t *r, const char *prog)
         fprintf(stderr, "%s\n", diag.msg);
         return EXIT_INPUT;
     }
+    if (r->mesh_over != NULL &&
+        snprintf(sf->mesh, sizeof sf->mesh, "%s", r->mesh_over) >= (int)sizeof sf->mesh) {
+        fprintf(stderr, "%s reproject: --mesh %.60s...: the path is longer than %zu bytes\n", prog,
+                r->mesh_over, sizeof sf->mesh - 1);
+        return EXIT_USAGE;
+    }
     if (r->depth == NULL && sf->depth[0] != '\0')
         r->depth = sf->depth;
     if (r->heat_error != NULL)
         r->truth = 1;
     if (r->truth && sf->mesh[0] == '\0') {
-        fprintf(stderr, "%s reproject: --truth%s needs a mesh scene file (SCENE.json with "
-                        "'mesh'): the ground truth is the mesh rendered from the target camera\n",
+        fprintf(stderr, "%s reproject: --truth%s needs the mesh (--mesh PATH or a scene file "
+                        "with 'mesh'): the ground truth is the mesh rendered from the target "
+                        "camera\n",
                 prog, r->heat_error != NULL ? " (and --heat-error)" : "");
         return EXIT_USAGE;
     }

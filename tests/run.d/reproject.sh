@@ -36,6 +36,13 @@ done
 rp_expect "reproject --help" 0 "usage: lanetrace reproject" "$RP_SIM" reproject --help
 rp_expect "lanetrace --help lists reproject" 0 "reproject --depth" "$RP_SIM" --help
 rp_expect "reproject: no --depth" 2 "--depth FILE.exr is required" "$RP_NAT" reproject
+# a mesh without a scene file: --mesh gives the render camera and the ground truth
+"$RP_NAT" render --mesh scenes/teapot.obj --res 48 --out "$tmp/rpm" -q >/dev/null 2>&1
+rp_expect "reproject --mesh (no scene file): source camera from the mesh, --truth works" 0 \
+    "truth     the target view by the object-space tracer" \
+    "$RP_NAT" reproject --mesh scenes/teapot.obj --depth "$tmp/rpm.exr" --move-rel 0.05,0,0 --truth
+rp_expect "reproject --truth without a mesh: usage error naming --mesh" 2 "needs the mesh (--mesh PATH" \
+    "$RP_NAT" reproject --depth "$tmp/rpm.exr" --truth
 rp_expect "reproject: unknown flag" 2 "unknown option '--frob'" "$RP_NAT" reproject --depth x.exr --frob 1
 rp_expect "reproject: flag without value" 2 "missing value" "$RP_NAT" reproject --depth
 rp_expect "reproject: bad --num names the screen paths" 2 "expected n64, n32 or f32" "$RP_NAT" reproject --depth x.exr --num n16
@@ -115,9 +122,9 @@ check "reproject (sim) prints the cycle report" \
 rp_expect "reproject -q prints nothing" 0 "" bash -c "[ -z \"\$('$RP_NAT' reproject scenes/teapot.json --depth '$tmp/tp.exr' -q)\" ]"
 
 # ---- against ray-traced ground truth (--truth: the target view by the BVH float32 tracer) ----
-rp_expect "reproject --truth needs a mesh scene" 2 "needs a mesh scene" \
+rp_expect "reproject --truth needs a mesh scene" 2 "needs the mesh (--mesh PATH or a scene file" \
     "$RP_NAT" reproject --depth "$tmp/tp.exr" --truth
-rp_expect "reproject --heat-error needs a mesh scene" 2 "needs a mesh scene" \
+rp_expect "reproject --heat-error needs a mesh scene" 2 "(and --heat-error) needs the mesh" \
     "$RP_NAT" reproject --depth "$tmp/tp.exr" --heat-error "$tmp/e.png"
 rp_expect "reproject --truth-tol 0 names the range" 2 "(0, 1]" \
     "$RP_NAT" reproject scenes/teapot.json --depth "$tmp/tp.exr" --truth --truth-tol 0
