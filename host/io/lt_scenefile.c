@@ -67,12 +67,17 @@ void lt_sf_defaults(lt_scenefile_t *sf)
     snprintf(sf->machine, sizeof sf->machine, "lrb16");
 }
 
-/* Every member of obj must be one of the names in known (NULL-terminated). */
+/* Every member of obj must be one of the names in known (NULL-terminated), and appear once (JSON
+ * leaves duplicates to the reader; cJSON would silently take the first). */
 static int check_keys(ctx_t *c, const cJSON *obj, const char *where, const char *const *known)
 {
-    const cJSON *it;
+    const cJSON *it, *prev;
     cJSON_ArrayForEach(it, obj) {
         int i, ok = 0;
+        for (prev = obj->child; prev != it; prev = prev->next)
+            if (strcmp(prev->string, it->string) == 0)
+                return fail(c, "key '%s%s%s' appears more than once (each key at most once)",
+                            where, *where ? "." : "", it->string);
         for (i = 0; known[i] != NULL; i++)
             ok |= strcmp(it->string, known[i]) == 0;
         if (!ok) {

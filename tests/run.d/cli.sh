@@ -32,6 +32,10 @@ sc '{"mesh": "'"$PWD"'/scenes/teapot.obj", "colour": 1}'
 expect "scene: unknown key named" 1 "unknown key 'colour'" "$LT" run "$tmp/s.json"
 sc '{"mesh": "'"$PWD"'/scenes/teapot.obj", "camera": {"eye": [0,0,5], "target": [0,0,0], "fov": 30}}'
 expect "scene: unknown nested key named with its path" 1 "camera.fov" "$LT" run "$tmp/s.json"
+sc '{"mesh": "'"$PWD"'/scenes/teapot.obj", "resolution": [8, 8], "resolution": [16, 16]}'
+expect "scene: a duplicate key is an error (cJSON took the first silently)" 1 "s.json: key 'resolution' appears more than once" "$LT" run "$tmp/s.json"
+sc '{"mesh": "'"$PWD"'/scenes/teapot.obj", "camera": {"eye": [0,0,5], "target": [0,0,0], "eye": [1,1,1]}}'
+expect "scene: a duplicate nested key named with its path" 1 "key 'camera.eye' appears more than once" "$LT" run "$tmp/s.json"
 sc '{"mesh": "'"$PWD"'/scenes/teapot.obj", "resolution": "big"}'
 expect "scene: wrong type" 1 "'resolution' must be" "$LT" run "$tmp/s.json"
 sc '{"mesh": "'"$PWD"'/scenes/teapot.obj", "resolution": [64, 9000]}'
