@@ -68,10 +68,15 @@ static void live_line(const lt_rx_stats_t *s, double dt)
 }
 
 /* 1 when the stream had no link fault and the device reported success. */
+/* --sessions: how many device sessions (HELLO .. END) one run accepts; a HELLO after END beyond
+ * that is a restarted or replayed device, a fault */
+static int g_max_sessions = 1;
+
 static int clean(const lt_rx_stats_t *s)
 {
     return s->have_end && s->lost == 0 && s->duplicates == 0 && s->reordered == 0 &&
-           s->stale == 0 && s->garbage_bytes == 0 && s->bad_payload == 0 && s->end.status == 0;
+           s->stale == 0 && s->garbage_bytes == 0 && s->bad_payload == 0 && s->end.status == 0 &&
+           s->sessions <= (uint32_t)g_max_sessions;
 }
 
 static void name16(const lt_stream_hello_t *h, char out[17])
@@ -143,6 +148,9 @@ static void print_text(const char *src, const lt_rx_stats_t *s, double dt)
     if (s->have_end)
         printf("end       device status %u, %u frames traced, %u frames sent, %u reports dropped\n",
                s->end.status, s->end.frames, s->end.frames_sent, s->end.dropped);
+    if (s->sessions > (uint32_t)g_max_sessions)
+        printf("sessions  %u, more than the %d expected: a HELLO after END (a restarted or replayed "
+               "device; --sessions N accepts N)\n", s->sessions, g_max_sessions);
     printf("result    %s\n", clean(s) ? "ok: every frame the device sent arrived once, intact, in "
                                          "order" : "FAULTS (see above)");
 }
@@ -253,6 +261,9 @@ static int parse_args(opts_t *o, int argc, char **argv, int *nsrc)
          .help = "stop after S seconds without a byte, {range} (default: none; serial and\n"
                  "HID stop at the END record)",
          .lo = 0.0, .hi = 86400.0, .flags = LT_OPT_LO_OPEN},
+        LT_OPT_INT("--sessions", "N", &g_max_sessions, 1, 1000000,
+                   "device sessions (HELLO .. END) accepted, {range} (default 1: a HELLO\n"
+                   "after END - a restarted or replayed device - is a fault)"),
         LT_OPT_STR("--tiles", "PATH", &o->tiles,
                    "write one line per TILE, SUMMARY, DROP and END record received"),
         LT_OPT_FLAG_("--json", &o->json, "print the summary as JSON on stdout"),

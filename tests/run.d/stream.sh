@@ -141,6 +141,14 @@ check "lt-faultinject --rate 0.1 --drop 0.5: the later --drop wins ($(grep rates
 "$B/host/lt-faultinject" --drop 0.5 --rate 0.1 --json "$S/rates.json" <"$S/sim.bin" >/dev/null 2>&1
 check "lt-faultinject --drop 0.5 --rate 0.1: the later --rate wins ($(grep rates "$S/rates.json" | tr -d ' '))" \
     grep -q '"rates": \[0.1, 0.1, 0.1, 0.1, 0.1\]' "$S/rates.json"
+# a replayed session (the same stream twice: HELLO after END) is a fault unless --sessions allows it
+cat "$S/sim.bin" "$S/sim.bin" >"$S/twice.bin"
+"$B/host/lt-stream" --file "$S/twice.bin" -q --json >"$S/twice.json" 2>&1
+rc=$?
+check "lt-stream on a session sent twice (HELLO after END): exit 1, 2 sessions, not clean (rc $rc)" \
+    bash -c "[ $rc -eq 1 ] && [ \"$(jget sessions "$S/twice.json")\" = 2 ] && [ \"$(jget clean "$S/twice.json")\" = 0 ]"
+"$B/host/lt-stream" --file "$S/twice.bin" -q --sessions 2 >/dev/null 2>&1
+check "lt-stream --sessions 2 accepts the two sessions: exit 0" test $? -eq 0
 head -c 5000 /dev/urandom | "$B/host/lt-stream" -q --json >"$S/rand.json"
 rc=$?
 check "random bytes: lt-stream exit 1, all $(jget garbage_bytes "$S/rand.json") bytes reported as garbage, no HELLO" \
