@@ -580,11 +580,13 @@ static int run_path(run_t *r, const lt_path_info_t *p)
                lt_rate_text(ms > 0.0 ? (double)rays / (ms * 1e-3) : -1.0, rt));
         printf("result    %-4s hash 0x%08x\n", pname, lt_frame_hash(&r->fr));
         if (r->do_ref)
-            printf("accuracy  %-4s vs double: same triangle %.3f%% of %u pixels, depth RMSE "
-                   "%.3g, max %.3g (scene radius %.1f), %.2f%% of common hits within 1e-4 "
-                   "radius\n",
-                   pname, 100.0 * ac.same_id / ac.pixels, ac.pixels, ac.rmse, ac.max_err,
-                   r->sc.radius, ac.both_hit ? 100.0 * ac.within_tol / ac.both_hit : 100.0);
+            printf("accuracy  %-4s vs double: same triangle %.3f%% (%u of %u pixels, %u differ), "
+                   "depth RMSE %.3g, max %.3g (scene radius %.1f), %.2f%% of common hits within "
+                   "1e-4 radius (%u of %u)\n",
+                   pname, 100.0 * ac.same_id / ac.pixels, ac.same_id, ac.pixels,
+                   ac.pixels - ac.same_id, ac.rmse, ac.max_err, r->sc.radius,
+                   ac.both_hit ? 100.0 * ac.within_tol / ac.both_hit : 100.0, ac.within_tol,
+                   ac.both_hit);
     }
     run_facts(r, pname, ms, acc_bytes, &ac, extra, sizeof extra);
     jr = run_report(r, pname, rays, extra);

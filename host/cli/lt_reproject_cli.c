@@ -38,6 +38,7 @@ typedef struct rp {
     lt_scenefile_t sf;
     const char *scene_path, *depth, *channel, *out, *png, *heat_steps, *heat_cycles, *heat_error;
     const char *mesh_over; /* --mesh: the scene's mesh without a scene file */
+    int deep_front;        /* --deep-front: a deep EXR is read front-most sample per pixel */
     const char *report, *machine;
     int npos, truth, color, dist, json, layers, enc, tracer, sample, inpaint, max_steps;
     int seen_move, seen_move_rel, seen_rot, seen_enc, seen_srck, seen_dstk, seen_res;
@@ -93,6 +94,9 @@ static int rp_options(rp_t *r, int *quiet, const char *prog, int argc, char **ar
                    "the mesh the depth was rendered from (lanetrace render --mesh PATH):\n"
                    "its render camera is the source camera and --truth renders it\n"
                    "(overrides the scene file's \"mesh\")"),
+        LT_OPT_FLAG_("--deep-front", &r->deep_front,
+                     "a deep EXR (several samples per pixel): read the front-most\n"
+                     "(least Z) sample of each pixel"),
         LT_OPT_STR("--channel", "NAME", &r->channel,
                    "depth channel (default: Z, depth, the default view's Z)"),
         LT_OPT_INT("--layers", "K", &r->layers, 1, LT_RP_MAX_LAYERS,
@@ -441,6 +445,7 @@ static int rp_load_depth(rp_t *r, const char *prog, int quiet)
     lt_diag_t diag;
     size_t i, n;
     int l;
+    xo.deep = r->deep_front ? LT_EXR_DEEP_FRONT : LT_EXR_DEEP_REJECT;
     if (r->layers == 0)
         r->layers = 1;
     for (l = 0; l < r->layers; l++) {

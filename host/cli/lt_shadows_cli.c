@@ -602,11 +602,13 @@ static void shadows_outputs(shadows_t *s)
         lt_ss_quality(s->ss, s->tol, &q);
         printf("quality   vs 256 samples/pixel (%.1f s): PSNR filtered %.2f dB, unfiltered 16 spp "
                "%.2f dB, reference through the same filter %.2f dB, filtered vs filtered reference "
-               "%.2f dB; penumbra pixels %llu, within %.3g: %.1f%% filtered, %.1f%% unfiltered\n",
+               "%.2f dB; penumbra pixels %llu, within %.3g: %.1f%% filtered (%llu), %.1f%% "
+               "unfiltered (%llu)\n",
                lt_now_s() - t0, q.psnr_filtered, q.psnr_raw, q.psnr_filtered_ref,
                q.psnr_vs_filtered_ref,
                (unsigned long long)q.penumbra, q.tol, 100.0 * ratio(q.penumbra_ok, q.penumbra),
-               100.0 * ratio(q.penumbra_raw_ok, q.penumbra));
+               (unsigned long long)q.penumbra_ok, 100.0 * ratio(q.penumbra_raw_ok, q.penumbra),
+               (unsigned long long)q.penumbra_raw_ok);
         if (s->ref_png != NULL && lt_ss_write_png(s->ss, s->ref_png, 2, &diag) != 0) {
             fprintf(stderr, "%s: %s\n", who, diag.msg);
             s->rc = EXIT_INPUT;

@@ -1011,8 +1011,9 @@ int lt_exr_read_depth(const char *path, const char *channel, const lt_exr_read_o
     }
     if (st == EXR_STORAGE_DEEP_SCANLINE && o.deep != LT_EXR_DEEP_FRONT) {
         lt_diag_fail(diag, "%s: part %d is a deep image (deepscanline: a variable number of "
-                     "samples per pixel); read it with the deep option set to front-most "
-                     "(LT_EXR_DEEP_FRONT: least Z per pixel)", path, part);
+                     "samples per pixel); read its front-most sample per pixel (least Z): "
+                     "lanetrace reproject --deep-front, LT_EXR_DEEP_FRONT in the API", path,
+                     part);
         goto done;
     }
     if (st != EXR_STORAGE_SCANLINE && st != EXR_STORAGE_TILED &&

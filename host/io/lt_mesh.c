@@ -12,6 +12,7 @@
 #include <assimp/scene.h>
 #include <ctype.h>
 #include <errno.h>
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -269,6 +270,12 @@ static int check_obj(const char *where, const char *buf, size_t len, lt_diag_t *
                                  where, line, n + 1, (int)(e - q), q);
                     return -1;
                 }
+                if (fabs(d) > (double)FLT_MAX) {
+                    lt_diag_fail(diag, "%s: line %lu: vertex coordinate %d '%.*s' overflows "
+                                 "float32, the importer's vertex format (|x| <= 3.4e38)",
+                                 where, line, n + 1, (int)(e - q), q);
+                    return -1;
+                }
                 n++;
                 q = e;
             }
@@ -422,8 +429,9 @@ static int scene_to_mesh(const struct aiScene *sc, const char *path, lt_mesh_t *
                 }
                 p = &me->mVertices[fa->mIndices[j]];
                 if (!isfinite(p->x) || !isfinite(p->y) || !isfinite(p->z)) {
-                    lt_diag_fail(diag, "%s: mesh %u face %u: vertex %u is not finite", path, i, f,
-                                 fa->mIndices[j]);
+                    lt_diag_fail(diag, "%s: mesh %u face %u: vertex %u is not finite after "
+                                 "import (NaN, or beyond float32's 3.4e38, the importer's vertex "
+                                 "format)", path, i, f, fa->mIndices[j]);
                     lt_mesh_free(m);
                     return -1;
                 }

@@ -9,6 +9,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <errno.h>
 #include <sys/stat.h>
 
 const char *const lt_sf_structures[] = {"chunks", "bvh", "bvhq", "kd", "grid", NULL};
@@ -165,7 +166,7 @@ static int parse_camera(ctx_t *c, const cJSON *cam, lt_scenefile_t *sf)
 {
     static const char *const keys[] = {"eye", "target", "up", "fov_y_deg", NULL};
     const cJSON *it;
-    double f[3], len2;
+    double f[3];
     if (!cJSON_IsObject(cam))
         return fail(c, "'camera' must be an object");
     if (check_keys(c, cam, "camera", keys) != 0)
@@ -187,15 +188,30 @@ static int parse_camera(ctx_t *c, const cJSON *cam, lt_scenefile_t *sf)
     f[0] = sf->target[0] - sf->eye[0];
     f[1] = sf->target[1] - sf->eye[1];
     f[2] = sf->target[2] - sf->eye[2];
-    len2 = f[0] * f[0] + f[1] * f[1] + f[2] * f[2];
-    if (!(len2 > 0.0))
+    if (!isfinite(f[0]) || !isfinite(f[1]) || !isfinite(f[2]))
+        return fail(c, "'camera.target' - 'camera.eye' overflows a double (their distance is "
+                       "above 1.8e308)");
+    if (f[0] == 0.0 && f[1] == 0.0 && f[2] == 0.0)
         return fail(c, "'camera.target' equals 'camera.eye': no view direction");
+    if (sf->up[0] == 0.0 && sf->up[1] == 0.0 && sf->up[2] == 0.0)
+        return fail(c, "'camera.up' is the zero vector: no up direction");
     {
-        double u[3] = {sf->up[0], sf->up[1], sf->up[2]};
-        double x[3] = {f[1] * u[2] - f[2] * u[1], f[2] * u[0] - f[0] * u[2],
-                       f[0] * u[1] - f[1] * u[0]};
-        if (!(x[0] * x[0] + x[1] * x[1] + x[2] * x[2] > 1e-12 * len2))
-            return fail(c, "'camera.up' is parallel to the view direction");
+        /* both scaled by their largest component first, so that huge and tiny vectors neither
+           overflow nor underflow: the sine of their angle */
+        double fm = fmax(fabs(f[0]), fmax(fabs(f[1]), fabs(f[2])));
+        double um = fmax(fabs(sf->up[0]), fmax(fabs(sf->up[1]), fabs(sf->up[2])));
+        double g[3] = {f[0] / fm, f[1] / fm, f[2] / fm};
+        double u[3] = {sf->up[0] / um, sf->up[1] / um, sf->up[2] / um};
+        double x[3] = {g[1] * u[2] - g[2] * u[1], g[2] * u[0] - g[0] * u[2],
+                       g[0] * u[1] - g[1] * u[0]};
+        double s2 = (x[0] * x[0] + x[1] * x[1] + x[2] * x[2]) /
+                    ((g[0] * g[0] + g[1] * g[1] + g[2] * g[2]) * (u[0] * u[0] + u[1] * u[1] +
+                                                                  u[2] * u[2]));
+        if (!(s2 > 1e-12))
+            return fail(c, "'camera.up' [%g, %g, %g] is parallel to the view direction "
+                           "('camera.target' - 'camera.eye' = [%g, %g, %g]; the angle between "
+                           "them must be above 1e-6 rad)",
+                        sf->up[0], sf->up[1], sf->up[2], f[0], f[1], f[2]);
     }
     sf->has_camera = 1;
     return 0;
@@ -429,8 +445,19 @@ int lt_sf_load(const char *path, lt_scenefile_t *sf, lt_diag_t *diag)
 
     f = fopen(path, "rb");
     if (f == NULL) {
-        lt_diag_fail(diag, "%s: cannot open the scene file", path);
+        lt_diag_fail(diag, "%s: cannot open the scene file: %s", path, strerror(errno));
         return -1;
+    }
+    {
+        struct stat st;
+        int rs = fstat(fileno(f), &st);
+        if (rs != 0 || !S_ISREG(st.st_mode)) {
+            fclose(f);
+            lt_diag_fail(diag, "%s: not a regular file (%s); a scene file is a JSON file", path,
+                         rs != 0 ? "cannot stat it" : S_ISDIR(st.st_mode) ? "a directory"
+                                                      : "a device, pipe or socket");
+            return -1;
+        }
     }
     if (fseek(f, 0, SEEK_END) != 0 || (n = ftell(f)) < 0 || fseek(f, 0, SEEK_SET) != 0) {
         fclose(f);

@@ -109,10 +109,21 @@ int lt_ss_light_square(const lt_scene_t *s, const double centre[3], double size,
         l->c[a] = floor((c - (a != 1 ? half : 0.0)) * 65536.0 + 0.5) / 65536.0;
         l->eu[a] = a == 0 ? side : 0.0;
         l->ev[a] = a == 2 ? side : 0.0;
-        if (fabs(l->c[a]) + side > lim) {
-            lt_diag_fail(diag, "light centre %.4g (axis %d) lies %.3g scene radii from the centre; "
-                         "the fixed-point range allows %.3g (LT_CFG_GEOM_MAX_LOG2 = %d)", centre[a],
-                         a, fabs(c) / s->radius, lim / s->radius, LT_CFG_GEOM_MAX_LOG2);
+        if (!(fabs(l->c[a]) + side <= lim)) {
+            /* name the part that does not fit: the centre, or the size around it */
+            if (!(fabs(c) <= lim))
+                lt_diag_fail(diag, "light centre %.4g (axis %c) lies %.3g scene radii from the "
+                             "scene's centre; the fixed-point range allows %.3g "
+                             "(LT_CFG_GEOM_MAX_LOG2 = %d)", centre[a], "xyz"[a],
+                             fabs(c) / s->radius, lim / s->radius, LT_CFG_GEOM_MAX_LOG2);
+            else
+                lt_diag_fail(diag, "light size %.4g (%.3g scene radii) around a centre %.3g "
+                             "scene radii from the scene's centre (axis %c) reaches beyond the "
+                             "fixed-point range of %.3g scene radii (LT_CFG_GEOM_MAX_LOG2 = %d); "
+                             "the light may be at most %.4g wide there", size,
+                             side / s->radius, fabs(c) / s->radius, "xyz"[a], lim / s->radius,
+                             LT_CFG_GEOM_MAX_LOG2,
+                             fmax(0.0, 2.0 * (lim - fabs(c)) / s->scale));
             return -1;
         }
     }

@@ -156,6 +156,27 @@ expect "run --depth d.png: refused" 2 "--depth $tmp/d.png: this output is a .exr
 expect "shadows --png s.exr: refused" 2 "--png $tmp/s.exr: this output is a .png file" "$LT" shadows --mesh scenes/teapot.obj --res 8 --png "$tmp/s.exr"
 expect "run --report r.json with both paths" 0 "report    $tmp/rb.q16.json" "$LT" run scenes/teapot.json --res 8 --report "$tmp/rb.json"
 check "... writes r.q16.json and r.f32.json" test -s "$tmp/rb.q16.json" -a -s "$tmp/rb.f32.json"
+# messages that name the real problem (each misled before: a size overflow for a directory,
+# "camera.up is parallel" for a far eye or a tiny up, "not finite" for a float32 overflow, the
+# light centre blamed for its size, an API constant for a flag)
+mkdir -p "$tmp/adir"
+expect "a directory as the scene file" 1 "adir: not a regular file (a directory)" "$LT" run "$tmp/adir"
+sc '{"mesh": "'"$PWD"'/scenes/teapot.obj", "camera": {"eye": [1e300, 0, 0], "target": [0, 0, 0]}}'
+expect "scene: an eye 1e300 away is named as out of range, not 'up is parallel'" 1 "camera eye is .* scene radii from the centre" "$LT" run "$tmp/s.json" --res 8 -q
+sc '{"mesh": "'"$PWD"'/scenes/teapot.obj", "camera": {"eye": [0, 0, 50], "target": [0, 0, 0], "up": [0, 1e-300, 0]}}'
+expect "scene: a tiny but valid up vector works" 0 "result    q16" "$LT" run "$tmp/s.json" --res 8 -q --no-ref
+sc '{"mesh": "'"$PWD"'/scenes/teapot.obj", "camera": {"eye": [1e308, 0, 0], "target": [-1e308, 0, 0]}}'
+expect "scene: an eye-target distance that overflows is named" 1 "overflows a double" "$LT" run "$tmp/s.json" --res 8 -q
+sc '{"mesh": "'"$PWD"'/scenes/teapot.obj", "camera": {"eye": [0, 0, 50], "target": [0, 0, 0], "up": [0, 0, 3]}}'
+expect "scene: an up along the view is parallel, with both vectors" 1 "'camera.up' \[0, 0, 3\] is parallel to the view direction" "$LT" run "$tmp/s.json" --res 8 -q
+printf 'v 0 0 0\nv 1e200 0 0\nv 0 1 0\nf 1 2 3\n' >"$tmp/big.obj"
+expect "OBJ: 1e200 overflows float32 (not 'not finite')" 1 "big.obj: line 2: vertex coordinate 1 '1e200' overflows float32" "$LT" run --mesh "$tmp/big.obj" --res 8 -q
+expect "shadows: a 1e9-wide light blames its size, not its centre" 1 "light size 1e+09" "$LT" shadows --mesh scenes/teapot.obj --res 8 --light 0,20,0,1e9 --no-ref
+expect "run: counts next to percentages on the accuracy line" 0 "same triangle 100.000% (64 of 64 pixels, 0 differ)" "$LT" run scenes/teapot.json --res 8 --num q16
+if [ -f ../shared/depth/v2_LowResLeftView_Trunks_deep.exr ]; then
+    expect "reproject on a deep EXR names the flag" 1 "lanetrace reproject --deep-front" "$LT" reproject --depth ../shared/depth/v2_LowResLeftView_Trunks_deep.exr
+    expect "reproject --deep-front reads it (front-most sample)" 0 "source    ../shared/depth/v2_LowResLeftView_Trunks_deep.exr: 1024x435" "$B/host/lanetrace-native" reproject --depth ../shared/depth/v2_LowResLeftView_Trunks_deep.exr --deep-front --move 0.01,0,0
+fi
 # ---- option parsing (host/cli/lt_opt): values are read whole, numbers must be finite, ranges are
 # named; each of these was accepted before (atoi read "1e9" as 1, sscanf ignored trailing text,
 # NaN passed the range checks, --tol had none)

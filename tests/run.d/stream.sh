@@ -96,6 +96,10 @@ check "lt-stream --hid 1209:0001 with no device: exit 1, names it ($(head -n 1 "
 rc=$?
 check "lt-stream --hid-path /dev/hidraw99: exit 1, names it" \
     bash -c "[ $rc -eq 1 ] && grep -q /dev/hidraw99 '$S/e.txt'"
+"$B/host/lt-stream" --hid-path "$S/sim.bin" -q >"$S/e.txt" 2>&1
+rc=$?
+check "lt-stream --hid-path on a regular file: exit 1, says it is not a device node (not 'hidapi: Success')" \
+    bash -c "[ $rc -eq 1 ] && grep -q 'not a HID device node (a regular file)' '$S/e.txt' && ! grep -q Success '$S/e.txt'"
 "$B/host/lt-stream" --serial /dev/null -q >"$S/e.txt" 2>&1
 rc=$?
 check "lt-stream --serial /dev/null: exit 1, not a serial device" \

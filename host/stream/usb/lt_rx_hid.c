@@ -5,9 +5,11 @@
  */
 #include "stream/usb/lt_rx_hid.h"
 
+#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <wchar.h>
 
 #ifndef LT_RX_NO_HIDAPI
@@ -53,6 +55,21 @@ lt_rx_src_t *lt_rx_src_hid(const char *vidpid, const char *path, lt_diag_t *diag
     } else {
         snprintf(name, sizeof name, "hid %s", path);
     }
+    if (path != NULL) {
+        /* hidraw paths are character devices: say what else the path is before hidapi tries */
+        struct stat st;
+        if (stat(path, &st) != 0) {
+            lt_diag_fail(diag, "%s: %s", name, strerror(errno));
+            return NULL;
+        }
+        if (!S_ISCHR(st.st_mode)) {
+            lt_diag_fail(diag, "%s: not a HID device node (%s); --hid-path takes a character "
+                         "device such as /dev/hidraw0", name,
+                         S_ISDIR(st.st_mode) ? "a directory"
+                         : S_ISREG(st.st_mode) ? "a regular file" : "not a character device");
+            return NULL;
+        }
+    }
     if (hid_init() != 0) {
         lt_diag_fail(diag, "%s: hid_init failed", name);
         return NULL;
@@ -61,6 +78,9 @@ lt_rx_src_t *lt_rx_src_hid(const char *vidpid, const char *path, lt_diag_t *diag
                        : hid_open_path(path);
     if (d == NULL) {
         const wchar_t *w = hid_error(NULL);
+        /* hidapi may report "Success" (errno 0) for a failed open: no reason then */
+        if (w != NULL && (w[0] == L'\0' || wcscmp(w, L"Success") == 0))
+            w = NULL;
         lt_diag_fail(diag, "%s: cannot open the device (hidapi: %ls); is it plugged in and "
                      "is its /dev/hidraw* node readable?", name,
                      w != NULL ? w : L"no reason given");
