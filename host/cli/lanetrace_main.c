@@ -20,8 +20,10 @@
 #include "render/lt_scene.h"
 #include "io/lt_scenefile.h"
 #include "io/lt_sniff.h"
+#include "io/lt_tmpfiles.h"
 
 #include <cjson/cJSON.h>
+#include <errno.h>
 #include <math.h>
 #include <signal.h>
 #include <stdarg.h>
@@ -76,42 +78,32 @@ static void progress_end(void)
 
 /* ---- atomic outputs: a temporary name renamed into place; Ctrl-C removes the temporary ---------- */
 
-static char pending_tmp[1100]; /* the atomic write in progress */
-static char csv_tmp[1100];     /* the CSV being written row by row */
+static char csv_tmp[LT_TMP_PATH_MAX]; /* the CSV being written row by row */
 
-static void on_signal(int sig)
-{
-    if (pending_tmp[0] != '\0')
-        unlink(pending_tmp);
-    if (csv_tmp[0] != '\0')
-        unlink(csv_tmp);
-    signal(sig, SIG_DFL);
-    raise(sig);
-}
-
+/* text into path through a registered temporary (a fatal signal removes it) */
 static int write_atomic(const char *path, const char *text, lt_diag_t *diag)
 {
+    char tmp[LT_TMP_PATH_MAX];
     FILE *f;
-    snprintf(pending_tmp, sizeof pending_tmp, "%s.tmp%ld", path, (long)getpid());
-    f = fopen(pending_tmp, "w");
+    if (lt_tmp_begin(path, tmp, diag) != 0)
+        return -1;
+    f = fopen(tmp, "w");
     if (f == NULL) {
         lt_diag_fail(diag, "%s: cannot create the output (directory missing or not writable)", path);
-        pending_tmp[0] = '\0';
+        lt_tmp_end(tmp);
         return -1;
     }
     if (fputs(text, f) < 0 || fclose(f) != 0) {
         lt_diag_fail(diag, "%s: write failed (disk full?)", path);
-        unlink(pending_tmp);
-        pending_tmp[0] = '\0';
+        lt_tmp_discard(tmp);
         return -1;
     }
-    if (rename(pending_tmp, path) != 0) {
+    if (rename(tmp, path) != 0) {
         lt_diag_fail(diag, "%s: cannot rename the output into place", path);
-        unlink(pending_tmp);
-        pending_tmp[0] = '\0';
+        lt_tmp_discard(tmp);
         return -1;
     }
-    pending_tmp[0] = '\0';
+    lt_tmp_end(tmp);
     return 0;
 }
 
@@ -334,10 +326,15 @@ static int run_load(run_t *r)
 /* The CSV output, written under a temporary name row by row. */
 static int run_csv_open(run_t *r)
 {
-    snprintf(csv_tmp, sizeof csv_tmp, "%s.tmp%ld", r->csv, (long)getpid());
+    lt_diag_t diag;
+    if (lt_tmp_begin(r->csv, csv_tmp, &diag) != 0) {
+        fprintf(stderr, "%s\n", diag.msg);
+        return -1;
+    }
     r->csvf = fopen(csv_tmp, "w");
     if (r->csvf == NULL) {
         fprintf(stderr, "%s: cannot create the CSV output\n", r->csv);
+        lt_tmp_end(csv_tmp);
         csv_tmp[0] = '\0';
         return -1;
     }
@@ -633,10 +630,12 @@ static void run_csv_close(run_t *r)
 {
     if (fclose(r->csvf) != 0 || rename(csv_tmp, r->csv) != 0) {
         fprintf(stderr, "%s: cannot write the CSV output\n", r->csv);
-        unlink(csv_tmp);
+        lt_tmp_discard(csv_tmp);
         r->status = EXIT_INPUT;
-    } else if (!quiet) {
-        printf("csv       %s\n", r->csv);
+    } else {
+        lt_tmp_end(csv_tmp);
+        if (!quiet)
+            printf("csv       %s\n", r->csv);
     }
     csv_tmp[0] = '\0';
     r->csvf = NULL;
@@ -1086,7 +1085,27 @@ typedef struct render {
     uint8_t *occ, *rgb;
     uint64_t nrays;
     uint32_t nshadow, nocc;
+    lt_outset_t *set; /* every output, renamed into place together at the end */
 } render_t;
+
+/* PREFIX + suffix as a member of the render's output set: *dst is where to write it. Returns 0,
+ * or an exit code after the message (a name too long is refused, never cut). */
+static int render_out(render_t *r, const char *suffix, char path[LT_TMP_PATH_MAX],
+                      const char **dst)
+{
+    lt_diag_t diag;
+    int k = snprintf(path, LT_TMP_PATH_MAX, "%s%s", r->out, suffix);
+    if (k < 0 || k >= LT_TMP_PATH_MAX - 24) {
+        fprintf(stderr, "%s render: --out %.60s...: the output names would be longer than %d "
+                        "bytes\n", prog, r->out, LT_TMP_PATH_MAX - 25);
+        return EXIT_USAGE;
+    }
+    if (lt_outset_add(r->set, path, dst, &diag) != 0) {
+        fprintf(stderr, "%s render: %s\n", prog, diag.msg);
+        return EXIT_USAGE;
+    }
+    return 0;
+}
 
 /* The options into r; LT_OPT_OK, LT_OPT_HELP or LT_OPT_USAGE. */
 static int render_parse(render_t *r, int argc, char **argv)
@@ -1304,7 +1323,7 @@ static int render_write_exr(render_t *r)
 {
     const lt_scenefile_t *sf = &r->sf;
     size_t n = r->n, i;
-    char path[1200];
+    char path[LT_TMP_PATH_MAX];
     lt_diag_t diag;
     lt_exr_channel_t ec[8 + 16];
     lt_exr_image_t im;
@@ -1347,8 +1366,11 @@ static int render_write_exr(render_t *r)
         im.height = (int32_t)sf->height;
         im.nchannels = nc;
         im.channels = ec;
-        snprintf(path, sizeof path, "%s.exr", r->out);
-        if (lt_exr_write(path, &im, &diag) != 0) {
+        const char *dst = NULL;
+        status = render_out(r, ".exr", path, &dst);
+        if (status != 0) {
+            /* the message is out */
+        } else if (lt_exr_write(dst, &im, &diag) != 0) {
             fprintf(stderr, "%s\n", diag.msg);
             status = EXIT_INPUT;
         } else if (!quiet) {
@@ -1378,7 +1400,15 @@ static int render_report(render_t *r)
              r->n, r->nshadow, (unsigned long long)(r->nrays - r->n - r->nshadow));
     js = lt_meter_report_json(title, r->nrays, extra);
     if (r->report != NULL) {
-        if (js == NULL || write_atomic(r->report, js, &diag) != 0) {
+        const char *dst = NULL;
+        FILE *f = NULL;
+        if (lt_outset_add(r->set, r->report, &dst, &diag) != 0 || js == NULL ||
+            (f = fopen(dst, "w")) == NULL || fputs(js, f) < 0 || fclose(f) != 0) {
+            if (f == NULL && js != NULL && dst != NULL)
+                lt_diag_fail(&diag, "%s: cannot create the output: %s", r->report,
+                             strerror(errno));
+            else if (f != NULL)
+                lt_diag_fail(&diag, "%s: write failed (disk full?)", r->report);
             fprintf(stderr, "%s\n", js == NULL ? "render: out of memory for the report" : diag.msg);
             free(js);
             return EXIT_INPUT;
@@ -1396,14 +1426,16 @@ static int render_write_pngs(render_t *r)
 {
     const lt_scenefile_t *sf = &r->sf;
     const lt_frame_t *fr = &r->fr;
-    char path[1200];
+    char path[LT_TMP_PATH_MAX];
     lt_diag_t diag;
     double zmin = INFINITY, zmax = 0.0;
-    static const char *const kinds[3] = {"depth", "normals", "ids"};
+    static const char *const kinds[3] = {".depth.png", ".normals.png", ".ids.png"};
+    const char *dst = NULL;
     size_t i;
-    int kk;
-    snprintf(path, sizeof path, "%s.png", r->out);
-    if (lt_png_write(path, r->rgb, (int32_t)sf->width, (int32_t)sf->height, 3, 3 * sf->width,
+    int kk, rc;
+    if ((rc = render_out(r, ".png", path, &dst)) != 0)
+        return rc;
+    if (lt_png_write(dst, r->rgb, (int32_t)sf->width, (int32_t)sf->height, 3, 3 * sf->width,
                      &diag) != 0) {
         fprintf(stderr, "%s\n", diag.msg);
         return EXIT_INPUT;
@@ -1432,8 +1464,9 @@ static int render_write_pngs(render_t *r)
                 px[2] = (uint8_t)(64 + (hsh >> 8) % 192);
             }
         }
-        snprintf(path, sizeof path, "%s.%s.png", r->out, kinds[kk]);
-        if (lt_png_write(path, r->rgb, (int32_t)sf->width, (int32_t)sf->height, 3, 3 * sf->width,
+        if ((rc = render_out(r, kinds[kk], path, &dst)) != 0)
+            return rc;
+        if (lt_png_write(dst, r->rgb, (int32_t)sf->width, (int32_t)sf->height, 3, 3 * sf->width,
                          &diag) != 0) {
             fprintf(stderr, "%s\n", diag.msg);
             return EXIT_INPUT;
@@ -1496,6 +1529,11 @@ static int cmd_render(int argc, char **argv)
     rc = render_parse(&r, argc, argv);
     if (rc != LT_OPT_OK)
         return rc == LT_OPT_HELP ? 0 : EXIT_USAGE;
+    r.set = calloc(1, sizeof *r.set);
+    if (r.set == NULL) {
+        fprintf(stderr, "%s render: out of memory\n", prog);
+        return EXIT_INPUT;
+    }
     rc = render_load(&r);
     if (rc == 0)
         rc = render_trace(&r);
@@ -1509,8 +1547,21 @@ static int cmd_render(int argc, char **argv)
     }
     if (rc == 0)
         rc = render_write_pngs(&r);
+    /* all outputs or none: the new files replace the old ones only when every one was written */
+    if (rc == 0) {
+        lt_diag_t diag;
+        if (lt_outset_commit(r.set, &diag) != 0) {
+            fprintf(stderr, "%s render: %s\n", prog, diag.msg);
+            rc = EXIT_INPUT;
+        }
+    } else if (r.set->n > 0) {
+        fprintf(stderr, "%s render: none of the outputs written (%d prepared were removed; "
+                        "previous files are unchanged)\n", prog, r.set->n);
+        lt_outset_abort(r.set);
+    }
     if (rc == 0)
         render_summary(&r);
+    free(r.set);
     for (a = 0; a < 10; a++)
         free(r.ch[a]);
     for (a = 0; a < 16; a++)
@@ -1763,8 +1814,7 @@ static void usage(FILE *f)
 
 int main(int argc, char **argv)
 {
-    signal(SIGINT, on_signal);
-    signal(SIGTERM, on_signal);
+    lt_tmp_handle_signals(); /* no temporary output survives SIGINT, SIGTERM, SIGXFSZ, ... */
     if (argc < 2 || strcmp(argv[1], "help") == 0 || strcmp(argv[1], "--help") == 0 ||
         strcmp(argv[1], "-h") == 0) {
         usage(argc < 2 ? stderr : stdout);

@@ -5,6 +5,7 @@
  * captured for our error text instead of going to stderr. Host only; docs/io.md.
  */
 #include "io/lt_exr.h"
+#include "io/lt_tmpfiles.h"
 
 /* openexr_attr.h uses anonymous structs and unions (C11); keep -Wpedantic for our own code. */
 #pragma GCC diagnostic push
@@ -369,12 +370,17 @@ int lt_exr_write(const char *path, const lt_exr_image_t *img, lt_diag_t *diag)
             halfs[i][k] = lt_exr_half_from_float(img->channels[i].data[k]);
     }
 
-    tmp = (char *)malloc(strlen(path) + 32);
+    tmp = (char *)malloc(LT_TMP_PATH_MAX);
     if (tmp == NULL) {
         lt_diag_fail(diag, "%s: out of memory", path);
         goto done;
     }
-    (void)sprintf(tmp, "%s.tmp.%ld", path, (long)getpid());
+    /* registered: a fatal signal removes it (io/lt_tmpfiles.h) */
+    if (lt_tmp_begin(path, tmp, diag) != 0) {
+        free(tmp);
+        tmp = NULL;
+        goto done;
+    }
     memset(&io, 0, sizeof io);
     io.fd = open(tmp, O_WRONLY | O_CREAT | O_TRUNC, 0644);
     if (io.fd < 0) {
@@ -451,7 +457,9 @@ done:
     if (tmp != NULL && io.fd >= 0)
         (void)close(io.fd);
     if (tmp != NULL && !ok)
-        (void)unlink(tmp);
+        lt_tmp_discard(tmp);
+    else if (tmp != NULL)
+        lt_tmp_end(tmp);
     free(tmp);
     for (i = 0; i < img->nchannels; i++)
         free(halfs[i]);

@@ -3,6 +3,7 @@
  * temp + fsync + rename commit. Host only; docs/io.md.
  */
 #include "io/lt_png.h"
+#include "io/lt_tmpfiles.h"
 
 #include <errno.h>
 #include <png.h>
@@ -98,15 +99,20 @@ int lt_png_write(const char *path, const uint8_t *pix, int32_t w, int32_t h, int
                      channels);
         return -1;
     }
-    tmp = (char *)malloc(strlen(path) + 32);
+    tmp = (char *)malloc(LT_TMP_PATH_MAX);
     if (tmp == NULL) {
         lt_diag_fail(diag, "%s: out of memory", path);
         return -1;
     }
-    (void)sprintf(tmp, "%s.tmp.%ld", path, (long)getpid());
+    /* registered: a fatal signal removes it (io/lt_tmpfiles.h) */
+    if (lt_tmp_begin(path, tmp, diag) != 0) {
+        free(tmp);
+        return -1;
+    }
     fp = fopen(tmp, "wb");
     if (fp == NULL) {
         lt_diag_fail(diag, "%s: cannot create temporary file %s: %s", path, tmp, strerror(errno));
+        lt_tmp_end(tmp);
         free(tmp);
         return -1;
     }
@@ -127,7 +133,9 @@ int lt_png_write(const char *path, const uint8_t *pix, int32_t w, int32_t h, int
         rc = -1;
     }
     if (rc != 0)
-        (void)unlink(tmp);
+        lt_tmp_discard(tmp);
+    else
+        lt_tmp_end(tmp);
     free(tmp);
     return rc;
 }

@@ -177,6 +177,17 @@ if [ -f ../shared/depth/v2_LowResLeftView_Trunks_deep.exr ]; then
     expect "reproject on a deep EXR names the flag" 1 "lanetrace reproject --deep-front" "$LT" reproject --depth ../shared/depth/v2_LowResLeftView_Trunks_deep.exr
     expect "reproject --deep-front reads it (front-most sample)" 0 "source    ../shared/depth/v2_LowResLeftView_Trunks_deep.exr: 1024x435" "$B/host/lanetrace-native" reproject --depth ../shared/depth/v2_LowResLeftView_Trunks_deep.exr --deep-front --move 0.01,0,0
 fi
+# render's outputs are one set: all new or all old (a failure part-way left a mix); names too
+# long are refused (a fixed buffer cut them, so all five outputs overwrote one file)
+"$LT" render --res 16 --out "$tmp/set" -q >/dev/null 2>&1
+sum0=$(cat "$tmp"/set.exr "$tmp"/set*.png | md5sum)
+expect "render: a failing --report leaves the previous outputs as they were" 1 "none of the outputs written" \
+    "$LT" render --res 24 --out "$tmp/set" -q --report /nonexistent-dir/r.json
+check "... the EXR and PNGs unchanged, no temporary left" \
+    bash -c "[ \"\$(cat '$tmp'/set.exr '$tmp'/set*.png | md5sum)\" = '$sum0' ] && ! ls '$tmp' | grep -q '\.tmp\.'"
+long=$(printf 'x%.0s' $(seq 1 4100))
+expect "render: an --out over the path limit is refused, not cut" 2 "the output names would be longer than" \
+    "$LT" render --res 8 --out "$tmp/$long" -q
 # ---- option parsing (host/cli/lt_opt): values are read whole, numbers must be finite, ranges are
 # named; each of these was accepted before (atoi read "1e9" as 1, sscanf ignored trailing text,
 # NaN passed the range checks, --tol had none)
