@@ -12,6 +12,7 @@
 #include "io/lt_exr.h"
 #include "io/lt_heatmap.h"
 #include "io/lt_mesh.h"
+#include "io/lt_tmpfiles.h"
 #include "lt_meter.h"
 #include "io/lt_png.h"
 #include "render/lt_paths.h"
@@ -39,6 +40,7 @@ typedef struct rp {
     const char *scene_path, *depth, *channel, *out, *png, *heat_steps, *heat_cycles, *heat_error;
     const char *mesh_over; /* --mesh: the scene's mesh without a scene file */
     int deep_front;        /* --deep-front: a deep EXR is read front-most sample per pixel */
+    lt_outset_t *set;      /* the outputs, renamed into place together at the end */
     const char *report, *machine;
     int npos, truth, color, dist, json, layers, enc, tracer, sample, inpaint, max_steps;
     int seen_move, seen_move_rel, seen_rot, seen_enc, seen_srck, seen_dstk, seen_res;
@@ -705,6 +707,18 @@ static int rp_run(rp_t *r, const char *prog, const lt_rp_cli_hooks_t *hk)
     return 0;
 }
 
+/* path as a member of the output set: where to write it, or NULL after the message. */
+static const char *rp_out(const rp_t *r, const char *path)
+{
+    lt_diag_t diag;
+    const char *dst = NULL;
+    if (lt_outset_add(r->set, path, &dst, &diag) != 0) {
+        fprintf(stderr, "%s\n", diag.msg);
+        return NULL;
+    }
+    return dst;
+}
+
 /* --out: R G B Z hole steps (+ cycles in the sim build, Ztrue with --truth). Returns 0 or an exit
  * code. */
 static int rp_write_exr(const rp_t *r, float *const ch[4])
@@ -714,6 +728,7 @@ static int rp_write_exr(const rp_t *r, float *const ch[4])
     lt_exr_channel_t ec[8];
     lt_exr_image_t im;
     static const char *const names[4] = {"R", "G", "B", "Z"};
+    const char *dst;
     int nc = 0, k;
     for (k = 0; k < 4; k++) {
         ec[nc].name = names[k];
@@ -741,7 +756,9 @@ static int rp_write_exr(const rp_t *r, float *const ch[4])
     im.height = (int32_t)res->height;
     im.nchannels = nc;
     im.channels = ec;
-    if (lt_exr_write(r->out, &im, &diag) != 0) {
+    if ((dst = rp_out(r, r->out)) == NULL)
+        return EXIT_INPUT;
+    if (lt_exr_write(dst, &im, &diag) != 0) {
         fprintf(stderr, "%s\n", diag.msg);
         return EXIT_INPUT;
     }
@@ -784,30 +801,43 @@ static int rp_write_outputs(const rp_t *r, const char *prog)
         } else {
             for (i = 0; i < np * 3; i++)
                 px[i] = lt_gamma8((double)res->rgb[i]);
-            if (lt_png_write(r->png, px, (int32_t)res->width, (int32_t)res->height, 3, 0, &diag) != 0) {
+            const char *dst = rp_out(r, r->png);
+            if (dst == NULL) {
+                status = EXIT_INPUT;
+            } else if (lt_png_write(dst, px, (int32_t)res->width, (int32_t)res->height, 3, 0,
+                                    &diag) != 0) {
                 fprintf(stderr, "%s\n", diag.msg);
                 status = EXIT_INPUT;
             }
             free(px);
         }
     }
-    if (status == 0 && r->heat_steps != NULL &&
-        lt_heatmap_write_png(r->heat_steps, res->steps, (int32_t)res->width, (int32_t)res->height,
+    if (status == 0 && r->heat_steps != NULL) {
+        const char *dst = rp_out(r, r->heat_steps);
+        if (dst == NULL || lt_heatmap_write_png(dst, res->steps, (int32_t)res->width, (int32_t)res->height,
                              NULL, &diag) != 0) {
-        fprintf(stderr, "%s\n", diag.msg);
-        status = EXIT_INPUT;
+            if (dst != NULL)
+                fprintf(stderr, "%s\n", diag.msg);
+            status = EXIT_INPUT;
+        }
     }
-    if (status == 0 && r->heat_error != NULL &&
-        lt_heatmap_write_png(r->heat_error, r->relerr, (int32_t)res->width, (int32_t)res->height,
+    if (status == 0 && r->heat_error != NULL) {
+        const char *dst = rp_out(r, r->heat_error);
+        if (dst == NULL || lt_heatmap_write_png(dst, r->relerr, (int32_t)res->width, (int32_t)res->height,
                              &eo, &diag) != 0) {
-        fprintf(stderr, "%s\n", diag.msg);
-        status = EXIT_INPUT;
+            if (dst != NULL)
+                fprintf(stderr, "%s\n", diag.msg);
+            status = EXIT_INPUT;
+        }
     }
-    if (status == 0 && r->heat_cycles != NULL &&
-        lt_heatmap_write_png(r->heat_cycles, res->cycles, (int32_t)res->width,
+    if (status == 0 && r->heat_cycles != NULL) {
+        const char *dst = rp_out(r, r->heat_cycles);
+        if (dst == NULL || lt_heatmap_write_png(dst, res->cycles, (int32_t)res->width,
                              (int32_t)res->height, NULL, &diag) != 0) {
-        fprintf(stderr, "%s\n", diag.msg);
-        status = EXIT_INPUT;
+            if (dst != NULL)
+                fprintf(stderr, "%s\n", diag.msg);
+            status = EXIT_INPUT;
+        }
     }
     for (k = 0; k < 4; k++)
         free(ch[k]);
@@ -950,7 +980,12 @@ static int rp_report(const rp_t *r, const rp_figs_t *f, const lt_rp_cli_hooks_t 
         lt_meter_report_text(stdout, title, st->pixels);
     if (r->report != NULL) {
         js = lt_meter_report_json(title, st->pixels, extra);
-        if (js == NULL || hk->write_text(r->report, js, &diag) != 0) {
+        const char *dst = js != NULL ? rp_out(r, r->report) : NULL;
+        if (js != NULL && dst == NULL) {
+            free(js);
+            return EXIT_INPUT;
+        }
+        if (js == NULL || hk->write_text(dst, js, &diag) != 0) {
             fprintf(stderr, "%s\n", js == NULL ? "reproject: out of memory for the report" : diag.msg);
             free(js);
             return EXIT_INPUT;
@@ -1076,6 +1111,11 @@ int lt_rp_cli(int argc, char **argv, const char *prog, const lt_rp_cli_hooks_t *
     if (r.json)
         *hk->quiet = 1;
     r.path = lt_paths_find(r.enc_names[r.enc], LT_PATHS_SCREEN);
+    r.set = calloc(1, sizeof *r.set);
+    if (r.set == NULL) {
+        fprintf(stderr, "%s reproject: out of memory\n", prog);
+        return EXIT_INPUT;
+    }
     rc = rp_settle(&r, prog);
     if (rc == 0)
         rc = rp_load_depth(&r, prog, *hk->quiet);
@@ -1096,12 +1136,25 @@ int lt_rp_cli(int argc, char **argv, const char *prog, const lt_rp_cli_hooks_t *
             rp_print_summary(&r, &f);
         rc = rp_report(&r, &f, hk);
     }
+    /* all outputs or none: the new files replace the old ones only when every one was written */
+    if (rc == 0) {
+        lt_diag_t diag;
+        if (lt_outset_commit(r.set, &diag) != 0) {
+            fprintf(stderr, "%s reproject: %s\n", prog, diag.msg);
+            rc = EXIT_INPUT;
+        }
+    } else if (r.set != NULL && r.set->n > 0) {
+        fprintf(stderr, "%s reproject: none of the outputs written (%d prepared were removed; "
+                        "previous files are unchanged)\n", prog, r.set->n);
+        lt_outset_abort(r.set);
+    }
     if (rc == 0) {
         if (!*hk->quiet)
             rp_print_files(&r);
         if (r.json)
             rp_print_json(&r, &f);
     }
+    free(r.set);
     rp_free(&r);
     return rc;
 }

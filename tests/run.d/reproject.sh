@@ -74,6 +74,16 @@ rp_expect "reproject: unwritable --out names the path" 1 "/nonexistent-dir/o.exr
     "$RP_NAT" reproject scenes/teapot.json --depth "$tmp/tp.exr" --layers 2 --out /nonexistent-dir/o.exr
 rp_expect "reproject: unwritable --png names the path" 1 "/nonexistent-dir/o.png" \
     "$RP_NAT" reproject scenes/teapot.json --depth "$tmp/tp.exr" --layers 2 --png /nonexistent-dir/o.png
+# the outputs are one set: a failing --report (after the view was computed) keeps the old EXR/PNG
+"$RP_NAT" reproject scenes/teapot.json --depth "$tmp/tp.exr" --layers 2 --move-rel 0.05,0,0 \
+    --out "$tmp/rpset.exr" --png "$tmp/rpset.png" >/dev/null 2>&1
+rpsum=$(cat "$tmp/rpset.exr" "$tmp/rpset.png" | md5sum)
+rp_expect "reproject: a failing output keeps the previous set (sim, unwritable --report)" 1 \
+    "none of the outputs written" "$RP_SIM" reproject scenes/teapot.json --depth "$tmp/tp.exr" \
+    --layers 2 --move-rel 0.09,0,0 --out "$tmp/rpset.exr" --png "$tmp/rpset.png" \
+    --report /nonexistent-dir/r.json
+check "reproject: ... the EXR and PNG unchanged, no temporary left" \
+    bash -c "[ \"\$(cat '$tmp/rpset.exr' '$tmp/rpset.png' | md5sum)\" = '$rpsum' ] && ! ls '$tmp' | grep -q 'rpset.*\.tmp\.'"
 rp_expect "reproject: unwritable --report names the path (sim)" 1 "/nonexistent-dir/r.json" \
     "$RP_SIM" reproject scenes/teapot.json --depth "$tmp/tp.exr" --layers 2 --report /nonexistent-dir/r.json
 for e in n64 n32 f32; do
