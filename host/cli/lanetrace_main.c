@@ -26,6 +26,7 @@
 #include <errno.h>
 #include <math.h>
 #include <signal.h>
+#include <sys/resource.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -1230,16 +1231,71 @@ static int render_load(render_t *r)
 
 /* The structure, the primary rays, the image buffers and the shadow rays. Returns 0 or an exit
  * code. */
+/* Bytes of memory available to this process: MemAvailable of /proc/meminfo, or the address-space
+ * limit (ulimit -v) when that is lower; 0 if neither is known. *what names the one used. */
+static double mem_available(const char **what)
+{
+    char line[256];
+    double kb = 0.0, avail = 0.0;
+    struct rlimit rl;
+    FILE *f = fopen("/proc/meminfo", "r");
+    *what = "MemAvailable";
+    if (f != NULL) {
+        while (fgets(line, sizeof line, f) != NULL)
+            if (sscanf(line, "MemAvailable: %lf kB", &kb) == 1)
+                break;
+        fclose(f);
+        avail = kb * 1024.0;
+    }
+    if (getrlimit(RLIMIT_AS, &rl) == 0 && rl.rlim_cur != RLIM_INFINITY &&
+        (avail == 0.0 || (double)rl.rlim_cur < avail)) {
+        avail = (double)rl.rlim_cur;
+        *what = "the address-space limit, ulimit -v";
+    }
+    return avail;
+}
+
+/* The images of the whole render, measured and allocated before any tracing: a render too large
+ * for this machine fails at once, naming the size, instead of after the trace. Returns 0 or an
+ * exit code. */
+static int render_memory(render_t *r)
+{
+    const lt_scenefile_t *sf = &r->sf;
+    lt_diag_t diag;
+    double n = (double)sf->width * sf->height, L = r->layers > 1 ? r->layers : 0;
+    /* frames (id 4 + t 8 + cost 4 + steps 4) for the render and each peel, 10 float channels,
+       RGB8 + occlusion bytes, one float depth per peel for the EXR */
+    const char *what;
+    double need = n * (20.0 * (1.0 + L) + 40.0 + 4.0 + 4.0 * L), avail = mem_available(&what);
+    int l;
+    if (avail > 0.0 && need > avail) {
+        fprintf(stderr, "%s render: %ux%u with %d layer(s) needs %.2f GiB for its images; %.2f GiB "
+                        "are available (%s); lower --res or --layers\n", prog, sf->width,
+                sf->height, r->layers, need / 1073741824.0, avail / 1073741824.0, what);
+        return EXIT_INPUT;
+    }
+    if (lt_frame_alloc(&r->fr, sf->width, sf->height, &diag) != 0) {
+        fprintf(stderr, "%s render: %s (%.2f GiB needed in all)\n", prog, diag.msg,
+                need / 1073741824.0);
+        return EXIT_INPUT;
+    }
+    for (l = 0; l < r->layers && r->layers > 1; l++)
+        if (lt_frame_alloc(&r->lay[l], sf->width, sf->height, &diag) != 0) {
+            fprintf(stderr, "%s render: %s (layer %d; %.2f GiB needed in all)\n", prog,
+                    diag.msg, l, need / 1073741824.0);
+            return EXIT_INPUT;
+        }
+    return 0;
+}
+
 static int render_trace(render_t *r)
 {
     const lt_scenefile_t *sf = &r->sf;
     const char *structure = lt_render_structures[r->structure];
     lt_diag_t diag;
     int a;
-    if (lt_frame_alloc(&r->fr, sf->width, sf->height, &diag) != 0) {
-        fprintf(stderr, "%s\n", diag.msg);
-        return EXIT_INPUT;
-    }
+    if ((a = render_memory(r)) != 0)
+        return a;
     r->acc = lt_accel_build(&r->sc, structure, (lt_path_t)r->path->path, &diag);
     if (r->acc == NULL) {
         fprintf(stderr, "%s render: %s\n", prog, diag.msg);
@@ -1337,7 +1393,8 @@ static int render_write_exr(render_t *r)
     }
     for (l = 0; l < r->layers && r->layers > 1; l++) {
         float *z = malloc(n * sizeof(float));
-        if (z == NULL || lt_frame_alloc(&r->lay[l], sf->width, sf->height, &diag) != 0) {
+        if (z == NULL || (r->lay[l].id == NULL &&
+                          lt_frame_alloc(&r->lay[l], sf->width, sf->height, &diag) != 0)) {
             free(z);
             fprintf(stderr, "%s render: out of memory for layer %d\n", prog, l);
             status = EXIT_INPUT;

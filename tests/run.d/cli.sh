@@ -188,6 +188,13 @@ check "... the EXR and PNGs unchanged, no temporary left" \
 long=$(printf 'x%.0s' $(seq 1 4100))
 expect "render: an --out over the path limit is refused, not cut" 2 "the output names would be longer than" \
     "$LT" render --res 8 --out "$tmp/$long" -q
+# a render too large for the memory fails at once, naming the size (it allocated the peels after
+# tracing); the address-space limit stands in for a small machine
+t0=$(date +%s)
+expect "render 8192^2 x 16 layers under a 2 GiB limit: fails before tracing, names the need" 1 \
+    "needs 28.00 GiB for its images; 2.00 GiB are available (the address-space limit" \
+    bash -c "ulimit -v 2097152 && exec '$LT' render --res 8192 --layers 16 --out '$tmp/huge' -q"
+check "... within 10 s, nothing written" bash -c "[ \$((\$(date +%s) - $t0)) -lt 10 ] && [ ! -e '$tmp/huge.exr' ]"
 # ---- option parsing (host/cli/lt_opt): values are read whole, numbers must be finite, ranges are
 # named; each of these was accepted before (atoi read "1e9" as 1, sscanf ignored trailing text,
 # NaN passed the range checks, --tol had none)
