@@ -2,6 +2,7 @@
  * Every error names the file, the key path (e.g. "camera.fov_y_deg") and the rule. Host only.
  */
 #include "io/lt_scenefile.h"
+#include "lt_cache.h"
 
 #include <cjson/cJSON.h>
 #include <math.h>
@@ -93,6 +94,17 @@ static int check_keys(ctx_t *c, const cJSON *obj, const char *where, const char 
         }
     }
     return 0;
+}
+
+/* A cache geometry "sets:ways:line" checked by the cycle model's own parser (sim/lt_cache.c,
+ * linked in every build), so a bad one is named with the file and key in every build. */
+static int check_cache(ctx_t *c, const char *key, const char *spec)
+{
+    lt_cache_cfg_t cfg;
+    lt_diag_t d;
+    if (lt_cache_parse(spec, &cfg, &d) == 0)
+        return 0;
+    return fail(c, "'%s': %s", key, d.msg);
 }
 
 static int get_number(ctx_t *c, const cJSON *it, const char *key, double lo, double hi, double *out)
@@ -344,10 +356,12 @@ static int parse_root(ctx_t *c, const cJSON *root, lt_scenefile_t *sf)
         if (check_keys(c, it, "caches", cache_keys) != 0)
             return -1;
         if ((x = cJSON_GetObjectItemCaseSensitive(it, "l1")) != NULL &&
-            get_string(c, x, "caches.l1", sf->l1, sizeof sf->l1) != 0)
+            (get_string(c, x, "caches.l1", sf->l1, sizeof sf->l1) != 0 ||
+             check_cache(c, "caches.l1", sf->l1) != 0))
             return -1;
         if ((x = cJSON_GetObjectItemCaseSensitive(it, "l2")) != NULL &&
-            get_string(c, x, "caches.l2", sf->l2, sizeof sf->l2) != 0)
+            (get_string(c, x, "caches.l2", sf->l2, sizeof sf->l2) != 0 ||
+             check_cache(c, "caches.l2", sf->l2) != 0))
             return -1;
     }
     if ((it = cJSON_GetObjectItemCaseSensitive(root, "lights")) != NULL) {

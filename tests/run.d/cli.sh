@@ -36,6 +36,10 @@ sc '{"mesh": "'"$PWD"'/scenes/teapot.obj", "resolution": [8, 8], "resolution": [
 expect "scene: a duplicate key is an error (cJSON took the first silently)" 1 "s.json: key 'resolution' appears more than once" "$LT" run "$tmp/s.json"
 sc '{"mesh": "'"$PWD"'/scenes/teapot.obj", "camera": {"eye": [0,0,5], "target": [0,0,0], "eye": [1,1,1]}}'
 expect "scene: a duplicate nested key named with its path" 1 "key 'camera.eye' appears more than once" "$LT" run "$tmp/s.json"
+sc '{"mesh": "'"$PWD"'/scenes/teapot.obj", "caches": {"l1": "63:8:64"}}'
+expect "scene: a bad cache geometry names the file and key (sim)" 1 "s.json: 'caches.l1': cache spec \"63:8:64\": sets 63 is not a power of two" "$LT" run "$tmp/s.json" --res 8 -q
+expect "scene: ... and the native build refuses it too (it ignored caches)" 1 "s.json: 'caches.l1'" "$B/host/lanetrace-native" run "$tmp/s.json" --res 8 -q
+expect "native build: a bad --l1 is refused like in the simulator" 2 "63:8:64" "$B/host/lanetrace-native" run --l1 63:8:64 --res 8 -q
 sc '{"mesh": "'"$PWD"'/scenes/teapot.obj", "resolution": "big"}'
 expect "scene: wrong type" 1 "'resolution' must be" "$LT" run "$tmp/s.json"
 sc '{"mesh": "'"$PWD"'/scenes/teapot.obj", "resolution": [64, 9000]}'
