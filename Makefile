@@ -33,8 +33,9 @@ NATIVE_ARCH ?= -march=native
 #   tests/                  tests and benchmarks only: no shipped program is built from here
 CORE_INC := -Ifirmware/include -Ifirmware/core
 APP_INC := $(CORE_INC) -Ifirmware/apps
-# sim/ and host/ also see the generated machine list ($(B)/gen/lt_machines.inc)
-SIM_INC := -Ifirmware/include -Isim -I$(B)/gen
+# sim/ and host/ also see the generated machine list ($(B)/gen/lt_machines.inc); sim/ sees host/
+# for the one diagnostic type only (io/lt_diag.h; `make layout` checks that)
+SIM_INC := -Ifirmware/include -Isim -Ihost -I$(B)/gen
 HOST_INC := -Ifirmware/include -Ifirmware/apps -Ihost -Isim -I$(B)/gen -isystem /usr/include/OpenEXR
 TEST_INC := $(HOST_INC) -Itests/unit -Itests/vectors
 
@@ -42,7 +43,12 @@ CORE_SRCS := $(wildcard firmware/core/*/*.c)
 # host library: every host/<room>/*.c except program mains (*_main.c) and the USB backend
 # (host/stream/usb, compiled with hidapi's flags in host/host.mk)
 HOSTLIB_SRCS := $(filter-out %_main.c,$(wildcard host/*/*.c))
-SIM_SRCS := sim/lt_sim.c sim/lt_cache.c sim/lt_meter_sim.c
+SIM_SRCS := sim/lt_sim.c sim/lt_meter_sim.c
+# the cache geometry parser and model: in every variant (scene files and --l1/--l2 are checked the
+# same way in the native build, which has no cycle model to use them)
+CACHE_SRCS := sim/lt_cache.c
+# what the cycle model needs from host/: its diagnostics (lt_diag_t)
+SIM_HOST_DEPS := host/io/lt_diag.c
 # unit tests: tests/unit/test_<name>.c, built for every variant (test_cache is sim-only)
 UNIT_TESTS := $(filter-out cache,$(patsubst tests/unit/test_%.c,%,$(wildcard tests/unit/test_*.c)))
 VEC_SRCS := tests/vectors/lt_vec.c
@@ -88,8 +94,10 @@ $(B)/$(1)/obj/%.o: %.c Makefile | $(B)/gen/lt_machines.inc
 	@$(CC) $(CFLAGS_$(1)) $$(SRC_INC) -c $$< -o $$@
 $(1)_CORE_OBJS := $(CORE_SRCS:%.c=$(B)/$(1)/obj/%.o)
 # the sim build meters through sim/lt_meter_sim.c (SIM_SRCS), the others through lt_meter_null.c
-$(1)_HOST_OBJS := $(filter-out $(if $(filter sim,$(1)),%/lt_meter_null.o),$(HOSTLIB_SRCS:%.c=$(B)/$(1)/obj/%.o))
-$(1)_EXTRA_OBJS := $(if $(filter sim,$(1)),$(SIM_SRCS:%.c=$(B)/$(1)/obj/%.o))
+$(1)_HOST_OBJS := $(filter-out $(if $(filter sim,$(1)),%/lt_meter_null.o),$(HOSTLIB_SRCS:%.c=$(B)/$(1)/obj/%.o)) \
+    $(CACHE_SRCS:%.c=$(B)/$(1)/obj/%.o)
+$(1)_EXTRA_OBJS := $(if $(filter sim,$(1)),$(SIM_SRCS:%.c=$(B)/$(1)/obj/%.o) \
+    $(CACHE_SRCS:%.c=$(B)/$(1)/obj/%.o) $(SIM_HOST_DEPS:%.c=$(B)/$(1)/obj/%.o))
 $(B)/$(1)/test_%: $(B)/$(1)/obj/tests/unit/test_%.o $$($(1)_CORE_OBJS) $$($(1)_HOST_OBJS) \
     $$($(1)_EXTRA_OBJS)
 	@echo "LD $$@"
@@ -101,7 +109,8 @@ $(B)/$(1)/lt-vectors: $(B)/$(1)/obj/tests/vectors/vec_host.o $(B)/$(1)/obj/$(VEC
 endef
 $(foreach v,$(VARIANTS),$(eval $(call variant_rules,$(v))))
 
-$(B)/sim/test_cache: $(B)/sim/obj/tests/unit/test_cache.o $(B)/sim/obj/sim/lt_cache.o
+$(B)/sim/test_cache: $(B)/sim/obj/tests/unit/test_cache.o $(B)/sim/obj/sim/lt_cache.o \
+    $(SIM_HOST_DEPS:%.c=$(B)/sim/obj/%.o)
 	@echo "LD $@"
 	@$(CC) -o $@ $^ -lcmocka
 

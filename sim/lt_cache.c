@@ -6,7 +6,6 @@
  */
 #include "lt_cache.h"
 
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -24,23 +23,6 @@
 #define NOINLINE
 #endif
 
-/* snprintf into err if there is room; vsnprintf always NUL-terminates when errlen > 0. */
-#if defined(__GNUC__)
-static void set_err(char *err, size_t errlen, const char *fmt, ...)
-    __attribute__((format(printf, 3, 4)));
-#endif
-
-static void set_err(char *err, size_t errlen, const char *fmt, ...)
-{
-    va_list ap;
-    if (err == NULL || errlen == 0) {
-        return;
-    }
-    va_start(ap, fmt);
-    (void)vsnprintf(err, errlen, fmt, ap);
-    va_end(ap);
-}
-
 static int is_pow2(uint32_t v)
 {
     return v != 0 && (v & (v - 1u)) == 0;
@@ -57,33 +39,33 @@ static uint32_t log2_pow2(uint32_t v)
 
 /* Check a geometry against the documented limits; `what` names the input in the message
  * (e.g. `cache spec "64:8:63"` or `cache "L1"`). */
-static int check_cfg(const char *what, const lt_cache_cfg_t *cfg, char *err, size_t errlen)
+static int check_cfg(const char *what, const lt_cache_cfg_t *cfg, lt_diag_t *diag)
 {
     uint64_t total;
     if (!is_pow2(cfg->sets)) {
-        set_err(err, errlen, "%s: sets %lu is not a power of two >= 1", what,
-                (unsigned long)cfg->sets);
+        lt_diag_fail(diag, "%s: sets %lu is not a power of two >= 1", what,
+                     (unsigned long)cfg->sets);
         return -1;
     }
     if (cfg->ways < 1u || cfg->ways > LT_CACHE_MAX_WAYS) {
-        set_err(err, errlen, "%s: ways %lu outside 1..%u", what, (unsigned long)cfg->ways,
-                LT_CACHE_MAX_WAYS);
+        lt_diag_fail(diag, "%s: ways %lu outside 1..%u", what, (unsigned long)cfg->ways,
+                     LT_CACHE_MAX_WAYS);
         return -1;
     }
     if (!is_pow2(cfg->line)) {
-        set_err(err, errlen, "%s: line %lu is not a power of two", what, (unsigned long)cfg->line);
+        lt_diag_fail(diag, "%s: line %lu is not a power of two", what, (unsigned long)cfg->line);
         return -1;
     }
     if (cfg->line < LT_CACHE_MIN_LINE || cfg->line > LT_CACHE_MAX_LINE) {
-        set_err(err, errlen, "%s: line %lu outside %u..%u bytes", what, (unsigned long)cfg->line,
-                LT_CACHE_MIN_LINE, LT_CACHE_MAX_LINE);
+        lt_diag_fail(diag, "%s: line %lu outside %u..%u bytes", what, (unsigned long)cfg->line,
+                     LT_CACHE_MIN_LINE, LT_CACHE_MAX_LINE);
         return -1;
     }
     /* Each factor is < 2^32 and ways <= 64, line <= 4096, so the product fits in 64 bits. */
     total = (uint64_t)cfg->sets * cfg->ways * cfg->line;
     if (total > LT_CACHE_MAX_BYTES) {
-        set_err(err, errlen, "%s: total size %llu bytes exceeds 64 MiB (%u bytes)", what,
-                (unsigned long long)total, LT_CACHE_MAX_BYTES);
+        lt_diag_fail(diag, "%s: total size %llu bytes exceeds 64 MiB (%u bytes)", what,
+                     (unsigned long long)total, LT_CACHE_MAX_BYTES);
         return -1;
     }
     return 0;
@@ -110,7 +92,7 @@ static int parse_u32(const char **p, uint32_t *out)
     return 0;
 }
 
-int lt_cache_parse(const char *spec, lt_cache_cfg_t *cfg, char *err, size_t errlen)
+int lt_cache_parse(const char *spec, lt_cache_cfg_t *cfg, lt_diag_t *diag)
 {
     static const char *const field[3] = { "sets", "ways", "line" };
     char what[96];
@@ -119,7 +101,7 @@ int lt_cache_parse(const char *spec, lt_cache_cfg_t *cfg, char *err, size_t errl
     int i;
 
     if (spec == NULL || cfg == NULL) {
-        set_err(err, errlen, "cache spec (null): expected S:W:B (sets:ways:line bytes)");
+        lt_diag_fail(diag, "cache spec (null): expected S:W:B (sets:ways:line bytes)");
         return -1;
     }
     (void)snprintf(what, sizeof what, "cache spec \"%.64s\"", spec);
@@ -127,31 +109,31 @@ int lt_cache_parse(const char *spec, lt_cache_cfg_t *cfg, char *err, size_t errl
         int r;
         if (i > 0) {
             if (*p == '\0') {
-                set_err(err, errlen, "%s: missing %s field, expected S:W:B (sets:ways:line bytes)",
-                        what, field[i]);
+                lt_diag_fail(diag, "%s: missing %s field, expected S:W:B (sets:ways:line bytes)",
+                             what, field[i]);
                 return -1;
             }
             if (*p != ':') {
-                set_err(err, errlen, "%s: expected ':' after %s field, expected S:W:B", what,
-                        field[i - 1]);
+                lt_diag_fail(diag, "%s: expected ':' after %s field, expected S:W:B", what,
+                             field[i - 1]);
                 return -1;
             }
             p++;
         }
         r = parse_u32(&p, &v[i]);
         if (r == -1) {
-            set_err(err, errlen, "%s: %s field is not a decimal number, expected S:W:B "
-                    "(sets:ways:line bytes)", what, field[i]);
+            lt_diag_fail(diag, "%s: %s field is not a decimal number, expected S:W:B "
+                         "(sets:ways:line bytes)", what, field[i]);
             return -1;
         }
         if (r == -2) {
-            set_err(err, errlen, "%s: %s field exceeds %lu", what, field[i],
-                    (unsigned long)UINT32_MAX);
+            lt_diag_fail(diag, "%s: %s field exceeds %lu", what, field[i],
+                         (unsigned long)UINT32_MAX);
             return -1;
         }
     }
     if (*p != '\0') {
-        set_err(err, errlen, "%s: unexpected text after line field, expected S:W:B", what);
+        lt_diag_fail(diag, "%s: unexpected text after line field, expected S:W:B", what);
         return -1;
     }
     {
@@ -159,7 +141,7 @@ int lt_cache_parse(const char *spec, lt_cache_cfg_t *cfg, char *err, size_t errl
         t.sets = v[0];
         t.ways = v[1];
         t.line = v[2];
-        if (check_cfg(what, &t, err, errlen) != 0) {
+        if (check_cfg(what, &t, diag) != 0) {
             return -1;
         }
         *cfg = t;
@@ -168,7 +150,7 @@ int lt_cache_parse(const char *spec, lt_cache_cfg_t *cfg, char *err, size_t errl
 }
 
 int lt_cache_init(lt_cache_t *c, const char *name, const lt_cache_cfg_t *cfg, uint32_t hit_cycles,
-                  lt_cache_t *next, uint32_t mem_cycles, char *err, size_t errlen)
+                  lt_cache_t *next, uint32_t mem_cycles, lt_diag_t *diag)
 {
     char what[LT_CACHE_NAME_LEN + 16];
     const lt_cache_t *n;
@@ -176,7 +158,7 @@ int lt_cache_init(lt_cache_t *c, const char *name, const lt_cache_cfg_t *cfg, ui
     int depth;
 
     if (c == NULL) {
-        set_err(err, errlen, "cache: lt_cache_init called with a NULL cache");
+        lt_diag_fail(diag, "cache: lt_cache_init called with a NULL cache");
         return -1;
     }
     memset(c, 0, sizeof *c);
@@ -184,24 +166,24 @@ int lt_cache_init(lt_cache_t *c, const char *name, const lt_cache_cfg_t *cfg, ui
     (void)snprintf(c->name, sizeof c->name, "%s", name != NULL ? name : "cache");
     (void)snprintf(what, sizeof what, "cache \"%s\"", c->name);
     if (cfg == NULL) {
-        set_err(err, errlen, "%s: NULL geometry", what);
+        lt_diag_fail(diag, "%s: NULL geometry", what);
         return -1;
     }
-    if (check_cfg(what, cfg, err, errlen) != 0) {
+    if (check_cfg(what, cfg, diag) != 0) {
         return -1;
     }
     /* A chain that leads back to c would recurse forever on a miss. */
     for (n = next, depth = 0; n != NULL; n = n->next, depth++) {
         if (n == c || depth >= 64) {
-            set_err(err, errlen,
-                    "%s: next-level chain loops back to this cache or exceeds 64 levels", what);
+            lt_diag_fail(diag, "%s: next-level chain loops back to this cache or exceeds 64 levels",
+                         what);
             return -1;
         }
     }
     count = (size_t)cfg->sets * cfg->ways;
     c->tags = (uint64_t *)malloc(count * sizeof *c->tags);
     if (c->tags == NULL) {
-        set_err(err, errlen, "%s: out of memory for %lu tags", what, (unsigned long)count);
+        lt_diag_fail(diag, "%s: out of memory for %lu tags", what, (unsigned long)count);
         return -1;
     }
     c->cfg = *cfg;

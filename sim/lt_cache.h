@@ -9,6 +9,8 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "io/lt_diag.h"
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -58,10 +60,10 @@ struct lt_cache {
 /* Parse a "S:W:B" (sets:ways:line bytes) string, e.g. "64:8:64" = 32 KiB, into *cfg.
  * Fields are plain decimal digits; no signs, spaces or trailing text. Limits: sets and line are
  * powers of two, ways 1..64, line 4..4096, sets*ways*line <= 64 MiB.
- * Cost: none (host only). *cfg is written only on success.
- * Returns: 0, or -1 with a message naming the string and the violated limit in err (err may be
- * NULL; otherwise at most errlen bytes are written and the message is always NUL-terminated). */
-int lt_cache_parse(const char *spec, lt_cache_cfg_t *cfg, char *err, size_t errlen);
+ * Cost: none (host only). *cfg is written only on success, diag only on failure.
+ * Returns: 0, or -1 with a message naming the string and the violated limit in diag (diag may be
+ * NULL). */
+int lt_cache_parse(const char *spec, lt_cache_cfg_t *cfg, lt_diag_t *diag);
 
 /* Initialise one level named `name` (truncated to LT_CACHE_NAME_LEN-1 chars) with geometry *cfg
  * (checked against the same limits as lt_cache_parse). A hit here costs hit_cycles. A miss fills
@@ -69,9 +71,9 @@ int lt_cache_parse(const char *spec, lt_cache_cfg_t *cfg, char *err, size_t errl
  * must be an initialised level not already chaining back to c. All lines start invalid, stats zero.
  * c is overwritten, not freed: lt_cache_free it first if it was initialised before.
  * Cost: mallocs sets*ways*8 bytes. On failure c is left so that lt_cache_free(c) is safe.
- * Returns: 0, or -1 with a message (naming the level and the limit, no errno text) in err. */
+ * Returns: 0, or -1 with a message (naming the level and the limit, no errno text) in diag. */
 int lt_cache_init(lt_cache_t *c, const char *name, const lt_cache_cfg_t *cfg, uint32_t hit_cycles,
-                  lt_cache_t *next, uint32_t mem_cycles, char *err, size_t errlen);
+                  lt_cache_t *next, uint32_t mem_cycles, lt_diag_t *diag);
 
 /* Release the tag storage of c (not of the next levels). Safe to call twice or after failed init.
  * Cost: none. */

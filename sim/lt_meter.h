@@ -11,6 +11,7 @@
 #include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
+#include "io/lt_diag.h"
 #include "lt/lt_cost.h"
 
 /* 1 in the simulator build (cycles are counted), 0 in the native and ASan builds. */
@@ -45,9 +46,9 @@ int lt_meter_machine_info(const char *name, lt_meter_machine_t *m);
 /* ---- a metered run ------------------------------------------------------------------------- */
 
 /* Select the machine and build its caches (l1/l2 "sets:ways:line" override the machine's when
- * non-NULL); counters reset. Returns 0, or -1 with a message in err (an unknown machine, a bad
+ * non-NULL); counters reset. Returns 0, or -1 with a message in diag (an unknown machine, a bad
  * cache spec). Without a cycle model only the name is checked and the cache specs are ignored. */
-int lt_meter_init(const char *machine, const char *l1, const char *l2, char *err, size_t errlen);
+int lt_meter_init(const char *machine, const char *l1, const char *l2, lt_diag_t *diag);
 
 /* Zero the counters, invalidate the caches (machine kept). */
 void lt_meter_reset(void);

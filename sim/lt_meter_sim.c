@@ -53,15 +53,15 @@ int lt_meter_machine_info(const char *name, lt_meter_machine_t *m)
     return 0;
 }
 
-int lt_meter_init(const char *machine, const char *l1, const char *l2, char *err, size_t errlen)
+int lt_meter_init(const char *machine, const char *l1, const char *l2, lt_diag_t *diag)
 {
     const lt_machine_t *m = lt_sim_machine_find(machine);
     if (m == NULL) {
-        snprintf(err, errlen, "machine '%s' unknown (known: %s)", machine,
-                 lt_meter_machine_names());
+        lt_diag_fail(diag, "machine '%s' unknown (known: %s)", machine,
+                     lt_meter_machine_names());
         return -1;
     }
-    return lt_sim_init(m, l1, l2, err, errlen);
+    return lt_sim_init(m, l1, l2, diag);
 }
 
 void lt_meter_reset(void) { lt_sim_reset(); }

@@ -5,6 +5,7 @@
  * an L1 hit). Host only.
  */
 #include "lt_sim.h"
+#include "lt_rate.h"
 #include "lt_cache.h"
 
 #include <cjson/cJSON.h>
@@ -134,7 +135,7 @@ void lt_sim_reset(void)
         lt_cache_reset(&l2);
 }
 
-int lt_sim_init(const lt_machine_t *m, const char *l1s, const char *l2s, char *err, size_t errlen)
+int lt_sim_init(const lt_machine_t *m, const char *l1s, const char *l2s, lt_diag_t *diag)
 {
     lt_cache_cfg_t c1, c2;
     lt_sim_shutdown();
@@ -144,23 +145,23 @@ int lt_sim_init(const lt_machine_t *m, const char *l1s, const char *l2s, char *e
     if (l2s == NULL)
         l2s = m->l2;
     if (l1s == NULL) {
-        snprintf(err, errlen, "machine %s: no L1 cache (LT_MACHINE_CACHE(L1, ...) in its .def)",
-                 m->name);
+        lt_diag_fail(diag, "machine %s: no L1 cache (LT_MACHINE_CACHE(L1, ...) in its .def)",
+                     m->name);
         return -1;
     }
-    if (lt_cache_parse(l1s, &c1, err, errlen) != 0)
+    if (lt_cache_parse(l1s, &c1, diag) != 0)
         return -1;
-    if (l2s != NULL && lt_cache_parse(l2s, &c2, err, errlen) != 0)
+    if (l2s != NULL && lt_cache_parse(l2s, &c2, diag) != 0)
         return -1;
     snprintf(l1_spec, sizeof l1_spec, "%s", l1s);
     snprintf(l2_spec, sizeof l2_spec, "%s", l2s != NULL ? l2s : "none");
     if (l2s != NULL) {
-        if (lt_cache_init(&l2, "L2", &c2, m->l2_hit, NULL, m->mem, err, errlen) != 0)
+        if (lt_cache_init(&l2, "L2", &c2, m->l2_hit, NULL, m->mem, diag) != 0)
             return -1;
         have_l2 = 1;
     }
-    if (lt_cache_init(&l1, "L1", &c1, m->l1_hit, have_l2 ? &l2 : NULL, have_l2 ? 0 : m->mem, err,
-                      errlen) != 0) {
+    if (lt_cache_init(&l1, "L1", &c1, m->l1_hit, have_l2 ? &l2 : NULL, have_l2 ? 0 : m->mem,
+                      diag) != 0) {
         lt_sim_shutdown();
         return -1;
     }
@@ -314,12 +315,15 @@ void lt_sim_report_text(FILE *f, const char *title, uint64_t rays)
             100.0 * utilisation(&t), (unsigned long long)ev_total(&t, LT_EV_LANE_OPS));
     if (rays != 0) {
         uint64_t tr = t.total_cycles - t.cycles[LT_PH_BUILD];
-        fprintf(f, "rays      %llu rays, %.1f cycles/ray, %.2f Mrays/s at %u MHz; without the "
-                   "build: %.1f cycles/ray, %.2f Mrays/s\n",
+        char r1[LT_RATE_TEXT], r2[LT_RATE_TEXT];
+        fprintf(f, "rays      %llu rays, %.1f cycles/ray, %s at %u MHz; without the build: %.1f "
+                   "cycles/ray, %s\n",
                 (unsigned long long)rays, (double)t.total_cycles / (double)rays,
-                secs > 0 ? (double)rays / secs / 1e6 : 0.0, mach->clock_mhz,
+                lt_rate_text(secs > 0 ? (double)rays / secs : 0.0, r1), mach->clock_mhz,
                 (double)tr / (double)rays,
-                tr ? (double)rays / ((double)tr / ((double)mach->clock_mhz * 1e6)) / 1e6 : 0.0);
+                lt_rate_text(tr ? (double)rays / ((double)tr / ((double)mach->clock_mhz * 1e6))
+                                : 0.0,
+                             r2));
     }
 }
 
@@ -389,26 +393,26 @@ char *lt_sim_report_json_string(const char *title, uint64_t rays, const char *ex
 }
 
 int lt_sim_report_json(const char *path, const char *title, uint64_t rays, const char *extra_json,
-                       char *err, size_t errlen)
+                       lt_diag_t *diag)
 {
     char tmp[4096];
     char *s = lt_sim_report_json_string(title, rays, extra_json);
     FILE *f;
     if (s == NULL) {
-        snprintf(err, errlen, "%s: out of memory building the JSON report", path);
+        lt_diag_fail(diag, "%s: out of memory building the JSON report", path);
         return -1;
     }
     /* write to a temporary name, then rename: a report is complete or absent */
     snprintf(tmp, sizeof tmp, "%s.tmp", path);
     f = fopen(tmp, "w");
     if (f == NULL || fputs(s, f) < 0 || fputc('\n', f) == EOF || fclose(f) != 0) {
-        snprintf(err, errlen, "%s: cannot write the JSON report", tmp);
+        lt_diag_fail(diag, "%s: cannot write the JSON report", tmp);
         free(s);
         return -1;
     }
     free(s);
     if (rename(tmp, path) != 0) {
-        snprintf(err, errlen, "%s: cannot rename %s into place", path, tmp);
+        lt_diag_fail(diag, "%s: cannot rename %s into place", path, tmp);
         return -1;
     }
     return 0;

@@ -9,6 +9,7 @@
 #include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
+#include "io/lt_diag.h"
 #include "lt/lt_cost.h"
 
 typedef struct lt_machine {
@@ -31,8 +32,8 @@ extern const lt_machine_t *const lt_sim_machines[];
 const lt_machine_t *lt_sim_machine_find(const char *name);
 
 /* Select the machine and build its caches (l1/l2 override the machine's specs when non-NULL).
- * Resets all counters. Returns 0, or -1 with a message naming the bad spec in err. */
-int lt_sim_init(const lt_machine_t *m, const char *l1, const char *l2, char *err, size_t errlen);
+ * Resets all counters. Returns 0, or -1 with a message naming the bad spec in diag. */
+int lt_sim_init(const lt_machine_t *m, const char *l1, const char *l2, lt_diag_t *diag);
 
 /* Zero counters and invalidate caches (machine kept). */
 void lt_sim_reset(void);
@@ -64,9 +65,9 @@ const char *lt_sim_phase_name(int ph);
 /* Print the cycle report as a readable table; rays = rays traced (for rays/s). */
 void lt_sim_report_text(FILE *f, const char *title, uint64_t rays);
 
-/* Write the same report as JSON (cJSON). Returns 0 or -1 (message in err). */
+/* Write the same report as JSON (cJSON). Returns 0 or -1 (message in diag). */
 int lt_sim_report_json(const char *path, const char *title, uint64_t rays, const char *extra_json,
-                       char *err, size_t errlen);
+                       lt_diag_t *diag);
 
 /* The report as a cJSON-printed string (caller frees with free()); extra_json (may be NULL) is an
  * object string whose members are merged in. */

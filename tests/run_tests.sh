@@ -63,7 +63,7 @@ for p in q16 f32; do
     a=$(grep "result    $p" "$tmp/native.txt")
     b=$(grep "result    $p" "$tmp/sim.txt")
     check "result $p: host = sim ($a)" test -n "$a" -a "$a" = "$b"
-    check "report $p JSON written" test -s "$tmp/r.json.$p"
+    check "report $p JSON written (r.$p.json)" test -s "$tmp/r.$p.json"
 done
 check "cycle report has phases, ops, cache, lanes" grep -q "lanes     utilisation" "$tmp/sim.txt"
 acc=$(grep "accuracy  q16" "$tmp/native.txt" | sed -E 's/.*same triangle ([0-9.]+)%.*/\1/')

@@ -14,7 +14,7 @@ $(B)/asan/fuzz-frame: $(B)/asan/obj/tests/fuzz/fuzz_frame.o $(B)/asan/obj/tests/
 FUZZ_SECONDS ?= 60
 FUZZ_CLANG ?= clang
 FUZZ_FRAME_SRCS := tests/fuzz/fuzz_frame.c firmware/core/stream/lt_stream.c \
-    firmware/core/numerics/lt_mem.c host/stream/lt_rx.c host/stream/lt_faults.c
+    firmware/core/numerics/lt_mem.c host/stream/lt_rx.c host/stream/lt_faults.c host/io/lt_diag.c
 $(B)/fuzz/fuzz-frame-libfuzzer: $(FUZZ_FRAME_SRCS)
 	@mkdir -p $(@D)
 	$(FUZZ_CLANG) -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all \

@@ -6,6 +6,7 @@
  */
 #include "lt/lt.h"
 #include "cli/lt_cliutil.h"
+#include "lt_rate.h"
 #include "cli/lt_opt.h"
 #include "io/lt_exr.h"
 #include "io/lt_heatmap.h"
@@ -18,10 +19,14 @@
 #include "cli/lt_shadows_cli.h"
 #include "render/lt_scene.h"
 #include "io/lt_scenefile.h"
+#include "io/lt_sniff.h"
+#include "io/lt_tmpfiles.h"
 
 #include <cjson/cJSON.h>
+#include <errno.h>
 #include <math.h>
 #include <signal.h>
+#include <sys/resource.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -74,42 +79,32 @@ static void progress_end(void)
 
 /* ---- atomic outputs: a temporary name renamed into place; Ctrl-C removes the temporary ---------- */
 
-static char pending_tmp[1100]; /* the atomic write in progress */
-static char csv_tmp[1100];     /* the CSV being written row by row */
+static char csv_tmp[LT_TMP_PATH_MAX]; /* the CSV being written row by row */
 
-static void on_signal(int sig)
+/* text into path through a registered temporary (a fatal signal removes it) */
+static int write_atomic(const char *path, const char *text, lt_diag_t *diag)
 {
-    if (pending_tmp[0] != '\0')
-        unlink(pending_tmp);
-    if (csv_tmp[0] != '\0')
-        unlink(csv_tmp);
-    signal(sig, SIG_DFL);
-    raise(sig);
-}
-
-static int write_atomic(const char *path, const char *text, char *err, size_t errlen)
-{
+    char tmp[LT_TMP_PATH_MAX];
     FILE *f;
-    snprintf(pending_tmp, sizeof pending_tmp, "%s.tmp%ld", path, (long)getpid());
-    f = fopen(pending_tmp, "w");
+    if (lt_tmp_begin(path, tmp, diag) != 0)
+        return -1;
+    f = fopen(tmp, "w");
     if (f == NULL) {
-        snprintf(err, errlen, "%s: cannot create the output (directory missing or not writable)", path);
-        pending_tmp[0] = '\0';
+        lt_diag_fail(diag, "%s: cannot create the output (directory missing or not writable)", path);
+        lt_tmp_end(tmp);
         return -1;
     }
     if (fputs(text, f) < 0 || fclose(f) != 0) {
-        snprintf(err, errlen, "%s: write failed (disk full?)", path);
-        unlink(pending_tmp);
-        pending_tmp[0] = '\0';
+        lt_diag_fail(diag, "%s: write failed (disk full?)", path);
+        lt_tmp_discard(tmp);
         return -1;
     }
-    if (rename(pending_tmp, path) != 0) {
-        snprintf(err, errlen, "%s: cannot rename the output into place", path);
-        unlink(pending_tmp);
-        pending_tmp[0] = '\0';
+    if (rename(tmp, path) != 0) {
+        lt_diag_fail(diag, "%s: cannot rename the output into place", path);
+        lt_tmp_discard(tmp);
         return -1;
     }
-    pending_tmp[0] = '\0';
+    lt_tmp_end(tmp);
     return 0;
 }
 
@@ -214,20 +209,20 @@ static int run_parse(run_t *r, int argc, char **argv)
          .names = r->num_names, .help = num_help},
         {.name = "--structure", .kind = LT_OPT_ENUM, .dest = &r->structure,
          .seen = &r->seen_structure, .meta = "NAME", .names = lt_render_structures,
-         .help = "acceleration structure: {choices} (default chunks)"},
+         .help = "acceleration structure: {choices} (default bvh)"},
         {.name = "--machine", .kind = LT_OPT_STRING, .dest = &r->machine,
          .seen = &r->seen_machine, .meta = "NAME", .help = machine_help},
         {.name = "--l1", .kind = LT_OPT_STRING, .dest = &r->l1, .seen = &r->seen_l1,
          .meta = "S:W:B", .help = "L1 cache geometry override (sets:ways:line)"},
         {.name = "--l2", .kind = LT_OPT_STRING, .dest = &r->l2, .seen = &r->seen_l2,
          .meta = "S:W:B", .help = "L2 cache geometry override (sets:ways:line)"},
-        LT_OPT_STR("--report", "PATH", &r->report,
-                   "write the report JSON (PATH.q16 / PATH.f32 with both paths)"),
-        LT_OPT_STR("--csv", "PATH", &r->csv, "write one CSV row per path"),
-        LT_OPT_STR("--depth", "PATH.exr", &r->depth_out,
+        LT_OPT_OUT("--report", "PATH.json", &r->report, "json",
+                   "write the report JSON (PATH.q16.json / PATH.f32.json with both paths)"),
+        LT_OPT_OUT("--csv", "PATH.csv", &r->csv, "csv", "write one CSV row per path"),
+        LT_OPT_OUT("--depth", "PATH.exr", &r->depth_out, "exr",
                    "write distance and triangle id per pixel (EXR, FLOAT channels\n"
                    "<path>.Z and <path>.id)"),
-        LT_OPT_STR("--heatmap", "PREFIX", &r->heat_out,
+        LT_OPT_OUT("--heatmap", "PREFIX", &r->heat_out, "",
                    "(sim build) per-pixel simulated cycles: PREFIX.<path>.png with a\n"
                    "legend and PREFIX.<path>.exr with the values; traversal steps:\n"
                    "PREFIX.<path>.steps.png / .steps.exr"),
@@ -258,10 +253,10 @@ static int run_parse(run_t *r, int argc, char **argv)
 static int run_settle(run_t *r)
 {
     lt_scenefile_t *sf = &r->sf;
-    char err[1024];
+    lt_diag_t diag;
     if (r->scene_path != NULL) {
-        if (lt_sf_load(r->scene_path, sf, err, sizeof err) != 0) {
-            fprintf(stderr, "%s\n", err);
+        if (lt_sf_load(r->scene_path, sf, &diag) != 0) {
+            fprintf(stderr, "%s\n", diag.msg);
             return EXIT_INPUT;
         }
     }
@@ -292,9 +287,8 @@ static int run_settle(run_t *r)
                 lt_meter_machine_names());
         return EXIT_USAGE;
     }
-    if (lt_meter_init(sf->machine, sf->l1[0] ? sf->l1 : NULL, sf->l2[0] ? sf->l2 : NULL, err,
-                      sizeof err) != 0) {
-        fprintf(stderr, "%s run: %s\n", prog, err);
+    if (lt_meter_init(sf->machine, sf->l1[0] ? sf->l1 : NULL, sf->l2[0] ? sf->l2 : NULL, &diag) != 0) {
+        fprintf(stderr, "%s run: %s\n", prog, diag.msg);
         return EXIT_USAGE;
     }
     return 0;
@@ -304,24 +298,24 @@ static int run_settle(run_t *r)
 static int run_load(run_t *r)
 {
     lt_scenefile_t *sf = &r->sf;
-    char err[1024];
-    if (lt_mesh_load(sf->mesh, &r->mesh, err, sizeof err) != 0) {
-        fprintf(stderr, "%s\n", err);
+    lt_diag_t diag;
+    if (lt_mesh_load(sf->mesh, &r->mesh, &diag) != 0) {
+        fprintf(stderr, "%s\n", diag.msg);
         return EXIT_INPUT;
     }
-    if (lt_scene_prepare(&r->mesh, &r->sc, err, sizeof err) != 0) {
-        fprintf(stderr, "%s: %s\n", sf->mesh, err);
+    if (lt_scene_prepare(&r->mesh, &r->sc, &diag) != 0) {
+        fprintf(stderr, "%s: %s\n", sf->mesh, diag.msg);
         return EXIT_INPUT;
     }
     if (((unsigned)sf->numeric & (unsigned)lt_paths_of_path(LT_PATH_Q16)->sf_num) &&
-        lt_scene_check_q16(&r->sc, sf->mesh, err, sizeof err) != 0) {
-        fprintf(stderr, "%s\n", err);
+        lt_scene_check_q16(&r->sc, sf->mesh, &diag) != 0) {
+        fprintf(stderr, "%s\n", diag.msg);
         return EXIT_INPUT;
     }
     if (sf->has_camera) {
         if (lt_camera_look(&r->sc, sf->eye, sf->target, sf->up, sf->fov_y_deg, sf->width,
-                           sf->height, &r->cam, err, sizeof err) != 0) {
-            fprintf(stderr, "%s: %s\n", sf->path[0] ? sf->path : sf->mesh, err);
+                           sf->height, &r->cam, &diag) != 0) {
+            fprintf(stderr, "%s: %s\n", sf->path[0] ? sf->path : sf->mesh, diag.msg);
             return EXIT_INPUT;
         }
     } else {
@@ -333,10 +327,15 @@ static int run_load(run_t *r)
 /* The CSV output, written under a temporary name row by row. */
 static int run_csv_open(run_t *r)
 {
-    snprintf(csv_tmp, sizeof csv_tmp, "%s.tmp%ld", r->csv, (long)getpid());
+    lt_diag_t diag;
+    if (lt_tmp_begin(r->csv, csv_tmp, &diag) != 0) {
+        fprintf(stderr, "%s\n", diag.msg);
+        return -1;
+    }
     r->csvf = fopen(csv_tmp, "w");
     if (r->csvf == NULL) {
         fprintf(stderr, "%s: cannot create the CSV output\n", r->csv);
+        lt_tmp_end(csv_tmp);
         csv_tmp[0] = '\0';
         return -1;
     }
@@ -374,7 +373,7 @@ static void run_heatmaps(run_t *r, const lt_path_info_t *p)
 {
     const lt_scenefile_t *sf = &r->sf;
     const char *pname = p->name, *heat_out = r->heat_out;
-    char err[1024];
+    lt_diag_t diag;
     char hp[1100];
     lt_heatmap_opts_t ho = LT_HEATMAP_OPTS_DEFAULT;
     if (!lt_meter_available()) {
@@ -384,9 +383,8 @@ static void run_heatmaps(run_t *r, const lt_path_info_t *p)
         return;
     }
     snprintf(hp, sizeof hp, "%s.%s.png", heat_out, pname);
-    if (lt_heatmap_write_png(hp, r->fr.cost, (int32_t)sf->width, (int32_t)sf->height, &ho, err,
-                             sizeof err) != 0) {
-        fprintf(stderr, "%s\n", err);
+    if (lt_heatmap_write_png(hp, r->fr.cost, (int32_t)sf->width, (int32_t)sf->height, &ho, &diag) != 0) {
+        fprintf(stderr, "%s\n", diag.msg);
         r->status = EXIT_INPUT;
         return;
     }
@@ -394,17 +392,17 @@ static void run_heatmaps(run_t *r, const lt_path_info_t *p)
         printf("heatmap   %s (simulated cycles per pixel)\n", hp);
     snprintf(hp, sizeof hp, "%s.%s.exr", heat_out, pname);
     if (lt_heatmap_write_exr(hp, r->fr.cost, (int32_t)sf->width, (int32_t)sf->height,
-                             "cycles", err, sizeof err) != 0) {
-        fprintf(stderr, "%s\n", err);
+                             "cycles", &diag) != 0) {
+        fprintf(stderr, "%s\n", diag.msg);
         r->status = EXIT_INPUT;
     }
     snprintf(hp, sizeof hp, "%s.%s.steps.png", heat_out, pname);
     if (lt_heatmap_write_png(hp, r->fr.steps, (int32_t)sf->width, (int32_t)sf->height, &ho,
-                             err, sizeof err) != 0 ||
+                             &diag) != 0 ||
         (snprintf(hp, sizeof hp, "%s.%s.steps.exr", heat_out, pname),
          lt_heatmap_write_exr(hp, r->fr.steps, (int32_t)sf->width, (int32_t)sf->height,
-                              "steps", err, sizeof err)) != 0) {
-        fprintf(stderr, "%s\n", err);
+                              "steps", &diag)) != 0) {
+        fprintf(stderr, "%s\n", diag.msg);
         r->status = EXIT_INPUT;
     } else if (!quiet) {
         printf("heatmap   %s.%s.steps.png (traversal steps per pixel's packet)\n", heat_out,
@@ -440,15 +438,22 @@ static void run_facts(const run_t *r, const char *pname, double ms, size_t acc_b
     cJSON_Delete(x);
 }
 
-/* --report: PATH, or PATH.<path> when both paths run. */
+/* --report: PATH, or PATH with .<path> before its extension when both paths run
+ * (report.json -> report.q16.json, report.f32.json). */
 static void run_write_report(run_t *r, const char *pname, const char *text)
 {
-    char err[1024];
-    char p[1100];
+    lt_diag_t diag;
+    char p[4096];
     int both = r->sf.numeric == LT_SF_NUM_BOTH;
-    snprintf(p, sizeof p, "%s%s%s", r->report, both ? "." : "", both ? pname : "");
-    if (write_atomic(p, text, err, sizeof err) != 0) {
-        fprintf(stderr, "%s\n", err);
+    if (both ? lt_path_tagged(p, sizeof p, r->report, pname) != 0
+             : snprintf(p, sizeof p, "%s", r->report) >= (int)sizeof p) {
+        fprintf(stderr, "%s run: --report %.60s...: the path is longer than %zu bytes\n", prog,
+                r->report, sizeof p - 1);
+        r->status = EXIT_INPUT;
+        return;
+    }
+    if (write_atomic(p, text, &diag) != 0) {
+        fprintf(stderr, "%s\n", diag.msg);
         r->status = EXIT_INPUT;
     } else if (!quiet) {
         printf("report    %s\n", p);
@@ -533,7 +538,7 @@ static int run_path(run_t *r, const lt_path_info_t *p)
 {
     const lt_scenefile_t *sf = &r->sf;
     const char *pname = p->name;
-    char err[1024];
+    lt_diag_t diag;
     lt_accel_t *acc;
     lt_accuracy_t ac;
     double t0, ms;
@@ -543,9 +548,9 @@ static int run_path(run_t *r, const lt_path_info_t *p)
     size_t acc_bytes;
     uint64_t rays = (uint64_t)sf->width * sf->height * (uint64_t)r->repeat;
     lt_meter_reset();
-    acc = lt_accel_build(&r->sc, sf->structure, (lt_path_t)p->path, err, sizeof err);
+    acc = lt_accel_build(&r->sc, sf->structure, (lt_path_t)p->path, &diag);
     if (acc == NULL) {
-        fprintf(stderr, "%s: %s\n", sf->path[0] ? sf->path : prog, err);
+        fprintf(stderr, "%s: %s\n", sf->path[0] ? sf->path : prog, diag.msg);
         r->status = EXIT_INPUT;
         return -1;
     }
@@ -567,16 +572,19 @@ static int run_path(run_t *r, const lt_path_info_t *p)
     if (r->do_ref)
         lt_frame_compare(&r->fr, &r->ref, 1e-4 * r->sc.radius, &ac);
     if (!r->json) {
-        printf("time      %-4s %.3f ms for %d frame(s) of %u rays (%s, %.2f Mrays/s host)\n",
-               pname, ms, r->repeat, sf->width * sf->height,
-               lt_meter_available() ? "counted" : "native", (double)rays / (ms * 1e-3) / 1e6);
+        char rt[LT_RATE_TEXT];
+        printf("time      %-4s %.3f ms for %d frame(s) of %u rays (%s, %s host)\n", pname, ms,
+               r->repeat, sf->width * sf->height, lt_meter_available() ? "counted" : "native",
+               lt_rate_text(ms > 0.0 ? (double)rays / (ms * 1e-3) : -1.0, rt));
         printf("result    %-4s hash 0x%08x\n", pname, lt_frame_hash(&r->fr));
         if (r->do_ref)
-            printf("accuracy  %-4s vs double: same triangle %.3f%% of %u pixels, depth RMSE "
-                   "%.3g, max %.3g (scene radius %.1f), %.2f%% of common hits within 1e-4 "
-                   "radius\n",
-                   pname, 100.0 * ac.same_id / ac.pixels, ac.pixels, ac.rmse, ac.max_err,
-                   r->sc.radius, ac.both_hit ? 100.0 * ac.within_tol / ac.both_hit : 100.0);
+            printf("accuracy  %-4s vs double: same triangle %.3f%% (%u of %u pixels, %u differ), "
+                   "depth RMSE %.3g, max %.3g (scene radius %.1f), %.2f%% of common hits within "
+                   "1e-4 radius (%u of %u)\n",
+                   pname, 100.0 * ac.same_id / ac.pixels, ac.same_id, ac.pixels,
+                   ac.pixels - ac.same_id, ac.rmse, ac.max_err, r->sc.radius,
+                   ac.both_hit ? 100.0 * ac.within_tol / ac.both_hit : 100.0, ac.within_tol,
+                   ac.both_hit);
     }
     run_facts(r, pname, ms, acc_bytes, &ac, extra, sizeof extra);
     jr = run_report(r, pname, rays, extra);
@@ -590,7 +598,7 @@ static int run_path(run_t *r, const lt_path_info_t *p)
 /* --depth: every traced path's distance and id channels in one EXR. */
 static void run_write_depth(run_t *r)
 {
-    char err[1024];
+    lt_diag_t diag;
     lt_exr_channel_t ch[2 * LT_PATHS_MAX];
     lt_exr_image_t im;
     int nch = 0, path;
@@ -610,8 +618,8 @@ static void run_write_depth(run_t *r)
     im.nchannels = nch;
     im.channels = ch;
     im.compression = LT_EXR_COMP_ZIP;
-    if (lt_exr_write(r->depth_out, &im, err, sizeof err) != 0) {
-        fprintf(stderr, "%s\n", err);
+    if (lt_exr_write(r->depth_out, &im, &diag) != 0) {
+        fprintf(stderr, "%s\n", diag.msg);
         r->status = EXIT_INPUT;
     } else if (!quiet) {
         printf("depth     %s (%d channels)\n", r->depth_out, nch);
@@ -623,10 +631,12 @@ static void run_csv_close(run_t *r)
 {
     if (fclose(r->csvf) != 0 || rename(csv_tmp, r->csv) != 0) {
         fprintf(stderr, "%s: cannot write the CSV output\n", r->csv);
-        unlink(csv_tmp);
+        lt_tmp_discard(csv_tmp);
         r->status = EXIT_INPUT;
-    } else if (!quiet) {
-        printf("csv       %s\n", r->csv);
+    } else {
+        lt_tmp_end(csv_tmp);
+        if (!quiet)
+            printf("csv       %s\n", r->csv);
     }
     csv_tmp[0] = '\0';
     r->csvf = NULL;
@@ -637,15 +647,15 @@ static int run_trace(run_t *r)
 {
     const lt_scenefile_t *sf = &r->sf;
     const lt_path_info_t *p;
-    char err[1024];
+    lt_diag_t diag;
     if (!quiet)
         printf("scene     %s: %u triangles, scale %g (file units -> s15.16 units), radius %.1f, "
                "%ux%u pixels, %u packets, structure %s\n",
                sf->mesh, r->sc.ntris, r->sc.scale, r->sc.radius, sf->width, sf->height,
                ((sf->width + 3) / 4) * ((sf->height + 3) / 4), sf->structure);
-    if (lt_frame_alloc(&r->ref, sf->width, sf->height, err, sizeof err) != 0 ||
-        lt_frame_alloc(&r->fr, sf->width, sf->height, err, sizeof err) != 0) {
-        fprintf(stderr, "%s\n", err);
+    if (lt_frame_alloc(&r->ref, sf->width, sf->height, &diag) != 0 ||
+        lt_frame_alloc(&r->fr, sf->width, sf->height, &diag) != 0) {
+        fprintf(stderr, "%s\n", diag.msg);
         return EXIT_INPUT;
     }
     if (r->do_ref) {
@@ -707,23 +717,23 @@ static int cmd_run(int argc, char **argv)
 /* ---- info ----------------------------------------------------------------------------------- */
 
 /* EXR: the header (parts, storage, windows, channels) and statistics of the depth channel. */
-static int info_exr(const char *path, int json)
+static int info_exr(const char *path, const lt_sniff_t *sn, int json)
 {
     static const char *const storage[] = {"scanline", "tiled", "deep scanline", "deep tiled"};
     static const char *const types[] = {"?", "HALF", "FLOAT", "UINT"};
     lt_exr_probe_t pr;
     lt_exr_depth_t d;
     lt_exr_read_opts_t ro = LT_EXR_READ_OPTS_DEFAULT;
-    char err[1024];
+    lt_diag_t diag;
     int c, have_depth;
     double mn = INFINITY, mx = -INFINITY, sum = 0.0;
     size_t k, n = 0, holes = 0;
-    if (lt_exr_probe(path, &pr, err, sizeof err) != 0) {
-        fprintf(stderr, "%s\n", err);
+    if (lt_exr_probe(path, &pr, &diag) != 0) {
+        fprintf(stderr, "%s\n", diag.msg);
         return EXIT_INPUT;
     }
     ro.deep = LT_EXR_DEEP_FRONT;
-    have_depth = lt_exr_read_depth(path, NULL, &ro, &d, err, sizeof err) == 0;
+    have_depth = lt_exr_read_depth(path, NULL, &ro, &d, &diag) == 0;
     if (have_depth) {
         for (k = 0; k < (size_t)d.width * (size_t)d.height; k++) {
             double z = d.z[k];
@@ -738,17 +748,37 @@ static int info_exr(const char *path, int json)
         }
     }
     if (json) {
-        printf("{\"file\":\"%s\",\"parts\":%d,\"storage\":\"%s\",\"data_window\":[%d,%d,%d,%d],"
-               "\"display_window\":[%d,%d,%d,%d],\"channels\":%d",
-               path, pr.parts, storage[pr.storage & 3], pr.data_window.x0, pr.data_window.y0,
-               pr.data_window.x1, pr.data_window.y1, pr.display_window.x0, pr.display_window.y0,
-               pr.display_window.x1, pr.display_window.y1, pr.nchannels);
-        if (have_depth)
-            printf(",\"depth\":{\"channel\":\"%s\",\"pixels\":%zu,\"holes\":%zu,\"min\":%g,"
-                   "\"max\":%g,\"mean\":%g}",
-                   d.channel, n, holes, n ? mn : 0.0, n ? mx : 0.0, n ? sum / (double)n : 0.0);
-        printf("}\n");
+        cJSON *j = cJSON_CreateObject(), *a;
+        char *txt;
+        const int dw[4] = {pr.data_window.x0, pr.data_window.y0, pr.data_window.x1,
+                           pr.data_window.y1},
+                  vw[4] = {pr.display_window.x0, pr.display_window.y0, pr.display_window.x1,
+                           pr.display_window.y1};
+        cJSON_AddStringToObject(j, "file", path);
+        cJSON_AddStringToObject(j, "detected", sn->what);
+        cJSON_AddBoolToObject(j, "name_agrees", sn->name_agrees);
+        cJSON_AddNumberToObject(j, "parts", pr.parts);
+        cJSON_AddStringToObject(j, "storage", storage[pr.storage & 3]);
+        cJSON_AddItemToObject(j, "data_window", cJSON_CreateIntArray(dw, 4));
+        cJSON_AddItemToObject(j, "display_window", cJSON_CreateIntArray(vw, 4));
+        cJSON_AddNumberToObject(j, "channels", pr.nchannels);
+        if (have_depth) {
+            a = cJSON_AddObjectToObject(j, "depth");
+            cJSON_AddStringToObject(a, "channel", d.channel);
+            cJSON_AddNumberToObject(a, "pixels", (double)n);
+            cJSON_AddNumberToObject(a, "holes", (double)holes);
+            cJSON_AddNumberToObject(a, "min", n ? mn : 0.0);
+            cJSON_AddNumberToObject(a, "max", n ? mx : 0.0);
+            cJSON_AddNumberToObject(a, "mean", n ? sum / (double)n : 0.0);
+        }
+        txt = cJSON_PrintUnformatted(j);
+        if (txt != NULL)
+            printf("%s\n", txt);
+        cJSON_free(txt);
+        cJSON_Delete(j);
     } else {
+        printf("detected  %s by its content%s\n", sn->what,
+               sn->name_agrees ? "" : " (its name says otherwise)");
         printf("%s: OpenEXR, %d part(s), %s, data window (%d,%d)-(%d,%d), display window "
                "(%d,%d)-(%d,%d)\n",
                path, pr.parts, storage[pr.storage & 3], pr.data_window.x0, pr.data_window.y0,
@@ -764,7 +794,7 @@ static int info_exr(const char *path, int json)
                    d.channel, d.deep ? " (deep: front-most sample)" : "", n, holes,
                    n ? mn : 0.0, n ? mx : 0.0, n ? sum / (double)n : 0.0);
         else
-            printf("depth     none readable: %s\n", err);
+            printf("depth     none readable: %s\n", diag.msg);
     }
     if (have_depth)
         lt_exr_depth_free(&d);
@@ -775,7 +805,9 @@ static int cmd_info(int argc, char **argv)
 {
     lt_mesh_t m;
     lt_scene_t sc;
-    char err[1024], who[64];
+    char who[64];
+    lt_diag_t diag;
+    lt_sniff_t sn;
     uint32_t i, zero = 0;
     int json = 0, rc;
     const char *path = NULL;
@@ -794,13 +826,14 @@ static int cmd_info(int argc, char **argv)
         fprintf(stderr, "%s info: a FILE is required\n", prog);
         return EXIT_USAGE;
     }
-    {
-        size_t l = strlen(path);
-        if (l > 4 && strcmp(path + l - 4, ".exr") == 0)
-            return info_exr(path, json);
+    if (lt_sniff_file(path, &sn, &diag) != 0) {
+        fprintf(stderr, "%s\n", diag.msg);
+        return EXIT_INPUT;
     }
-    if (lt_mesh_load(path, &m, err, sizeof err) != 0) {
-        fprintf(stderr, "%s\n", err);
+    if (sn.kind == LT_SNIFF_EXR)
+        return info_exr(path, &sn, json);
+    if (lt_mesh_load(path, &m, &diag) != 0) {
+        fprintf(stderr, "%s (detected by content: %s)\n", diag.msg, sn.what);
         return EXIT_INPUT;
     }
     for (i = 0; i < m.ntris; i++) {
@@ -816,19 +849,34 @@ static int cmd_info(int argc, char **argv)
         c[2] = e1[0] * e2[1] - e1[1] * e2[0];
         zero += c[0] == 0.0 && c[1] == 0.0 && c[2] == 0.0;
     }
-    if (lt_scene_prepare(&m, &sc, err, sizeof err) != 0) {
-        fprintf(stderr, "%s: %s\n", path, err);
+    if (lt_scene_prepare(&m, &sc, &diag) != 0) {
+        fprintf(stderr, "%s: %s\n", path, diag.msg);
         lt_mesh_free(&m);
         return EXIT_INPUT;
     }
-    if (json)
-        printf("{\"file\":\"%s\",\"triangles\":%u,\"zero_area\":%u,\"lo\":[%g,%g,%g],"
-               "\"hi\":[%g,%g,%g],\"scale\":%g,\"radius_scaled\":%g,\"collapsed_q16\":%u,"
-               "\"q16_representable\":%s}\n",
-               path, m.ntris, zero, m.lo[0], m.lo[1], m.lo[2], m.hi[0], m.hi[1], m.hi[2],
-               sc.scale, sc.radius, sc.collapsed_q16,
-               lt_scene_check_q16(&sc, path, err, sizeof err) == 0 ? "true" : "false");
-    else
+    if (json) {
+        cJSON *j = cJSON_CreateObject();
+        char *txt;
+        cJSON_AddStringToObject(j, "file", path);
+        cJSON_AddStringToObject(j, "detected", sn.what);
+        cJSON_AddBoolToObject(j, "name_agrees", sn.name_agrees);
+        cJSON_AddNumberToObject(j, "triangles", m.ntris);
+        cJSON_AddNumberToObject(j, "zero_area", zero);
+        cJSON_AddItemToObject(j, "lo", cJSON_CreateDoubleArray(m.lo, 3));
+        cJSON_AddItemToObject(j, "hi", cJSON_CreateDoubleArray(m.hi, 3));
+        cJSON_AddNumberToObject(j, "scale", sc.scale);
+        cJSON_AddNumberToObject(j, "radius_scaled", sc.radius);
+        cJSON_AddNumberToObject(j, "collapsed_q16", sc.collapsed_q16);
+        cJSON_AddNumberToObject(j, "nonzero", sc.nonzero);
+        cJSON_AddBoolToObject(j, "q16_representable", lt_scene_check_q16(&sc, path, &diag) == 0);
+        txt = cJSON_PrintUnformatted(j);
+        if (txt != NULL)
+            printf("%s\n", txt);
+        cJSON_free(txt);
+        cJSON_Delete(j);
+    } else {
+        printf("detected  %s by its content%s\n", sn.what,
+               sn.name_agrees ? "" : " (its name says otherwise)");
         printf("%s: mesh, %u triangles (%u zero-area), bounds [%g %g %g] .. [%g %g %g]\n"
                "fixed point: scale %g (a power of two), scene radius %.2f units of s15.16, "
                "resolution %.3g file units\n"
@@ -838,9 +886,10 @@ static int cmd_info(int argc, char **argv)
                sc.radius, lt_path_to_double(lt_paths_of_path(LT_PATH_Q16), 1) / sc.scale,
                sc.collapsed_q16, sc.nonzero,
                LT_SCENE_MAX_COLLAPSED_PPM / 1e4,
-               lt_scene_check_q16(&sc, path, err, sizeof err) == 0 ? "representable"
+               lt_scene_check_q16(&sc, path, &diag) == 0 ? "representable"
                                                                  : "NOT representable, float32 only",
                sc.min_edge);
+    }
     lt_scene_free(&sc);
     lt_mesh_free(&m);
     return 0;
@@ -848,14 +897,14 @@ static int cmd_info(int argc, char **argv)
 
 /* ---- diff ----------------------------------------------------------------------------------- */
 
-static cJSON *load_json(const char *path, char *err, size_t errlen)
+static cJSON *load_json(const char *path, lt_diag_t *diag)
 {
     FILE *f = fopen(path, "rb");
     char *buf;
     long n;
     cJSON *j;
     if (f == NULL) {
-        snprintf(err, errlen, "%s: cannot open", path);
+        lt_diag_fail(diag, "%s: cannot open", path);
         return NULL;
     }
     fseek(f, 0, SEEK_END);
@@ -863,14 +912,14 @@ static cJSON *load_json(const char *path, char *err, size_t errlen)
     fseek(f, 0, SEEK_SET);
     if (n < 0 || n > (64L << 20)) {
         fclose(f);
-        snprintf(err, errlen, "%s: not a report (size %ld, limit 64 MiB)", path, n);
+        lt_diag_fail(diag, "%s: not a report (size %ld, limit 64 MiB)", path, n);
         return NULL;
     }
     buf = malloc((size_t)n + 1);
     if (buf == NULL || fread(buf, 1, (size_t)n, f) != (size_t)n) {
         fclose(f);
         free(buf);
-        snprintf(err, errlen, "%s: cannot read", path);
+        lt_diag_fail(diag, "%s: cannot read", path);
         return NULL;
     }
     fclose(f);
@@ -879,7 +928,7 @@ static cJSON *load_json(const char *path, char *err, size_t errlen)
     free(buf);
     if (j == NULL || !cJSON_IsObject(j)) {
         cJSON_Delete(j);
-        snprintf(err, errlen, "%s: not a JSON report object", path);
+        lt_diag_fail(diag, "%s: not a JSON report object", path);
         return NULL;
     }
     return j;
@@ -934,7 +983,8 @@ static int cmd_diff(int argc, char **argv)
     const char *pos[2] = {NULL, NULL}, *pa, *pb;
     double threshold = 0.0;
     int json = 0, changed = 0, total = 0, npos = 0, rc;
-    char err[1024], who[64];
+    char who[64];
+    lt_diag_t diag;
     cJSON *ja, *jb, *rows;
     const cJSON *r;
     const lt_opt_t opts[] = {
@@ -956,9 +1006,9 @@ static int cmd_diff(int argc, char **argv)
     }
     pa = pos[0];
     pb = pos[1];
-    if ((ja = load_json(pa, err, sizeof err)) == NULL ||
-        (jb = load_json(pb, err, sizeof err)) == NULL) {
-        fprintf(stderr, "%s\n", err);
+    if ((ja = load_json(pa, &diag)) == NULL ||
+        (jb = load_json(pb, &diag)) == NULL) {
+        fprintf(stderr, "%s\n", diag.msg);
         return EXIT_INPUT;
     }
     rows = cJSON_CreateArray();
@@ -1036,7 +1086,27 @@ typedef struct render {
     uint8_t *occ, *rgb;
     uint64_t nrays;
     uint32_t nshadow, nocc;
+    lt_outset_t *set; /* every output, renamed into place together at the end */
 } render_t;
+
+/* PREFIX + suffix as a member of the render's output set: *dst is where to write it. Returns 0,
+ * or an exit code after the message (a name too long is refused, never cut). */
+static int render_out(render_t *r, const char *suffix, char path[LT_TMP_PATH_MAX],
+                      const char **dst)
+{
+    lt_diag_t diag;
+    int k = snprintf(path, LT_TMP_PATH_MAX, "%s%s", r->out, suffix);
+    if (k < 0 || k >= LT_TMP_PATH_MAX - 24) {
+        fprintf(stderr, "%s render: --out %.60s...: the output names would be longer than %d "
+                        "bytes\n", prog, r->out, LT_TMP_PATH_MAX - 25);
+        return EXIT_USAGE;
+    }
+    if (lt_outset_add(r->set, path, dst, &diag) != 0) {
+        fprintf(stderr, "%s render: %s\n", prog, diag.msg);
+        return EXIT_USAGE;
+    }
+    return 0;
+}
 
 /* The options into r; LT_OPT_OK, LT_OPT_HELP or LT_OPT_USAGE. */
 static int render_parse(render_t *r, int argc, char **argv)
@@ -1044,7 +1114,8 @@ static int render_parse(render_t *r, int argc, char **argv)
     char who[64], num_help[256];
     const lt_opt_t opts[] = {
         {.name = "--out", .kind = LT_OPT_STRING, .dest = &r->out, .meta = "PREFIX",
-         .help = "the images' path prefix", .flags = LT_OPT_REQUIRED},
+         .help = "the images' path prefix (PREFIX.exr, PREFIX.png, PREFIX.<kind>.png)",
+         .flags = LT_OPT_REQUIRED, .ext = ""},
         LT_OPT_STR("--mesh", "PATH", &r->mesh_over,
                    "mesh file (overrides the scene's \"mesh\"; default scenes/teapot.obj)"),
         {.name = "--res", .kind = LT_OPT_SIZE, .dest = r->wh, .seen = &r->seen_res,
@@ -1055,8 +1126,8 @@ static int render_parse(render_t *r, int argc, char **argv)
          .names = lt_render_structures,
          .help = "acceleration structure: {choices}\n(default bvh; chunks: no shadows, no peels)"},
         LT_OPT_INT("--layers", "K", &r->layers, 1, 16, "depth peels, {range} (default 1)"),
-        LT_OPT_STR("--report", "PATH",
-                   &r->report, "(simulator build) write the cycle report of the whole render as\n"
+        LT_OPT_OUT("--report", "PATH.json",
+                   &r->report, "json", "(simulator build) write the cycle report of the whole render as\n"
                                "JSON; the text report is printed unless -q or --json"),
         {.name = "--light", .kind = LT_OPT_VEC, .dest = r->lf, .seen = &r->seen_light,
          .meta = "X,Y,Z", .lo = -HUGE_VAL, .hi = HUGE_VAL, .n = 3,
@@ -1090,15 +1161,15 @@ static int render_parse(render_t *r, int argc, char **argv)
 static int render_load(render_t *r)
 {
     lt_scenefile_t *sf = &r->sf;
-    char err[1024];
+    lt_diag_t diag;
     int a;
     if (!lt_meter_available() && r->report != NULL) {
         fprintf(stderr, "%s render: --report needs the simulator build (build/sim/lanetrace); "
                         "this is the native build\n", prog);
         return EXIT_USAGE;
     }
-    if (r->scene_path != NULL && lt_sf_load(r->scene_path, sf, err, sizeof err) != 0) {
-        fprintf(stderr, "%s\n", err);
+    if (r->scene_path != NULL && lt_sf_load(r->scene_path, sf, &diag) != 0) {
+        fprintf(stderr, "%s\n", diag.msg);
         return EXIT_INPUT;
     }
     if (r->seen_res) {
@@ -1113,26 +1184,26 @@ static int render_load(render_t *r)
         memcpy(r->lf, sf->lights[0].position, sizeof r->lf);
         r->seen_light = 1;
     }
-    if (lt_meter_init(sf->machine, NULL, NULL, err, sizeof err) != 0) {
-        fprintf(stderr, "%s\n", err);
+    if (lt_meter_init(sf->machine, NULL, NULL, &diag) != 0) {
+        fprintf(stderr, "%s\n", diag.msg);
         return EXIT_USAGE;
     }
-    if (lt_mesh_load(sf->mesh, &r->mesh, err, sizeof err) != 0) {
-        fprintf(stderr, "%s\n", err);
+    if (lt_mesh_load(sf->mesh, &r->mesh, &diag) != 0) {
+        fprintf(stderr, "%s\n", diag.msg);
         return EXIT_INPUT;
     }
-    if (lt_scene_prepare(&r->mesh, &r->sc, err, sizeof err) != 0) {
-        fprintf(stderr, "%s: %s\n", sf->mesh, err);
+    if (lt_scene_prepare(&r->mesh, &r->sc, &diag) != 0) {
+        fprintf(stderr, "%s: %s\n", sf->mesh, diag.msg);
         return EXIT_INPUT;
     }
-    if (r->path->path == LT_PATH_Q16 && lt_scene_check_q16(&r->sc, sf->mesh, err, sizeof err) != 0) {
-        fprintf(stderr, "%s\n", err);
+    if (r->path->path == LT_PATH_Q16 && lt_scene_check_q16(&r->sc, sf->mesh, &diag) != 0) {
+        fprintf(stderr, "%s\n", diag.msg);
         return EXIT_INPUT;
     }
     if (sf->has_camera) {
         if (lt_camera_look(&r->sc, sf->eye, sf->target, sf->up, sf->fov_y_deg, sf->width,
-                           sf->height, &r->cam, err, sizeof err) != 0) {
-            fprintf(stderr, "%s: %s\n", sf->path, err);
+                           sf->height, &r->cam, &diag) != 0) {
+            fprintf(stderr, "%s: %s\n", sf->path, diag.msg);
             return EXIT_INPUT;
         }
     } else {
@@ -1160,19 +1231,74 @@ static int render_load(render_t *r)
 
 /* The structure, the primary rays, the image buffers and the shadow rays. Returns 0 or an exit
  * code. */
+/* Bytes of memory available to this process: MemAvailable of /proc/meminfo, or the address-space
+ * limit (ulimit -v) when that is lower; 0 if neither is known. *what names the one used. */
+static double mem_available(const char **what)
+{
+    char line[256];
+    double kb = 0.0, avail = 0.0;
+    struct rlimit rl;
+    FILE *f = fopen("/proc/meminfo", "r");
+    *what = "MemAvailable";
+    if (f != NULL) {
+        while (fgets(line, sizeof line, f) != NULL)
+            if (sscanf(line, "MemAvailable: %lf kB", &kb) == 1)
+                break;
+        fclose(f);
+        avail = kb * 1024.0;
+    }
+    if (getrlimit(RLIMIT_AS, &rl) == 0 && rl.rlim_cur != RLIM_INFINITY &&
+        (avail == 0.0 || (double)rl.rlim_cur < avail)) {
+        avail = (double)rl.rlim_cur;
+        *what = "the address-space limit, ulimit -v";
+    }
+    return avail;
+}
+
+/* The images of the whole render, measured and allocated before any tracing: a render too large
+ * for this machine fails at once, naming the size, instead of after the trace. Returns 0 or an
+ * exit code. */
+static int render_memory(render_t *r)
+{
+    const lt_scenefile_t *sf = &r->sf;
+    lt_diag_t diag;
+    double n = (double)sf->width * sf->height, L = r->layers > 1 ? r->layers : 0;
+    /* frames (id 4 + t 8 + cost 4 + steps 4) for the render and each peel, 10 float channels,
+       RGB8 + occlusion bytes, one float depth per peel for the EXR */
+    const char *what;
+    double need = n * (20.0 * (1.0 + L) + 40.0 + 4.0 + 4.0 * L), avail = mem_available(&what);
+    int l;
+    if (avail > 0.0 && need > avail) {
+        fprintf(stderr, "%s render: %ux%u with %d layer(s) needs %.2f GiB for its images; %.2f GiB "
+                        "are available (%s); lower --res or --layers\n", prog, sf->width,
+                sf->height, r->layers, need / 1073741824.0, avail / 1073741824.0, what);
+        return EXIT_INPUT;
+    }
+    if (lt_frame_alloc(&r->fr, sf->width, sf->height, &diag) != 0) {
+        fprintf(stderr, "%s render: %s (%.2f GiB needed in all)\n", prog, diag.msg,
+                need / 1073741824.0);
+        return EXIT_INPUT;
+    }
+    for (l = 0; l < r->layers && r->layers > 1; l++)
+        if (lt_frame_alloc(&r->lay[l], sf->width, sf->height, &diag) != 0) {
+            fprintf(stderr, "%s render: %s (layer %d; %.2f GiB needed in all)\n", prog,
+                    diag.msg, l, need / 1073741824.0);
+            return EXIT_INPUT;
+        }
+    return 0;
+}
+
 static int render_trace(render_t *r)
 {
     const lt_scenefile_t *sf = &r->sf;
     const char *structure = lt_render_structures[r->structure];
-    char err[1024];
+    lt_diag_t diag;
     int a;
-    if (lt_frame_alloc(&r->fr, sf->width, sf->height, err, sizeof err) != 0) {
-        fprintf(stderr, "%s\n", err);
-        return EXIT_INPUT;
-    }
-    r->acc = lt_accel_build(&r->sc, structure, (lt_path_t)r->path->path, err, sizeof err);
+    if ((a = render_memory(r)) != 0)
+        return a;
+    r->acc = lt_accel_build(&r->sc, structure, (lt_path_t)r->path->path, &diag);
     if (r->acc == NULL) {
-        fprintf(stderr, "%s render: %s\n", prog, err);
+        fprintf(stderr, "%s render: %s\n", prog, diag.msg);
         return EXIT_USAGE;
     }
     progress_begin("render");
@@ -1191,8 +1317,8 @@ static int render_trace(render_t *r)
         }
     if (strcmp(structure, "chunks") != 0 &&
         lt_render_shadows(&r->sc, r->acc, &r->cam, &r->fr, r->light, &r->nshadow, &r->nocc,
-                          r->occ, err, sizeof err) != 0) {
-        fprintf(stderr, "%s render: %s\n", prog, err);
+                          r->occ, &diag) != 0) {
+        fprintf(stderr, "%s render: %s\n", prog, diag.msg);
         return EXIT_INPUT;
     }
     return 0;
@@ -1253,7 +1379,8 @@ static int render_write_exr(render_t *r)
 {
     const lt_scenefile_t *sf = &r->sf;
     size_t n = r->n, i;
-    char err[1024], path[1200];
+    char path[LT_TMP_PATH_MAX];
+    lt_diag_t diag;
     lt_exr_channel_t ec[8 + 16];
     lt_exr_image_t im;
     static const char *const names[8] = {"Z", "id", "N.x", "N.y", "N.z", "R", "G", "B"};
@@ -1266,7 +1393,8 @@ static int render_write_exr(render_t *r)
     }
     for (l = 0; l < r->layers && r->layers > 1; l++) {
         float *z = malloc(n * sizeof(float));
-        if (z == NULL || lt_frame_alloc(&r->lay[l], sf->width, sf->height, err, sizeof err) != 0) {
+        if (z == NULL || (r->lay[l].id == NULL &&
+                          lt_frame_alloc(&r->lay[l], sf->width, sf->height, &diag) != 0)) {
             free(z);
             fprintf(stderr, "%s render: out of memory for layer %d\n", prog, l);
             status = EXIT_INPUT;
@@ -1276,10 +1404,9 @@ static int render_write_exr(render_t *r)
             memcpy(r->lay[0].id, r->fr.id, n * sizeof *r->fr.id);
             memcpy(r->lay[0].t, r->fr.t, n * sizeof *r->fr.t);
         } else if ((r->nrays += count_hits(&r->lay[l - 1]), 0) ||
-                   lt_render_peel(&r->sc, r->acc, &r->cam, &r->lay[l - 1], &r->lay[l], err,
-                                  sizeof err) != 0) {
+                   lt_render_peel(&r->sc, r->acc, &r->cam, &r->lay[l - 1], &r->lay[l], &diag) != 0) {
             free(z);
-            fprintf(stderr, "%s render: %s\n", prog, err);
+            fprintf(stderr, "%s render: %s\n", prog, diag.msg);
             status = EXIT_USAGE;
             break;
         }
@@ -1296,9 +1423,12 @@ static int render_write_exr(render_t *r)
         im.height = (int32_t)sf->height;
         im.nchannels = nc;
         im.channels = ec;
-        snprintf(path, sizeof path, "%s.exr", r->out);
-        if (lt_exr_write(path, &im, err, sizeof err) != 0) {
-            fprintf(stderr, "%s\n", err);
+        const char *dst = NULL;
+        status = render_out(r, ".exr", path, &dst);
+        if (status != 0) {
+            /* the message is out */
+        } else if (lt_exr_write(dst, &im, &diag) != 0) {
+            fprintf(stderr, "%s\n", diag.msg);
             status = EXIT_INPUT;
         } else if (!quiet) {
             printf("exr       %s (%d channels%s)\n", path, nc,
@@ -1315,7 +1445,7 @@ static int render_write_exr(render_t *r)
 static int render_report(render_t *r)
 {
     const lt_scenefile_t *sf = &r->sf;
-    char err[1024];
+    lt_diag_t diag;
     char title[1400], extra[256], *js;
     if (!lt_meter_available())
         return 0;
@@ -1327,8 +1457,16 @@ static int render_report(render_t *r)
              r->n, r->nshadow, (unsigned long long)(r->nrays - r->n - r->nshadow));
     js = lt_meter_report_json(title, r->nrays, extra);
     if (r->report != NULL) {
-        if (js == NULL || write_atomic(r->report, js, err, sizeof err) != 0) {
-            fprintf(stderr, "%s\n", js == NULL ? "render: out of memory for the report" : err);
+        const char *dst = NULL;
+        FILE *f = NULL;
+        if (lt_outset_add(r->set, r->report, &dst, &diag) != 0 || js == NULL ||
+            (f = fopen(dst, "w")) == NULL || fputs(js, f) < 0 || fclose(f) != 0) {
+            if (f == NULL && js != NULL && dst != NULL)
+                lt_diag_fail(&diag, "%s: cannot create the output: %s", r->report,
+                             strerror(errno));
+            else if (f != NULL)
+                lt_diag_fail(&diag, "%s: write failed (disk full?)", r->report);
+            fprintf(stderr, "%s\n", js == NULL ? "render: out of memory for the report" : diag.msg);
             free(js);
             return EXIT_INPUT;
         }
@@ -1345,15 +1483,18 @@ static int render_write_pngs(render_t *r)
 {
     const lt_scenefile_t *sf = &r->sf;
     const lt_frame_t *fr = &r->fr;
-    char err[1024], path[1200];
+    char path[LT_TMP_PATH_MAX];
+    lt_diag_t diag;
     double zmin = INFINITY, zmax = 0.0;
-    static const char *const kinds[3] = {"depth", "normals", "ids"};
+    static const char *const kinds[3] = {".depth.png", ".normals.png", ".ids.png"};
+    const char *dst = NULL;
     size_t i;
-    int kk;
-    snprintf(path, sizeof path, "%s.png", r->out);
-    if (lt_png_write(path, r->rgb, (int32_t)sf->width, (int32_t)sf->height, 3, 3 * sf->width,
-                     err, sizeof err) != 0) {
-        fprintf(stderr, "%s\n", err);
+    int kk, rc;
+    if ((rc = render_out(r, ".png", path, &dst)) != 0)
+        return rc;
+    if (lt_png_write(dst, r->rgb, (int32_t)sf->width, (int32_t)sf->height, 3, 3 * sf->width,
+                     &diag) != 0) {
+        fprintf(stderr, "%s\n", diag.msg);
         return EXIT_INPUT;
     }
     for (i = 0; i < r->n; i++)
@@ -1380,10 +1521,11 @@ static int render_write_pngs(render_t *r)
                 px[2] = (uint8_t)(64 + (hsh >> 8) % 192);
             }
         }
-        snprintf(path, sizeof path, "%s.%s.png", r->out, kinds[kk]);
-        if (lt_png_write(path, r->rgb, (int32_t)sf->width, (int32_t)sf->height, 3, 3 * sf->width,
-                         err, sizeof err) != 0) {
-            fprintf(stderr, "%s\n", err);
+        if ((rc = render_out(r, kinds[kk], path, &dst)) != 0)
+            return rc;
+        if (lt_png_write(dst, r->rgb, (int32_t)sf->width, (int32_t)sf->height, 3, 3 * sf->width,
+                         &diag) != 0) {
+            fprintf(stderr, "%s\n", diag.msg);
             return EXIT_INPUT;
         }
     }
@@ -1444,6 +1586,11 @@ static int cmd_render(int argc, char **argv)
     rc = render_parse(&r, argc, argv);
     if (rc != LT_OPT_OK)
         return rc == LT_OPT_HELP ? 0 : EXIT_USAGE;
+    r.set = calloc(1, sizeof *r.set);
+    if (r.set == NULL) {
+        fprintf(stderr, "%s render: out of memory\n", prog);
+        return EXIT_INPUT;
+    }
     rc = render_load(&r);
     if (rc == 0)
         rc = render_trace(&r);
@@ -1457,8 +1604,21 @@ static int cmd_render(int argc, char **argv)
     }
     if (rc == 0)
         rc = render_write_pngs(&r);
+    /* all outputs or none: the new files replace the old ones only when every one was written */
+    if (rc == 0) {
+        lt_diag_t diag;
+        if (lt_outset_commit(r.set, &diag) != 0) {
+            fprintf(stderr, "%s render: %s\n", prog, diag.msg);
+            rc = EXIT_INPUT;
+        }
+    } else if (r.set->n > 0) {
+        fprintf(stderr, "%s render: none of the outputs written (%d prepared were removed; "
+                        "previous files are unchanged)\n", prog, r.set->n);
+        lt_outset_abort(r.set);
+    }
     if (rc == 0)
         render_summary(&r);
+    free(r.set);
     for (a = 0; a < 10; a++)
         free(r.ch[a]);
     for (a = 0; a < 16; a++)
@@ -1711,8 +1871,7 @@ static void usage(FILE *f)
 
 int main(int argc, char **argv)
 {
-    signal(SIGINT, on_signal);
-    signal(SIGTERM, on_signal);
+    lt_tmp_handle_signals(); /* no temporary output survives SIGINT, SIGTERM, SIGXFSZ, ... */
     if (argc < 2 || strcmp(argv[1], "help") == 0 || strcmp(argv[1], "--help") == 0 ||
         strcmp(argv[1], "-h") == 0) {
         usage(argc < 2 ? stderr : stdout);

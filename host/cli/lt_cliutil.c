@@ -2,7 +2,9 @@
 #include "cli/lt_cliutil.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 #include <time.h>
 
 double lt_now_s(void)
@@ -33,4 +35,17 @@ uint8_t lt_gamma8(double v)
 {
     v = v < 0.0 || v != v ? 0.0 : (v > 1.0 ? 1.0 : v);
     return (uint8_t)(255.0 * pow(v, 1.0 / 2.2) + 0.5);
+}
+
+int lt_path_tagged(char *out, size_t n, const char *path, const char *tag)
+{
+    const char *base = strrchr(path, '/'), *dot;
+    int k;
+    base = base != NULL ? base + 1 : path;
+    dot = strrchr(base, '.');
+    if (dot == NULL || dot == base)
+        k = snprintf(out, n, "%s.%s", path, tag);
+    else
+        k = snprintf(out, n, "%.*s.%s%s", (int)(dot - path), path, tag, dot);
+    return k >= 0 && (size_t)k < n ? 0 : -1;
 }

@@ -5,6 +5,7 @@
 #ifndef LT_CLIUTIL_H
 #define LT_CLIUTIL_H
 
+#include <stddef.h>
 #include <stdint.h>
 
 /* Seconds of the monotonic clock (CLOCK_MONOTONIC): for intervals only. */
@@ -12,6 +13,10 @@ double lt_now_s(void);
 
 /* "WxH" or "N" (square) -> *w, *h; 0 when both lie in 1..max, else -1 (nothing written). */
 int lt_parse_wh(const char *s, uint32_t max, uint32_t *w, uint32_t *h);
+
+/* path with ".tag" put before its extension ("r.json" + "q16" -> "r.q16.json"; no extension:
+ * "r" -> "r.q16") into out[n]. Returns 0, or -1 when it does not fit (nothing is cut). */
+int lt_path_tagged(char *out, size_t n, const char *path, const char *tag);
 
 /* A linear value clamped to [0, 1] (NaN -> 0) encoded with gamma 2.2 to 0..255, rounded. */
 uint8_t lt_gamma8(double v);

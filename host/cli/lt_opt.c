@@ -151,6 +151,38 @@ static void expected_range(const lt_opt_t *o, char *buf, size_t n)
         snprintf(buf, n, "expected %s", r);
 }
 
+/* The file kinds an output option can name, by extension (any case). */
+static const char *const out_exts[] = {"exr", "png", "json", "csv", "jpg", "jpeg", "tif", "tiff",
+                                       "ppm", "pgm", "bmp", "txt", "obj", "ply", NULL};
+
+/* An output path whose extension names another kind than ext ("exr"; "" for a prefix, which
+ * takes no extension of those kinds): the reason in why, 1; else 0. */
+static int output_ext_bad(const char *ext, const char *v, char *why, size_t n)
+{
+    const char *base = strrchr(v, '/'), *dot;
+    char e[8];
+    size_t k;
+    int i;
+    base = base != NULL ? base + 1 : v;
+    dot = strrchr(base, '.');
+    if (dot == NULL || dot == base || strlen(dot + 1) >= sizeof e)
+        return 0;
+    for (k = 0; dot[1 + k] != '\0'; k++)
+        e[k] = (char)tolower((unsigned char)dot[1 + k]);
+    e[k] = '\0';
+    for (i = 0; out_exts[i] != NULL && strcmp(out_exts[i], e) != 0; i++)
+        ;
+    if (out_exts[i] == NULL || strcmp(e, ext) == 0)
+        return 0;
+    if (ext[0] == '\0')
+        snprintf(why, n, "a path prefix, not a file: the outputs get their own extensions "
+                         "(PREFIX.exr, PREFIX.png, ...); give it without '.%s'", e);
+    else
+        snprintf(why, n, "this output is a .%s file; its name ends in '.%s' (name it "
+                         "<name>.%s)", ext, e, ext);
+    return 1;
+}
+
 /* Read one option's value into its destination; prints the message and returns -1 when bad. */
 static int take_value(const lt_opt_cmd_t *cmd, const lt_opt_t *o, const char *spelt, const char *v)
 {
@@ -158,6 +190,8 @@ static int take_value(const lt_opt_cmd_t *cmd, const lt_opt_t *o, const char *sp
     why[0] = '\0';
     switch (o->kind) {
     case LT_OPT_STRING:
+        if (o->ext != NULL && output_ext_bad(o->ext, v, why, sizeof why))
+            break;
         *(const char **)o->dest = v;
         return 0;
     case LT_OPT_INT: {

@@ -74,6 +74,9 @@ typedef struct lt_opt {
     const char *expect;       /* CUSTOM, VEC: what a valid value is ("X,Y,Z,SIZE (SIZE >= 0)") */
     lt_opt_parse_fn parse;    /* CUSTOM */
     const void *ctx;          /* CUSTOM: passed to parse */
+    const char *ext;          /* STRING naming an output file: its kind's extension ("exr");
+                                 "" for a path prefix; a name ending in another output kind's
+                                 extension (.png for an EXR, .exr for a prefix) is refused */
 } lt_opt_t;
 
 /* Table entries (C99 designated initializers; write a full initializer for the other fields). */
@@ -83,6 +86,8 @@ typedef struct lt_opt {
     {.name = (nm), .kind = LT_OPT_FLAG, .dest = (d), .help = (h), .value = (v)}
 #define LT_OPT_STR(nm, mt, d, h)                                                                   \
     {.name = (nm), .kind = LT_OPT_STRING, .dest = (d), .meta = (mt), .help = (h)}
+#define LT_OPT_OUT(nm, mt, d, x, h)                                                                \
+    {.name = (nm), .kind = LT_OPT_STRING, .dest = (d), .meta = (mt), .help = (h), .ext = (x)}
 #define LT_OPT_INT(nm, mt, d, l, u, h)                                                             \
     {.name = (nm), .kind = LT_OPT_INT, .dest = (d), .meta = (mt), .help = (h), .lo = (l), .hi = (u)}
 #define LT_OPT_DBL(nm, mt, d, l, u, h)                                                             \

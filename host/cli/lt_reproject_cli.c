@@ -7,10 +7,12 @@
  */
 #include "cli/lt_reproject_cli.h"
 #include "cli/lt_cliutil.h"
+#include "lt_rate.h"
 #include "cli/lt_opt.h"
 #include "io/lt_exr.h"
 #include "io/lt_heatmap.h"
 #include "io/lt_mesh.h"
+#include "io/lt_tmpfiles.h"
 #include "lt_meter.h"
 #include "io/lt_png.h"
 #include "render/lt_paths.h"
@@ -36,6 +38,9 @@ typedef struct rp {
     /* options */
     lt_scenefile_t sf;
     const char *scene_path, *depth, *channel, *out, *png, *heat_steps, *heat_cycles, *heat_error;
+    const char *mesh_over; /* --mesh: the scene's mesh without a scene file */
+    int deep_front;        /* --deep-front: a deep EXR is read front-most sample per pixel */
+    lt_outset_t *set;      /* the outputs, renamed into place together at the end */
     const char *report, *machine;
     int npos, truth, color, dist, json, layers, enc, tracer, sample, inpaint, max_steps;
     int seen_move, seen_move_rel, seen_rot, seen_enc, seen_srck, seen_dstk, seen_res;
@@ -87,6 +92,13 @@ static int rp_options(rp_t *r, int *quiet, const char *prog, int argc, char **ar
         LT_OPT_SECTION_("input:"),
         LT_OPT_STR("--depth", "FILE.exr", &r->depth,
                    "source depth (z along the optical axis unless --dist)"),
+        LT_OPT_STR("--mesh", "PATH", &r->mesh_over,
+                   "the mesh the depth was rendered from (lanetrace render --mesh PATH):\n"
+                   "its render camera is the source camera and --truth renders it\n"
+                   "(overrides the scene file's \"mesh\")"),
+        LT_OPT_FLAG_("--deep-front", &r->deep_front,
+                     "a deep EXR (several samples per pixel): read the front-most\n"
+                     "(least Z) sample of each pixel"),
         LT_OPT_STR("--channel", "NAME", &r->channel,
                    "depth channel (default: Z, depth, the default view's Z)"),
         LT_OPT_INT("--layers", "K", &r->layers, 1, LT_RP_MAX_LAYERS,
@@ -156,19 +168,19 @@ static int rp_options(rp_t *r, int *quiet, const char *prog, int argc, char **ar
                      "synthesised depth's error: wrong hit/miss, RMSE, within tolerance"),
         {.name = "--truth-tol", .kind = LT_OPT_DOUBLE, .dest = &r->truth_tol, .meta = "REL",
          .lo = 0.0, .hi = 1.0, .flags = LT_OPT_LO_OPEN, .help = tol_help},
-        LT_OPT_STR("--heat-error", "FILE.png", &r->heat_error,
+        LT_OPT_OUT("--heat-error", "FILE.png", &r->heat_error, "png",
                    "|z - z_true| / z_true per pixel, colours 0..5x the tolerance\n"
                    "(black: no surface in one of the two)"),
         LT_OPT_SECTION_("outputs:"),
-        LT_OPT_STR("--out", "FILE.exr", &r->out,
+        LT_OPT_OUT("--out", "FILE.exr", &r->out, "exr",
                    "R G B (linear), Z (target depth, inf = background), hole (0 hit,\n"
                    "1 background, 2 disoccluded, 3 outside, 4 step bound), steps,\n"
                    "cycles (simulator build), Ztrue (with --truth)"),
-        LT_OPT_STR("--png", "FILE.png", &r->png, "the view (gamma 2.2)"),
-        LT_OPT_STR("--heat-steps", "FILE.png", &r->heat_steps, "quadtree nodes per pixel, with legend"),
-        LT_OPT_STR("--heat-cycles", "FILE.png", &r->heat_cycles,
+        LT_OPT_OUT("--png", "FILE.png", &r->png, "png", "the view (gamma 2.2)"),
+        LT_OPT_OUT("--heat-steps", "FILE.png", &r->heat_steps, "png", "quadtree nodes per pixel, with legend"),
+        LT_OPT_OUT("--heat-cycles", "FILE.png", &r->heat_cycles, "png",
                    "(simulator build) simulated cycles per pixel, with legend"),
-        LT_OPT_STR("--report", "FILE.json", &r->report,
+        LT_OPT_OUT("--report", "FILE.json", &r->report, "json",
                    "(simulator build) the cycle report as JSON"),
         LT_OPT_FLAG_("--json", &r->json, "the summary as JSON on stdout"),
         LT_OPT_FLAG_("-q", quiet, "quiet: no summary, no report text"),
@@ -265,8 +277,7 @@ static void cam_from_camera(const lt_camera_t *cam, uint32_t w, uint32_t h, lt_r
 /* Ground truth: the target view rendered by the object-space tracer (float32 BVH packets, the
  * path lanetrace render uses) as z-depths along the target's optical axis, +inf on a miss. The
  * tracer's camera is centred with square pixels, so the target's intrinsics must be too. */
-static int render_truth(const lt_scene_t *sc, const lt_reproj_cam_t *d, float *ztrue, char *err,
-                        size_t errlen)
+static int render_truth(const lt_scene_t *sc, const lt_reproj_cam_t *d, float *ztrue, lt_diag_t *diag)
 {
     lt_camera_t cam;
     lt_frame_t fr;
@@ -276,7 +287,7 @@ static int render_truth(const lt_scene_t *sc, const lt_reproj_cam_t *d, float *z
     int k;
     if (fabs(d->fx - d->fy) > 1e-9 * d->fy || fabs(d->cx - 0.5 * w) > 1e-9 * w ||
         fabs(d->cy - 0.5 * h) > 1e-9 * h) {
-        snprintf(err, errlen, "--truth: the target camera (f %.6g,%.6g c %.6g,%.6g, %ux%u) is not "
+        lt_diag_fail(diag, "--truth: the target camera (f %.6g,%.6g c %.6g,%.6g, %ux%u) is not "
                               "centred with square pixels, which the object-space tracer's camera "
                               "needs (drop --dst-cam, keep the aspect in --res)",
                  d->fx, d->fy, d->cx, d->cy, d->width, d->height);
@@ -292,9 +303,9 @@ static int render_truth(const lt_scene_t *sc, const lt_reproj_cam_t *d, float *z
     cam.tan_half_fov = 0.5 * h / d->fy;
     cam.width = d->width;
     cam.height = d->height;
-    if (lt_frame_alloc(&fr, d->width, d->height, err, errlen) != 0)
+    if (lt_frame_alloc(&fr, d->width, d->height, diag) != 0)
         return -1;
-    acc = lt_accel_build(sc, "bvh", LT_PATH_F32, err, errlen);
+    acc = lt_accel_build(sc, "bvh", LT_PATH_F32, diag);
     if (acc == NULL) {
         lt_frame_free(&fr);
         return -1;
@@ -359,7 +370,7 @@ static int rp_settle(rp_t *r, const char *prog)
 {
     lt_scenefile_t *sf = &r->sf;
     const lt_path_info_t *scene_enc;
-    char err[1024];
+    lt_diag_t diag;
     if (!lt_meter_available() &&
         (r->heat_cycles != NULL || r->report != NULL || r->machine != NULL)) {
         fprintf(stderr, "%s reproject: %s needs the simulator build (build/sim/lanetrace); this is "
@@ -367,17 +378,24 @@ static int rp_settle(rp_t *r, const char *prog)
                 r->heat_cycles != NULL ? "--heat-cycles" : r->report != NULL ? "--report" : "--machine");
         return EXIT_USAGE;
     }
-    if (r->scene_path != NULL && lt_sf_load(r->scene_path, sf, err, sizeof err) != 0) {
-        fprintf(stderr, "%s\n", err);
+    if (r->scene_path != NULL && lt_sf_load(r->scene_path, sf, &diag) != 0) {
+        fprintf(stderr, "%s\n", diag.msg);
         return EXIT_INPUT;
+    }
+    if (r->mesh_over != NULL &&
+        snprintf(sf->mesh, sizeof sf->mesh, "%s", r->mesh_over) >= (int)sizeof sf->mesh) {
+        fprintf(stderr, "%s reproject: --mesh %.60s...: the path is longer than %zu bytes\n", prog,
+                r->mesh_over, sizeof sf->mesh - 1);
+        return EXIT_USAGE;
     }
     if (r->depth == NULL && sf->depth[0] != '\0')
         r->depth = sf->depth;
     if (r->heat_error != NULL)
         r->truth = 1;
     if (r->truth && sf->mesh[0] == '\0') {
-        fprintf(stderr, "%s reproject: --truth%s needs a mesh scene file (SCENE.json with "
-                        "'mesh'): the ground truth is the mesh rendered from the target camera\n",
+        fprintf(stderr, "%s reproject: --truth%s needs the mesh (--mesh PATH or a scene file "
+                        "with 'mesh'): the ground truth is the mesh rendered from the target "
+                        "camera\n",
                 prog, r->heat_error != NULL ? " (and --heat-error)" : "");
         return EXIT_USAGE;
     }
@@ -414,8 +432,8 @@ static int rp_settle(rp_t *r, const char *prog)
                 lt_meter_machine_names());
         return EXIT_USAGE;
     }
-    if (lt_meter_init(r->machine, NULL, NULL, err, sizeof err) != 0) {
-        fprintf(stderr, "%s\n", err);
+    if (lt_meter_init(r->machine, NULL, NULL, &diag) != 0) {
+        fprintf(stderr, "%s\n", diag.msg);
         return EXIT_USAGE;
     }
     return 0;
@@ -426,9 +444,10 @@ static int rp_settle(rp_t *r, const char *prog)
 static int rp_load_depth(rp_t *r, const char *prog, int quiet)
 {
     lt_exr_read_opts_t xo = LT_EXR_READ_OPTS_DEFAULT;
-    char err[1024];
+    lt_diag_t diag;
     size_t i, n;
     int l;
+    xo.deep = r->deep_front ? LT_EXR_DEEP_FRONT : LT_EXR_DEEP_REJECT;
     if (r->layers == 0)
         r->layers = 1;
     for (l = 0; l < r->layers; l++) {
@@ -439,8 +458,8 @@ static int rp_load_depth(rp_t *r, const char *prog, int quiet)
             ch = name;
         }
         xo.color = r->color && r->layers > 1 && l > 0;
-        if (lt_exr_read_depth(r->depth, ch, &xo, &r->dl[l], err, sizeof err) != 0) {
-            fprintf(stderr, "%s\n", err);
+        if (lt_exr_read_depth(r->depth, ch, &xo, &r->dl[l], &diag) != 0) {
+            fprintf(stderr, "%s\n", diag.msg);
             return EXIT_INPUT;
         }
         if (l > 0 && (r->dl[l].width != r->dl[0].width || r->dl[l].height != r->dl[0].height)) {
@@ -463,7 +482,7 @@ static int rp_load_depth(rp_t *r, const char *prog, int quiet)
         lt_exr_depth_t *dc = &r->dc;
         xo.color = 1;
         if (lt_exr_read_depth(r->depth, r->layers > 1 ? r->channel : r->dl[0].channel, &xo, dc,
-                              err, sizeof err) == 0 &&
+                              &diag) == 0 &&
             dc->width == (int32_t)r->W && dc->height == (int32_t)r->H && dc->rgba[0] != NULL &&
             dc->rgba[1] != NULL && dc->rgba[2] != NULL) {
             r->dl[0].rgba[0] = dc->rgba[0];
@@ -508,7 +527,7 @@ static int rp_source_camera(rp_t *r)
     lt_rp_source_t *src = &r->src;
     uint32_t W = r->W, H = r->H;
     size_t i, n = r->n;
-    char err[1024];
+    lt_diag_t diag;
     int l;
     memset(src, 0, sizeof *src);
     if (r->seen_srck) {
@@ -526,19 +545,18 @@ static int rp_source_camera(rp_t *r)
         /* lanetrace render's camera for this scene, in its scaled units; the scene stays loaded
            for --truth */
         lt_camera_t cam;
-        if (lt_mesh_load(sf->mesh, &r->mesh, err, sizeof err) != 0) {
-            fprintf(stderr, "%s\n", err);
+        if (lt_mesh_load(sf->mesh, &r->mesh, &diag) != 0) {
+            fprintf(stderr, "%s\n", diag.msg);
             return EXIT_INPUT;
         }
-        if (lt_scene_prepare(&r->mesh, &r->sc, err, sizeof err) != 0) {
-            fprintf(stderr, "%s: %s\n", sf->mesh, err);
+        if (lt_scene_prepare(&r->mesh, &r->sc, &diag) != 0) {
+            fprintf(stderr, "%s: %s\n", sf->mesh, diag.msg);
             return EXIT_INPUT;
         }
         r->have_scene = 1;
         if (sf->has_camera) {
-            if (lt_camera_look(&r->sc, sf->eye, sf->target, sf->up, sf->fov_y_deg, W, H, &cam, err,
-                               sizeof err) != 0) {
-                fprintf(stderr, "%s: %s\n", sf->path, err);
+            if (lt_camera_look(&r->sc, sf->eye, sf->target, sf->up, sf->fov_y_deg, W, H, &cam, &diag) != 0) {
+                fprintf(stderr, "%s: %s\n", sf->path, diag.msg);
                 return EXIT_INPUT;
             }
         } else {
@@ -625,7 +643,7 @@ static void rp_target_camera(rp_t *r)
 static int rp_ground_truth(rp_t *r, const char *prog, const lt_rp_cli_hooks_t *hk)
 {
     size_t nt = (size_t)r->dcam.width * r->dcam.height;
-    char err[1024];
+    lt_diag_t diag;
     if (!r->have_scene) {
         fprintf(stderr, "%s reproject: --truth needs the source camera of the mesh scene "
                         "(lanetrace render's camera), not --src-cam\n", prog);
@@ -639,14 +657,14 @@ static int rp_ground_truth(rp_t *r, const char *prog, const lt_rp_cli_hooks_t *h
         return EXIT_INPUT;
     }
     hk->begin("ground truth");
-    if (render_truth(&r->sc, &r->dcam, r->ztrue, err, sizeof err) != 0) {
+    if (render_truth(&r->sc, &r->dcam, r->ztrue, &diag) != 0) {
         hk->end();
-        fprintf(stderr, "%s reproject: %s\n", prog, err);
+        fprintf(stderr, "%s reproject: %s\n", prog, diag.msg);
         return EXIT_USAGE;
     }
     hk->end();
-    if (lt_meter_init(r->machine, NULL, NULL, err, sizeof err) != 0) {
-        fprintf(stderr, "%s\n", err);
+    if (lt_meter_init(r->machine, NULL, NULL, &diag) != 0) {
+        fprintf(stderr, "%s\n", diag.msg);
         return EXIT_INPUT;
     }
     return 0;
@@ -657,7 +675,7 @@ static int rp_run(rp_t *r, const char *prog, const lt_rp_cli_hooks_t *hk)
 {
     lt_rp_opts_t *ro = &r->ro;
     lt_q30_t *pp[4];
-    char err[1024];
+    lt_diag_t diag;
     int k;
     lt_rp_opts_default(ro);
     ro->enc = (lt_qt_enc_t)r->path->qt_enc;
@@ -676,9 +694,9 @@ static int rp_run(rp_t *r, const char *prog, const lt_rp_cli_hooks_t *hk)
             *pp[k] = (lt_q30_t)floor(r->qtp[k] * 1073741824.0 + 0.5);
     ro->progress = hk->progress;
     hk->begin("reproject");
-    if (lt_rp_run(&r->src, &r->dcam, ro, &r->res, err, sizeof err) != 0) {
+    if (lt_rp_run(&r->src, &r->dcam, ro, &r->res, &diag) != 0) {
         hk->end();
-        fprintf(stderr, "%s: %s\n", r->depth, err);
+        fprintf(stderr, "%s: %s\n", r->depth, diag.msg);
         return EXIT_INPUT;
     }
     hk->end();
@@ -689,15 +707,28 @@ static int rp_run(rp_t *r, const char *prog, const lt_rp_cli_hooks_t *hk)
     return 0;
 }
 
+/* path as a member of the output set: where to write it, or NULL after the message. */
+static const char *rp_out(const rp_t *r, const char *path)
+{
+    lt_diag_t diag;
+    const char *dst = NULL;
+    if (lt_outset_add(r->set, path, &dst, &diag) != 0) {
+        fprintf(stderr, "%s\n", diag.msg);
+        return NULL;
+    }
+    return dst;
+}
+
 /* --out: R G B Z hole steps (+ cycles in the sim build, Ztrue with --truth). Returns 0 or an exit
  * code. */
 static int rp_write_exr(const rp_t *r, float *const ch[4])
 {
     const lt_rp_result_t *res = &r->res;
-    char err[1024];
+    lt_diag_t diag;
     lt_exr_channel_t ec[8];
     lt_exr_image_t im;
     static const char *const names[4] = {"R", "G", "B", "Z"};
+    const char *dst;
     int nc = 0, k;
     for (k = 0; k < 4; k++) {
         ec[nc].name = names[k];
@@ -725,8 +756,10 @@ static int rp_write_exr(const rp_t *r, float *const ch[4])
     im.height = (int32_t)res->height;
     im.nchannels = nc;
     im.channels = ec;
-    if (lt_exr_write(r->out, &im, err, sizeof err) != 0) {
-        fprintf(stderr, "%s\n", err);
+    if ((dst = rp_out(r, r->out)) == NULL)
+        return EXIT_INPUT;
+    if (lt_exr_write(dst, &im, &diag) != 0) {
+        fprintf(stderr, "%s\n", diag.msg);
         return EXIT_INPUT;
     }
     return 0;
@@ -740,7 +773,7 @@ static int rp_write_outputs(const rp_t *r, const char *prog)
     /* the error map's colours run from 0 to 5x the tolerance (larger errors saturate) */
     lt_heatmap_opts_t eo = LT_HEATMAP_OPTS_DEFAULT;
     size_t np = (size_t)res->width * res->height, i;
-    char err[1024];
+    lt_diag_t diag;
     float *ch[4];
     int k, status = 0;
     eo.lo = 0.0f;
@@ -768,31 +801,43 @@ static int rp_write_outputs(const rp_t *r, const char *prog)
         } else {
             for (i = 0; i < np * 3; i++)
                 px[i] = lt_gamma8((double)res->rgb[i]);
-            if (lt_png_write(r->png, px, (int32_t)res->width, (int32_t)res->height, 3, 0, err,
-                             sizeof err) != 0) {
-                fprintf(stderr, "%s\n", err);
+            const char *dst = rp_out(r, r->png);
+            if (dst == NULL) {
+                status = EXIT_INPUT;
+            } else if (lt_png_write(dst, px, (int32_t)res->width, (int32_t)res->height, 3, 0,
+                                    &diag) != 0) {
+                fprintf(stderr, "%s\n", diag.msg);
                 status = EXIT_INPUT;
             }
             free(px);
         }
     }
-    if (status == 0 && r->heat_steps != NULL &&
-        lt_heatmap_write_png(r->heat_steps, res->steps, (int32_t)res->width, (int32_t)res->height,
-                             NULL, err, sizeof err) != 0) {
-        fprintf(stderr, "%s\n", err);
-        status = EXIT_INPUT;
+    if (status == 0 && r->heat_steps != NULL) {
+        const char *dst = rp_out(r, r->heat_steps);
+        if (dst == NULL || lt_heatmap_write_png(dst, res->steps, (int32_t)res->width, (int32_t)res->height,
+                             NULL, &diag) != 0) {
+            if (dst != NULL)
+                fprintf(stderr, "%s\n", diag.msg);
+            status = EXIT_INPUT;
+        }
     }
-    if (status == 0 && r->heat_error != NULL &&
-        lt_heatmap_write_png(r->heat_error, r->relerr, (int32_t)res->width, (int32_t)res->height,
-                             &eo, err, sizeof err) != 0) {
-        fprintf(stderr, "%s\n", err);
-        status = EXIT_INPUT;
+    if (status == 0 && r->heat_error != NULL) {
+        const char *dst = rp_out(r, r->heat_error);
+        if (dst == NULL || lt_heatmap_write_png(dst, r->relerr, (int32_t)res->width, (int32_t)res->height,
+                             &eo, &diag) != 0) {
+            if (dst != NULL)
+                fprintf(stderr, "%s\n", diag.msg);
+            status = EXIT_INPUT;
+        }
     }
-    if (status == 0 && r->heat_cycles != NULL &&
-        lt_heatmap_write_png(r->heat_cycles, res->cycles, (int32_t)res->width,
-                             (int32_t)res->height, NULL, err, sizeof err) != 0) {
-        fprintf(stderr, "%s\n", err);
-        status = EXIT_INPUT;
+    if (status == 0 && r->heat_cycles != NULL) {
+        const char *dst = rp_out(r, r->heat_cycles);
+        if (dst == NULL || lt_heatmap_write_png(dst, res->cycles, (int32_t)res->width,
+                             (int32_t)res->height, NULL, &diag) != 0) {
+            if (dst != NULL)
+                fprintf(stderr, "%s\n", diag.msg);
+            status = EXIT_INPUT;
+        }
     }
     for (k = 0; k < 4; k++)
         free(ch[k]);
@@ -856,6 +901,7 @@ static void rp_print_summary(const rp_t *r, const rp_figs_t *f)
     const lt_reproj_cam_t *sc = &r->src.cam, *dc = &r->dcam;
     const char *enc = r->path->name;
     double rays = f->rays, px = f->px;
+    char rt[LT_RATE_TEXT];
     printf("source    %s: %ux%u, %d layer(s), channel %s%s, z_ref %g, median depth %.4g\n",
            r->depth, r->W, r->H, r->layers, r->dl[0].channel, r->dist == 1 ? " (distances)" : "",
            st->zref, r->median);
@@ -871,10 +917,10 @@ static void rp_print_summary(const rp_t *r, const rp_figs_t *f)
         printf("tracer    %s, %s: %zu bytes besides the w buffer, build %.3f s; "
                "thickness %.4g\n", r->tracer == LT_RP_DDA ? "DDA" : "Hi-Z", r->path->format,
                st->qt_bytes, st->t_build, (double)r->ro.ssb.thickness / 1073741824.0);
-    printf("rays      %llu of %llu pixels traced in %llu packets, %.3f s (%.2f Mrays/s)\n",
+    printf("rays      %llu of %llu pixels traced in %llu packets, %.3f s (%s)\n",
            (unsigned long long)st->rays, (unsigned long long)st->pixels,
            (unsigned long long)st->packets, st->t_trace,
-           st->t_trace > 0 ? (double)st->rays / st->t_trace * 1e-6 : 0.0);
+           lt_rate_text(st->t_trace > 0 ? (double)st->rays / st->t_trace : -1.0, rt));
     printf("per ray   nodes %.2f (max %u), AABB tests %.2f (max %u), plane tests %.2f "
            "(max %u)\n",
            (double)st->nodes / rays, st->nodes_max, (double)st->aabb / rays, st->aabb_max,
@@ -890,11 +936,12 @@ static void rp_print_summary(const rp_t *r, const rp_figs_t *f)
     if (r->truth)
         rp_print_truth(r, px);
     if (lt_meter_available())
-        printf("cycles    build %llu, setup %llu (%.1f per ray), traverse %llu (%.1f per "
-               "ray); lane utilisation %.1f%%\n",
+        printf("cycles    build %llu, setup %llu (%.1f per pixel), traverse %llu (%.1f per "
+               "ray), other %llu; total %llu; lane utilisation %.1f%% (the report's phases)\n",
                (unsigned long long)st->cyc_build, (unsigned long long)st->cyc_setup,
                (double)st->cyc_setup / px, (unsigned long long)st->cyc_trace,
-               (double)st->cyc_trace / rays, 100.0 * f->util);
+               (double)st->cyc_trace / rays, (unsigned long long)st->cyc_other,
+               (unsigned long long)st->cyc_total, 100.0 * f->util);
 }
 
 /* (sim build) the cycle report: the text unless quiet, --report as JSON with the reprojection's
@@ -902,7 +949,7 @@ static void rp_print_summary(const rp_t *r, const rp_figs_t *f)
 static int rp_report(const rp_t *r, const rp_figs_t *f, const lt_rp_cli_hooks_t *hk)
 {
     const lt_rp_stats_t *st = &r->res.st;
-    char err[1024];
+    lt_diag_t diag;
     char title[1400], extra[2048], *js;
     int len;
     if (!lt_meter_available())
@@ -933,8 +980,13 @@ static int rp_report(const rp_t *r, const rp_figs_t *f, const lt_rp_cli_hooks_t 
         lt_meter_report_text(stdout, title, st->pixels);
     if (r->report != NULL) {
         js = lt_meter_report_json(title, st->pixels, extra);
-        if (js == NULL || hk->write_text(r->report, js, err, sizeof err) != 0) {
-            fprintf(stderr, "%s\n", js == NULL ? "reproject: out of memory for the report" : err);
+        const char *dst = js != NULL ? rp_out(r, r->report) : NULL;
+        if (js != NULL && dst == NULL) {
+            free(js);
+            return EXIT_INPUT;
+        }
+        if (js == NULL || hk->write_text(dst, js, &diag) != 0) {
+            fprintf(stderr, "%s\n", js == NULL ? "reproject: out of memory for the report" : diag.msg);
             free(js);
             return EXIT_INPUT;
         }
@@ -1059,6 +1111,11 @@ int lt_rp_cli(int argc, char **argv, const char *prog, const lt_rp_cli_hooks_t *
     if (r.json)
         *hk->quiet = 1;
     r.path = lt_paths_find(r.enc_names[r.enc], LT_PATHS_SCREEN);
+    r.set = calloc(1, sizeof *r.set);
+    if (r.set == NULL) {
+        fprintf(stderr, "%s reproject: out of memory\n", prog);
+        return EXIT_INPUT;
+    }
     rc = rp_settle(&r, prog);
     if (rc == 0)
         rc = rp_load_depth(&r, prog, *hk->quiet);
@@ -1079,12 +1136,25 @@ int lt_rp_cli(int argc, char **argv, const char *prog, const lt_rp_cli_hooks_t *
             rp_print_summary(&r, &f);
         rc = rp_report(&r, &f, hk);
     }
+    /* all outputs or none: the new files replace the old ones only when every one was written */
+    if (rc == 0) {
+        lt_diag_t diag;
+        if (lt_outset_commit(r.set, &diag) != 0) {
+            fprintf(stderr, "%s reproject: %s\n", prog, diag.msg);
+            rc = EXIT_INPUT;
+        }
+    } else if (r.set != NULL && r.set->n > 0) {
+        fprintf(stderr, "%s reproject: none of the outputs written (%d prepared were removed; "
+                        "previous files are unchanged)\n", prog, r.set->n);
+        lt_outset_abort(r.set);
+    }
     if (rc == 0) {
         if (!*hk->quiet)
             rp_print_files(&r);
         if (r.json)
             rp_print_json(&r, &f);
     }
+    free(r.set);
     rp_free(&r);
     return rc;
 }

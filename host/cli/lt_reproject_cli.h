@@ -8,6 +8,8 @@
 
 #include <stdio.h>
 
+#include "io/lt_diag.h"
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -20,7 +22,7 @@ typedef struct lt_rp_cli_hooks {
     int *quiet;
     /* write text to path atomically (temporary name, rename; removed on a signal); 0 or -1 with
        a message naming the path */
-    int (*write_text)(const char *path, const char *text, char *err, size_t errlen);
+    int (*write_text)(const char *path, const char *text, lt_diag_t *diag);
 } lt_rp_cli_hooks_t;
 
 /* argv[1] == "reproject". Returns the exit code: 0 ok, 1 input or runtime error, 2 usage. */

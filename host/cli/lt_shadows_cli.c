@@ -10,6 +10,7 @@
  */
 #include "render/lt_softshadow.h"
 #include "cli/lt_cliutil.h"
+#include "lt_rate.h"
 #include "cli/lt_opt.h"
 #include "cli/lt_shadows_cli.h"
 #include "lt_meter.h"
@@ -64,6 +65,9 @@ static void stage_add(stage_t *d, const stage_t *a)
 }
 
 static double ratio(uint64_t a, uint64_t b) { return b != 0 ? (double)a / (double)b : 0.0; }
+
+/* rays per second; -1 (printed "n/a") when no time was measured */
+static double rate(uint64_t rays, double seconds) { return seconds > 0.0 ? (double)rays / seconds : -1.0; }
 
 static double k_(uint64_t v) { return (double)v / 1000.0; }
 
@@ -182,9 +186,9 @@ static int shadows_parse(shadows_t *s, int argc, char **argv)
         LT_OPT_DBL("--tol", "T", &s->tol, 0.0, 1.0,
                    "penumbra tolerance on irradiance, {range} (default 0.05)"),
         LT_OPT_FLAG_("--no-ref", &s->no_ref, "skip the 256-sample reference and the quality metrics"),
-        LT_OPT_STR("--png", "PATH", &s->png, "filtered image"),
+        LT_OPT_OUT("--png", "PATH.png", &s->png, "png", "filtered image"),
         LT_OPT_STR("--raw-png", "PATH", &s->raw_png, "unfiltered image"),
-        LT_OPT_STR("--ref-png", "PATH", &s->ref_png, "the reference"),
+        LT_OPT_OUT("--ref-png", "PATH.png", &s->ref_png, "png", "the reference"),
         LT_OPT_ENUM_("--only", &s->only, only_names, "run one shadow method (default both, compared)"),
         LT_OPT_STR("--machine", "NAME", &s->machine, machine_help),
         LT_OPT_FLAG_("--report", &s->report,
@@ -208,13 +212,13 @@ static int shadows_parse(shadows_t *s, int argc, char **argv)
  * Returns 0 or an exit code. */
 static int shadows_load(shadows_t *s)
 {
-    char err[512];
+    lt_diag_t diag;
     lt_ss_opts_t o;
     double up[3] = {0, 1, 0};
     if (lt_ss_view_for(s->mesh_path, &s->view))
         s->pre = &s->view;
-    if (lt_mesh_load(s->mesh_path, &s->m, err, sizeof err) != 0) {
-        fprintf(stderr, "%s: %s\n", who, err);
+    if (lt_mesh_load(s->mesh_path, &s->m, &diag) != 0) {
+        fprintf(stderr, "%s: %s\n", who, diag.msg);
         return EXIT_INPUT;
     }
     if (s->ground < 0)
@@ -231,12 +235,17 @@ static int shadows_load(shadows_t *s)
             s->light_c[3] = 0.2 * (s->m.hi[0] - s->m.lo[0]);
         }
     }
-    if (s->ground && lt_ss_add_ground(&s->m, 0.6, err, sizeof err) != 0) {
-        fprintf(stderr, "%s: %s\n", who, err);
+    if (s->ground && lt_ss_add_ground(&s->m, 0.6, &diag) != 0) {
+        fprintf(stderr, "%s: %s\n", who, diag.msg);
         return EXIT_INPUT;
     }
-    if (lt_scene_prepare(&s->m, &s->sc, err, sizeof err) != 0) {
-        fprintf(stderr, "%s: %s: %s\n", who, s->mesh_path, err);
+    if (lt_scene_prepare(&s->m, &s->sc, &diag) != 0) {
+        fprintf(stderr, "%s: %s: %s\n", who, s->mesh_path, diag.msg);
+        return EXIT_INPUT;
+    }
+    /* the same representability rule as run and render (the ground plane included) */
+    if (s->path->path == LT_PATH_Q16 && lt_scene_check_q16(&s->sc, s->mesh_path, &diag) != 0) {
+        fprintf(stderr, "%s: %s\n", who, diag.msg);
         return EXIT_INPUT;
     }
     if (s->seen_eye || (s->pre != NULL && s->pre->has_camera)) {
@@ -248,15 +257,15 @@ static int shadows_load(shadows_t *s)
         if (s->pre != NULL && s->pre->has_camera && !s->seen_fov)
             s->fov = s->pre->fov;
         if (lt_camera_look(&s->sc, s->eye, s->target, up, s->fov, (uint32_t)s->res,
-                           (uint32_t)s->res, &s->cam, err, sizeof err) != 0) {
-            fprintf(stderr, "%s: %s\n", who, err);
+                           (uint32_t)s->res, &s->cam, &diag) != 0) {
+            fprintf(stderr, "%s: %s\n", who, diag.msg);
             return EXIT_INPUT;
         }
     } else {
         lt_camera_default(&s->sc, (uint32_t)s->res, (uint32_t)s->res, &s->cam);
     }
-    if (lt_ss_light_square(&s->sc, s->light_c, s->light_c[3], &s->light, err, sizeof err) != 0) {
-        fprintf(stderr, "%s: %s\n", who, err);
+    if (lt_ss_light_square(&s->sc, s->light_c, s->light_c[3], &s->light, &diag) != 0) {
+        fprintf(stderr, "%s: %s\n", who, diag.msg);
         return EXIT_INPUT;
     }
     if (!lt_meter_machine_known(s->machine)) {
@@ -264,8 +273,8 @@ static int shadows_load(shadows_t *s)
                 lt_meter_machine_names());
         return EXIT_USAGE;
     }
-    if (lt_meter_init(s->machine, NULL, NULL, err, sizeof err) != 0) {
-        fprintf(stderr, "%s: %s\n", who, err);
+    if (lt_meter_init(s->machine, NULL, NULL, &diag) != 0) {
+        fprintf(stderr, "%s: %s\n", who, diag.msg);
         return EXIT_INPUT;
     }
     lt_ss_opts_default(&s->sc, &o);
@@ -277,9 +286,9 @@ static int shadows_load(shadows_t *s)
     o.cos_min = s->cos_min;
     o.filter_vis = s->filter == 1;
     o.pflags = s->pflags;
-    s->ss = lt_ss_create(&s->sc, &s->cam, &s->light, &o, err, sizeof err);
+    s->ss = lt_ss_create(&s->sc, &s->cam, &s->light, &o, &diag);
     if (s->ss == NULL) {
-        fprintf(stderr, "%s: %s\n", who, err);
+        fprintf(stderr, "%s: %s\n", who, diag.msg);
         return EXIT_INPUT;
     }
     return 0;
@@ -517,9 +526,11 @@ static void shadows_simulated(const shadows_t *s)
     const stage_t *sp = &s->sp, *spf = &s->spf, *sshp = &s->sshp, *sshf = &s->sshf;
     const lt_ss_counts_t *cnt = &s->cnt;
     lt_meter_machine_t mm;
-    double mhz;
+    char r1[LT_RATE_TEXT], r2[LT_RATE_TEXT], r3[LT_RATE_TEXT], r4[LT_RATE_TEXT];
+    double mhz, hz;
     (void)lt_meter_machine_info(s->machine, &mm);
     mhz = (double)mm.clock_mhz;
+    hz = mhz * 1e6; /* rays per cycle x cycles per second */
     shadows_table(s, mm.name, mhz);
     if (s->run_pk && s->run_fr)
         printf("why       fewer cycles saved than the paper: the s15.16 kernels keep products "
@@ -536,22 +547,21 @@ static void shadows_simulated(const shadows_t *s)
            k_(spf->ev[LT_EV_CULL_CORNER]), k_(sshp->ev[LT_EV_CULL_BACK]),
            k_(sshf->ev[LT_EV_CULL_BACK]), k_(sshf->ev[LT_EV_CULL_CORNER]));
     if (s->run_pp || s->run_pf)
-        printf("speed     primary rays per simulated %.0f MHz core: P-Packet %.1f Mrays/s "
-               "(%.1f with shading), P-Frusta %.1f Mrays/s (%.1f with shading)\n", mhz,
-               ratio(cnt->primary_rays, sp->cycles - sp->cyc[LT_PH_SHADE]) * mhz,
-               ratio(cnt->primary_rays, sp->cycles) * mhz,
-               ratio(cnt->primary_rays, spf->cycles - spf->cyc[LT_PH_SHADE]) * mhz,
-               ratio(cnt->primary_rays, spf->cycles) * mhz);
+        printf("speed     primary rays per simulated %.0f MHz core: P-Packet %s "
+               "(%s with shading), P-Frusta %s (%s with shading)\n", mhz,
+               lt_rate_text(ratio(cnt->primary_rays, sp->cycles - sp->cyc[LT_PH_SHADE]) * hz, r1),
+               lt_rate_text(ratio(cnt->primary_rays, sp->cycles) * hz, r2),
+               lt_rate_text(ratio(cnt->primary_rays, spf->cycles - spf->cyc[LT_PH_SHADE]) * hz, r3),
+               lt_rate_text(ratio(cnt->primary_rays, spf->cycles) * hz, r4));
     if (s->run_fr)
-        printf("speed     S-Frusta: %.1f Mrays/s per simulated %.0f MHz core (primary + shadow "
-               "rays over all stages); shadow stage alone %.1f Mrays/s\n",
-               ratio(cnt->primary_rays + cnt->shadow_rays, s->tot_f.cycles) * mhz,
-               mhz, ratio(cnt->shadow_rays, sshf->cycles) * mhz);
+        printf("speed     S-Frusta: %s per simulated %.0f MHz core (primary + shadow "
+               "rays over all stages); shadow stage alone %s\n",
+               lt_rate_text(ratio(cnt->primary_rays + cnt->shadow_rays, s->tot_f.cycles) * hz, r1),
+               mhz, lt_rate_text(ratio(cnt->shadow_rays, sshf->cycles) * hz, r2));
     if (s->run_pk)
-        printf("speed     S-Packet: %.1f Mrays/s per simulated core; shadow stage alone "
-               "%.1f Mrays/s\n",
-               ratio(cnt->primary_rays + cnt->shadow_rays, s->tot_p.cycles) * mhz,
-               ratio(cnt->shadow_rays, sshp->cycles) * mhz);
+        printf("speed     S-Packet: %s per simulated core; shadow stage alone %s\n",
+               lt_rate_text(ratio(cnt->primary_rays + cnt->shadow_rays, s->tot_p.cycles) * hz, r1),
+               lt_rate_text(ratio(cnt->shadow_rays, sshp->cycles) * hz, r2));
 }
 
 /* (native build) the stage times and speed-ups. */
@@ -559,18 +569,19 @@ static void shadows_native(const shadows_t *s)
 {
     const stage_t *sp = &s->sp, *spf = &s->spf, *sshp = &s->sshp, *sshf = &s->sshf;
     const lt_ss_counts_t *cnt = &s->cnt;
+    char r1[LT_RATE_TEXT];
     if (s->run_pp)
-        printf("native    P-Packet %.3f s (%.2f Mrays/s with shading)", sp->seconds,
-               (double)cnt->primary_rays / sp->seconds / 1e6);
+        printf("native    P-Packet %.3f s (%s with shading)", sp->seconds,
+               lt_rate_text(rate(cnt->primary_rays, sp->seconds), r1));
     if (s->run_pf)
-        printf("%s P-Frusta %.3f s (%.2f Mrays/s with shading)", s->run_pp ? "," : "native   ",
-               spf->seconds, (double)cnt->primary_rays / spf->seconds / 1e6);
+        printf("%s P-Frusta %.3f s (%s with shading)", s->run_pp ? "," : "native   ",
+               spf->seconds, lt_rate_text(rate(cnt->primary_rays, spf->seconds), r1));
     if (s->run_pk)
-        printf(", S-Packet shadows %.3f s (%.2f Mrays/s)", sshp->seconds,
-               (double)cnt->shadow_rays / sshp->seconds / 1e6);
+        printf(", S-Packet shadows %.3f s (%s)", sshp->seconds,
+               lt_rate_text(rate(cnt->shadow_rays, sshp->seconds), r1));
     if (s->run_fr)
-        printf(", S-Frusta shadows %.3f s (%.2f Mrays/s)", sshf->seconds,
-               (double)cnt->shadow_rays / sshf->seconds / 1e6);
+        printf(", S-Frusta shadows %.3f s (%s)", sshf->seconds,
+               lt_rate_text(rate(cnt->shadow_rays, sshf->seconds), r1));
     printf(", shade %.3f s, filter %.3f s (one thread)\n", s->sshade.seconds, s->sfilt.seconds);
     if (s->run_pk && s->run_fr)
         printf("native    S-Frusta / S-Packet shadow speed-up %.2fx\n",
@@ -583,7 +594,7 @@ static void shadows_native(const shadows_t *s)
 /* The 256-sample reference and the quality figures (unless --no-ref), the PNGs. */
 static void shadows_outputs(shadows_t *s)
 {
-    char err[512];
+    lt_diag_t diag;
     if (!s->no_ref) {
         lt_ss_quality_t q;
         double t0 = lt_now_s();
@@ -591,22 +602,24 @@ static void shadows_outputs(shadows_t *s)
         lt_ss_quality(s->ss, s->tol, &q);
         printf("quality   vs 256 samples/pixel (%.1f s): PSNR filtered %.2f dB, unfiltered 16 spp "
                "%.2f dB, reference through the same filter %.2f dB, filtered vs filtered reference "
-               "%.2f dB; penumbra pixels %llu, within %.3g: %.1f%% filtered, %.1f%% unfiltered\n",
+               "%.2f dB; penumbra pixels %llu, within %.3g: %.1f%% filtered (%llu), %.1f%% "
+               "unfiltered (%llu)\n",
                lt_now_s() - t0, q.psnr_filtered, q.psnr_raw, q.psnr_filtered_ref,
                q.psnr_vs_filtered_ref,
                (unsigned long long)q.penumbra, q.tol, 100.0 * ratio(q.penumbra_ok, q.penumbra),
-               100.0 * ratio(q.penumbra_raw_ok, q.penumbra));
-        if (s->ref_png != NULL && lt_ss_write_png(s->ss, s->ref_png, 2, err, sizeof err) != 0) {
-            fprintf(stderr, "%s: %s\n", who, err);
+               (unsigned long long)q.penumbra_ok, 100.0 * ratio(q.penumbra_raw_ok, q.penumbra),
+               (unsigned long long)q.penumbra_raw_ok);
+        if (s->ref_png != NULL && lt_ss_write_png(s->ss, s->ref_png, 2, &diag) != 0) {
+            fprintf(stderr, "%s: %s\n", who, diag.msg);
             s->rc = EXIT_INPUT;
         }
     }
-    if (s->png != NULL && lt_ss_write_png(s->ss, s->png, 0, err, sizeof err) != 0) {
-        fprintf(stderr, "%s: %s\n", who, err);
+    if (s->png != NULL && lt_ss_write_png(s->ss, s->png, 0, &diag) != 0) {
+        fprintf(stderr, "%s: %s\n", who, diag.msg);
         s->rc = EXIT_INPUT;
     }
-    if (s->raw_png != NULL && lt_ss_write_png(s->ss, s->raw_png, 1, err, sizeof err) != 0) {
-        fprintf(stderr, "%s: %s\n", who, err);
+    if (s->raw_png != NULL && lt_ss_write_png(s->ss, s->raw_png, 1, &diag) != 0) {
+        fprintf(stderr, "%s: %s\n", who, diag.msg);
         s->rc = EXIT_INPUT;
     }
 }

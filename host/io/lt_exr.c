@@ -5,6 +5,7 @@
  * captured for our error text instead of going to stderr. Host only; docs/io.md.
  */
 #include "io/lt_exr.h"
+#include "io/lt_tmpfiles.h"
 
 /* openexr_attr.h uses anonymous structs and unions (C11); keep -Wpedantic for our own code. */
 #pragma GCC diagnostic push
@@ -15,7 +16,6 @@
 #include <errno.h>
 #include <fcntl.h>
 #include <math.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -30,16 +30,6 @@ typedef struct exr_io {
     int err_no;    /* errno of the first failed pread/pwrite, 0 if none */
     char msg[256]; /* first message the library reported for this context */
 } exr_io_t;
-
-static void fail(char *err, size_t errlen, const char *fmt, ...)
-{
-    va_list ap;
-    if (err == NULL || errlen == 0)
-        return;
-    va_start(ap, fmt);
-    (void)vsnprintf(err, errlen, fmt, ap);
-    va_end(ap);
-}
 
 static void on_lib_error(exr_const_context_t ctxt, exr_result_t code, const char *msg)
 {
@@ -207,14 +197,14 @@ float lt_exr_half_to_float(uint16_t h)
 
 /* ---- writer ---------------------------------------------------------------------------------- */
 
-static int check_image(const char *path, const lt_exr_image_t *img, char *err, size_t errlen)
+static int check_image(const char *path, const lt_exr_image_t *img, lt_diag_t *diag)
 {
     int i, j;
     int64_t dw, dh;
     if (img->width < 1 || img->height < 1 || img->width > LT_EXR_MAX_DIM ||
         img->height > LT_EXR_MAX_DIM) {
-        fail(err, errlen, "%s: image %dx%d outside 1..LT_EXR_MAX_DIM %d", path, (int)img->width,
-             (int)img->height, LT_EXR_MAX_DIM);
+        lt_diag_fail(diag, "%s: image %dx%d outside 1..LT_EXR_MAX_DIM %d", path, (int)img->width,
+                     (int)img->height, LT_EXR_MAX_DIM);
         return -1;
     }
     dw = img->display_w != 0 ? img->display_w : (int64_t)img->x0 + img->width;
@@ -222,40 +212,40 @@ static int check_image(const char *path, const lt_exr_image_t *img, char *err, s
     if (dw < 1 || dh < 1 || dw > INT32_MAX || dh > INT32_MAX ||
         (int64_t)img->x0 + img->width - 1 > INT32_MAX ||
         (int64_t)img->y0 + img->height - 1 > INT32_MAX) {
-        fail(err, errlen, "%s: display window %lldx%lld or data window origin (%d,%d) invalid",
-             path, (long long)dw, (long long)dh, (int)img->x0, (int)img->y0);
+        lt_diag_fail(diag, "%s: display window %lldx%lld or data window origin (%d,%d) invalid",
+                     path, (long long)dw, (long long)dh, (int)img->x0, (int)img->y0);
         return -1;
     }
     if (img->nchannels < 1 || img->nchannels > LT_EXR_MAX_CHANNELS || img->channels == NULL) {
-        fail(err, errlen, "%s: %d channels (need 1..LT_EXR_MAX_CHANNELS %d)", path,
-             img->nchannels, LT_EXR_MAX_CHANNELS);
+        lt_diag_fail(diag, "%s: %d channels (need 1..LT_EXR_MAX_CHANNELS %d)", path,
+                     img->nchannels, LT_EXR_MAX_CHANNELS);
         return -1;
     }
     if (img->compression != LT_EXR_COMP_ZIP && img->compression != LT_EXR_COMP_ZIPS &&
         img->compression != LT_EXR_COMP_NONE) {
-        fail(err, errlen, "%s: unknown compression %d", path, (int)img->compression);
+        lt_diag_fail(diag, "%s: unknown compression %d", path, (int)img->compression);
         return -1;
     }
     for (i = 0; i < img->nchannels; i++) {
         const lt_exr_channel_t *c = &img->channels[i];
         size_t n = c->name != NULL ? strlen(c->name) : 0;
         if (n == 0 || n > LT_EXR_MAX_NAME) {
-            fail(err, errlen, "%s: channel %d: name length %zu (need 1..LT_EXR_MAX_NAME %d)",
-                 path, i, n, LT_EXR_MAX_NAME);
+            lt_diag_fail(diag, "%s: channel %d: name length %zu (need 1..LT_EXR_MAX_NAME %d)",
+                         path, i, n, LT_EXR_MAX_NAME);
             return -1;
         }
         if (c->type != LT_EXR_HALF && c->type != LT_EXR_FLOAT) {
-            fail(err, errlen, "%s: channel '%s': type %d (write HALF or FLOAT)", path, c->name,
-                 (int)c->type);
+            lt_diag_fail(diag, "%s: channel '%s': type %d (write HALF or FLOAT)", path, c->name,
+                         (int)c->type);
             return -1;
         }
         if (c->data == NULL) {
-            fail(err, errlen, "%s: channel '%s' has no data", path, c->name);
+            lt_diag_fail(diag, "%s: channel '%s' has no data", path, c->name);
             return -1;
         }
         for (j = 0; j < i; j++)
             if (strcmp(img->channels[j].name, c->name) == 0) {
-                fail(err, errlen, "%s: channel '%s' given twice", path, c->name);
+                lt_diag_fail(diag, "%s: channel '%s' given twice", path, c->name);
                 return -1;
             }
     }
@@ -338,7 +328,7 @@ static exr_result_t write_chunks(exr_context_t ctx, const lt_exr_image_t *img,
     return rv;
 }
 
-int lt_exr_write(const char *path, const lt_exr_image_t *img, char *err, size_t errlen)
+int lt_exr_write(const char *path, const lt_exr_image_t *img, lt_diag_t *diag)
 {
     static const exr_compression_t comp_of[3] = {EXR_COMPRESSION_ZIP, EXR_COMPRESSION_ZIPS,
                                                  EXR_COMPRESSION_NONE};
@@ -355,16 +345,16 @@ int lt_exr_write(const char *path, const lt_exr_image_t *img, char *err, size_t 
     int i, part = -1, longnames = 0, ok = 0;
 
     if (path == NULL || img == NULL) {
-        fail(err, errlen, "lt_exr_write: NULL %s", path == NULL ? "path" : "image");
+        lt_diag_fail(diag, "lt_exr_write: NULL %s", path == NULL ? "path" : "image");
         return -1;
     }
-    if (check_image(path, img, err, errlen) != 0)
+    if (check_image(path, img, diag) != 0)
         return -1;
 
     /* HALF channels are rounded here (ties to even, documented) rather than by the library. */
     halfs = (uint16_t **)calloc((size_t)img->nchannels, sizeof *halfs);
     if (halfs == NULL) {
-        fail(err, errlen, "%s: out of memory", path);
+        lt_diag_fail(diag, "%s: out of memory", path);
         return -1;
     }
     n = (size_t)img->width * (size_t)img->height;
@@ -373,23 +363,28 @@ int lt_exr_write(const char *path, const lt_exr_image_t *img, char *err, size_t 
             continue;
         halfs[i] = (uint16_t *)malloc(n * sizeof(uint16_t));
         if (halfs[i] == NULL) {
-            fail(err, errlen, "%s: out of memory for channel '%s'", path, img->channels[i].name);
+            lt_diag_fail(diag, "%s: out of memory for channel '%s'", path, img->channels[i].name);
             goto done;
         }
         for (k = 0; k < n; k++)
             halfs[i][k] = lt_exr_half_from_float(img->channels[i].data[k]);
     }
 
-    tmp = (char *)malloc(strlen(path) + 32);
+    tmp = (char *)malloc(LT_TMP_PATH_MAX);
     if (tmp == NULL) {
-        fail(err, errlen, "%s: out of memory", path);
+        lt_diag_fail(diag, "%s: out of memory", path);
         goto done;
     }
-    (void)sprintf(tmp, "%s.tmp.%ld", path, (long)getpid());
+    /* registered: a fatal signal removes it (io/lt_tmpfiles.h) */
+    if (lt_tmp_begin(path, tmp, diag) != 0) {
+        free(tmp);
+        tmp = NULL;
+        goto done;
+    }
     memset(&io, 0, sizeof io);
     io.fd = open(tmp, O_WRONLY | O_CREAT | O_TRUNC, 0644);
     if (io.fd < 0) {
-        fail(err, errlen, "%s: cannot create temporary file %s: %s", path, tmp, strerror(errno));
+        lt_diag_fail(diag, "%s: cannot create temporary file %s: %s", path, tmp, strerror(errno));
         goto done;
     }
 
@@ -441,17 +436,17 @@ int lt_exr_write(const char *path, const lt_exr_image_t *img, char *err, size_t 
         ctx = NULL;
     }
     if (rv != EXR_ERR_SUCCESS) {
-        fail(err, errlen, "%s: OpenEXR %s failed: %s", path, stage, lib_text(&io, rv));
+        lt_diag_fail(diag, "%s: OpenEXR %s failed: %s", path, stage, lib_text(&io, rv));
         goto done;
     }
     if (fsync(io.fd) != 0 || close(io.fd) != 0) {
-        fail(err, errlen, "%s: writing %s failed: %s", path, tmp, strerror(errno));
+        lt_diag_fail(diag, "%s: writing %s failed: %s", path, tmp, strerror(errno));
         io.fd = -1;
         goto done;
     }
     io.fd = -1;
     if (rename(tmp, path) != 0) {
-        fail(err, errlen, "%s: cannot rename %s to it: %s", path, tmp, strerror(errno));
+        lt_diag_fail(diag, "%s: cannot rename %s to it: %s", path, tmp, strerror(errno));
         goto done;
     }
     ok = 1;
@@ -462,7 +457,9 @@ done:
     if (tmp != NULL && io.fd >= 0)
         (void)close(io.fd);
     if (tmp != NULL && !ok)
-        (void)unlink(tmp);
+        lt_tmp_discard(tmp);
+    else if (tmp != NULL)
+        lt_tmp_end(tmp);
     free(tmp);
     for (i = 0; i < img->nchannels; i++)
         free(halfs[i]);
@@ -472,8 +469,7 @@ done:
 
 /* ---- reader ---------------------------------------------------------------------------------- */
 
-static int open_read(exr_context_t *ctx, exr_io_t *io, const char *path, char *err,
-                     size_t errlen)
+static int open_read(exr_context_t *ctx, exr_io_t *io, const char *path, lt_diag_t *diag)
 {
     exr_context_initializer_t init;
     exr_result_t rv;
@@ -482,19 +478,19 @@ static int open_read(exr_context_t *ctx, exr_io_t *io, const char *path, char *e
     memset(io, 0, sizeof *io);
     io->fd = open(path, O_RDONLY);
     if (io->fd < 0) {
-        fail(err, errlen, "%s: cannot open: %s", path, strerror(errno));
+        lt_diag_fail(diag, "%s: cannot open: %s", path, strerror(errno));
         return -1;
     }
     if (fstat(io->fd, &st) != 0 || !S_ISREG(st.st_mode)) {
-        fail(err, errlen, "%s: not a regular file", path);
+        lt_diag_fail(diag, "%s: not a regular file", path);
         (void)close(io->fd);
         return -1;
     }
     init = make_init(io);
     rv = exr_start_read(ctx, path, &init);
     if (rv != EXR_ERR_SUCCESS) {
-        fail(err, errlen, "%s: not a readable OpenEXR file (%lld bytes): %s", path,
-             (long long)st.st_size, lib_text(io, rv));
+        lt_diag_fail(diag, "%s: not a readable OpenEXR file (%lld bytes): %s", path,
+                     (long long)st.st_size, lib_text(io, rv));
         if (*ctx != NULL)
             (void)exr_finish(ctx);
         (void)close(io->fd);
@@ -593,7 +589,7 @@ static void list_add(char *dst, size_t cap, const char *s)
 
 /* Error text for a channel that was not found: views and depth-like channels of every part. */
 static void describe_missing(exr_context_t ctx, int nparts, const char *path, const char *want,
-                             int ambiguous, char *err, size_t errlen)
+                             int ambiguous, lt_diag_t *diag)
 {
     char views[256] = "", depths[512] = "", all[512] = "";
     int p, i;
@@ -614,13 +610,15 @@ static void describe_missing(exr_context_t ctx, int nparts, const char *path, co
         }
     }
     if (want != NULL)
-        fail(err, errlen, "%s: no channel '%s' (nor '%s.Z'); views: %s; depth channels: %s; "
-             "channels: %s", path, want, want, views[0] ? views : "(none)",
-             depths[0] ? depths : "(none)", all[0] ? all : "(none)");
+        lt_diag_fail(diag, "%s: no channel '%s' (nor '%s.Z'); views: %s; depth channels: %s; "
+                     "channels: %s", path, want, want, views[0] ? views : "(none)",
+                     depths[0] ? depths : "(none)", all[0] ? all : "(none)");
     else
-        fail(err, errlen, "%s: %s; views: %s; depth channels: %s; channels: %s", path,
-             ambiguous ? "several depth channels, name one" : "no depth channel (Z, depth, *.Z)",
-             views[0] ? views : "(none)", depths[0] ? depths : "(none)", all[0] ? all : "(none)");
+        lt_diag_fail(diag, "%s: %s; views: %s; depth channels: %s; channels: %s", path,
+                     ambiguous ? "several depth channels, name one"
+                               : "no depth channel (Z, depth, *.Z)",
+                     views[0] ? views : "(none)", depths[0] ? depths : "(none)",
+                     all[0] ? all : "(none)");
 }
 
 /* Output targets of one read: up to 5 channel names (depth first) and their data-window rasters. */
@@ -675,8 +673,7 @@ static exr_result_t decode_raw(exr_context_t ctx, int part, const exr_chunk_info
  * holds, per line: per channel in file order: that line's values of the channel (subsampled
  * channels only on lines y with y % y_sampling == 0, with their own width). */
 static int read_flat(exr_context_t ctx, int part, exr_storage_t st, const exr_attr_box2i_t *dw,
-                     const read_target_t *t, exr_io_t *io, const char *path, char *err,
-                     size_t errlen)
+                     const read_target_t *t, exr_io_t *io, const char *path, lt_diag_t *diag)
 {
     exr_decode_pipeline_t dec = EXR_DECODE_PIPELINE_INITIALIZER;
     exr_chunk_info_t ci;
@@ -701,7 +698,7 @@ static int read_flat(exr_context_t ctx, int part, exr_storage_t st, const exr_at
         nty = rv == EXR_ERR_SUCCESS ? (H + th - 1) / th : 0;
     }
     if (rv != EXR_ERR_SUCCESS) {
-        fail(err, errlen, "%s: part %d: bad chunk layout: %s", path, part, lib_text(io, rv));
+        lt_diag_fail(diag, "%s: part %d: bad chunk layout: %s", path, part, lib_text(io, rv));
         return -1;
     }
     for (cy = 0; cy < nty && why == NULL; cy++) {
@@ -756,11 +753,11 @@ static int read_flat(exr_context_t ctx, int part, exr_storage_t st, const exr_at
         ok = 1;
 bad:
     if (why != NULL)
-        fail(err, errlen, "%s: part %d: pixel chunk %ld (at x %d, y %d) corrupt: %s", path, part,
-             chunk - 1, (int)px, (int)py, why);
+        lt_diag_fail(diag, "%s: part %d: pixel chunk %ld (at x %d, y %d) corrupt: %s", path, part,
+                     chunk - 1, (int)px, (int)py, why);
     else if (!ok)
-        fail(err, errlen, "%s: part %d: pixel chunk %ld (at x %d, y %d) unreadable (truncated or "
-             "corrupt file?): %s", path, part, chunk, (int)px, (int)py, lib_text(io, rv));
+        lt_diag_fail(diag, "%s: part %d: pixel chunk %ld (at x %d, y %d) unreadable (truncated or "
+                     "corrupt file?): %s", path, part, chunk, (int)px, (int)py, lib_text(io, rv));
     if (inited)
         (void)exr_decoding_destroy(ctx, &dec);
     return ok ? 0 : -1;
@@ -773,7 +770,7 @@ bad:
  * offset checked against the decompressed size. */
 static int read_deep(exr_context_t ctx, int part, const exr_attr_box2i_t *dw,
                      const read_target_t *t, exr_io_t *io, uint64_t *nsamples, const char *path,
-                     char *err, size_t errlen)
+                     lt_diag_t *diag)
 {
     exr_decode_pipeline_t dec = EXR_DECODE_PIPELINE_INITIALIZER;
     exr_chunk_info_t ci;
@@ -893,11 +890,11 @@ static int read_deep(exr_context_t ctx, int part, const exr_attr_box2i_t *dw,
     if (rv == EXR_ERR_SUCCESS && why == NULL)
         ok = 1;
     else if (why != NULL)
-        fail(err, errlen, "%s: part %d: deep chunk at y %d corrupt: %s", path, part,
-             (int)(y + l), why);
+        lt_diag_fail(diag, "%s: part %d: deep chunk at y %d corrupt: %s", path, part,
+                     (int)(y + l), why);
     else
-        fail(err, errlen, "%s: part %d: deep chunk at y %d unreadable (truncated or corrupt "
-             "file?): %s", path, part, (int)y, lib_text(io, rv));
+        lt_diag_fail(diag, "%s: part %d: deep chunk at y %d unreadable (truncated or corrupt "
+                     "file?): %s", path, part, (int)y, lib_text(io, rv));
     if (inited)
         (void)exr_decoding_destroy(ctx, &dec);
     return ok ? 0 : -1;
@@ -940,7 +937,7 @@ static void fill_f(float *p, size_t n, float v)
 }
 
 int lt_exr_read_depth(const char *path, const char *channel, const lt_exr_read_opts_t *opts,
-                      lt_exr_depth_t *out, char *err, size_t errlen)
+                      lt_exr_depth_t *out, lt_diag_t *diag)
 {
     static const lt_exr_read_opts_t defaults = LT_EXR_READ_OPTS_DEFAULT;
     static const char *const rgba_base[4] = {"R", "G", "B", "A"};
@@ -960,14 +957,14 @@ int lt_exr_read_depth(const char *path, const char *channel, const lt_exr_read_o
     const exr_attr_chlist_entry_t *ze;
 
     if (out == NULL || path == NULL) {
-        fail(err, errlen, "lt_exr_read_depth: NULL %s", path == NULL ? "path" : "output");
+        lt_diag_fail(diag, "lt_exr_read_depth: NULL %s", path == NULL ? "path" : "output");
         return -1;
     }
     memset(out, 0, sizeof *out);
-    if (open_read(&ctx, &io, path, err, errlen) != 0)
+    if (open_read(&ctx, &io, path, diag) != 0)
         return -1;
     if (exr_get_count(ctx, &nparts) != EXR_ERR_SUCCESS || nparts < 1) {
-        fail(err, errlen, "%s: no parts", path);
+        lt_diag_fail(diag, "%s: no parts", path);
         goto done;
     }
     for (part = 0; part < nparts; part++) {
@@ -979,15 +976,15 @@ int lt_exr_read_depth(const char *path, const char *channel, const lt_exr_read_o
             break;
     }
     if (k < 0) {
-        describe_missing(ctx, nparts, path, channel, any_amb, err, errlen);
+        describe_missing(ctx, nparts, path, channel, any_amb, diag);
         goto done;
     }
     ze = &cl->entries[k];
     if (exr_get_storage(ctx, part, &st) != EXR_ERR_SUCCESS ||
         exr_get_data_window(ctx, part, &dw) != EXR_ERR_SUCCESS ||
         exr_get_display_window(ctx, part, &disp) != EXR_ERR_SUCCESS) {
-        fail(err, errlen, "%s: part %d: missing storage type or windows: %s", path, part,
-             lib_text(&io, EXR_ERR_MISSING_REQ_ATTR));
+        lt_diag_fail(diag, "%s: part %d: missing storage type or windows: %s", path, part,
+                     lib_text(&io, EXR_ERR_MISSING_REQ_ATTR));
         goto done;
     }
     W = (int64_t)dw.max.x - dw.min.x + 1;
@@ -995,40 +992,41 @@ int lt_exr_read_depth(const char *path, const char *channel, const lt_exr_read_o
     dispW = (int64_t)disp.max.x - disp.min.x + 1;
     dispH = (int64_t)disp.max.y - disp.min.y + 1;
     if (W < 1 || H < 1 || W > LT_EXR_MAX_DIM || H > LT_EXR_MAX_DIM) {
-        fail(err, errlen, "%s: data window %lldx%lld outside 1..LT_EXR_MAX_DIM %d", path,
-             (long long)W, (long long)H, LT_EXR_MAX_DIM);
+        lt_diag_fail(diag, "%s: data window %lldx%lld outside 1..LT_EXR_MAX_DIM %d", path,
+                     (long long)W, (long long)H, LT_EXR_MAX_DIM);
         goto done;
     }
     if (o.window == LT_EXR_WINDOW_DISPLAY &&
         (dispW < 1 || dispH < 1 || dispW > LT_EXR_MAX_DIM || dispH > LT_EXR_MAX_DIM)) {
-        fail(err, errlen, "%s: display window %lldx%lld outside 1..LT_EXR_MAX_DIM %d", path,
-             (long long)dispW, (long long)dispH, LT_EXR_MAX_DIM);
+        lt_diag_fail(diag, "%s: display window %lldx%lld outside 1..LT_EXR_MAX_DIM %d", path,
+                     (long long)dispW, (long long)dispH, LT_EXR_MAX_DIM);
         goto done;
     }
     if (ze->pixel_type != EXR_PIXEL_HALF && ze->pixel_type != EXR_PIXEL_FLOAT) {
-        fail(err, errlen, "%s: channel '%s' is UINT; a depth channel must be HALF or FLOAT", path,
-             ze->name.str);
+        lt_diag_fail(diag, "%s: channel '%s' is UINT; a depth channel must be HALF or FLOAT", path,
+                     ze->name.str);
         goto done;
     }
     if (ze->x_sampling != 1 || ze->y_sampling != 1) {
-        fail(err, errlen, "%s: channel '%s' is subsampled %dx%d; only 1x1 sampling is read",
-             path, ze->name.str, (int)ze->x_sampling, (int)ze->y_sampling);
+        lt_diag_fail(diag, "%s: channel '%s' is subsampled %dx%d; only 1x1 sampling is read",
+                     path, ze->name.str, (int)ze->x_sampling, (int)ze->y_sampling);
         goto done;
     }
     if (st == EXR_STORAGE_DEEP_TILED) {
-        fail(err, errlen, "%s: part %d is a deep tiled image (deeptile); only deep scanline "
-             "images are read (front-most sample)", path, part);
+        lt_diag_fail(diag, "%s: part %d is a deep tiled image (deeptile); only deep scanline "
+                     "images are read (front-most sample)", path, part);
         goto done;
     }
     if (st == EXR_STORAGE_DEEP_SCANLINE && o.deep != LT_EXR_DEEP_FRONT) {
-        fail(err, errlen, "%s: part %d is a deep image (deepscanline: a variable number of "
-             "samples per pixel); read it with the deep option set to front-most "
-             "(LT_EXR_DEEP_FRONT: least Z per pixel)", path, part);
+        lt_diag_fail(diag, "%s: part %d is a deep image (deepscanline: a variable number of "
+                     "samples per pixel); read its front-most sample per pixel (least Z): "
+                     "lanetrace reproject --deep-front, LT_EXR_DEEP_FRONT in the API", path,
+                     part);
         goto done;
     }
     if (st != EXR_STORAGE_SCANLINE && st != EXR_STORAGE_TILED &&
         st != EXR_STORAGE_DEEP_SCANLINE) {
-        fail(err, errlen, "%s: part %d: unsupported storage %s", path, part, storage_name(st));
+        lt_diag_fail(diag, "%s: part %d: unsupported storage %s", path, part, storage_name(st));
         goto done;
     }
 
@@ -1057,17 +1055,17 @@ int lt_exr_read_depth(const char *path, const char *channel, const lt_exr_read_o
     for (i = 0; i < t.n; i++) {
         win[i] = (float *)malloc((size_t)W * (size_t)H * sizeof(float));
         if (win[i] == NULL) {
-            fail(err, errlen, "%s: out of memory for %lldx%lld pixels", path, (long long)W,
-                 (long long)H);
+            lt_diag_fail(diag, "%s: out of memory for %lldx%lld pixels", path, (long long)W,
+                         (long long)H);
             goto done;
         }
         fill_f(win[i], (size_t)W * (size_t)H, i == 0 ? o.fill : 0.0f);
         t.dst[i] = win[i];
     }
     if (st == EXR_STORAGE_DEEP_SCANLINE) {
-        if (read_deep(ctx, part, &dw, &t, &io, &nsamples, path, err, errlen) != 0)
+        if (read_deep(ctx, part, &dw, &t, &io, &nsamples, path, diag) != 0)
             goto done;
-    } else if (read_flat(ctx, part, st, &dw, &t, &io, path, err, errlen) != 0) {
+    } else if (read_flat(ctx, part, st, &dw, &t, &io, path, diag) != 0) {
         goto done;
     }
 
@@ -1110,8 +1108,8 @@ int lt_exr_read_depth(const char *path, const char *channel, const lt_exr_read_o
                 int j;
                 for (j = 0; j < i; j++)
                     free(dd[j]);
-                fail(err, errlen, "%s: out of memory for %lldx%lld pixels", path,
-                     (long long)dispW, (long long)dispH);
+                lt_diag_fail(diag, "%s: out of memory for %lldx%lld pixels", path,
+                             (long long)dispW, (long long)dispH);
                 goto done;
             }
             fill_f(dd[i], (size_t)dispW * (size_t)dispH, i == 0 ? o.fill : 0.0f);
@@ -1141,7 +1139,7 @@ done:
     return ok ? 0 : -1;
 }
 
-int lt_exr_probe(const char *path, lt_exr_probe_t *info, char *err, size_t errlen)
+int lt_exr_probe(const char *path, lt_exr_probe_t *info, lt_diag_t *diag)
 {
     exr_context_t ctx = NULL;
     exr_io_t io;
@@ -1152,11 +1150,11 @@ int lt_exr_probe(const char *path, lt_exr_probe_t *info, char *err, size_t errle
     int i, ok = 0;
 
     if (info == NULL || path == NULL) {
-        fail(err, errlen, "lt_exr_probe: NULL argument");
+        lt_diag_fail(diag, "lt_exr_probe: NULL argument");
         return -1;
     }
     memset(info, 0, sizeof *info);
-    if (open_read(&ctx, &io, path, err, errlen) != 0)
+    if (open_read(&ctx, &io, path, diag) != 0)
         return -1;
     if (exr_get_count(ctx, &info->parts) != EXR_ERR_SUCCESS || info->parts < 1 ||
         exr_get_storage(ctx, 0, &st) != EXR_ERR_SUCCESS ||
@@ -1164,8 +1162,8 @@ int lt_exr_probe(const char *path, lt_exr_probe_t *info, char *err, size_t errle
         exr_get_data_window(ctx, 0, &dw) != EXR_ERR_SUCCESS ||
         exr_get_display_window(ctx, 0, &disp) != EXR_ERR_SUCCESS ||
         exr_get_channels(ctx, 0, &cl) != EXR_ERR_SUCCESS || cl == NULL) {
-        fail(err, errlen, "%s: header incomplete: %s", path,
-             lib_text(&io, EXR_ERR_MISSING_REQ_ATTR));
+        lt_diag_fail(diag, "%s: header incomplete: %s", path,
+                     lib_text(&io, EXR_ERR_MISSING_REQ_ATTR));
         goto done;
     }
     info->storage = (int)st;

@@ -9,6 +9,8 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "io/lt_diag.h"
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -59,8 +61,8 @@ typedef struct lt_exr_image {
  * Range: any float, NaN and +-inf included. Rounding: HALF rounds to nearest, ties to even
  * (subnormal halves included). Overflow: HALF saturates to +-inf beyond +-65504 (+-65520 rounds
  * to inf as IEEE requires). Cost: host only, not charged.
- * Returns: 0, or -1 with a message naming the path and the problem in err. */
-int lt_exr_write(const char *path, const lt_exr_image_t *img, char *err, size_t errlen);
+ * Returns: 0, or -1 with a message naming the path and the problem in diag. */
+int lt_exr_write(const char *path, const lt_exr_image_t *img, lt_diag_t *diag);
 
 /* ---- reading --------------------------------------------------------------------------------- */
 
@@ -112,11 +114,11 @@ typedef struct lt_exr_depth {
  * wrote) and NaN are returned as stored: nothing is remapped.
  * Format: HALF or FLOAT in the file -> float32 (HALF converts exactly). Range: any.
  * Rounding: none. Overflow: none. Cost: host only, not charged.
- * Returns: 0, or -1 with a message naming the path and the problem in err (a missing channel
+ * Returns: 0, or -1 with a message naming the path and the problem in diag (a missing channel
  * lists the views and depth channels found; a deep image says how to read it; subsampled, UINT,
  * oversized or corrupt inputs name the limit). */
 int lt_exr_read_depth(const char *path, const char *channel, const lt_exr_read_opts_t *opts,
-                      lt_exr_depth_t *out, char *err, size_t errlen);
+                      lt_exr_depth_t *out, lt_diag_t *diag);
 
 /* Free what lt_exr_read_depth allocated (safe on a zeroed or already-freed struct).
  * Cost: host only. */
@@ -137,8 +139,8 @@ typedef struct lt_exr_probe {
 } lt_exr_probe_t;
 
 /* Read the header of part 0 (and the part count); no pixels. Cost: host only.
- * Returns: 0, or -1 with a message naming the path and the problem in err. */
-int lt_exr_probe(const char *path, lt_exr_probe_t *info, char *err, size_t errlen);
+ * Returns: 0, or -1 with a message naming the path and the problem in diag. */
+int lt_exr_probe(const char *path, lt_exr_probe_t *info, lt_diag_t *diag);
 
 /* IEEE binary16 <-> binary32 as used by the writer (host helpers, exported for tests).
  * Format: float32 -> binary16 bits. Range: any. Rounding: to nearest, ties to even.

@@ -9,23 +9,12 @@
 #include "io/lt_png.h"
 
 #include <math.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 /* Minimum output height (in glyph pixels, times the font scale) so that both labels fit. */
 #define HM_MIN_H 48
-
-static void fail(char *err, size_t errlen, const char *fmt, ...)
-{
-    va_list ap;
-    if (err == NULL || errlen == 0)
-        return;
-    va_start(ap, fmt);
-    (void)vsnprintf(err, errlen, fmt, ap);
-    va_end(ap);
-}
 
 static uint8_t to_u8(double c)
 {
@@ -122,7 +111,7 @@ void lt_heatmap_free(lt_heatmap_image_t *im)
 }
 
 int lt_heatmap_render(const float *v, int32_t w, int32_t h, const lt_heatmap_opts_t *opts,
-                      lt_heatmap_image_t *out, char *err, size_t errlen)
+                      lt_heatmap_image_t *out, lt_diag_t *diag)
 {
     static const lt_heatmap_opts_t defaults = LT_HEATMAP_OPTS_DEFAULT;
     lt_heatmap_opts_t o = opts != NULL ? *opts : defaults;
@@ -134,17 +123,17 @@ int lt_heatmap_render(const float *v, int32_t w, int32_t h, const lt_heatmap_opt
     double scale;
 
     if (out == NULL || v == NULL) {
-        fail(err, errlen, "lt_heatmap_render: NULL %s", v == NULL ? "values" : "output");
+        lt_diag_fail(diag, "lt_heatmap_render: NULL %s", v == NULL ? "values" : "output");
         return -1;
     }
     memset(out, 0, sizeof *out);
     if (w < 1 || h < 1 || w > LT_PNG_MAX_DIM || h > LT_PNG_MAX_DIM) {
-        fail(err, errlen, "heatmap: image %dx%d outside 1..LT_PNG_MAX_DIM %d", (int)w, (int)h,
-             LT_PNG_MAX_DIM);
+        lt_diag_fail(diag, "heatmap: image %dx%d outside 1..LT_PNG_MAX_DIM %d", (int)w, (int)h,
+                     LT_PNG_MAX_DIM);
         return -1;
     }
     if (!isfinite(o.lo) || !isfinite(o.hi)) {
-        fail(err, errlen, "heatmap: range lo %g hi %g must be finite", (double)o.lo, (double)o.hi);
+        lt_diag_fail(diag, "heatmap: range lo %g hi %g must be finite", (double)o.lo, (double)o.hi);
         return -1;
     }
     n = (size_t)w * (size_t)h;
@@ -187,7 +176,7 @@ int lt_heatmap_render(const float *v, int32_t w, int32_t h, const lt_heatmap_opt
     }
     out->rgb = (uint8_t *)malloc((size_t)W * (size_t)H * 3);
     if (out->rgb == NULL) {
-        fail(err, errlen, "heatmap: out of memory for %dx%d pixels", (int)W, (int)H);
+        lt_diag_fail(diag, "heatmap: out of memory for %dx%d pixels", (int)W, (int)H);
         return -1;
     }
     out->width = W;
@@ -240,22 +229,19 @@ int lt_heatmap_render(const float *v, int32_t w, int32_t h, const lt_heatmap_opt
 }
 
 int lt_heatmap_write_png(const char *path, const float *v, int32_t w, int32_t h,
-                         const lt_heatmap_opts_t *opts, char *err, size_t errlen)
+                         const lt_heatmap_opts_t *opts, lt_diag_t *diag)
 {
     lt_heatmap_image_t im;
-    char e[256];
     int rc;
-    if (lt_heatmap_render(v, w, h, opts, &im, e, sizeof e) != 0) {
-        fail(err, errlen, "%s: %s", path != NULL ? path : "(null)", e);
-        return -1;
-    }
-    rc = lt_png_write(path, im.rgb, im.width, im.height, 3, 0, err, errlen);
+    if (lt_heatmap_render(v, w, h, opts, &im, diag) != 0)
+        return lt_diag_prefix(diag, "%s: ", path != NULL ? path : "(null)");
+    rc = lt_png_write(path, im.rgb, im.width, im.height, 3, 0, diag);
     lt_heatmap_free(&im);
     return rc;
 }
 
 int lt_heatmap_write_exr(const char *path, const float *v, int32_t w, int32_t h,
-                         const char *channel, char *err, size_t errlen)
+                         const char *channel, lt_diag_t *diag)
 {
     lt_exr_channel_t ch;
     lt_exr_image_t img;
@@ -268,5 +254,5 @@ int lt_heatmap_write_exr(const char *path, const float *v, int32_t w, int32_t h,
     img.nchannels = 1;
     img.channels = &ch;
     img.compression = LT_EXR_COMP_ZIP;
-    return lt_exr_write(path, &img, err, errlen);
+    return lt_exr_write(path, &img, diag);
 }

@@ -9,6 +9,8 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "io/lt_diag.h"
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -49,10 +51,10 @@ void lt_heatmap_color(float t, uint8_t rgb[3]);
  * and are left out of the automatic range.
  * Format: float -> RGB8. Range: any. Rounding: t * 255 to nearest LUT entry. Overflow: clamps.
  * Cost: host only.
- * Returns: 0, or -1 with a message naming the problem in err (bad size, non-finite lo/hi,
+ * Returns: 0, or -1 with a message naming the problem in diag (bad size, non-finite lo/hi,
  * out of memory). */
 int lt_heatmap_render(const float *v, int32_t w, int32_t h, const lt_heatmap_opts_t *opts,
-                      lt_heatmap_image_t *out, char *err, size_t errlen);
+                      lt_heatmap_image_t *out, lt_diag_t *diag);
 
 /* Free the rgb buffer (safe on a zeroed or already-freed image). Cost: host only. */
 void lt_heatmap_free(lt_heatmap_image_t *im);
@@ -60,13 +62,13 @@ void lt_heatmap_free(lt_heatmap_image_t *im);
 /* lt_heatmap_render, then lt_png_write (RGB, atomic). Format: float -> RGB8 PNG.
  * Cost: host only. Returns: 0, or -1 with a message naming path and the problem. */
 int lt_heatmap_write_png(const char *path, const float *v, int32_t w, int32_t h,
-                         const lt_heatmap_opts_t *opts, char *err, size_t errlen);
+                         const lt_heatmap_opts_t *opts, lt_diag_t *diag);
 
 /* The raw values as a one-channel FLOAT EXR (channel NULL = "Y"), ZIP, atomic (lt_exr_write).
  * Format: float32 -> FLOAT, bit-exact. Cost: host only.
  * Returns: 0, or -1 with a message naming path and the problem. */
 int lt_heatmap_write_exr(const char *path, const float *v, int32_t w, int32_t h,
-                         const char *channel, char *err, size_t errlen);
+                         const char *channel, lt_diag_t *diag);
 
 #ifdef __cplusplus
 }

@@ -13,6 +13,7 @@
  * child's exit status. Host only; docs/io.md.
  */
 #include "io/lt_import.h"
+#include "io/lt_diag.h"
 
 #include "io/lt_meshcheck.h"
 
@@ -37,7 +38,7 @@
 #include <unistd.h>
 
 #define WIRE_MAGIC 0x4C544D31u /* "LTM1" */
-#define MSG_MAX 1024u          /* longest message from the child */
+#define MSG_MAX LT_DIAG_MAX    /* longest message from the child */
 #define TAIL_MAX 4096u         /* bytes of the child's stdout/stderr kept */
 #define NODES_MAX (1u << 24)   /* scene graph nodes visited */
 #define DEPTH_MAX 4096u        /* scene graph depth (assimp recurses over it) */
@@ -49,16 +50,6 @@ typedef struct wire {
     uint32_t msglen;
     double lo[3], hi[3];
 } wire_t;
-
-static void fail(char *err, size_t errlen, const char *fmt, ...)
-{
-    va_list ap;
-    if (err == NULL || errlen == 0)
-        return;
-    va_start(ap, fmt);
-    (void)vsnprintf(err, errlen, fmt, ap);
-    va_end(ap);
-}
 
 /* ---- the child ------------------------------------------------------------------------------- */
 
@@ -80,18 +71,19 @@ static int write_all(int fd, const void *p, size_t n)
 static void child_main(int fd, const char *path, lt_import_child_fn fn, void *ctx)
 {
     lt_mesh_t m;
-    char msg[MSG_MAX];
+    lt_diag_t d;
+    const char *msg = d.msg;
     wire_t w;
     int rc;
 
     memset(&m, 0, sizeof m);
-    msg[0] = '\0';
-    rc = fn(ctx, &m, msg, sizeof msg);
+    d.msg[0] = '\0';
+    rc = fn(ctx, &m, &d);
     memset(&w, 0, sizeof w);
     w.magic = WIRE_MAGIC;
     if (rc == 0 && (m.v == NULL || m.ntris == 0 || m.ntris > LT_MESH_MAX_TRIS)) {
-        (void)snprintf(msg, sizeof msg, "%s: the importer returned %u triangles (need 1..%u)",
-                       path, m.ntris, LT_MESH_MAX_TRIS);
+        (void)lt_diag_fail(&d, "%s: the importer returned %u triangles (need 1..%u)",
+                            path, m.ntris, LT_MESH_MAX_TRIS);
         rc = -1;
     }
     if (rc == 0) {
@@ -104,7 +96,7 @@ static void child_main(int fd, const char *path, lt_import_child_fn fn, void *ct
             _exit(3);
     } else {
         if (msg[0] == '\0')
-            (void)snprintf(msg, sizeof msg, "%s: the importer failed without a message", path);
+            (void)lt_diag_fail(&d, "%s: the importer failed without a message", path);
         w.status = -1;
         w.msglen = (uint32_t)strlen(msg);
         if (write_all(fd, &w, sizeof w) != 0 || write_all(fd, msg, w.msglen) != 0)
@@ -148,7 +140,7 @@ static const char *signal_name(int s)
 }
 
 /* The import time limit: LT_IMPORT_TIMEOUT seconds (0 = none), default 120. */
-static int timeout_seconds(const char *path, unsigned *s, char *err, size_t errlen)
+static int timeout_seconds(const char *path, unsigned *s, lt_diag_t *diag)
 {
     const char *v = getenv(LT_IMPORT_TIMEOUT_ENV);
     unsigned long x = 0;
@@ -158,14 +150,14 @@ static int timeout_seconds(const char *path, unsigned *s, char *err, size_t errl
         return 0;
     for (c = v; *c != '\0'; c++) {
         if (!isdigit((unsigned char)*c) || x > 1000000ul) {
-            fail(err, errlen, "%s: %s='%.40s': expected whole seconds 0..1000000 (0 = no "
+            lt_diag_fail(diag, "%s: %s='%.40s': expected whole seconds 0..1000000 (0 = no "
                  "limit)", path, LT_IMPORT_TIMEOUT_ENV, v);
             return -1;
         }
         x = x * 10 + (unsigned long)(*c - '0');
     }
     if (x > 1000000ul) {
-        fail(err, errlen, "%s: %s='%.40s': expected whole seconds 0..1000000 (0 = no limit)",
+        lt_diag_fail(diag, "%s: %s='%.40s': expected whole seconds 0..1000000 (0 = no limit)",
              path, LT_IMPORT_TIMEOUT_ENV, v);
         return -1;
     }
@@ -228,8 +220,7 @@ static void last_words(const char *tail, size_t n, char *out, size_t outlen)
     out[o] = '\0';
 }
 
-int lt_import_isolated(const char *path, lt_import_child_fn fn, void *ctx, lt_mesh_t *m, char *err,
-                       size_t errlen)
+int lt_import_isolated(const char *path, lt_import_child_fn fn, void *ctx, lt_mesh_t *m, lt_diag_t *diag)
 {
     int dp[2], ep[2], status = 0, timed_out = 0, data_open = 1, err_open = 1, rc = -1;
     unsigned limit;
@@ -241,15 +232,15 @@ int lt_import_isolated(const char *path, lt_import_child_fn fn, void *ctx, lt_me
 
     memset(m, 0, sizeof *m);
     memset(&w, 0, sizeof w);
-    if (timeout_seconds(path, &limit, err, errlen) != 0)
+    if (timeout_seconds(path, &limit, diag) != 0)
         return -1;
     if (pipe(dp) != 0) {
-        fail(err, errlen, "%s: cannot start the importer process: pipe: %s", path,
+        lt_diag_fail(diag, "%s: cannot start the importer process: pipe: %s", path,
              strerror(errno));
         return -1;
     }
     if (pipe(ep) != 0) {
-        fail(err, errlen, "%s: cannot start the importer process: pipe: %s", path,
+        lt_diag_fail(diag, "%s: cannot start the importer process: pipe: %s", path,
              strerror(errno));
         (void)close(dp[0]);
         (void)close(dp[1]);
@@ -258,7 +249,7 @@ int lt_import_isolated(const char *path, lt_import_child_fn fn, void *ctx, lt_me
     (void)fflush(NULL); /* nothing buffered is written twice */
     pid = fork();
     if (pid < 0) {
-        fail(err, errlen, "%s: cannot start the importer process: fork: %s", path,
+        lt_diag_fail(diag, "%s: cannot start the importer process: fork: %s", path,
              strerror(errno));
         (void)close(dp[0]);
         (void)close(dp[1]);
@@ -331,7 +322,7 @@ int lt_import_isolated(const char *path, lt_import_child_fn fn, void *ctx, lt_me
         if (pr < 0 && errno == EINTR)
             continue;
         if (pr < 0) {
-            fail(err, errlen, "%s: waiting for the importer process: poll: %s", path,
+            lt_diag_fail(diag, "%s: waiting for the importer process: poll: %s", path,
                  strerror(errno));
             timed_out = -1; /* stop it, report this */
             break;
@@ -393,7 +384,7 @@ int lt_import_isolated(const char *path, lt_import_child_fn fn, void *ctx, lt_me
                     want_p = w.status == 0 ? (size_t)w.ntris * 9 * sizeof(double) : w.msglen;
                     payload = w.status == 0 ? (char *)malloc(want_p) : msg;
                     if (payload == NULL) {
-                        fail(err, errlen, "%s: out of memory for %u triangles from the importer",
+                        lt_diag_fail(diag, "%s: out of memory for %u triangles from the importer",
                              path, w.ntris);
                         timed_out = -1;
                         break;
@@ -418,7 +409,7 @@ int lt_import_isolated(const char *path, lt_import_child_fn fn, void *ctx, lt_me
         if (r < 0 && errno == EINTR)
             continue;
         if (r < 0) {
-            fail(err, errlen, "%s: waiting for the importer process: %s", path, strerror(errno));
+            lt_diag_fail(diag, "%s: waiting for the importer process: %s", path, strerror(errno));
             goto done_closed;
         }
         if (limit > 0 && now_s() >= deadline) {
@@ -438,33 +429,33 @@ int lt_import_isolated(const char *path, lt_import_child_fn fn, void *ctx, lt_me
     if (timed_out < 0)
         goto done; /* message set above */
     if (timed_out > 0) {
-        fail(err, errlen, "%s: the importer (assimp) did not finish within %u s (%s); stopped it",
+        lt_diag_fail(diag, "%s: the importer (assimp) did not finish within %u s (%s); stopped it",
              path, limit, LT_IMPORT_TIMEOUT_ENV);
         goto done;
     }
     if (WIFSIGNALED(status)) {
         int s = WTERMSIG(status);
-        fail(err, errlen, "%s: the importer (assimp) crashed (signal %d, %s) on this file%s%s",
+        lt_diag_fail(diag, "%s: the importer (assimp) crashed (signal %d, %s) on this file%s%s",
              path, s, signal_name(s),
              words[0] != '\0' ? ": " : s == SIGKILL ? " (killed: out of memory?)" : "", words);
         goto done;
     }
     if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
         int sanitizer = strstr(words, "Sanitizer") != NULL || strstr(words, "runtime error") != NULL;
-        fail(err, errlen, "%s: the importer (assimp) %s (exit status %d) on this file%s%s", path,
+        lt_diag_fail(diag, "%s: the importer (assimp) %s (exit status %d) on this file%s%s", path,
              sanitizer ? "crashed" : "failed", WIFEXITED(status) ? WEXITSTATUS(status) : -1,
              words[0] != '\0' ? ": " : "", words);
         goto done;
     }
     if (got_w < sizeof w || got_p < want_p || extra != 0) {
-        fail(err, errlen, "%s: the importer process ended with %s (%zu of %zu header bytes, %zu of "
+        lt_diag_fail(diag, "%s: the importer process ended with %s (%zu of %zu header bytes, %zu of "
              "%zu data bytes%s)", path, extra != 0 ? "an invalid record" : "an incomplete record",
              got_w, sizeof w, got_p, want_p, extra != 0 ? ", unexpected bytes" : "");
         goto done;
     }
     if (w.status != 0) {
         msg[w.msglen] = '\0';
-        fail(err, errlen, "%s", msg);
+        lt_diag_fail(diag, "%s", msg);
         goto done;
     }
     m->v = (double *)(void *)payload;
@@ -504,23 +495,23 @@ typedef struct walk {
  * indices in range, no missing child (assimp 5.2.5's RAW reader puts every group's node in the
  * first slot and leaves NULL in the others: its triangles would be lost, so it is refused). */
 static int check_node(const struct aiNode *nd, unsigned depth, walk_t *w, const char *path,
-                      char *err, size_t errlen)
+                      lt_diag_t *diag)
 {
     unsigned i;
     if (++w->nodes > NODES_MAX || depth > DEPTH_MAX) {
-        fail(err, errlen, "%s: the imported scene graph has more than %u nodes or is deeper than "
+        lt_diag_fail(diag, "%s: the imported scene graph has more than %u nodes or is deeper than "
              "%u (a cycle?)", path, NODES_MAX, DEPTH_MAX);
         return -1;
     }
     if ((nd->mNumMeshes > 0 && nd->mMeshes == NULL) ||
         (nd->mNumChildren > 0 && nd->mChildren == NULL)) {
-        fail(err, errlen, "%s: the imported scene graph is inconsistent (node '%.60s' lists "
+        lt_diag_fail(diag, "%s: the imported scene graph is inconsistent (node '%.60s' lists "
              "meshes or children it does not have)", path, nd->mName.data);
         return -1;
     }
     for (i = 0; i < nd->mNumMeshes; i++) {
         if (nd->mMeshes[i] >= w->nmeshes) {
-            fail(err, errlen, "%s: the imported scene graph is inconsistent (node '%.60s' refers "
+            lt_diag_fail(diag, "%s: the imported scene graph is inconsistent (node '%.60s' refers "
                  "to mesh %u of %u)", path, nd->mName.data, nd->mMeshes[i], w->nmeshes);
             return -1;
         }
@@ -528,12 +519,12 @@ static int check_node(const struct aiNode *nd, unsigned depth, walk_t *w, const 
     }
     for (i = 0; i < nd->mNumChildren; i++) {
         if (nd->mChildren[i] == NULL) {
-            fail(err, errlen, "%s: the imported scene graph is inconsistent (node '%.60s': child "
+            lt_diag_fail(diag, "%s: the imported scene graph is inconsistent (node '%.60s': child "
                  "%u of %u is missing; the importer lost part of the scene)", path,
                  nd->mName.data, i + 1, nd->mNumChildren);
             return -1;
         }
-        if (check_node(nd->mChildren[i], depth + 1, w, path, err, errlen) != 0)
+        if (check_node(nd->mChildren[i], depth + 1, w, path, diag) != 0)
             return -1;
     }
     return 0;
@@ -544,13 +535,13 @@ static int check_node(const struct aiNode *nd, unsigned depth, walk_t *w, const 
  * failure PretransformVertices has (no placed mesh with faces and vertices) is found here. The
  * primitive-type flags are recomputed from the faces (a mesh that declares polygons but has
  * none trips TriangulateProcess's ai_assert). */
-static int check_scene(struct aiScene *sc, const char *path, char *err, size_t errlen)
+static int check_scene(struct aiScene *sc, const char *path, lt_diag_t *diag)
 {
     unsigned i, f, j;
     walk_t w;
     int rc;
     if (sc->mMeshes == NULL) {
-        fail(err, errlen, "%s: the imported scene lists %u meshes but has none", path,
+        lt_diag_fail(diag, "%s: the imported scene lists %u meshes but has none", path,
              sc->mNumMeshes);
         return -1;
     }
@@ -559,20 +550,20 @@ static int check_scene(struct aiScene *sc, const char *path, char *err, size_t e
         unsigned types = 0;
         if (me == NULL || (me->mNumVertices > 0 && me->mVertices == NULL) ||
             (me->mNumFaces > 0 && me->mFaces == NULL)) {
-            fail(err, errlen, "%s: the imported scene is inconsistent (mesh %u lacks its "
+            lt_diag_fail(diag, "%s: the imported scene is inconsistent (mesh %u lacks its "
                  "vertices or faces)", path, i);
             return -1;
         }
         for (f = 0; f < me->mNumFaces; f++) {
             const struct aiFace *fa = &me->mFaces[f];
             if (fa->mNumIndices > 0 && fa->mIndices == NULL) {
-                fail(err, errlen, "%s: mesh %u face %u: %u indices missing", path, i, f,
+                lt_diag_fail(diag, "%s: mesh %u face %u: %u indices missing", path, i, f,
                      fa->mNumIndices);
                 return -1;
             }
             for (j = 0; j < fa->mNumIndices; j++)
                 if (fa->mIndices[j] >= me->mNumVertices) {
-                    fail(err, errlen, "%s: mesh %u face %u: vertex index %u >= %u vertices", path,
+                    lt_diag_fail(diag, "%s: mesh %u face %u: vertex index %u >= %u vertices", path,
                          i, f, fa->mIndices[j], me->mNumVertices);
                     return -1;
                 }
@@ -586,17 +577,17 @@ static int check_scene(struct aiScene *sc, const char *path, char *err, size_t e
             types | (me->mPrimitiveTypes & (unsigned)aiPrimitiveType_NGONEncodingFlag);
     }
     if (sc->mRootNode == NULL) {
-        fail(err, errlen, "%s: the imported scene has no root node", path);
+        lt_diag_fail(diag, "%s: the imported scene has no root node", path);
         return -1;
     }
     w.nodes = 0;
     w.nmeshes = sc->mNumMeshes;
     w.placed = (unsigned char *)calloc(sc->mNumMeshes, 1);
     if (w.placed == NULL) {
-        fail(err, errlen, "%s: out of memory", path);
+        lt_diag_fail(diag, "%s: out of memory", path);
         return -1;
     }
-    rc = check_node(sc->mRootNode, 0, &w, path, err, errlen);
+    rc = check_node(sc->mRootNode, 0, &w, path, diag);
     if (rc == 0) {
         unsigned placed = 0;
         for (i = 0; i < sc->mNumMeshes; i++) {
@@ -607,7 +598,7 @@ static int check_scene(struct aiScene *sc, const char *path, char *err, size_t e
                 break;
         }
         if (i == sc->mNumMeshes) {
-            fail(err, errlen, "%s: no triangles: none of the scene's %u meshes is both placed in "
+            lt_diag_fail(diag, "%s: no triangles: none of the scene's %u meshes is both placed in "
                  "its node graph and has faces (%u placed)", path, sc->mNumMeshes, placed);
             rc = -1;
         }
@@ -616,7 +607,7 @@ static int check_scene(struct aiScene *sc, const char *path, char *err, size_t e
     return rc;
 }
 
-static int child_import(void *ctx, lt_mesh_t *m, char *err, size_t errlen)
+static int child_import(void *ctx, lt_mesh_t *m, lt_diag_t *diag)
 {
     const job_t *jb = (const job_t *)ctx;
     const struct aiScene *sc, *pp;
@@ -625,12 +616,12 @@ static int child_import(void *ctx, lt_mesh_t *m, char *err, size_t errlen)
     sc = jb->data != NULL ? aiImportFileFromMemory(jb->data, (unsigned)jb->len, 0, jb->hint)
                           : aiImportFile(jb->path, 0);
     if (sc == NULL || sc->mNumMeshes == 0) {
-        fail(err, errlen, "%s: not a readable mesh (assimp: %s)", jb->path,
+        lt_diag_fail(diag, "%s: not a readable mesh (assimp: %s)", jb->path,
              sc == NULL ? aiGetErrorString() : "no meshes in the scene");
         return -1;
     }
     msc = (struct aiScene *)(uintptr_t)sc; /* assimp's own, mutable scene */
-    if (check_scene(msc, jb->path, err, errlen) != 0)
+    if (check_scene(msc, jb->path, diag) != 0)
         return -1;
     /* PretransformVertices asserts that every camera and light has a node of its name; we keep
      * geometry only, so they are hidden from it (and the process ends without releasing them) */
@@ -638,11 +629,11 @@ static int child_import(void *ctx, lt_mesh_t *m, char *err, size_t errlen)
     msc->mNumLights = 0;
     pp = aiApplyPostProcessing(sc, jb->flags);
     if (pp == NULL || pp->mNumMeshes == 0) {
-        fail(err, errlen, "%s: not a readable mesh (assimp: %s)", jb->path,
+        lt_diag_fail(diag, "%s: not a readable mesh (assimp: %s)", jb->path,
              pp == NULL ? aiGetErrorString() : "no meshes in the scene");
         return -1;
     }
-    return jb->conv(pp, jb->path, m, err, errlen);
+    return jb->conv(pp, jb->path, m, diag);
 }
 
 /* The file's extension (after the last '.' of its last component), "" if none. */
@@ -655,7 +646,7 @@ static const char *extension(const char *path)
 }
 
 /* Read the whole file, at most LT_MESH_MAX_BYTES. */
-static int read_file(const char *path, char **buf, size_t *len, char *err, size_t errlen)
+static int read_file(const char *path, char **buf, size_t *len, lt_diag_t *diag)
 {
     FILE *f = fopen(path, "rb");
     struct stat st;
@@ -663,29 +654,29 @@ static int read_file(const char *path, char **buf, size_t *len, char *err, size_
     *buf = NULL;
     *len = 0;
     if (f == NULL) {
-        fail(err, errlen, "%s: cannot open the mesh file: %s", path, strerror(errno));
+        lt_diag_fail(diag, "%s: cannot open the mesh file: %s", path, strerror(errno));
         return -1;
     }
     if (fstat(fileno(f), &st) != 0 || !S_ISREG(st.st_mode)) {
-        fail(err, errlen, "%s: not a regular file", path);
+        lt_diag_fail(diag, "%s: not a regular file", path);
         (void)fclose(f);
         return -1;
     }
     if ((uint64_t)st.st_size > LT_MESH_MAX_BYTES) {
-        fail(err, errlen, "%s: %lld bytes exceed LT_MESH_MAX_BYTES %u", path,
+        lt_diag_fail(diag, "%s: %lld bytes exceed LT_MESH_MAX_BYTES %u", path,
              (long long)st.st_size, LT_MESH_MAX_BYTES);
         (void)fclose(f);
         return -1;
     }
     *buf = (char *)malloc((size_t)st.st_size + 1);
     if (*buf == NULL) {
-        fail(err, errlen, "%s: out of memory for %lld bytes", path, (long long)st.st_size);
+        lt_diag_fail(diag, "%s: out of memory for %lld bytes", path, (long long)st.st_size);
         (void)fclose(f);
         return -1;
     }
     got = fread(*buf, 1, (size_t)st.st_size, f);
     if (got != (size_t)st.st_size || ferror(f)) {
-        fail(err, errlen, "%s: read error after %zu of %lld bytes", path, got,
+        lt_diag_fail(diag, "%s: read error after %zu of %lld bytes", path, got,
              (long long)st.st_size);
         (void)fclose(f);
         free(*buf);
@@ -699,8 +690,7 @@ static int read_file(const char *path, char **buf, size_t *len, char *err, size_
 }
 
 int lt_import_mesh(const char *path, const char *data, size_t len, const char *hint,
-                   unsigned flags, lt_import_convert_fn conv, lt_mesh_t *m, char *err,
-                   size_t errlen)
+                   unsigned flags, lt_import_convert_fn conv, lt_mesh_t *m, lt_diag_t *diag)
 {
     lt_meshcheck_kind_t kind;
     char *own = NULL;
@@ -718,7 +708,7 @@ int lt_import_mesh(const char *path, const char *data, size_t len, const char *h
         }
         kind = lt_meshcheck_kind(extension(path), head, hn);
         if (kind != LT_MESHCHECK_NONE) {
-            if (read_file(path, &own, &len, err, errlen) != 0)
+            if (read_file(path, &own, &len, diag) != 0)
                 return -1;
             data = own;
         }
@@ -727,7 +717,7 @@ int lt_import_mesh(const char *path, const char *data, size_t len, const char *h
     }
     if (kind != LT_MESHCHECK_NONE) {
         hint = lt_meshcheck_hint(kind);
-        if (lt_meshcheck(kind, path, (const unsigned char *)data, len, err, errlen) != 0) {
+        if (lt_meshcheck(kind, path, (const unsigned char *)data, len, diag) != 0) {
             free(own);
             return -1;
         }
@@ -738,7 +728,7 @@ int lt_import_mesh(const char *path, const char *data, size_t len, const char *h
     jb.hint = hint != NULL ? hint : "";
     jb.flags = flags;
     jb.conv = conv;
-    rc = lt_import_isolated(path, child_import, &jb, m, err, errlen);
+    rc = lt_import_isolated(path, child_import, &jb, m, diag);
     free(own);
     return rc;
 }

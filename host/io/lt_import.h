@@ -24,7 +24,7 @@ struct aiScene;
 /* Turns an imported, post-processed scene into triangles (lt_mesh.c's scene_to_mesh). Runs in the
  * child. Returns 0, or -1 with a message. */
 typedef int (*lt_import_convert_fn)(const struct aiScene *sc, const char *path, lt_mesh_t *m,
-                                    char *err, size_t errlen);
+                                    lt_diag_t *diag);
 
 /* Import the mesh at path (data == NULL) or the len bytes at data (already read, e.g. unpacked
  * from a .gz; hint = the format's extension) through assimp with the post-processing `flags`, in
@@ -34,15 +34,13 @@ typedef int (*lt_import_convert_fn)(const struct aiScene *sc, const char *path, 
  * assimp's own error text, a crash ("the importer (assimp) crashed (signal 6, SIGABRT) on this
  * file: <its last words>"), or the time limit. */
 int lt_import_mesh(const char *path, const char *data, size_t len, const char *hint,
-                   unsigned flags, lt_import_convert_fn conv, lt_mesh_t *m, char *err,
-                   size_t errlen);
+                   unsigned flags, lt_import_convert_fn conv, lt_mesh_t *m, lt_diag_t *diag);
 
 /* The isolation alone: run fn(ctx, ...) in a forked child and bring back its mesh or its message.
  * path names the file in messages. Used by lt_import_mesh; the tests call it with functions that
  * crash, hang or lie. */
-typedef int (*lt_import_child_fn)(void *ctx, lt_mesh_t *m, char *err, size_t errlen);
-int lt_import_isolated(const char *path, lt_import_child_fn fn, void *ctx, lt_mesh_t *m, char *err,
-                       size_t errlen);
+typedef int (*lt_import_child_fn)(void *ctx, lt_mesh_t *m, lt_diag_t *diag);
+int lt_import_isolated(const char *path, lt_import_child_fn fn, void *ctx, lt_mesh_t *m, lt_diag_t *diag);
 
 #ifdef __cplusplus
 }

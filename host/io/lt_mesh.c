@@ -12,8 +12,8 @@
 #include <assimp/scene.h>
 #include <ctype.h>
 #include <errno.h>
+#include <float.h>
 #include <math.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -21,16 +21,6 @@
 #include <zlib.h>
 
 #define IMPORT_FLAGS (aiProcess_Triangulate | aiProcess_PreTransformVertices)
-
-static void fail(char *err, size_t errlen, const char *fmt, ...)
-{
-    va_list ap;
-    if (err == NULL || errlen == 0)
-        return;
-    va_start(ap, fmt);
-    (void)vsnprintf(err, errlen, fmt, ap);
-    va_end(ap);
-}
 
 /* Case-insensitive "s ends with suffix". */
 static int ends_with(const char *s, const char *suffix)
@@ -47,7 +37,7 @@ static int ends_with(const char *s, const char *suffix)
 /* ---- whole-file reading and gunzip ----------------------------------------------------------- */
 
 /* Read the file into a NUL-terminated buffer (*len bytes + 1). */
-static int read_all(const char *path, char **buf, size_t *len, char *err, size_t errlen)
+static int read_all(const char *path, char **buf, size_t *len, lt_diag_t *diag)
 {
     FILE *f = fopen(path, "rb");
     struct stat st;
@@ -55,30 +45,30 @@ static int read_all(const char *path, char **buf, size_t *len, char *err, size_t
     *buf = NULL;
     *len = 0;
     if (f == NULL) {
-        fail(err, errlen, "%s: cannot open the mesh file: %s", path, strerror(errno));
+        lt_diag_fail(diag, "%s: cannot open the mesh file: %s", path, strerror(errno));
         return -1;
     }
     if (fstat(fileno(f), &st) != 0 || !S_ISREG(st.st_mode)) {
-        fail(err, errlen, "%s: not a regular file", path);
+        lt_diag_fail(diag, "%s: not a regular file", path);
         (void)fclose(f);
         return -1;
     }
     if ((uint64_t)st.st_size > LT_MESH_MAX_BYTES) {
-        fail(err, errlen, "%s: %lld bytes exceed LT_MESH_MAX_BYTES %u", path,
-             (long long)st.st_size, LT_MESH_MAX_BYTES);
+        lt_diag_fail(diag, "%s: %lld bytes exceed LT_MESH_MAX_BYTES %u", path,
+                     (long long)st.st_size, LT_MESH_MAX_BYTES);
         (void)fclose(f);
         return -1;
     }
     *buf = (char *)malloc((size_t)st.st_size + 1);
     if (*buf == NULL) {
-        fail(err, errlen, "%s: out of memory for %lld bytes", path, (long long)st.st_size);
+        lt_diag_fail(diag, "%s: out of memory for %lld bytes", path, (long long)st.st_size);
         (void)fclose(f);
         return -1;
     }
     got = fread(*buf, 1, (size_t)st.st_size, f);
     if (got != (size_t)st.st_size || ferror(f)) {
-        fail(err, errlen, "%s: read error after %zu of %lld bytes", path, got,
-             (long long)st.st_size);
+        lt_diag_fail(diag, "%s: read error after %zu of %lld bytes", path, got,
+                     (long long)st.st_size);
         (void)fclose(f);
         free(*buf);
         *buf = NULL;
@@ -92,7 +82,7 @@ static int read_all(const char *path, char **buf, size_t *len, char *err, size_t
 
 /* Unpack gzip data (one or more members) into a NUL-terminated buffer. */
 static int gunzip(const char *path, const unsigned char *in, size_t inlen, char **out,
-                  size_t *outlen, char *err, size_t errlen)
+                  size_t *outlen, lt_diag_t *diag)
 {
     z_stream zs;
     size_t cap, used = 0;
@@ -102,8 +92,8 @@ static int gunzip(const char *path, const unsigned char *in, size_t inlen, char 
     *out = NULL;
     *outlen = 0;
     if (inlen < 18 || in[0] != 0x1F || in[1] != 0x8B) {
-        fail(err, errlen, "%s: not a gzip file (%zu bytes; a gzip stream starts 1f 8b and has "
-             "at least 18 bytes)", path, inlen);
+        lt_diag_fail(diag, "%s: not a gzip file (%zu bytes; a gzip stream starts 1f 8b and has "
+                     "at least 18 bytes)", path, inlen);
         return -1;
     }
     /* first guess: the last member's ISIZE (size mod 2^32), at least 64 KiB */
@@ -115,12 +105,12 @@ static int gunzip(const char *path, const unsigned char *in, size_t inlen, char 
         cap = LT_MESH_MAX_BYTES;
     buf = (char *)malloc(cap + 1);
     if (buf == NULL) {
-        fail(err, errlen, "%s: out of memory", path);
+        lt_diag_fail(diag, "%s: out of memory", path);
         return -1;
     }
     memset(&zs, 0, sizeof zs);
     if (inflateInit2(&zs, 16 + MAX_WBITS) != Z_OK) {
-        fail(err, errlen, "%s: zlib init failed", path);
+        lt_diag_fail(diag, "%s: zlib init failed", path);
         free(buf);
         return -1;
     }
@@ -130,14 +120,14 @@ static int gunzip(const char *path, const unsigned char *in, size_t inlen, char 
         if (used == cap) {
             char *nb;
             if (cap >= LT_MESH_MAX_BYTES) {
-                fail(err, errlen, "%s: unpacks to more than LT_MESH_MAX_BYTES %u bytes", path,
-                     LT_MESH_MAX_BYTES);
+                lt_diag_fail(diag, "%s: unpacks to more than LT_MESH_MAX_BYTES %u bytes", path,
+                             LT_MESH_MAX_BYTES);
                 goto bad;
             }
             cap = cap * 2 > LT_MESH_MAX_BYTES ? LT_MESH_MAX_BYTES : cap * 2;
             nb = (char *)realloc(buf, cap + 1);
             if (nb == NULL) {
-                fail(err, errlen, "%s: out of memory for %zu unpacked bytes", path, cap);
+                lt_diag_fail(diag, "%s: out of memory for %zu unpacked bytes", path, cap);
                 goto bad;
             }
             buf = nb;
@@ -151,12 +141,12 @@ static int gunzip(const char *path, const unsigned char *in, size_t inlen, char 
                 break;
             /* another gzip member follows (as `cat a.gz b.gz` makes), or trailing garbage */
             if (zs.avail_in < 2 || zs.next_in[0] != 0x1F || zs.next_in[1] != 0x8B) {
-                fail(err, errlen, "%s: %u bytes of trailing data after the gzip stream "
-                     "(at compressed byte %lu)", path, zs.avail_in, zs.total_in);
+                lt_diag_fail(diag, "%s: %u bytes of trailing data after the gzip stream "
+                             "(at compressed byte %lu)", path, zs.avail_in, zs.total_in);
                 goto bad;
             }
             if (inflateReset(&zs) != Z_OK) {
-                fail(err, errlen, "%s: zlib reset failed", path);
+                lt_diag_fail(diag, "%s: zlib reset failed", path);
                 goto bad;
             }
             continue;
@@ -164,14 +154,15 @@ static int gunzip(const char *path, const unsigned char *in, size_t inlen, char 
         if (zr == Z_OK)
             continue;
         if (zr == Z_BUF_ERROR && zs.avail_in == 0) {
-            fail(err, errlen, "%s: truncated gzip stream: input ends after %lu compressed bytes "
-                 "(%zu bytes unpacked) before the end of the stream", path, zs.total_in, used);
+            lt_diag_fail(diag, "%s: truncated gzip stream: input ends after %lu compressed bytes "
+                         "(%zu bytes unpacked) before the end of the stream", path, zs.total_in,
+                         used);
             goto bad;
         }
         if (zr == Z_BUF_ERROR)
             continue; /* output full: grow */
-        fail(err, errlen, "%s: corrupt gzip stream near compressed byte %lu: %s (zlib %d)", path,
-             zs.total_in, zs.msg != NULL ? zs.msg : "no message", zr);
+        lt_diag_fail(diag, "%s: corrupt gzip stream near compressed byte %lu: %s (zlib %d)", path,
+                     zs.total_in, zs.msg != NULL ? zs.msg : "no message", zr);
         goto bad;
     }
     (void)inflateEnd(&zs);
@@ -200,16 +191,16 @@ static int is_eol(char c) { return c == '\n' || c == '\r' || c == '\0'; }
 /* One index of a face vertex: positive (must end up <= count in the file), or negative
  * (relative: must reach one of the `have` defined so far). */
 static int check_index(long long idx, uint64_t have, obj_ref_t *r, unsigned long line,
-                       const char *what, const char *where, char *err, size_t errlen)
+                       const char *what, const char *where, lt_diag_t *diag)
 {
     if (idx == 0) {
-        fail(err, errlen, "%s: line %lu: %s index 0 (OBJ indices start at 1, or -1 for the last)",
-             where, line, what);
+        lt_diag_fail(diag, "%s: line %lu: %s index 0 (OBJ indices start at 1, or -1 for the last)",
+                     where, line, what);
         return -1;
     }
     if (idx < 0 && (uint64_t)(-(idx + 1)) >= have) {
-        fail(err, errlen, "%s: line %lu: relative %s index %lld but only %llu defined so far",
-             where, line, what, idx, (unsigned long long)have);
+        lt_diag_fail(diag, "%s: line %lu: relative %s index %lld but only %llu defined so far",
+                     where, line, what, idx, (unsigned long long)have);
         return -1;
     }
     if (idx > r->max) {
@@ -220,7 +211,7 @@ static int check_index(long long idx, uint64_t have, obj_ref_t *r, unsigned long
 }
 
 /* Check OBJ text (NUL-terminated at len). where names the file in messages. */
-static int check_obj(const char *where, const char *buf, size_t len, char *err, size_t errlen)
+static int check_obj(const char *where, const char *buf, size_t len, lt_diag_t *diag)
 {
     const char *nul = (const char *)memchr(buf, '\0', len);
     const char *p = buf, *end = buf + len;
@@ -233,8 +224,8 @@ static int check_obj(const char *where, const char *buf, size_t len, char *err, 
         const char *q;
         for (q = buf; q < nul; q++)
             l += *q == '\n';
-        fail(err, errlen, "%s: line %lu: NUL byte at offset %zu: binary data, not OBJ text", where,
-             l, (size_t)(nul - buf));
+        lt_diag_fail(diag, "%s: line %lu: NUL byte at offset %zu: binary data, not OBJ text", where,
+                     l, (size_t)(nul - buf));
         return -1;
     }
     while (p < end) {
@@ -250,8 +241,8 @@ static int check_obj(const char *where, const char *buf, size_t len, char *err, 
             const char *c;
             for (c = q; c < p; c++)
                 if ((unsigned char)*c < 0x20 && !is_blank(*c) && *c != '\r') {
-                    fail(err, errlen, "%s: line %lu: control byte 0x%02x: binary data, not OBJ "
-                         "text", where, line, (unsigned)(unsigned char)*c);
+                    lt_diag_fail(diag, "%s: line %lu: control byte 0x%02x: binary data, not OBJ "
+                                 "text", where, line, (unsigned)(unsigned char)*c);
                     return -1;
                 }
         }
@@ -270,21 +261,27 @@ static int check_obj(const char *where, const char *buf, size_t len, char *err, 
                     const char *t = q;
                     while (t < p && !is_blank(*t) && !is_eol(*t))
                         t++;
-                    fail(err, errlen, "%s: line %lu: vertex coordinate %d '%.*s' is not a number",
-                         where, line, n + 1, (int)(t - q), q);
+                    lt_diag_fail(diag, "%s: line %lu: vertex coordinate %d '%.*s' is not a number",
+                                 where, line, n + 1, (int)(t - q), q);
                     return -1;
                 }
                 if (!isfinite(d)) {
-                    fail(err, errlen, "%s: line %lu: vertex coordinate %d '%.*s' is not finite",
-                         where, line, n + 1, (int)(e - q), q);
+                    lt_diag_fail(diag, "%s: line %lu: vertex coordinate %d '%.*s' is not finite",
+                                 where, line, n + 1, (int)(e - q), q);
+                    return -1;
+                }
+                if (fabs(d) > (double)FLT_MAX) {
+                    lt_diag_fail(diag, "%s: line %lu: vertex coordinate %d '%.*s' overflows "
+                                 "float32, the importer's vertex format (|x| <= 3.4e38)",
+                                 where, line, n + 1, (int)(e - q), q);
                     return -1;
                 }
                 n++;
                 q = e;
             }
             if (n < 3) {
-                fail(err, errlen, "%s: line %lu: vertex has %d coordinate%s (need 3; truncated "
-                     "file?)", where, line, n, n == 1 ? "" : "s");
+                lt_diag_fail(diag, "%s: line %lu: vertex has %d coordinate%s (need 3; truncated "
+                             "file?)", where, line, n, n == 1 ? "" : "s");
                 return -1;
             }
             nv++;
@@ -304,8 +301,8 @@ static int check_obj(const char *where, const char *buf, size_t len, char *err, 
                 if (q >= p || is_eol(*q))
                     break;
                 if (*q == '#') {
-                    fail(err, errlen, "%s: line %lu: comment after face vertices (assimp's OBJ "
-                         "reader rejects it)", where, line);
+                    lt_diag_fail(diag, "%s: line %lu: comment after face vertices (assimp's OBJ "
+                                 "reader rejects it)", where, line);
                     return -1;
                 }
                 /* v, v/t, v//n, v/t/n */
@@ -323,27 +320,27 @@ static int check_obj(const char *where, const char *buf, size_t len, char *err, 
                         const char *t = q;
                         while (t < p && !is_blank(*t) && !is_eol(*t))
                             t++;
-                        fail(err, errlen, "%s: line %lu: face vertex %d: '%.*s' is not an index",
-                             where, line, n + 1, (int)(t - q), q);
+                        lt_diag_fail(diag, "%s: line %lu: face vertex %d: '%.*s' is not an index",
+                                     where, line, n + 1, (int)(t - q), q);
                         return -1;
                     }
                     if (check_index(idx, part == 0 ? nv : part == 1 ? nvt : nvn,
                                     part == 0 ? &rv : part == 1 ? &rt : &rn, line,
                                     part == 0 ? "vertex" : part == 1 ? "texture" : "normal", where,
-                                    err, errlen) != 0)
+                                    diag) != 0)
                         return -1;
                     q = e;
                 }
                 if (q < p && !is_blank(*q) && !is_eol(*q)) {
-                    fail(err, errlen, "%s: line %lu: face vertex %d: unexpected '%c'", where,
-                         line, n + 1, *q);
+                    lt_diag_fail(diag, "%s: line %lu: face vertex %d: unexpected '%c'", where,
+                                 line, n + 1, *q);
                     return -1;
                 }
                 n++;
             }
             if (n < 3) {
-                fail(err, errlen, "%s: line %lu: face has %d vert%s (need 3; truncated file?)",
-                     where, line, n, n == 1 ? "ex" : "ices");
+                lt_diag_fail(diag, "%s: line %lu: face has %d vert%s (need 3; truncated file?)",
+                             where, line, n, n == 1 ? "ex" : "ices");
                 return -1;
             }
             nf++;
@@ -351,23 +348,23 @@ static int check_obj(const char *where, const char *buf, size_t len, char *err, 
         p++; /* past '\n' */
     }
     if ((uint64_t)rv.max > nv) {
-        fail(err, errlen, "%s: line %lu: vertex index %lld but the file defines %llu vertices",
-             where, rv.line, rv.max, (unsigned long long)nv);
+        lt_diag_fail(diag, "%s: line %lu: vertex index %lld but the file defines %llu vertices",
+                     where, rv.line, rv.max, (unsigned long long)nv);
         return -1;
     }
     if ((uint64_t)rt.max > nvt) {
-        fail(err, errlen, "%s: line %lu: texture index %lld but the file defines %llu (vt lines)",
-             where, rt.line, rt.max, (unsigned long long)nvt);
+        lt_diag_fail(diag, "%s: line %lu: texture index %lld but the file defines %llu (vt lines)",
+                     where, rt.line, rt.max, (unsigned long long)nvt);
         return -1;
     }
     if ((uint64_t)rn.max > nvn) {
-        fail(err, errlen, "%s: line %lu: normal index %lld but the file defines %llu (vn lines)",
-             where, rn.line, rn.max, (unsigned long long)nvn);
+        lt_diag_fail(diag, "%s: line %lu: normal index %lld but the file defines %llu (vn lines)",
+                     where, rn.line, rn.max, (unsigned long long)nvn);
         return -1;
     }
     if (nf == 0) {
-        fail(err, errlen, "%s: no faces ('f' lines) in %lu lines, %llu vertices (empty or "
-             "truncated OBJ?)", where, line, (unsigned long long)nv);
+        lt_diag_fail(diag, "%s: no faces ('f' lines) in %lu lines, %llu vertices (empty or "
+                     "truncated OBJ?)", where, line, (unsigned long long)nv);
         return -1;
     }
     return 0;
@@ -393,8 +390,7 @@ static size_t strip_leading_blanks(char *buf, size_t len)
 
 /* ---- assimp scene -> triangles --------------------------------------------------------------- */
 
-static int scene_to_mesh(const struct aiScene *sc, const char *path, lt_mesh_t *m, char *err,
-                         size_t errlen)
+static int scene_to_mesh(const struct aiScene *sc, const char *path, lt_mesh_t *m, lt_diag_t *diag)
 {
     unsigned i, f, j, a;
     uint64_t n = 0;
@@ -404,13 +400,13 @@ static int scene_to_mesh(const struct aiScene *sc, const char *path, lt_mesh_t *
         for (f = 0; f < sc->mMeshes[i]->mNumFaces; f++)
             n += sc->mMeshes[i]->mFaces[f].mNumIndices == 3;
     if (n == 0 || n > LT_MESH_MAX_TRIS) {
-        fail(err, errlen, "%s: %llu triangles (need 1..%u)", path, (unsigned long long)n,
-             LT_MESH_MAX_TRIS);
+        lt_diag_fail(diag, "%s: %llu triangles (need 1..%u)", path, (unsigned long long)n,
+                     LT_MESH_MAX_TRIS);
         return -1;
     }
     m->v = (double *)malloc((size_t)n * 9 * sizeof(double));
     if (m->v == NULL) {
-        fail(err, errlen, "%s: out of memory for %llu triangles", path, (unsigned long long)n);
+        lt_diag_fail(diag, "%s: out of memory for %llu triangles", path, (unsigned long long)n);
         return -1;
     }
     for (a = 0; a < 3; a++) {
@@ -426,15 +422,16 @@ static int scene_to_mesh(const struct aiScene *sc, const char *path, lt_mesh_t *
             for (j = 0; j < 3; j++) {
                 const struct aiVector3D *p;
                 if (fa->mIndices[j] >= me->mNumVertices) {
-                    fail(err, errlen, "%s: mesh %u face %u: vertex index %u >= %u vertices", path,
-                         i, f, fa->mIndices[j], me->mNumVertices);
+                    lt_diag_fail(diag, "%s: mesh %u face %u: vertex index %u >= %u vertices", path,
+                                 i, f, fa->mIndices[j], me->mNumVertices);
                     lt_mesh_free(m);
                     return -1;
                 }
                 p = &me->mVertices[fa->mIndices[j]];
                 if (!isfinite(p->x) || !isfinite(p->y) || !isfinite(p->z)) {
-                    fail(err, errlen, "%s: mesh %u face %u: vertex %u is not finite", path, i, f,
-                         fa->mIndices[j]);
+                    lt_diag_fail(diag, "%s: mesh %u face %u: vertex %u is not finite after "
+                                 "import (NaN, or beyond float32's 3.4e38, the importer's vertex "
+                                 "format)", path, i, f, fa->mIndices[j]);
                     lt_mesh_free(m);
                     return -1;
                 }
@@ -456,7 +453,7 @@ static int scene_to_mesh(const struct aiScene *sc, const char *path, lt_mesh_t *
     return 0;
 }
 
-int lt_mesh_load(const char *path, lt_mesh_t *m, char *err, size_t errlen)
+int lt_mesh_load(const char *path, lt_mesh_t *m, lt_diag_t *diag)
 {
     const struct aiScene *sc = NULL;
     char *raw = NULL, *text = NULL;
@@ -473,28 +470,27 @@ int lt_mesh_load(const char *path, lt_mesh_t *m, char *err, size_t errlen)
         while (k > 0 && path[k - 1] != '.' && path[k - 1] != '/')
             k--;
         if (k == 0 || path[k - 1] != '.' || n - k < 1 || n - k >= sizeof hint) {
-            fail(err, errlen, "%s: cannot tell the format inside the gzip file: name it "
-                 "<name>.<ext>.gz (e.g. scene.obj.gz)", path);
+            lt_diag_fail(diag, "%s: cannot tell the format inside the gzip file: name it "
+                         "<name>.<ext>.gz (e.g. scene.obj.gz)", path);
             return -1;
         }
         memcpy(hint, path + k, n - k);
         hint[n - k] = '\0';
     }
     if (gz || obj) {
-        if (read_all(path, &raw, &rawlen, err, errlen) != 0)
+        if (read_all(path, &raw, &rawlen, diag) != 0)
             return -1;
         if (rawlen == 0) {
-            fail(err, errlen, "%s: empty file (0 bytes)", path);
+            lt_diag_fail(diag, "%s: empty file (0 bytes)", path);
             goto done;
         }
         if (gz) {
-            if (gunzip(path, (const unsigned char *)raw, rawlen, &text, &textlen, err,
-                       errlen) != 0)
+            if (gunzip(path, (const unsigned char *)raw, rawlen, &text, &textlen, diag) != 0)
                 goto done;
             free(raw);
             raw = NULL;
             if (textlen == 0) {
-                fail(err, errlen, "%s: empty after gunzip", path);
+                lt_diag_fail(diag, "%s: empty after gunzip", path);
                 goto done;
             }
         } else {
@@ -503,7 +499,7 @@ int lt_mesh_load(const char *path, lt_mesh_t *m, char *err, size_t errlen)
             raw = NULL;
         }
         if (obj) {
-            if (check_obj(path, text, textlen, err, errlen) != 0)
+            if (check_obj(path, text, textlen, diag) != 0)
                 goto done;
             textlen = strip_leading_blanks(text, textlen);
             (void)snprintf(hint, sizeof hint, "obj");
@@ -511,12 +507,12 @@ int lt_mesh_load(const char *path, lt_mesh_t *m, char *err, size_t errlen)
     } else {
         FILE *probe = fopen(path, "rb");
         if (probe == NULL) {
-            fail(err, errlen, "%s: cannot open the mesh file: %s", path, strerror(errno));
+            lt_diag_fail(diag, "%s: cannot open the mesh file: %s", path, strerror(errno));
             return -1;
         }
         if (fseek(probe, 0, SEEK_END) == 0 && ftell(probe) == 0) {
             (void)fclose(probe);
-            fail(err, errlen, "%s: empty file (0 bytes)", path);
+            lt_diag_fail(diag, "%s: empty file (0 bytes)", path);
             return -1;
         }
         (void)fclose(probe);
@@ -525,8 +521,7 @@ int lt_mesh_load(const char *path, lt_mesh_t *m, char *err, size_t errlen)
         /* every other format in a child process (lt_import.c): PLY, OFF and STL checked first
          * (lt_meshcheck.c); the rest from the path, so that assimp finds the files they refer
          * to (.bin), or the unpacked .gz from memory */
-        rc = lt_import_mesh(path, text, textlen, hint, IMPORT_FLAGS, scene_to_mesh, m, err,
-                            errlen);
+        rc = lt_import_mesh(path, text, textlen, hint, IMPORT_FLAGS, scene_to_mesh, m, diag);
         goto done;
     }
     /* OBJ (checked, blanks stripped; plain or unpacked from .gz): in process, from memory.
@@ -534,11 +529,11 @@ int lt_mesh_load(const char *path, lt_mesh_t *m, char *err, size_t errlen)
      * geometry only. */
     sc = aiImportFileFromMemory(text, (unsigned)textlen, IMPORT_FLAGS, hint);
     if (sc == NULL || sc->mNumMeshes == 0) {
-        fail(err, errlen, "%s: not a readable mesh (assimp: %s)", path,
-             sc == NULL ? aiGetErrorString() : "no meshes in the scene");
+        lt_diag_fail(diag, "%s: not a readable mesh (assimp: %s)", path,
+                     sc == NULL ? aiGetErrorString() : "no meshes in the scene");
         goto done;
     }
-    rc = scene_to_mesh(sc, path, m, err, errlen);
+    rc = scene_to_mesh(sc, path, m, diag);
 done:
     if (sc != NULL)
         aiReleaseImport(sc);

@@ -9,6 +9,8 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "io/lt_diag.h"
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -39,7 +41,7 @@ typedef struct lt_mesh {
  * truncated gzip stream, an OBJ line as above, a PLY/OFF/STL element or count, assimp's own
  * error text, an importer crash or time-out, no triangles, a non-finite vertex, an out-of-range
  * index, more than LT_MESH_MAX_TRIS triangles or more than LT_MESH_MAX_BYTES bytes). */
-int lt_mesh_load(const char *path, lt_mesh_t *m, char *err, size_t errlen);
+int lt_mesh_load(const char *path, lt_mesh_t *m, lt_diag_t *diag);
 
 void lt_mesh_free(lt_mesh_t *m);
 

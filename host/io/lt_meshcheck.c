@@ -18,16 +18,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-static void fail(char *err, size_t errlen, const char *fmt, ...)
-{
-    va_list ap;
-    if (err == NULL || errlen == 0)
-        return;
-    va_start(ap, fmt);
-    (void)vsnprintf(err, errlen, fmt, ap);
-    va_end(ap);
-}
-
 static int ieq(const char *a, const char *b)
 {
     while (*a != '\0' && *b != '\0') {
@@ -265,7 +255,7 @@ static const char *noun(const ply_elem_t *e, int plural, char out[64])
 }
 
 static int ply_header(const char *where, const unsigned char *b, size_t len, ply_hdr_t *h,
-                      char *err, size_t errlen)
+                      lt_diag_t *diag)
 {
     size_t pos = 0;
     unsigned long ln = 0;
@@ -280,7 +270,7 @@ static int ply_header(const char *where, const unsigned char *b, size_t len, ply
         line_t w;
         const unsigned char *c;
         if (!next_line(b, len, &pos, &l, &complete)) {
-            fail(err, errlen, "%s: the PLY header ends at byte %zu (line %lu) without "
+            lt_diag_fail(diag, "%s: the PLY header ends at byte %zu (line %lu) without "
                  "'end_header' (truncated?)", where, len, ln);
             return -1;
         }
@@ -289,14 +279,14 @@ static int ply_header(const char *where, const unsigned char *b, size_t len, ply
         if (ln == 1) {
             if (!next_token(&w, &t, &tn) || tn != 3 || tolower(t[0]) != 'p' ||
                 tolower(t[1]) != 'l' || tolower(t[2]) != 'y' || next_token(&w, &t, &tn)) {
-                fail(err, errlen, "%s: not a PLY file (its first line is not 'ply')", where);
+                lt_diag_fail(diag, "%s: not a PLY file (its first line is not 'ply')", where);
                 return -1;
             }
             continue;
         }
         for (c = l.s; c < l.e; c++)
             if ((*c < 0x20 && !is_blank(*c) && *c != '\r') || *c == 0x7F) {
-                fail(err, errlen, "%s: line %lu: byte 0x%02x in the PLY header (binary data "
+                lt_diag_fail(diag, "%s: line %lu: byte 0x%02x in the PLY header (binary data "
                      "before 'end_header': truncated or not PLY?)", where, ln, (unsigned)*c);
                 return -1;
             }
@@ -308,13 +298,13 @@ static int ply_header(const char *where, const unsigned char *b, size_t len, ply
             break;
         }
         if (!complete) {
-            fail(err, errlen, "%s: the PLY header ends at byte %zu (line %lu) without "
+            lt_diag_fail(diag, "%s: the PLY header ends at byte %zu (line %lu) without "
                  "'end_header' (truncated?)", where, len, ln);
             return -1;
         }
         if (tok_is(t, tn, "format")) {
             if (!next_token(&w, &t, &tn)) {
-                fail(err, errlen, "%s: line %lu: 'format' without a format", where, ln);
+                lt_diag_fail(diag, "%s: line %lu: 'format' without a format", where, ln);
                 return -1;
             }
             if (tok_is(t, tn, "ascii"))
@@ -324,21 +314,21 @@ static int ply_header(const char *where, const unsigned char *b, size_t len, ply
             else if (tok_is(t, tn, "binary_big_endian"))
                 h->format = 3;
             else {
-                fail(err, errlen, "%s: line %lu: unknown PLY format '%s' (ascii, "
+                lt_diag_fail(diag, "%s: line %lu: unknown PLY format '%s' (ascii, "
                      "binary_little_endian or binary_big_endian)", where, ln, quote(t, tn, q));
                 return -1;
             }
         } else if (tok_is(t, tn, "element")) {
             ply_elem_t *e;
             if (h->nelems == PLY_MAX_ELEMS) {
-                fail(err, errlen, "%s: line %lu: more than %u elements in the PLY header", where,
+                lt_diag_fail(diag, "%s: line %lu: more than %u elements in the PLY header", where,
                      ln, PLY_MAX_ELEMS);
                 return -1;
             }
             e = &h->elems[h->nelems++];
             e->line = ln;
             if (!next_token(&w, &t, &tn)) {
-                fail(err, errlen, "%s: line %lu: 'element' without a name", where, ln);
+                lt_diag_fail(diag, "%s: line %lu: 'element' without a name", where, ln);
                 return -1;
             }
             copy_name(e->name, t, tn);
@@ -347,12 +337,12 @@ static int ply_header(const char *where, const unsigned char *b, size_t len, ply
                       : tok_is(t, tn, "tristrips") ? PE_TRISTRIPS
                                                    : PE_OTHER;
             if (!next_token(&w, &t, &tn) || !parse_u64(t, tn, &e->count)) {
-                fail(err, errlen, "%s: line %lu: element '%s' without a count (need a whole "
+                lt_diag_fail(diag, "%s: line %lu: element '%s' without a count (need a whole "
                      "number)", where, ln, e->name);
                 return -1;
             }
             if (e->count > UINT32_MAX) {
-                fail(err, errlen, "%s: line %lu: element '%s' declares %llu instances (assimp "
+                lt_diag_fail(diag, "%s: line %lu: element '%s' declares %llu instances (assimp "
                      "counts to %lu)", where, ln, e->name, (unsigned long long)e->count,
                      (unsigned long)UINT32_MAX);
                 return -1;
@@ -363,35 +353,35 @@ static int ply_header(const char *where, const unsigned char *b, size_t len, ply
             unsigned k, ty = PT_NONE, cty = PT_NONE;
             int list = 0;
             if (h->nelems == 0) {
-                fail(err, errlen, "%s: line %lu: 'property' before any 'element'", where, ln);
+                lt_diag_fail(diag, "%s: line %lu: 'property' before any 'element'", where, ln);
                 return -1;
             }
             e = &h->elems[h->nelems - 1];
             if (e->nprops == PLY_MAX_PROPS) {
-                fail(err, errlen, "%s: line %lu: element '%s' has more than %u properties",
+                lt_diag_fail(diag, "%s: line %lu: element '%s' has more than %u properties",
                      where, ln, e->name, PLY_MAX_PROPS);
                 return -1;
             }
             if (!next_token(&w, &t, &tn)) {
-                fail(err, errlen, "%s: line %lu: 'property' without a type", where, ln);
+                lt_diag_fail(diag, "%s: line %lu: 'property' without a type", where, ln);
                 return -1;
             }
             if (tok_is(t, tn, "list")) {
                 list = 1;
                 if (!next_token(&w, &t, &tn)) {
-                    fail(err, errlen, "%s: line %lu: 'property list' without types", where, ln);
+                    lt_diag_fail(diag, "%s: line %lu: 'property list' without types", where, ln);
                     return -1;
                 }
                 for (k = 0; k < sizeof ply_types / sizeof ply_types[0]; k++)
                     if (tok_is(t, tn, ply_types[k].name))
                         cty = ply_types[k].type;
                 if (cty == PT_NONE || !pt_integer(cty)) {
-                    fail(err, errlen, "%s: line %lu: list count type '%s' is not an integer "
+                    lt_diag_fail(diag, "%s: line %lu: list count type '%s' is not an integer "
                          "PLY type", where, ln, quote(t, tn, q));
                     return -1;
                 }
                 if (!next_token(&w, &t, &tn)) {
-                    fail(err, errlen, "%s: line %lu: 'property list' without an item type",
+                    lt_diag_fail(diag, "%s: line %lu: 'property list' without an item type",
                          where, ln);
                     return -1;
                 }
@@ -402,13 +392,13 @@ static int ply_header(const char *where, const unsigned char *b, size_t len, ply
             if (ty == PT_NONE) {
                 /* assimp ends the element's property list at an unknown type and drops the
                  * rest: the binary layout would no longer match */
-                fail(err, errlen, "%s: line %lu: property type '%s' is not a PLY type assimp "
+                lt_diag_fail(diag, "%s: line %lu: property type '%s' is not a PLY type assimp "
                      "reads (char uchar short ushort int uint float double, int8 ... float64)",
                      where, ln, quote(t, tn, q));
                 return -1;
             }
             if (!next_token(&w, &t, &tn)) {
-                fail(err, errlen, "%s: line %lu: property without a name", where, ln);
+                lt_diag_fail(diag, "%s: line %lu: property without a name", where, ln);
                 return -1;
             }
             p = &e->props[e->nprops++];
@@ -419,7 +409,7 @@ static int ply_header(const char *where, const unsigned char *b, size_t len, ply
                                         tok_is(t, tn, "vertex_index")));
             copy_name(p->name, t, tn);
             if (p->index && !pt_integer(ty)) {
-                fail(err, errlen, "%s: line %lu: %s list '%s' has a floating-point item type "
+                lt_diag_fail(diag, "%s: line %lu: %s list '%s' has a floating-point item type "
                      "(indices must be integers)", where, ln, e->name, p->name);
                 return -1;
             }
@@ -427,7 +417,7 @@ static int ply_header(const char *where, const unsigned char *b, size_t len, ply
         /* comment, obj_info and anything else: skipped, as assimp does */
     }
     if (h->format == 0) {
-        fail(err, errlen, "%s: the PLY header has no 'format' line", where);
+        lt_diag_fail(diag, "%s: the PLY header has no 'format' line", where);
         return -1;
     }
     return 0;
@@ -478,7 +468,7 @@ static int ply_index_ok(int64_t idx, const ply_elem_t *e, uint64_t nverts)
 }
 
 static int ply_body_binary(const char *where, const unsigned char *b, size_t len,
-                           const ply_hdr_t *h, uint64_t nverts, char *err, size_t errlen)
+                           const ply_hdr_t *h, uint64_t nverts, lt_diag_t *diag)
 {
     int big = h->format == 3;
     size_t pos = h->body;
@@ -503,7 +493,7 @@ static int ply_body_binary(const char *where, const unsigned char *b, size_t len
                         goto truncated;
                     n = rd_int(b + pos, p->count_type, big);
                     if (n < 0) {
-                        fail(err, errlen, "%s: %s %llu of %llu (byte %zu): list '%s' has %lld "
+                        lt_diag_fail(diag, "%s: %s %llu of %llu (byte %zu): list '%s' has %lld "
                              "items", where, noun(e, 0, nb), (unsigned long long)i + 1,
                              (unsigned long long)e->count, pos, p->name, (long long)n);
                         return -1;
@@ -516,7 +506,7 @@ static int ply_body_binary(const char *where, const unsigned char *b, size_t len
                         for (j = 0; j < n; j++) {
                             int64_t idx = rd_int(b + pos + (size_t)j * isz, p->type, big);
                             if (!ply_index_ok(idx, e, nverts)) {
-                                fail(err, errlen, "%s: %s %llu of %llu (byte %zu): vertex index "
+                                lt_diag_fail(diag, "%s: %s %llu of %llu (byte %zu): vertex index "
                                      "%lld outside 0..%lld (%llu vertices)", where,
                                      noun(e, 0, nb), (unsigned long long)i + 1,
                                      (unsigned long long)e->count, start, (long long)idx,
@@ -530,7 +520,7 @@ static int ply_body_binary(const char *where, const unsigned char *b, size_t len
             }
             continue;
         truncated:
-            fail(err, errlen, "%s: truncated: the file's %zu bytes end inside %s %llu of %llu "
+            lt_diag_fail(diag, "%s: truncated: the file's %zu bytes end inside %s %llu of %llu "
                  "(which starts at byte %zu; binary body from byte %zu)", where, len,
                  noun(e, 0, nb), (unsigned long long)i + 1, (unsigned long long)e->count, start,
                  h->body);
@@ -541,7 +531,7 @@ static int ply_body_binary(const char *where, const unsigned char *b, size_t len
 }
 
 static int ply_body_ascii(const char *where, const unsigned char *b, size_t len,
-                          const ply_hdr_t *h, uint64_t nverts, char *err, size_t errlen)
+                          const ply_hdr_t *h, uint64_t nverts, lt_diag_t *diag)
 {
     size_t pos = h->body;
     unsigned long ln = h->body_line - 1;
@@ -559,7 +549,7 @@ static int ply_body_ascii(const char *where, const unsigned char *b, size_t len,
             for (;;) {
                 line_t w;
                 if (!next_line(b, len, &pos, &l, NULL)) {
-                    fail(err, errlen, "%s: truncated: the file ends after %llu of %llu %s (line "
+                    lt_diag_fail(diag, "%s: truncated: the file ends after %llu of %llu %s (line "
                          "%lu)", where, (unsigned long long)i, (unsigned long long)e->count,
                          noun(e, 1, nb), ln);
                     return -1;
@@ -577,7 +567,7 @@ static int ply_body_ascii(const char *where, const unsigned char *b, size_t len,
                         goto short_line;
                     vals++;
                     if (!parse_u64(t, tn, &n)) {
-                        fail(err, errlen, "%s: line %lu: %s %llu of %llu: list '%s' count '%s' "
+                        lt_diag_fail(diag, "%s: line %lu: %s %llu of %llu: list '%s' count '%s' "
                              "is not a whole number", where, ln, noun(e, 0, nb),
                              (unsigned long long)i + 1, (unsigned long long)e->count, p->name,
                              quote(t, tn, q));
@@ -589,7 +579,7 @@ static int ply_body_ascii(const char *where, const unsigned char *b, size_t len,
                         goto short_line;
                     vals++;
                     if (!is_number(t, tn, pt_integer(p->type))) {
-                        fail(err, errlen, "%s: line %lu: %s %llu of %llu: '%s' is not %s (property "
+                        lt_diag_fail(diag, "%s: line %lu: %s %llu of %llu: '%s' is not %s (property "
                              "'%s')", where, ln, noun(e, 0, nb), (unsigned long long)i + 1,
                              (unsigned long long)e->count, quote(t, tn, q),
                              pt_integer(p->type) ? "an integer" : "a number", p->name);
@@ -599,7 +589,7 @@ static int ply_body_ascii(const char *where, const unsigned char *b, size_t len,
                         int64_t idx = 0;
                         (void)parse_i64(t, tn, &idx);
                         if (!ply_index_ok(idx, e, nverts)) {
-                            fail(err, errlen, "%s: line %lu: %s %llu of %llu: vertex index %s "
+                            lt_diag_fail(diag, "%s: line %lu: %s %llu of %llu: vertex index %s "
                                  "outside 0..%lld (%llu vertices)", where, ln, noun(e, 0, nb),
                                  (unsigned long long)i + 1, (unsigned long long)e->count,
                                  quote(t, tn, q), (long long)nverts - 1,
@@ -610,7 +600,7 @@ static int ply_body_ascii(const char *where, const unsigned char *b, size_t len,
                 }
                 continue;
             short_line:
-                fail(err, errlen, "%s: line %lu: %s %llu of %llu ends after %u value%s, before "
+                lt_diag_fail(diag, "%s: line %lu: %s %llu of %llu ends after %u value%s, before "
                      "property '%s' is complete (truncated, or one %s split over lines?)", where,
                      ln, noun(e, 0, nb), (unsigned long long)i + 1, (unsigned long long)e->count,
                      vals, vals == 1 ? "" : "s", p->name, noun(e, 0, nb));
@@ -622,8 +612,7 @@ static int ply_body_ascii(const char *where, const unsigned char *b, size_t len,
     return 0;
 }
 
-static int check_ply(const char *where, const unsigned char *b, size_t len, char *err,
-                     size_t errlen)
+static int check_ply(const char *where, const unsigned char *b, size_t len, lt_diag_t *diag)
 {
     ply_hdr_t *h = (ply_hdr_t *)malloc(sizeof *h);
     uint64_t used = 0, nverts = 0, cap;
@@ -633,10 +622,10 @@ static int check_ply(const char *where, const unsigned char *b, size_t len, char
     char nb[64];
 
     if (h == NULL) {
-        fail(err, errlen, "%s: out of memory", where);
+        lt_diag_fail(diag, "%s: out of memory", where);
         return -1;
     }
-    if (ply_header(where, b, len, h, err, errlen) != 0)
+    if (ply_header(where, b, len, h, diag) != 0)
         goto done;
     binary = h->format != 1;
     body = len - h->body;
@@ -651,12 +640,12 @@ static int check_ply(const char *where, const unsigned char *b, size_t len, char
         if (e->count == 0)
             continue;
         if (e->nprops == 0) {
-            fail(err, errlen, "%s: line %lu: header declares %llu %s with no properties", where,
+            lt_diag_fail(diag, "%s: line %lu: header declares %llu %s with no properties", where,
                  e->line, (unsigned long long)e->count, noun(e, 1, nb));
             goto done;
         }
         if (e->count > (cap - used) / each) {
-            fail(err, errlen, "%s: header declares %llu %s; the file's %zu bytes hold at most %llu "
+            lt_diag_fail(diag, "%s: header declares %llu %s; the file's %zu bytes hold at most %llu "
                  "(%llu bytes each%s)", where, (unsigned long long)e->count, noun(e, 1, nb), len,
                  (unsigned long long)((cap - used) / each), (unsigned long long)each,
                  binary ? "" : " at least: a digit and a separator per value");
@@ -664,7 +653,7 @@ static int check_ply(const char *where, const unsigned char *b, size_t len, char
         }
         used += e->count * each;
         if (e->kind == PE_FACE && e->count > LT_MESH_MAX_TRIS) {
-            fail(err, errlen, "%s: header declares %llu faces (LT_MESH_MAX_TRIS is %u triangles)",
+            lt_diag_fail(diag, "%s: header declares %llu faces (LT_MESH_MAX_TRIS is %u triangles)",
                  where, (unsigned long long)e->count, LT_MESH_MAX_TRIS);
             goto done;
         }
@@ -674,12 +663,12 @@ static int check_ply(const char *where, const unsigned char *b, size_t len, char
             h->elems[ei].count > 0)
             break;
     if (ei == h->nelems) {
-        fail(err, errlen, "%s: no faces: the header declares no 'face' or 'tristrips' element "
+        lt_diag_fail(diag, "%s: no faces: the header declares no 'face' or 'tristrips' element "
              "with instances (a point cloud?)", where);
         goto done;
     }
-    rc = binary ? ply_body_binary(where, b, len, h, nverts, err, errlen)
-                : ply_body_ascii(where, b, len, h, nverts, err, errlen);
+    rc = binary ? ply_body_binary(where, b, len, h, nverts, diag)
+                : ply_body_ascii(where, b, len, h, nverts, diag);
 done:
     free(h);
     return rc;
@@ -738,8 +727,7 @@ static int off_line(const unsigned char *b, size_t len, size_t *pos, unsigned lo
     }
 }
 
-static int check_off(const char *where, const unsigned char *b, size_t len, char *err,
-                     size_t errlen)
+static int check_off(const char *where, const unsigned char *b, size_t len, lt_diag_t *diag)
 {
     size_t pos = 0, i;
     unsigned long ln = 1;
@@ -752,12 +740,12 @@ static int check_off(const char *where, const unsigned char *b, size_t len, char
 
     for (i = 0; i < len; i++)
         if (b[i] == 0 || b[i] == 0x7F) {
-            fail(err, errlen, "%s: byte 0x%02x at offset %zu: binary data (assimp reads only "
+            lt_diag_fail(diag, "%s: byte 0x%02x at offset %zu: binary data (assimp reads only "
                  "ASCII OFF)", where, (unsigned)b[i], i);
             return -1;
         }
     if (!off_header_token(b, len, &pos, &ln, &t, &tn)) {
-        fail(err, errlen, "%s: no OFF header (empty or only comments)", where);
+        lt_diag_fail(diag, "%s: no OFF header (empty or only comments)", where);
         return -1;
     }
     {
@@ -783,7 +771,7 @@ static int check_off(const char *where, const unsigned char *b, size_t len, char
             k++;
         }
         if (!(tn - k == 3 && memcmp(t + k, "OFF", 3) == 0)) {
-            fail(err, errlen, "%s: line %lu: '%s' is not an OFF header ([ST][C][N][4][n]OFF; "
+            lt_diag_fail(diag, "%s: line %lu: '%s' is not an OFF header ([ST][C][N][4][n]OFF; "
                  "assimp 5.2.5 does not read OFF files without one)", where, ln, quote(t, tn, q));
             return -1;
         }
@@ -791,7 +779,7 @@ static int check_off(const char *where, const unsigned char *b, size_t len, char
     if (ndim) {
         if (!off_header_token(b, len, &pos, &ln, &t, &tn) || !parse_u64(t, tn, &d64) ||
             d64 < 1 || d64 > 3) {
-            fail(err, errlen, "%s: line %lu: nOFF dimension must be 1..3 (assimp's limit)", where,
+            lt_diag_fail(diag, "%s: line %lu: nOFF dimension must be 1..3 (assimp's limit)", where,
                  ln);
             return -1;
         }
@@ -806,17 +794,17 @@ static int check_off(const char *where, const unsigned char *b, size_t len, char
         cnt[2] = &ne;
         for (c = 0; c < 3; c++) {
             if (!off_header_token(b, len, &pos, &ln, &t, &tn)) {
-                fail(err, errlen, "%s: truncated: the OFF header ends before its %s count", where,
+                lt_diag_fail(diag, "%s: truncated: the OFF header ends before its %s count", where,
                      what[c]);
                 return -1;
             }
             if (c == 0 && tok_is(t, tn, "BINARY")) {
-                fail(err, errlen, "%s: line %lu: binary OFF (assimp reads only ASCII OFF)", where,
+                lt_diag_fail(diag, "%s: line %lu: binary OFF (assimp reads only ASCII OFF)", where,
                      ln);
                 return -1;
             }
             if (!parse_u64(t, tn, cnt[c])) {
-                fail(err, errlen, "%s: line %lu: OFF %s count '%s' is not a whole number", where,
+                lt_diag_fail(diag, "%s: line %lu: OFF %s count '%s' is not a whole number", where,
                      ln, what[c], quote(t, tn, q));
                 return -1;
             }
@@ -831,7 +819,7 @@ static int check_off(const char *where, const unsigned char *b, size_t len, char
         size_t p2 = pos;
         (void)next_line(b, len, &p2, &w, NULL);
         (void)next_token(&w, &t, &tn);
-        fail(err, errlen, "%s: line %lu: '%s' after the OFF counts (vertices faces edges)", where,
+        lt_diag_fail(diag, "%s: line %lu: '%s' after the OFF counts (vertices faces edges)", where,
              ln, quote(t, tn, q));
         return -1;
     }
@@ -841,7 +829,7 @@ static int check_off(const char *where, const unsigned char *b, size_t len, char
         pos++;
     ln++;
     if (nv == 0 || nf == 0) {
-        fail(err, errlen, "%s: header declares %llu vertices and %llu faces (need at least 1 "
+        lt_diag_fail(diag, "%s: header declares %llu vertices and %llu faces (need at least 1 "
              "each)", where, (unsigned long long)nv, (unsigned long long)nf);
         return -1;
     }
@@ -849,7 +837,7 @@ static int check_off(const char *where, const unsigned char *b, size_t len, char
     {
         uint64_t body = (uint64_t)(len - pos) + 1, each = 2u * need;
         if (nv > body / each) {
-            fail(err, errlen, "%s: header declares %llu vertices; the file's %zu bytes hold at "
+            lt_diag_fail(diag, "%s: header declares %llu vertices; the file's %zu bytes hold at "
                  "most %llu (%llu bytes each at least: a digit and a separator per value)",
                  where, (unsigned long long)nv, len, (unsigned long long)(body / each),
                  (unsigned long long)each);
@@ -857,13 +845,13 @@ static int check_off(const char *where, const unsigned char *b, size_t len, char
         }
         body -= nv * each;
         if (nf > body / 8) {
-            fail(err, errlen, "%s: header declares %llu faces; the file's %zu bytes hold at most "
+            lt_diag_fail(diag, "%s: header declares %llu faces; the file's %zu bytes hold at most "
                  "%llu after the vertices (8 bytes each at least: 'n i j k')", where,
                  (unsigned long long)nf, len, (unsigned long long)(body / 8));
             return -1;
         }
         if (nf > LT_MESH_MAX_TRIS) {
-            fail(err, errlen, "%s: header declares %llu faces (LT_MESH_MAX_TRIS is %u triangles)",
+            lt_diag_fail(diag, "%s: header declares %llu faces (LT_MESH_MAX_TRIS is %u triangles)",
                  where, (unsigned long long)nf, LT_MESH_MAX_TRIS);
             return -1;
         }
@@ -873,19 +861,19 @@ static int check_off(const char *where, const unsigned char *b, size_t len, char
         int toolong;
         unsigned n = 0;
         if (!off_line(b, len, &pos, &ln, &l, &toolong)) {
-            fail(err, errlen, "%s: truncated: the file ends after %llu of %llu vertices (line %lu)",
+            lt_diag_fail(diag, "%s: truncated: the file ends after %llu of %llu vertices (line %lu)",
                  where, (unsigned long long)v, (unsigned long long)nv, ln);
             return -1;
         }
         if (toolong) {
-            fail(err, errlen, "%s: line %lu is %zu bytes long (assimp's OFF reader reads lines of "
+            lt_diag_fail(diag, "%s: line %lu is %zu bytes long (assimp's OFF reader reads lines of "
                  "up to %u)", where, ln, (size_t)(l.e - l.s), OFF_MAX_LINE);
             return -1;
         }
         {
             line_t w = l;
             if (next_token(&w, &t, &tn) && t[0] == '#') {
-                fail(err, errlen, "%s: line %lu: comment line among the vertices (assimp's OFF "
+                lt_diag_fail(diag, "%s: line %lu: comment line among the vertices (assimp's OFF "
                      "reader would read it as vertex %llu of %llu)", where, ln,
                      (unsigned long long)v + 1, (unsigned long long)nv);
                 return -1;
@@ -895,14 +883,14 @@ static int check_off(const char *where, const unsigned char *b, size_t len, char
             if (t[0] == '#')
                 break;
             if (!is_number(t, tn, 0)) {
-                fail(err, errlen, "%s: line %lu: vertex %llu of %llu: '%s' is not a number", where,
+                lt_diag_fail(diag, "%s: line %lu: vertex %llu of %llu: '%s' is not a number", where,
                      ln, (unsigned long long)v + 1, (unsigned long long)nv, quote(t, tn, q));
                 return -1;
             }
             n++;
         }
         if (n < need) {
-            fail(err, errlen, "%s: line %lu: vertex %llu of %llu has %u of its %u values "
+            lt_diag_fail(diag, "%s: line %lu: vertex %llu of %llu has %u of its %u values "
                  "(truncated?)", where, ln, (unsigned long long)v + 1, (unsigned long long)nv, n,
                  need);
             return -1;
@@ -913,30 +901,30 @@ static int check_off(const char *where, const unsigned char *b, size_t len, char
         int toolong;
         uint64_t k, j;
         if (!off_line(b, len, &pos, &ln, &l, &toolong)) {
-            fail(err, errlen, "%s: truncated: the file ends after %llu of %llu faces (line %lu)",
+            lt_diag_fail(diag, "%s: truncated: the file ends after %llu of %llu faces (line %lu)",
                  where, (unsigned long long)f, (unsigned long long)nf, ln);
             return -1;
         }
         if (toolong) {
-            fail(err, errlen, "%s: line %lu is %zu bytes long (assimp's OFF reader reads lines of "
+            lt_diag_fail(diag, "%s: line %lu is %zu bytes long (assimp's OFF reader reads lines of "
                  "up to %u)", where, ln, (size_t)(l.e - l.s), OFF_MAX_LINE);
             return -1;
         }
         (void)next_token(&l, &t, &tn);
         if (t[0] == '#') {
-            fail(err, errlen, "%s: line %lu: comment line among the faces (assimp would drop "
+            lt_diag_fail(diag, "%s: line %lu: comment line among the faces (assimp would drop "
                  "face %llu of %llu)", where, ln, (unsigned long long)f + 1,
                  (unsigned long long)nf);
             return -1;
         }
         if (!parse_u64(t, tn, &k)) {
-            fail(err, errlen, "%s: line %lu: face %llu of %llu: vertex count '%s' is not a whole "
+            lt_diag_fail(diag, "%s: line %lu: face %llu of %llu: vertex count '%s' is not a whole "
                  "number", where, ln, (unsigned long long)f + 1, (unsigned long long)nf,
                  quote(t, tn, q));
             return -1;
         }
         if (k < 3 || k > 9) {
-            fail(err, errlen, "%s: line %lu: face %llu of %llu has %llu vertices (assimp's OFF "
+            lt_diag_fail(diag, "%s: line %lu: face %llu of %llu has %llu vertices (assimp's OFF "
                  "reader drops faces of 0 or more than 9; a triangle needs 3)", where, ln,
                  (unsigned long long)f + 1, (unsigned long long)nf, (unsigned long long)k);
             return -1;
@@ -944,13 +932,13 @@ static int check_off(const char *where, const unsigned char *b, size_t len, char
         for (j = 0; j < k; j++) {
             uint64_t idx;
             if (!next_token(&l, &t, &tn) || t[0] == '#') {
-                fail(err, errlen, "%s: line %lu: face %llu of %llu lists %llu of its %llu vertex "
+                lt_diag_fail(diag, "%s: line %lu: face %llu of %llu lists %llu of its %llu vertex "
                      "indices (truncated?)", where, ln, (unsigned long long)f + 1,
                      (unsigned long long)nf, (unsigned long long)j, (unsigned long long)k);
                 return -1;
             }
             if (!parse_u64(t, tn, &idx) || idx >= nv) {
-                fail(err, errlen, "%s: line %lu: face %llu of %llu: vertex index '%s' outside "
+                lt_diag_fail(diag, "%s: line %lu: face %llu of %llu: vertex index '%s' outside "
                      "0..%llu", where, ln, (unsigned long long)f + 1, (unsigned long long)nf,
                      quote(t, tn, q), (unsigned long long)nv - 1);
                 return -1;
@@ -967,8 +955,7 @@ static int check_off(const char *where, const unsigned char *b, size_t len, char
  * three 'vertex x y z', endloop, endfacet), endsolid; several solids may follow each other.
  * assimp only warns about a facet with fewer than 3 vertices and then pairs the following
  * vertices into the wrong triangles. */
-static int check_stl_ascii(const char *where, const unsigned char *b, size_t len, char *err,
-                           size_t errlen)
+static int check_stl_ascii(const char *where, const unsigned char *b, size_t len, lt_diag_t *diag)
 {
     size_t pos = 0;
     unsigned long ln = 0, facets = 0, fline = 0;
@@ -983,7 +970,7 @@ static int check_stl_ascii(const char *where, const unsigned char *b, size_t len
         while (next_token(&l, &t, &tn)) {
             if (!in_solid) {
                 if (!tok_is(t, tn, "solid")) {
-                    fail(err, errlen, "%s: line %lu: '%s' where 'solid' should start an ASCII STL "
+                    lt_diag_fail(diag, "%s: line %lu: '%s' where 'solid' should start an ASCII STL "
                          "solid", where, ln, quote(t, tn, q));
                     return -1;
                 }
@@ -995,7 +982,7 @@ static int check_stl_ascii(const char *where, const unsigned char *b, size_t len
             if (tok_is(t, tn, "facet")) {
                 int k;
                 if (in_facet) {
-                    fail(err, errlen, "%s: line %lu: a facet starts before facet %lu (line %lu) "
+                    lt_diag_fail(diag, "%s: line %lu: a facet starts before facet %lu (line %lu) "
                          "ended", where, ln, facets, fline);
                     return -1;
                 }
@@ -1004,55 +991,55 @@ static int check_stl_ascii(const char *where, const unsigned char *b, size_t len
                 facets++;
                 fline = ln;
                 if (!next_token(&l, &t, &tn) || !tok_is(t, tn, "normal")) {
-                    fail(err, errlen, "%s: line %lu: facet %lu without 'normal x y z'", where, ln,
+                    lt_diag_fail(diag, "%s: line %lu: facet %lu without 'normal x y z'", where, ln,
                          facets);
                     return -1;
                 }
                 for (k = 0; k < 3; k++)
                     if (!next_token(&l, &t, &tn) || !is_number(t, tn, 0)) {
-                        fail(err, errlen, "%s: line %lu: facet %lu: normal needs 3 numbers%s",
+                        lt_diag_fail(diag, "%s: line %lu: facet %lu: normal needs 3 numbers%s",
                              where, ln, facets, l.s >= l.e ? " (truncated?)" : "");
                         return -1;
                     }
             } else if (tok_is(t, tn, "vertex")) {
                 int k;
                 if (!in_facet) {
-                    fail(err, errlen, "%s: line %lu: 'vertex' outside a facet", where, ln);
+                    lt_diag_fail(diag, "%s: line %lu: 'vertex' outside a facet", where, ln);
                     return -1;
                 }
                 if (++verts > 3) {
-                    fail(err, errlen, "%s: line %lu: facet %lu has more than 3 vertices", where,
+                    lt_diag_fail(diag, "%s: line %lu: facet %lu has more than 3 vertices", where,
                          ln, facets);
                     return -1;
                 }
                 for (k = 0; k < 3; k++)
                     if (!next_token(&l, &t, &tn) || !is_number(t, tn, 0)) {
-                        fail(err, errlen, "%s: line %lu: facet %lu: vertex %d needs 3 numbers%s",
+                        lt_diag_fail(diag, "%s: line %lu: facet %lu: vertex %d needs 3 numbers%s",
                              where, ln, facets, verts, l.s >= l.e ? " (truncated?)" : "");
                         return -1;
                     }
             } else if (tok_is(t, tn, "outer") || tok_is(t, tn, "loop") ||
                        tok_is(t, tn, "endloop")) {
                 if (!in_facet) {
-                    fail(err, errlen, "%s: line %lu: '%s' outside a facet", where, ln,
+                    lt_diag_fail(diag, "%s: line %lu: '%s' outside a facet", where, ln,
                          quote(t, tn, q));
                     return -1;
                 }
             } else if (tok_is(t, tn, "endfacet")) {
                 if (!in_facet || verts != 3) {
-                    fail(err, errlen, "%s: line %lu: facet %lu ends with %d vertices (need 3)",
+                    lt_diag_fail(diag, "%s: line %lu: facet %lu ends with %d vertices (need 3)",
                          where, ln, facets, in_facet ? verts : 0);
                     return -1;
                 }
                 in_facet = 0;
                 if (facets > LT_MESH_MAX_TRIS) {
-                    fail(err, errlen, "%s: line %lu: more than LT_MESH_MAX_TRIS %u facets", where,
+                    lt_diag_fail(diag, "%s: line %lu: more than LT_MESH_MAX_TRIS %u facets", where,
                          ln, LT_MESH_MAX_TRIS);
                     return -1;
                 }
             } else if (tok_is(t, tn, "endsolid")) {
                 if (in_facet) {
-                    fail(err, errlen, "%s: line %lu: 'endsolid' inside facet %lu (line %lu)",
+                    lt_diag_fail(diag, "%s: line %lu: 'endsolid' inside facet %lu (line %lu)",
                          where, ln, facets, fline);
                     return -1;
                 }
@@ -1060,31 +1047,30 @@ static int check_stl_ascii(const char *where, const unsigned char *b, size_t len
                 l.s = l.e;
                 break;
             } else {
-                fail(err, errlen, "%s: line %lu: unexpected '%s' in an ASCII STL solid", where,
+                lt_diag_fail(diag, "%s: line %lu: unexpected '%s' in an ASCII STL solid", where,
                      ln, quote(t, tn, q));
                 return -1;
             }
         }
     }
     if (in_facet) {
-        fail(err, errlen, "%s: truncated: the file ends inside facet %lu (line %lu) with %d of "
+        lt_diag_fail(diag, "%s: truncated: the file ends inside facet %lu (line %lu) with %d of "
              "its 3 vertices", where, facets, fline, verts);
         return -1;
     }
     if (in_solid) {
-        fail(err, errlen, "%s: truncated: the file ends after facet %lu without 'endsolid'",
+        lt_diag_fail(diag, "%s: truncated: the file ends after facet %lu without 'endsolid'",
              where, facets);
         return -1;
     }
     if (solids == 0 || facets == 0) {
-        fail(err, errlen, "%s: no facets in the ASCII STL", where);
+        lt_diag_fail(diag, "%s: no facets in the ASCII STL", where);
         return -1;
     }
     return 0;
 }
 
-static int check_stl(const char *where, const unsigned char *b, size_t len, char *err,
-                     size_t errlen)
+static int check_stl(const char *where, const unsigned char *b, size_t len, lt_diag_t *diag)
 {
     uint64_t n = 0, want;
     size_t i, k;
@@ -1094,11 +1080,11 @@ static int check_stl(const char *where, const unsigned char *b, size_t len, char
         want = 84 + 50 * n;
         if (want == len) { /* assimp: binary whenever the sizes match, whatever the header says */
             if (n == 0) {
-                fail(err, errlen, "%s: binary STL with 0 triangles", where);
+                lt_diag_fail(diag, "%s: binary STL with 0 triangles", where);
                 return -1;
             }
             if (n > LT_MESH_MAX_TRIS) {
-                fail(err, errlen, "%s: header declares %llu triangles (LT_MESH_MAX_TRIS is %u)",
+                lt_diag_fail(diag, "%s: header declares %llu triangles (LT_MESH_MAX_TRIS is %u)",
                      where, (unsigned long long)n, LT_MESH_MAX_TRIS);
                 return -1;
             }
@@ -1114,19 +1100,19 @@ static int check_stl(const char *where, const unsigned char *b, size_t len, char
         if (b[k] > 0x7F || b[k] == 0)
             ascii = 0;
     if (ascii)
-        return check_stl_ascii(where, b, len, err, errlen);
+        return check_stl_ascii(where, b, len, diag);
     if (len < 84) {
-        fail(err, errlen, "%s: %zu bytes: neither ASCII STL ('solid ...') nor binary STL (an "
+        lt_diag_fail(diag, "%s: %zu bytes: neither ASCII STL ('solid ...') nor binary STL (an "
              "84-byte header with the triangle count, then 50 bytes per triangle)", where, len);
         return -1;
     }
     if (84 + 50 * n > len) {
-        fail(err, errlen, "%s: header declares %llu triangles; the file's %zu bytes hold at most "
+        lt_diag_fail(diag, "%s: header declares %llu triangles; the file's %zu bytes hold at most "
              "%zu (50 bytes each after the 84-byte header)", where, (unsigned long long)n, len,
              (len - 84) / 50);
         return -1;
     }
-    fail(err, errlen, "%s: header declares %llu triangles (%llu bytes) but the file has %zu bytes, "
+    lt_diag_fail(diag, "%s: header declares %llu triangles (%llu bytes) but the file has %zu bytes, "
          "%llu more (binary STL must match exactly; not ASCII either: no 'solid' at the start)",
          where, (unsigned long long)n, (unsigned long long)(84 + 50 * n), len,
          (unsigned long long)(len - 84 - 50 * n));
@@ -1134,15 +1120,15 @@ static int check_stl(const char *where, const unsigned char *b, size_t len, char
 }
 
 int lt_meshcheck(lt_meshcheck_kind_t kind, const char *where, const unsigned char *buf, size_t len,
-                 char *err, size_t errlen)
+                 lt_diag_t *diag)
 {
     switch (kind) {
     case LT_MESHCHECK_PLY:
-        return check_ply(where, buf, len, err, errlen);
+        return check_ply(where, buf, len, diag);
     case LT_MESHCHECK_OFF:
-        return check_off(where, buf, len, err, errlen);
+        return check_off(where, buf, len, diag);
     case LT_MESHCHECK_STL:
-        return check_stl(where, buf, len, err, errlen);
+        return check_stl(where, buf, len, diag);
     case LT_MESHCHECK_NONE:
     default:
         return 0;

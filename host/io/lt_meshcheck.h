@@ -7,6 +7,8 @@
 
 #include <stddef.h>
 
+#include "io/lt_diag.h"
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -31,7 +33,7 @@ const char *lt_meshcheck_hint(lt_meshcheck_kind_t kind);
  * "x.ply: header declares 4000000000 vertices; the file's 1234 bytes hold at most 102 (12 bytes
  * each)". Time and memory are bounded by len (one pass, a fixed-size table of the PLY header). */
 int lt_meshcheck(lt_meshcheck_kind_t kind, const char *where, const unsigned char *buf, size_t len,
-                 char *err, size_t errlen);
+                 lt_diag_t *diag);
 
 #ifdef __cplusplus
 }

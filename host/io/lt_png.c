@@ -3,11 +3,11 @@
  * temp + fsync + rename commit. Host only; docs/io.md.
  */
 #include "io/lt_png.h"
+#include "io/lt_tmpfiles.h"
 
 #include <errno.h>
 #include <png.h>
 #include <setjmp.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -17,16 +17,6 @@
 typedef struct png_err {
     char msg[200]; /* first libpng error or warning text */
 } png_err_t;
-
-static void fail(char *err, size_t errlen, const char *fmt, ...)
-{
-    va_list ap;
-    if (err == NULL || errlen == 0)
-        return;
-    va_start(ap, fmt);
-    (void)vsnprintf(err, errlen, fmt, ap);
-    va_end(ap);
-}
 
 static void on_png_error(png_structp png, png_const_charp msg)
 {
@@ -81,7 +71,7 @@ static int encode(FILE *fp, const uint8_t *pix, int32_t w, int32_t h, int channe
 }
 
 int lt_png_write(const char *path, const uint8_t *pix, int32_t w, int32_t h, int channels,
-                 size_t stride, char *err, size_t errlen)
+                 size_t stride, lt_diag_t *diag)
 {
     png_err_t pe;
     FILE *fp;
@@ -89,56 +79,63 @@ int lt_png_write(const char *path, const uint8_t *pix, int32_t w, int32_t h, int
     int rc;
 
     if (path == NULL || pix == NULL) {
-        fail(err, errlen, "lt_png_write: NULL %s", path == NULL ? "path" : "pixels");
+        lt_diag_fail(diag, "lt_png_write: NULL %s", path == NULL ? "path" : "pixels");
         return -1;
     }
     if (w < 1 || h < 1 || w > LT_PNG_MAX_DIM || h > LT_PNG_MAX_DIM) {
-        fail(err, errlen, "%s: image %dx%d outside 1..LT_PNG_MAX_DIM %d", path, (int)w, (int)h,
-             LT_PNG_MAX_DIM);
+        lt_diag_fail(diag, "%s: image %dx%d outside 1..LT_PNG_MAX_DIM %d", path, (int)w, (int)h,
+                     LT_PNG_MAX_DIM);
         return -1;
     }
     if (channels < 1 || channels > 4) {
-        fail(err, errlen, "%s: %d channels per pixel (need 1 gray, 2 gray+alpha, 3 RGB, 4 RGBA)",
-             path, channels);
+        lt_diag_fail(diag, "%s: %d channels per pixel (need 1 gray, 2 gray+alpha, 3 RGB, 4 RGBA)",
+                     path, channels);
         return -1;
     }
     if (stride == 0)
         stride = (size_t)w * (size_t)channels;
     if (stride < (size_t)w * (size_t)channels) {
-        fail(err, errlen, "%s: row stride %zu < %d pixels x %d channels", path, stride, (int)w,
-             channels);
+        lt_diag_fail(diag, "%s: row stride %zu < %d pixels x %d channels", path, stride, (int)w,
+                     channels);
         return -1;
     }
-    tmp = (char *)malloc(strlen(path) + 32);
+    tmp = (char *)malloc(LT_TMP_PATH_MAX);
     if (tmp == NULL) {
-        fail(err, errlen, "%s: out of memory", path);
+        lt_diag_fail(diag, "%s: out of memory", path);
         return -1;
     }
-    (void)sprintf(tmp, "%s.tmp.%ld", path, (long)getpid());
+    /* registered: a fatal signal removes it (io/lt_tmpfiles.h) */
+    if (lt_tmp_begin(path, tmp, diag) != 0) {
+        free(tmp);
+        return -1;
+    }
     fp = fopen(tmp, "wb");
     if (fp == NULL) {
-        fail(err, errlen, "%s: cannot create temporary file %s: %s", path, tmp, strerror(errno));
+        lt_diag_fail(diag, "%s: cannot create temporary file %s: %s", path, tmp, strerror(errno));
+        lt_tmp_end(tmp);
         free(tmp);
         return -1;
     }
     memset(&pe, 0, sizeof pe);
     rc = encode(fp, pix, w, h, channels, stride, &pe);
     if (rc != 0) {
-        fail(err, errlen, "%s: PNG encoding failed: %s", path, pe.msg);
+        lt_diag_fail(diag, "%s: PNG encoding failed: %s", path, pe.msg);
         (void)fclose(fp);
     } else if (fflush(fp) != 0 || fsync(fileno(fp)) != 0 || ferror(fp)) {
-        fail(err, errlen, "%s: writing %s failed: %s", path, tmp, strerror(errno));
+        lt_diag_fail(diag, "%s: writing %s failed: %s", path, tmp, strerror(errno));
         (void)fclose(fp);
         rc = -1;
     } else if (fclose(fp) != 0) {
-        fail(err, errlen, "%s: closing %s failed: %s", path, tmp, strerror(errno));
+        lt_diag_fail(diag, "%s: closing %s failed: %s", path, tmp, strerror(errno));
         rc = -1;
     } else if (rename(tmp, path) != 0) {
-        fail(err, errlen, "%s: cannot rename %s to it: %s", path, tmp, strerror(errno));
+        lt_diag_fail(diag, "%s: cannot rename %s to it: %s", path, tmp, strerror(errno));
         rc = -1;
     }
     if (rc != 0)
-        (void)unlink(tmp);
+        lt_tmp_discard(tmp);
+    else
+        lt_tmp_end(tmp);
     free(tmp);
     return rc;
 }

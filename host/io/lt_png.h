@@ -7,6 +7,8 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "io/lt_diag.h"
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -20,9 +22,9 @@ extern "C" {
  * interrupted run leaves the previous file or the complete new one.
  * Format: uint8 samples -> 8-bit PNG (zlib level 6, no filter heuristics beyond libpng's).
  * Range: 0..255. Rounding: none. Overflow: none. Cost: host only, not charged.
- * Returns: 0, or -1 with a message naming the path and the problem in err. */
+ * Returns: 0, or -1 with a message naming the path and the problem in diag. */
 int lt_png_write(const char *path, const uint8_t *pix, int32_t w, int32_t h, int channels,
-                 size_t stride, char *err, size_t errlen);
+                 size_t stride, lt_diag_t *diag);
 
 #ifdef __cplusplus
 }

@@ -2,6 +2,7 @@
  * Every error names the file, the key path (e.g. "camera.fov_y_deg") and the rule. Host only.
  */
 #include "io/lt_scenefile.h"
+#include "lt_cache.h"
 
 #include <cjson/cJSON.h>
 #include <math.h>
@@ -9,6 +10,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <errno.h>
 #include <sys/stat.h>
 
 const char *const lt_sf_structures[] = {"chunks", "bvh", "bvhq", "kd", "grid", NULL};
@@ -42,19 +44,18 @@ int lt_sf_machine_known(const char *name)
 typedef struct ctx {
     const char *name;
     const char *base;
-    char *err;
-    size_t errlen;
+    lt_diag_t *diag;
 } ctx_t;
 
+/* The message, with the scene file's name in front. Returns -1. */
+static int fail(ctx_t *c, const char *fmt, ...) LT_DIAG_PRINTF(2, 3);
 static int fail(ctx_t *c, const char *fmt, ...)
 {
-    char msg[768];
     va_list ap;
     va_start(ap, fmt);
-    vsnprintf(msg, sizeof msg, fmt, ap);
+    (void)lt_diag_vfail(c->diag, fmt, ap);
     va_end(ap);
-    snprintf(c->err, c->errlen, "%s: %s", c->name, msg);
-    return -1;
+    return lt_diag_prefix(c->diag, "%s: ", c->name);
 }
 
 void lt_sf_defaults(lt_scenefile_t *sf)
@@ -63,17 +64,22 @@ void lt_sf_defaults(lt_scenefile_t *sf)
     sf->fov_y_deg = 40.0;
     sf->up[1] = 1.0;
     sf->width = sf->height = 128;
-    snprintf(sf->structure, sizeof sf->structure, "chunks");
+    snprintf(sf->structure, sizeof sf->structure, "bvh");
     sf->numeric = LT_SF_NUM_BOTH;
     snprintf(sf->machine, sizeof sf->machine, "lrb16");
 }
 
-/* Every member of obj must be one of the names in known (NULL-terminated). */
+/* Every member of obj must be one of the names in known (NULL-terminated), and appear once (JSON
+ * leaves duplicates to the reader; cJSON would silently take the first). */
 static int check_keys(ctx_t *c, const cJSON *obj, const char *where, const char *const *known)
 {
-    const cJSON *it;
+    const cJSON *it, *prev;
     cJSON_ArrayForEach(it, obj) {
         int i, ok = 0;
+        for (prev = obj->child; prev != it; prev = prev->next)
+            if (strcmp(prev->string, it->string) == 0)
+                return fail(c, "key '%s%s%s' appears more than once (each key at most once)",
+                            where, *where ? "." : "", it->string);
         for (i = 0; known[i] != NULL; i++)
             ok |= strcmp(it->string, known[i]) == 0;
         if (!ok) {
@@ -88,6 +94,17 @@ static int check_keys(ctx_t *c, const cJSON *obj, const char *where, const char 
         }
     }
     return 0;
+}
+
+/* A cache geometry "sets:ways:line" checked by the cycle model's own parser (sim/lt_cache.c,
+ * linked in every build), so a bad one is named with the file and key in every build. */
+static int check_cache(ctx_t *c, const char *key, const char *spec)
+{
+    lt_cache_cfg_t cfg;
+    lt_diag_t d;
+    if (lt_cache_parse(spec, &cfg, &d) == 0)
+        return 0;
+    return fail(c, "'%s': %s", key, d.msg);
 }
 
 static int get_number(ctx_t *c, const cJSON *it, const char *key, double lo, double hi, double *out)
@@ -161,7 +178,7 @@ static int parse_camera(ctx_t *c, const cJSON *cam, lt_scenefile_t *sf)
 {
     static const char *const keys[] = {"eye", "target", "up", "fov_y_deg", NULL};
     const cJSON *it;
-    double f[3], len2;
+    double f[3];
     if (!cJSON_IsObject(cam))
         return fail(c, "'camera' must be an object");
     if (check_keys(c, cam, "camera", keys) != 0)
@@ -183,15 +200,30 @@ static int parse_camera(ctx_t *c, const cJSON *cam, lt_scenefile_t *sf)
     f[0] = sf->target[0] - sf->eye[0];
     f[1] = sf->target[1] - sf->eye[1];
     f[2] = sf->target[2] - sf->eye[2];
-    len2 = f[0] * f[0] + f[1] * f[1] + f[2] * f[2];
-    if (!(len2 > 0.0))
+    if (!isfinite(f[0]) || !isfinite(f[1]) || !isfinite(f[2]))
+        return fail(c, "'camera.target' - 'camera.eye' overflows a double (their distance is "
+                       "above 1.8e308)");
+    if (f[0] == 0.0 && f[1] == 0.0 && f[2] == 0.0)
         return fail(c, "'camera.target' equals 'camera.eye': no view direction");
+    if (sf->up[0] == 0.0 && sf->up[1] == 0.0 && sf->up[2] == 0.0)
+        return fail(c, "'camera.up' is the zero vector: no up direction");
     {
-        double u[3] = {sf->up[0], sf->up[1], sf->up[2]};
-        double x[3] = {f[1] * u[2] - f[2] * u[1], f[2] * u[0] - f[0] * u[2],
-                       f[0] * u[1] - f[1] * u[0]};
-        if (!(x[0] * x[0] + x[1] * x[1] + x[2] * x[2] > 1e-12 * len2))
-            return fail(c, "'camera.up' is parallel to the view direction");
+        /* both scaled by their largest component first, so that huge and tiny vectors neither
+           overflow nor underflow: the sine of their angle */
+        double fm = fmax(fabs(f[0]), fmax(fabs(f[1]), fabs(f[2])));
+        double um = fmax(fabs(sf->up[0]), fmax(fabs(sf->up[1]), fabs(sf->up[2])));
+        double g[3] = {f[0] / fm, f[1] / fm, f[2] / fm};
+        double u[3] = {sf->up[0] / um, sf->up[1] / um, sf->up[2] / um};
+        double x[3] = {g[1] * u[2] - g[2] * u[1], g[2] * u[0] - g[0] * u[2],
+                       g[0] * u[1] - g[1] * u[0]};
+        double s2 = (x[0] * x[0] + x[1] * x[1] + x[2] * x[2]) /
+                    ((g[0] * g[0] + g[1] * g[1] + g[2] * g[2]) * (u[0] * u[0] + u[1] * u[1] +
+                                                                  u[2] * u[2]));
+        if (!(s2 > 1e-12))
+            return fail(c, "'camera.up' [%g, %g, %g] is parallel to the view direction "
+                           "('camera.target' - 'camera.eye' = [%g, %g, %g]; the angle between "
+                           "them must be above 1e-6 rad)",
+                        sf->up[0], sf->up[1], sf->up[2], f[0], f[1], f[2]);
     }
     sf->has_camera = 1;
     return 0;
@@ -324,10 +356,12 @@ static int parse_root(ctx_t *c, const cJSON *root, lt_scenefile_t *sf)
         if (check_keys(c, it, "caches", cache_keys) != 0)
             return -1;
         if ((x = cJSON_GetObjectItemCaseSensitive(it, "l1")) != NULL &&
-            get_string(c, x, "caches.l1", sf->l1, sizeof sf->l1) != 0)
+            (get_string(c, x, "caches.l1", sf->l1, sizeof sf->l1) != 0 ||
+             check_cache(c, "caches.l1", sf->l1) != 0))
             return -1;
         if ((x = cJSON_GetObjectItemCaseSensitive(it, "l2")) != NULL &&
-            get_string(c, x, "caches.l2", sf->l2, sizeof sf->l2) != 0)
+            (get_string(c, x, "caches.l2", sf->l2, sizeof sf->l2) != 0 ||
+             check_cache(c, "caches.l2", sf->l2) != 0))
             return -1;
     }
     if ((it = cJSON_GetObjectItemCaseSensitive(root, "lights")) != NULL) {
@@ -383,7 +417,7 @@ static int parse_root(ctx_t *c, const cJSON *root, lt_scenefile_t *sf)
 }
 
 int lt_sf_parse(const char *text, const char *name, const char *base_dir, lt_scenefile_t *sf,
-                char *err, size_t errlen)
+                lt_diag_t *diag)
 {
     ctx_t c;
     cJSON *root;
@@ -391,8 +425,7 @@ int lt_sf_parse(const char *text, const char *name, const char *base_dir, lt_sce
     int r;
     c.name = name;
     c.base = base_dir != NULL ? base_dir : "";
-    c.err = err;
-    c.errlen = errlen;
+    c.diag = diag;
     lt_sf_defaults(sf);
     root = cJSON_ParseWithOpts(text, &end, 1);
     if (root == NULL) {
@@ -414,7 +447,7 @@ int lt_sf_parse(const char *text, const char *name, const char *base_dir, lt_sce
     return r;
 }
 
-int lt_sf_load(const char *path, lt_scenefile_t *sf, char *err, size_t errlen)
+int lt_sf_load(const char *path, lt_scenefile_t *sf, lt_diag_t *diag)
 {
     FILE *f;
     char *text, base[LT_SF_PATH_MAX];
@@ -426,24 +459,35 @@ int lt_sf_load(const char *path, lt_scenefile_t *sf, char *err, size_t errlen)
 
     f = fopen(path, "rb");
     if (f == NULL) {
-        snprintf(err, errlen, "%s: cannot open the scene file", path);
+        lt_diag_fail(diag, "%s: cannot open the scene file: %s", path, strerror(errno));
         return -1;
+    }
+    {
+        struct stat st;
+        int rs = fstat(fileno(f), &st);
+        if (rs != 0 || !S_ISREG(st.st_mode)) {
+            fclose(f);
+            lt_diag_fail(diag, "%s: not a regular file (%s); a scene file is a JSON file", path,
+                         rs != 0 ? "cannot stat it" : S_ISDIR(st.st_mode) ? "a directory"
+                                                      : "a device, pipe or socket");
+            return -1;
+        }
     }
     if (fseek(f, 0, SEEK_END) != 0 || (n = ftell(f)) < 0 || fseek(f, 0, SEEK_SET) != 0) {
         fclose(f);
-        snprintf(err, errlen, "%s: cannot read the scene file", path);
+        lt_diag_fail(diag, "%s: cannot read the scene file", path);
         return -1;
     }
     if (n > max) {
         fclose(f);
-        snprintf(err, errlen, "%s: %ld bytes exceeds the scene file limit of %ld", path, n, max);
+        lt_diag_fail(diag, "%s: %ld bytes exceeds the scene file limit of %ld", path, n, max);
         return -1;
     }
     text = malloc((size_t)n + 1);
     if (text == NULL || fread(text, 1, (size_t)n, f) != (size_t)n) {
         fclose(f);
         free(text);
-        snprintf(err, errlen, "%s: cannot read the scene file", path);
+        lt_diag_fail(diag, "%s: cannot read the scene file", path);
         return -1;
     }
     fclose(f);
@@ -453,7 +497,7 @@ int lt_sf_load(const char *path, lt_scenefile_t *sf, char *err, size_t errlen)
         base[0] = '\0';
     else
         snprintf(base, sizeof base, "%.*s", (int)(slash - path), path);
-    r = lt_sf_parse(text, path, slash == path ? "/" : base, sf, err, errlen);
+    r = lt_sf_parse(text, path, slash == path ? "/" : base, sf, diag);
     free(text);
     if (r == 0)
         snprintf(sf->path, sizeof sf->path, "%s", path);

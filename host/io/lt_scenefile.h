@@ -9,6 +9,8 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "io/lt_diag.h"
+
 #define LT_SF_PATH_MAX 1024
 #define LT_SF_MAX_LIGHTS 8
 #define LT_SF_MAX_RES 8192
@@ -53,12 +55,12 @@ typedef struct lt_scenefile {
 void lt_sf_defaults(lt_scenefile_t *sf);
 
 /* Parse and validate a scene file; relative paths inside it are resolved against its directory.
- * Returns 0, or -1 with a message in err naming the file, the key path and the rule broken. */
-int lt_sf_load(const char *path, lt_scenefile_t *sf, char *err, size_t errlen);
+ * Returns 0, or -1 with a message in diag naming the file, the key path and the rule broken. */
+int lt_sf_load(const char *path, lt_scenefile_t *sf, lt_diag_t *diag);
 
 /* The same from a string (name is used in messages, base_dir resolves relative paths). */
 int lt_sf_parse(const char *text, const char *name, const char *base_dir, lt_scenefile_t *sf,
-                char *err, size_t errlen);
+                lt_diag_t *diag);
 
 /* Structure names the tracer accepts (NULL-terminated). */
 extern const char *const lt_sf_structures[];

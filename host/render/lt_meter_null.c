@@ -5,6 +5,7 @@
  * Host only.
  */
 #include "lt_meter.h"
+#include "lt_cache.h"
 #include "io/lt_scenefile.h"
 
 #include <string.h>
@@ -33,14 +34,17 @@ int lt_meter_machine_info(const char *name, lt_meter_machine_t *m)
     return -1;
 }
 
-int lt_meter_init(const char *machine, const char *l1, const char *l2, char *err, size_t errlen)
+int lt_meter_init(const char *machine, const char *l1, const char *l2, lt_diag_t *diag)
 {
-    (void)l1;
-    (void)l2;
+    lt_cache_cfg_t cfg;
     if (!lt_sf_machine_known(machine)) {
-        snprintf(err, errlen, "machine '%s' unknown (known: %s)", machine, lt_sf_machine_list());
+        lt_diag_fail(diag, "machine '%s' unknown (known: %s)", machine, lt_sf_machine_list());
         return -1;
     }
+    /* no cache model here, but a geometry the simulator would refuse is refused here too */
+    if ((l1 != NULL && lt_cache_parse(l1, &cfg, diag) != 0) ||
+        (l2 != NULL && lt_cache_parse(l2, &cfg, diag) != 0))
+        return -1;
     return 0;
 }
 

@@ -34,7 +34,7 @@ struct lt_accel {
 
 const char *const lt_render_structures[] = {"chunks", "bvh", "bvhq", "kd", "grid", NULL};
 
-int lt_frame_alloc(lt_frame_t *f, uint32_t w, uint32_t h, char *err, size_t errlen)
+int lt_frame_alloc(lt_frame_t *f, uint32_t w, uint32_t h, lt_diag_t *diag)
 {
     size_t n = (size_t)w * h;
     memset(f, 0, sizeof *f);
@@ -46,7 +46,7 @@ int lt_frame_alloc(lt_frame_t *f, uint32_t w, uint32_t h, char *err, size_t errl
     f->steps = calloc(n, sizeof *f->steps);
     if (f->id == NULL || f->t == NULL || f->cost == NULL || f->steps == NULL) {
         lt_frame_free(f);
-        snprintf(err, errlen, "out of memory for a %ux%u frame", w, h);
+        lt_diag_fail(diag, "out of memory for a %ux%u frame", w, h);
         return -1;
     }
     return 0;
@@ -70,15 +70,14 @@ static void *alloc64(size_t bytes)
     return p;
 }
 
-static lt_accel_t *build_bvh(const lt_scene_t *s, lt_accel_t *a, int quantised, char *err,
-                             size_t errlen)
+static lt_accel_t *build_bvh(const lt_scene_t *s, lt_accel_t *a, int quantised, lt_diag_t *diag)
 {
     lt_bvh_desc_t desc;
     size_t bytes = 0;
     lt_status_t st;
     memset(&desc, 0, sizeof desc);
     if (quantised && a->path != LT_PATH_Q16) {
-        snprintf(err, errlen, "structure 'bvhq' (quantised nodes) exists in s15.16 only");
+        lt_diag_fail(diag, "structure 'bvhq' (quantised nodes) exists in s15.16 only");
         return NULL;
     }
     st = lt_bvh_size(s->ntris, &desc, &bytes);
@@ -91,7 +90,7 @@ static lt_accel_t *build_bvh(const lt_scene_t *s, lt_accel_t *a, int quantised, 
         st = a->path == LT_PATH_Q16 ? lt_bvh_build_q16(&a->bvh, &desc, s->tq, s->ntris, a->arena, bytes)
                                     : lt_bvh_build_f32(&a->bvh, &desc, s->tf, s->ntris, a->arena, bytes);
     if (st != LT_OK) {
-        snprintf(err, errlen, "building the BVH over %u triangles: %s", s->ntris, lt_status_str(st));
+        lt_diag_fail(diag, "building the BVH over %u triangles: %s", s->ntris, lt_status_str(st));
         return NULL;
     }
     a->bytes = a->bvh.bytes;
@@ -103,7 +102,7 @@ static lt_accel_t *build_bvh(const lt_scene_t *s, lt_accel_t *a, int quantised, 
         if (st == LT_OK)
             st = lt_bvhq_build_q16(&a->bvhq, &a->bvh, a->qmem, qb);
         if (st != LT_OK) {
-            snprintf(err, errlen, "quantising the BVH: %s", lt_status_str(st));
+            lt_diag_fail(diag, "quantising the BVH: %s", lt_status_str(st));
             return NULL;
         }
         /* the quantised tree keeps its nodes plus the source tree's index array */
@@ -116,7 +115,7 @@ static lt_accel_t *build_bvh(const lt_scene_t *s, lt_accel_t *a, int quantised, 
 }
 
 /* kd-tree or uniform grid: size query, arena, build (docs/kdtree-grid.md). */
-static lt_accel_t *build_kdgrid(const lt_scene_t *s, lt_accel_t *a, char *err, size_t errlen)
+static lt_accel_t *build_kdgrid(const lt_scene_t *s, lt_accel_t *a, lt_diag_t *diag)
 {
     size_t bytes = 0;
     lt_status_t st;
@@ -143,16 +142,16 @@ static lt_accel_t *build_kdgrid(const lt_scene_t *s, lt_accel_t *a, char *err, s
         a->bytes = bytes;
     }
     if (st != LT_OK) {
-        snprintf(err, errlen, "building the %s over %u triangles: %s",
-                 a->kind == ACC_KD ? "kd-tree" : "grid", s->ntris, lt_status_str(st));
+        lt_diag_fail(diag, "building the %s over %u triangles: %s",
+                     a->kind == ACC_KD ? "kd-tree" : "grid", s->ntris, lt_status_str(st));
         return NULL;
     }
     lt_meter_region(a->mem, a->bytes, 0x20000000u);
     return a;
 }
 
-lt_accel_t *lt_accel_build(const lt_scene_t *s, const char *structure, lt_path_t path, char *err,
-                           size_t errlen)
+lt_accel_t *lt_accel_build(const lt_scene_t *s, const char *structure, lt_path_t path,
+                           lt_diag_t *diag)
 {
     lt_accel_t *a;
     size_t nb = LT_CHUNK_COUNT(s->ntris);
@@ -169,14 +168,14 @@ lt_accel_t *lt_accel_build(const lt_scene_t *s, const char *structure, lt_path_t
     else if (strcmp(structure, "grid") == 0)
         kind = ACC_GRID;
     else {
-        snprintf(err, errlen,
-                 "structure '%s' is not available (available: chunks, bvh, bvhq, kd, grid)",
-                 structure);
+        lt_diag_fail(diag,
+                     "structure '%s' is not available (available: chunks, bvh, bvhq, kd, grid)",
+                     structure);
         return NULL;
     }
     a = calloc(1, sizeof *a);
     if (a == NULL) {
-        snprintf(err, errlen, "out of memory");
+        lt_diag_fail(diag, "out of memory");
         return NULL;
     }
     a->path = path;
@@ -187,14 +186,14 @@ lt_accel_t *lt_accel_build(const lt_scene_t *s, const char *structure, lt_path_t
     else
         lt_meter_region(s->tf, s->ntris * sizeof *s->tf, 0x10000000u);
     if (kind == ACC_KD || kind == ACC_GRID) {
-        if (build_kdgrid(s, a, err, errlen) == NULL) {
+        if (build_kdgrid(s, a, diag) == NULL) {
             lt_accel_free(a);
             return NULL;
         }
         return a;
     }
     if (kind != ACC_CHUNKS) {
-        if (build_bvh(s, a, kind == ACC_BVHQ, err, errlen) == NULL) {
+        if (build_bvh(s, a, kind == ACC_BVHQ, diag) == NULL) {
             lt_accel_free(a);
             return NULL;
         }
@@ -214,7 +213,7 @@ lt_accel_t *lt_accel_build(const lt_scene_t *s, const char *structure, lt_path_t
         a->bytes = nb * sizeof *a->boxes_f;
     }
     if (st != LT_OK) {
-        snprintf(err, errlen, "building '%s': %s", structure, lt_status_str(st));
+        lt_diag_fail(diag, "building '%s': %s", structure, lt_status_str(st));
         lt_accel_free(a);
         return NULL;
     }
@@ -364,11 +363,10 @@ uint32_t lt_frame_hash(const lt_frame_t *f)
 
 /* One primary ray per pixel (single-ray traversal, BVH structures only). */
 int lt_render_primary1(const lt_scene_t *s, const lt_accel_t *a, const lt_camera_t *c,
-                       lt_frame_t *f, char *err, size_t errlen)
+                       lt_frame_t *f, lt_diag_t *diag)
 {
     uint32_t x, y;
-    (void)err;
-    (void)errlen;
+    (void)diag;
     if (a->kind != ACC_BVH && a->kind != ACC_BVHQ) {
         /* kd-tree, grid, chunks: no scalar traversal; each ray runs alone through the packet
            kernel with a one-lane mask (what a 16-lane machine does with an incoherent ray:
@@ -439,14 +437,14 @@ int lt_render_primary1(const lt_scene_t *s, const lt_accel_t *a, const lt_camera
  * the same 4x4 tiles; origins offset by eps along the way to the light. */
 int lt_render_shadows(const lt_scene_t *s, const lt_accel_t *a, const lt_camera_t *c,
                       const lt_frame_t *f, const double light[3], uint32_t *nrays,
-                      uint32_t *noccluded, uint8_t *occluded, char *err, size_t errlen)
+                      uint32_t *noccluded, uint8_t *occluded, lt_diag_t *diag)
 {
     uint32_t tx, ty, n = 0, occ = 0;
     double eps = 1e-4 * s->radius;
     static lt_ray16_q16_t rq;
     static lt_ray16_f32_t rf;
     if (a->kind == ACC_CHUNKS) {
-        snprintf(err, errlen, "shadow rays need a hierarchy (bvh, bvhq, kd, grid)");
+        lt_diag_fail(diag, "shadow rays need a hierarchy (bvh, bvhq, kd, grid)");
         return -1;
     }
     for (ty = 0; ty < c->height; ty += 4)
@@ -533,13 +531,13 @@ int lt_render_shadows(const lt_scene_t *s, const lt_accel_t *a, const lt_camera_
 }
 
 int lt_render_peel(const lt_scene_t *s, const lt_accel_t *a, const lt_camera_t *c,
-                   const lt_frame_t *prev, lt_frame_t *next, char *err, size_t errlen)
+                   const lt_frame_t *prev, lt_frame_t *next, lt_diag_t *diag)
 {
     uint32_t tx, ty;
     static lt_ray16_q16_t rq;
     static lt_ray16_f32_t rf;
     if (a->kind == ACC_CHUNKS) {
-        snprintf(err, errlen, "depth peeling needs a hierarchy (bvh, bvhq, kd, grid)");
+        lt_diag_fail(diag, "depth peeling needs a hierarchy (bvh, bvhq, kd, grid)");
         return -1;
     }
     for (ty = 0; ty < c->height; ty += 4)

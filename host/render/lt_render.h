@@ -6,6 +6,7 @@
 #ifndef LT_RENDER_H
 #define LT_RENDER_H
 
+#include "io/lt_diag.h"
 #include "render/lt_scene.h"
 
 typedef enum lt_path { LT_PATH_Q16 = 0, LT_PATH_F32 = 1 } lt_path_t;
@@ -22,7 +23,7 @@ typedef struct lt_frame {
 } lt_frame_t;
 
 /* Allocate (0) or fail (-1, message). */
-int lt_frame_alloc(lt_frame_t *f, uint32_t w, uint32_t h, char *err, size_t errlen);
+int lt_frame_alloc(lt_frame_t *f, uint32_t w, uint32_t h, lt_diag_t *diag);
 void lt_frame_free(lt_frame_t *f);
 
 /* The prepared acceleration structure for one path. Opaque to callers. */
@@ -34,8 +35,8 @@ typedef struct lt_accel lt_accel_t;
 extern const char *const lt_render_structures[];
 
 /* Build `structure` over the scene for a path. Returns NULL with a message on error. */
-lt_accel_t *lt_accel_build(const lt_scene_t *s, const char *structure, lt_path_t path, char *err,
-                           size_t errlen);
+lt_accel_t *lt_accel_build(const lt_scene_t *s, const char *structure, lt_path_t path,
+                           lt_diag_t *diag);
 void lt_accel_free(lt_accel_t *a);
 
 /* Bytes of the built structure (nodes, indices, boxes; not the triangles). */
@@ -48,22 +49,22 @@ void lt_render_primary(const lt_scene_t *s, const lt_accel_t *a, const lt_camera
 
 /* The same with one ray per pixel: the scalar single-ray traversal for bvh and bvhq; the kd-tree,
  * grid and chunks have no scalar kernel and trace each ray alone through their packet kernel
- * with a one-lane mask. Returns 0 (the err arguments are kept for future structures). */
+ * with a one-lane mask. Returns 0 (diag is kept for future structures). */
 int lt_render_primary1(const lt_scene_t *s, const lt_accel_t *a, const lt_camera_t *c,
-                       lt_frame_t *f, char *err, size_t errlen);
+                       lt_frame_t *f, lt_diag_t *diag);
 
 /* Shadow rays (16-ray packets, any hit) from every primary hit of f to a point light given in
  * scaled units; *nrays rays, *noccluded of them blocked; occluded (may be NULL) gets 0/1 per pixel.
  * BVH structures only. Returns 0, or -1 with a message. */
 int lt_render_shadows(const lt_scene_t *s, const lt_accel_t *a, const lt_camera_t *c,
                       const lt_frame_t *f, const double light[3], uint32_t *nrays,
-                      uint32_t *noccluded, uint8_t *occluded, char *err, size_t errlen);
+                      uint32_t *noccluded, uint8_t *occluded, lt_diag_t *diag);
 
 /* The next depth layer: for every pixel that hit in prev, the first surface strictly beyond it
  * (tmin = the previous distance); pixels without a previous hit get id -1. Coplanar duplicates
  * at exactly the previous distance are skipped. BVH structures only. Returns 0 or -1. */
 int lt_render_peel(const lt_scene_t *s, const lt_accel_t *a, const lt_camera_t *c,
-                   const lt_frame_t *prev, lt_frame_t *next, char *err, size_t errlen);
+                   const lt_frame_t *prev, lt_frame_t *next, lt_diag_t *diag);
 
 /* The double-precision reference frame (brute force, independent code). */
 void lt_render_reference(const lt_scene_t *s, const lt_camera_t *c, lt_frame_t *f,

@@ -66,7 +66,7 @@ static void trace_f32(const rp_tracer_t *t, const lt_qray16_f32_t *r, lt_mask16_
  * (NULL for the DDA), *bytes its size. Returns 0 or -1 with a message. */
 static int tracer_build(rp_tracer_t *t, const lt_rp_opts_t *o, uint32_t W, uint32_t H,
                         uint32_t layers, const lt_q30_t *wq, const float *wf, void **arena,
-                        size_t *bytes, char *err, size_t errlen)
+                        size_t *bytes, lt_diag_t *diag)
 {
     int fenc = o->enc == LT_QT_F32;
     lt_status_t s;
@@ -90,14 +90,14 @@ static int tracer_build(rp_tracer_t *t, const lt_rp_opts_t *o, uint32_t W, uint3
         qd.enc = (uint32_t)o->enc;
         s = o->tracer == LT_RP_HIZ ? lt_hiz_size(&sd, bytes) : lt_qt_size(&qd, bytes);
         if (s != LT_OK) {
-            snprintf(err, errlen, "reproject: %s size query failed for %ux%u x %u layers (%s)",
-                     name[o->tracer], W, H, layers, lt_status_str(s));
+            lt_diag_fail(diag, "reproject: %s size query failed for %ux%u x %u layers (%s)",
+                         name[o->tracer], W, H, layers, lt_status_str(s));
             return -1;
         }
         *arena = malloc(*bytes > 0 ? *bytes : 1);
         if (*arena == NULL) {
-            snprintf(err, errlen, "reproject: out of memory for the %zu-byte %s", *bytes,
-                     name[o->tracer]);
+            lt_diag_fail(diag, "reproject: out of memory for the %zu-byte %s", *bytes,
+                         name[o->tracer]);
             return -1;
         }
         lt_meter_region(*arena, *bytes, 0x40000000u);
@@ -109,8 +109,8 @@ static int tracer_build(rp_tracer_t *t, const lt_rp_opts_t *o, uint32_t W, uint3
                      : lt_qt_build_q30(&t->qt, &qd, &o->params, wq, *arena, bytes);
     }
     if (s != LT_OK) {
-        snprintf(err, errlen, "reproject: %s build failed (%s)", name[o->tracer],
-                 lt_status_str(s));
+        lt_diag_fail(diag, "reproject: %s build failed (%s)", name[o->tracer],
+                     lt_status_str(s));
         return -1;
     }
     return 0;
@@ -442,7 +442,7 @@ static void fetch(const fetch_ctx_t *f, uint32_t layer, double x, double y, doub
 /* ---- the run ------------------------------------------------------------------------------- */
 
 int lt_rp_run(const lt_rp_source_t *src, const lt_reproj_cam_t *dst, const lt_rp_opts_t *o,
-              lt_rp_result_t *res, char *err, size_t errlen)
+              lt_rp_result_t *res, lt_diag_t *diag)
 {
     lt_rp_opts_t od;
     static rp_tracer_t tr;
@@ -463,7 +463,7 @@ int lt_rp_run(const lt_rp_source_t *src, const lt_reproj_cam_t *dst, const lt_rp
     int e, status = -1, fenc;
     lt_status_t s;
     double t0;
-    uint64_t c0, lanes_on0, lane_ops0;
+    lt_meter_totals_t m0, m1;
 
     memset(res, 0, sizeof *res);
     if (o == NULL) {
@@ -472,20 +472,19 @@ int lt_rp_run(const lt_rp_source_t *src, const lt_reproj_cam_t *dst, const lt_rp
     }
     if (src == NULL || dst == NULL || src->z == NULL || src->layers < 1 ||
         src->layers > LT_RP_MAX_LAYERS) {
-        snprintf(err, errlen, "reproject: bad source (layers must be 1..%d)", LT_RP_MAX_LAYERS);
+        lt_diag_fail(diag, "reproject: bad source (layers must be 1..%d)", LT_RP_MAX_LAYERS);
         return -1;
     }
     if (src->width < 1 || src->height < 1 || src->width > LT_QT_MAX_DIM ||
         src->height > LT_QT_MAX_DIM || dst->width < 1 || dst->height < 1 ||
         dst->width > LT_QT_MAX_DIM || dst->height > LT_QT_MAX_DIM) {
-        snprintf(err, errlen,
-                 "reproject: source %ux%u or target %ux%u outside 1..%u (LT_QT_MAX_DIM) per side",
-                 src->width, src->height, dst->width, dst->height, LT_QT_MAX_DIM);
+        lt_diag_fail(diag, "reproject: source %ux%u or target %ux%u outside 1..%u (LT_QT_MAX_DIM) "
+                     "per side", src->width, src->height, dst->width, dst->height, LT_QT_MAX_DIM);
         return -1;
     }
     if ((unsigned)o->enc > (unsigned)LT_QT_F32 || (unsigned)o->tracer > (unsigned)LT_RP_HIZ) {
-        snprintf(err, errlen, "reproject: unknown node encoding %d or tracer %d (0..2 each)",
-                 (int)o->enc, (int)o->tracer);
+        lt_diag_fail(diag, "reproject: unknown node encoding %d or tracer %d (0..2 each)",
+                     (int)o->enc, (int)o->tracer);
         return -1;
     }
     fenc = o->enc == LT_QT_F32;
@@ -493,7 +492,7 @@ int lt_rp_run(const lt_rp_source_t *src, const lt_reproj_cam_t *dst, const lt_rp
     H = src->height;
     n = (size_t)W * H * src->layers;
     if (lt_qt_zref_exp(src->z, n, &e) != 0) {
-        snprintf(err, errlen, "reproject: the depth image has no valid depth (all NaN, inf or <= 0)");
+        lt_diag_fail(diag, "reproject: the depth image has no valid depth (all NaN, inf or <= 0)");
         return -1;
     }
     res->st.zref = ldexp(1.0, e);
@@ -503,7 +502,7 @@ int lt_rp_run(const lt_rp_source_t *src, const lt_reproj_cam_t *dst, const lt_rp
     if (!fenc)
         wq = malloc(n * sizeof *wq);
     if (wf == NULL || (!fenc && wq == NULL)) {
-        snprintf(err, errlen, "reproject: out of memory for %zu depth samples", n);
+        lt_diag_fail(diag, "reproject: out of memory for %zu depth samples", n);
         goto done;
     }
     if (fenc) {
@@ -520,10 +519,10 @@ int lt_rp_run(const lt_rp_source_t *src, const lt_reproj_cam_t *dst, const lt_rp
     ro.z_near_dst = o->z_near_dst;
     s = lt_reproj_setup(&src->cam, dst, &ro, &mq, &mf);
     if (s != LT_OK) {
-        snprintf(err, errlen,
-                 "reproject: camera setup failed (%s): focal lengths must be > 0 and finite, "
-                 "rotations orthonormal, sizes 1..%u, z_ref / near < 2",
-                 lt_status_str(s), LT_QT_MAX_DIM);
+        lt_diag_fail(diag,
+                     "reproject: camera setup failed (%s): focal lengths must be > 0 and finite, "
+                     "rotations orthonormal, sizes 1..%u, z_ref / near < 2",
+                     lt_status_str(s), LT_QT_MAX_DIM);
         goto done;
     }
 
@@ -533,10 +532,9 @@ int lt_rp_run(const lt_rp_source_t *src, const lt_reproj_cam_t *dst, const lt_rp
         lt_meter_region(wq, n * sizeof *wq, 0x50000000u);
     else
         lt_meter_region(wf, n * sizeof *wf, 0x50000000u);
-    c0 = cycles_now();
-    if (tracer_build(&tr, o, W, H, src->layers, wq, wf, &arena, &bytes, err, errlen) != 0)
+    lt_meter_totals(&m0);
+    if (tracer_build(&tr, o, W, H, src->layers, wq, wf, &arena, &bytes, diag) != 0)
         goto done;
-    res->st.cyc_build = cycles_now() - c0;
     res->st.t_build = lt_now_s() - t0;
     res->st.qt_bytes = bytes;
     if (o->tracer == LT_RP_QUADTREE) {
@@ -565,8 +563,8 @@ int lt_rp_run(const lt_rp_source_t *src, const lt_reproj_cam_t *dst, const lt_rp
     if (res->rgb == NULL || res->z == NULL || res->cls == NULL || res->steps == NULL ||
         res->cycles == NULL || res->sx == NULL || res->sy == NULL || res->layer == NULL ||
         valid == NULL) {
-        snprintf(err, errlen, "reproject: out of memory for a %ux%u target", dst->width,
-                 dst->height);
+        lt_diag_fail(diag, "reproject: out of memory for a %ux%u target", dst->width,
+                     dst->height);
         goto done;
     }
     for (i = 0; i < np; i++) {
@@ -582,12 +580,10 @@ int lt_rp_run(const lt_rp_source_t *src, const lt_reproj_cam_t *dst, const lt_rp
     res->st.pixels = np;
 
     t0 = lt_now_s();
-    lanes_on0 = lt_meter_event(LT_EV_LANES_ON);
-    lane_ops0 = lt_meter_event(LT_EV_LANE_OPS);
     for (ty = 0; ty < dst->height; ty += 4) {
         for (tx = 0; tx < dst->width; tx += 4) {
             lt_mask16_t k = 0xFFFF, kon = 0;
-            uint64_t p0 = cycles_now(), p1;
+            uint64_t p0 = cycles_now();
             float per;
             int l;
             for (l = 0; l < LT_LANES; l++)
@@ -596,17 +592,13 @@ int lt_rp_run(const lt_rp_source_t *src, const lt_reproj_cam_t *dst, const lt_rp
             k = kon;
             if (fenc) {
                 (void)lt_reproj_rays16_f32(&mf, tx, ty, &rf, &k);
-                p1 = cycles_now();
                 if (k != 0)
                     trace_f32(&tr, &rf, k, o->max_steps, &hf);
             } else {
                 (void)lt_reproj_rays16_q30(&mq, tx, ty, &rq, &k);
-                p1 = cycles_now();
                 if (k != 0)
                     trace_q30(&tr, &rq, k, o->max_steps, &hq);
             }
-            res->st.cyc_setup += p1 - p0;
-            res->st.cyc_trace += cycles_now() - p1;
             res->st.packets += k != 0;
             per = (float)(cycles_now() - p0) / (float)lt__popcount32(kon);
             for (l = 0; l < LT_LANES; l++) {
@@ -703,9 +695,17 @@ int lt_rp_run(const lt_rp_source_t *src, const lt_reproj_cam_t *dst, const lt_rp
             o->progress((double)(ty + 4) / (double)dst->height);
     }
     res->st.t_trace = lt_now_s() - t0;
-    res->st.lanes_on += lt_meter_event(LT_EV_LANES_ON) - lanes_on0;
-    res->st.lane_ops += lt_meter_event(LT_EV_LANE_OPS) - lane_ops0;
-    res->st.cyc_total = res->st.cyc_build + res->st.cyc_setup + res->st.cyc_trace;
+    /* one source of truth with the cycle report: the model's phase totals over the call */
+    lt_meter_totals(&m1);
+    res->st.cyc_build = m1.cycles[LT_PH_BUILD] - m0.cycles[LT_PH_BUILD];
+    res->st.cyc_setup = m1.cycles[LT_PH_SETUP] - m0.cycles[LT_PH_SETUP];
+    res->st.cyc_trace = m1.cycles[LT_PH_TRAVERSE] - m0.cycles[LT_PH_TRAVERSE] +
+                        m1.cycles[LT_PH_INTERSECT] - m0.cycles[LT_PH_INTERSECT];
+    res->st.cyc_total = m1.total_cycles - m0.total_cycles;
+    res->st.cyc_other = res->st.cyc_total - res->st.cyc_build - res->st.cyc_setup -
+                        res->st.cyc_trace;
+    res->st.lanes_on += m1.events[LT_EV_LANES_ON] - m0.events[LT_EV_LANES_ON];
+    res->st.lane_ops += m1.events[LT_EV_LANE_OPS] - m0.events[LT_EV_LANE_OPS];
     for (i = 0; i < np; i++) {
         res->st.cls[res->cls[i]]++;
         valid[i] = res->cls[i] == LT_RP_HIT || res->cls[i] == LT_RP_BACKGROUND;

@@ -14,6 +14,7 @@
 #include <stdint.h>
 #include "lt/lt_hiz.h"
 #include "lt/lt_reproj.h"
+#include "io/lt_diag.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -75,8 +76,10 @@ typedef struct lt_rp_stats {
     double zref;                        /* z_ref = 2^e used for w */
     size_t qt_bytes;                    /* the tracer's arena: quadtree, Hi-Z levels 1.. (0: DDA) */
     uint64_t qt_planes, qt_nodes;       /* plane nodes / all nodes of the quadtree (0 otherwise) */
-    uint64_t cyc_build, cyc_setup, cyc_trace, cyc_total; /* simulated cycles (sim build) */
-    uint64_t lanes_on, lane_ops;        /* utilisation events of setup + trace (sim build) */
+    /* simulated cycles (sim build): the cycle model's phase totals over the whole call, the
+       figures of its report: BUILD, SETUP, TRAVERSE + INTERSECT, the rest (OTHER), their sum */
+    uint64_t cyc_build, cyc_setup, cyc_trace, cyc_other, cyc_total;
+    uint64_t lanes_on, lane_ops;        /* utilisation events over the whole call (sim build) */
     double t_build, t_trace, t_shade, t_inpaint; /* wall seconds */
 } lt_rp_stats_t;
 
@@ -96,10 +99,10 @@ typedef struct lt_rp_result {
 } lt_rp_result_t;
 
 /* Synthesise the view of camera dst (dst->width x dst->height) from src. Returns 0, or -1 with a
- * message naming the input and the limit in err (bad camera, image too large, no valid depth,
+ * message naming the input and the limit in diag (bad camera, image too large, no valid depth,
  * out of memory, layers not front to back is not checked: layer k+1 must lie behind layer k). */
 int lt_rp_run(const lt_rp_source_t *src, const lt_reproj_cam_t *dst, const lt_rp_opts_t *o,
-              lt_rp_result_t *res, char *err, size_t errlen);
+              lt_rp_result_t *res, lt_diag_t *diag);
 void lt_rp_result_free(lt_rp_result_t *r);
 
 /* Background-biased pull-push inpainting of rgb (w x h x 3) and z (w x h) where valid[i] == 0:

@@ -7,7 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-int lt_scene_prepare(const lt_mesh_t *m, lt_scene_t *s, char *err, size_t errlen)
+int lt_scene_prepare(const lt_mesh_t *m, lt_scene_t *s, lt_diag_t *diag)
 {
     double ext = 0.0, diag2 = 0.0;
     uint32_t i, a, j;
@@ -22,7 +22,7 @@ int lt_scene_prepare(const lt_mesh_t *m, lt_scene_t *s, char *err, size_t errlen
             ext = w;
     }
     if (!(ext > 0.0) || !isfinite(diag2)) {
-        snprintf(err, errlen, "scene has empty or non-finite bounds (extent %g)", ext);
+        lt_diag_fail(diag, "scene has empty or non-finite bounds (extent %g)", ext);
         return -1;
     }
     /* largest power of two with radius * scale <= 2^LT_SCENE_RADIUS_LOG2 */
@@ -35,7 +35,7 @@ int lt_scene_prepare(const lt_mesh_t *m, lt_scene_t *s, char *err, size_t errlen
     s->vd = malloc((size_t)m->ntris * 9 * sizeof(double));
     if (s->tq == NULL || s->tf == NULL || s->vd == NULL) {
         lt_scene_free(s);
-        snprintf(err, errlen, "out of memory for %u triangles", m->ntris);
+        lt_diag_fail(diag, "out of memory for %u triangles", m->ntris);
         return -1;
     }
     for (i = 0; i < m->ntris; i++) {
@@ -47,8 +47,10 @@ int lt_scene_prepare(const lt_mesh_t *m, lt_scene_t *s, char *err, size_t errlen
                 q[j][a] = lt_q16_from_double_sat(c);
             }
         {
-            /* area in double (the file's geometry) and of the quantised vertices (exact) */
-            const double *v = &s->vd[i * 9];
+            /* area in double of the file's own coordinates (before centring: a unit triangle
+               beside a 1e30 one keeps its area there, and loses it to the centring and to the
+               quantisation alike) and of the quantised vertices (exact) */
+            const double *v = &m->v[(size_t)i * 9];
             double e1[3], e2[3], nx, ny, nz;
             int64_t q1[3], q2[3];
             for (a = 0; a < 3; a++) {
@@ -65,8 +67,9 @@ int lt_scene_prepare(const lt_mesh_t *m, lt_scene_t *s, char *err, size_t errlen
                 s->nonzero++;
                 for (a = 0; a < 3; a++) {
                     const double *p0 = &v[3 * a], *p1 = &v[3 * ((a + 1) % 3)];
-                    l[a] = sqrt((p1[0] - p0[0]) * (p1[0] - p0[0]) + (p1[1] - p0[1]) * (p1[1] - p0[1]) +
-                                (p1[2] - p0[2]) * (p1[2] - p0[2]));
+                    l[a] = s->scale * sqrt((p1[0] - p0[0]) * (p1[0] - p0[0]) +
+                                           (p1[1] - p0[1]) * (p1[1] - p0[1]) +
+                                           (p1[2] - p0[2]) * (p1[2] - p0[2]));
                     if (l[a] > 0.0 && (s->min_edge == 0.0 || l[a] < s->min_edge))
                         s->min_edge = l[a];
                 }
@@ -90,17 +93,17 @@ int lt_scene_prepare(const lt_mesh_t *m, lt_scene_t *s, char *err, size_t errlen
     return 0;
 }
 
-int lt_scene_check_q16(const lt_scene_t *s, const char *name, char *err, size_t errlen)
+int lt_scene_check_q16(const lt_scene_t *s, const char *name, lt_diag_t *diag)
 {
     if ((uint64_t)s->collapsed_q16 * 1000000u <= (uint64_t)s->nonzero * LT_SCENE_MAX_COLLAPSED_PPM)
         return 0;
-    snprintf(err, errlen,
-             "%s: cannot be represented in s15.16: %u of %u triangles with non-zero area (%.3f%%) "
-             "collapse to zero area (limit %.1f%%); the scene is scaled by %g to a radius of %.0f "
-             "units, its shortest edge is %.3g units against a resolution of 2^-16 = 1.5e-05; "
-             "use the float32 path (--num f32) or split the scene",
-             name, s->collapsed_q16, s->nonzero, 100.0 * s->collapsed_q16 / (double)s->nonzero,
-             LT_SCENE_MAX_COLLAPSED_PPM / 1e4, s->scale, s->radius, s->min_edge);
+    lt_diag_fail(diag,
+                 "%s: cannot be represented in s15.16: %u of %u triangles with non-zero area "
+                 "(%.3f%%) collapse to zero area (limit %.1f%%); the scene is scaled by %g to a "
+                 "radius of %.0f units, its shortest edge is %.3g units against a resolution of "
+                 "2^-16 = 1.5e-05; use the float32 path (--num f32) or split the scene",
+                 name, s->collapsed_q16, s->nonzero, 100.0 * s->collapsed_q16 / (double)s->nonzero,
+                 LT_SCENE_MAX_COLLAPSED_PPM / 1e4, s->scale, s->radius, s->min_edge);
     return -1;
 }
 
@@ -160,7 +163,7 @@ void lt_camera_basis(lt_camera_t *c, const double dir[3], const double up[3])
 
 int lt_camera_look(const lt_scene_t *s, const double eye[3], const double target[3],
                    const double up[3], double fov_y_deg, uint32_t width, uint32_t height,
-                   lt_camera_t *c, char *err, size_t errlen)
+                   lt_camera_t *c, lt_diag_t *diag)
 {
     double lim = ldexp(1.0, LT_CFG_GEOM_MAX_LOG2), dir[3];
     int a;
@@ -168,10 +171,10 @@ int lt_camera_look(const lt_scene_t *s, const double eye[3], const double target
         c->eye[a] = (eye[a] - s->center[a]) * s->scale;
         dir[a] = target[a] - eye[a];
         if (fabs(c->eye[a]) > lim) {
-            snprintf(err, errlen,
-                     "camera eye is %.4g scene radii from the centre; the fixed-point range allows "
-                     "at most %.4g (LT_CFG_GEOM_MAX_LOG2 = %d)",
-                     fabs(c->eye[a]) / s->radius, lim / s->radius, LT_CFG_GEOM_MAX_LOG2);
+            lt_diag_fail(diag,
+                         "camera eye is %.4g scene radii from the centre; the fixed-point range "
+                         "allows at most %.4g (LT_CFG_GEOM_MAX_LOG2 = %d)",
+                         fabs(c->eye[a]) / s->radius, lim / s->radius, LT_CFG_GEOM_MAX_LOG2);
             return -1;
         }
     }

@@ -7,6 +7,7 @@
 #define LT_SCENE_H
 
 #include "lt/lt.h"
+#include "io/lt_diag.h"
 #include "io/lt_mesh.h"
 
 typedef struct lt_scene {
@@ -33,13 +34,13 @@ typedef struct lt_scene {
 
 /* Returns 0, or -1 with a message (empty or non-finite bounds, out of memory). Also counts the
  * triangles that s15.16 quantisation collapses (collapsed_q16) for lt_scene_check_q16. */
-int lt_scene_prepare(const lt_mesh_t *m, lt_scene_t *s, char *err, size_t errlen);
+int lt_scene_prepare(const lt_mesh_t *m, lt_scene_t *s, lt_diag_t *diag);
 
 /* Whether the s15.16 path can represent the prepared scene: 0, or -1 with a message naming
  * `name`, the collapsed count and LT_SCENE_MAX_COLLAPSED_PPM (the scene's dynamic range exceeds
  * s15.16: its extent is mapped to 2^LT_SCENE_RADIUS_LOG2 units and its smallest features fall
  * below 2^-16 units). The float32 path has no such limit. */
-int lt_scene_check_q16(const lt_scene_t *s, const char *name, char *err, size_t errlen);
+int lt_scene_check_q16(const lt_scene_t *s, const char *name, lt_diag_t *diag);
 void lt_scene_free(lt_scene_t *s);
 
 typedef struct lt_camera {
@@ -58,7 +59,7 @@ void lt_camera_default(const lt_scene_t *s, uint32_t width, uint32_t height, lt_
  * Returns 0, or -1 with a message when the eye lies outside the core's geometry bound. */
 int lt_camera_look(const lt_scene_t *s, const double eye[3], const double target[3],
                    const double up[3], double fov_y_deg, uint32_t width, uint32_t height,
-                   lt_camera_t *c, char *err, size_t errlen);
+                   lt_camera_t *c, lt_diag_t *diag);
 
 /* The look-at basis: fwd = normalize(dir), right = normalize(fwd x up), up' = right x fwd into
  * c->fwd, c->right, c->up (the rest of c untouched). dir and up must not be parallel. */

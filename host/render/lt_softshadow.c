@@ -95,7 +95,7 @@ void lt_ss_opts_default(const lt_scene_t *s, lt_ss_opts_t *o)
 }
 
 int lt_ss_light_square(const lt_scene_t *s, const double centre[3], double size, lt_ss_light_t *l,
-                       char *err, size_t errlen)
+                       lt_diag_t *diag)
 {
     double half, side, lim = ldexp(1.0, LT_CFG_GEOM_MAX_LOG2);
     int a;
@@ -109,17 +109,28 @@ int lt_ss_light_square(const lt_scene_t *s, const double centre[3], double size,
         l->c[a] = floor((c - (a != 1 ? half : 0.0)) * 65536.0 + 0.5) / 65536.0;
         l->eu[a] = a == 0 ? side : 0.0;
         l->ev[a] = a == 2 ? side : 0.0;
-        if (fabs(l->c[a]) + side > lim) {
-            snprintf(err, errlen, "light centre %.4g (axis %d) lies %.3g scene radii from the centre; "
-                     "the fixed-point range allows %.3g (LT_CFG_GEOM_MAX_LOG2 = %d)", centre[a], a,
-                     fabs(c) / s->radius, lim / s->radius, LT_CFG_GEOM_MAX_LOG2);
+        if (!(fabs(l->c[a]) + side <= lim)) {
+            /* name the part that does not fit: the centre, or the size around it */
+            if (!(fabs(c) <= lim))
+                lt_diag_fail(diag, "light centre %.4g (axis %c) lies %.3g scene radii from the "
+                             "scene's centre; the fixed-point range allows %.3g "
+                             "(LT_CFG_GEOM_MAX_LOG2 = %d)", centre[a], "xyz"[a],
+                             fabs(c) / s->radius, lim / s->radius, LT_CFG_GEOM_MAX_LOG2);
+            else
+                lt_diag_fail(diag, "light size %.4g (%.3g scene radii) around a centre %.3g "
+                             "scene radii from the scene's centre (axis %c) reaches beyond the "
+                             "fixed-point range of %.3g scene radii (LT_CFG_GEOM_MAX_LOG2 = %d); "
+                             "the light may be at most %.4g wide there", size,
+                             side / s->radius, fabs(c) / s->radius, "xyz"[a], lim / s->radius,
+                             LT_CFG_GEOM_MAX_LOG2,
+                             fmax(0.0, 2.0 * (lim - fabs(c)) / s->scale));
             return -1;
         }
     }
     return 0;
 }
 
-int lt_ss_add_ground(lt_mesh_t *m, double grow, char *err, size_t errlen)
+int lt_ss_add_ground(lt_mesh_t *m, double grow, lt_diag_t *diag)
 {
     double *v = realloc(m->v, ((size_t)m->ntris + 2) * 9 * sizeof(double));
     double x0, x1, z0, z1, y;
@@ -127,7 +138,7 @@ int lt_ss_add_ground(lt_mesh_t *m, double grow, char *err, size_t errlen)
     static const int tri[2][3] = {{0, 2, 1}, {0, 3, 2}};
     int t, j, a;
     if (v == NULL) {
-        snprintf(err, errlen, "out of memory adding a ground plane");
+        lt_diag_fail(diag, "out of memory adding a ground plane");
         return -1;
     }
     m->v = v;
@@ -151,7 +162,7 @@ int lt_ss_add_ground(lt_mesh_t *m, double grow, char *err, size_t errlen)
 }
 
 int lt_ss_pview(const lt_camera_t *c, uint32_t flags, lt_frusta_view_q16_t *vq,
-                lt_frusta_view_f32_t *vf, char *err, size_t errlen)
+                lt_frusta_view_f32_t *vf, lt_diag_t *diag)
 {
     double aspect = (double)c->width / (double)c->height, th = c->tan_half_fov;
     double u0 = (1.0 / (double)c->width - 1.0) * th * aspect, du = 2.0 * th * aspect / c->width;
@@ -164,9 +175,9 @@ int lt_ss_pview(const lt_camera_t *c, uint32_t flags, lt_frusta_view_q16_t *vq,
         dx[a] = du * c->right[a];
         dy[a] = dv * c->up[a];
         if (fabs(c->eye[a]) > lim) {
-            snprintf(err, errlen, "camera eye %.4g (axis %d) lies outside the fixed-point range "
-                     "+-%.4g (LT_CFG_GEOM_MAX_LOG2 = %d)", c->eye[a], a, lim,
-                     LT_CFG_GEOM_MAX_LOG2);
+            lt_diag_fail(diag, "camera eye %.4g (axis %d) lies outside the fixed-point range "
+                         "+-%.4g (LT_CFG_GEOM_MAX_LOG2 = %d)", c->eye[a], a, lim,
+                         LT_CFG_GEOM_MAX_LOG2);
             return -1;
         }
     }
@@ -178,7 +189,7 @@ int lt_ss_pview(const lt_camera_t *c, uint32_t flags, lt_frusta_view_q16_t *vq,
             m = fabs(v) > m ? fabs(v) : m;
         }
     if (!(m > 0.0) || !(m < 1e30)) {
-        snprintf(err, errlen, "degenerate camera (largest direction component %g)", m);
+        lt_diag_fail(diag, "degenerate camera (largest direction component %g)", m);
         return -1;
     }
     frexp(m / 0.75, &e); /* m / 0.75 < 2^e */
@@ -220,7 +231,7 @@ static void *alloc64(size_t bytes)
 }
 
 static int build_tree(const lt_softshadow_t *ss, uint32_t max_leaf, uint32_t min_leaf, void **arena,
-                      lt_bvh_t *bvh, char *err, size_t errlen)
+                      lt_bvh_t *bvh, lt_diag_t *diag)
 {
     lt_bvh_desc_t d;
     size_t bytes = 0;
@@ -236,8 +247,8 @@ static int build_tree(const lt_softshadow_t *ss, uint32_t max_leaf, uint32_t min
                  ? lt_bvh_build_q16(bvh, &d, ss->s->tq, ss->s->ntris, *arena, bytes)
                  : lt_bvh_build_f32(bvh, &d, ss->s->tf, ss->s->ntris, *arena, bytes);
     if (st != LT_OK) {
-        snprintf(err, errlen, "building a BVH (leaf %u) over %u triangles: %s", max_leaf,
-                 ss->s->ntris, lt_status_str(st));
+        lt_diag_fail(diag, "building a BVH (leaf %u) over %u triangles: %s", max_leaf,
+                     ss->s->ntris, lt_status_str(st));
         return -1;
     }
     return 0;
@@ -286,7 +297,7 @@ static void region(const void *p, size_t bytes, unsigned slot)
 }
 
 lt_softshadow_t *lt_ss_create(const lt_scene_t *s, const lt_camera_t *cam, const lt_ss_light_t *l,
-                              const lt_ss_opts_t *o, char *err, size_t errlen)
+                              const lt_ss_opts_t *o, lt_diag_t *diag)
 {
     lt_softshadow_t *ss = calloc(1, sizeof *ss);
     size_t n = (size_t)cam->width * cam->height, bq = n * sizeof(lt_q16_t), bf = n * sizeof(float);
@@ -296,12 +307,12 @@ lt_softshadow_t *lt_ss_create(const lt_scene_t *s, const lt_camera_t *cam, const
     lt_status_t st;
 
     if (ss == NULL) {
-        snprintf(err, errlen, "out of memory");
+        lt_diag_fail(diag, "out of memory");
         return NULL;
     }
     if (o->leaf < 1 || o->leaf > LT_BVH_MAX_LEAF) {
-        snprintf(err, errlen, "frusta leaf size %u outside 1..%d (LT_BVH_MAX_LEAF)", o->leaf,
-                 LT_BVH_MAX_LEAF);
+        lt_diag_fail(diag, "frusta leaf size %u outside 1..%d (LT_BVH_MAX_LEAF)", o->leaf,
+                     LT_BVH_MAX_LEAF);
         free(ss);
         return NULL;
     }
@@ -313,9 +324,8 @@ lt_softshadow_t *lt_ss_create(const lt_scene_t *s, const lt_camera_t *cam, const
     ss->h = cam->height;
     ss->n = n;
     ss->last = -1;
-    if (build_tree(ss, 4, 1, &ss->adeep, &ss->deep, err, errlen) != 0 ||
-        build_tree(ss, o->leaf, o->leaf > 1 ? o->leaf / 2 : 1, &ss->ashal, &ss->shal, err,
-                   errlen) != 0) {
+    if (build_tree(ss, 4, 1, &ss->adeep, &ss->deep, diag) != 0 ||
+        build_tree(ss, o->leaf, o->leaf > 1 ? o->leaf / 2 : 1, &ss->ashal, &ss->shal, diag) != 0) {
         lt_ss_free(ss);
         return NULL;
     }
@@ -375,7 +385,7 @@ lt_softshadow_t *lt_ss_create(const lt_scene_t *s, const lt_camera_t *cam, const
             ss->vrf == NULL || ss->valid == NULL || ss->lit == NULL || ss->occ[0] == NULL ||
             ss->occ[1] == NULL || ss->vref == NULL;
     if (fail) {
-        snprintf(err, errlen, "out of memory for a %ux%u soft-shadow frame", ss->w, ss->h);
+        lt_diag_fail(diag, "out of memory for a %ux%u soft-shadow frame", ss->w, ss->h);
         lt_ss_free(ss);
         return NULL;
     }
@@ -420,8 +430,8 @@ lt_softshadow_t *lt_ss_create(const lt_scene_t *s, const lt_camera_t *cam, const
         st = lt_frusta_table_f32(&fl, &ss->sets, ss->tbf);
     }
     if (st != LT_OK) {
-        snprintf(err, errlen, "light table: %s (edges must be multiples of 2^-7 units, corners "
-                 "within the geometry bound)", lt_status_str(st));
+        lt_diag_fail(diag, "light table: %s (edges must be multiples of 2^-7 units, corners "
+                     "within the geometry bound)", lt_status_str(st));
         lt_ss_free(ss);
         return NULL;
     }
@@ -429,7 +439,7 @@ lt_softshadow_t *lt_ss_create(const lt_scene_t *s, const lt_camera_t *cam, const
     {
         lt_frusta_view_q16_t vq;
         lt_frusta_view_f32_t vf;
-        if (lt_ss_pview(cam, o->pflags, &vq, &vf, err, errlen) != 0) {
+        if (lt_ss_pview(cam, o->pflags, &vq, &vf, diag) != 0) {
             lt_ss_free(ss);
             return NULL;
         }
@@ -437,10 +447,10 @@ lt_softshadow_t *lt_ss_create(const lt_scene_t *s, const lt_camera_t *cam, const
         if (st == LT_OK)
             st = lt_frusta_vtable_f32(&vf, ss->vtf);
         if (st != LT_OK) {
-            snprintf(err, errlen, "primary view table (%ux%u, flags %u): %s (the directions must "
-                     "stay below 1 per axis, the eye within the geometry bound, the size within "
-                     "LT_FRUSTA_PMAX_DIM %u)", cam->width, cam->height, o->pflags,
-                     lt_status_str(st), LT_FRUSTA_PMAX_DIM);
+            lt_diag_fail(diag, "primary view table (%ux%u, flags %u): %s (the directions must "
+                         "stay below 1 per axis, the eye within the geometry bound, the size "
+                         "within LT_FRUSTA_PMAX_DIM %u)", cam->width, cam->height, o->pflags,
+                         lt_status_str(st), LT_FRUSTA_PMAX_DIM);
             lt_ss_free(ss);
             return NULL;
         }
@@ -1073,15 +1083,14 @@ void lt_ss_quality(const lt_softshadow_t *ss, double tol, lt_ss_quality_t *qq)
     qq->psnr_vs_filtered_ref = psnr(sff, nh);
 }
 
-int lt_ss_write_png(const lt_softshadow_t *ss, const char *path, int which, char *err,
-                    size_t errlen)
+int lt_ss_write_png(const lt_softshadow_t *ss, const char *path, int which, lt_diag_t *diag)
 {
     uint8_t *rgb = malloc(ss->n * 3);
     size_t q;
     int rc;
     static const double albedo[3] = {0.78, 0.74, 0.68};
     if (rgb == NULL) {
-        snprintf(err, errlen, "%s: out of memory", path);
+        lt_diag_fail(diag, "%s: out of memory", path);
         return -1;
     }
     for (q = 0; q < ss->n; q++) {
@@ -1094,7 +1103,7 @@ int lt_ss_write_png(const lt_softshadow_t *ss, const char *path, int which, char
             rgb[q * 3 + (size_t)c] = (uint8_t)(v * 255.0 + 0.5);
         }
     }
-    rc = lt_png_write(path, rgb, (int32_t)ss->w, (int32_t)ss->h, 3, 0, err, errlen);
+    rc = lt_png_write(path, rgb, (int32_t)ss->w, (int32_t)ss->h, 3, 0, diag);
     free(rgb);
     return rc;
 }

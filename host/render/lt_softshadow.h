@@ -12,6 +12,7 @@
 #define LT_SOFTSHADOW_H
 
 #include "lt/lt_frusta.h"
+#include "io/lt_diag.h"
 #include "io/lt_mesh.h"
 #include "render/lt_render.h"
 #include "render/lt_scene.h"
@@ -47,11 +48,11 @@ void lt_ss_opts_default(const lt_scene_t *s, lt_ss_opts_t *o);
  * units, converted to scaled units and snapped so its s15.16 edges are multiples of 2^-7 units
  * (LT_FRUSTA_GRID raw). Returns 0, or -1 with a message (outside the geometry bound). */
 int lt_ss_light_square(const lt_scene_t *s, const double centre[3], double size, lt_ss_light_t *l,
-                       char *err, size_t errlen);
+                       lt_diag_t *diag);
 
 /* Append a ground quad (2 triangles, facing +y) at the mesh's lowest y, spanning its x/z extent
  * grown by `grow` times the extent on each side. Returns 0 or -1 (out of memory). */
-int lt_ss_add_ground(lt_mesh_t *m, double grow, char *err, size_t errlen);
+int lt_ss_add_ground(lt_mesh_t *m, double grow, lt_diag_t *diag);
 
 /* The view and light used for a shared scene, chosen by the mesh file's base name (bunny,
  * dragon_res3, teapot: default camera, ground quad, light above; sibenik, sponza, conference: an
@@ -73,7 +74,7 @@ int lt_ss_view_for(const char *mesh_path, lt_ss_view_t *v);
  * (q16) and to multiples of 2^-23 (f32, so the float generator is exact). Either output may be
  * NULL. Returns 0, or -1 with a message (eye outside the fixed-point range, degenerate camera). */
 int lt_ss_pview(const lt_camera_t *c, uint32_t flags, lt_frusta_view_q16_t *vq,
-                lt_frusta_view_f32_t *vf, char *err, size_t errlen);
+                lt_frusta_view_f32_t *vf, lt_diag_t *diag);
 
 typedef struct lt_softshadow lt_softshadow_t;
 
@@ -81,7 +82,7 @@ typedef struct lt_softshadow lt_softshadow_t;
  * table and per-pixel buffers. In sim builds the scene arrays are registered as sim regions.
  * Returns NULL with a message on error. */
 lt_softshadow_t *lt_ss_create(const lt_scene_t *s, const lt_camera_t *cam, const lt_ss_light_t *l,
-                              const lt_ss_opts_t *o, char *err, size_t errlen);
+                              const lt_ss_opts_t *o, lt_diag_t *diag);
 void lt_ss_free(lt_softshadow_t *ss);
 
 /* A kernel hit at t (tk) of the ray o + s d against triangle v (9 doubles) is genuine when the
@@ -141,8 +142,7 @@ void lt_ss_quality(const lt_softshadow_t *ss, double tol, lt_ss_quality_t *q);
 
 /* Shaded image (albedo 0.75, ambient 0.08, gamma 2.2; misses dark blue) from the filtered E
  * (which = 0), the unfiltered E (1) or E_ref (2) to an RGB PNG. Returns 0 or -1 with a message. */
-int lt_ss_write_png(const lt_softshadow_t *ss, const char *path, int which, char *err,
-                    size_t errlen);
+int lt_ss_write_png(const lt_softshadow_t *ss, const char *path, int which, lt_diag_t *diag);
 
 /* FNV-1a over the per-pixel occlusion bits of the last shadow stage and the filtered E: equal
  * across the host and sim builds. */

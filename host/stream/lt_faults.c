@@ -45,7 +45,7 @@ static uint32_t rng_below(lt_faults_t *fi, uint32_t n)
     return (uint32_t)(((rng_next(fi) >> 32) * (uint64_t)n) >> 32);
 }
 
-int lt_faults_check(const lt_faults_cfg_t *c, char *err, size_t errlen)
+int lt_faults_check(const lt_faults_cfg_t *c, lt_diag_t *diag)
 {
     const double r[5] = {c->drop, c->corrupt, c->dup, c->reorder, c->trunc};
     const char *n[5] = {"drop", "corrupt", "dup", "reorder", "trunc"};
@@ -53,33 +53,33 @@ int lt_faults_check(const lt_faults_cfg_t *c, char *err, size_t errlen)
     int i;
     for (i = 0; i < 5; i++) {
         if (!(r[i] >= 0.0 && r[i] <= 1.0)) {
-            snprintf(err, errlen, "--%s %g: a rate must be in [0, 1]", n[i], r[i]);
+            lt_diag_fail(diag, "--%s %g: a rate must be in [0, 1]", n[i], r[i]);
             return -1;
         }
         sum += r[i];
     }
     if (sum > 1.0 + 1e-12) {
-        snprintf(err, errlen, "rates sum to %g: at most one fault per frame, so the sum must be "
-                 "<= 1", sum);
+        lt_diag_fail(diag, "rates sum to %g: at most one fault per frame, so the sum must be "
+                     "<= 1", sum);
         return -1;
     }
     if (c->max_flips < 1 || c->max_flips > 8) {
-        snprintf(err, errlen, "--flips %u: expected 1..8", c->max_flips);
+        lt_diag_fail(diag, "--flips %u: expected 1..8", c->max_flips);
         return -1;
     }
     return 0;
 }
 
-lt_faults_t *lt_faults_new(const lt_faults_cfg_t *c, lt_faults_out_fn out, void *ctx, char *err,
-                           size_t errlen)
+lt_faults_t *lt_faults_new(const lt_faults_cfg_t *c, lt_faults_out_fn out, void *ctx,
+                           lt_diag_t *diag)
 {
     lt_faults_t *fi;
     uint64_t z;
-    if (lt_faults_check(c, err, errlen) != 0)
+    if (lt_faults_check(c, diag) != 0)
         return NULL;
     fi = calloc(1, sizeof *fi);
     if (fi == NULL) {
-        snprintf(err, errlen, "out of memory");
+        lt_diag_fail(diag, "out of memory");
         return NULL;
     }
     fi->cfg = *c;

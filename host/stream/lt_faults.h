@@ -12,6 +12,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "io/lt_diag.h"
 #include "lt/lt_stream.h"
 
 #ifdef __cplusplus
@@ -44,11 +45,11 @@ typedef struct lt_faults lt_faults_t;
 typedef void (*lt_faults_out_fn)(void *ctx, const uint8_t *b, size_t n);
 
 /* Check a configuration. Returns 0, or -1 with a message naming the bad value. */
-int lt_faults_check(const lt_faults_cfg_t *c, char *err, size_t errlen);
+int lt_faults_check(const lt_faults_cfg_t *c, lt_diag_t *diag);
 
-/* A new injector writing to out (cfg checked first; NULL with err on failure). */
-lt_faults_t *lt_faults_new(const lt_faults_cfg_t *c, lt_faults_out_fn out, void *ctx, char *err,
-                           size_t errlen);
+/* A new injector writing to out (cfg checked first; NULL with a message in diag on failure). */
+lt_faults_t *lt_faults_new(const lt_faults_cfg_t *c, lt_faults_out_fn out, void *ctx,
+                           lt_diag_t *diag);
 
 /* Feed the input stream in any chunking (frames are found with the core decoder). */
 void lt_faults_feed(lt_faults_t *fi, const uint8_t *b, size_t n);

@@ -40,10 +40,9 @@ lt_rx_src_t *lt_rx_src_custom(const lt_rx_src_ops_t *ops, void *ctx, const char 
     return s;
 }
 
-long lt_rx_src_read(lt_rx_src_t *s, uint8_t *buf, size_t n, int timeout_ms, char *err,
-                    size_t errlen)
+long lt_rx_src_read(lt_rx_src_t *s, uint8_t *buf, size_t n, int timeout_ms, lt_diag_t *diag)
 {
-    return s->ops.read(s->ctx, buf, n, timeout_ms, err, errlen);
+    return s->ops.read(s->ctx, buf, n, timeout_ms, diag);
 }
 
 const char *lt_rx_src_name(const lt_rx_src_t *s) { return s->name; }
@@ -65,7 +64,7 @@ typedef struct fd_src {
     char name[240];
 } fd_src_t;
 
-static long fd_read(void *ctx, uint8_t *buf, size_t n, int timeout_ms, char *err, size_t errlen)
+static long fd_read(void *ctx, uint8_t *buf, size_t n, int timeout_ms, lt_diag_t *diag)
 {
     fd_src_t *f = ctx;
     for (;;) {
@@ -79,7 +78,7 @@ static long fd_read(void *ctx, uint8_t *buf, size_t n, int timeout_ms, char *err
         if (pr < 0 && errno == EINTR)
             continue;
         if (pr < 0) {
-            snprintf(err, errlen, "%s: poll: %s", f->name, strerror(errno));
+            lt_diag_fail(diag, "%s: poll: %s", f->name, strerror(errno));
             return LT_RX_ERROR;
         }
         if (pr == 0)
@@ -88,7 +87,7 @@ static long fd_read(void *ctx, uint8_t *buf, size_t n, int timeout_ms, char *err
         if (r < 0 && (errno == EINTR || errno == EAGAIN))
             continue;
         if (r < 0) {
-            snprintf(err, errlen, "%s: read: %s", f->name, strerror(errno));
+            lt_diag_fail(diag, "%s: read: %s", f->name, strerror(errno));
             return LT_RX_ERROR;
         }
         return (long)r;
@@ -105,12 +104,12 @@ static void fd_close(void *ctx)
 
 static const lt_rx_src_ops_t fd_ops = {fd_read, fd_close};
 
-static lt_rx_src_t *fd_wrap(int fd, int own, const char *name, int live, char *err, size_t errlen)
+static lt_rx_src_t *fd_wrap(int fd, int own, const char *name, int live, lt_diag_t *diag)
 {
     fd_src_t *f = calloc(1, sizeof *f);
     lt_rx_src_t *s;
     if (f == NULL) {
-        snprintf(err, errlen, "%s: out of memory", name);
+        lt_diag_fail(diag, "%s: out of memory", name);
         if (own)
             close(fd);
         return NULL;
@@ -121,22 +120,22 @@ static lt_rx_src_t *fd_wrap(int fd, int own, const char *name, int live, char *e
     s = lt_rx_src_custom(&fd_ops, f, name, live);
     if (s == NULL) {
         fd_close(f);
-        snprintf(err, errlen, "%s: out of memory", name);
+        lt_diag_fail(diag, "%s: out of memory", name);
     }
     return s;
 }
 
-lt_rx_src_t *lt_rx_src_file(const char *path, char *err, size_t errlen)
+lt_rx_src_t *lt_rx_src_file(const char *path, lt_diag_t *diag)
 {
     int fd;
     if (strcmp(path, "-") == 0)
-        return fd_wrap(0, 0, "stdin", 0, err, errlen);
+        return fd_wrap(0, 0, "stdin", 0, diag);
     fd = open(path, O_RDONLY);
     if (fd < 0) {
-        snprintf(err, errlen, "%s: cannot open: %s", path, strerror(errno));
+        lt_diag_fail(diag, "%s: cannot open: %s", path, strerror(errno));
         return NULL;
     }
-    return fd_wrap(fd, 1, path, 0, err, errlen);
+    return fd_wrap(fd, 1, path, 0, diag);
 }
 
 /* termios speed constant for a baud rate; B0 when unsupported. */
@@ -171,7 +170,7 @@ static speed_t baud_const(uint32_t baud)
     }
 }
 
-lt_rx_src_t *lt_rx_src_serial(const char *dev, uint32_t baud, char *err, size_t errlen)
+lt_rx_src_t *lt_rx_src_serial(const char *dev, uint32_t baud, lt_diag_t *diag)
 {
     struct termios t;
     int fd;
@@ -179,18 +178,18 @@ lt_rx_src_t *lt_rx_src_serial(const char *dev, uint32_t baud, char *err, size_t 
     if (baud != 0) {
         sp = baud_const(baud);
         if (sp == B0) {
-            snprintf(err, errlen, "%s: unsupported speed %u (9600..230400, or 460800..4000000 "
-                     "where termios has them)", dev, baud);
+            lt_diag_fail(diag, "%s: unsupported speed %u (9600..230400, or 460800..4000000 "
+                         "where termios has them)", dev, baud);
             return NULL;
         }
     }
     fd = open(dev, O_RDONLY | O_NOCTTY | O_NONBLOCK);
     if (fd < 0) {
-        snprintf(err, errlen, "%s: cannot open: %s", dev, strerror(errno));
+        lt_diag_fail(diag, "%s: cannot open: %s", dev, strerror(errno));
         return NULL;
     }
     if (tcgetattr(fd, &t) != 0) {
-        snprintf(err, errlen, "%s: not a serial device (tcgetattr: %s)", dev, strerror(errno));
+        lt_diag_fail(diag, "%s: not a serial device (tcgetattr: %s)", dev, strerror(errno));
         close(fd);
         return NULL;
     }
@@ -205,16 +204,16 @@ lt_rx_src_t *lt_rx_src_serial(const char *dev, uint32_t baud, char *err, size_t 
     t.c_cc[VMIN] = 1;
     t.c_cc[VTIME] = 0;
     if (sp != B0 && (cfsetispeed(&t, sp) != 0 || cfsetospeed(&t, sp) != 0)) {
-        snprintf(err, errlen, "%s: cannot set speed %u: %s", dev, baud, strerror(errno));
+        lt_diag_fail(diag, "%s: cannot set speed %u: %s", dev, baud, strerror(errno));
         close(fd);
         return NULL;
     }
     if (tcsetattr(fd, TCSANOW, &t) != 0) {
-        snprintf(err, errlen, "%s: cannot set raw mode: %s", dev, strerror(errno));
+        lt_diag_fail(diag, "%s: cannot set raw mode: %s", dev, strerror(errno));
         close(fd);
         return NULL;
     }
-    return fd_wrap(fd, 1, dev, 1, err, errlen);
+    return fd_wrap(fd, 1, dev, 1, diag);
 }
 
 static void sleep_ms(int ms)
@@ -226,7 +225,7 @@ static void sleep_ms(int ms)
     }
 }
 
-lt_rx_src_t *lt_rx_src_tcp(const char *hostport, int connect_ms, char *err, size_t errlen)
+lt_rx_src_t *lt_rx_src_tcp(const char *hostport, int connect_ms, lt_diag_t *diag)
 {
     char host[256];
     const char *colon = strrchr(hostport, ':');
@@ -234,13 +233,13 @@ lt_rx_src_t *lt_rx_src_tcp(const char *hostport, int connect_ms, char *err, size
     int fd = -1, rc, waited = 0, last_errno = 0;
     size_t hl;
     if (colon == NULL || colon == hostport || colon[1] == '\0') {
-        snprintf(err, errlen, "--tcp %s: expected HOST:PORT", hostport);
+        lt_diag_fail(diag, "--tcp %s: expected HOST:PORT", hostport);
         return NULL;
     }
     hl = (size_t)(colon - hostport);
     if (hl >= sizeof host) {
-        snprintf(err, errlen, "--tcp %s: host name longer than %zu bytes", hostport,
-                 sizeof host - 1);
+        lt_diag_fail(diag, "--tcp %s: host name longer than %zu bytes", hostport,
+                     sizeof host - 1);
         return NULL;
     }
     memcpy(host, hostport, hl);
@@ -250,7 +249,7 @@ lt_rx_src_t *lt_rx_src_tcp(const char *hostport, int connect_ms, char *err, size
     hints.ai_socktype = SOCK_STREAM;
     rc = getaddrinfo(host, colon + 1, &hints, &res);
     if (rc != 0) {
-        snprintf(err, errlen, "%s: cannot resolve: %s", hostport, gai_strerror(rc));
+        lt_diag_fail(diag, "%s: cannot resolve: %s", hostport, gai_strerror(rc));
         return NULL;
     }
     for (;;) {
@@ -273,11 +272,11 @@ lt_rx_src_t *lt_rx_src_tcp(const char *hostport, int connect_ms, char *err, size
     }
     freeaddrinfo(res);
     if (fd < 0) {
-        snprintf(err, errlen, "%s: cannot connect: %s%s", hostport, strerror(last_errno),
-                 waited > 0 ? " (retried for the connect timeout)" : "");
+        lt_diag_fail(diag, "%s: cannot connect: %s%s", hostport, strerror(last_errno),
+                     waited > 0 ? " (retried for the connect timeout)" : "");
         return NULL;
     }
-    return fd_wrap(fd, 1, hostport, 0, err, errlen);
+    return fd_wrap(fd, 1, hostport, 0, diag);
 }
 
 /* ---- receiver -------------------------------------------------------------------------------- */

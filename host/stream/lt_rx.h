@@ -3,7 +3,7 @@
  * host/stream/usb/lt_rx_hid.h) and the receiver, which decodes frames with the core's streaming decoder
  * and accounts for every frame the device sent: received, lost, damaged (corrupt or truncated),
  * duplicated, reordered, plus the device's own DROP records, tile reports and frame summaries.
- * Host only (POSIX). Functions report errors in err (naming the input and the limit).
+ * Host only (POSIX). Functions report errors in an lt_diag_t (naming the input and the limit).
  */
 #ifndef LT_RX_H
 #define LT_RX_H
@@ -11,6 +11,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "io/lt_diag.h"
 #include "lt/lt_stream.h"
 
 #ifdef __cplusplus
@@ -26,32 +27,31 @@ typedef struct lt_rx_src lt_rx_src_t;
 #define LT_RX_ERROR (-1)
 #define LT_RX_TIMEOUT (-2)
 
-/* A transport: read returns bytes (> 0), LT_RX_EOF, LT_RX_ERROR (message in err) or LT_RX_TIMEOUT
- * after timeout_ms (< 0: wait for ever). close releases ctx. */
+/* A transport: read returns bytes (> 0), LT_RX_EOF, LT_RX_ERROR (message in diag) or
+ * LT_RX_TIMEOUT after timeout_ms (< 0: wait for ever). close releases ctx. */
 typedef struct lt_rx_src_ops {
-    long (*read)(void *ctx, uint8_t *buf, size_t n, int timeout_ms, char *err, size_t errlen);
+    long (*read)(void *ctx, uint8_t *buf, size_t n, int timeout_ms, lt_diag_t *diag);
     void (*close)(void *ctx);
 } lt_rx_src_ops_t;
 
 /* path "-" is stdin. Returns NULL with a message naming the path on failure. */
-lt_rx_src_t *lt_rx_src_file(const char *path, char *err, size_t errlen);
+lt_rx_src_t *lt_rx_src_file(const char *path, lt_diag_t *diag);
 
 /* A serial device (tty), raw 8N1, no flow control, at baud (0 = leave the speed alone).
  * Supported speeds: 9600 .. 230400 (POSIX), plus 460800 .. 4000000 where <termios.h> has them.
  * Returns NULL with a message naming the device (not a tty, unsupported speed, open failed). */
-lt_rx_src_t *lt_rx_src_serial(const char *dev, uint32_t baud, char *err, size_t errlen);
+lt_rx_src_t *lt_rx_src_serial(const char *dev, uint32_t baud, lt_diag_t *diag);
 
 /* A TCP client for "HOST:PORT" (e.g. QEMU's -serial tcp:127.0.0.1:PORT,server=on). A refused
  * connection is retried every 50 ms for up to connect_ms (a just-started server may not listen
  * yet). Returns NULL with a message naming HOST:PORT. */
-lt_rx_src_t *lt_rx_src_tcp(const char *hostport, int connect_ms, char *err, size_t errlen);
+lt_rx_src_t *lt_rx_src_tcp(const char *hostport, int connect_ms, lt_diag_t *diag);
 
 /* Any other transport (hidapi, tests). live = 1 for sources that never reach EOF (serial, HID):
  * the receiver then stops at the END record. name is copied. */
 lt_rx_src_t *lt_rx_src_custom(const lt_rx_src_ops_t *ops, void *ctx, const char *name, int live);
 
-long lt_rx_src_read(lt_rx_src_t *s, uint8_t *buf, size_t n, int timeout_ms, char *err,
-                    size_t errlen);
+long lt_rx_src_read(lt_rx_src_t *s, uint8_t *buf, size_t n, int timeout_ms, lt_diag_t *diag);
 const char *lt_rx_src_name(const lt_rx_src_t *s);
 int lt_rx_src_live(const lt_rx_src_t *s);
 void lt_rx_src_close(lt_rx_src_t *s);

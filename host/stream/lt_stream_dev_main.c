@@ -11,6 +11,7 @@
 #include "lt/lt.h"
 #include "lt_meter.h"
 #include "stream_dev.h"
+#include "cli/lt_opt.h"
 
 #include <errno.h>
 #include <stdio.h>
@@ -63,114 +64,96 @@ static void sd_sink(void *ctx, const uint8_t *b, uint32_t n)
         d->werr = 1;
 }
 
-static void usage(FILE *f)
+typedef struct args {
+    const char *machine, *out;
+    int frames, image_from, cap, link;
+} args_t;
+
+/* The options into cfg and a. LT_OPT_OK, LT_OPT_HELP or LT_OPT_USAGE. */
+static int parse_args(lt_sdev_cfg_t *cfg, args_t *a, int argc, char **argv)
 {
+    char machine_help[512];
+    size_t k;
     const char *name;
-    int i;
-    fprintf(f, "usage: lt-stream-dev [--machine NAME] [--frames N] [--image-from N] [--cap N]\n"
-               "                     [--link BYTES_PER_S] [--out PATH] [--direct]\n"
-               "  --machine NAME   machine model (default mcu-m4):");
-    for (i = 0; (name = lt_meter_machine_name(i)) != NULL; i++) {
+    int i, rc;
+    const lt_opt_t opts[] = {
+        LT_OPT_STR("--machine", "NAME", &a->machine, machine_help),
+        LT_OPT_INT("--frames", "N", &a->frames, 1, LT_SDEV_MAX_FRAMES,
+                   "image frames to trace, {range} (default 4)"),
+        LT_OPT_INT("--image-from", "N", &a->image_from, 0, 1000000,
+                   "frames >= N also stream IMAGE tiles, {range} (default 2; N >= frames: none)"),
+        LT_OPT_INT("--cap", "N", &a->cap, 4, 64,
+                   "batcher ring capacity in frames, {range} (default 16; limits scale)"),
+        LT_OPT_INT("--link", "B", &a->link, 64, 1000000000,
+                   "link budget in bytes/s, {range} (default 64000, full-speed HID)"),
+        LT_OPT_STR("--out", "PATH", &a->out, "write the frames to PATH instead of stdout"),
+        LT_OPT_FLAG_("--direct", &cfg->direct, "trace without streaming; print one summary line "
+                                               "per frame"),
+        LT_OPT_END_};
+    const lt_opt_cmd_t cmd = {"lt-stream-dev", "[options]",
+                              "The simulator acting as a streaming device: trace frames on a "
+                              "machine model and\nstream the report frames.\n",
+                              "exit status: 0 ok, 1 device or output error, 2 usage\n", opts, NULL,
+                              0, NULL};
+    k = (size_t)snprintf(machine_help, sizeof machine_help, "machine model (default mcu-m4):");
+    for (i = 0; (name = lt_meter_machine_name(i)) != NULL && k < sizeof machine_help; i++) {
         lt_meter_machine_t m;
         (void)lt_meter_machine_info(name, &m);
-        fprintf(f, "%s %s (%u MHz)", i > 0 ? "," : "", name, m.clock_mhz);
+        k += (size_t)snprintf(machine_help + k, sizeof machine_help - k, "%s %s (%u MHz)",
+                              i > 0 ? "," : "", name, m.clock_mhz);
     }
-    fprintf(
-        f,
-        "\n"
-        "  --frames N       image frames to trace, 1..%d (default 4)\n"
-        "  --image-from N   frames >= N also stream IMAGE tiles (default 2; N >= frames: none)\n"
-        "  --cap N          batcher ring capacity in frames, 4..64 (default 16; limits scale)\n"
-        "  --link B         link budget in bytes/s (default 64000, full-speed HID)\n"
-        "  --out PATH       write the frames to PATH instead of stdout\n"
-        "  --direct         trace without streaming; print one summary line per frame\n",
-        LT_SDEV_MAX_FRAMES);
-}
-
-static int parse_u32(const char *opt, const char *v, uint32_t lo, uint32_t hi, uint32_t *out)
-{
-    char *end;
-    unsigned long x = strtoul(v, &end, 10);
-    if (*v == '\0' || *end != '\0' || x < lo || x > hi) {
-        fprintf(stderr, "lt-stream-dev: %s %s: expected %u..%u\n", opt, v, lo, hi);
-        return -1;
-    }
-    *out = (uint32_t)x;
-    return 0;
+    rc = lt_opt_parse(&cmd, argc, argv, 1);
+    cfg->frames = (uint32_t)a->frames;
+    cfg->image_from = (uint32_t)a->image_from;
+    return rc;
 }
 
 int main(int argc, char **argv)
 {
     static lt_sdev_result_t res;
-    const char *machine = "mcu-m4", *out = NULL;
+    args_t ar = {"mcu-m4", NULL, 0, 0, 16, (int)LT_STREAM_HID_BYTES_PER_S};
     lt_meter_machine_t m;
     lt_sdev_cfg_t cfg;
     lt_sdev_port_t port;
     simdev_t dev;
-    char err[256], name[32];
-    uint32_t cap = 16, link = LT_STREAM_HID_BYTES_PER_S, f;
-    int a, rc;
+    char name[32];
+    lt_diag_t diag;
+    uint32_t f;
+    int rc;
 
     lt_sdev_cfg_default(&cfg);
-    for (a = 1; a < argc; a++) {
-        const char *v = a + 1 < argc ? argv[a + 1] : NULL;
-        if (strcmp(argv[a], "--help") == 0 || strcmp(argv[a], "-h") == 0) {
-            usage(stdout);
-            return 0;
-        } else if (strcmp(argv[a], "--direct") == 0) {
-            cfg.direct = 1;
-        } else if (v == NULL) {
-            fprintf(stderr, "lt-stream-dev: %s: unknown option or missing value\n", argv[a]);
-            usage(stderr);
-            return 2;
-        } else if (strcmp(argv[a], "--machine") == 0) {
-            machine = v, a++;
-        } else if (strcmp(argv[a], "--out") == 0) {
-            out = v, a++;
-        } else if (strcmp(argv[a], "--frames") == 0) {
-            if (parse_u32(argv[a], v, 1, LT_SDEV_MAX_FRAMES, &cfg.frames) != 0)
-                return 2;
-            a++;
-        } else if (strcmp(argv[a], "--image-from") == 0) {
-            if (parse_u32(argv[a], v, 0, 1000000, &cfg.image_from) != 0)
-                return 2;
-            a++;
-        } else if (strcmp(argv[a], "--cap") == 0) {
-            if (parse_u32(argv[a], v, 4, 64, &cap) != 0)
-                return 2;
-            a++;
-        } else if (strcmp(argv[a], "--link") == 0) {
-            if (parse_u32(argv[a], v, 64, 1000000000u, &link) != 0)
-                return 2;
-            a++;
-        } else {
-            fprintf(stderr, "lt-stream-dev: %s: unknown option\n", argv[a]);
-            usage(stderr);
-            return 2;
-        }
+    ar.frames = (int)cfg.frames;
+    ar.image_from = (int)cfg.image_from;
+    switch (parse_args(&cfg, &ar, argc, argv)) {
+    case LT_OPT_HELP:
+        return 0;
+    case LT_OPT_USAGE:
+        return 2;
+    default:
+        break;
     }
-    if (lt_meter_machine_info(machine, &m) != 0) {
-        fprintf(stderr, "lt-stream-dev: --machine %s: unknown machine (known: %s)\n", machine,
+    if (lt_meter_machine_info(ar.machine, &m) != 0) {
+        fprintf(stderr, "lt-stream-dev: --machine %s: unknown machine (known: %s)\n", ar.machine,
                 lt_meter_machine_names());
         return 2;
     }
-    if (lt_meter_init(machine, NULL, NULL, err, sizeof err) != 0) {
-        fprintf(stderr, "lt-stream-dev: %s\n", err);
+    if (lt_meter_init(ar.machine, NULL, NULL, &diag) != 0) {
+        fprintf(stderr, "lt-stream-dev: %s\n", diag.msg);
         return 1;
     }
     /* the default limits (16/12/8) scaled to the ring: TILE 3/4, IMAGE 1/2 of it */
-    cfg.link.link_bytes_per_s = link;
-    cfg.link.cap = cap;
-    cfg.link.limit[0] = cap;
-    cfg.link.limit[1] = cap * 3 / 4;
-    cfg.link.limit[2] = cap / 2;
+    cfg.link.link_bytes_per_s = (uint32_t)ar.link;
+    cfg.link.cap = (uint32_t)ar.cap;
+    cfg.link.limit[0] = (uint32_t)ar.cap;
+    cfg.link.limit[1] = (uint32_t)ar.cap * 3 / 4;
+    cfg.link.limit[2] = (uint32_t)ar.cap / 2;
     memset(&dev, 0, sizeof dev);
     dev.out = stdout;
     if (!cfg.direct) {
-        if (out != NULL) {
-            dev.out = fopen(out, "wb");
+        if (ar.out != NULL) {
+            dev.out = fopen(ar.out, "wb");
             if (dev.out == NULL) {
-                fprintf(stderr, "lt-stream-dev: %s: cannot write: %s\n", out, strerror(errno));
+                fprintf(stderr, "lt-stream-dev: %s: cannot write: %s\n", ar.out, strerror(errno));
                 return 1;
             }
         } else if (isatty(1)) {
@@ -201,10 +184,10 @@ int main(int argc, char **argv)
         }
     } else {
         if (fflush(dev.out) != 0 || dev.werr) {
-            fprintf(stderr, "lt-stream-dev: %s: write error\n", out != NULL ? out : "stdout");
+            fprintf(stderr, "lt-stream-dev: %s: write error\n", ar.out != NULL ? ar.out : "stdout");
             rc = rc != 0 ? rc : 1;
         }
-        if (out != NULL)
+        if (ar.out != NULL)
             fclose(dev.out);
         fprintf(stderr, "lt-stream-dev: %s, %u frames: %llu stream frames (%llu bytes) sent, "
                 "%u dropped (tile %u, image %u) in %u DROP records, ring max %u/%u, "
@@ -212,7 +195,7 @@ int main(int argc, char **argv)
                 name, res.frames, (unsigned long long)res.tx.sent_frames,
                 (unsigned long long)res.tx.sent_bytes,
                 res.tx.dropped[0] + res.tx.dropped[1] + res.tx.dropped[2], res.tx.dropped[1],
-                res.tx.dropped[2], res.tx.drop_records, res.tx.max_depth, cap, res.tx.full_waits,
+                res.tx.dropped[2], res.tx.drop_records, res.tx.max_depth, (uint32_t)ar.cap, res.tx.full_waits,
                 (unsigned long long)res.link_done, (double)res.link_done / (double)port.tick_hz);
     }
     lt_meter_shutdown();

@@ -5,6 +5,7 @@
  * Exit: 0 clean stream (END received, nothing lost, damaged, duplicated or reordered, no garbage,
  * device status 0), 1 any fault or input error, 2 usage. Host only.
  */
+#include "cli/lt_opt.h"
 #include "stream/lt_rx.h"
 #include "cli/lt_cliutil.h"
 #include "stream/usb/lt_rx_hid.h"
@@ -22,24 +23,6 @@ typedef struct opts {
     double timeout_s;
     int json, quiet;
 } opts_t;
-
-static void usage(FILE *f)
-{
-    fprintf(
-        f, "usage: lt-stream [--file F | --serial DEV | --tcp HOST:PORT | --hid VID:PID |\n"
-           "                  --hid-path P] [--baud N] [--timeout S] [--tiles PATH] [--json] [-q]\n"
-           "  --file F         read a recorded stream (default: - = stdin, e.g. a pipe from QEMU)\n"
-           "  --serial DEV     a tty in raw 8N1 mode (e.g. /dev/ttyACM0); --baud N sets its speed\n"
-           "  --tcp HOST:PORT  connect (retrying 5 s while refused), e.g. QEMU -serial tcp:...\n"
-           "  --hid VID:PID    a USB HID device by hex ids (hidapi), e.g. 1209:0001\n"
-           "  --hid-path P     a USB HID device by hidapi path (hidraw: /dev/hidrawN)\n"
-           "  --timeout S      stop after S seconds without a byte (default: none; serial and\n"
-           "                   HID stop at the END record)\n"
-           "  --tiles PATH     write one line per TILE, SUMMARY, DROP and END record received\n"
-           "  --json           print the summary as JSON on stdout\n"
-           "  -q               no live line on stderr\n"
-           "exit status: 0 clean stream, 1 faults found or input error, 2 usage\n");
-}
 
 /* --tiles output: the device's records, one line each, in arrival order (first copies only). */
 static void on_frame(void *ctx, const lt_stream_frame_t *f, lt_rx_kind_t kind)
@@ -85,10 +68,15 @@ static void live_line(const lt_rx_stats_t *s, double dt)
 }
 
 /* 1 when the stream had no link fault and the device reported success. */
+/* --sessions: how many device sessions (HELLO .. END) one run accepts; a HELLO after END beyond
+ * that is a restarted or replayed device, a fault */
+static int g_max_sessions = 1;
+
 static int clean(const lt_rx_stats_t *s)
 {
     return s->have_end && s->lost == 0 && s->duplicates == 0 && s->reordered == 0 &&
-           s->stale == 0 && s->garbage_bytes == 0 && s->bad_payload == 0 && s->end.status == 0;
+           s->stale == 0 && s->garbage_bytes == 0 && s->bad_payload == 0 && s->end.status == 0 &&
+           s->sessions <= (uint32_t)g_max_sessions;
 }
 
 static void name16(const lt_stream_hello_t *h, char out[17])
@@ -160,6 +148,9 @@ static void print_text(const char *src, const lt_rx_stats_t *s, double dt)
     if (s->have_end)
         printf("end       device status %u, %u frames traced, %u frames sent, %u reports dropped\n",
                s->end.status, s->end.frames, s->end.frames_sent, s->end.dropped);
+    if (s->sessions > (uint32_t)g_max_sessions)
+        printf("sessions  %u, more than the %d expected: a HELLO after END (a restarted or replayed "
+               "device; --sessions N accepts N)\n", s->sessions, g_max_sessions);
     printf("result    %s\n", clean(s) ? "ok: every frame the device sent arrived once, intact, in "
                                          "order" : "FAULTS (see above)");
 }
@@ -247,66 +238,72 @@ static void print_json(const char *src, const lt_rx_stats_t *s, double dt)
     printf("}\n");
 }
 
+/* The options into o and how many sources were named. LT_OPT_OK, LT_OPT_HELP or LT_OPT_USAGE. */
+static int parse_args(opts_t *o, int argc, char **argv, int *nsrc)
+{
+    int seen[5] = {0, 0, 0, 0, 0}, i, rc;
+    int baud = 0;
+    const lt_opt_t opts[] = {
+        LT_OPT_SECTION_("sources (at most one; default --file -):"),
+        {.name = "--file", .kind = LT_OPT_STRING, .dest = &o->file, .seen = &seen[0],
+         .meta = "F", .help = "read a recorded stream (- = stdin, e.g. a pipe from QEMU)"},
+        {.name = "--serial", .kind = LT_OPT_STRING, .dest = &o->serial, .seen = &seen[1],
+         .meta = "DEV", .help = "a tty in raw 8N1 mode (e.g. /dev/ttyACM0); --baud sets its speed"},
+        {.name = "--tcp", .kind = LT_OPT_STRING, .dest = &o->tcp, .seen = &seen[2],
+         .meta = "HOST:PORT", .help = "connect (retrying 5 s while refused), e.g. QEMU -serial tcp:..."},
+        {.name = "--hid", .kind = LT_OPT_STRING, .dest = &o->hid, .seen = &seen[3],
+         .meta = "VID:PID", .help = "a USB HID device by hex ids (hidapi), e.g. 1209:0001"},
+        {.name = "--hid-path", .kind = LT_OPT_STRING, .dest = &o->hid_path, .seen = &seen[4],
+         .meta = "P", .help = "a USB HID device by hidapi path (hidraw: /dev/hidrawN)"},
+        LT_OPT_SECTION_("options:"),
+        LT_OPT_INT("--baud", "N", &baud, 1, 4000000, "serial speed in baud, {range} (--serial only)"),
+        {.name = "--timeout", .kind = LT_OPT_DOUBLE, .dest = &o->timeout_s, .meta = "S",
+         .help = "stop after S seconds without a byte, {range} (default: none; serial and\n"
+                 "HID stop at the END record)",
+         .lo = 0.0, .hi = 86400.0, .flags = LT_OPT_LO_OPEN},
+        LT_OPT_INT("--sessions", "N", &g_max_sessions, 1, 1000000,
+                   "device sessions (HELLO .. END) accepted, {range} (default 1: a HELLO\n"
+                   "after END - a restarted or replayed device - is a fault)"),
+        LT_OPT_STR("--tiles", "PATH", &o->tiles,
+                   "write one line per TILE, SUMMARY, DROP and END record received"),
+        LT_OPT_FLAG_("--json", &o->json, "print the summary as JSON on stdout"),
+        LT_OPT_FLAG_("-q", &o->quiet, "no live line on stderr"),
+        LT_OPT_END_};
+    const lt_opt_cmd_t cmd = {"lt-stream", "[SOURCE] [options]",
+                              "Receive the device's 64-byte report frames and check the stream "
+                              "(lost, damaged,\nduplicated, reordered frames, the device's own "
+                              "status).\n",
+                              "exit status: 0 clean stream, 1 faults found or input error, 2 usage\n",
+                              opts, NULL, 0, NULL};
+    rc = lt_opt_parse(&cmd, argc, argv, 1);
+    if (rc != LT_OPT_OK)
+        return rc;
+    for (i = 0, *nsrc = 0; i < 5; i++)
+        *nsrc += seen[i] != 0;
+    o->baud = (uint32_t)baud;
+    return LT_OPT_OK;
+}
+
 int main(int argc, char **argv)
 {
     opts_t o;
     lt_rx_src_t *src = NULL;
     lt_rx_t *rx;
     FILE *tiles = NULL;
-    char err[512];
+    lt_diag_t diag;
     uint8_t buf[4096];
     double t0, last_live = 0.0, last_byte;
-    int a, nsrc = 0, status = 0, tty;
+    int nsrc = 0, status = 0, tty;
     const lt_rx_stats_t *s;
 
     memset(&o, 0, sizeof o);
-    for (a = 1; a < argc; a++) {
-        const char *v = a + 1 < argc ? argv[a + 1] : NULL;
-        if (strcmp(argv[a], "--help") == 0 || strcmp(argv[a], "-h") == 0) {
-            usage(stdout);
-            return 0;
-        } else if (strcmp(argv[a], "-q") == 0) {
-            o.quiet = 1;
-        } else if (strcmp(argv[a], "--json") == 0) {
-            o.json = 1;
-        } else if (v == NULL) {
-            fprintf(stderr, "lt-stream: %s: unknown option or missing value\n", argv[a]);
-            usage(stderr);
-            return 2;
-        } else if (strcmp(argv[a], "--file") == 0) {
-            o.file = v, nsrc++, a++;
-        } else if (strcmp(argv[a], "--serial") == 0) {
-            o.serial = v, nsrc++, a++;
-        } else if (strcmp(argv[a], "--tcp") == 0) {
-            o.tcp = v, nsrc++, a++;
-        } else if (strcmp(argv[a], "--hid") == 0) {
-            o.hid = v, nsrc++, a++;
-        } else if (strcmp(argv[a], "--hid-path") == 0) {
-            o.hid_path = v, nsrc++, a++;
-        } else if (strcmp(argv[a], "--tiles") == 0) {
-            o.tiles = v, a++;
-        } else if (strcmp(argv[a], "--baud") == 0) {
-            char *end;
-            unsigned long b = strtoul(v, &end, 10);
-            if (*end != '\0' || b == 0 || b > 4000000) {
-                fprintf(stderr, "lt-stream: --baud %s: expected 1..4000000\n", v);
-                return 2;
-            }
-            o.baud = (uint32_t)b;
-            a++;
-        } else if (strcmp(argv[a], "--timeout") == 0) {
-            char *end;
-            o.timeout_s = strtod(v, &end);
-            if (*end != '\0' || !(o.timeout_s > 0.0) || o.timeout_s > 86400.0) {
-                fprintf(stderr, "lt-stream: --timeout %s: expected seconds in (0, 86400]\n", v);
-                return 2;
-            }
-            a++;
-        } else {
-            fprintf(stderr, "lt-stream: %s: unknown option\n", argv[a]);
-            usage(stderr);
-            return 2;
-        }
+    switch (parse_args(&o, argc, argv, &nsrc)) {
+    case LT_OPT_HELP:
+        return 0;
+    case LT_OPT_USAGE:
+        return 2;
+    default:
+        break;
     }
     if (nsrc > 1) {
         fprintf(stderr, "lt-stream: give at most one of --file, --serial, --tcp, --hid, "
@@ -318,15 +315,15 @@ int main(int argc, char **argv)
         return 2;
     }
     if (o.serial != NULL)
-        src = lt_rx_src_serial(o.serial, o.baud, err, sizeof err);
+        src = lt_rx_src_serial(o.serial, o.baud, &diag);
     else if (o.tcp != NULL)
-        src = lt_rx_src_tcp(o.tcp, 5000, err, sizeof err);
+        src = lt_rx_src_tcp(o.tcp, 5000, &diag);
     else if (o.hid != NULL || o.hid_path != NULL)
-        src = lt_rx_src_hid(o.hid, o.hid_path, err, sizeof err);
+        src = lt_rx_src_hid(o.hid, o.hid_path, &diag);
     else
-        src = lt_rx_src_file(o.file != NULL ? o.file : "-", err, sizeof err);
+        src = lt_rx_src_file(o.file != NULL ? o.file : "-", &diag);
     if (src == NULL) {
-        fprintf(stderr, "lt-stream: %s\n", err);
+        fprintf(stderr, "lt-stream: %s\n", diag.msg);
         return 1;
     }
     if (o.tiles != NULL) {
@@ -345,7 +342,7 @@ int main(int argc, char **argv)
     tty = !o.quiet && isatty(2);
     t0 = last_byte = lt_now_s();
     for (;;) {
-        long n = lt_rx_src_read(src, buf, sizeof buf, tty ? 250 : 1000, err, sizeof err);
+        long n = lt_rx_src_read(src, buf, sizeof buf, tty ? 250 : 1000, &diag);
         double t = lt_now_s();
         if (n > 0) {
             lt_rx_feed(rx, buf, (size_t)n);
@@ -353,7 +350,7 @@ int main(int argc, char **argv)
         } else if (n == LT_RX_EOF) {
             break;
         } else if (n == LT_RX_ERROR) {
-            fprintf(stderr, "%slt-stream: %s\n", tty ? "\n" : "", err);
+            fprintf(stderr, "%slt-stream: %s\n", tty ? "\n" : "", diag.msg);
             status = 1;
             break;
         }

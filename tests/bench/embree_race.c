@@ -166,7 +166,7 @@ int main(int argc, char **argv)
     lt_mesh_t m;
     lt_scene_t sc;
     race_t r;
-    char err[512];
+    lt_diag_t diag;
     RTCDevice dev;
     RTCGeometry g;
     float *vb;
@@ -197,9 +197,9 @@ int main(int argc, char **argv)
     /* flush denormals on both sides (docs/results.md, "The benchmark view") */
     /* MXCSR bits 15 (FTZ) and 6 (DAZ), set directly: the header macros trip -Wsign-conversion */
     _mm_setcsr(_mm_getcsr() | 0x8040u);
-    if (lt_mesh_load(mesh_path, &m, err, sizeof err) != 0 ||
-        lt_scene_prepare(&m, &sc, err, sizeof err) != 0) {
-        fprintf(stderr, "%s\n", err);
+    if (lt_mesh_load(mesh_path, &m, &diag) != 0 ||
+        lt_scene_prepare(&m, &sc, &diag) != 0) {
+        fprintf(stderr, "%s\n", diag.msg);
         return 1;
     }
     memset(&r, 0, sizeof r);
@@ -209,7 +209,7 @@ int main(int argc, char **argv)
     r.eid = malloc((size_t)res * res * sizeof(unsigned));
     r.et = malloc((size_t)res * res * sizeof(float));
     if (r.dirs == NULL || r.eid == NULL || r.et == NULL ||
-        lt_frame_alloc(&fr, res, res, err, sizeof err) != 0) {
+        lt_frame_alloc(&fr, res, res, &diag) != 0) {
         fprintf(stderr, "embree-race: out of memory\n");
         return 1;
     }
@@ -279,10 +279,10 @@ int main(int argc, char **argv)
         double light[3] = {r.light[0], r.light[1], r.light[2]};
         const char *name = a == 0 ? "s15.16 " : "float32";
         t0 = lt_now_s();
-        acc = lt_accel_build(&sc, structure, (lt_path_t)a, err, sizeof err);
+        acc = lt_accel_build(&sc, structure, (lt_path_t)a, &diag);
         lb = 1e3 * (lt_now_s() - t0);
         if (acc == NULL) {
-            fprintf(stderr, "%s\n", err);
+            fprintf(stderr, "%s\n", diag.msg);
             return 1;
         }
         printf("lanetrace %s %s: build %.1f ms, %zu bytes\n", name, structure, lb,
@@ -290,7 +290,7 @@ int main(int argc, char **argv)
         if (strcmp(structure, "chunks") != 0) {
             for (k = 0; k < runs; k++) {
                 t0 = lt_now_s();
-                lt_render_primary1(&sc, acc, &r.cam, &fr, err, sizeof err);
+                lt_render_primary1(&sc, acc, &r.cam, &fr, &diag);
                 times[k] = lt_now_s() - t0;
             }
             l1 = (double)res * res / median(times, runs) / 1e6;
@@ -308,7 +308,7 @@ int main(int argc, char **argv)
         if (strcmp(structure, "chunks") != 0) {
             for (k = 0; k < runs; k++) {
                 t0 = lt_now_s();
-                lt_render_shadows(&sc, acc, &r.cam, &fr, light, &sn, &so, NULL, err, sizeof err);
+                lt_render_shadows(&sc, acc, &r.cam, &fr, light, &sn, &so, NULL, &diag);
                 times[k] = lt_now_s() - t0;
             }
             ls = (double)sn / median(times, runs) / 1e6;

@@ -42,7 +42,7 @@ int main(int argc, char **argv)
     lt_ss_view_t view;
     lt_softshadow_t *ss;
     lt_ss_counts_t cnt;
-    char err[512];
+    lt_diag_t diag;
     double tf[16], tp[16], te[16], *org, up[3] = {0, 1, 0}, samp[16][16][3];
     uint8_t *lit;
     uint16_t *eocc;
@@ -88,22 +88,21 @@ int main(int argc, char **argv)
     /* flush denormals on both sides, as embree_race does */
     _mm_setcsr(_mm_getcsr() | 0x8040u);
     has_view = lt_ss_view_for(mesh_path, &view);
-    if (lt_mesh_load(mesh_path, &m, err, sizeof err) != 0) {
-        fprintf(stderr, "frusta-race: %s\n", err);
+    if (lt_mesh_load(mesh_path, &m, &diag) != 0) {
+        fprintf(stderr, "frusta-race: %s\n", diag.msg);
         return 1;
     }
-    if ((!has_view || view.ground) && lt_ss_add_ground(&m, 0.6, err, sizeof err) != 0) {
-        fprintf(stderr, "frusta-race: %s\n", err);
+    if ((!has_view || view.ground) && lt_ss_add_ground(&m, 0.6, &diag) != 0) {
+        fprintf(stderr, "frusta-race: %s\n", diag.msg);
         return 1;
     }
-    if (lt_scene_prepare(&m, &sc, err, sizeof err) != 0) {
-        fprintf(stderr, "frusta-race: %s\n", err);
+    if (lt_scene_prepare(&m, &sc, &diag) != 0) {
+        fprintf(stderr, "frusta-race: %s\n", diag.msg);
         return 1;
     }
     if (has_view && view.has_camera) {
-        if (lt_camera_look(&sc, view.eye, view.target, up, view.fov, res, res, &cam, err,
-                           sizeof err) != 0) {
-            fprintf(stderr, "frusta-race: %s\n", err);
+        if (lt_camera_look(&sc, view.eye, view.target, up, view.fov, res, res, &cam, &diag) != 0) {
+            fprintf(stderr, "frusta-race: %s\n", diag.msg);
             return 1;
         }
     } else {
@@ -115,17 +114,17 @@ int main(int argc, char **argv)
         view.light[2] = 0.5 * (m.lo[2] + m.hi[2]);
         view.size = 0.2 * (m.hi[0] - m.lo[0]);
     }
-    if (lt_ss_light_square(&sc, view.light, view.size, &light, err, sizeof err) != 0) {
-        fprintf(stderr, "frusta-race: %s\n", err);
+    if (lt_ss_light_square(&sc, view.light, view.size, &light, &diag) != 0) {
+        fprintf(stderr, "frusta-race: %s\n", diag.msg);
         return 1;
     }
     lt_ss_opts_default(&sc, &o);
     o.path = f32 ? LT_PATH_F32 : LT_PATH_Q16;
     o.leaf = leaf;
     o.flags = flags;
-    ss = lt_ss_create(&sc, &cam, &light, &o, err, sizeof err);
+    ss = lt_ss_create(&sc, &cam, &light, &o, &diag);
     if (ss == NULL) {
-        fprintf(stderr, "frusta-race: %s\n", err);
+        fprintf(stderr, "frusta-race: %s\n", diag.msg);
         return 1;
     }
     lt_ss_primary(ss);

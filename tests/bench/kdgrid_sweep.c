@@ -66,19 +66,20 @@ int main(int argc, char **argv)
     lt_mesh_t m;
     lt_scene_t s;
     lt_camera_t cam;
-    char err[256], label[64];
+    char label[64];
+    lt_diag_t diag;
     if (res == 0 || res > 4096) {
         fprintf(stderr, "kdgrid-sweep: resolution %u outside 1..4096\n", res);
         return 2;
     }
-    if (lt_mesh_load(path, &m, err, sizeof err) != 0 ||
-        lt_scene_prepare(&m, &s, err, sizeof err) != 0) {
-        fprintf(stderr, "kdgrid-sweep: %s\n", err);
+    if (lt_mesh_load(path, &m, &diag) != 0 ||
+        lt_scene_prepare(&m, &s, &diag) != 0) {
+        fprintf(stderr, "kdgrid-sweep: %s\n", diag.msg);
         return 1;
     }
     lt_mesh_free(&m);
-    if (lt_sim_init(lt_sim_machine_find("lrb16"), NULL, NULL, err, sizeof err) != 0) {
-        fprintf(stderr, "kdgrid-sweep: %s\n", err);
+    if (lt_sim_init(lt_sim_machine_find("lrb16"), NULL, NULL, &diag) != 0) {
+        fprintf(stderr, "kdgrid-sweep: %s\n", diag.msg);
         return 1;
     }
     lt_camera_default(&s, res, res, &cam);

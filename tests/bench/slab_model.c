@@ -13,14 +13,14 @@ int main(int argc, char **argv)
     int calls = argc > 2 ? atoi(argv[2]) : 256;
     const lt_machine_t *m = lt_sim_machine_find(mname);
     lt_sim_totals_t t;
-    char err[256];
+    lt_diag_t diag;
     uint32_t hits;
     if (m == NULL || calls < 1) {
         fprintf(stderr, "usage: slab-model [lrb16|mcu-m4] [calls >= 1]\n");
         return 2;
     }
-    if (lt_sim_init(m, NULL, NULL, err, sizeof err) != 0) {
-        fprintf(stderr, "%s\n", err);
+    if (lt_sim_init(m, NULL, NULL, &diag) != 0) {
+        fprintf(stderr, "%s\n", diag.msg);
         return 1;
     }
     hits = lt_slab_loop(calls);

@@ -639,9 +639,9 @@ static int run_scene(sctx_t *c, size_t nrays)
     size_t nr;
     row_t rows[NCFG];
 #if LT_COST_MODE == LT_COST_SIM
-    char err[128];
-    if (lt_sim_init(lt_sim_machine_find("lrb16"), NULL, NULL, err, sizeof err) != 0) {
-        fprintf(stderr, "ssbench: %s\n", err);
+    lt_diag_t diag;
+    if (lt_sim_init(lt_sim_machine_find("lrb16"), NULL, NULL, &diag) != 0) {
+        fprintf(stderr, "ssbench: %s\n", diag.msg);
         return -1;
     }
 #endif
@@ -776,7 +776,7 @@ int main(int argc, char **argv)
         if (sc == 0) {
             lt_exr_read_opts_t o = LT_EXR_READ_OPTS_DEFAULT;
             lt_exr_depth_t d;
-            char err[256];
+            lt_diag_t diag;
             FILE *fp;
             if (!use_exr) {
                 free(c);
@@ -795,8 +795,8 @@ int main(int argc, char **argv)
             }
             fclose(fp);
             memset(&d, 0, sizeof d);
-            if (lt_exr_read_depth(exr, NULL, &o, &d, err, sizeof err) != 0) {
-                fprintf(stderr, "ssbench: %s\n", err);
+            if (lt_exr_read_depth(exr, NULL, &o, &d, &diag) != 0) {
+                fprintf(stderr, "ssbench: %s\n", diag.msg);
                 free(c);
                 return 1;
             }

@@ -124,14 +124,14 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     /* fault injector into a receiver: must not crash, totals still add up */
     {
         lt_faults_cfg_t c;
-        char err[128];
+        lt_diag_t diag;
         lt_faults_t *fi;
         memset(&c, 0, sizeof c);
         c.drop = c.corrupt = c.dup = c.reorder = c.trunc = 0.1;
         c.max_flips = 3;
         c.seed = size;
         rx = lt_rx_new(NULL, NULL);
-        fi = lt_faults_new(&c, sink, rx, err, sizeof err);
+        fi = lt_faults_new(&c, sink, rx, &diag);
         REQUIRE(rx != NULL && fi != NULL);
         lt_faults_feed(fi, data, size);
         lt_faults_finish(fi);

@@ -32,6 +32,14 @@ sc '{"mesh": "'"$PWD"'/scenes/teapot.obj", "colour": 1}'
 expect "scene: unknown key named" 1 "unknown key 'colour'" "$LT" run "$tmp/s.json"
 sc '{"mesh": "'"$PWD"'/scenes/teapot.obj", "camera": {"eye": [0,0,5], "target": [0,0,0], "fov": 30}}'
 expect "scene: unknown nested key named with its path" 1 "camera.fov" "$LT" run "$tmp/s.json"
+sc '{"mesh": "'"$PWD"'/scenes/teapot.obj", "resolution": [8, 8], "resolution": [16, 16]}'
+expect "scene: a duplicate key is an error (cJSON took the first silently)" 1 "s.json: key 'resolution' appears more than once" "$LT" run "$tmp/s.json"
+sc '{"mesh": "'"$PWD"'/scenes/teapot.obj", "camera": {"eye": [0,0,5], "target": [0,0,0], "eye": [1,1,1]}}'
+expect "scene: a duplicate nested key named with its path" 1 "key 'camera.eye' appears more than once" "$LT" run "$tmp/s.json"
+sc '{"mesh": "'"$PWD"'/scenes/teapot.obj", "caches": {"l1": "63:8:64"}}'
+expect "scene: a bad cache geometry names the file and key (sim)" 1 "s.json: 'caches.l1': cache spec \"63:8:64\": sets 63 is not a power of two" "$LT" run "$tmp/s.json" --res 8 -q
+expect "scene: ... and the native build refuses it too (it ignored caches)" 1 "s.json: 'caches.l1'" "$B/host/lanetrace-native" run "$tmp/s.json" --res 8 -q
+expect "native build: a bad --l1 is refused like in the simulator" 2 "63:8:64" "$B/host/lanetrace-native" run --l1 63:8:64 --res 8 -q
 sc '{"mesh": "'"$PWD"'/scenes/teapot.obj", "resolution": "big"}'
 expect "scene: wrong type" 1 "'resolution' must be" "$LT" run "$tmp/s.json"
 sc '{"mesh": "'"$PWD"'/scenes/teapot.obj", "resolution": [64, 9000]}'
@@ -69,6 +77,16 @@ expect "info on the depth EXR lists its channels" 0 "q16.Z(FLOAT)" "$LT" info "$
 expect "run --heatmap writes PNG and EXR per path" 0 "" "$LT" run --res 16 --num q16 --heatmap "$tmp/h" -q
 check "heatmap files exist (cycles and steps)" test -s "$tmp/h.q16.png" -a -s "$tmp/h.q16.exr" -a -s "$tmp/h.q16.steps.png"
 expect "info on the heatmap EXR" 0 "cycles(FLOAT)" "$LT" info "$tmp/h.q16.exr"
+# info decides EXR vs mesh by the first bytes, not the name, and says what it found
+cp "$tmp/d.exr" "$tmp/depth.bin"
+expect "info: an EXR named .bin is read as OpenEXR (magic bytes)" 0 "detected  OpenEXR (magic bytes 76 2f 31 01) by its content (its name says otherwise)" "$LT" info "$tmp/depth.bin"
+cp scenes/teapot.obj "$tmp/teapot.exr"
+expect "info: OBJ text named .exr is read as a mesh" 0 "detected  OBJ text by its content (its name says otherwise)" "$LT" info "$tmp/teapot.exr"
+expect "info on a directory: one line, not a size overflow" 1 "is a directory, not a file" "$LT" info "$tmp"
+cp "$tmp/d.exr" "$tmp/a \"q\" \\ b.exr"
+"$LT" info "$tmp/a \"q\" \\ b.exr" --json >"$tmp/infoj.json" 2>&1
+check "info --json escapes the path (a quote and a backslash in the name): valid JSON" \
+    python3 -c "import json,sys; j=json.load(open(sys.argv[1])); sys.exit(0 if j['file'].endswith('a \"q\" \\\\ b.exr') and j['detected'].startswith('OpenEXR') else 1)" "$tmp/infoj.json"
 if [ -f ../shared/depth/beachball_singlepart.0001.exr ]; then
     expect "info on the shared beachball EXR: 20 channels, Z stats" 0 "mean 9.385" \
         "$LT" info ../shared/depth/beachball_singlepart.0001.exr
@@ -79,12 +97,14 @@ elif [ "${CI:-}" = "true" ]; then
 else
     echo "SKIP info on shared EXR files: ../shared/depth not found"
 fi
+# every structure traces the same image: compared with the chunks (brute force over boxes)
+"$B/host/lanetrace-native" run --structure chunks --res 32 -q >"$tmp/chunks.txt" 2>&1
 for st in bvh bvhq; do
     nm=both; [ $st = bvhq ] && nm=q16
     "$B/host/lanetrace-native" run --structure $st --num $nm --res 32 -q >"$tmp/n_$st.txt" 2>&1
     "$LT" run --structure $st --num $nm --res 32 -q >"$tmp/s_$st.txt" 2>&1
     a=$(grep "result    q16" "$tmp/n_$st.txt"); b=$(grep "result    q16" "$tmp/s_$st.txt")
-    c=$(grep "result    q16" "$tmp/native.txt")
+    c=$(grep "result    q16" "$tmp/chunks.txt")
     check "structure $st: host = sim = chunks result ($a)" test -n "$a" -a "$a" = "$b" -a "$a" = "$c"
 done
 expect "render writes EXR + PNGs with depth peels" 0 "depth peels" "$LT" render --res 32 --layers 3 --out "$tmp/rd"
@@ -95,7 +115,7 @@ expect "render without --out: usage" 2 "--out" "$LT" render --res 8
 expect "render --help" 0 "usage: lanetrace render" "$LT" render --help
 for st in kd grid; do
     "$LT" run --structure $st --res 32 -q >"$tmp/s_$st.txt" 2>&1
-    a=$(grep "result    q16" "$tmp/s_$st.txt"); c=$(grep "result    q16" "$tmp/native.txt")
+    a=$(grep "result    q16" "$tmp/s_$st.txt"); c=$(grep "result    q16" "$tmp/chunks.txt")
     check "structure $st (sim) = chunks result ($a)" test -n "$a" -a "$a" = "$c"
 done
 expect "render with the kd-tree and depth peels" 0 "depth peels" "$LT" render --structure kd --layers 2 --res 16 --out "$tmp/kdr"
@@ -118,6 +138,67 @@ expect "render: the same error for the s15.16 path" 1 "cannot be represented in 
 check "render: nothing written for the unrepresentable scene" test ! -e "$tmp/wide.exr"
 expect "run --num f32 traces the same scene" 0 "result    f32" "$LT" run --mesh "$tmp/wide.obj" --res 8 -q --num f32 --no-ref
 expect "info says which paths can represent a mesh" 0 "10 of 11 non-degenerate triangles collapse.*NOT representable" "$B/host/lanetrace-native" info "$tmp/wide.obj"
+expect "shadows: the same error for the s15.16 path" 1 "wide.obj: cannot be represented in s15.16" "$LT" shadows --mesh "$tmp/wide.obj" --res 8 --no-ref
+expect "lt-agree: the same error (it traces s15.16)" 1 "wide.obj: cannot be represented in s15.16" "$B/host/lt-agree" "$tmp/wide.obj" --res 8
+# a unit triangle beside a 1e30 one: centring in double alone erases it (range above 2^53); the
+# check measures area on the file's coordinates, so it counts as collapsed (it was "representable")
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1e30 0 0\nv 0 1e30 0\nv 0 0 1e30\nf 1 2 3\nf 4 5 6\n' >"$tmp/huge.obj"
+expect "info: a unit triangle beside a 1e30 one is not representable in s15.16" 0 "1 of 2 non-degenerate triangles collapse.*NOT representable" "$B/host/lanetrace-native" info "$tmp/huge.obj"
+expect "run: ... and refused for s15.16" 1 "huge.obj: cannot be represented in s15.16: 1 of 2" "$LT" run --mesh "$tmp/huge.obj" --res 8 -q --num q16
+expect "lt-agree --help exits 0 with the options" 0 "usage: lt-agree MESH" "$B/host/lt-agree" --help
+expect "lt-agree without a mesh: usage error" 2 "no mesh given" "$B/host/lt-agree"
+expect "lt-agree --res 2: the range named" 2 "--res 2: out of range; expected 4..4096" "$B/host/lt-agree" scenes/teapot.obj --res 2
+# a slow run prints a rate in a unit that fits (it printed "0.00 Mrays/s")
+expect "run on mcu-m4 (grid, s15.16): the report's rate in krays/s" 0 "cycles/ray, [0-9.]* krays/s at 168 MHz" "$LT" run scenes/teapot.json --res 16 --machine mcu-m4 --num q16 --structure grid --no-ref
+check "... and no '0.00 Mrays/s' anywhere" bash -c "! grep -q '0\.00 Mrays/s' '$tmp/o.txt'"
+# output names follow their kind (render --out a.png wrote a.png.exr, reproject --out x.png an EXR
+# named x.png); run --report with both paths puts the path before the extension
+expect "render --out a.png: a prefix takes no image extension" 2 "render: --out $tmp/a.png: a path prefix" "$LT" render --res 8 --out "$tmp/a.png"
+check "... and nothing is written" test ! -e "$tmp/a.png.exr" -a ! -e "$tmp/a.png"
+expect "reproject --out x.png: the EXR output refuses a .png name" 2 "this output is a .exr file; its name ends in '.png'" "$LT" reproject scenes/teapot.json --depth "$tmp/d.exr" --out "$tmp/x.png"
+expect "run --depth d.png: refused" 2 "--depth $tmp/d.png: this output is a .exr file" "$LT" run --res 8 --depth "$tmp/d.png"
+expect "shadows --png s.exr: refused" 2 "--png $tmp/s.exr: this output is a .png file" "$LT" shadows --mesh scenes/teapot.obj --res 8 --png "$tmp/s.exr"
+expect "run --report r.json with both paths" 0 "report    $tmp/rb.q16.json" "$LT" run scenes/teapot.json --res 8 --report "$tmp/rb.json"
+check "... writes r.q16.json and r.f32.json" test -s "$tmp/rb.q16.json" -a -s "$tmp/rb.f32.json"
+# messages that name the real problem (each misled before: a size overflow for a directory,
+# "camera.up is parallel" for a far eye or a tiny up, "not finite" for a float32 overflow, the
+# light centre blamed for its size, an API constant for a flag)
+mkdir -p "$tmp/adir"
+expect "a directory as the scene file" 1 "adir: not a regular file (a directory)" "$LT" run "$tmp/adir"
+sc '{"mesh": "'"$PWD"'/scenes/teapot.obj", "camera": {"eye": [1e300, 0, 0], "target": [0, 0, 0]}}'
+expect "scene: an eye 1e300 away is named as out of range, not 'up is parallel'" 1 "camera eye is .* scene radii from the centre" "$LT" run "$tmp/s.json" --res 8 -q
+sc '{"mesh": "'"$PWD"'/scenes/teapot.obj", "camera": {"eye": [0, 0, 50], "target": [0, 0, 0], "up": [0, 1e-300, 0]}}'
+expect "scene: a tiny but valid up vector works" 0 "result    q16" "$LT" run "$tmp/s.json" --res 8 -q --no-ref
+sc '{"mesh": "'"$PWD"'/scenes/teapot.obj", "camera": {"eye": [1e308, 0, 0], "target": [-1e308, 0, 0]}}'
+expect "scene: an eye-target distance that overflows is named" 1 "overflows a double" "$LT" run "$tmp/s.json" --res 8 -q
+sc '{"mesh": "'"$PWD"'/scenes/teapot.obj", "camera": {"eye": [0, 0, 50], "target": [0, 0, 0], "up": [0, 0, 3]}}'
+expect "scene: an up along the view is parallel, with both vectors" 1 "'camera.up' \[0, 0, 3\] is parallel to the view direction" "$LT" run "$tmp/s.json" --res 8 -q
+printf 'v 0 0 0\nv 1e200 0 0\nv 0 1 0\nf 1 2 3\n' >"$tmp/big.obj"
+expect "OBJ: 1e200 overflows float32 (not 'not finite')" 1 "big.obj: line 2: vertex coordinate 1 '1e200' overflows float32" "$LT" run --mesh "$tmp/big.obj" --res 8 -q
+expect "shadows: a 1e9-wide light blames its size, not its centre" 1 "light size 1e+09" "$LT" shadows --mesh scenes/teapot.obj --res 8 --light 0,20,0,1e9 --no-ref
+expect "run: counts next to percentages on the accuracy line" 0 "same triangle 100.000% (64 of 64 pixels, 0 differ)" "$LT" run scenes/teapot.json --res 8 --num q16
+if [ -f ../shared/depth/v2_LowResLeftView_Trunks_deep.exr ]; then
+    expect "reproject on a deep EXR names the flag" 1 "lanetrace reproject --deep-front" "$LT" reproject --depth ../shared/depth/v2_LowResLeftView_Trunks_deep.exr
+    expect "reproject --deep-front reads it (front-most sample)" 0 "source    ../shared/depth/v2_LowResLeftView_Trunks_deep.exr: 1024x435" "$B/host/lanetrace-native" reproject --depth ../shared/depth/v2_LowResLeftView_Trunks_deep.exr --deep-front --move 0.01,0,0
+fi
+# render's outputs are one set: all new or all old (a failure part-way left a mix); names too
+# long are refused (a fixed buffer cut them, so all five outputs overwrote one file)
+"$LT" render --res 16 --out "$tmp/set" -q >/dev/null 2>&1
+sum0=$(cat "$tmp"/set.exr "$tmp"/set*.png | md5sum)
+expect "render: a failing --report leaves the previous outputs as they were" 1 "none of the outputs written" \
+    "$LT" render --res 24 --out "$tmp/set" -q --report /nonexistent-dir/r.json
+check "... the EXR and PNGs unchanged, no temporary left" \
+    bash -c "[ \"\$(cat '$tmp'/set.exr '$tmp'/set*.png | md5sum)\" = '$sum0' ] && ! ls '$tmp' | grep -q '\.tmp\.'"
+long=$(printf 'x%.0s' $(seq 1 4100))
+expect "render: an --out over the path limit is refused, not cut" 2 "the output names would be longer than" \
+    "$LT" render --res 8 --out "$tmp/$long" -q
+# a render too large for the memory fails at once, naming the size (it allocated the peels after
+# tracing); the address-space limit stands in for a small machine
+t0=$(date +%s)
+expect "render 8192^2 x 16 layers under a 2 GiB limit: fails before tracing, names the need" 1 \
+    "needs 28.00 GiB for its images; 2.00 GiB are available (the address-space limit" \
+    bash -c "ulimit -v 2097152 && exec '$LT' render --res 8192 --layers 16 --out '$tmp/huge' -q"
+check "... within 10 s, nothing written" bash -c "[ \$((\$(date +%s) - $t0)) -lt 10 ] && [ ! -e '$tmp/huge.exr' ]"
 # ---- option parsing (host/cli/lt_opt): values are read whole, numbers must be finite, ranges are
 # named; each of these was accepted before (atoi read "1e9" as 1, sscanf ignored trailing text,
 # NaN passed the range checks, --tol had none)

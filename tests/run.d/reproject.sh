@@ -36,6 +36,13 @@ done
 rp_expect "reproject --help" 0 "usage: lanetrace reproject" "$RP_SIM" reproject --help
 rp_expect "lanetrace --help lists reproject" 0 "reproject --depth" "$RP_SIM" --help
 rp_expect "reproject: no --depth" 2 "--depth FILE.exr is required" "$RP_NAT" reproject
+# a mesh without a scene file: --mesh gives the render camera and the ground truth
+"$RP_NAT" render --mesh scenes/teapot.obj --res 48 --out "$tmp/rpm" -q >/dev/null 2>&1
+rp_expect "reproject --mesh (no scene file): source camera from the mesh, --truth works" 0 \
+    "truth     the target view by the object-space tracer" \
+    "$RP_NAT" reproject --mesh scenes/teapot.obj --depth "$tmp/rpm.exr" --move-rel 0.05,0,0 --truth
+rp_expect "reproject --truth without a mesh: usage error naming --mesh" 2 "needs the mesh (--mesh PATH" \
+    "$RP_NAT" reproject --depth "$tmp/rpm.exr" --truth
 rp_expect "reproject: unknown flag" 2 "unknown option '--frob'" "$RP_NAT" reproject --depth x.exr --frob 1
 rp_expect "reproject: flag without value" 2 "missing value" "$RP_NAT" reproject --depth
 rp_expect "reproject: bad --num names the screen paths" 2 "expected n64, n32 or f32" "$RP_NAT" reproject --depth x.exr --num n16
@@ -67,6 +74,16 @@ rp_expect "reproject: unwritable --out names the path" 1 "/nonexistent-dir/o.exr
     "$RP_NAT" reproject scenes/teapot.json --depth "$tmp/tp.exr" --layers 2 --out /nonexistent-dir/o.exr
 rp_expect "reproject: unwritable --png names the path" 1 "/nonexistent-dir/o.png" \
     "$RP_NAT" reproject scenes/teapot.json --depth "$tmp/tp.exr" --layers 2 --png /nonexistent-dir/o.png
+# the outputs are one set: a failing --report (after the view was computed) keeps the old EXR/PNG
+"$RP_NAT" reproject scenes/teapot.json --depth "$tmp/tp.exr" --layers 2 --move-rel 0.05,0,0 \
+    --out "$tmp/rpset.exr" --png "$tmp/rpset.png" >/dev/null 2>&1
+rpsum=$(cat "$tmp/rpset.exr" "$tmp/rpset.png" | md5sum)
+rp_expect "reproject: a failing output keeps the previous set (sim, unwritable --report)" 1 \
+    "none of the outputs written" "$RP_SIM" reproject scenes/teapot.json --depth "$tmp/tp.exr" \
+    --layers 2 --move-rel 0.09,0,0 --out "$tmp/rpset.exr" --png "$tmp/rpset.png" \
+    --report /nonexistent-dir/r.json
+check "reproject: ... the EXR and PNG unchanged, no temporary left" \
+    bash -c "[ \"\$(cat '$tmp/rpset.exr' '$tmp/rpset.png' | md5sum)\" = '$rpsum' ] && ! ls '$tmp' | grep -q 'rpset.*\.tmp\.'"
 rp_expect "reproject: unwritable --report names the path (sim)" 1 "/nonexistent-dir/r.json" \
     "$RP_SIM" reproject scenes/teapot.json --depth "$tmp/tp.exr" --layers 2 --report /nonexistent-dir/r.json
 for e in n64 n32 f32; do
@@ -85,6 +102,19 @@ for e in n64 n32 f32; do
         test -s "$tmp/rp_$e.exr" -a -s "$tmp/rp_$e.png" -a -s "$tmp/rps_$e.png" -a -s "$tmp/rpc_$e.png"
     check "reproject teapot $e: cycle report JSON with the reprojection figures" \
         grep -q '"setup_cycles"' "$tmp/rpr_$e.json"
+    # one source of truth: the summary's build/setup/traverse and utilisation are the report's
+    check "reproject teapot $e: the figures = the report's phases (build, setup, traverse + intersect, total, utilisation)" \
+        python3 -c "
+import json, sys
+j = json.load(open(sys.argv[1])); x = j.get('extra', j); ph = j['phases']
+c = lambda k: ph.get(k, {}).get('cycles', 0)
+ok = (x['build_cycles'] == c('BUILD') and x['setup_cycles'] == c('SETUP')
+      and x['traverse_cycles'] == c('TRAVERSE') + c('INTERSECT')
+      and abs(x['lane_utilisation'] - j['lane_utilisation']) < 1e-12)
+print('  summary build %d setup %d traverse %d util %.4f; report %d %d %d %.4f' % (x['build_cycles'],
+      x['setup_cycles'], x['traverse_cycles'], x['lane_utilisation'], c('BUILD'), c('SETUP'),
+      c('TRAVERSE') + c('INTERSECT'), j['lane_utilisation']))
+sys.exit(0 if ok else 1)" "$tmp/rpr_$e.json"
 done
 # the deprecated spelling --enc: the same view, and a note on stderr
 "$RP_NAT" reproject scenes/teapot.json --depth "$tmp/tp.exr" --layers 2 --color --move-rel 0.08,0,0 \
@@ -102,9 +132,9 @@ check "reproject (sim) prints the cycle report" \
 rp_expect "reproject -q prints nothing" 0 "" bash -c "[ -z \"\$('$RP_NAT' reproject scenes/teapot.json --depth '$tmp/tp.exr' -q)\" ]"
 
 # ---- against ray-traced ground truth (--truth: the target view by the BVH float32 tracer) ----
-rp_expect "reproject --truth needs a mesh scene" 2 "needs a mesh scene" \
+rp_expect "reproject --truth needs a mesh scene" 2 "needs the mesh (--mesh PATH or a scene file" \
     "$RP_NAT" reproject --depth "$tmp/tp.exr" --truth
-rp_expect "reproject --heat-error needs a mesh scene" 2 "needs a mesh scene" \
+rp_expect "reproject --heat-error needs a mesh scene" 2 "(and --heat-error) needs the mesh" \
     "$RP_NAT" reproject --depth "$tmp/tp.exr" --heat-error "$tmp/e.png"
 rp_expect "reproject --truth-tol 0 names the range" 2 "(0, 1]" \
     "$RP_NAT" reproject scenes/teapot.json --depth "$tmp/tp.exr" --truth --truth-tol 0

@@ -96,6 +96,10 @@ check "lt-stream --hid 1209:0001 with no device: exit 1, names it ($(head -n 1 "
 rc=$?
 check "lt-stream --hid-path /dev/hidraw99: exit 1, names it" \
     bash -c "[ $rc -eq 1 ] && grep -q /dev/hidraw99 '$S/e.txt'"
+"$B/host/lt-stream" --hid-path "$S/sim.bin" -q >"$S/e.txt" 2>&1
+rc=$?
+check "lt-stream --hid-path on a regular file: exit 1, says it is not a device node (not 'hidapi: Success')" \
+    bash -c "[ $rc -eq 1 ] && grep -q 'not a HID device node (a regular file)' '$S/e.txt' && ! grep -q Success '$S/e.txt'"
 "$B/host/lt-stream" --serial /dev/null -q >"$S/e.txt" 2>&1
 rc=$?
 check "lt-stream --serial /dev/null: exit 1, not a serial device" \
@@ -112,6 +116,43 @@ check "lt-faultinject --rate 0.3 (sum 1.5): exit 2 with the reason" \
     bash -c "[ $rc -eq 2 ] && grep -q 'sum' '$S/e.txt'"
 "$B/sim/lt-stream-dev" --frames 0 >/dev/null 2>"$S/e.txt"
 check "lt-stream-dev --frames 0: exit 2" test $? -eq 2
+# the three programs parse options with the CLI's table parser (host/cli/lt_opt): the same
+# messages (value, range, option named) and --help from the table
+for p in host/lt-stream host/lt-faultinject sim/lt-stream-dev; do
+    "$B/$p" --help >"$S/h.txt" 2>&1
+    rc=$?
+    check "$(basename $p) --help: exit 0, usage and options from the table" \
+        bash -c "[ $rc -eq 0 ] && grep -q '^usage: $(basename $p)' '$S/h.txt' && grep -q 'exit status' '$S/h.txt'"
+    "$B/$p" --frobnicate >/dev/null 2>"$S/e.txt"
+    rc=$?
+    check "$(basename $p) --frobnicate: exit 2, names the option" \
+        bash -c "[ $rc -eq 2 ] && grep -q -- \"unknown option '--frobnicate'\" '$S/e.txt'"
+done
+for c in "host/lt-stream --baud 9600x:--baud 9600x" "host/lt-stream --timeout nan:--timeout nan" \
+    "host/lt-faultinject --flips 9:1..8" "host/lt-faultinject --seed -1:--seed -1" \
+    "host/lt-faultinject --drop 1e300:[0, 1]" "sim/lt-stream-dev --cap 3:4..64" \
+    "sim/lt-stream-dev --link 1e6:--link 1e6"; do
+    cmdline=${c%%:*} want=${c#*:}
+    # shellcheck disable=SC2086
+    "$B"/$cmdline </dev/null >/dev/null 2>"$S/e.txt"
+    rc=$?
+    check "${cmdline#*/}: exit 2 ($(head -n 1 "$S/e.txt" | cut -c 1-90))" \
+        bash -c "[ $rc -eq 2 ] && grep -qF -- '$want' '$S/e.txt'"
+done
+"$B/host/lt-faultinject" --rate 0.1 --drop 0.5 --json "$S/rates.json" <"$S/sim.bin" >/dev/null 2>&1
+check "lt-faultinject --rate 0.1 --drop 0.5: the later --drop wins ($(grep rates "$S/rates.json" | tr -d ' '))" \
+    grep -q '"rates": \[0.5, 0.1, 0.1, 0.1, 0.1\]' "$S/rates.json"
+"$B/host/lt-faultinject" --drop 0.5 --rate 0.1 --json "$S/rates.json" <"$S/sim.bin" >/dev/null 2>&1
+check "lt-faultinject --drop 0.5 --rate 0.1: the later --rate wins ($(grep rates "$S/rates.json" | tr -d ' '))" \
+    grep -q '"rates": \[0.1, 0.1, 0.1, 0.1, 0.1\]' "$S/rates.json"
+# a replayed session (the same stream twice: HELLO after END) is a fault unless --sessions allows it
+cat "$S/sim.bin" "$S/sim.bin" >"$S/twice.bin"
+"$B/host/lt-stream" --file "$S/twice.bin" -q --json >"$S/twice.json" 2>&1
+rc=$?
+check "lt-stream on a session sent twice (HELLO after END): exit 1, 2 sessions, not clean (rc $rc)" \
+    bash -c "[ $rc -eq 1 ] && [ \"$(jget sessions "$S/twice.json")\" = 2 ] && [ \"$(jget clean "$S/twice.json")\" = 0 ]"
+"$B/host/lt-stream" --file "$S/twice.bin" -q --sessions 2 >/dev/null 2>&1
+check "lt-stream --sessions 2 accepts the two sessions: exit 0" test $? -eq 0
 head -c 5000 /dev/urandom | "$B/host/lt-stream" -q --json >"$S/rand.json"
 rc=$?
 check "random bytes: lt-stream exit 1, all $(jget garbage_bytes "$S/rand.json") bytes reported as garbage, no HELLO" \

@@ -966,7 +966,7 @@ static LT_UNUSED void ss_ref_trace(const double *w, uint32_t W, uint32_t H, uint
 static LT_UNUSED int ss_shared_depth(const char *path, lt_exr_depth_t *d)
 {
     lt_exr_read_opts_t o = LT_EXR_READ_OPTS_DEFAULT;
-    char err[256];
+    lt_diag_t diag;
     FILE *fp = fopen(path, "rb");
     if (fp == NULL) {
         const char *ci = getenv("CI");
@@ -977,8 +977,8 @@ static LT_UNUSED int ss_shared_depth(const char *path, lt_exr_depth_t *d)
     }
     fclose(fp);
     memset(d, 0, sizeof *d);
-    if (lt_exr_read_depth(path, NULL, &o, d, err, sizeof err) != 0)
-        fail_msg("%s", err);
+    if (lt_exr_read_depth(path, NULL, &o, d, &diag) != 0)
+        fail_msg("%s", diag.msg);
     return 1;
 }
 

@@ -1729,14 +1729,14 @@ static int real_mesh(const char *path, uint32_t res, uint32_t brute)
     lt_mesh_t m;
     lt_scene_t s;
     lt_camera_t cam;
-    char err[256];
+    lt_diag_t diag;
     int fmt, bad = 0;
     int32_t *ref;
     uint32_t x, y;
     memset(&m, 0, sizeof m);
-    if (lt_mesh_load(path, &m, err, sizeof err) != 0)
+    if (lt_mesh_load(path, &m, &diag) != 0)
         return shared_missing(path);
-    assert_int_equal(lt_scene_prepare(&m, &s, err, sizeof err), 0);
+    assert_int_equal(lt_scene_prepare(&m, &s, &diag), 0);
     lt_camera_default(&s, res, res, &cam);
     ref = malloc((size_t)res * res * sizeof *ref);
     assert_non_null(ref);
@@ -1999,14 +1999,14 @@ static void test_sim_cycles(void **state)
         qbuilt_t qq;
         lt_aabb_q16_t *cq;
         lt_aabb_f32_t *cf;
-        char err[256];
+        lt_diag_t diag;
         const uint32_t res = 64;
         memset(&m, 0, sizeof m);
-        if (lt_mesh_load(meshes[mi], &m, err, sizeof err) != 0) {
+        if (lt_mesh_load(meshes[mi], &m, &diag) != 0) {
             bad += shared_missing(meshes[mi]);
             continue;
         }
-        assert_int_equal(lt_scene_prepare(&m, &s, err, sizeof err), 0);
+        assert_int_equal(lt_scene_prepare(&m, &s, &diag), 0);
         lt_camera_default(&s, res, res, &cam);
         assert_int_equal(build(&bq, &s, FMT_Q16, NULL), LT_OK);
         assert_int_equal(build(&bf, &s, FMT_F32, NULL), LT_OK);
@@ -2021,8 +2021,7 @@ static void test_sim_cycles(void **state)
             double cpr[M_N];
             uint64_t hits[M_N];
             int meth;
-            assert_int_equal(lt_sim_init(lt_sim_machine_find(machines[ma]), NULL, NULL, err,
-                                         sizeof err), 0);
+            assert_int_equal(lt_sim_init(lt_sim_machine_find(machines[ma]), NULL, NULL, &diag), 0);
             /* fixed simulated addresses: cache results independent of the host allocator */
             (void)lt_sim_region(s.tq, s.ntris * sizeof *s.tq, 0x10000000u);
             (void)lt_sim_region(s.tf, s.ntris * sizeof *s.tf, 0x20000000u);

@@ -22,10 +22,10 @@
 
 static void cfg_of(const char *spec, lt_cache_cfg_t *cfg)
 {
-    char err[160];
-    int r = lt_cache_parse(spec, cfg, err, sizeof err);
+    lt_diag_t diag;
+    int r = lt_cache_parse(spec, cfg, &diag);
     if (r != 0) {
-        fail_msg("parse %s: %s", spec, err);
+        fail_msg("parse %s: %s", spec, diag.msg);
     }
 }
 
@@ -33,10 +33,10 @@ static void init_level(lt_cache_t *c, const char *name, const char *spec, uint32
                        lt_cache_t *next, uint32_t mem)
 {
     lt_cache_cfg_t cfg;
-    char err[160];
+    lt_diag_t diag;
     cfg_of(spec, &cfg);
-    if (lt_cache_init(c, name, &cfg, hit, next, mem, err, sizeof err) != 0) {
-        fail_msg("init %s: %s", name, err);
+    if (lt_cache_init(c, name, &cfg, hit, next, mem, &diag) != 0) {
+        fail_msg("init %s: %s", name, diag.msg);
     }
 }
 
@@ -63,13 +63,13 @@ static void test_parse_good(void **state)
     (void)state;
     for (i = 0; i < sizeof good / sizeof good[0]; i++) {
         lt_cache_cfg_t cfg;
-        char err[8];
-        memset(err, POISON, sizeof err);
-        assert_int_equal(lt_cache_parse(good[i].spec, &cfg, err, sizeof err), 0);
+        lt_diag_t diag;
+        memset(diag.msg, POISON, sizeof diag.msg);
+        assert_int_equal(lt_cache_parse(good[i].spec, &cfg, &diag), 0);
         assert_int_equal(cfg.sets, good[i].s);
         assert_int_equal(cfg.ways, good[i].w);
         assert_int_equal(cfg.line, good[i].b);
-        assert_int_equal((unsigned char)err[0], POISON); /* err untouched on success */
+        assert_int_equal((unsigned char)diag.msg[0], POISON); /* diag untouched on success */
     }
     printf("cache: %u good specs parsed to the expected sets/ways/line\n", (unsigned)i);
 }
@@ -104,15 +104,16 @@ static void test_parse_bad(void **state)
     (void)state;
     for (i = 0; i < sizeof bad / sizeof bad[0]; i++) {
         lt_cache_cfg_t cfg, poison;
-        char err[200], quoted[80];
+        char quoted[80];
+        lt_diag_t diag;
         memset(&cfg, POISON, sizeof cfg);
         memcpy(&poison, &cfg, sizeof cfg);
-        memset(err, POISON, sizeof err);
-        assert_int_equal(lt_cache_parse(bad[i].spec, &cfg, err, sizeof err), -1);
+        memset(diag.msg, POISON, sizeof diag.msg);
+        assert_int_equal(lt_cache_parse(bad[i].spec, &cfg, &diag), -1);
         /* The message names the string and the limit; cfg is not written on failure. */
         (void)snprintf(quoted, sizeof quoted, "\"%s\"", bad[i].spec);
-        if (strstr(err, quoted) == NULL || strstr(err, bad[i].want) == NULL) {
-            fail_msg("spec %s: message \"%s\" lacks %s or \"%s\"", bad[i].spec, err, quoted,
+        if (strstr(diag.msg, quoted) == NULL || strstr(diag.msg, bad[i].want) == NULL) {
+            fail_msg("spec %s: message \"%s\" lacks %s or \"%s\"", bad[i].spec, diag.msg, quoted,
                      bad[i].want);
         }
         assert_memory_equal(&cfg, &poison, sizeof cfg);
@@ -121,39 +122,28 @@ static void test_parse_bad(void **state)
            (unsigned)i);
 }
 
-static void test_parse_err_buffer(void **state)
+static void test_parse_diag(void **state)
 {
     lt_cache_cfg_t cfg;
-    char err[16];
-    size_t n;
+    lt_diag_t diag;
     (void)state;
-    /* A short buffer is filled, NUL-terminated, and nothing past errlen is written. */
-    memset(err, POISON, sizeof err);
-    assert_int_equal(lt_cache_parse("63:8:64", &cfg, err, 8), -1);
-    n = strlen(err);
-    assert_int_equal(n, 7);
-    for (n = 8; n < sizeof err; n++) {
-        assert_int_equal((unsigned char)err[n], POISON);
-    }
-    /* errlen 0 writes nothing; err NULL is allowed; spec NULL is an error, not a crash. */
-    memset(err, POISON, sizeof err);
-    assert_int_equal(lt_cache_parse("63:8:64", &cfg, err, 0), -1);
-    assert_int_equal((unsigned char)err[0], POISON);
-    assert_int_equal(lt_cache_parse("63:8:64", &cfg, NULL, 99), -1);
-    assert_int_equal(lt_cache_parse(NULL, &cfg, err, sizeof err), -1);
-    assert_non_null(memchr(err, '\0', sizeof err));
-    printf("cache: error buffer truncated at errlen 8 (7 chars + NUL, tail untouched), "
-           "errlen 0 / NULL err / NULL spec handled\n");
+    /* diag NULL is allowed (no message wanted); spec NULL is an error, not a crash. */
+    assert_int_equal(lt_cache_parse("63:8:64", &cfg, NULL), -1);
+    memset(diag.msg, POISON, sizeof diag.msg);
+    assert_int_equal(lt_cache_parse(NULL, &cfg, &diag), -1);
+    assert_non_null(memchr(diag.msg, '\0', sizeof diag.msg));
+    assert_non_null(strstr(diag.msg, "cache spec (null)"));
+    printf("cache: NULL diag and NULL spec handled, the message is terminated\n");
 }
 
 static void test_init_errors(void **state)
 {
     lt_cache_t a, b;
     lt_cache_cfg_t cfg = { 63, 8, 64 };
-    char err[200];
+    lt_diag_t diag;
     (void)state;
-    assert_int_equal(lt_cache_init(&a, "L1", &cfg, 1, NULL, 100, err, sizeof err), -1);
-    assert_non_null(strstr(err, "cache \"L1\": sets 63 is not a power of two"));
+    assert_int_equal(lt_cache_init(&a, "L1", &cfg, 1, NULL, 100, &diag), -1);
+    assert_non_null(strstr(diag.msg, "cache \"L1\": sets 63 is not a power of two"));
     lt_cache_free(&a); /* safe after failed init */
     lt_cache_free(&a); /* and twice */
 
@@ -163,11 +153,11 @@ static void test_init_errors(void **state)
      * struct, so free first (init does not free what it overwrites). */
     cfg.sets = 4;
     lt_cache_free(&a);
-    assert_int_equal(lt_cache_init(&a, "A", &cfg, 1, &b, 100, err, sizeof err), -1);
-    assert_non_null(strstr(err, "loops back"));
+    assert_int_equal(lt_cache_init(&a, "A", &cfg, 1, &b, 100, &diag), -1);
+    assert_non_null(strstr(diag.msg, "loops back"));
     lt_cache_free(&b);
-    assert_int_equal(lt_cache_init(&b, "B", &cfg, 1, &b, 100, err, sizeof err), -1);
-    assert_non_null(strstr(err, "loops back"));
+    assert_int_equal(lt_cache_init(&b, "B", &cfg, 1, &b, 100, &diag), -1);
+    assert_non_null(strstr(diag.msg, "loops back"));
     lt_cache_free(&a);
     lt_cache_free(&b);
     printf("cache: init rejects bad geometry (names the level) and next-level loops\n");
@@ -528,7 +518,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_parse_good),
         cmocka_unit_test(test_parse_bad),
-        cmocka_unit_test(test_parse_err_buffer),
+        cmocka_unit_test(test_parse_diag),
         cmocka_unit_test(test_init_errors),
         cmocka_unit_test(test_direct_mapped_conflict),
         cmocka_unit_test(test_lru_order),

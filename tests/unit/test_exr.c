@@ -254,7 +254,7 @@ static void test_roundtrip(void **state)
     lt_exr_channel_t ch[3];
     lt_exr_image_t img;
     lt_exr_probe_t *pr = malloc(sizeof *pr);
-    char err[512];
+    lt_diag_t diag;
     int comp, i, exact_bad = 0, bound_bad = 0;
     unsigned long cases = 0;
     double max_rel = 0.0;
@@ -282,8 +282,8 @@ static void test_roundtrip(void **state)
         lt_exr_depth_t d;
         const char *p = tpath(comp == 0 ? "rt0.exr" : comp == 1 ? "rt1.exr" : "rt2.exr");
         img.compression = (lt_exr_comp_t)comp;
-        assert_int_equal(lt_exr_write(p, &img, err, sizeof err), 0);
-        assert_int_equal(lt_exr_probe(p, pr, err, sizeof err), 0);
+        assert_int_equal(lt_exr_write(p, &img, &diag), 0);
+        assert_int_equal(lt_exr_probe(p, pr, &diag), 0);
         assert_int_equal(pr->nchannels, 3);
         assert_int_equal(pr->compression, comp == 0 ? 3 : comp == 1 ? 2 : 0);
         assert_string_equal(pr->name[0], "R"); /* EXR sorts channel names */
@@ -292,7 +292,7 @@ static void test_roundtrip(void **state)
         assert_int_equal(pr->type[0], LT_EXR_HALF);
         assert_int_equal(pr->type[1], LT_EXR_FLOAT);
 
-        assert_int_equal(lt_exr_read_depth(p, NULL, NULL, &d, err, sizeof err), 0);
+        assert_int_equal(lt_exr_read_depth(p, NULL, NULL, &d, &diag), 0);
         assert_string_equal(d.channel, "Z");
         assert_int_equal(d.z_type, LT_EXR_FLOAT);
         assert_int_equal(d.width, W);
@@ -301,13 +301,13 @@ static void test_roundtrip(void **state)
             exact_bad += fbits(d.z[i]) != fbits(a[i]);
         lt_exr_depth_free(&d);
 
-        assert_int_equal(lt_exr_read_depth(p, "exact.Z", NULL, &d, err, sizeof err), 0);
+        assert_int_equal(lt_exr_read_depth(p, "exact.Z", NULL, &d, &diag), 0);
         assert_int_equal(d.z_type, LT_EXR_HALF);
         for (i = 0; i < W * H; i++)
             exact_bad += fbits(d.z[i]) != fbits(b[i]);
         lt_exr_depth_free(&d);
 
-        assert_int_equal(lt_exr_read_depth(p, "R", NULL, &d, err, sizeof err), 0);
+        assert_int_equal(lt_exr_read_depth(p, "R", NULL, &d, &diag), 0);
         for (i = 0; i < W * H; i++) {
             double rel = fabs((double)d.z[i] - (double)c[i]) / fabs((double)c[i]);
             cases++;
@@ -346,7 +346,7 @@ static void test_data_window(void **state)
     lt_exr_read_opts_t o = LT_EXR_READ_OPTS_DEFAULT;
     lt_exr_depth_t d;
     lt_exr_probe_t *pr = malloc(sizeof *pr);
-    char err[512];
+    lt_diag_t diag;
     int32_t x, y, i, bad = 0, checked = 0;
     (void)state;
     for (i = 0; i < W * H; i++)
@@ -360,15 +360,15 @@ static void test_data_window(void **state)
     img.display_h = DH;
     img.nchannels = 1;
     img.channels = &ch;
-    assert_int_equal(lt_exr_write(tpath("dw.exr"), &img, err, sizeof err), 0);
-    assert_int_equal(lt_exr_probe(tpath("dw.exr"), pr, err, sizeof err), 0);
+    assert_int_equal(lt_exr_write(tpath("dw.exr"), &img, &diag), 0);
+    assert_int_equal(lt_exr_probe(tpath("dw.exr"), pr, &diag), 0);
     assert_int_equal(pr->data_window.x0, X0);
     assert_int_equal(pr->data_window.y1, Y0 + H - 1);
     assert_int_equal(pr->display_window.x1, DW - 1);
     assert_int_equal(pr->display_window.y1, DH - 1);
 
     /* data window: origin kept */
-    assert_int_equal(lt_exr_read_depth(tpath("dw.exr"), NULL, &o, &d, err, sizeof err), 0);
+    assert_int_equal(lt_exr_read_depth(tpath("dw.exr"), NULL, &o, &d, &diag), 0);
     assert_int_equal(d.width, W);
     assert_int_equal(d.x0, X0);
     assert_int_equal(d.y0, Y0);
@@ -379,7 +379,7 @@ static void test_data_window(void **state)
     for (i = 0; i < 2; i++) {
         o.window = LT_EXR_WINDOW_DISPLAY;
         o.fill = i == 0 ? INFINITY : 0.0f;
-        assert_int_equal(lt_exr_read_depth(tpath("dw.exr"), NULL, &o, &d, err, sizeof err), 0);
+        assert_int_equal(lt_exr_read_depth(tpath("dw.exr"), NULL, &o, &d, &diag), 0);
         assert_int_equal(d.width, DW);
         assert_int_equal(d.height, DH);
         assert_int_equal(d.x0, 0);
@@ -398,9 +398,9 @@ static void test_data_window(void **state)
     img.y0 = -3;
     img.display_w = 10;
     img.display_h = 5;
-    assert_int_equal(lt_exr_write(tpath("dw2.exr"), &img, err, sizeof err), 0);
+    assert_int_equal(lt_exr_write(tpath("dw2.exr"), &img, &diag), 0);
     o.fill = -1.0f;
-    assert_int_equal(lt_exr_read_depth(tpath("dw2.exr"), NULL, &o, &d, err, sizeof err), 0);
+    assert_int_equal(lt_exr_read_depth(tpath("dw2.exr"), NULL, &o, &d, &diag), 0);
     assert_int_equal(d.width, 10);
     assert_int_equal(d.height, 5);
     for (y = 0; y < 5; y++)
@@ -410,7 +410,7 @@ static void test_data_window(void **state)
         }
     lt_exr_depth_free(&d);
     o.window = LT_EXR_WINDOW_DATA;
-    assert_int_equal(lt_exr_read_depth(tpath("dw2.exr"), NULL, &o, &d, err, sizeof err), 0);
+    assert_int_equal(lt_exr_read_depth(tpath("dw2.exr"), NULL, &o, &d, &diag), 0);
     assert_int_equal(d.x0, -4);
     assert_int_equal(d.y0, -3);
     lt_exr_depth_free(&d);
@@ -431,7 +431,7 @@ static void test_multilayer(void **state)
     lt_exr_image_t img;
     lt_exr_read_opts_t o = LT_EXR_READ_OPTS_DEFAULT;
     lt_exr_depth_t d;
-    char err[1024];
+    lt_diag_t diag;
     int i, j, bad = 0;
     (void)state;
     for (i = 0; i < K + 4; i++) {
@@ -446,42 +446,42 @@ static void test_multilayer(void **state)
     img.height = H;
     img.nchannels = K + 4;
     img.channels = ch;
-    assert_int_equal(lt_exr_write(tpath("peel.exr"), &img, err, sizeof err), 0);
+    assert_int_equal(lt_exr_write(tpath("peel.exr"), &img, &diag), 0);
 
     /* by full name and by layer ("view") name */
     for (i = 0; i < K; i++) {
         char v[24];
-        assert_int_equal(lt_exr_read_depth(tpath("peel.exr"), names[i], NULL, &d, err, sizeof err),
+        assert_int_equal(lt_exr_read_depth(tpath("peel.exr"), names[i], NULL, &d, &diag),
                          0);
         for (j = 0; j < W * H; j++)
             bad += d.z[j] != (float)(i * 128 + j);
         lt_exr_depth_free(&d);
         (void)snprintf(v, sizeof v, "layer%d", i);
-        assert_int_equal(lt_exr_read_depth(tpath("peel.exr"), v, NULL, &d, err, sizeof err), 0);
+        assert_int_equal(lt_exr_read_depth(tpath("peel.exr"), v, NULL, &d, &diag), 0);
         assert_string_equal(d.channel, names[i]);
         lt_exr_depth_free(&d);
     }
     /* no "Z": several "*.Z" -> an error that names them */
-    assert_int_equal(lt_exr_read_depth(tpath("peel.exr"), NULL, NULL, &d, err, sizeof err), -1);
-    ltt_report("  auto pick among layers: %s\n", err);
-    assert_non_null(strstr(err, "several depth channels"));
-    assert_non_null(strstr(err, "layer3.Z"));
-    assert_non_null(strstr(err, "peel.exr"));
+    assert_int_equal(lt_exr_read_depth(tpath("peel.exr"), NULL, NULL, &d, &diag), -1);
+    ltt_report("  auto pick among layers: %s\n", diag.msg);
+    assert_non_null(strstr(diag.msg, "several depth channels"));
+    assert_non_null(strstr(diag.msg, "layer3.Z"));
+    assert_non_null(strstr(diag.msg, "peel.exr"));
     assert_null(d.z);
     /* missing channel lists what exists */
-    assert_int_equal(lt_exr_read_depth(tpath("peel.exr"), "layer9", NULL, &d, err, sizeof err),
+    assert_int_equal(lt_exr_read_depth(tpath("peel.exr"), "layer9", NULL, &d, &diag),
                      -1);
-    assert_non_null(strstr(err, "no channel 'layer9'"));
-    assert_non_null(strstr(err, "layer0.Z"));
+    assert_non_null(strstr(diag.msg, "no channel 'layer9'"));
+    assert_non_null(strstr(diag.msg, "layer0.Z"));
 
     /* colour travels with "Z" (R G B A at the top level); a layer without colour gets NULLs */
     ch[K + 4].name = "Z";
     ch[K + 4].type = LT_EXR_FLOAT;
     ch[K + 4].data = buf;
     img.nchannels = K + 5;
-    assert_int_equal(lt_exr_write(tpath("peelz.exr"), &img, err, sizeof err), 0);
+    assert_int_equal(lt_exr_write(tpath("peelz.exr"), &img, &diag), 0);
     o.color = 1;
-    assert_int_equal(lt_exr_read_depth(tpath("peelz.exr"), NULL, &o, &d, err, sizeof err), 0);
+    assert_int_equal(lt_exr_read_depth(tpath("peelz.exr"), NULL, &o, &d, &diag), 0);
     assert_string_equal(d.channel, "Z");
     for (i = 0; i < 4; i++) {
         assert_non_null(d.rgba[i]);
@@ -489,7 +489,7 @@ static void test_multilayer(void **state)
             bad += d.rgba[i][j] != (float)((K + i) * 128 + j);
     }
     lt_exr_depth_free(&d);
-    assert_int_equal(lt_exr_read_depth(tpath("peelz.exr"), "layer1.Z", &o, &d, err, sizeof err),
+    assert_int_equal(lt_exr_read_depth(tpath("peelz.exr"), "layer1.Z", &o, &d, &diag),
                      0);
     assert_null(d.rgba[0]);
     assert_null(d.rgba[3]);
@@ -506,7 +506,7 @@ static void test_special_values(void **state)
     lt_exr_channel_t ch[2] = {{"Z", LT_EXR_FLOAT, v}, {"h.Z", LT_EXR_HALF, v}};
     lt_exr_image_t img;
     lt_exr_depth_t d;
-    char err[512];
+    lt_diag_t diag;
     int i;
     (void)state;
     memset(&img, 0, sizeof img);
@@ -514,12 +514,12 @@ static void test_special_values(void **state)
     img.height = 1;
     img.nchannels = 2;
     img.channels = ch;
-    assert_int_equal(lt_exr_write(tpath("special.exr"), &img, err, sizeof err), 0);
-    assert_int_equal(lt_exr_read_depth(tpath("special.exr"), "Z", NULL, &d, err, sizeof err), 0);
+    assert_int_equal(lt_exr_write(tpath("special.exr"), &img, &diag), 0);
+    assert_int_equal(lt_exr_read_depth(tpath("special.exr"), "Z", NULL, &d, &diag), 0);
     for (i = 0; i < 8; i++)
         assert_true(fbits(d.z[i]) == fbits(v[i]) || (isnan(v[i]) && isnan(d.z[i])));
     lt_exr_depth_free(&d);
-    assert_int_equal(lt_exr_read_depth(tpath("special.exr"), "h", NULL, &d, err, sizeof err), 0);
+    assert_int_equal(lt_exr_read_depth(tpath("special.exr"), "h", NULL, &d, &diag), 0);
     assert_true(d.z[0] == 0.0f && !signbit(d.z[0]));
     assert_true(d.z[1] == 0.0f && signbit(d.z[1]));
     assert_true(isinf(d.z[2]) && d.z[2] > 0);
@@ -649,11 +649,11 @@ static void test_tiled(void **state)
 {
     exr_attr_box2i_t dw = mkbox(3, 2, 3 + 40 - 1, 2 + 27 - 1);
     lt_exr_depth_t d;
-    char err[512];
+    lt_diag_t diag;
     int32_t x, y, bad = 0;
     (void)state;
     write_tiled(tpath("tiled.exr"), dw, 16, 8);
-    assert_int_equal(lt_exr_read_depth(tpath("tiled.exr"), NULL, NULL, &d, err, sizeof err), 0);
+    assert_int_equal(lt_exr_read_depth(tpath("tiled.exr"), NULL, NULL, &d, &diag), 0);
     assert_int_equal(d.width, 40);
     assert_int_equal(d.height, 27);
     for (y = 0; y < 27; y++)
@@ -736,17 +736,17 @@ static void test_deep_synthetic(void **state)
     static const int want_s[8] = {-1, 0, 2, 5, 6, -1, 10, 11}; /* sample index of the colour */
     lt_exr_read_opts_t o = LT_EXR_READ_OPTS_DEFAULT;
     lt_exr_depth_t d;
-    char err[512];
+    lt_diag_t diag;
     int i, bad = 0;
     (void)state;
     write_deep(tpath("deep.exr"), 4, counts, zs);
-    assert_int_equal(lt_exr_read_depth(tpath("deep.exr"), NULL, &o, &d, err, sizeof err), -1);
-    assert_non_null(strstr(err, "deepscanline"));
-    assert_non_null(strstr(err, "deep.exr"));
+    assert_int_equal(lt_exr_read_depth(tpath("deep.exr"), NULL, &o, &d, &diag), -1);
+    assert_non_null(strstr(diag.msg, "deepscanline"));
+    assert_non_null(strstr(diag.msg, "deep.exr"));
     o.deep = LT_EXR_DEEP_FRONT;
     o.fill = -1.0f;
     o.color = 1;
-    assert_int_equal(lt_exr_read_depth(tpath("deep.exr"), NULL, &o, &d, err, sizeof err), 0);
+    assert_int_equal(lt_exr_read_depth(tpath("deep.exr"), NULL, &o, &d, &diag), 0);
     assert_int_equal(d.deep, 1);
     assert_int_equal((int)d.deep_samples, 12);
     assert_non_null(d.rgba[0]);
@@ -809,7 +809,7 @@ static void test_deep_bad_counts(void **state)
     static const int32_t bad_values[4] = {100000, 2147483647, -1, -100000};
     lt_exr_read_opts_t o = LT_EXR_READ_OPTS_DEFAULT;
     int i, v, cases = 0, refused = 0, named = 0;
-    char err[512];
+    lt_diag_t diag;
     (void)state;
     o.deep = LT_EXR_DEEP_FRONT;
     o.color = 1;
@@ -821,9 +821,10 @@ static void test_deep_bad_counts(void **state)
             t[i] = bad_values[v];
             write_deep_table(tpath("deepbad.exr"), 4, counts, zs, t);
             cases++;
-            if (lt_exr_read_depth(tpath("deepbad.exr"), NULL, &o, &d, err, sizeof err) != 0) {
+            if (lt_exr_read_depth(tpath("deepbad.exr"), NULL, &o, &d, &diag) != 0) {
                 refused++;
-                named += strstr(err, "deepbad.exr") != NULL && strstr(err, "at y ") != NULL;
+                named += strstr(diag.msg, "deepbad.exr") != NULL &&
+                         strstr(diag.msg, "at y ") != NULL;
             } else {
                 lt_exr_depth_free(&d);
             }
@@ -846,7 +847,7 @@ static void test_zip_small_roundtrip(void **state)
     float *z = malloc(64 * sizeof(float));
     lt_exr_channel_t ch[1];
     lt_exr_image_t img;
-    char err[512];
+    lt_diag_t diag;
     int w, h, comp, ty, kind, rep, cases = 0, bad = 0, i;
     (void)state;
     assert_non_null(z);
@@ -873,11 +874,10 @@ static void test_zip_small_roundtrip(void **state)
                             img.nchannels = 1;
                             img.channels = ch;
                             img.compression = comp == 0 ? LT_EXR_COMP_ZIP : LT_EXR_COMP_ZIPS;
-                            assert_int_equal(lt_exr_write(tpath("zs.exr"), &img, err, sizeof err),
+                            assert_int_equal(lt_exr_write(tpath("zs.exr"), &img, &diag),
                                              0);
                             cases++;
-                            if (lt_exr_read_depth(tpath("zs.exr"), NULL, NULL, &d, err,
-                                                  sizeof err) != 0) {
+                            if (lt_exr_read_depth(tpath("zs.exr"), NULL, NULL, &d, &diag) != 0) {
                                 bad++;
                                 continue;
                             }
@@ -902,30 +902,30 @@ static void test_limits(void **state)
     lt_exr_image_t img;
     lt_exr_read_opts_t o = LT_EXR_READ_OPTS_DEFAULT;
     lt_exr_depth_t d;
-    char err[512];
+    lt_diag_t diag;
     (void)state;
     memset(&img, 0, sizeof img);
     img.width = LT_EXR_MAX_DIM + 1;
     img.height = 1;
     img.nchannels = 1;
     img.channels = &ch;
-    assert_int_equal(lt_exr_write(tpath("big.exr"), &img, err, sizeof err), -1);
-    ltt_report("  write limit: %s\n", err);
-    assert_non_null(strstr(err, "16384"));
+    assert_int_equal(lt_exr_write(tpath("big.exr"), &img, &diag), -1);
+    ltt_report("  write limit: %s\n", diag.msg);
+    assert_non_null(strstr(diag.msg, "16384"));
     assert_false(file_exists(tpath("big.exr")));
 
     write_wide(tpath("wide.exr"), LT_EXR_MAX_DIM + 1, 4);
-    assert_int_equal(lt_exr_read_depth(tpath("wide.exr"), NULL, NULL, &d, err, sizeof err), -1);
-    ltt_report("  read limit: %s\n", err);
-    assert_non_null(strstr(err, "LT_EXR_MAX_DIM 16384"));
-    assert_non_null(strstr(err, "wide.exr"));
+    assert_int_equal(lt_exr_read_depth(tpath("wide.exr"), NULL, NULL, &d, &diag), -1);
+    ltt_report("  read limit: %s\n", diag.msg);
+    assert_non_null(strstr(diag.msg, "LT_EXR_MAX_DIM 16384"));
+    assert_non_null(strstr(diag.msg, "wide.exr"));
 
     write_wide(tpath("widedisp.exr"), 2, 20000);
-    assert_int_equal(lt_exr_read_depth(tpath("widedisp.exr"), NULL, &o, &d, err, sizeof err), 0);
+    assert_int_equal(lt_exr_read_depth(tpath("widedisp.exr"), NULL, &o, &d, &diag), 0);
     lt_exr_depth_free(&d);
     o.window = LT_EXR_WINDOW_DISPLAY;
-    assert_int_equal(lt_exr_read_depth(tpath("widedisp.exr"), NULL, &o, &d, err, sizeof err), -1);
-    assert_non_null(strstr(err, "display window 20000x1"));
+    assert_int_equal(lt_exr_read_depth(tpath("widedisp.exr"), NULL, &o, &d, &diag), -1);
+    assert_non_null(strstr(diag.msg, "display window 20000x1"));
     ltt_report("limits: width 16385 refused on write and read (data window), display window "
                "20000 refused only when the display window is asked for: 4 cases, 0 wrong\n");
 }
@@ -937,14 +937,14 @@ static void expect_read_error(const char *path, const char *opt_channel, int dee
 {
     lt_exr_read_opts_t o = LT_EXR_READ_OPTS_DEFAULT;
     lt_exr_depth_t d;
-    char err[1024];
+    lt_diag_t diag;
     const char *base = strrchr(path, '/') != NULL ? strrchr(path, '/') + 1 : path;
     o.deep = deep ? LT_EXR_DEEP_FRONT : LT_EXR_DEEP_REJECT;
-    assert_int_equal(lt_exr_read_depth(path, opt_channel, &o, &d, err, sizeof err), -1);
-    ltt_report("  %s\n", err);
-    assert_non_null(strstr(err, base));
+    assert_int_equal(lt_exr_read_depth(path, opt_channel, &o, &d, &diag), -1);
+    ltt_report("  %s\n", diag.msg);
+    assert_non_null(strstr(diag.msg, base));
     if (must != NULL)
-        assert_non_null(strstr(err, must));
+        assert_non_null(strstr(diag.msg, must));
     assert_null(d.z);
     (*cases)++;
 }
@@ -956,7 +956,7 @@ static void test_corrupt(void **state)
     lt_exr_channel_t ch = {"Z", LT_EXR_FLOAT, z};
     lt_exr_image_t img;
     lt_exr_depth_t d;
-    char err[512];
+    lt_diag_t diag;
     unsigned cases = 0, survived = 0, i;
     long n;
     FILE *f;
@@ -967,7 +967,7 @@ static void test_corrupt(void **state)
     img.height = H;
     img.nchannels = 1;
     img.channels = &ch;
-    assert_int_equal(lt_exr_write(tpath("good.exr"), &img, err, sizeof err), 0);
+    assert_int_equal(lt_exr_write(tpath("good.exr"), &img, &diag), 0);
     n = file_size(tpath("good.exr"));
     assert_true(n > 1000);
 
@@ -989,7 +989,7 @@ static void test_corrupt(void **state)
     /* every cut length of the first 400 bytes and bytes flipped all over: errors, never a crash */
     for (i = 0; i < 400; i += 7) {
         (void)copy_prefix(tpath("good.exr"), tpath("cut.exr"), (long)i);
-        if (lt_exr_read_depth(tpath("cut.exr"), NULL, NULL, &d, err, sizeof err) == 0) {
+        if (lt_exr_read_depth(tpath("cut.exr"), NULL, NULL, &d, &diag) == 0) {
             survived++;
             lt_exr_depth_free(&d);
         }
@@ -1003,7 +1003,7 @@ static void test_corrupt(void **state)
         (void)fseek(g, at, SEEK_SET);
         (void)fputc(0xFF ^ (int)(i & 0x7F), g);
         (void)fclose(g);
-        if (lt_exr_read_depth(tpath("flip.exr"), NULL, NULL, &d, err, sizeof err) == 0) {
+        if (lt_exr_read_depth(tpath("flip.exr"), NULL, NULL, &d, &diag) == 0) {
             survived++; /* damage inside pixel data may still decode (ZIP checks no CRC) */
             lt_exr_depth_free(&d);
         }
@@ -1022,7 +1022,7 @@ static void test_write_errors(void **state)
     lt_exr_channel_t ch[2] = {{"Z", LT_EXR_FLOAT, z}, {"Z", LT_EXR_HALF, z}};
     lt_exr_image_t img;
     lt_exr_depth_t d;
-    char err[512];
+    lt_diag_t diag;
     const char *p = tpath("keep.exr");
     (void)state;
     memset(&img, 0, sizeof img);
@@ -1030,27 +1030,27 @@ static void test_write_errors(void **state)
     img.height = 2;
     img.nchannels = 1;
     img.channels = ch;
-    assert_int_equal(lt_exr_write(p, &img, err, sizeof err), 0);
+    assert_int_equal(lt_exr_write(p, &img, &diag), 0);
 
-    assert_int_equal(lt_exr_write("/nonexistent-dir/x.exr", &img, err, sizeof err), -1);
-    ltt_report("  %s\n", err);
-    assert_non_null(strstr(err, "/nonexistent-dir/x.exr"));
+    assert_int_equal(lt_exr_write("/nonexistent-dir/x.exr", &img, &diag), -1);
+    ltt_report("  %s\n", diag.msg);
+    assert_non_null(strstr(diag.msg, "/nonexistent-dir/x.exr"));
     img.nchannels = 2; /* duplicate name: refused, the existing file stays */
-    assert_int_equal(lt_exr_write(p, &img, err, sizeof err), -1);
-    ltt_report("  %s\n", err);
-    assert_non_null(strstr(err, "given twice"));
+    assert_int_equal(lt_exr_write(p, &img, &diag), -1);
+    ltt_report("  %s\n", diag.msg);
+    assert_non_null(strstr(diag.msg, "given twice"));
     ch[1].name = "Y";
     ch[1].data = NULL;
-    assert_int_equal(lt_exr_write(p, &img, err, sizeof err), -1);
-    assert_non_null(strstr(err, "'Y' has no data"));
+    assert_int_equal(lt_exr_write(p, &img, &diag), -1);
+    assert_non_null(strstr(diag.msg, "'Y' has no data"));
     ch[1].data = z;
     ch[1].type = (lt_exr_type_t)7;
-    assert_int_equal(lt_exr_write(p, &img, err, sizeof err), -1);
-    assert_non_null(strstr(err, "type 7"));
+    assert_int_equal(lt_exr_write(p, &img, &diag), -1);
+    assert_non_null(strstr(diag.msg, "type 7"));
     img.nchannels = 0;
-    assert_int_equal(lt_exr_write(p, &img, err, sizeof err), -1);
-    assert_non_null(strstr(err, "0 channels"));
-    assert_int_equal(lt_exr_read_depth(p, NULL, NULL, &d, err, sizeof err), 0);
+    assert_int_equal(lt_exr_write(p, &img, &diag), -1);
+    assert_non_null(strstr(diag.msg, "0 channels"));
+    assert_int_equal(lt_exr_read_depth(p, NULL, NULL, &d, &diag), 0);
     assert_true(d.z[3] == 4.0f);
     lt_exr_depth_free(&d);
     assert_int_equal(temps_left(), 0);
@@ -1080,14 +1080,14 @@ static void test_atomic_kill(void **state)
                                       {"G", LT_EXR_FLOAT, z + 2 * W * H},
                                       {"R", LT_EXR_FLOAT, z + 3 * W * H}};
             lt_exr_image_t img;
-            char e[256];
+            lt_diag_t diag;
             memset(&img, 0, sizeof img);
             img.width = W;
             img.height = H;
             img.nchannels = 4;
             img.channels = ch;
             img.compression = LT_EXR_COMP_NONE;
-            _exit(z != NULL && lt_exr_write(p, &img, e, sizeof e) == 0 ? 0 : 1);
+            _exit(z != NULL && lt_exr_write(p, &img, &diag) == 0 ? 0 : 1);
         }
         /* wait until the temp file has grown (or the child finished), then kill it */
         {
@@ -1119,12 +1119,12 @@ static void test_atomic_kill(void **state)
             absent++;
         } else {
             lt_exr_depth_t d;
-            char e[256];
-            if (lt_exr_read_depth(p, "R", NULL, &d, e, sizeof e) == 0 && d.width == W) {
+            lt_diag_t diag;
+            if (lt_exr_read_depth(p, "R", NULL, &d, &diag) == 0 && d.width == W) {
                 complete++;
             } else {
                 bad++;
-                ltt_report("  partial: %s\n", e);
+                ltt_report("  partial: %s\n", diag.msg);
             }
             lt_exr_depth_free(&d);
         }
@@ -1172,7 +1172,7 @@ static void test_shared_beachball(void **state)
     const char *p = shared_file(rel);
     lt_exr_read_opts_t o = LT_EXR_READ_OPTS_DEFAULT;
     lt_exr_depth_t d;
-    char err[1024];
+    lt_diag_t diag;
     double mn, mx, mean, lmn, lmx, lmean;
     long n, ln, outside_bad = 0, x, y;
     (void)state;
@@ -1181,7 +1181,7 @@ static void test_shared_beachball(void **state)
         return;
     }
     o.color = 1;
-    assert_int_equal(lt_exr_read_depth(p, NULL, &o, &d, err, sizeof err), 0);
+    assert_int_equal(lt_exr_read_depth(p, NULL, &o, &d, &diag), 0);
     assert_string_equal(d.channel, "Z");
     assert_int_equal(d.z_type, LT_EXR_HALF);
     assert_int_equal(d.width, 911);
@@ -1194,7 +1194,7 @@ static void test_shared_beachball(void **state)
     assert_non_null(d.rgba[3]);
     stats(&d, &mn, &mx, &mean, &n);
     lt_exr_depth_free(&d);
-    assert_int_equal(lt_exr_read_depth(p, "left", NULL, &d, err, sizeof err), 0);
+    assert_int_equal(lt_exr_read_depth(p, "left", NULL, &d, &diag), 0);
     assert_string_equal(d.channel, "left.Z");
     stats(&d, &lmn, &lmx, &lmean, &ln);
     lt_exr_depth_free(&d);
@@ -1211,7 +1211,7 @@ static void test_shared_beachball(void **state)
     o.color = 0;
     o.window = LT_EXR_WINDOW_DISPLAY;
     o.fill = INFINITY;
-    assert_int_equal(lt_exr_read_depth(p, "right", &o, &d, err, sizeof err), 0);
+    assert_int_equal(lt_exr_read_depth(p, "right", &o, &d, &diag), 0);
     assert_string_equal(d.channel, "Z"); /* "right" is the default view */
     assert_int_equal(d.width, 2048);
     assert_int_equal(d.height, 1556);
@@ -1223,10 +1223,10 @@ static void test_shared_beachball(void **state)
         }
     lt_exr_depth_free(&d);
     assert_int_equal(outside_bad, 0);
-    assert_int_equal(lt_exr_read_depth(p, "center", NULL, &d, err, sizeof err), -1);
-    ltt_report("  %s\n", err);
-    assert_non_null(strstr(err, "views: right left"));
-    assert_non_null(strstr(err, "depth channels: Z left.Z"));
+    assert_int_equal(lt_exr_read_depth(p, "center", NULL, &d, &diag), -1);
+    ltt_report("  %s\n", diag.msg);
+    assert_non_null(strstr(diag.msg, "views: right left"));
+    assert_non_null(strstr(diag.msg, "depth channels: Z left.Z"));
 }
 
 static void test_shared_deep(void **state)
@@ -1235,7 +1235,7 @@ static void test_shared_deep(void **state)
     const char *p = shared_file(rel);
     lt_exr_read_opts_t o = LT_EXR_READ_OPTS_DEFAULT;
     lt_exr_depth_t d;
-    char err[1024];
+    lt_diag_t diag;
     double mn = HUGE_VAL, mx = -HUGE_VAL, s = 0.0;
     long covered = 0, i;
     (void)state;
@@ -1243,13 +1243,13 @@ static void test_shared_deep(void **state)
         assert_int_equal(shared_missing(rel), 0);
         return;
     }
-    assert_int_equal(lt_exr_read_depth(p, NULL, &o, &d, err, sizeof err), -1);
-    ltt_report("  default: %s\n", err);
-    assert_non_null(strstr(err, "deepscanline"));
+    assert_int_equal(lt_exr_read_depth(p, NULL, &o, &d, &diag), -1);
+    ltt_report("  default: %s\n", diag.msg);
+    assert_non_null(strstr(diag.msg, "deepscanline"));
     o.deep = LT_EXR_DEEP_FRONT;
     o.fill = -1.0f;
     o.color = 1;
-    assert_int_equal(lt_exr_read_depth(p, NULL, &o, &d, err, sizeof err), 0);
+    assert_int_equal(lt_exr_read_depth(p, NULL, &o, &d, &diag), 0);
     assert_int_equal(d.width, 1024);
     assert_int_equal(d.height, 435);
     assert_int_equal(d.y0, 141);

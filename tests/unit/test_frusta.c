@@ -870,7 +870,7 @@ static void test_bunny(void **state)
     char path[1024];
     lt_mesh_t m;
     lt_scene_t sc;
-    char err[256];
+    lt_diag_t diag;
     static tscene_t s;
     tally_t t;
     tbvh_t b;
@@ -878,11 +878,11 @@ static void test_bunny(void **state)
     unsigned rep, fl, i, a;
     (void)state;
     snprintf(path, sizeof path, "%s/scenes/bunny.obj", root != NULL ? root : "../shared");
-    if (lt_mesh_load(path, &m, err, sizeof err) != 0) {
+    if (lt_mesh_load(path, &m, &diag) != 0) {
         assert_int_equal(shared_missing(path), 0);
         return;
     }
-    assert_int_equal(lt_scene_prepare(&m, &sc, err, sizeof err), 0);
+    assert_int_equal(lt_scene_prepare(&m, &sc, &diag), 0);
     assert_true(sc.ntris + 2 <= MAXT);
     memset(&t, 0, sizeof t);
     s.n = 0;
@@ -1277,7 +1277,7 @@ static void pcam(const double eye[3], const double target[3], double fov, uint32
 {
     lt_camera_t c;
     double up[3] = {0.0, 1.0, 0.0}, len;
-    char err[128];
+    lt_diag_t diag;
     int a;
     memset(&c, 0, sizeof c);
     for (a = 0; a < 3; a++) {
@@ -1301,7 +1301,7 @@ static void pcam(const double eye[3], const double target[3], double fov, uint32
     c.tan_half_fov = tan(0.5 * fov * 3.14159265358979323846 / 180.0);
     c.width = w;
     c.height = h;
-    assert_int_equal(lt_ss_pview(&c, flags, vq, vf, err, sizeof err), 0);
+    assert_int_equal(lt_ss_pview(&c, flags, vq, vf, &diag), 0);
 }
 
 /* Every flag set over one view, with both references computed once. */
@@ -1602,7 +1602,8 @@ static void test_primary_args(void **state)
 static void test_primary_bunny(void **state)
 {
     const char *root = getenv("LT_SHARED");
-    char path[1024], err[256];
+    char path[1024];
+    lt_diag_t diag;
     lt_mesh_t m;
     lt_scene_t sc;
     static tscene_t s;
@@ -1616,12 +1617,12 @@ static void test_primary_bunny(void **state)
     unsigned a;
     (void)state;
     snprintf(path, sizeof path, "%s/scenes/bunny.obj", root != NULL ? root : "../shared");
-    if (lt_mesh_load(path, &m, err, sizeof err) != 0) {
+    if (lt_mesh_load(path, &m, &diag) != 0) {
         assert_int_equal(shared_missing(path), 0);
         return;
     }
-    assert_int_equal(lt_ss_add_ground(&m, 0.6, err, sizeof err), 0);
-    assert_int_equal(lt_scene_prepare(&m, &sc, err, sizeof err), 0);
+    assert_int_equal(lt_ss_add_ground(&m, 0.6, &diag), 0);
+    assert_int_equal(lt_scene_prepare(&m, &sc, &diag), 0);
     assert_true(sc.ntris <= MAXT);
     memset(&t, 0, sizeof t);
     s.n = 0;
@@ -1637,7 +1638,7 @@ static void test_primary_bunny(void **state)
     build(&s, 4, 1, &deep);
     lt_camera_default(&sc, PMAXW, PMAXH, &cam);
     cam.tan_half_fov *= 0.5; /* zoom in: the bunny and its shadow fill most of the view */
-    assert_int_equal(lt_ss_pview(&cam, 0, &vq, &vf, err, sizeof err), 0);
+    assert_int_equal(lt_ss_pview(&cam, 0, &vq, &vf, &diag), 0);
     pcompare_all(&s, &shal, &deep, &vq, &vf, &t, &ties, "bunny");
     unbuild(&shal);
     unbuild(&deep);
@@ -1655,8 +1656,8 @@ static int setup_sets(void **state)
     (void)state;
 #if LT_COST_MODE == LT_COST_SIM
     {
-        char err[128];
-        if (lt_sim_init(lt_sim_machine_find("lrb16"), NULL, NULL, err, sizeof err) != 0)
+        lt_diag_t diag;
+        if (lt_sim_init(lt_sim_machine_find("lrb16"), NULL, NULL, &diag) != 0)
             return -1;
     }
 #endif

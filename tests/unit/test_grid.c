@@ -575,12 +575,12 @@ static void ctr_end(uint64_t *nodes, uint64_t *tris, uint64_t *tri_rays, uint64_
 static int load_scene(const char *path, lt_scene_t *s, mesh_t *m)
 {
     lt_mesh_t mesh;
-    char err[256];
-    if (lt_mesh_load(path, &mesh, err, sizeof err) != 0) {
-        ltt_report("  (%s)\n", err);
+    lt_diag_t diag;
+    if (lt_mesh_load(path, &mesh, &diag) != 0) {
+        ltt_report("  (%s)\n", diag.msg);
         return -1;
     }
-    assert_int_equal(lt_scene_prepare(&mesh, s, err, sizeof err), 0);
+    assert_int_equal(lt_scene_prepare(&mesh, s, &diag), 0);
     lt_mesh_free(&mesh);
     mesh_init(m, s->vd, s->ntris);
     return 0;
@@ -711,8 +711,8 @@ static void scene_run(const char *path, const char *name, uint32_t res, int bund
     {
         uint64_t nd, tr, trr, cy, rays = 0, npk = 0, nd1, tr1, trr1, cy1;
         unsigned f32;
-        char e2[128];
-        assert_int_equal(lt_sim_init(lt_sim_machine_find("lrb16"), NULL, NULL, e2, sizeof e2), 0);
+        lt_diag_t d2;
+        assert_int_equal(lt_sim_init(lt_sim_machine_find("lrb16"), NULL, NULL, &d2), 0);
         for (f32 = 0; f32 < 2; f32++) {
             rays = npk = 0;
             ctr_begin();

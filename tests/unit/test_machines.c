@@ -214,7 +214,8 @@ static void test_known_values(void **state)
 
 static void test_names_everywhere(void **state)
 {
-    char list[1024] = "", err[512];
+    char list[1024] = "";
+    lt_diag_t diag;
     lt_scenefile_t sf;
     int i;
     (void)state;
@@ -240,9 +241,9 @@ static void test_names_everywhere(void **state)
     assert_false(lt_meter_machine_known(""));
 
     /* the meter refuses an unknown machine in every build, naming the known ones */
-    assert_int_equal(lt_meter_init("nosuch", NULL, NULL, err, sizeof err), -1);
-    assert_non_null(strstr(err, "nosuch"));
-    assert_non_null(strstr(err, list));
+    assert_int_equal(lt_meter_init("nosuch", NULL, NULL, &diag), -1);
+    assert_non_null(strstr(diag.msg, "nosuch"));
+    assert_non_null(strstr(diag.msg, list));
 
     /* the scene-file validator: every machine accepted, an unknown one refused with the list (run
      * from the repository root, as make test does: the mesh must exist) */
@@ -250,14 +251,14 @@ static void test_names_everywhere(void **state)
         char text[160];
         snprintf(text, sizeof text, "{\"mesh\": \"scenes/teapot.obj\", \"machine\": \"%s\"}",
                  tm[i].name);
-        if (lt_sf_parse(text, "t.json", ".", &sf, err, sizeof err) != 0)
-            fail_msg("scene file with machine %s: %s", tm[i].name, err);
+        if (lt_sf_parse(text, "t.json", ".", &sf, &diag) != 0)
+            fail_msg("scene file with machine %s: %s", tm[i].name, diag.msg);
         assert_string_equal(sf.machine, tm[i].name);
     }
     assert_int_equal(lt_sf_parse("{\"mesh\": \"scenes/teapot.obj\", \"machine\": \"nosuch\"}",
-                                 "t.json", ".", &sf, err, sizeof err),
+                                 "t.json", ".", &sf, &diag),
                      -1);
-    assert_non_null(strstr(err, list));
+    assert_non_null(strstr(diag.msg, list));
 }
 
 /* ---- the meter without and with the cycle model -------------------------------------------------- */
@@ -267,14 +268,14 @@ static void test_meter_null(void **state)
 {
     lt_meter_machine_t m;
     lt_meter_totals_t t;
-    char err[256];
+    lt_diag_t diag;
     int i;
     (void)state;
     tm_read();
     assert_int_equal(lt_meter_available(), 0);
     for (i = 0; i < ntm; i++) {
         assert_int_equal(lt_meter_machine_info(tm[i].name, &m), -1);
-        assert_int_equal(lt_meter_init(tm[i].name, "63:8:64", NULL, err, sizeof err), 0);
+        assert_int_equal(lt_meter_init(tm[i].name, "63:8:64", NULL, &diag), 0);
     }
     lt_meter_region(&m, sizeof m, 0x10000000u);
     lt_meter_reset();
@@ -292,7 +293,7 @@ static void test_meter_null(void **state)
 static void test_sim_table(void **state)
 {
     int i, n, o;
-    char err[256];
+    lt_diag_t diag;
     (void)state;
     tm_read();
     assert_int_equal(lt_meter_available(), 1);
@@ -323,15 +324,15 @@ static void test_sim_table(void **state)
             assert_int_equal(s->issue[o], f->issue[o]);
         }
         /* its caches parse and it initialises, directly and through the meter */
-        if (lt_cache_parse(s->l1, &cfg, err, sizeof err) != 0)
-            fail_msg("%s: L1 %s: %s", s->name, s->l1, err);
-        if (s->l2 != NULL && lt_cache_parse(s->l2, &cfg, err, sizeof err) != 0)
-            fail_msg("%s: L2 %s: %s", s->name, s->l2, err);
-        if (lt_sim_init(s, NULL, NULL, err, sizeof err) != 0)
-            fail_msg("%s: lt_sim_init: %s", s->name, err);
+        if (lt_cache_parse(s->l1, &cfg, &diag) != 0)
+            fail_msg("%s: L1 %s: %s", s->name, s->l1, diag.msg);
+        if (s->l2 != NULL && lt_cache_parse(s->l2, &cfg, &diag) != 0)
+            fail_msg("%s: L2 %s: %s", s->name, s->l2, diag.msg);
+        if (lt_sim_init(s, NULL, NULL, &diag) != 0)
+            fail_msg("%s: lt_sim_init: %s", s->name, diag.msg);
         assert_ptr_equal(lt_sim_machine(), s);
-        if (lt_meter_init(s->name, NULL, NULL, err, sizeof err) != 0)
-            fail_msg("%s: lt_meter_init: %s", s->name, err);
+        if (lt_meter_init(s->name, NULL, NULL, &diag) != 0)
+            fail_msg("%s: lt_meter_init: %s", s->name, diag.msg);
         assert_int_equal(lt_meter_machine_info(s->name, &m), 0);
         assert_string_equal(m.name, s->name);
         assert_int_equal(m.clock_mhz, s->clock_mhz);
@@ -344,8 +345,8 @@ static void test_sim_table(void **state)
         lt_meter_shutdown();
     }
     /* a bad override is refused with the spec in the message */
-    assert_int_equal(lt_meter_init(tm[0].name, "63:8:64", NULL, err, sizeof err), -1);
-    assert_non_null(strstr(err, "63:8:64"));
+    assert_int_equal(lt_meter_init(tm[0].name, "63:8:64", NULL, &diag), -1);
+    assert_non_null(strstr(diag.msg, "63:8:64"));
     lt_meter_shutdown();
 }
 #endif

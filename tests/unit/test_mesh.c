@@ -163,14 +163,14 @@ static void test_shared_scenes(void **state)
     for (i = 0; i < sizeof sc / sizeof sc[0]; i++) {
         const char *p = shared_file(sc[i].file);
         lt_mesh_t m;
-        char err[512];
+        lt_diag_t diag;
         unsigned long z;
         if (p == NULL) {
             assert_int_equal(shared_missing(sc[i].file), 0);
             continue;
         }
-        if (lt_mesh_load(p, &m, err, sizeof err) != 0) {
-            ltt_report("  FAIL %s\n", err);
+        if (lt_mesh_load(p, &m, &diag) != 0) {
+            ltt_report("  FAIL %s\n", diag.msg);
             bad++;
             continue;
         }
@@ -200,7 +200,8 @@ static const char *quad_obj = "# quad and a relative triangle\n"
 static void test_good_and_gz(void **state)
 {
     lt_mesh_t a, b, c;
-    char err[512], *two;
+    char *two;
+    lt_diag_t diag;
     size_t n1, n2, half = strlen(quad_obj) / 2;
     int k;
     (void)state;
@@ -221,9 +222,9 @@ static void test_good_and_gz(void **state)
         free(p2);
         free(two);
     }
-    assert_int_equal(lt_mesh_load(tpath("quad.obj"), &a, err, sizeof err), 0);
-    assert_int_equal(lt_mesh_load(tpath("quad.obj.gz"), &b, err, sizeof err), 0);
-    assert_int_equal(lt_mesh_load(tpath("two.obj.gz"), &c, err, sizeof err), 0);
+    assert_int_equal(lt_mesh_load(tpath("quad.obj"), &a, &diag), 0);
+    assert_int_equal(lt_mesh_load(tpath("quad.obj.gz"), &b, &diag), 0);
+    assert_int_equal(lt_mesh_load(tpath("two.obj.gz"), &c, &diag), 0);
     assert_int_equal(a.ntris, 3);
     assert_int_equal(b.ntris, 3);
     assert_int_equal(c.ntris, 3);
@@ -246,11 +247,11 @@ static void test_good_and_gz(void **state)
 static void expect_fail(const char *name, const char *want, unsigned *n)
 {
     lt_mesh_t m;
-    char err[512];
-    assert_int_equal(lt_mesh_load(tpath(name), &m, err, sizeof err), -1);
-    ltt_report("  %s\n", err);
-    assert_non_null(strstr(err, name));
-    assert_non_null(strstr(err, want));
+    lt_diag_t diag;
+    assert_int_equal(lt_mesh_load(tpath(name), &m, &diag), -1);
+    ltt_report("  %s\n", diag.msg);
+    assert_non_null(strstr(diag.msg, name));
+    assert_non_null(strstr(diag.msg, want));
     assert_null(m.v);
     assert_int_equal(m.ntris, 0);
     lt_mesh_free(&m); /* safe after a failed load */
@@ -322,8 +323,8 @@ static void test_malformed(void **state)
     gz = slurp(tpath("ok.obj.gz"), &glen);
     {
         lt_mesh_t m;
-        char err[512];
-        assert_int_equal(lt_mesh_load(tpath("ok.obj.gz"), &m, err, sizeof err), 0);
+        lt_diag_t diag;
+        assert_int_equal(lt_mesh_load(tpath("ok.obj.gz"), &m, &diag), 0);
         assert_int_equal(m.ntris, 1);
         lt_mesh_free(&m);
     }
@@ -375,12 +376,12 @@ static double now_s(void)
 static double g_slowest; /* slowest load of the tests below, seconds */
 
 /* lt_mesh_load under a 30 s alarm (a hang kills the test with SIGALRM instead of stalling it). */
-static int load_timed(const char *path, lt_mesh_t *m, char *err, size_t errlen)
+static int load_timed(const char *path, lt_mesh_t *m, lt_diag_t *diag)
 {
     double t0 = now_s(), dt;
     int rc;
     (void)alarm(30);
-    rc = lt_mesh_load(path, m, err, errlen);
+    rc = lt_mesh_load(path, m, diag);
     (void)alarm(0);
     dt = now_s() - t0;
     if (dt > g_slowest)
@@ -392,17 +393,17 @@ static int load_timed(const char *path, lt_mesh_t *m, char *err, size_t errlen)
 static void expect_refused(const char *name, const char *want, unsigned *n)
 {
     lt_mesh_t m;
-    char err[512];
+    lt_diag_t diag;
     double t0 = now_s();
-    err[0] = '\0';
-    assert_int_equal(load_timed(tpath(name), &m, err, sizeof err), -1);
-    ltt_report("  %s\n", err);
+    diag.msg[0] = '\0';
+    assert_int_equal(load_timed(tpath(name), &m, &diag), -1);
+    ltt_report("  %s\n", diag.msg);
     assert_true(now_s() - t0 < 5.0);
-    assert_non_null(strstr(err, name));
-    if (strstr(err, want) == NULL)
+    assert_non_null(strstr(diag.msg, name));
+    if (strstr(diag.msg, want) == NULL)
         ltt_report("  FAIL: '%s' not in the message\n", want);
-    assert_non_null(strstr(err, want));
-    assert_null(strchr(err, '\n'));
+    assert_non_null(strstr(diag.msg, want));
+    assert_null(strchr(diag.msg, '\n'));
     assert_null(m.v);
     (*n)++;
 }
@@ -414,10 +415,10 @@ static const int sq_f[2][3] = {{0, 1, 2}, {0, 2, 3}};
 static void expect_square(const char *name)
 {
     lt_mesh_t m;
-    char err[512];
-    int t, j, k, rc = load_timed(tpath(name), &m, err, sizeof err);
+    lt_diag_t diag;
+    int t, j, k, rc = load_timed(tpath(name), &m, &diag);
     if (rc != 0)
-        ltt_report("  FAIL %s\n", err);
+        ltt_report("  FAIL %s\n", diag.msg);
     assert_int_equal(rc, 0);
     assert_int_equal(m.ntris, 2);
     for (t = 0; t < 2; t++)
@@ -521,9 +522,9 @@ static void test_checked_formats(void **state)
     expect_square("sq_bin.stl");
     {
         lt_mesh_t m;
-        char err[512];
+        lt_diag_t diag;
         write_text(tpath("sq.off"), off_text);
-        assert_int_equal(load_timed(tpath("sq.off"), &m, err, sizeof err), 0);
+        assert_int_equal(load_timed(tpath("sq.off"), &m, &diag), 0);
         assert_int_equal(m.ntris, 3); /* the quad (2) and the triangle */
         lt_mesh_free(&m);
     }
@@ -650,10 +651,10 @@ static void test_cut_everywhere(void **state)
         f = &files[i];
         for (k = 1; k < len; k++) {
             lt_mesh_t m;
-            char err[512];
+            lt_diag_t diag;
             write_bytes(tpath(f->name), f->data, k);
             cuts++;
-            if (load_timed(tpath(f->name), &m, err, sizeof err) == 0) {
+            if (load_timed(tpath(f->name), &m, &diag) == 0) {
                 if (m.ntris != f->tris)
                     ltt_report("  FAIL %s cut at %zu of %zu: %u of %u triangles, no error\n",
                                f->name, k, len, m.ntris, f->tris);
@@ -661,11 +662,11 @@ static void test_cut_everywhere(void **state)
                 lt_mesh_free(&m);
                 complete++;
             } else {
-                if (strstr(err, f->name) == NULL || strchr(err, '\n') != NULL)
-                    ltt_report("  FAIL %s cut at %zu: %s\n", f->name, k, err);
-                assert_non_null(strstr(err, f->name));
-                assert_null(strchr(err, '\n'));
-                assert_null(strstr(err, "crashed"));
+                if (strstr(diag.msg, f->name) == NULL || strchr(diag.msg, '\n') != NULL)
+                    ltt_report("  FAIL %s cut at %zu: %s\n", f->name, k, diag.msg);
+                assert_non_null(strstr(diag.msg, f->name));
+                assert_null(strchr(diag.msg, '\n'));
+                assert_null(strstr(diag.msg, "crashed"));
                 refused++;
             }
         }
@@ -678,69 +679,63 @@ static void test_cut_everywhere(void **state)
 
 /* ---- the child process alone ----------------------------------------------------------------- */
 
-static int iso_abort(void *ctx, lt_mesh_t *m, char *err, size_t errlen)
+static int iso_abort(void *ctx, lt_mesh_t *m, lt_diag_t *diag)
 {
     (void)ctx;
     (void)m;
-    (void)err;
-    (void)errlen;
+    (void)diag;
     fputs("some noise\nai_assert failure in ./code/Fake.cpp(591): nullptr != nd\nmore noise\n",
           stderr);
     abort();
 }
 
-static int iso_segv(void *ctx, lt_mesh_t *m, char *err, size_t errlen)
+static int iso_segv(void *ctx, lt_mesh_t *m, lt_diag_t *diag)
 {
     (void)ctx;
     (void)m;
-    (void)err;
-    (void)errlen;
+    (void)diag;
     (void)raise(SIGSEGV);
     return -1;
 }
 
-static int iso_hang(void *ctx, lt_mesh_t *m, char *err, size_t errlen)
+static int iso_hang(void *ctx, lt_mesh_t *m, lt_diag_t *diag)
 {
     (void)ctx;
     (void)m;
-    (void)err;
-    (void)errlen;
-    while (errlen != 0 || err == NULL) /* until killed */
+    (void)diag;
+    for (;;) /* until killed */
         (void)pause();
     return -1;
 }
 
-static int iso_exit7(void *ctx, lt_mesh_t *m, char *err, size_t errlen)
+static int iso_exit7(void *ctx, lt_mesh_t *m, lt_diag_t *diag)
 {
     (void)ctx;
     (void)m;
-    (void)err;
-    (void)errlen;
+    (void)diag;
     _exit(7);
 }
 
-static int iso_silent(void *ctx, lt_mesh_t *m, char *err, size_t errlen)
+static int iso_silent(void *ctx, lt_mesh_t *m, lt_diag_t *diag)
 {
     (void)ctx;
     (void)m;
-    (void)err;
-    (void)errlen;
+    (void)diag;
     _exit(0);
 }
 
-static int iso_error(void *ctx, lt_mesh_t *m, char *err, size_t errlen)
+static int iso_error(void *ctx, lt_mesh_t *m, lt_diag_t *diag)
 {
     (void)ctx;
     (void)m;
-    (void)snprintf(err, errlen, "x.glb: a message from the child");
+    (void)lt_diag_fail(diag, "x.glb: a message from the child");
     return -1;
 }
 
-static int iso_zero(void *ctx, lt_mesh_t *m, char *err, size_t errlen)
+static int iso_zero(void *ctx, lt_mesh_t *m, lt_diag_t *diag)
 {
     (void)ctx;
-    (void)err;
-    (void)errlen;
+    (void)diag;
     m->v = NULL;
     m->ntris = 0; /* success without triangles: refused */
     return 0;
@@ -748,13 +743,13 @@ static int iso_zero(void *ctx, lt_mesh_t *m, char *err, size_t errlen)
 
 /* Three triangles; a noisy importer (200 KB on stdout and stderr); checks that the child cannot
  * dump core. */
-static int iso_mesh(void *ctx, lt_mesh_t *m, char *err, size_t errlen)
+static int iso_mesh(void *ctx, lt_mesh_t *m, lt_diag_t *diag)
 {
     struct rlimit rl;
     int i;
     (void)ctx;
     if (getrlimit(RLIMIT_CORE, &rl) != 0 || rl.rlim_cur != 0) {
-        (void)snprintf(err, errlen, "core dumps are not off in the child");
+        (void)lt_diag_fail(diag, "core dumps are not off in the child");
         return -1;
     }
     for (i = 0; i < 2000; i++) {
@@ -775,29 +770,29 @@ static int iso_mesh(void *ctx, lt_mesh_t *m, char *err, size_t errlen)
 static void iso_expect(lt_import_child_fn fn, const char *want, const char *alt, double maxs)
 {
     lt_mesh_t m;
-    char err[512];
+    lt_diag_t diag;
     double t0 = now_s(), dt;
-    err[0] = '\0';
+    diag.msg[0] = '\0';
     (void)alarm(30);
-    assert_int_equal(lt_import_isolated("x.glb", fn, NULL, &m, err, sizeof err), -1);
+    assert_int_equal(lt_import_isolated("x.glb", fn, NULL, &m, &diag), -1);
     (void)alarm(0);
     dt = now_s() - t0;
-    ltt_report("  %s (%.2f s)\n", err, dt);
+    ltt_report("  %s (%.2f s)\n", diag.msg, dt);
     assert_null(m.v);
-    assert_true(strncmp(err, "x.glb: ", 7) == 0);
-    assert_null(strchr(err, '\n'));
-    assert_true(strstr(err, want) != NULL || (alt != NULL && strstr(err, alt) != NULL));
+    assert_true(strncmp(diag.msg, "x.glb: ", 7) == 0);
+    assert_null(strchr(diag.msg, '\n'));
+    assert_true(strstr(diag.msg, want) != NULL || (alt != NULL && strstr(diag.msg, alt) != NULL));
     assert_true(dt < maxs);
 }
 
 static void test_isolation(void **state)
 {
     lt_mesh_t m;
-    char err[512];
+    lt_diag_t diag;
     int i;
     (void)state;
     (void)unsetenv(LT_IMPORT_TIMEOUT_ENV);
-    assert_int_equal(lt_import_isolated("x.glb", iso_mesh, NULL, &m, err, sizeof err), 0);
+    assert_int_equal(lt_import_isolated("x.glb", iso_mesh, NULL, &m, &diag), 0);
     assert_int_equal(m.ntris, 3);
     for (i = 0; i < 27; i++)
         assert_true(m.v[i] == (double)i * 0.5 - 3.0);
@@ -816,9 +811,9 @@ static void test_isolation(void **state)
     assert_int_equal(setenv(LT_IMPORT_TIMEOUT_ENV, "1", 1), 0);
     iso_expect(iso_hang, "did not finish within 1 s (LT_IMPORT_TIMEOUT); stopped it", NULL, 3.0);
     assert_int_equal(setenv(LT_IMPORT_TIMEOUT_ENV, "soon", 1), 0);
-    assert_int_equal(lt_import_isolated("x.glb", iso_mesh, NULL, &m, err, sizeof err), -1);
-    ltt_report("  %s\n", err);
-    assert_non_null(strstr(err, "x.glb: LT_IMPORT_TIMEOUT='soon'"));
+    assert_int_equal(lt_import_isolated("x.glb", iso_mesh, NULL, &m, &diag), -1);
+    ltt_report("  %s\n", diag.msg);
+    assert_non_null(strstr(diag.msg, "x.glb: LT_IMPORT_TIMEOUT='soon'"));
     (void)unsetenv(LT_IMPORT_TIMEOUT_ENV);
     ltt_report("importer child process: a mesh (3 triangles, 200 KB of noise, no core dumps) "
                "brought back exact; abort, SIGSEGV, exit 7, silence, an error, 0 triangles, a hang "
@@ -842,13 +837,13 @@ static void test_assimp_traps(void **state)
                               "  0 0 2 0 0 0\n";
     unsigned char mdl[244];
     lt_mesh_t m;
-    char err[512];
+    lt_diag_t diag;
     double t0;
     int i;
     (void)state;
     /* the light's name is not a node's: PretransformVertices' ai_assert (SIGABRT) before */
     write_text(tpath("lamp.ogex"), ogex);
-    assert_int_equal(load_timed(tpath("lamp.ogex"), &m, err, sizeof err), 0);
+    assert_int_equal(load_timed(tpath("lamp.ogex"), &m, &diag), 0);
     assert_int_equal(m.ntris, 1);
     assert_true(m.v[3] == 1.0 && m.v[7] == 1.0);
     lt_mesh_free(&m);
@@ -863,23 +858,23 @@ static void test_assimp_traps(void **state)
         (void)put_u32(mdl + 144 + 8 * i, 0x40000000u, 0);
     }
     write_bytes(tpath("crash.mdl"), mdl, sizeof mdl);
-    err[0] = '\0';
-    assert_int_equal(load_timed(tpath("crash.mdl"), &m, err, sizeof err), -1);
-    ltt_report("  %s\n", err);
-    assert_non_null(strstr(err, "crash.mdl: "));
-    assert_null(strchr(err, '\n'));
+    diag.msg[0] = '\0';
+    assert_int_equal(load_timed(tpath("crash.mdl"), &m, &diag), -1);
+    ltt_report("  %s\n", diag.msg);
+    assert_non_null(strstr(diag.msg, "crash.mdl: "));
+    assert_null(strchr(diag.msg, '\n'));
     /* an LWS scene assimp never finishes reading (a clean error if assimp is ever fixed) */
     write_text(tpath("hang.lws"), lws);
     assert_int_equal(setenv(LT_IMPORT_TIMEOUT_ENV, "2", 1), 0);
     t0 = now_s();
-    assert_int_equal(load_timed(tpath("hang.lws"), &m, err, sizeof err), -1);
+    assert_int_equal(load_timed(tpath("hang.lws"), &m, &diag), -1);
     (void)unsetenv(LT_IMPORT_TIMEOUT_ENV);
-    ltt_report("  %s (%.2f s)\n", err, now_s() - t0);
-    assert_non_null(strstr(err, "hang.lws: "));
+    ltt_report("  %s (%.2f s)\n", diag.msg, now_s() - t0);
+    assert_non_null(strstr(diag.msg, "hang.lws: "));
     assert_true(now_s() - t0 < 4.0);
     ltt_report("assimp traps: OpenGEX light without a node loads (1 triangle); a crafted HL1 MDL "
                "and an unfinished LWS scene are refused in one line (%s), this process "
-               "unharmed\n", strstr(err, "did not finish") != NULL ? "time limit" : "assimp's error");
+               "unharmed\n", strstr(diag.msg, "did not finish") != NULL ? "time limit" : "assimp's error");
 }
 
 int main(void)

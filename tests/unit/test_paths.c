@@ -99,13 +99,14 @@ static void test_scene_file_agrees(void **state)
 {
     const lt_path_info_t *p;
     lt_scenefile_t sf;
-    char text[256], err[512];
+    char text[256];
+    lt_diag_t diag;
     (void)state;
     for (p = lt_paths; p->name != NULL; p++) {
         snprintf(text, sizeof text, "{\"mesh\": \"scenes/teapot.obj\", \"numeric\": \"%s\"}",
                  p->name);
         lt_sf_defaults(&sf);
-        assert_int_equal(lt_sf_parse(text, "t.json", ".", &sf, err, sizeof err) == 0,
+        assert_int_equal(lt_sf_parse(text, "t.json", ".", &sf, &diag) == 0,
                          (p->families & LT_PATHS_OBJECT) != 0);
         if (p->families & LT_PATHS_OBJECT)
             assert_int_equal((int)sf.numeric, p->sf_num);
@@ -113,14 +114,14 @@ static void test_scene_file_agrees(void **state)
                  "{\"mesh\": \"scenes/teapot.obj\", \"reproject\": {\"encoding\": \"%s\"}}",
                  p->name);
         lt_sf_defaults(&sf);
-        assert_int_equal(lt_sf_parse(text, "t.json", ".", &sf, err, sizeof err) == 0,
+        assert_int_equal(lt_sf_parse(text, "t.json", ".", &sf, &diag) == 0,
                          (p->families & LT_PATHS_SCREEN) != 0);
         if (p->families & LT_PATHS_SCREEN)
             assert_ptr_equal(lt_paths_find(sf.rp_encoding, LT_PATHS_SCREEN), p);
     }
     lt_sf_defaults(&sf);
     assert_int_equal(lt_sf_parse("{\"mesh\": \"scenes/teapot.obj\", \"numeric\": \"both\"}",
-                                 "t.json", ".", &sf, err, sizeof err),
+                                 "t.json", ".", &sf, &diag),
                      0);
     assert_int_equal((int)sf.numeric, LT_SF_NUM_BOTH);
 }

@@ -99,7 +99,7 @@ static void test_png_roundtrip(void **state)
     ltt_rng_t r;
     int ch, bad = 0, cases = 0;
     size_t i;
-    char err[512];
+    lt_diag_t diag;
     (void)state;
     ltt_rng_seed(&r, 7);
     for (ch = 1; ch <= 4; ch++) {
@@ -112,7 +112,7 @@ static void test_png_roundtrip(void **state)
             src[i] = (uint8_t)ltt_rng_u32(&r);
         src[0] = 0;
         src[1] = 255;
-        assert_int_equal(lt_png_write(tpath("rt.png"), src, W, H, ch, stride, err, sizeof err),
+        assert_int_equal(lt_png_write(tpath("rt.png"), src, W, H, ch, stride, &diag),
                          0);
         back = read_png(tpath("rt.png"), &w, &h, &c);
         assert_non_null(back);
@@ -137,26 +137,26 @@ static void test_png_roundtrip(void **state)
 static void test_png_errors(void **state)
 {
     uint8_t px[16] = {0};
-    char err[512];
+    lt_diag_t diag;
     int n = 0;
     (void)state;
-    assert_int_equal(lt_png_write(tpath("e.png"), px, 0, 4, 1, 0, err, sizeof err), -1);
-    assert_non_null(strstr(err, "LT_PNG_MAX_DIM 16384"));
+    assert_int_equal(lt_png_write(tpath("e.png"), px, 0, 4, 1, 0, &diag), -1);
+    assert_non_null(strstr(diag.msg, "LT_PNG_MAX_DIM 16384"));
     n++;
-    assert_int_equal(lt_png_write(tpath("e.png"), px, 16385, 1, 1, 0, err, sizeof err), -1);
-    ltt_report("  %s\n", err);
-    assert_non_null(strstr(err, "16385x1"));
+    assert_int_equal(lt_png_write(tpath("e.png"), px, 16385, 1, 1, 0, &diag), -1);
+    ltt_report("  %s\n", diag.msg);
+    assert_non_null(strstr(diag.msg, "16385x1"));
     n++;
-    assert_int_equal(lt_png_write(tpath("e.png"), px, 2, 2, 5, 0, err, sizeof err), -1);
-    ltt_report("  %s\n", err);
-    assert_non_null(strstr(err, "5 channels"));
+    assert_int_equal(lt_png_write(tpath("e.png"), px, 2, 2, 5, 0, &diag), -1);
+    ltt_report("  %s\n", diag.msg);
+    assert_non_null(strstr(diag.msg, "5 channels"));
     n++;
-    assert_int_equal(lt_png_write(tpath("e.png"), px, 4, 2, 2, 7, err, sizeof err), -1);
-    assert_non_null(strstr(err, "stride 7"));
+    assert_int_equal(lt_png_write(tpath("e.png"), px, 4, 2, 2, 7, &diag), -1);
+    assert_non_null(strstr(diag.msg, "stride 7"));
     n++;
-    assert_int_equal(lt_png_write("/nonexistent-dir/e.png", px, 2, 2, 1, 0, err, sizeof err), -1);
-    ltt_report("  %s\n", err);
-    assert_non_null(strstr(err, "/nonexistent-dir/e.png"));
+    assert_int_equal(lt_png_write("/nonexistent-dir/e.png", px, 2, 2, 1, 0, &diag), -1);
+    ltt_report("  %s\n", diag.msg);
+    assert_non_null(strstr(diag.msg, "/nonexistent-dir/e.png"));
     n++;
     assert_int_equal(access(tpath("e.png"), F_OK), -1);
     assert_int_equal(temps_left(), 0);
@@ -187,7 +187,7 @@ static void test_heatmap(void **state)
     uint8_t c[3], *back;
     static const uint8_t invalid[3] = {LT_HEATMAP_INVALID_RGB};
     static const uint8_t bg[3] = {LT_HEATMAP_BACKGROUND_RGB};
-    char err[512];
+    lt_diag_t diag;
     int32_t x, y, w2, h2, mid;
     int bad = 0, cases = 0, nc, hi_px, lo_px, gap_px;
     size_t i;
@@ -197,7 +197,7 @@ static void test_heatmap(void **state)
         v[i] = (float)((i * 37u) % 100u);
     v[5] = NAN;
     v[6] = INFINITY;
-    assert_int_equal(lt_heatmap_render(v, W, H, &o, &im, err, sizeof err), 0);
+    assert_int_equal(lt_heatmap_render(v, W, H, &o, &im, &diag), 0);
     assert_true(im.lo == 0.0f && im.hi == 99.0f); /* automatic range skips NaN and inf */
     assert_int_equal(im.font_scale, 1);
     assert_int_equal(im.height, 48); /* short image padded to the legend's minimum */
@@ -247,7 +247,7 @@ static void test_heatmap(void **state)
     bad += (hi_px != 30) + (lo_px != 19) + (gap_px != 0);
 
     /* the PNG holds exactly the rendered pixels */
-    assert_int_equal(lt_heatmap_write_png(tpath("heat.png"), v, W, H, &o, err, sizeof err), 0);
+    assert_int_equal(lt_heatmap_write_png(tpath("heat.png"), v, W, H, &o, &diag), 0);
     back = read_png(tpath("heat.png"), &w2, &h2, &nc);
     assert_non_null(back);
     assert_int_equal(w2, im.width);
@@ -261,10 +261,9 @@ static void test_heatmap(void **state)
     /* and the EXR holds exactly the values */
     {
         lt_exr_depth_t d;
-        assert_int_equal(lt_heatmap_write_exr(tpath("heat.exr"), v, W, H, "steps", err,
-                                              sizeof err),
+        assert_int_equal(lt_heatmap_write_exr(tpath("heat.exr"), v, W, H, "steps", &diag),
                          0);
-        assert_int_equal(lt_exr_read_depth(tpath("heat.exr"), "steps", NULL, &d, err, sizeof err),
+        assert_int_equal(lt_exr_read_depth(tpath("heat.exr"), "steps", NULL, &d, &diag),
                          0);
         for (i = 0; i < (size_t)(W * H); i++, cases++)
             bad += !(d.z[i] == v[i] || (isnan(d.z[i]) && isnan(v[i])));
@@ -284,7 +283,7 @@ static void test_heatmap_options(void **state)
     lt_heatmap_image_t im;
     lt_heatmap_opts_t o = LT_HEATMAP_OPTS_DEFAULT;
     uint8_t c0[3], c1[3], c[3];
-    char err[512];
+    lt_diag_t diag;
     int i, bad = 0;
     (void)state;
     for (i = 0; i < W * H; i++)
@@ -292,7 +291,7 @@ static void test_heatmap_options(void **state)
     /* fixed range: values below lo / above hi clamp to the ends; labels scale with the height */
     o.lo = 0.0f;
     o.hi = 10.0f;
-    assert_int_equal(lt_heatmap_render(v, W, H, &o, &im, err, sizeof err), 0);
+    assert_int_equal(lt_heatmap_render(v, W, H, &o, &im, &diag), 0);
     assert_int_equal(im.font_scale, 2);
     assert_int_equal(im.height, H);
     lt_heatmap_color(0.0f, c0);
@@ -303,7 +302,7 @@ static void test_heatmap_options(void **state)
     lt_heatmap_free(&im);
     /* no legend: the image alone */
     o.legend = 0;
-    assert_int_equal(lt_heatmap_render(v, W, H, &o, &im, err, sizeof err), 0);
+    assert_int_equal(lt_heatmap_render(v, W, H, &o, &im, &diag), 0);
     assert_int_equal(im.width, W);
     assert_int_equal(im.bar_x0, -1);
     lt_heatmap_free(&im);
@@ -311,7 +310,7 @@ static void test_heatmap_options(void **state)
     for (i = 0; i < W * H; i++)
         v[i] = 3.0f;
     o = (lt_heatmap_opts_t)LT_HEATMAP_OPTS_DEFAULT;
-    assert_int_equal(lt_heatmap_render(v, 4, 2, &o, &im, err, sizeof err), 0);
+    assert_int_equal(lt_heatmap_render(v, 4, 2, &o, &im, &diag), 0);
     bad += memcmp(im.rgb, c0, 3) != 0;
     lt_heatmap_free(&im);
     /* Turbo's hue order: blue at 0.15, green at 0.45, red at 0.85 */
@@ -323,11 +322,11 @@ static void test_heatmap_options(void **state)
     bad += !(c[0] > c[1] && c[0] > c[2]);
     /* errors */
     o.lo = NAN;
-    assert_int_equal(lt_heatmap_render(v, 4, 2, &o, &im, err, sizeof err), -1);
-    assert_non_null(strstr(err, "finite"));
-    assert_int_equal(lt_heatmap_write_png(tpath("h.png"), v, 0, 2, NULL, err, sizeof err), -1);
-    ltt_report("  %s\n", err);
-    assert_non_null(strstr(err, "h.png"));
+    assert_int_equal(lt_heatmap_render(v, 4, 2, &o, &im, &diag), -1);
+    assert_non_null(strstr(diag.msg, "finite"));
+    assert_int_equal(lt_heatmap_write_png(tpath("h.png"), v, 0, 2, NULL, &diag), -1);
+    ltt_report("  %s\n", diag.msg);
+    assert_non_null(strstr(diag.msg, "h.png"));
     ltt_report("heatmap options (fixed range clamps, font scale 2 at 400 rows, no legend, "
                "constant image, hue order, NaN range, empty image): 8 checks, %d wrong\n", bad);
     assert_int_equal(bad, 0);

@@ -1182,10 +1182,10 @@ static void test_sim_counts(void **state)
     lt_sim_totals_t *t = (lt_sim_totals_t *)malloc(sizeof *t);
     ltt_rng_t g;
     int f;
-    char err[128];
+    lt_diag_t diag;
     (void)state;
     assert_non_null(t);
-    assert_int_equal(lt_sim_init(lt_sim_machine_find("lrb16"), NULL, NULL, err, sizeof err), 0);
+    assert_int_equal(lt_sim_init(lt_sim_machine_find("lrb16"), NULL, NULL, &diag), 0);
     memset(&s, 0, sizeof s);
     s.name = "steps";
     s.W = 160;

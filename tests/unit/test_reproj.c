@@ -759,7 +759,7 @@ static void test_flat_zref(void **state)
     lt_rp_source_t src;
     lt_rp_opts_t o;
     lt_rp_result_t res;
-    char err[256];
+    lt_diag_t diag;
     int f, e, tr, runs = 0, bad = 0;
     size_t i;
     (void)state;
@@ -782,7 +782,7 @@ static void test_flat_zref(void **state)
                 lt_rp_opts_default(&o);
                 o.enc = encs[e];
                 o.tracer = tr == 0 ? LT_RP_QUADTREE : tr == 1 ? LT_RP_DDA : LT_RP_HIZ;
-                assert_int_equal(lt_rp_run(&src, &src.cam, &o, &res, err, sizeof err), 0);
+                assert_int_equal(lt_rp_run(&src, &src.cam, &o, &res, &diag), 0);
                 runs++;
                 if (res.st.cls[LT_RP_HIT] != res.st.pixels) {
                     bad++;
@@ -809,7 +809,7 @@ static void test_view_synthesis(void **state)
     lt_reproj_cam_t dst;
     lt_rp_opts_t o;
     lt_rp_result_t res;
-    char err[256];
+    lt_diag_t diag;
     double mv[3] = {0.6, 0, 0}, rot[3] = {0, 0, 0}, maxz = 0.0, maxc = 0.0;
     size_t i;
     uint64_t holes;
@@ -834,7 +834,7 @@ static void test_view_synthesis(void **state)
     lt_rp_opts_default(&o);
     o.bilinear = 0;
     /* identity: every pixel hits its own source pixel, colour and depth exact */
-    assert_int_equal(lt_rp_run(&src, &src.cam, &o, &res, err, sizeof err), 0);
+    assert_int_equal(lt_rp_run(&src, &src.cam, &o, &res, &diag), 0);
     for (i = 0; i < (size_t)W * H; i++) {
         assert_int_equal(res.cls[i], LT_RP_HIT);
         maxz = fmax(maxz, fabs((double)res.z[i] - (double)z[i]) / (double)z[i]);
@@ -853,7 +853,7 @@ static void test_view_synthesis(void **state)
     lt_rp_cam_move(&src.cam, mv, rot, &dst);
     for (src.layers = 1; src.layers <= 2; src.layers++) {
         uint64_t wall = 0;
-        assert_int_equal(lt_rp_run(&src, &dst, &o, &res, err, sizeof err), 0);
+        assert_int_equal(lt_rp_run(&src, &dst, &o, &res, &diag), 0);
         holes = res.st.cls[LT_RP_DISOCCLUDED] + res.st.cls[LT_RP_OUTSIDE] + res.st.cls[LT_RP_UNKNOWN];
         for (i = 0; i < (size_t)W * H; i++) {
             /* inpainted: finite colour; depth finite except for background (+inf by design) */
@@ -966,7 +966,7 @@ static void test_truth(void **state)
         lt_reproj_cam_t dst;
         lt_rp_opts_t o;
         lt_rp_result_t res;
-        char err[256];
+        lt_diag_t diag;
         double mv[3] = {0.6, 0, 0}, rot[3] = {0, 0, 0};
         double bx0, bx1, by0, by1;
         size_t i;
@@ -1010,7 +1010,7 @@ static void test_truth(void **state)
             lt_rp_opts_default(&o);
             o.enc = (lt_qt_enc_t)(i % 3);
             o.tracer = (lt_rp_tracer_t)(i / 3);
-            assert_int_equal(lt_rp_run(&src, &dst, &o, &res, err, sizeof err), 0);
+            assert_int_equal(lt_rp_run(&src, &dst, &o, &res, &diag), 0);
             assert_int_equal(lt_rp_truth_compare(&res, zt, 0.01, &t, NULL), 0);
             printf("reproj truth box over wall, %s enc %d, moved 0.6: %llu known pixels, wrong "
                    "hit/miss %llu (bound 0), common hits %llu, outside 1%% %llu (bound: %u outline "
@@ -1028,13 +1028,13 @@ static void test_truth(void **state)
         /* an unknown tracer or encoding is refused with a message, nothing allocated */
         lt_rp_opts_default(&o);
         o.tracer = (lt_rp_tracer_t)3;
-        err[0] = '\0';
-        assert_int_equal(lt_rp_run(&src, &dst, &o, &res, err, sizeof err), -1);
-        assert_true(strstr(err, "tracer") != NULL && res.z == NULL);
+        diag.msg[0] = '\0';
+        assert_int_equal(lt_rp_run(&src, &dst, &o, &res, &diag), -1);
+        assert_true(strstr(diag.msg, "tracer") != NULL && res.z == NULL);
         lt_rp_opts_default(&o);
         o.enc = (lt_qt_enc_t)7;
-        assert_int_equal(lt_rp_run(&src, &dst, &o, &res, err, sizeof err), -1);
-        printf("reproj truth: unknown tracer 3 and encoding 7 refused ('%s')\n", err);
+        assert_int_equal(lt_rp_run(&src, &dst, &o, &res, &diag), -1);
+        printf("reproj truth: unknown tracer 3 and encoding 7 refused ('%s')\n", diag.msg);
         free(z);
         free(zt);
     }
@@ -1055,9 +1055,9 @@ int main(void)
     };
 #if LT_COST_MODE == LT_COST_SIM
     {
-        char err[256];
-        if (lt_sim_init(lt_sim_machine_find("lrb16"), NULL, NULL, err, sizeof err) != 0) {
-            fprintf(stderr, "%s\n", err);
+        lt_diag_t diag;
+        if (lt_sim_init(lt_sim_machine_find("lrb16"), NULL, NULL, &diag) != 0) {
+            fprintf(stderr, "%s\n", diag.msg);
             return 1;
         }
     }

@@ -1068,14 +1068,14 @@ static void test_sim_counts(void **state)
     ss_res_t *out = (ss_res_t *)malloc(n * sizeof *out);
     lt_sim_totals_t *t = (lt_sim_totals_t *)malloc(sizeof *t);
     ltt_rng_t g;
-    char err[128];
+    lt_diag_t diag;
     int m, f;
     (void)state;
     assert_non_null(rays);
     assert_non_null(ex);
     assert_non_null(out);
     assert_non_null(t);
-    assert_int_equal(lt_sim_init(lt_sim_machine_find("lrb16"), NULL, NULL, err, sizeof err), 0);
+    assert_int_equal(lt_sim_init(lt_sim_machine_find("lrb16"), NULL, NULL, &diag), 0);
     ss_scene_steps(&s);
     assert_int_equal(ss_scene_sample(&s), 0);
     ssb_build(&s, NULL, &b);

@@ -801,7 +801,7 @@ static void test_faults_truth(void **state)
             const lt_faults_truth_t *t;
             const lt_rx_stats_t *s;
             lt_rx_t *rx;
-            char err[128];
+            lt_diag_t diag;
             uint64_t destroyed;
             memset(&c, 0, sizeof c);
             c.drop = rates[ri][0];
@@ -811,7 +811,7 @@ static void test_faults_truth(void **state)
             c.trunc = rates[ri][4];
             c.max_flips = 3;
             c.seed = seed;
-            fi = lt_faults_new(&c, buf_sink, &out, err, sizeof err);
+            fi = lt_faults_new(&c, buf_sink, &out, &diag);
             assert_non_null(fi);
             lt_faults_feed(fi, in.p, in.n);
             lt_faults_finish(fi);
@@ -859,9 +859,9 @@ static void test_faults_truth(void **state)
 static void drain(lt_rx_src_t *src, buf_t *b, size_t want)
 {
     uint8_t tmp[1000];
-    char err[256];
+    lt_diag_t diag;
     for (;;) {
-        long n = lt_rx_src_read(src, tmp, sizeof tmp, 5000, err, sizeof err);
+        long n = lt_rx_src_read(src, tmp, sizeof tmp, 5000, &diag);
         if (n <= 0)
             break;
         buf_put(b, tmp, (size_t)n);
@@ -873,7 +873,8 @@ static void drain(lt_rx_src_t *src, buf_t *b, size_t want)
 static void test_sources(void **state)
 {
     buf_t s = {0}, got = {0};
-    char path[] = "/tmp/lt_stream_test_XXXXXX", err[512];
+    char path[] = "/tmp/lt_stream_test_XXXXXX";
+    lt_diag_t diag;
     lt_rx_src_t *src;
     int fd;
     (void)state;
@@ -883,25 +884,25 @@ static void test_sources(void **state)
     assert_true(fd >= 0);
     assert_int_equal(write(fd, s.p, s.n), (ssize_t)s.n);
     close(fd);
-    src = lt_rx_src_file(path, err, sizeof err);
+    src = lt_rx_src_file(path, &diag);
     assert_non_null(src);
     drain(src, &got, 0);
     lt_rx_src_close(src);
     unlink(path);
     assert_int_equal(got.n, s.n);
     assert_memory_equal(got.p, s.p, s.n);
-    assert_null(lt_rx_src_file("/nonexistent/x.bin", err, sizeof err));
-    assert_non_null(strstr(err, "/nonexistent/x.bin"));
+    assert_null(lt_rx_src_file("/nonexistent/x.bin", &diag));
+    assert_non_null(strstr(diag.msg, "/nonexistent/x.bin"));
     /* serial: /dev/null is not a tty; a pty is */
-    assert_null(lt_rx_src_serial("/dev/null", 115200, err, sizeof err));
-    assert_non_null(strstr(err, "not a serial device"));
-    assert_null(lt_rx_src_serial("/dev/null", 12345, err, sizeof err));
-    assert_non_null(strstr(err, "unsupported speed 12345"));
+    assert_null(lt_rx_src_serial("/dev/null", 115200, &diag));
+    assert_non_null(strstr(diag.msg, "not a serial device"));
+    assert_null(lt_rx_src_serial("/dev/null", 12345, &diag));
+    assert_non_null(strstr(diag.msg, "unsupported speed 12345"));
     {
         int m = posix_openpt(O_RDWR | O_NOCTTY);
         if (m >= 0 && grantpt(m) == 0 && unlockpt(m) == 0 && ptsname(m) != NULL) {
             size_t off = 0;
-            src = lt_rx_src_serial(ptsname(m), 115200, err, sizeof err);
+            src = lt_rx_src_serial(ptsname(m), 115200, &diag);
             assert_non_null(src);
             got.n = 0;
             while (off < s.n) {
@@ -949,7 +950,7 @@ static void test_sources(void **state)
             _exit(off == s.n ? 0 : 1);
         }
         close(ls);
-        src = lt_rx_src_tcp(hp, 2000, err, sizeof err);
+        src = lt_rx_src_tcp(hp, 2000, &diag);
         assert_non_null(src);
         got.n = 0;
         drain(src, &got, 0);
@@ -959,10 +960,10 @@ static void test_sources(void **state)
         assert_int_equal(got.n, s.n);
         assert_memory_equal(got.p, s.p, s.n);
         /* the port is closed now: refused, retried briefly, then a message naming it */
-        assert_null(lt_rx_src_tcp(hp, 100, err, sizeof err));
-        assert_non_null(strstr(err, hp));
-        assert_null(lt_rx_src_tcp("nocolon", 100, err, sizeof err));
-        assert_non_null(strstr(err, "HOST:PORT"));
+        assert_null(lt_rx_src_tcp(hp, 100, &diag));
+        assert_non_null(strstr(diag.msg, hp));
+        assert_null(lt_rx_src_tcp("nocolon", 100, &diag));
+        assert_non_null(strstr(diag.msg, "HOST:PORT"));
         ltt_report("sources: file and TCP (%s) passed %zu bytes unchanged; missing file, non-tty, "
                    "bad speed, refused port and bad HOST:PORT give messages naming them\n", hp,
                    s.n);

@@ -625,16 +625,16 @@ static int mesh_file(wmesh_t *m, const char *name, const char *path)
 {
     lt_mesh_t mesh;
     lt_scene_t sc;
-    char err[256];
+    lt_diag_t diag;
     corner_t *c;
     uint32_t i, n;
     memset(m, 0, sizeof *m);
-    if (lt_mesh_load(path, &mesh, err, sizeof err) != 0) {
-        ltt_report("  %s: %s\n", name, err);
+    if (lt_mesh_load(path, &mesh, &diag) != 0) {
+        ltt_report("  %s: %s\n", name, diag.msg);
         return -1;
     }
-    if (lt_scene_prepare(&mesh, &sc, err, sizeof err) != 0) {
-        ltt_report("  %s: %s\n", name, err);
+    if (lt_scene_prepare(&mesh, &sc, &diag) != 0) {
+        ltt_report("  %s: %s\n", name, diag.msg);
         lt_mesh_free(&mesh);
         return -1;
     }
@@ -1888,11 +1888,11 @@ static void test_bad_dir(void **state)
 static void cost_run(const char *machine, int coherent, double out[6][2])
 {
     const lt_machine_t *mach = lt_sim_machine_find(machine);
-    char err[128];
+    lt_diag_t diag;
     ltt_rng_t r;
     int kern, pk, i, a;
     assert_non_null(mach);
-    assert_int_equal(lt_sim_init(mach, NULL, NULL, err, sizeof err), 0);
+    assert_int_equal(lt_sim_init(mach, NULL, NULL, &diag), 0);
     for (kern = 0; kern < 6; kern++) {
         lt_sim_totals_t t, t0;
         uint64_t ops = 0;

@@ -5,27 +5,28 @@
  */
 #include "stream/usb/lt_rx_hid.h"
 
+#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <wchar.h>
 
 #ifndef LT_RX_NO_HIDAPI
 #include <hidapi.h>
 
-static long hid_src_read(void *ctx, uint8_t *buf, size_t n, int timeout_ms, char *err,
-                         size_t errlen)
+static long hid_src_read(void *ctx, uint8_t *buf, size_t n, int timeout_ms, lt_diag_t *diag)
 {
     hid_device *d = ctx;
     int r;
     if (n < LT_STREAM_FRAME_BYTES) {
-        snprintf(err, errlen, "hid: read buffer of %zu bytes is below one report (64)", n);
+        lt_diag_fail(diag, "hid: read buffer of %zu bytes is below one report (64)", n);
         return LT_RX_ERROR;
     }
     r = hid_read_timeout(d, buf, LT_STREAM_FRAME_BYTES, timeout_ms);
     if (r < 0) {
         const wchar_t *w = hid_error(d);
-        snprintf(err, errlen, "hid: read failed: %ls", w != NULL ? w : L"(no reason given)");
+        lt_diag_fail(diag, "hid: read failed: %ls", w != NULL ? w : L"(no reason given)");
         return LT_RX_ERROR;
     }
     return r == 0 ? LT_RX_TIMEOUT : (long)r;
@@ -39,7 +40,7 @@ static void hid_src_close(void *ctx)
 
 static const lt_rx_src_ops_t hid_ops = {hid_src_read, hid_src_close};
 
-lt_rx_src_t *lt_rx_src_hid(const char *vidpid, const char *path, char *err, size_t errlen)
+lt_rx_src_t *lt_rx_src_hid(const char *vidpid, const char *path, lt_diag_t *diag)
 {
     hid_device *d;
     unsigned vid = 0, pid = 0;
@@ -47,24 +48,42 @@ lt_rx_src_t *lt_rx_src_hid(const char *vidpid, const char *path, char *err, size
     lt_rx_src_t *s;
     if (vidpid != NULL) {
         if (sscanf(vidpid, "%x:%x%c", &vid, &pid, &tail) != 2 || vid > 0xFFFFu || pid > 0xFFFFu) {
-            snprintf(err, errlen, "--hid %s: expected VID:PID in hex, each 0000..ffff", vidpid);
+            lt_diag_fail(diag, "--hid %s: expected VID:PID in hex, each 0000..ffff", vidpid);
             return NULL;
         }
         snprintf(name, sizeof name, "hid %04x:%04x", vid, pid);
     } else {
         snprintf(name, sizeof name, "hid %s", path);
     }
+    if (path != NULL) {
+        /* hidraw paths are character devices: say what else the path is before hidapi tries */
+        struct stat st;
+        if (stat(path, &st) != 0) {
+            lt_diag_fail(diag, "%s: %s", name, strerror(errno));
+            return NULL;
+        }
+        if (!S_ISCHR(st.st_mode)) {
+            lt_diag_fail(diag, "%s: not a HID device node (%s); --hid-path takes a character "
+                         "device such as /dev/hidraw0", name,
+                         S_ISDIR(st.st_mode) ? "a directory"
+                         : S_ISREG(st.st_mode) ? "a regular file" : "not a character device");
+            return NULL;
+        }
+    }
     if (hid_init() != 0) {
-        snprintf(err, errlen, "%s: hid_init failed", name);
+        lt_diag_fail(diag, "%s: hid_init failed", name);
         return NULL;
     }
     d = vidpid != NULL ? hid_open((unsigned short)vid, (unsigned short)pid, NULL)
                        : hid_open_path(path);
     if (d == NULL) {
         const wchar_t *w = hid_error(NULL);
-        snprintf(err, errlen, "%s: cannot open the device (hidapi: %ls); is it plugged in and "
-                 "is its /dev/hidraw* node readable?", name,
-                 w != NULL ? w : L"no reason given");
+        /* hidapi may report "Success" (errno 0) for a failed open: no reason then */
+        if (w != NULL && (w[0] == L'\0' || wcscmp(w, L"Success") == 0))
+            w = NULL;
+        lt_diag_fail(diag, "%s: cannot open the device (hidapi: %ls); is it plugged in and "
+                     "is its /dev/hidraw* node readable?", name,
+                     w != NULL ? w : L"no reason given");
         hid_exit();
         return NULL;
     }
@@ -72,17 +91,17 @@ lt_rx_src_t *lt_rx_src_hid(const char *vidpid, const char *path, char *err, size
     if (s == NULL) {
         hid_close(d);
         hid_exit();
-        snprintf(err, errlen, "%s: out of memory", name);
+        lt_diag_fail(diag, "%s: out of memory", name);
     }
     return s;
 }
 
 #else
 
-lt_rx_src_t *lt_rx_src_hid(const char *vidpid, const char *path, char *err, size_t errlen)
+lt_rx_src_t *lt_rx_src_hid(const char *vidpid, const char *path, lt_diag_t *diag)
 {
-    snprintf(err, errlen, "hid %s: lt-stream was built without hidapi (install libhidapi-dev "
-             "and rebuild)", vidpid != NULL ? vidpid : path);
+    lt_diag_fail(diag, "hid %s: lt-stream was built without hidapi (install libhidapi-dev "
+                 "and rebuild)", vidpid != NULL ? vidpid : path);
     return NULL;
 }
 

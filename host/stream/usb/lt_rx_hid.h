@@ -12,6 +12,6 @@
 /* Open by "VID:PID" (hex, e.g. "1209:0001"; the first matching device) or, when vidpid is NULL,
  * by a hidapi path (hidraw: "/dev/hidraw0"). Returns NULL with a message naming the device and
  * hidapi's reason (on this machine: "No HID devices found in the system."). */
-lt_rx_src_t *lt_rx_src_hid(const char *vidpid, const char *path, char *err, size_t errlen);
+lt_rx_src_t *lt_rx_src_hid(const char *vidpid, const char *path, lt_diag_t *diag);
 
 #endif /* LT_RX_HID_H */
