@@ -717,6 +717,16 @@ static int cmd_run(int argc, char **argv)
 /* ---- info ----------------------------------------------------------------------------------- */
 
 /* EXR: the header (parts, storage, windows, channels) and statistics of the depth channel. */
+/* j as one line on stdout, then freed */
+static void print_json_line(cJSON *j)
+{
+    char *txt = cJSON_PrintUnformatted(j);
+    if (txt != NULL)
+        printf("%s\n", txt);
+    cJSON_free(txt);
+    cJSON_Delete(j);
+}
+
 static int info_exr(const char *path, const lt_sniff_t *sn, int json)
 {
     static const char *const storage[] = {"scanline", "tiled", "deep scanline", "deep tiled"};
@@ -749,7 +759,6 @@ static int info_exr(const char *path, const lt_sniff_t *sn, int json)
     }
     if (json) {
         cJSON *j = cJSON_CreateObject(), *a;
-        char *txt;
         const int dw[4] = {pr.data_window.x0, pr.data_window.y0, pr.data_window.x1,
                            pr.data_window.y1},
                   vw[4] = {pr.display_window.x0, pr.display_window.y0, pr.display_window.x1,
@@ -771,11 +780,7 @@ static int info_exr(const char *path, const lt_sniff_t *sn, int json)
             cJSON_AddNumberToObject(a, "max", n ? mx : 0.0);
             cJSON_AddNumberToObject(a, "mean", n ? sum / (double)n : 0.0);
         }
-        txt = cJSON_PrintUnformatted(j);
-        if (txt != NULL)
-            printf("%s\n", txt);
-        cJSON_free(txt);
-        cJSON_Delete(j);
+        print_json_line(j);
     } else {
         printf("detected  %s by its content%s\n", sn->what,
                sn->name_agrees ? "" : " (its name says otherwise)");
@@ -856,7 +861,6 @@ static int cmd_info(int argc, char **argv)
     }
     if (json) {
         cJSON *j = cJSON_CreateObject();
-        char *txt;
         cJSON_AddStringToObject(j, "file", path);
         cJSON_AddStringToObject(j, "detected", sn.what);
         cJSON_AddBoolToObject(j, "name_agrees", sn.name_agrees);
@@ -869,11 +873,7 @@ static int cmd_info(int argc, char **argv)
         cJSON_AddNumberToObject(j, "collapsed_q16", sc.collapsed_q16);
         cJSON_AddNumberToObject(j, "nonzero", sc.nonzero);
         cJSON_AddBoolToObject(j, "q16_representable", lt_scene_check_q16(&sc, path, &diag) == 0);
-        txt = cJSON_PrintUnformatted(j);
-        if (txt != NULL)
-            printf("%s\n", txt);
-        cJSON_free(txt);
-        cJSON_Delete(j);
+        print_json_line(j);
     } else {
         printf("detected  %s by its content%s\n", sn.what,
                sn.name_agrees ? "" : " (its name says otherwise)");

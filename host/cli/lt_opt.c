@@ -437,3 +437,8 @@ void lt_opt_help(const lt_opt_cmd_t *cmd, FILE *f)
     if (cmd->epilog != NULL)
         fputs(cmd->epilog, f);
 }
+
+int lt_opt_exit_code(int rc)
+{
+    return rc == LT_OPT_HELP ? 0 : rc == LT_OPT_USAGE ? 2 : rc;
+}

@@ -120,6 +120,10 @@ typedef struct lt_opt_cmd {
 #define LT_OPT_HELP 1  /* --help or -h: the help is on stdout; the command exits 0 */
 #define LT_OPT_USAGE 2 /* a usage error, already printed on stderr; the command exits 2 */
 
+/* The exit code of a program whose parse ended with rc (LT_OPT_HELP: 0, LT_OPT_USAGE: 2), for
+ * `if ((rc = parse(...)) != LT_OPT_OK) return lt_opt_exit_code(rc);`. */
+int lt_opt_exit_code(int rc);
+
 /* Parse argv[first..argc-1] against cmd's table. Every option may repeat (the last wins; a FLAG
  * sets its value each time). Returns LT_OPT_OK, LT_OPT_HELP or LT_OPT_USAGE. */
 int lt_opt_parse(const lt_opt_cmd_t *cmd, int argc, char **argv, int first);

@@ -520,7 +520,42 @@ static void shadows_table(const shadows_t *s, const char *machine_name, double m
                (double)sshp->cycles / 1e6, (double)sshf->cycles / 1e6);
 }
 
-/* (sim build) Table 1, the note on why, the stage cycles and the simulated speeds. */
+/* The frusta stage against the packet stage of the same rays, from this run's counters: the
+ * cycles of each phase (setup, traversal, intersection, the rest), box and triangle tests, and
+ * the phase that decides the ratio (the largest difference). */
+static void why_line(const char *which, const stage_t *fr, const stage_t *pk)
+{
+    static const struct { int ph; const char *name; } phs[] = {
+        {LT_PH_SETUP, "setup"}, {LT_PH_TRAVERSE, "traversal"}, {LT_PH_INTERSECT, "intersection"}};
+    double d[4], worst = 0.0;
+    int i, w = 3;
+    uint64_t rest_f = fr->cycles, rest_p = pk->cycles;
+    printf("why       %s-Frusta / %s-Packet %.2fM / %.2fM cycles (%.2fx):", which, which,
+           (double)fr->cycles / 1e6, (double)pk->cycles / 1e6, ratio(pk->cycles, fr->cycles));
+    for (i = 0; i < 3; i++) {
+        uint64_t a = fr->cyc[phs[i].ph], b = pk->cyc[phs[i].ph];
+        printf(" %s %.2fM / %.2fM,", phs[i].name, (double)a / 1e6, (double)b / 1e6);
+        d[i] = (double)a - (double)b;
+        rest_f -= a;
+        rest_p -= b;
+    }
+    d[3] = (double)rest_f - (double)rest_p;
+    for (i = 0; i < 4; i++)
+        if (fabs(d[i]) > fabs(worst)) {
+            worst = d[i];
+            w = i;
+        }
+    printf(" other %.2fM / %.2fM; box tests %.0fK / %.0fK (ray-box pairs %.0fK / %.0fK), "
+           "triangle tests %.0fK / %.0fK (ray-triangle pairs %.0fK / %.0fK); the %s decides it "
+           "(%+.2fM cycles)\n",
+           (double)rest_f / 1e6, (double)rest_p / 1e6, k_(fr->ev[LT_EV_AABB]),
+           k_(pk->ev[LT_EV_AABB]), k_(fr->ev[LT_EV_AABB_RAYS]), k_(pk->ev[LT_EV_AABB_RAYS]),
+           k_(fr->ev[LT_EV_TRIS]), k_(pk->ev[LT_EV_TRIS]), k_(fr->ev[LT_EV_TRI_RAYS]),
+           k_(pk->ev[LT_EV_TRI_RAYS]), w < 3 ? phs[w].name : "rest (shading, culling, other)",
+           worst / 1e6);
+}
+
+/* (sim build) Table 1, why from the run's counters, the stage cycles and the simulated speeds. */
 static void shadows_simulated(const shadows_t *s)
 {
     const stage_t *sp = &s->sp, *spf = &s->spf, *sshp = &s->sshp, *sshf = &s->sshf;
@@ -533,11 +568,9 @@ static void shadows_simulated(const shadows_t *s)
     hz = mhz * 1e6; /* rays per cycle x cycles per second */
     shadows_table(s, mm.name, mhz);
     if (s->run_pk && s->run_fr)
-        printf("why       fewer cycles saved than the paper: the s15.16 kernels keep products "
-               "in int64 (VMUL/VMULW cost 2 on lrb16), so MFT's extra intersection and culling "
-               "work is dearer than in float (try --num f32); both S rows carry the same "
-               "shade and filter cycles; frusta wider than the occluders' triangles "
-               "(large lights, fine meshes) cull little (docs/frusta.md)\n");
+        why_line("S", sshf, sshp);
+    if (s->run_pp && s->run_pf)
+        why_line("P", spf, sp);
     printf("stages    P-Packet %.2fM, P-Frusta %.2fM, shade %.2fM, filter %.2fM cycles (%.1f "
            "cycles/pixel); culled pairs: P-Packet back-face %.0fK; P-Frusta back-face %.0fK, "
            "corner %.0fK; S-Packet back-face %.0fK; S-Frusta back-face %.0fK, corner %.0fK\n",

@@ -96,19 +96,13 @@ int main(int argc, char **argv)
     lt_diag_t diag;
     uint8_t buf[65536];
     size_t n;
-    int status = 0;
+    int status = 0, rc;
 
     memset(&cfg, 0, sizeof cfg);
     cfg.max_flips = 3;
     cfg.seed = 1;
-    switch (parse_args(&cfg, &ar, argc, argv)) {
-    case LT_OPT_HELP:
-        return 0;
-    case LT_OPT_USAGE:
-        return 2;
-    default:
-        break;
-    }
+    if ((rc = parse_args(&cfg, &ar, argc, argv)) != LT_OPT_OK)
+        return lt_opt_exit_code(rc);
     if (lt_faults_check(&cfg, &diag) != 0) {
         fprintf(stderr, "lt-faultinject: %s\n", diag.msg);
         return 2;

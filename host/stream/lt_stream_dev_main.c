@@ -124,14 +124,8 @@ int main(int argc, char **argv)
     lt_sdev_cfg_default(&cfg);
     ar.frames = (int)cfg.frames;
     ar.image_from = (int)cfg.image_from;
-    switch (parse_args(&cfg, &ar, argc, argv)) {
-    case LT_OPT_HELP:
-        return 0;
-    case LT_OPT_USAGE:
-        return 2;
-    default:
-        break;
-    }
+    if ((rc = parse_args(&cfg, &ar, argc, argv)) != LT_OPT_OK)
+        return lt_opt_exit_code(rc);
     if (lt_meter_machine_info(ar.machine, &m) != 0) {
         fprintf(stderr, "lt-stream-dev: --machine %s: unknown machine (known: %s)\n", ar.machine,
                 lt_meter_machine_names());

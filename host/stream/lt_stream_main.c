@@ -293,18 +293,12 @@ int main(int argc, char **argv)
     lt_diag_t diag;
     uint8_t buf[4096];
     double t0, last_live = 0.0, last_byte;
-    int nsrc = 0, status = 0, tty;
+    int nsrc = 0, status = 0, tty, rc;
     const lt_rx_stats_t *s;
 
     memset(&o, 0, sizeof o);
-    switch (parse_args(&o, argc, argv, &nsrc)) {
-    case LT_OPT_HELP:
-        return 0;
-    case LT_OPT_USAGE:
-        return 2;
-    default:
-        break;
-    }
+    if ((rc = parse_args(&o, argc, argv, &nsrc)) != LT_OPT_OK)
+        return lt_opt_exit_code(rc);
     if (nsrc > 1) {
         fprintf(stderr, "lt-stream: give at most one of --file, --serial, --tcp, --hid, "
                         "--hid-path\n");

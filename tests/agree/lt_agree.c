@@ -257,14 +257,9 @@ int main(int argc, char **argv)
             "reference on a mesh; every differing pixel is explained (tie, edge) or reported.\n",
             "exit status: 0 agreement, 1 a criterion failed or an input error, 2 usage\n", opts,
             &mesh_path, 1, NULL};
-        switch (lt_opt_parse(&cmd, argc, argv, 1)) {
-        case LT_OPT_HELP:
-            return 0;
-        case LT_OPT_USAGE:
-            return 2;
-        default:
-            break;
-        }
+        int rc = lt_opt_parse(&cmd, argc, argv, 1);
+        if (rc != LT_OPT_OK)
+            return lt_opt_exit_code(rc);
         if (mesh_path == NULL) {
             fprintf(stderr, "lt-agree: no mesh given (usage: lt-agree MESH [options])\n");
             return 2;

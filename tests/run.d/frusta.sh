@@ -53,6 +53,19 @@ for p in q16 f32; do
 done
 check "lanetrace shadows sim prints the Table-1 rows (P and S)" \
     bash -c "grep -q '^P-Packet (+shad)' '$tmp/frs.q16' && grep -q '^P-Frusta (+shad)' '$tmp/frs.q16' && grep -q '^P Reduction' '$tmp/frs.q16' && grep -q '^S-Frusta ' '$tmp/frs.q16' && grep -q '^S Reduction' '$tmp/frs.q16' && grep -q '[kMG]*rays/s per simulated' '$tmp/frs.q16'"
+# the "why" lines carry this run's figures (a fixed sentence was printed before): per-phase cycles
+# of both methods whose sum is the stage total, and the deciding phase
+check "lanetrace shadows sim: the why lines give this run's phase cycles and name the deciding phase ($(grep -c '^why ' "$tmp/frs.q16") lines)" \
+    python3 -c "
+import re, sys
+ok = 0
+for l in open(sys.argv[1]):
+    m = re.match(r'why +([PS])-Frusta / [PS]-Packet ([0-9.]+)M / ([0-9.]+)M cycles .*: setup ([0-9.]+)M / ([0-9.]+)M, traversal ([0-9.]+)M / ([0-9.]+)M, intersection ([0-9.]+)M / ([0-9.]+)M, other ([0-9.]+)M / ([0-9.]+)M;.* the .* decides it', l)
+    if not m: continue
+    v = [float(x) for x in m.groups()[1:]]
+    if abs(v[0] - (v[2] + v[4] + v[6] + v[8])) <= 0.03 and abs(v[1] - (v[3] + v[5] + v[7] + v[9])) <= 0.03:
+        ok += 1
+sys.exit(0 if ok == 2 else 1)" "$tmp/frs.q16"
 # the old combination (S-Frusta on P-Packet primaries) and two-sided primaries stay available
 "$SH_SIM" shadows --mesh scenes/teapot.obj --res 16 --prim packet --pcull cr --no-ref >"$tmp/frs.old" 2>&1
 rco=$?

@@ -201,11 +201,25 @@ static void test_long_names_refused(void **state)
     free(s);
 }
 
+/* a, b and c added to the set, "new a/b/c" written to their temporaries */
+static void prepare3(lt_outset_t *s, const char *a, const char *b, const char *c)
+{
+    const char *const p[3] = {a, b, c};
+    static const char *const text[3] = {"new a", "new b", "new c"};
+    const char *t;
+    lt_diag_t d;
+    int i;
+    for (i = 0; i < 3; i++) {
+        assert_int_equal(lt_outset_add(s, p[i], &t, &d), 0);
+        write_text(t, text[i]);
+    }
+}
+
 static void test_outset_all_or_nothing(void **state)
 {
     lt_outset_t *s = calloc(1, sizeof *s);
     char a[300], b[300], c[300];
-    const char *ta, *tb, *tc;
+    const char *ta, *tb;
     lt_diag_t d;
     (void)state;
     assert_non_null(s);
@@ -229,24 +243,14 @@ static void test_outset_all_or_nothing(void **state)
     lt_outset_abort(s);
     /* a directory where the third output goes: refused before any rename */
     assert_int_equal(mkdir(c, 0755), 0);
-    assert_int_equal(lt_outset_add(s, a, &ta, &d), 0);
-    assert_int_equal(lt_outset_add(s, b, &tb, &d), 0);
-    assert_int_equal(lt_outset_add(s, c, &tc, &d), 0);
-    write_text(ta, "new a");
-    write_text(tb, "new b");
-    write_text(tc, "new c");
+    prepare3(s, a, b, c);
     assert_int_equal(lt_outset_commit(s, &d), -1);
     assert_non_null(strstr(d.msg, "is a directory"));
     assert_true(same_text(a, "old a") && same_text(b, "old b"));
     assert_int_equal(count_tmp(), 0);
     rmdir(c);
     /* the commit: all new */
-    assert_int_equal(lt_outset_add(s, a, &ta, &d), 0);
-    assert_int_equal(lt_outset_add(s, b, &tb, &d), 0);
-    assert_int_equal(lt_outset_add(s, c, &tc, &d), 0);
-    write_text(ta, "new a");
-    write_text(tb, "new b");
-    write_text(tc, "new c");
+    prepare3(s, a, b, c);
     assert_int_equal(lt_outset_commit(s, &d), 0);
     assert_true(same_text(a, "new a") && same_text(b, "new b") && same_text(c, "new c"));
     assert_int_equal(count_tmp(), 0);
