@@ -293,7 +293,7 @@ static int render_truth(const lt_scene_t *sc, const lt_reproj_cam_t *d, float *z
     cam.height = d->height;
     if (lt_frame_alloc(&fr, d->width, d->height, diag) != 0)
         return -1;
-    acc = lt_accel_build(sc, "bvh", LT_PATH_F32, diag);
+    acc = lt_accel_build(sc, "bvh", lt_paths_find("f32", LT_PATHS_OBJECT), diag);
     if (acc == NULL) {
         lt_frame_free(&fr);
         return -1;

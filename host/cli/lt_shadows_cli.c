@@ -269,7 +269,7 @@ static int shadows_load(shadows_t *s)
         return EXIT_INPUT;
     }
     lt_ss_opts_default(&s->sc, &o);
-    o.path = (lt_path_t)s->path->path;
+    o.path = s->path;
     o.leaf = (uint32_t)s->leaf;
     o.flags = s->flags;
     o.qmc = qmc_kinds[s->qmc];

@@ -11,17 +11,17 @@
 const lt_path_info_t lt_paths[] = {
     {"q16", "s15.16",
      "fixed point: s15.16 positions and distances, s1.30 directions, exact int64 products",
-     LT_PATHS_OBJECT | LT_PATHS_FRUSTA, 16, LT_PATH_Q16, (int)LT_BVH_NUM_Q16, LT_SF_NUM_Q16, -1,
-     -1},
+     LT_PATHS_OBJECT | LT_PATHS_FRUSTA, 16, &lt_render_ops_q16, (int)LT_BVH_NUM_Q16, LT_SF_NUM_Q16,
+     -1, -1},
     {"n64", "s1.30",
      "screen space in s1.30 (w = z_ref / z, rays), 64-bit quadtree nodes (24-bit C)",
-     LT_PATHS_SCREEN, 30, -1, 0, 0, LT_QT_N64, LT_SSB_Q30},
+     LT_PATHS_SCREEN, 30, NULL, 0, 0, LT_QT_N64, LT_SSB_Q30},
     {"n32", "s1.30", "screen space in s1.30, 32-bit quadtree nodes (12-bit C, minifloat boxes)",
-     LT_PATHS_SCREEN, 30, -1, 0, 0, LT_QT_N32, LT_SSB_Q30},
+     LT_PATHS_SCREEN, 30, NULL, 0, 0, LT_QT_N32, LT_SSB_Q30},
     {"f32", "float32", "IEEE binary32, no FMA contraction (bit-identical on every build)",
-     LT_PATHS_OBJECT | LT_PATHS_FRUSTA | LT_PATHS_SCREEN, 0, LT_PATH_F32, (int)LT_BVH_NUM_F32,
-     LT_SF_NUM_F32, LT_QT_F32, LT_SSB_F32},
-    {NULL, NULL, NULL, 0, 0, -1, 0, 0, -1, -1},
+     LT_PATHS_OBJECT | LT_PATHS_FRUSTA | LT_PATHS_SCREEN, 0, &lt_render_ops_f32,
+     (int)LT_BVH_NUM_F32, LT_SF_NUM_F32, LT_QT_F32, LT_SSB_F32},
+    {NULL, NULL, NULL, 0, 0, NULL, 0, 0, -1, -1},
 };
 
 const lt_path_info_t *lt_paths_find(const char *name, unsigned families)
@@ -35,14 +35,7 @@ const lt_path_info_t *lt_paths_find(const char *name, unsigned families)
     return NULL;
 }
 
-const lt_path_info_t *lt_paths_of_path(lt_path_t path)
-{
-    const lt_path_info_t *p;
-    for (p = lt_paths; p->name != NULL; p++)
-        if (p->path >= 0 && p->path == (int)path)
-            return p;
-    return NULL;
-}
+int lt_paths_index(const lt_path_info_t *p) { return (int)(p - lt_paths); }
 
 const lt_path_info_t *lt_paths_of_qt_enc(lt_qt_enc_t e)
 {

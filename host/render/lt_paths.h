@@ -23,16 +23,16 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "render/lt_render.h"
 #include "lt/lt_qt.h"
 #include "lt/lt_ssdda.h"
+#include "render/lt_path_ops.h"
 
 #ifdef __cplusplus
 extern "C" {
 #endif
 
 /* More than the number of entries and than any path's value in a family's enumeration (arrays
- * indexed by lt_path_t use it). */
+ * indexed by lt_paths_index use it). */
 #define LT_PATHS_MAX 8
 
 /* The families of kernels a path can serve (bits). */
@@ -46,8 +46,9 @@ typedef struct lt_path_info {
     const char *desc;   /* one line for help texts and docs */
     unsigned families;  /* LT_PATHS_* */
     int frac_bits;      /* fixed point: fraction bits of the format (raw / 2^frac_bits); 0: float */
-    /* the path in each family's enumeration, -1 where it does not serve the family */
-    int path;           /* lt_path_t */
+    /* the operations of each family it serves (lt_path_ops.h), NULL for the others */
+    const lt_render_ops_t *render; /* LT_PATHS_OBJECT */
+    /* the path in the core's and the scene file's enumerations, -1 / 0 where it has no value */
     int bvh_num;        /* LT_BVH_NUM_* (0: none) */
     int sf_num;         /* lt_sf_num_t bit (0: none) */
     int qt_enc;         /* lt_qt_enc_t */
@@ -60,9 +61,11 @@ extern const lt_path_info_t lt_paths[];
 /* The path called name that serves one of the families (0: any), or NULL. */
 const lt_path_info_t *lt_paths_find(const char *name, unsigned families);
 
-/* The entry of an lt_path_t / an lt_qt_enc_t (NULL when out of range). */
-const lt_path_info_t *lt_paths_of_path(lt_path_t p);
+/* The entry of an lt_qt_enc_t (NULL when out of range). */
 const lt_path_info_t *lt_paths_of_qt_enc(lt_qt_enc_t e);
+
+/* The position of p in lt_paths (0 ..), for arrays of LT_PATHS_MAX per path. */
+int lt_paths_index(const lt_path_info_t *p);
 
 /* The names of the paths serving any of families, in table order, into names[0..max-2] and a
  * NULL after them (an ENUM option's list). Returns how many. */

@@ -15,6 +15,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#define SS_Q16(o) ((o)->path->frac_bits == 16)
+
 struct lt_softshadow {
     const lt_scene_t *s;
     lt_camera_t cam;
@@ -83,7 +85,7 @@ void lt_ss_opts_default(const lt_scene_t *s, lt_ss_opts_t *o)
 {
     int e;
     memset(o, 0, sizeof *o);
-    o->path = LT_PATH_Q16;
+    o->path = lt_paths_find("q16", LT_PATHS_FRUSTA);
     o->leaf = 8;
     o->flags = LT_FRUSTA_BACKFACE | LT_FRUSTA_CORNER | LT_FRUSTA_CR;
     o->pflags = LT_FRUSTA_BACKFACE | LT_FRUSTA_CORNER | LT_FRUSTA_CR;
@@ -232,7 +234,7 @@ static int build_tree(const lt_softshadow_t *ss, uint32_t max_leaf, uint32_t min
     if (st == LT_OK && (*arena = alloc64(bytes)) == NULL)
         st = LT_E_SPACE;
     if (st == LT_OK)
-        st = ss->o.path == LT_PATH_Q16
+        st = SS_Q16(&ss->o)
                  ? lt_bvh_build_q16(bvh, &d, ss->s->tq, ss->s->ntris, *arena, bytes)
                  : lt_bvh_build_f32(bvh, &d, ss->s->tf, ss->s->ntris, *arena, bytes);
     if (st != LT_OK) {
@@ -397,7 +399,7 @@ lt_softshadow_t *lt_ss_create(const lt_scene_t *s, const lt_camera_t *cam, const
         }
     }
     /* the sample table of the light */
-    if (o->path == LT_PATH_Q16) {
+    if (SS_Q16(o)) {
         lt_frusta_light_q16_t fl;
         for (a = 0; a < 3; a++) {
             fl.c[a] = lt_q16_from_double_sat(l->c[a]);
@@ -444,7 +446,7 @@ lt_softshadow_t *lt_ss_create(const lt_scene_t *s, const lt_camera_t *cam, const
             return NULL;
         }
     }
-    if (o->path == LT_PATH_Q16) {
+    if (SS_Q16(o)) {
         region(s->tq, s->ntris * sizeof *s->tq, 0);
         region(ss->tnq, s->ntris * 3 * sizeof *ss->tnq, 3);
         region(ss->tbq, sizeof *ss->tbq, 4);
@@ -460,7 +462,7 @@ lt_softshadow_t *lt_ss_create(const lt_scene_t *s, const lt_camera_t *cam, const
     region(ss->adeep, ss->deep.bytes, 1);
     region(ss->ashal, ss->shal.bytes, 2);
     region(ss->valid, n, 11);
-    if (o->path == LT_PATH_Q16)
+    if (SS_Q16(o))
         region(ss->vtq, sizeof *ss->vtq, 12);
     else
         region(ss->vtf, sizeof *ss->vtf, 12);
@@ -655,7 +657,7 @@ void lt_ss_primary(lt_softshadow_t *ss)
     ss->cnt.primary_rays = 0;
     for (ty = 0; ty < ss->h; ty += 4)
         for (tx = 0; tx < ss->w; tx += 4) {
-            if (ss->o.path == LT_PATH_Q16)
+            if (SS_Q16(&ss->o))
                 primary_q16(ss, tx, ty);
             else
                 primary_f32(ss, tx, ty);
@@ -675,7 +677,7 @@ void lt_ss_primary_frusta(lt_softshadow_t *ss)
     for (by = 0; by < ss->h; by += 16)
         for (bx = 0; bx < ss->w; bx += 16) {
             lt_mask16_t act;
-            if (ss->o.path == LT_PATH_Q16) {
+            if (SS_Q16(&ss->o)) {
                 (void)lt_frusta_psetup16_q16(ss->vtq, bx, by, &Pq);
                 (void)lt_frusta_trace16_q16(&ss->shal, ss->s->tq, ss->vtq, &Pq);
                 act = Pq.active;
@@ -689,7 +691,7 @@ void lt_ss_primary_frusta(lt_softshadow_t *ss)
                 lt_hit16_t hit;
                 if (((unsigned)act >> f & 1u) == 0)
                     continue;
-                if (ss->o.path == LT_PATH_Q16) {
+                if (SS_Q16(&ss->o)) {
                     static lt_ray16_q16_t r;
                     lt_vq16_t d[3];
                     lt_phase_t prev = LT_PHASE_ENTER(SHADE);
@@ -742,7 +744,7 @@ uint32_t lt_ss_primary_hash(const lt_softshadow_t *ss)
         int j, a;
         v[0] = (uint32_t)ss->id[q];
         v[1] = ss->valid[q] | (uint32_t)ss->lit[q] << 1;
-        if (ss->o.path == LT_PATH_Q16) {
+        if (SS_Q16(&ss->o)) {
             v[2] = (uint32_t)ss->zq[q];
             v[3] = (uint32_t)ss->gq[q];
             for (a = 0; a < 3; a++) {
@@ -814,7 +816,7 @@ void lt_ss_shadows_frusta(lt_softshadow_t *ss)
                 int a = q != (size_t)-1 && ss->lit[q];
                 if (a)
                     k = (lt_mask16_t)(k | (1u << i));
-                if (ss->o.path == LT_PATH_Q16) {
+                if (SS_Q16(&ss->o)) {
                     Fq.ox.l[i] = a ? ss->oq[0][q] : 0;
                     Fq.oy.l[i] = a ? ss->oq[1][q] : 0;
                     Fq.oz.l[i] = a ? ss->oq[2][q] : 0;
@@ -825,7 +827,7 @@ void lt_ss_shadows_frusta(lt_softshadow_t *ss)
                 }
             }
             LT_PHASE_LEAVE(prev);
-            if (ss->o.path == LT_PATH_Q16) {
+            if (SS_Q16(&ss->o)) {
                 (void)lt_frusta_setup16_q16(ss->tbq, k, &Fq);
                 (void)lt_frusta_occluded16_q16(&ss->shal, ss->s->tq, ss->tbq, &Fq);
             } else {
@@ -836,7 +838,7 @@ void lt_ss_shadows_frusta(lt_softshadow_t *ss)
             for (i = 0; i < LT_LANES; i++) {
                 size_t q = pix(ss, tx, ty, i);
                 if (q != (size_t)-1)
-                    ss->occ[0][q] = ss->o.path == LT_PATH_Q16 ? Fq.occl[i] : Ff.occl[i];
+                    ss->occ[0][q] = SS_Q16(&ss->o) ? Fq.occl[i] : Ff.occl[i];
             }
         }
     count_occ(ss, 0);
@@ -846,7 +848,7 @@ void lt_ss_shadows_frusta(lt_softshadow_t *ss)
 static uint16_t packet1(lt_softshadow_t *ss, size_t q, unsigned set)
 {
     lt_mask16_t pk = 0, occ = 0;
-    if (ss->o.path == LT_PATH_Q16) {
+    if (SS_Q16(&ss->o)) {
         static lt_ray16_q16_t r;
         lt_q16_t o[3];
         o[0] = ss->oq[0][q], o[1] = ss->oq[1][q], o[2] = ss->oq[2][q];
@@ -888,7 +890,7 @@ void lt_ss_shade(lt_softshadow_t *ss, int which)
             LT_COST(VLOAD, 2);
             LT_COST(VALU, 3);
             LT_COST(VSTORE, 1);
-            if (ss->o.path == LT_PATH_Q16) {
+            if (SS_Q16(&ss->o)) {
                 lt_vq16_t g, v, e;
                 for (i = 0; i < LT_LANES; i++) {
                     size_t q = pix(ss, tx, ty, i);
@@ -931,7 +933,7 @@ static void filter_into(lt_softshadow_t *ss, int ref)
 {
     uint32_t x, y;
     int vis = ss->o.filter_vis;
-    if (ss->o.path == LT_PATH_Q16) {
+    if (SS_Q16(&ss->o)) {
         lt_frusta_filter_q16_t par;
         const lt_q16_t *in = vis ? (ref ? ss->vrq : ss->vq) : (ref ? ss->erq : ss->eq);
         lt_q16_t *out = ref ? ss->efrq : ss->efq;
@@ -993,7 +995,7 @@ void lt_ss_filter(lt_softshadow_t *ss) { filter_into(ss, 0); }
 
 static double gval(const lt_softshadow_t *ss, size_t q)
 {
-    return ss->o.path == LT_PATH_Q16 ? (double)ss->gq[q] / 65536.0 : (double)ss->gf[q];
+    return SS_Q16(&ss->o) ? (double)ss->gq[q] / 65536.0 : (double)ss->gf[q];
 }
 
 void lt_ss_reference(lt_softshadow_t *ss, void (*progress)(double done))
@@ -1024,7 +1026,7 @@ void lt_ss_counts(const lt_softshadow_t *ss, lt_ss_counts_t *c) { *c = ss->cnt; 
 
 static double eval(const lt_softshadow_t *ss, size_t q, int which)
 {
-    if (ss->o.path == LT_PATH_Q16) {
+    if (SS_Q16(&ss->o)) {
         const lt_q16_t *a = which == 0 ? ss->efq : (which == 1 ? ss->eq : (which == 2 ? ss->erq
                                                                                       : ss->efrq));
         return (double)a[q] / 65536.0;
@@ -1106,7 +1108,7 @@ uint32_t lt_ss_hash(const lt_softshadow_t *ss)
         unsigned char b[8];
         int j;
         v[0] = ss->last >= 0 ? ss->occ[ss->last][q] : 0u;
-        if (ss->o.path == LT_PATH_Q16)
+        if (SS_Q16(&ss->o))
             v[1] = (uint32_t)ss->efq[q];
         else
             memcpy(&v[1], &ss->eff[q], 4);
@@ -1130,7 +1132,7 @@ void lt_ss_origins(const lt_softshadow_t *ss, double *o, uint8_t *lit)
     int a;
     for (q = 0; q < ss->n; q++) {
         for (a = 0; a < 3; a++)
-            o[q * 3 + (size_t)a] = ss->o.path == LT_PATH_Q16 ? (double)ss->oq[a][q] / 65536.0
+            o[q * 3 + (size_t)a] = SS_Q16(&ss->o) ? (double)ss->oq[a][q] / 65536.0
                                                              : (double)ss->of[a][q];
         lit[q] = ss->lit[q];
     }
@@ -1184,7 +1186,7 @@ static void brute1(const lt_softshadow_t *ss, size_t q, unsigned set, unsigned j
     double o[3], d[3], tmin, tmax;
     int a, cull = (ss->o.flags & LT_FRUSTA_BACKFACE) != 0;
     *any = *gen = 0;
-    if (ss->o.path == LT_PATH_Q16) {
+    if (SS_Q16(&ss->o)) {
         lt_ray1_q16_t r;
         lt_q16_t oq[3];
         for (a = 0; a < 3; a++)
@@ -1304,7 +1306,7 @@ static int prim_right(const lt_softshadow_t *ss, uint32_t x, uint32_t y, int32_t
     double o[3], d[3], v[9];
     uint32_t i;
     int a, cull = (ss->o.pflags & LT_FRUSTA_BACKFACE) != 0;
-    if (ss->o.path == LT_PATH_Q16) {
+    if (SS_Q16(&ss->o)) {
         lt_ray1_q16_t r;
         lt_q16_t t, rt = 0;
         memcpy(&t, &tbits, 4);

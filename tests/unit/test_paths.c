@@ -34,13 +34,14 @@ static void test_names_unique_and_found(void **state)
         assert_ptr_equal(lt_paths_find(p->name, 0), p);
         assert_ptr_equal(lt_paths_find(p->name, p->families), p);
         /* a family serves: its enumeration value exists */
-        assert_int_equal((p->families & (LT_PATHS_OBJECT | LT_PATHS_FRUSTA)) != 0, p->path >= 0);
+        assert_int_equal((p->families & LT_PATHS_OBJECT) != 0, p->render != NULL);
         assert_int_equal((p->families & LT_PATHS_OBJECT) != 0, p->bvh_num != 0);
         assert_int_equal((p->families & LT_PATHS_OBJECT) != 0, p->sf_num != 0);
         assert_int_equal((p->families & LT_PATHS_SCREEN) != 0, p->qt_enc >= 0);
         assert_int_equal((p->families & LT_PATHS_SCREEN) != 0, p->ssb_enc >= 0);
         assert_int_equal(p->frac_bits == 0, strcmp(p->format, "float32") == 0);
-        assert_true(p->path < LT_PATHS_MAX && p->qt_enc < LT_PATHS_MAX);
+        assert_true(p->qt_enc < LT_PATHS_MAX);
+        assert_int_equal(lt_paths_index(p), n);
     }
     assert_int_equal(n, 4);
     assert_true(n < LT_PATHS_MAX);
@@ -55,9 +56,6 @@ static void test_enumerations_map_back(void **state)
     const lt_path_info_t *q16 = lt_paths_find("q16", 0), *f32 = lt_paths_find("f32", 0);
     const lt_path_info_t *n64 = lt_paths_find("n64", 0), *n32 = lt_paths_find("n32", 0);
     (void)state;
-    assert_ptr_equal(lt_paths_of_path(LT_PATH_Q16), q16);
-    assert_ptr_equal(lt_paths_of_path(LT_PATH_F32), f32);
-    assert_null(lt_paths_of_path((lt_path_t)7));
     assert_ptr_equal(lt_paths_of_qt_enc(LT_QT_N64), n64);
     assert_ptr_equal(lt_paths_of_qt_enc(LT_QT_N32), n32);
     assert_ptr_equal(lt_paths_of_qt_enc(LT_QT_F32), f32);

@@ -1,0 +1,101 @@
+/* lt_path_ops.h - the operations a renderer needs from one numeric path, one table type per family
+ * of kernels, so the renderers call path->render->xxx(...) instead of branching on the path:
+ *   lt_render_ops_t  object space (lt_render: lanetrace run, render): the scene's triangles in the
+ *                    path, the build and the packet, any-hit and single-ray traces of each
+ *                    structure, the camera's packets, lanes from doubles and tmax as a double
+ *   lt_ss_ops_t      the multi-frusta soft shadows (lt_softshadow: lanetrace shadows)
+ *   lt_rp_ops_t      the screen-space tracers (lt_reproject: lanetrace reproject)
+ * Each table is written once per family as a template over the path's generic names
+ * (lt_render_path.inc, lt_softshadow_path.inc, lt_reproject_path.inc, instantiated with
+ * lt_path_<suffix>.h in lt_render_paths.c, lt_softshadow_paths.c and lt_reproject_paths.c), and
+ * the registry entry of a path (lt_paths.h) points at its tables. Path-typed data (triangles,
+ * boxes, packets, per-pixel buffers) cross these tables as void pointers to the path's own core
+ * types; every table member is set (NULL only where a comment says a path may lack it).
+ * Host only.
+ */
+#ifndef LT_PATH_OPS_H
+#define LT_PATH_OPS_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "lt/lt.h"
+#include "lt/lt_hiz.h"
+#include "lt/lt_reproj.h"
+#include "lt/lt_ssdda.h"
+#include "io/lt_diag.h"
+#include "render/lt_scene.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ---- object space ------------------------------------------------------------------------- */
+
+/* "tris" is the scene's triangle array in the path (lt_tri_<p>_t), "r" one 16-ray packet
+ * (lt_ray16_<p>_t, ray16_bytes), "boxes" the chunk boxes (lt_aabb_<p>_t), "kd" / "grid" the path's
+ * kd-tree / grid header (lt_kd_<p>_t, lt_grid_<p>_t: kd_bytes, grid_bytes). Closest-hit traces
+ * shorten the lanes' tmax and write hit->id; any-hit traces return the occluded lanes. */
+typedef struct lt_render_ops {
+    const void *(*tris)(const lt_scene_t *s);
+    size_t tri_bytes;
+    /* 0, or -1 with a message naming `name` when the path cannot represent the prepared scene;
+       NULL: it represents every scene */
+    int (*scene_check)(const lt_scene_t *s, const char *name, lt_diag_t *diag);
+
+    /* chunks: a box per LT_CHUNK triangles */
+    size_t box_bytes;
+    lt_status_t (*chunks_build)(const void *tris, uint32_t n, void *boxes);
+    void (*chunks_trace16)(const void *tris, uint32_t n, const void *boxes, void *r, lt_mask16_t k,
+                           lt_hit16_t *hit);
+    /* the BVH (lt_bvh_t is the same type in every path) */
+    lt_status_t (*bvh_build)(lt_bvh_t *bvh, const lt_bvh_desc_t *desc, const void *tris,
+                             uint32_t n, void *arena, size_t bytes);
+    void (*bvh_trace16)(const lt_bvh_t *bvh, const void *tris, void *r, lt_mask16_t k,
+                        lt_hit16_t *hit);
+    lt_mask16_t (*bvh_occluded16)(const lt_bvh_t *bvh, const void *tris, void *r, lt_mask16_t k);
+    /* one ray from o along the unit direction d (doubles, scaled units): the hit id (-1: none) and
+       its distance in *t */
+    int32_t (*bvh_trace1)(const lt_bvh_t *bvh, const void *tris, const double o[3],
+                          const double d[3], double *t);
+    /* the BVH with 16-byte quantised nodes: all four NULL where the path has none */
+    lt_status_t (*bvhq_build)(lt_bvhq_t *q, const lt_bvh_t *src, void *mem, size_t bytes);
+    void (*bvhq_trace16)(const lt_bvhq_t *q, const void *tris, void *r, lt_mask16_t k,
+                         lt_hit16_t *hit);
+    lt_mask16_t (*bvhq_occluded16)(const lt_bvhq_t *q, const void *tris, void *r, lt_mask16_t k);
+    int32_t (*bvhq_trace1)(const lt_bvhq_t *q, const void *tris, const double o[3],
+                           const double d[3], double *t);
+    /* kd-tree; *bytes: the arena's size in, the tree's bytes out */
+    size_t kd_bytes;
+    lt_status_t (*kd_build)(void *kd, const void *tris, uint32_t n, const lt_kd_params_t *p,
+                            void *mem, size_t *bytes);
+    void (*kd_trace16)(const void *kd, void *r, lt_mask16_t k, lt_hit16_t *hit);
+    lt_mask16_t (*kd_occluded16)(const void *kd, void *r, lt_mask16_t k);
+    /* uniform grid */
+    size_t grid_bytes;
+    lt_status_t (*grid_size)(const void *tris, uint32_t n, const lt_grid_params_t *p,
+                             size_t *bytes);
+    lt_status_t (*grid_build)(void *grid, const void *tris, uint32_t n, const lt_grid_params_t *p,
+                              void *mem, size_t *bytes);
+    void (*grid_trace16)(const void *grid, void *r, lt_mask16_t k, lt_hit16_t *hit);
+    lt_mask16_t (*grid_occluded16)(const void *grid, void *r, lt_mask16_t k);
+
+    /* packets */
+    size_t ray16_bytes;
+    /* the camera's packet of the 4x4 tile at (tx, ty), set up; returns the lanes on the image */
+    lt_mask16_t (*camera_packet)(const lt_camera_t *c, uint32_t tx, uint32_t ty, void *r);
+    /* lane i from doubles (origin and tmin, tmax in scaled units, unit direction); not set up */
+    void (*ray16_lane)(void *r, int i, const double o[3], const double d[3], double tmin,
+                       double tmax);
+    void (*ray16_tmin)(void *r, int i, double tmin);
+    void (*ray16_setup)(void *r);
+    /* lane i's tmax (the hit distance after a closest-hit trace) in scaled units */
+    double (*ray16_t)(const void *r, int i);
+} lt_render_ops_t;
+
+extern const lt_render_ops_t lt_render_ops_q16, lt_render_ops_f32;
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* LT_PATH_OPS_H */

@@ -1,0 +1,17 @@
+/* lt_path_undef.h - removes the generic LTH_* names of lt_path_<suffix>.h so the next path can
+ * define them. Host only.
+ */
+#undef LTH_FN
+#undef LTH_TY
+#undef LTH_MID
+#undef LTH_TRIS
+#undef LTH_T
+#undef LTH_D
+#undef LTH_POS
+#undef LTH_DIR
+#undef LTH_POS_D
+#undef LTH_DIR_D
+#undef LTH_TMAX1
+#undef LTH_HAS_BVHQ
+#undef LTH_IF_BVHQ
+#undef LTH_SCENE_CHECK
