@@ -16,3 +16,8 @@
 #define LTH_IF_BVHQ(x) NULL
 #define LTH_HAS_BVHQ 0
 #define LTH_SCENE_CHECK NULL
+#define LTH_W float
+#define LTH_W_BYTES 0
+#define LTH_XY_D(x) ((double)(x))
+#define LTH_W_D(x) ((double)(x))
+#define LTH_REPROJ_SETUP(src, dst, o, map) lt_reproj_setup((src), (dst), (o), NULL, (map))

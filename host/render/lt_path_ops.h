@@ -95,6 +95,51 @@ typedef struct lt_render_ops {
 
 extern const lt_render_ops_t lt_render_ops_q16, lt_render_ops_f32;
 
+/* ---- screen space ------------------------------------------------------------------------- */
+
+/* One traced lane of a reprojected packet, in doubles: its result and its segment. */
+typedef struct lt_rp_lane {
+    int status, layer;              /* LT_QT_*, the layer of the hit or occlusion */
+    double t, w;                    /* hit parameter along the segment (0..1), inverse depth there */
+    uint32_t nodes, aabb, planes;   /* nodes (pixels, cells) visited, box and plane tests */
+    double x, y, w0, dx, dy, dw;    /* the segment: start (pixels, inverse depth) and extent */
+} lt_rp_lane_t;
+
+/* "w" is the w buffer in the path's format (w_bytes per sample; w_bytes 0: the path computes in
+ * float32, its w buffer is the float copy itself), "map" the path's reprojection mapping
+ * (lt_reproj_<p>_t, map_bytes), "r" / "h" a packet of segments and its results (lt_qray16_<p>_t,
+ * lt_qhit16_<p>_t). The quadtree's node encoding and the DDA's and Hi-Z's w format come with the
+ * descriptors (the registry's qt_enc and ssb_enc). */
+typedef struct lt_rp_ops {
+    size_t w_bytes;
+    /* w = 2^e / z of n depths into w and its float value into wf (w may be wf when w_bytes is 0) */
+    void (*w_from_depth)(const float *z, size_t n, int e, void *w, float *wf);
+    lt_status_t (*qt_build)(lt_qt_t *qt, const lt_qt_desc_t *d, const lt_qt_params_t *p,
+                            const void *w, void *arena, size_t *bytes);
+    lt_status_t (*dda_init)(lt_ssdda_t *dda, const lt_ssb_desc_t *d, const lt_ssb_params_t *p,
+                            const void *w);
+    lt_status_t (*hiz_build)(lt_hiz_t *hz, const lt_ssb_desc_t *d, const lt_ssb_params_t *p,
+                             const void *w, void *arena, size_t *bytes);
+    /* the quadtree's plane nodes (not boxes) among its first `nodes` nodes, in this encoding */
+    uint64_t (*qt_planes)(const void *arena, uint64_t nodes);
+    size_t map_bytes, ray_bytes, hit_bytes;
+    /* the mapping of a camera pair (lt_reproj_setup's result in this path) */
+    lt_status_t (*setup)(const lt_reproj_cam_t *src, const lt_reproj_cam_t *dst,
+                         const lt_reproj_opts_t *o, void *map);
+    /* the segments of the target's 4x4 tile at (tx, ty); *k in: lanes on the image, out: lanes
+       with a segment */
+    void (*rays16)(const void *map, uint32_t tx, uint32_t ty, void *r, lt_mask16_t *k);
+    void (*qt_trace16)(const lt_qt_t *qt, const void *r, lt_mask16_t k, uint32_t max_steps,
+                       void *h);
+    void (*dda_trace16)(const lt_ssdda_t *dda, const void *r, lt_mask16_t k, uint32_t max_steps,
+                        void *h);
+    void (*hiz_trace16)(const lt_hiz_t *hz, const void *r, lt_mask16_t k, uint32_t max_steps,
+                        void *h);
+    void (*lane)(const void *r, const void *h, int l, lt_rp_lane_t *out);
+} lt_rp_ops_t;
+
+extern const lt_rp_ops_t lt_rp_ops_n64, lt_rp_ops_n32, lt_rp_ops_f32;
+
 #ifdef __cplusplus
 }
 #endif

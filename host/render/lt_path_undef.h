@@ -15,3 +15,8 @@
 #undef LTH_HAS_BVHQ
 #undef LTH_IF_BVHQ
 #undef LTH_SCENE_CHECK
+#undef LTH_W
+#undef LTH_W_BYTES
+#undef LTH_XY_D
+#undef LTH_W_D
+#undef LTH_REPROJ_SETUP

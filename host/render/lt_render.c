@@ -192,8 +192,8 @@ lt_accel_t *lt_accel_build(const lt_scene_t *s, const char *structure,
         return NULL;
     }
     a = calloc(1, sizeof *a);
-    if (a != NULL)
-        a->ray = calloc(1, path->render->ray16_bytes);
+    if (a != NULL && (a->ray = alloc64(path->render->ray16_bytes)) != NULL)
+        memset(a->ray, 0, path->render->ray16_bytes);
     if (a == NULL || a->ray == NULL) {
         free(a);
         lt_diag_fail(diag, "out of memory");

@@ -35,6 +35,7 @@ static void test_names_unique_and_found(void **state)
         assert_ptr_equal(lt_paths_find(p->name, p->families), p);
         /* a family serves: its enumeration value exists */
         assert_int_equal((p->families & LT_PATHS_OBJECT) != 0, p->render != NULL);
+        assert_int_equal((p->families & LT_PATHS_SCREEN) != 0, p->screen != NULL);
         assert_int_equal((p->families & LT_PATHS_OBJECT) != 0, p->bvh_num != 0);
         assert_int_equal((p->families & LT_PATHS_OBJECT) != 0, p->sf_num != 0);
         assert_int_equal((p->families & LT_PATHS_SCREEN) != 0, p->qt_enc >= 0);
