@@ -95,6 +95,54 @@ typedef struct lt_render_ops {
 
 extern const lt_render_ops_t lt_render_ops_q16, lt_render_ops_f32;
 
+/* ---- multi-frusta soft shadows ------------------------------------------------------------ */
+
+struct lt_softshadow;
+
+/* The stages of lt_softshadow's renderer that work in the path's lanes; everything else
+ * (loops over tiles, counts, audits in double, hashes, images) is written once in
+ * lt_softshadow.c over its per-pixel buffers, whose elements are 4 bytes in every path (s15.16 /
+ * s1.30 raw or binary32: lt_softshadow_int.h). A path serving the frusta family serves the object
+ * family too: its BVHs are built and its triangles found through the path's render ops. "r1" is
+ * a single ray (lt_ray1_<p>_t, ray1_bytes). */
+typedef struct lt_ss_ops {
+    size_t table_bytes, vtable_bytes; /* lt_frusta_table_<p>_t, lt_frusta_vtable_<p>_t */
+    /* the path's data from the scene's and the light's doubles: triangle normals, the light's
+       centre m and emitting normal nl, its sample table, the primary view table; 0, or -1 with a
+       message */
+    int (*init)(struct lt_softshadow *ss, const double m[3], const double nl[3],
+                lt_diag_t *diag);
+    /* P-Packet of the 4x4 tile at (tx, ty) / P-Frusta of the 16x16 block at (bx, by), each with
+       its shading and its answer kept per pixel */
+    void (*primary_tile)(struct lt_softshadow *ss, uint32_t tx, uint32_t ty);
+    void (*primary_block)(struct lt_softshadow *ss, uint32_t bx, uint32_t by);
+    /* S-Frusta of the 4x4 tile at (tx, ty); S-Packet of pixel q's 16 samples of set `set`
+       (returns the occluded samples) */
+    void (*shadows_tile)(struct lt_softshadow *ss, uint32_t tx, uint32_t ty);
+    uint16_t (*packet)(struct lt_softshadow *ss, size_t q, unsigned set);
+    /* E = G x visible fraction of the tile's pixels from stage `which`'s occlusion (the lanes;
+       the caller charges the loads and stores and enters SHADE) */
+    void (*shade_tile)(struct lt_softshadow *ss, uint32_t tx, uint32_t ty, int which);
+    /* the 4x4 discontinuity filter of E (ref 0) or of the reference's E (ref 1) */
+    void (*filter)(struct lt_softshadow *ss, int ref);
+    /* pixel q's normal as one word of lt_ss_primary_hash */
+    uint32_t (*normal_word)(const struct lt_softshadow *ss, size_t q);
+    /* the audits' single rays: sample j of set `set` from pixel q's origin / pixel (x, y)'s
+       primary ray into r1, and in doubles (origin, direction, interval); 0, or -1 when the core
+       refuses it */
+    size_t ray1_bytes;
+    int (*shadow_ray1)(const struct lt_softshadow *ss, size_t q, unsigned set, unsigned j,
+                       void *r1, double o[3], double d[3], double *tmin, double *tmax);
+    int (*primary_ray1)(const struct lt_softshadow *ss, uint32_t x, uint32_t y, void *r1,
+                        double o[3], double d[3]);
+    /* triangle i against r1 by the single-ray kernel (with cull: front faces only): 1 and the
+       distance in *t for a hit, else 0; the triangle's vertices as the kernel sees them */
+    int (*tri1)(const struct lt_softshadow *ss, const void *r1, uint32_t i, int cull, double *t);
+    void (*tri_vertices)(const struct lt_softshadow *ss, uint32_t i, double v[9]);
+} lt_ss_ops_t;
+
+extern const lt_ss_ops_t lt_ss_ops_q16, lt_ss_ops_f32;
+
 /* ---- screen space ------------------------------------------------------------------------- */
 
 /* One traced lane of a reprojected packet, in doubles: its result and its segment. */

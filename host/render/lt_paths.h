@@ -48,6 +48,7 @@ typedef struct lt_path_info {
     int frac_bits;      /* fixed point: fraction bits of the format (raw / 2^frac_bits); 0: float */
     /* the operations of each family it serves (lt_path_ops.h), NULL for the others */
     const lt_render_ops_t *render; /* LT_PATHS_OBJECT */
+    const lt_ss_ops_t *frusta;     /* LT_PATHS_FRUSTA (such a path serves LT_PATHS_OBJECT too) */
     const lt_rp_ops_t *screen;     /* LT_PATHS_SCREEN */
     /* the path in the core's and the scene file's enumerations, -1 / 0 where it has no value */
     int bvh_num;        /* LT_BVH_NUM_* (0: none) */
