@@ -2,8 +2,8 @@
  * of the host's per-path templates mapped onto the core's _f32 entry points and types; see
  * lt_path_q16.h. Host only.
  */
-#ifndef LT_PATH_F32_HELPERS
-#define LT_PATH_F32_HELPERS
+#ifndef LTH_F32_HELPERS
+#define LTH_F32_HELPERS
 #include <string.h>
 #include "lt/lt.h"
 #include "lt/lt_frusta.h"
@@ -30,7 +30,7 @@ static inline uint32_t lth_f32_bits(float f)
     memcpy(&u, &f, sizeof u);
     return u;
 }
-#endif /* LT_PATH_F32_HELPERS */
+#endif /* LTH_F32_HELPERS */
 
 #define LTH_FN(name) name##_f32
 #define LTH_TY(name) name##_f32_t

@@ -4,8 +4,8 @@
  * whose arithmetic differs between fixed point and float. Include it, then a template, then
  * lt_path_undef.h (lt_render_paths.c shows the pattern). Host only.
  */
-#ifndef LT_PATH_Q16_HELPERS
-#define LT_PATH_Q16_HELPERS
+#ifndef LTH_Q16_HELPERS
+#define LTH_Q16_HELPERS
 #include <string.h>
 #include "lt/lt.h"
 #include "lt/lt_frusta.h"
@@ -57,7 +57,7 @@ static inline int lth_q16_front(const lt_ray1_q16_t *r, const lt_tri_q16_t *t)
     int64_t p2 = lt__round_sat32((int64_t)r->d[0] * t->e2[1] - (int64_t)r->d[1] * t->e2[0], 30);
     return t->e1[0] * p0 + t->e1[1] * p1 + t->e1[2] * p2 > 0;
 }
-#endif /* LT_PATH_Q16_HELPERS */
+#endif /* LTH_Q16_HELPERS */
 
 #define LTH_FN(name) name##_q16   /* a core entry point, or a host name generated per path */
 #define LTH_TY(name) name##_q16_t /* a core type */

@@ -20,6 +20,7 @@ const lt_path_info_t lt_paths[] = {
      .qt_enc = LT_QT_N64, .ssb_enc = LT_SSB_Q30},
     {.name = "n32", .format = "s1.30",
      .desc = "screen space in s1.30, 32-bit quadtree nodes (12-bit C, minifloat boxes)",
+     .note = "32-bit nodes",
      .families = LT_PATHS_SCREEN, .frac_bits = 30, .screen = &lt_rp_ops_n32,
      .qt_enc = LT_QT_N32, .ssb_enc = LT_SSB_Q30},
     {.name = "f32", .format = "float32",

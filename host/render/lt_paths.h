@@ -44,6 +44,7 @@ typedef struct lt_path_info {
     const char *name;   /* "q16": --num, the scene file's "numeric" / "reproject.encoding" */
     const char *format; /* the compute format: "s15.16", "s1.30", "float32" */
     const char *desc;   /* one line for help texts and docs */
+    const char *note;   /* a few words beside the format in option help ("32-bit nodes"), or NULL */
     unsigned families;  /* LT_PATHS_* */
     int frac_bits;      /* fixed point: fraction bits of the format (raw / 2^frac_bits); 0: float */
     /* the operations of each family it serves (lt_path_ops.h), NULL for the others */
