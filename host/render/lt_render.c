@@ -4,7 +4,6 @@
  * the cycle model's total per packet (lt_meter.h; zeros natively).
  */
 #include "render/lt_render.h"
-#include "io/lt_fx_float.h"
 #include "lt_meter.h"
 
 #include <math.h>
