@@ -189,12 +189,28 @@ typedef struct run {
     lt_camera_t cam;
     lt_frame_t ref, fr;
     /* outputs */
-    float *zbuf[LT_PATHS_MAX], *idbuf[LT_PATHS_MAX]; /* per lt_path_t */
+    float *zbuf[LT_PATHS_MAX], *idbuf[LT_PATHS_MAX]; /* per lt_paths_index */
     char zname[LT_PATHS_MAX][16], idname[LT_PATHS_MAX][16];
     cJSON *jout;
     FILE *csvf;
-    int status;
+    int status, heat_warned;
 } run_t;
+
+/* Whether the scene file's path bits select p (an object-space path). */
+static int run_selects(const lt_scenefile_t *sf, const lt_path_info_t *p)
+{
+    return (p->families & LT_PATHS_OBJECT) && ((unsigned)sf->numeric & (unsigned)p->sf_num);
+}
+
+/* How many paths the run traces. */
+static int run_npaths(const lt_scenefile_t *sf)
+{
+    const lt_path_info_t *p;
+    int n = 0;
+    for (p = lt_paths; p->name != NULL; p++)
+        n += run_selects(sf, p);
+    return n;
+}
 
 /* The options into r; LT_OPT_OK, LT_OPT_HELP or LT_OPT_USAGE. */
 static int run_parse(run_t *r, int argc, char **argv)
@@ -298,6 +314,7 @@ static int run_settle(run_t *r)
 static int run_load(run_t *r)
 {
     lt_scenefile_t *sf = &r->sf;
+    const lt_path_info_t *p;
     lt_diag_t diag;
     if (lt_mesh_load(sf->mesh, &r->mesh, &diag) != 0) {
         fprintf(stderr, "%s\n", diag.msg);
@@ -307,11 +324,13 @@ static int run_load(run_t *r)
         fprintf(stderr, "%s: %s\n", sf->mesh, diag.msg);
         return EXIT_INPUT;
     }
-    if (((unsigned)sf->numeric & (unsigned)lt_paths_of_path(LT_PATH_Q16)->sf_num) &&
-        lt_scene_check_q16(&r->sc, sf->mesh, &diag) != 0) {
-        fprintf(stderr, "%s\n", diag.msg);
-        return EXIT_INPUT;
-    }
+    /* every selected path must represent the scene */
+    for (p = lt_paths; p->name != NULL; p++)
+        if (run_selects(sf, p) && p->render->scene_check != NULL &&
+            p->render->scene_check(&r->sc, sf->mesh, &diag) != 0) {
+            fprintf(stderr, "%s\n", diag.msg);
+            return EXIT_INPUT;
+        }
     if (sf->has_camera) {
         if (lt_camera_look(&r->sc, sf->eye, sf->target, sf->up, sf->fov_y_deg, sf->width,
                            sf->height, &r->cam, &diag) != 0) {
@@ -351,7 +370,7 @@ static int run_csv_open(run_t *r)
 static int run_keep_depth(run_t *r, const lt_path_info_t *p)
 {
     size_t i, np = (size_t)r->sf.width * r->sf.height;
-    int path = p->path;
+    int path = lt_paths_index(p);
     r->zbuf[path] = malloc(np * sizeof(float));
     r->idbuf[path] = malloc(np * sizeof(float));
     if (r->zbuf[path] == NULL || r->idbuf[path] == NULL) {
@@ -377,9 +396,10 @@ static void run_heatmaps(run_t *r, const lt_path_info_t *p)
     char hp[1100];
     lt_heatmap_opts_t ho = LT_HEATMAP_OPTS_DEFAULT;
     if (!lt_meter_available()) {
-        if (p->path == LT_PATH_Q16)
+        if (!r->heat_warned)
             fprintf(stderr, "%s run: --heatmap needs the simulator build (build/sim/lanetrace); "
                             "ignored\n", prog);
+        r->heat_warned = 1;
         return;
     }
     snprintf(hp, sizeof hp, "%s.%s.png", heat_out, pname);
@@ -444,7 +464,7 @@ static void run_write_report(run_t *r, const char *pname, const char *text)
 {
     lt_diag_t diag;
     char p[4096];
-    int both = r->sf.numeric == LT_SF_NUM_BOTH;
+    int both = run_npaths(&r->sf) > 1;
     if (both ? lt_path_tagged(p, sizeof p, r->report, pname) != 0
              : snprintf(p, sizeof p, "%s", r->report) >= (int)sizeof p) {
         fprintf(stderr, "%s run: --report %.60s...: the path is longer than %zu bytes\n", prog,
@@ -548,7 +568,7 @@ static int run_path(run_t *r, const lt_path_info_t *p)
     size_t acc_bytes;
     uint64_t rays = (uint64_t)sf->width * sf->height * (uint64_t)r->repeat;
     lt_meter_reset();
-    acc = lt_accel_build(&r->sc, sf->structure, (lt_path_t)p->path, &diag);
+    acc = lt_accel_build(&r->sc, sf->structure, p, &diag);
     if (acc == NULL) {
         fprintf(stderr, "%s: %s\n", sf->path[0] ? sf->path : prog, diag.msg);
         r->status = EXIT_INPUT;
@@ -666,8 +686,7 @@ static int run_trace(run_t *r)
     if (r->csv != NULL && run_csv_open(r) != 0)
         return EXIT_INPUT;
     for (p = lt_paths; p->name != NULL; p++)
-        if ((p->families & LT_PATHS_OBJECT) && ((unsigned)sf->numeric & (unsigned)p->sf_num) &&
-            run_path(r, p) != 0)
+        if (run_selects(sf, p) && run_path(r, p) != 0)
             break;
     if (r->depth_out != NULL && r->status == 0)
         run_write_depth(r);
@@ -883,7 +902,7 @@ static int cmd_info(int argc, char **argv)
                "s15.16: %u of %u non-degenerate triangles collapse to zero area (limit %.1f%%: %s), "
                "shortest edge %.3g units\n",
                path, m.ntris, zero, m.lo[0], m.lo[1], m.lo[2], m.hi[0], m.hi[1], m.hi[2], sc.scale,
-               sc.radius, lt_path_to_double(lt_paths_of_path(LT_PATH_Q16), 1) / sc.scale,
+               sc.radius, lt_path_to_double(lt_paths_find("q16", LT_PATHS_OBJECT), 1) / sc.scale,
                sc.collapsed_q16, sc.nonzero,
                LT_SCENE_MAX_COLLAPSED_PPM / 1e4,
                lt_scene_check_q16(&sc, path, &diag) == 0 ? "representable"
@@ -1196,7 +1215,8 @@ static int render_load(render_t *r)
         fprintf(stderr, "%s: %s\n", sf->mesh, diag.msg);
         return EXIT_INPUT;
     }
-    if (r->path->path == LT_PATH_Q16 && lt_scene_check_q16(&r->sc, sf->mesh, &diag) != 0) {
+    if (r->path->render->scene_check != NULL &&
+        r->path->render->scene_check(&r->sc, sf->mesh, &diag) != 0) {
         fprintf(stderr, "%s\n", diag.msg);
         return EXIT_INPUT;
     }
@@ -1296,7 +1316,7 @@ static int render_trace(render_t *r)
     int a;
     if ((a = render_memory(r)) != 0)
         return a;
-    r->acc = lt_accel_build(&r->sc, structure, (lt_path_t)r->path->path, &diag);
+    r->acc = lt_accel_build(&r->sc, structure, r->path, &diag);
     if (r->acc == NULL) {
         fprintf(stderr, "%s render: %s\n", prog, diag.msg);
         return EXIT_USAGE;

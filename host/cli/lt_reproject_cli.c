@@ -204,9 +204,9 @@ static int rp_options(rp_t *r, int *quiet, const char *prog, int argc, char **ar
     len = (size_t)snprintf(num_help, sizeof num_help, "numeric path and quadtree node format:\n");
     for (p = lt_paths; p->name != NULL; p++)
         if ((p->families & LT_PATHS_SCREEN) && len < sizeof num_help)
-            len += (size_t)snprintf(num_help + len, sizeof num_help - len, "%s%s (%s%s)",
+            len += (size_t)snprintf(num_help + len, sizeof num_help - len, "%s%s (%s%s%s)",
                                     k++ ? ", " : "", p->name, p->format,
-                                    p->qt_enc == LT_QT_N32 ? ", 32-bit nodes" : "");
+                                    p->note != NULL ? ", " : "", p->note != NULL ? p->note : "");
     if (len < sizeof num_help)
         snprintf(num_help + len, sizeof num_help - len, "; default %s", r->enc_names[0]);
     snprintf(machine_help, sizeof machine_help, "(simulator build) machine model: %s",
@@ -305,7 +305,7 @@ static int render_truth(const lt_scene_t *sc, const lt_reproj_cam_t *d, float *z
     cam.height = d->height;
     if (lt_frame_alloc(&fr, d->width, d->height, diag) != 0)
         return -1;
-    acc = lt_accel_build(sc, "bvh", LT_PATH_F32, diag);
+    acc = lt_accel_build(sc, "bvh", lt_paths_find("f32", LT_PATHS_OBJECT), diag);
     if (acc == NULL) {
         lt_frame_free(&fr);
         return -1;

@@ -244,7 +244,8 @@ static int shadows_load(shadows_t *s)
         return EXIT_INPUT;
     }
     /* the same representability rule as run and render (the ground plane included) */
-    if (s->path->path == LT_PATH_Q16 && lt_scene_check_q16(&s->sc, s->mesh_path, &diag) != 0) {
+    if (s->path->render->scene_check != NULL &&
+        s->path->render->scene_check(&s->sc, s->mesh_path, &diag) != 0) {
         fprintf(stderr, "%s: %s\n", who, diag.msg);
         return EXIT_INPUT;
     }
@@ -278,7 +279,7 @@ static int shadows_load(shadows_t *s)
         return EXIT_INPUT;
     }
     lt_ss_opts_default(&s->sc, &o);
-    o.path = (lt_path_t)s->path->path;
+    o.path = s->path;
     o.leaf = (uint32_t)s->leaf;
     o.flags = s->flags;
     o.qmc = qmc_kinds[s->qmc];

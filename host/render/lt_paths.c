@@ -9,19 +9,27 @@
 #include <string.h>
 
 const lt_path_info_t lt_paths[] = {
-    {"q16", "s15.16",
-     "fixed point: s15.16 positions and distances, s1.30 directions, exact int64 products",
-     LT_PATHS_OBJECT | LT_PATHS_FRUSTA, 16, LT_PATH_Q16, (int)LT_BVH_NUM_Q16, LT_SF_NUM_Q16, -1,
-     -1},
-    {"n64", "s1.30",
-     "screen space in s1.30 (w = z_ref / z, rays), 64-bit quadtree nodes (24-bit C)",
-     LT_PATHS_SCREEN, 30, -1, 0, 0, LT_QT_N64, LT_SSB_Q30},
-    {"n32", "s1.30", "screen space in s1.30, 32-bit quadtree nodes (12-bit C, minifloat boxes)",
-     LT_PATHS_SCREEN, 30, -1, 0, 0, LT_QT_N32, LT_SSB_Q30},
-    {"f32", "float32", "IEEE binary32, no FMA contraction (bit-identical on every build)",
-     LT_PATHS_OBJECT | LT_PATHS_FRUSTA | LT_PATHS_SCREEN, 0, LT_PATH_F32, (int)LT_BVH_NUM_F32,
-     LT_SF_NUM_F32, LT_QT_F32, LT_SSB_F32},
-    {NULL, NULL, NULL, 0, 0, -1, 0, 0, -1, -1},
+    {.name = "q16", .format = "s15.16",
+     .desc = "fixed point: s15.16 positions and distances, s1.30 directions, exact int64 products",
+     .families = LT_PATHS_OBJECT | LT_PATHS_FRUSTA, .frac_bits = 16,
+     .render = &lt_render_ops_q16, .frusta = &lt_ss_ops_q16,
+     .bvh_num = (int)LT_BVH_NUM_Q16, .sf_num = LT_SF_NUM_Q16, .qt_enc = -1, .ssb_enc = -1},
+    {.name = "n64", .format = "s1.30",
+     .desc = "screen space in s1.30 (w = z_ref / z, rays), 64-bit quadtree nodes (24-bit C)",
+     .families = LT_PATHS_SCREEN, .frac_bits = 30, .screen = &lt_rp_ops_n64,
+     .qt_enc = LT_QT_N64, .ssb_enc = LT_SSB_Q30},
+    {.name = "n32", .format = "s1.30",
+     .desc = "screen space in s1.30, 32-bit quadtree nodes (12-bit C, minifloat boxes)",
+     .note = "32-bit nodes",
+     .families = LT_PATHS_SCREEN, .frac_bits = 30, .screen = &lt_rp_ops_n32,
+     .qt_enc = LT_QT_N32, .ssb_enc = LT_SSB_Q30},
+    {.name = "f32", .format = "float32",
+     .desc = "IEEE binary32, no FMA contraction (bit-identical on every build)",
+     .families = LT_PATHS_OBJECT | LT_PATHS_FRUSTA | LT_PATHS_SCREEN, .frac_bits = 0,
+     .render = &lt_render_ops_f32, .frusta = &lt_ss_ops_f32, .screen = &lt_rp_ops_f32,
+     .bvh_num = (int)LT_BVH_NUM_F32, .sf_num = LT_SF_NUM_F32, .qt_enc = LT_QT_F32,
+     .ssb_enc = LT_SSB_F32},
+    {.name = NULL, .qt_enc = -1, .ssb_enc = -1},
 };
 
 const lt_path_info_t *lt_paths_find(const char *name, unsigned families)
@@ -35,14 +43,7 @@ const lt_path_info_t *lt_paths_find(const char *name, unsigned families)
     return NULL;
 }
 
-const lt_path_info_t *lt_paths_of_path(lt_path_t path)
-{
-    const lt_path_info_t *p;
-    for (p = lt_paths; p->name != NULL; p++)
-        if (p->path >= 0 && p->path == (int)path)
-            return p;
-    return NULL;
-}
+int lt_paths_index(const lt_path_info_t *p) { return (int)(p - lt_paths); }
 
 const lt_path_info_t *lt_paths_of_qt_enc(lt_qt_enc_t e)
 {

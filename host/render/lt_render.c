@@ -1,9 +1,9 @@
 /* lt_render.c - frame tracing over the core's structures, reference frames, comparison.
- * Host only; in sim builds it samples the cycle model's total per packet (lt_meter.h; zeros
- * natively).
+ * Written once for every numeric path: path-typed work (builds, packets, traces, conversions)
+ * goes through the path's render ops (a->ops, lt_path_ops.h). Host only; in sim builds it samples
+ * the cycle model's total per packet (lt_meter.h; zeros natively).
  */
 #include "render/lt_render.h"
-#include "io/lt_fx_float.h"
 #include "lt_meter.h"
 
 #include <math.h>
@@ -15,20 +15,19 @@
 enum { ACC_CHUNKS, ACC_BVH, ACC_BVHQ, ACC_KD, ACC_GRID };
 
 struct lt_accel {
-    lt_path_t path;
+    const lt_path_info_t *path;
+    const lt_render_ops_t *ops; /* path->render */
     int kind;
     uint32_t n;
-    lt_aabb_q16_t *boxes_q;  /* chunks */
-    lt_aabb_f32_t *boxes_f;
+    const void *tris;        /* the scene's triangles in the path */
+    void *boxes;             /* chunks: the path's boxes */
     void *arena;             /* bvh: the tree's arena (64-byte aligned) */
     lt_bvh_t bvh;
     void *qmem;              /* bvhq: quantised nodes */
     lt_bvhq_t bvhq;
     void *mem;               /* kd, grid: their arena */
-    lt_kd_q16_t kdq;
-    lt_kd_f32_t kdf;
-    lt_grid_q16_t gq;
-    lt_grid_f32_t gf;
+    void *hdr;               /* kd, grid: the path's tree or grid header */
+    void *ray;               /* one packet in the path's format, the traces' scratch */
     size_t bytes;            /* structure memory */
 };
 
@@ -70,14 +69,28 @@ static void *alloc64(size_t bytes)
     return p;
 }
 
+/* The formats of the paths with quantised BVH nodes, for messages: "s15.16". */
+static const char *bvhq_formats(void)
+{
+    static char buf[64];
+    const lt_path_info_t *p;
+    size_t len = 0;
+    buf[0] = '\0';
+    for (p = lt_paths; p->name != NULL; p++)
+        if (p->render != NULL && p->render->bvhq_build != NULL && len < sizeof buf)
+            len += (size_t)snprintf(buf + len, sizeof buf - len, "%s%s", len ? ", " : "",
+                                    p->format);
+    return buf;
+}
+
 static lt_accel_t *build_bvh(const lt_scene_t *s, lt_accel_t *a, int quantised, lt_diag_t *diag)
 {
     lt_bvh_desc_t desc;
     size_t bytes = 0;
     lt_status_t st;
     memset(&desc, 0, sizeof desc);
-    if (quantised && a->path != LT_PATH_Q16) {
-        lt_diag_fail(diag, "structure 'bvhq' (quantised nodes) exists in s15.16 only");
+    if (quantised && a->ops->bvhq_build == NULL) {
+        lt_diag_fail(diag, "structure 'bvhq' (quantised nodes) exists in %s only", bvhq_formats());
         return NULL;
     }
     st = lt_bvh_size(s->ntris, &desc, &bytes);
@@ -87,8 +100,7 @@ static lt_accel_t *build_bvh(const lt_scene_t *s, lt_accel_t *a, int quantised, 
             st = LT_E_SPACE;
     }
     if (st == LT_OK)
-        st = a->path == LT_PATH_Q16 ? lt_bvh_build_q16(&a->bvh, &desc, s->tq, s->ntris, a->arena, bytes)
-                                    : lt_bvh_build_f32(&a->bvh, &desc, s->tf, s->ntris, a->arena, bytes);
+        st = a->ops->bvh_build(&a->bvh, &desc, a->tris, s->ntris, a->arena, bytes);
     if (st != LT_OK) {
         lt_diag_fail(diag, "building the BVH over %u triangles: %s", s->ntris, lt_status_str(st));
         return NULL;
@@ -100,7 +112,7 @@ static lt_accel_t *build_bvh(const lt_scene_t *s, lt_accel_t *a, int quantised, 
         if (st == LT_OK && (a->qmem = alloc64(qb)) == NULL)
             st = LT_E_SPACE;
         if (st == LT_OK)
-            st = lt_bvhq_build_q16(&a->bvhq, &a->bvh, a->qmem, qb);
+            st = a->ops->bvhq_build(&a->bvhq, &a->bvh, a->qmem, qb);
         if (st != LT_OK) {
             lt_diag_fail(diag, "quantising the BVH: %s", lt_status_str(st));
             return NULL;
@@ -119,26 +131,26 @@ static lt_accel_t *build_kdgrid(const lt_scene_t *s, lt_accel_t *a, lt_diag_t *d
 {
     size_t bytes = 0;
     lt_status_t st;
-    if (a->kind == ACC_KD) {
+    a->hdr = calloc(1, a->kind == ACC_KD ? a->ops->kd_bytes : a->ops->grid_bytes);
+    if (a->hdr == NULL) {
+        st = LT_E_SPACE;
+    } else if (a->kind == ACC_KD) {
         lt_kd_params_t p;
         lt_kd_params_default(&p);
         st = lt_kd_size(s->ntris, &p, &bytes);
         if (st == LT_OK && (a->mem = alloc64(bytes)) == NULL)
             st = LT_E_SPACE;
         if (st == LT_OK)
-            st = a->path == LT_PATH_Q16 ? lt_kd_build_q16(&a->kdq, s->tq, s->ntris, &p, a->mem, &bytes)
-                                        : lt_kd_build_f32(&a->kdf, s->tf, s->ntris, &p, a->mem, &bytes);
-        a->bytes = a->path == LT_PATH_Q16 ? a->kdq.bytes : a->kdf.bytes;
+            st = a->ops->kd_build(a->hdr, a->tris, s->ntris, &p, a->mem, &bytes);
+        a->bytes = bytes;
     } else {
         lt_grid_params_t p;
         lt_grid_params_default(&p);
-        st = a->path == LT_PATH_Q16 ? lt_grid_size_q16(s->tq, s->ntris, &p, &bytes)
-                                    : lt_grid_size_f32(s->tf, s->ntris, &p, &bytes);
+        st = a->ops->grid_size(a->tris, s->ntris, &p, &bytes);
         if (st == LT_OK && (a->mem = alloc64(bytes)) == NULL)
             st = LT_E_SPACE;
         if (st == LT_OK)
-            st = a->path == LT_PATH_Q16 ? lt_grid_build_q16(&a->gq, s->tq, s->ntris, &p, a->mem, &bytes)
-                                        : lt_grid_build_f32(&a->gf, s->tf, s->ntris, &p, a->mem, &bytes);
+            st = a->ops->grid_build(a->hdr, a->tris, s->ntris, &p, a->mem, &bytes);
         a->bytes = bytes;
     }
     if (st != LT_OK) {
@@ -150,8 +162,8 @@ static lt_accel_t *build_kdgrid(const lt_scene_t *s, lt_accel_t *a, lt_diag_t *d
     return a;
 }
 
-lt_accel_t *lt_accel_build(const lt_scene_t *s, const char *structure, lt_path_t path,
-                           lt_diag_t *diag)
+lt_accel_t *lt_accel_build(const lt_scene_t *s, const char *structure,
+                           const lt_path_info_t *path, lt_diag_t *diag)
 {
     lt_accel_t *a;
     size_t nb = LT_CHUNK_COUNT(s->ntris);
@@ -173,18 +185,25 @@ lt_accel_t *lt_accel_build(const lt_scene_t *s, const char *structure, lt_path_t
                      structure);
         return NULL;
     }
+    if (path == NULL || path->render == NULL) {
+        lt_diag_fail(diag, "numeric path '%s' has no object-space operations",
+                     path != NULL ? path->name : "(none)");
+        return NULL;
+    }
     a = calloc(1, sizeof *a);
-    if (a == NULL) {
+    if (a != NULL && (a->ray = alloc64(path->render->ray16_bytes)) != NULL)
+        memset(a->ray, 0, path->render->ray16_bytes);
+    if (a == NULL || a->ray == NULL) {
+        free(a);
         lt_diag_fail(diag, "out of memory");
         return NULL;
     }
     a->path = path;
+    a->ops = path->render;
     a->kind = kind;
     a->n = s->ntris;
-    if (path == LT_PATH_Q16)
-        lt_meter_region(s->tq, s->ntris * sizeof *s->tq, 0x10000000u);
-    else
-        lt_meter_region(s->tf, s->ntris * sizeof *s->tf, 0x10000000u);
+    a->tris = a->ops->tris(s);
+    lt_meter_region(a->tris, s->ntris * a->ops->tri_bytes, 0x10000000u);
     if (kind == ACC_KD || kind == ACC_GRID) {
         if (build_kdgrid(s, a, diag) == NULL) {
             lt_accel_free(a);
@@ -199,19 +218,11 @@ lt_accel_t *lt_accel_build(const lt_scene_t *s, const char *structure, lt_path_t
         }
         return a;
     }
-    if (path == LT_PATH_Q16) {
-        a->boxes_q = malloc(nb * sizeof *a->boxes_q);
-        if (a->boxes_q != NULL)
-            lt_meter_region(a->boxes_q, nb * sizeof *a->boxes_q, 0x20000000u);
-        st = a->boxes_q ? lt_chunks_build_q16(s->tq, s->ntris, a->boxes_q) : LT_E_SPACE;
-        a->bytes = nb * sizeof *a->boxes_q;
-    } else {
-        a->boxes_f = malloc(nb * sizeof *a->boxes_f);
-        if (a->boxes_f != NULL)
-            lt_meter_region(a->boxes_f, nb * sizeof *a->boxes_f, 0x20000000u);
-        st = a->boxes_f ? lt_chunks_build_f32(s->tf, s->ntris, a->boxes_f) : LT_E_SPACE;
-        a->bytes = nb * sizeof *a->boxes_f;
-    }
+    a->boxes = malloc(nb * a->ops->box_bytes);
+    if (a->boxes != NULL)
+        lt_meter_region(a->boxes, nb * a->ops->box_bytes, 0x20000000u);
+    st = a->boxes ? a->ops->chunks_build(a->tris, s->ntris, a->boxes) : LT_E_SPACE;
+    a->bytes = nb * a->ops->box_bytes;
     if (st != LT_OK) {
         lt_diag_fail(diag, "building '%s': %s", structure, lt_status_str(st));
         lt_accel_free(a);
@@ -226,11 +237,12 @@ void lt_accel_free(lt_accel_t *a)
 {
     if (a == NULL)
         return;
-    free(a->boxes_q);
-    free(a->boxes_f);
+    free(a->boxes);
     free(a->arena);
     free(a->qmem);
     free(a->mem);
+    free(a->hdr);
+    free(a->ray);
     free(a);
 }
 
@@ -238,40 +250,40 @@ static uint64_t cycles_now(void) { return lt_meter_cycles(); }
 
 static uint64_t nodes_now(void) { return lt_meter_event(LT_EV_NODES); }
 
-/* Closest hit of one packet through the structure. */
-static void trace16(const lt_scene_t *s, const lt_accel_t *a, lt_ray16_q16_t *rq,
-                    lt_ray16_f32_t *rf, lt_mask16_t k, lt_hit16_t *hit)
+/* Closest hit of one packet (the accel's scratch packet) through the structure. */
+static void trace16(const lt_accel_t *a, lt_mask16_t k, lt_hit16_t *hit)
 {
-    if (a->kind == ACC_CHUNKS) {
-        if (a->path == LT_PATH_Q16)
-            lt_chunks_trace16_q16(s->tq, a->n, a->boxes_q, rq, k, hit);
-        else
-            lt_chunks_trace16_f32(s->tf, a->n, a->boxes_f, rf, k, hit);
-    } else if (a->kind == ACC_KD) {
-        if (a->path == LT_PATH_Q16)
-            (void)lt_kd_trace16_q16(&a->kdq, rq, k, hit);
-        else
-            (void)lt_kd_trace16_f32(&a->kdf, rf, k, hit);
-    } else if (a->kind == ACC_GRID) {
-        if (a->path == LT_PATH_Q16)
-            (void)lt_grid_trace16_q16(&a->gq, rq, k, hit);
-        else
-            (void)lt_grid_trace16_f32(&a->gf, rf, k, hit);
-    } else if (a->kind == ACC_BVHQ) {
-        (void)lt_bvhq_trace16_q16(&a->bvhq, s->tq, rq, k, hit);
-    } else if (a->path == LT_PATH_Q16) {
-        (void)lt_bvh_trace16_q16(&a->bvh, s->tq, rq, k, hit);
-    } else {
-        (void)lt_bvh_trace16_f32(&a->bvh, s->tf, rf, k, hit);
-    }
+    const lt_render_ops_t *ops = a->ops;
+    if (a->kind == ACC_CHUNKS)
+        ops->chunks_trace16(a->tris, a->n, a->boxes, a->ray, k, hit);
+    else if (a->kind == ACC_KD)
+        ops->kd_trace16(a->hdr, a->ray, k, hit);
+    else if (a->kind == ACC_GRID)
+        ops->grid_trace16(a->hdr, a->ray, k, hit);
+    else if (a->kind == ACC_BVHQ)
+        ops->bvhq_trace16(&a->bvhq, a->tris, a->ray, k, hit);
+    else
+        ops->bvh_trace16(&a->bvh, a->tris, a->ray, k, hit);
+}
+
+/* Any hit of the scratch packet: the occluded lanes of k (hierarchies only). */
+static lt_mask16_t occluded16(const lt_accel_t *a, lt_mask16_t k)
+{
+    const lt_render_ops_t *ops = a->ops;
+    if (a->kind == ACC_KD)
+        return ops->kd_occluded16(a->hdr, a->ray, k);
+    if (a->kind == ACC_GRID)
+        return ops->grid_occluded16(a->hdr, a->ray, k);
+    if (a->kind == ACC_BVHQ)
+        return ops->bvhq_occluded16(&a->bvhq, a->tris, a->ray, k);
+    return ops->bvh_occluded16(&a->bvh, a->tris, a->ray, k);
 }
 
 void lt_render_primary(const lt_scene_t *s, const lt_accel_t *a, const lt_camera_t *c,
                        lt_frame_t *f, void (*progress)(double done))
 {
     uint32_t tx, ty;
-    static lt_ray16_q16_t rq;
-    static lt_ray16_f32_t rf;
+    (void)s;
     for (ty = 0; ty < c->height; ty += 4) {
         for (tx = 0; tx < c->width; tx += 4) {
             lt_hit16_t hit;
@@ -280,11 +292,10 @@ void lt_render_primary(const lt_scene_t *s, const lt_accel_t *a, const lt_camera
             float per, steps;
             int i;
             lt_phase_t prev = LT_PHASE_ENTER(SETUP);
-            k = a->path == LT_PATH_Q16 ? lt_camera_packet_q16(c, tx, ty, &rq)
-                                       : lt_camera_packet_f32(c, tx, ty, &rf);
+            k = a->ops->camera_packet(c, tx, ty, a->ray);
             LT_EVENT(RAYS, lt__popcount32(k));
             LT_PHASE_LEAVE(prev);
-            trace16(s, a, &rq, &rf, k, &hit);
+            trace16(a, k, &hit);
             per = (float)(cycles_now() - c0) / (float)lt__popcount32(k);
             steps = (float)(nodes_now() - n0);
             for (i = 0; i < LT_LANES; i++) {
@@ -293,8 +304,7 @@ void lt_render_primary(const lt_scene_t *s, const lt_accel_t *a, const lt_camera
                 if ((((unsigned)k >> i) & 1u) == 0)
                     continue;
                 f->id[p] = hit.id.l[i];
-                f->t[p] = a->path == LT_PATH_Q16 ? (double)rq.tmax.l[i] / 65536.0
-                                                 : (double)rf.tmax.l[i];
+                f->t[p] = a->ops->ray16_t(a->ray, i);
                 f->cost[p] = per;
                 f->steps[p] = steps;
             }
@@ -367,17 +377,15 @@ int lt_render_primary1(const lt_scene_t *s, const lt_accel_t *a, const lt_camera
 {
     uint32_t x, y;
     (void)diag;
+    (void)s;
     if (a->kind != ACC_BVH && a->kind != ACC_BVHQ) {
         /* kd-tree, grid, chunks: no scalar traversal; each ray runs alone through the packet
            kernel with a one-lane mask (what a 16-lane machine does with an incoherent ray:
            1/16 lane utilisation). The tile's packet is set up once, its lanes traced one by one. */
-        static lt_ray16_q16_t rq;
-        static lt_ray16_f32_t rf;
         uint32_t tx, ty;
         for (ty = 0; ty < c->height; ty += 4)
             for (tx = 0; tx < c->width; tx += 4) {
-                lt_mask16_t k = a->path == LT_PATH_Q16 ? lt_camera_packet_q16(c, tx, ty, &rq)
-                                                       : lt_camera_packet_f32(c, tx, ty, &rf);
+                lt_mask16_t k = a->ops->camera_packet(c, tx, ty, a->ray);
                 int i;
                 LT_EVENT(RAYS, lt__popcount32(k));
                 for (i = 0; i < LT_LANES; i++) {
@@ -385,10 +393,9 @@ int lt_render_primary1(const lt_scene_t *s, const lt_accel_t *a, const lt_camera
                     size_t p = (size_t)(ty + (uint32_t)(i / 4)) * c->width + tx + (uint32_t)(i % 4);
                     if ((((unsigned)k >> i) & 1u) == 0)
                         continue;
-                    trace16(s, a, &rq, &rf, (lt_mask16_t)(1u << i), &hit);
+                    trace16(a, (lt_mask16_t)(1u << i), &hit);
                     f->id[p] = hit.id.l[i];
-                    f->t[p] = a->path == LT_PATH_Q16 ? (double)rq.tmax.l[i] / 65536.0
-                                                     : (double)rf.tmax.l[i];
+                    f->t[p] = a->ops->ray16_t(a->ray, i);
                 }
             }
         return 0;
@@ -397,38 +404,10 @@ int lt_render_primary1(const lt_scene_t *s, const lt_accel_t *a, const lt_camera
         for (x = 0; x < c->width; x++) {
             double d[3];
             size_t p = (size_t)y * c->width + x;
-            int32_t id = -1;
-            int i;
             lt_camera_dir(c, x, y, d);
-            if (a->path == LT_PATH_Q16) {
-                lt_ray1_q16_t r;
-                memset(&r, 0, sizeof r);
-                for (i = 0; i < 3; i++) {
-                    r.o[i] = lt_q16_from_double_sat(c->eye[i]);
-                    r.d[i] = lt_q30_from_double_sat(d[i]);
-                }
-                r.tmin = 0;
-                r.tmax = LT_Q16_MAX - 1;
-                lt_ray1_q16_setup(&r);
-                if (a->kind == ACC_BVHQ)
-                    (void)lt_bvhq_trace1_q16(&a->bvhq, s->tq, &r, &id);
-                else
-                    (void)lt_bvh_trace1_q16(&a->bvh, s->tq, &r, &id);
-                f->t[p] = (double)r.tmax / 65536.0;
-            } else {
-                lt_ray1_f32_t r;
-                memset(&r, 0, sizeof r);
-                for (i = 0; i < 3; i++) {
-                    r.o[i] = (float)c->eye[i];
-                    r.d[i] = (float)d[i];
-                }
-                r.tmin = 0.0f;
-                r.tmax = 3.0e38f;
-                lt_ray1_f32_setup(&r);
-                (void)lt_bvh_trace1_f32(&a->bvh, s->tf, &r, &id);
-                f->t[p] = (double)r.tmax;
-            }
-            f->id[p] = id;
+            f->id[p] = a->kind == ACC_BVHQ
+                           ? a->ops->bvhq_trace1(&a->bvhq, a->tris, c->eye, d, &f->t[p])
+                           : a->ops->bvh_trace1(&a->bvh, a->tris, c->eye, d, &f->t[p]);
         }
     return 0;
 }
@@ -441,8 +420,6 @@ int lt_render_shadows(const lt_scene_t *s, const lt_accel_t *a, const lt_camera_
 {
     uint32_t tx, ty, n = 0, occ = 0;
     double eps = 1e-4 * s->radius;
-    static lt_ray16_q16_t rq;
-    static lt_ray16_f32_t rf;
     if (a->kind == ACC_CHUNKS) {
         lt_diag_fail(diag, "shadow rays need a hierarchy (bvh, bvhq, kd, grid)");
         return -1;
@@ -474,48 +451,12 @@ int lt_render_shadows(const lt_scene_t *s, const lt_accel_t *a, const lt_camera_
                     d[1] = d[2] = 0.0;
                     len = 1.0;
                 }
-                if (a->path == LT_PATH_Q16) {
-                    rq.ox.l[i] = lt_q16_from_double_sat(p[0]);
-                    rq.oy.l[i] = lt_q16_from_double_sat(p[1]);
-                    rq.oz.l[i] = lt_q16_from_double_sat(p[2]);
-                    rq.dx.l[i] = lt_q30_from_double_sat(d[0]);
-                    rq.dy.l[i] = lt_q30_from_double_sat(d[1]);
-                    rq.dz.l[i] = lt_q30_from_double_sat(d[2]);
-                    rq.tmin.l[i] = lt_q16_from_double_sat(eps);
-                    rq.tmax.l[i] = lt_q16_from_double_sat(len - eps);
-                } else {
-                    rf.ox.l[i] = (float)p[0];
-                    rf.oy.l[i] = (float)p[1];
-                    rf.oz.l[i] = (float)p[2];
-                    rf.dx.l[i] = (float)d[0];
-                    rf.dy.l[i] = (float)d[1];
-                    rf.dz.l[i] = (float)d[2];
-                    rf.tmin.l[i] = (float)eps;
-                    rf.tmax.l[i] = (float)(len - eps);
-                }
+                a->ops->ray16_lane(a->ray, i, p, d, eps, len - eps);
             }
             if (k == 0)
                 continue;
-            if (a->kind == ACC_KD || a->kind == ACC_GRID) {
-                if (a->path == LT_PATH_Q16) {
-                    lt_ray16_q16_setup(&rq);
-                    o = a->kind == ACC_KD ? lt_kd_occluded16_q16(&a->kdq, &rq, (lt_mask16_t)k)
-                                          : lt_grid_occluded16_q16(&a->gq, &rq, (lt_mask16_t)k);
-                } else {
-                    lt_ray16_f32_setup(&rf);
-                    o = a->kind == ACC_KD ? lt_kd_occluded16_f32(&a->kdf, &rf, (lt_mask16_t)k)
-                                          : lt_grid_occluded16_f32(&a->gf, &rf, (lt_mask16_t)k);
-                }
-            } else if (a->path == LT_PATH_Q16) {
-                lt_ray16_q16_setup(&rq);
-                if (a->kind == ACC_BVHQ)
-                    (void)lt_bvhq_occluded16_q16(&a->bvhq, s->tq, &rq, (lt_mask16_t)k, &o);
-                else
-                    (void)lt_bvh_occluded16_q16(&a->bvh, s->tq, &rq, (lt_mask16_t)k, &o);
-            } else {
-                lt_ray16_f32_setup(&rf);
-                (void)lt_bvh_occluded16_f32(&a->bvh, s->tf, &rf, (lt_mask16_t)k, &o);
-            }
+            a->ops->ray16_setup(a->ray);
+            o = occluded16(a, (lt_mask16_t)k);
             n += lt__popcount32(k);
             occ += lt__popcount32(o);
             if (occluded != NULL)
@@ -534,8 +475,7 @@ int lt_render_peel(const lt_scene_t *s, const lt_accel_t *a, const lt_camera_t *
                    const lt_frame_t *prev, lt_frame_t *next, lt_diag_t *diag)
 {
     uint32_t tx, ty;
-    static lt_ray16_q16_t rq;
-    static lt_ray16_f32_t rf;
+    (void)s;
     if (a->kind == ACC_CHUNKS) {
         lt_diag_fail(diag, "depth peeling needs a hierarchy (bvh, bvhq, kd, grid)");
         return -1;
@@ -545,8 +485,7 @@ int lt_render_peel(const lt_scene_t *s, const lt_accel_t *a, const lt_camera_t *
             lt_hit16_t hit;
             lt_mask16_t k, live = 0;
             int i;
-            k = a->path == LT_PATH_Q16 ? lt_camera_packet_q16(c, tx, ty, &rq)
-                                       : lt_camera_packet_f32(c, tx, ty, &rf);
+            k = a->ops->camera_packet(c, tx, ty, a->ray);
             /* the next surface lies strictly beyond the previous hit: tmin = previous t */
             for (i = 0; i < LT_LANES; i++) {
                 uint32_t x = tx + (uint32_t)(i % 4), y = ty + (uint32_t)(i / 4);
@@ -554,22 +493,18 @@ int lt_render_peel(const lt_scene_t *s, const lt_accel_t *a, const lt_camera_t *
                 if (((unsigned)k >> i & 1u) == 0 || prev->id[p] < 0)
                     continue;
                 live = (lt_mask16_t)(live | (1u << i));
-                if (a->path == LT_PATH_Q16)
-                    rq.tmin.l[i] = lt_q16_from_double_sat(prev->t[p]);
-                else
-                    rf.tmin.l[i] = (float)prev->t[p];
+                a->ops->ray16_tmin(a->ray, i, prev->t[p]);
             }
             hit.id = lt_vi32_set1(-1);
             if (live != 0)
-                trace16(s, a, &rq, &rf, live, &hit);
+                trace16(a, live, &hit);
             for (i = 0; i < LT_LANES; i++) {
                 uint32_t x = tx + (uint32_t)(i % 4), y = ty + (uint32_t)(i / 4);
                 size_t p = (size_t)y * c->width + x;
                 if (((unsigned)k >> i & 1u) == 0)
                     continue;
                 next->id[p] = ((unsigned)live >> i & 1u) ? hit.id.l[i] : -1;
-                next->t[p] = a->path == LT_PATH_Q16 ? (double)rq.tmax.l[i] / 65536.0
-                                                    : (double)rf.tmax.l[i];
+                next->t[p] = a->ops->ray16_t(a->ray, i);
             }
         }
     return 0;

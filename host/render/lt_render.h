@@ -7,9 +7,8 @@
 #define LT_RENDER_H
 
 #include "io/lt_diag.h"
+#include "render/lt_paths.h"
 #include "render/lt_scene.h"
-
-typedef enum lt_path { LT_PATH_Q16 = 0, LT_PATH_F32 = 1 } lt_path_t;
 
 /* Per-pixel results, width * height each, row-major, y down. */
 typedef struct lt_frame {
@@ -26,7 +25,8 @@ typedef struct lt_frame {
 int lt_frame_alloc(lt_frame_t *f, uint32_t w, uint32_t h, lt_diag_t *diag);
 void lt_frame_free(lt_frame_t *f);
 
-/* The prepared acceleration structure for one path. Opaque to callers. */
+/* The prepared acceleration structure for one numeric path (an entry of lt_paths serving
+ * LT_PATHS_OBJECT; every call goes through its render ops). Opaque to callers. */
 typedef struct lt_accel lt_accel_t;
 
 /* Names of the structures lt_accel_build knows (NULL-terminated): "chunks" (a box per 16
@@ -34,9 +34,10 @@ typedef struct lt_accel lt_accel_t;
  * nodes, s15.16 only). */
 extern const char *const lt_render_structures[];
 
-/* Build `structure` over the scene for a path. Returns NULL with a message on error. */
-lt_accel_t *lt_accel_build(const lt_scene_t *s, const char *structure, lt_path_t path,
-                           lt_diag_t *diag);
+/* Build `structure` over the scene for a path. Returns NULL with a message on error (also for a
+ * path without object-space operations). */
+lt_accel_t *lt_accel_build(const lt_scene_t *s, const char *structure,
+                           const lt_path_info_t *path, lt_diag_t *diag);
 void lt_accel_free(lt_accel_t *a);
 
 /* Bytes of the built structure (nodes, indices, boxes; not the triangles). */

@@ -7,6 +7,7 @@
 #include "render/lt_reproject.h"
 #include "cli/lt_cliutil.h"
 #include "lt_meter.h"
+#include "render/lt_paths.h"
 #include "render/lt_qt_ref.h"
 
 #include <math.h>
@@ -40,35 +41,25 @@ typedef struct rp_tracer {
     lt_hiz_t hiz;
 } rp_tracer_t;
 
-static void trace_q30(const rp_tracer_t *t, const lt_qray16_q30_t *r, lt_mask16_t k,
-                      uint32_t max_steps, lt_qhit16_q30_t *h)
+/* One packet of segments r through the tracer in the path's format, results into h. */
+static void trace16(const rp_tracer_t *t, const lt_rp_ops_t *ops, const void *r, lt_mask16_t k,
+                    uint32_t max_steps, void *h)
 {
     if (t->kind == LT_RP_DDA)
-        (void)lt_ssdda_trace16_q30(&t->dda, r, k, max_steps, h);
+        ops->dda_trace16(&t->dda, r, k, max_steps, h);
     else if (t->kind == LT_RP_HIZ)
-        (void)lt_hiz_trace16_q30(&t->hiz, r, k, max_steps, h);
+        ops->hiz_trace16(&t->hiz, r, k, max_steps, h);
     else
-        (void)lt_qt_trace16_q30(&t->qt, r, k, max_steps, h);
+        ops->qt_trace16(&t->qt, r, k, max_steps, h);
 }
 
-static void trace_f32(const rp_tracer_t *t, const lt_qray16_f32_t *r, lt_mask16_t k,
-                      uint32_t max_steps, lt_qhit16_f32_t *h)
-{
-    if (t->kind == LT_RP_DDA)
-        (void)lt_ssdda_trace16_f32(&t->dda, r, k, max_steps, h);
-    else if (t->kind == LT_RP_HIZ)
-        (void)lt_hiz_trace16_f32(&t->hiz, r, k, max_steps, h);
-    else
-        (void)lt_qt_trace16_f32(&t->qt, r, k, max_steps, h);
-}
-
-/* Build (quadtree, Hi-Z) or set up (DDA) the tracer over the w buffers; *arena gets the memory
- * (NULL for the DDA), *bytes its size. Returns 0 or -1 with a message. */
-static int tracer_build(rp_tracer_t *t, const lt_rp_opts_t *o, uint32_t W, uint32_t H,
-                        uint32_t layers, const lt_q30_t *wq, const float *wf, void **arena,
+/* Build (quadtree, Hi-Z) or set up (DDA) the tracer over the w buffer of path p; *arena gets the
+ * memory (NULL for the DDA), *bytes its size. Returns 0 or -1 with a message. */
+static int tracer_build(rp_tracer_t *t, const lt_rp_opts_t *o, const lt_path_info_t *p,
+                        uint32_t W, uint32_t H, uint32_t layers, const void *w, void **arena,
                         size_t *bytes, lt_diag_t *diag)
 {
-    int fenc = o->enc == LT_QT_F32;
+    const lt_rp_ops_t *ops = p->screen;
     lt_status_t s;
     lt_ssb_desc_t sd;
     static const char *const name[3] = {"quadtree", "DDA", "Hi-Z"};
@@ -78,16 +69,15 @@ static int tracer_build(rp_tracer_t *t, const lt_rp_opts_t *o, uint32_t W, uint3
     sd.width = W;
     sd.height = H;
     sd.layers = layers;
-    sd.enc = fenc ? LT_SSB_F32 : LT_SSB_Q30;
+    sd.enc = (lt_ssb_enc_t)p->ssb_enc;
     if (o->tracer == LT_RP_DDA) {
-        s = fenc ? lt_ssdda_init_f32(&t->dda, &sd, &o->ssb, wf)
-                 : lt_ssdda_init_q30(&t->dda, &sd, &o->ssb, wq);
+        s = ops->dda_init(&t->dda, &sd, &o->ssb, w);
     } else {
         lt_qt_desc_t qd;
         qd.width = W;
         qd.height = H;
         qd.layers = layers;
-        qd.enc = (uint32_t)o->enc;
+        qd.enc = (uint32_t)p->qt_enc;
         s = o->tracer == LT_RP_HIZ ? lt_hiz_size(&sd, bytes) : lt_qt_size(&qd, bytes);
         if (s != LT_OK) {
             lt_diag_fail(diag, "reproject: %s size query failed for %ux%u x %u layers (%s)",
@@ -102,11 +92,9 @@ static int tracer_build(rp_tracer_t *t, const lt_rp_opts_t *o, uint32_t W, uint3
         }
         lt_meter_region(*arena, *bytes, 0x40000000u);
         if (o->tracer == LT_RP_HIZ)
-            s = fenc ? lt_hiz_build_f32(&t->hiz, &sd, &o->ssb, wf, *arena, bytes)
-                     : lt_hiz_build_q30(&t->hiz, &sd, &o->ssb, wq, *arena, bytes);
+            s = ops->hiz_build(&t->hiz, &sd, &o->ssb, w, *arena, bytes);
         else
-            s = fenc ? lt_qt_build_f32(&t->qt, &qd, &o->params, wf, *arena, bytes)
-                     : lt_qt_build_q30(&t->qt, &qd, &o->params, wq, *arena, bytes);
+            s = ops->qt_build(&t->qt, &qd, &o->params, w, *arena, bytes);
     }
     if (s != LT_OK) {
         lt_diag_fail(diag, "reproject: %s build failed (%s)", name[o->tracer],
@@ -441,145 +429,87 @@ static void fetch(const fetch_ctx_t *f, uint32_t layer, double x, double y, doub
 
 /* ---- the run ------------------------------------------------------------------------------- */
 
-int lt_rp_run(const lt_rp_source_t *src, const lt_reproj_cam_t *dst, const lt_rp_opts_t *o,
-              lt_rp_result_t *res, lt_diag_t *diag)
+/* The class, colour, depth and source position of target pixel p from its traced lane. */
+static void classify(lt_rp_result_t *res, const fetch_ctx_t *fc, const lt_reproj_cam_t *dst,
+                     size_t p, const lt_rp_lane_t *ln)
 {
-    lt_rp_opts_t od;
-    static rp_tracer_t tr;
-    lt_reproj_opts_t ro;
-    lt_reproj_q30_t mq;
-    lt_reproj_f32_t mf;
-    static lt_qray16_q30_t rq;
-    static lt_qray16_f32_t rf;
-    static lt_qhit16_q30_t hq;
-    static lt_qhit16_f32_t hf;
-    fetch_ctx_t fc;
-    void *arena = NULL;
-    lt_q30_t *wq = NULL;
-    float *wf = NULL;
-    uint8_t *valid = NULL;
-    size_t n, np, bytes, i;
-    uint32_t W, H, tx, ty;
-    int e, status = -1, fenc;
-    lt_status_t s;
-    double t0;
-    lt_meter_totals_t m0, m1;
-
-    memset(res, 0, sizeof *res);
-    if (o == NULL) {
-        lt_rp_opts_default(&od);
-        o = &od;
-    }
-    if (src == NULL || dst == NULL || src->z == NULL || src->layers < 1 ||
-        src->layers > LT_RP_MAX_LAYERS) {
-        lt_diag_fail(diag, "reproject: bad source (layers must be 1..%d)", LT_RP_MAX_LAYERS);
-        return -1;
-    }
-    if (src->width < 1 || src->height < 1 || src->width > LT_QT_MAX_DIM ||
-        src->height > LT_QT_MAX_DIM || dst->width < 1 || dst->height < 1 ||
-        dst->width > LT_QT_MAX_DIM || dst->height > LT_QT_MAX_DIM) {
-        lt_diag_fail(diag, "reproject: source %ux%u or target %ux%u outside 1..%u (LT_QT_MAX_DIM) "
-                     "per side", src->width, src->height, dst->width, dst->height, LT_QT_MAX_DIM);
-        return -1;
-    }
-    if ((unsigned)o->enc > (unsigned)LT_QT_F32 || (unsigned)o->tracer > (unsigned)LT_RP_HIZ) {
-        lt_diag_fail(diag, "reproject: unknown node encoding %d or tracer %d (0..2 each)",
-                     (int)o->enc, (int)o->tracer);
-        return -1;
-    }
-    fenc = o->enc == LT_QT_F32;
-    W = src->width;
-    H = src->height;
-    n = (size_t)W * H * src->layers;
-    if (lt_qt_zref_exp(src->z, n, &e) != 0) {
-        lt_diag_fail(diag, "reproject: the depth image has no valid depth (all NaN, inf or <= 0)");
-        return -1;
-    }
-    res->st.zref = ldexp(1.0, e);
-
-    /* w per layer; the fetch compares with the same values the core saw */
-    wf = malloc(n * sizeof *wf);
-    if (!fenc)
-        wq = malloc(n * sizeof *wq);
-    if (wf == NULL || (!fenc && wq == NULL)) {
-        lt_diag_fail(diag, "reproject: out of memory for %zu depth samples", n);
-        goto done;
-    }
-    if (fenc) {
-        lt_qt_w_from_depth_f32(src->z, n, e, wf);
+    const lt_rp_source_t *src = fc->src;
+    uint32_t W = src->width, H = src->height;
+    double t = ln->t, w = ln->w, rx = ln->x, ry = ln->y, rdx = ln->dx, rdy = ln->dy;
+    res->st.rays++;
+    res->st.nodes += ln->nodes;
+    res->st.aabb += ln->aabb;
+    res->st.planes += ln->planes;
+    if (ln->nodes > res->st.nodes_max)
+        res->st.nodes_max = ln->nodes;
+    if (ln->aabb > res->st.aabb_max)
+        res->st.aabb_max = ln->aabb;
+    if (ln->planes > res->st.planes_max)
+        res->st.planes_max = ln->planes;
+    res->steps[p] = (float)ln->nodes;
+    if (ln->status == LT_QT_HIT && w > 0.0) {
+        double sx = rx + t * rdx, sy = ry + t * rdy;
+        res->cls[p] = LT_RP_HIT;
+        res->sx[p] = (float)sx;
+        res->sy[p] = (float)sy;
+        res->layer[p] = ln->layer;
+        fetch(fc, (uint32_t)ln->layer, sx, sy, w, &res->rgb[3 * p]);
+        res->z[p] = (float)lt_rp_target_depth(&src->cam, dst, res->st.zref, sx, sy, w);
+    } else if (ln->status == LT_QT_MISS && ln->w0 + ln->dw <= 0.0 && t >= 1.0 &&
+               rx > RP_EDGE_EPS && rx < (double)W - RP_EDGE_EPS &&
+               ry > RP_EDGE_EPS && ry < (double)H - RP_EDGE_EPS) {
+        /* reached the vanishing point on screen, the whole segment seen by the source: the
+           source's background there. A segment whose start the screen clipped entered the view
+           from outside: what lies on its unseen part is unknown, so it stays LT_RP_OUTSIDE. */
+        double ex = rx + rdx, ey = ry + rdy;
+        int bx = (int)floor(ex), by = (int)floor(ey);
+        if (bx >= (int)W)
+            bx = (int)W - 1;
+        if (by >= (int)H)
+            by = (int)H - 1;
+        if (bx < 0)
+            bx = 0;
+        if (by < 0)
+            by = 0;
+        res->cls[p] = LT_RP_BACKGROUND;
+        layer_colour(fc, 0, (size_t)by * W + (size_t)bx, &res->rgb[3 * p]);
+        if (src->rgb[0] == NULL)
+            res->rgb[3 * p] = res->rgb[3 * p + 1] = res->rgb[3 * p + 2] = 0.0f;
+        res->z[p] = INFINITY;
+    } else if (ln->status == LT_QT_OCCLUDED) {
+        res->cls[p] = LT_RP_DISOCCLUDED;
+    } else if (ln->status == LT_QT_UNKNOWN) {
+        res->cls[p] = LT_RP_UNKNOWN;
     } else {
-        lt_qt_w_from_depth_q30(src->z, n, e, wq);
-        for (i = 0; i < n; i++)
-            wf[i] = (float)((double)wq[i] / 1073741824.0);
+        res->cls[p] = LT_RP_OUTSIDE;
     }
+}
 
-    /* mapping */
-    memset(&ro, 0, sizeof ro);
-    ro.z_ref = res->st.zref;
-    ro.z_near_dst = o->z_near_dst;
-    s = lt_reproj_setup(&src->cam, dst, &ro, &mq, &mf);
-    if (s != LT_OK) {
-        lt_diag_fail(diag,
-                     "reproject: camera setup failed (%s): focal lengths must be > 0 and finite, "
-                     "rotations orthonormal, sizes 1..%u, z_ref / near < 2",
-                     lt_status_str(s), LT_QT_MAX_DIM);
-        goto done;
-    }
+/* Zeroed memory aligned to a cache line (a packet's lane vectors start on line boundaries, as in
+ * the core's buffers); NULL on failure. */
+static void *alloc64z(size_t bytes)
+{
+    void *p = NULL;
+    if (posix_memalign(&p, 64, bytes > 0 ? bytes : 64) != 0)
+        return NULL;
+    memset(p, 0, bytes > 0 ? bytes : 64);
+    return p;
+}
 
-    /* the tracer: quadtree (built), DDA (no structure) or Hi-Z (built) */
-    t0 = lt_now_s();
-    if (wq != NULL)
-        lt_meter_region(wq, n * sizeof *wq, 0x50000000u);
-    else
-        lt_meter_region(wf, n * sizeof *wf, 0x50000000u);
-    lt_meter_totals(&m0);
-    if (tracer_build(&tr, o, W, H, src->layers, wq, wf, &arena, &bytes, diag) != 0)
-        goto done;
-    res->st.t_build = lt_now_s() - t0;
-    res->st.qt_bytes = bytes;
-    if (o->tracer == LT_RP_QUADTREE) {
-        res->st.qt_nodes = (uint64_t)tr.qt.layer_nodes * tr.qt.layers;
-        for (i = 0; i < res->st.qt_nodes; i++) {
-            int aabb = o->enc == LT_QT_N64 ? LT_QT_N64_IS_AABB(((const lt_qt_n64_t *)arena)[i])
-                       : o->enc == LT_QT_N32 ? LT_QT_N32_IS_AABB(((const lt_qt_n32_t *)arena)[i])
-                                             : LT_QT_NF32_IS_AABB(((const lt_qt_nf32_t *)arena)[i]);
-            res->st.qt_planes += !aabb;
-        }
-    }
+/* What one run keeps between its steps: the path, the mapping, a packet and its results (the
+ * path's types, from its screen ops), the tracer. */
+typedef struct rp_run {
+    const lt_path_info_t *p;
+    const lt_rp_ops_t *ops;
+    void *map, *ray, *hit;
+    rp_tracer_t *tr;
+} rp_run_t;
 
-    /* outputs */
-    np = (size_t)dst->width * dst->height;
-    res->width = dst->width;
-    res->height = dst->height;
-    res->rgb = calloc(np * 3, sizeof(float));
-    res->z = malloc(np * sizeof(float));
-    res->cls = malloc(np);
-    res->steps = calloc(np, sizeof(float));
-    res->cycles = calloc(np, sizeof(float));
-    res->sx = malloc(np * sizeof(float));
-    res->sy = malloc(np * sizeof(float));
-    res->layer = malloc(np * sizeof(int32_t));
-    valid = malloc(np);
-    if (res->rgb == NULL || res->z == NULL || res->cls == NULL || res->steps == NULL ||
-        res->cycles == NULL || res->sx == NULL || res->sy == NULL || res->layer == NULL ||
-        valid == NULL) {
-        lt_diag_fail(diag, "reproject: out of memory for a %ux%u target", dst->width,
-                     dst->height);
-        goto done;
-    }
-    for (i = 0; i < np; i++) {
-        res->z[i] = NAN;
-        res->sx[i] = res->sy[i] = NAN;
-        res->layer[i] = -1;
-        res->cls[i] = LT_RP_OUTSIDE;
-    }
-    fc.src = src;
-    fc.wl = wf;
-    fc.zref = res->st.zref;
-    fc.bilinear = o->bilinear;
-    res->st.pixels = np;
-
-    t0 = lt_now_s();
+/* Every 4x4 target tile: its segments, the trace, each lane's class; cycles per stage. */
+static void trace_tiles(const rp_run_t *rr, const fetch_ctx_t *fc, const lt_reproj_cam_t *dst,
+                        const lt_rp_opts_t *o, lt_rp_result_t *res)
+{
+    uint32_t tx, ty;
     for (ty = 0; ty < dst->height; ty += 4) {
         for (tx = 0; tx < dst->width; tx += 4) {
             lt_mask16_t k = 0xFFFF, kon = 0;
@@ -590,110 +520,173 @@ int lt_rp_run(const lt_rp_source_t *src, const lt_reproj_cam_t *dst, const lt_rp
                 if (tx + (uint32_t)(l & 3) < dst->width && ty + (uint32_t)(l >> 2) < dst->height)
                     kon = (lt_mask16_t)(kon | (1u << l));
             k = kon;
-            if (fenc) {
-                (void)lt_reproj_rays16_f32(&mf, tx, ty, &rf, &k);
-                if (k != 0)
-                    trace_f32(&tr, &rf, k, o->max_steps, &hf);
-            } else {
-                (void)lt_reproj_rays16_q30(&mq, tx, ty, &rq, &k);
-                if (k != 0)
-                    trace_q30(&tr, &rq, k, o->max_steps, &hq);
-            }
+            rr->ops->rays16(rr->map, tx, ty, rr->ray, &k);
+            if (k != 0)
+                trace16(rr->tr, rr->ops, rr->ray, k, o->max_steps, rr->hit);
             res->st.packets += k != 0;
             per = (float)(cycles_now() - p0) / (float)lt__popcount32(kon);
             for (l = 0; l < LT_LANES; l++) {
                 uint32_t x = tx + (uint32_t)(l & 3), y = ty + (uint32_t)(l >> 2);
                 size_t p = (size_t)y * dst->width + x;
-                int stt, lay;
-                double t, w, rx, ry, rw, rdx, rdy, rdw;
-                uint32_t nodes, aabb, planes;
+                lt_rp_lane_t ln;
                 if (!LT__ON(kon, l))
                     continue;
                 res->cycles[p] = per;
                 if (!LT__ON(k, l))
                     continue; /* empty segment: outside the source view */
-                if (fenc) {
-                    stt = hf.status.l[l];
-                    t = (double)hf.t.l[l];
-                    w = (double)hf.w.l[l];
-                    lay = hf.layer.l[l];
-                    nodes = (uint32_t)hf.nodes.l[l];
-                    aabb = (uint32_t)hf.aabb.l[l];
-                    planes = (uint32_t)hf.planes.l[l];
-                    rx = (double)rf.x.l[l];
-                    ry = (double)rf.y.l[l];
-                    rw = (double)rf.w.l[l];
-                    rdx = (double)rf.dx.l[l];
-                    rdy = (double)rf.dy.l[l];
-                    rdw = (double)rf.dw.l[l];
-                } else {
-                    stt = hq.status.l[l];
-                    t = (double)hq.t.l[l] / 1073741824.0;
-                    w = (double)hq.w.l[l] / 1073741824.0;
-                    lay = hq.layer.l[l];
-                    nodes = (uint32_t)hq.nodes.l[l];
-                    aabb = (uint32_t)hq.aabb.l[l];
-                    planes = (uint32_t)hq.planes.l[l];
-                    rx = (double)rq.x.l[l] / 65536.0;
-                    ry = (double)rq.y.l[l] / 65536.0;
-                    rw = (double)rq.w.l[l] / 1073741824.0;
-                    rdx = (double)rq.dx.l[l] / 65536.0;
-                    rdy = (double)rq.dy.l[l] / 65536.0;
-                    rdw = (double)rq.dw.l[l] / 1073741824.0;
-                }
-                res->st.rays++;
-                res->st.nodes += nodes;
-                res->st.aabb += aabb;
-                res->st.planes += planes;
-                if (nodes > res->st.nodes_max)
-                    res->st.nodes_max = nodes;
-                if (aabb > res->st.aabb_max)
-                    res->st.aabb_max = aabb;
-                if (planes > res->st.planes_max)
-                    res->st.planes_max = planes;
-                res->steps[p] = (float)nodes;
-                if (stt == LT_QT_HIT && w > 0.0) {
-                    double sx = rx + t * rdx, sy = ry + t * rdy;
-                    res->cls[p] = LT_RP_HIT;
-                    res->sx[p] = (float)sx;
-                    res->sy[p] = (float)sy;
-                    res->layer[p] = lay;
-                    fetch(&fc, (uint32_t)lay, sx, sy, w, &res->rgb[3 * p]);
-                    res->z[p] = (float)lt_rp_target_depth(&src->cam, dst, res->st.zref, sx, sy, w);
-                } else if (stt == LT_QT_MISS && rw + rdw <= 0.0 && t >= 1.0 &&
-                           rx > RP_EDGE_EPS && rx < (double)W - RP_EDGE_EPS &&
-                           ry > RP_EDGE_EPS && ry < (double)H - RP_EDGE_EPS) {
-                    /* reached the vanishing point on screen, the whole segment seen by the
-                       source: the source's background there. A segment whose start the screen
-                       clipped entered the view from outside: what lies on its unseen part is
-                       unknown, so it stays LT_RP_OUTSIDE. */
-                    double ex = rx + rdx, ey = ry + rdy;
-                    int bx = (int)floor(ex), by = (int)floor(ey);
-                    if (bx >= (int)W)
-                        bx = (int)W - 1;
-                    if (by >= (int)H)
-                        by = (int)H - 1;
-                    if (bx < 0)
-                        bx = 0;
-                    if (by < 0)
-                        by = 0;
-                    res->cls[p] = LT_RP_BACKGROUND;
-                    layer_colour(&fc, 0, (size_t)by * W + (size_t)bx, &res->rgb[3 * p]);
-                    if (src->rgb[0] == NULL)
-                        res->rgb[3 * p] = res->rgb[3 * p + 1] = res->rgb[3 * p + 2] = 0.0f;
-                    res->z[p] = INFINITY;
-                } else if (stt == LT_QT_OCCLUDED) {
-                    res->cls[p] = LT_RP_DISOCCLUDED;
-                } else if (stt == LT_QT_UNKNOWN) {
-                    res->cls[p] = LT_RP_UNKNOWN;
-                } else {
-                    res->cls[p] = LT_RP_OUTSIDE;
-                }
+                rr->ops->lane(rr->ray, rr->hit, l, &ln);
+                classify(res, fc, dst, p, &ln);
             }
         }
         if (o->progress != NULL)
             o->progress((double)(ty + 4) / (double)dst->height);
     }
+}
+
+/* The result's buffers for a w x h target, every pixel outside with no depth; 0 or -1. */
+static int result_alloc(lt_rp_result_t *res, uint32_t w, uint32_t h)
+{
+    size_t i, np = (size_t)w * h;
+    res->width = w;
+    res->height = h;
+    res->rgb = calloc(np * 3, sizeof(float));
+    res->z = malloc(np * sizeof(float));
+    res->cls = malloc(np);
+    res->steps = calloc(np, sizeof(float));
+    res->cycles = calloc(np, sizeof(float));
+    res->sx = malloc(np * sizeof(float));
+    res->sy = malloc(np * sizeof(float));
+    res->layer = malloc(np * sizeof(int32_t));
+    if (res->rgb == NULL || res->z == NULL || res->cls == NULL || res->steps == NULL ||
+        res->cycles == NULL || res->sx == NULL || res->sy == NULL || res->layer == NULL)
+        return -1;
+    for (i = 0; i < np; i++) {
+        res->z[i] = NAN;
+        res->sx[i] = res->sy[i] = NAN;
+        res->layer[i] = -1;
+        res->cls[i] = LT_RP_OUTSIDE;
+    }
+    res->st.pixels = np;
+    return 0;
+}
+
+/* The checks of lt_rp_run's inputs; the numeric path of o->enc, or NULL with a message. */
+static const lt_path_info_t *run_check(const lt_rp_source_t *src, const lt_reproj_cam_t *dst,
+                                       const lt_rp_opts_t *o, lt_diag_t *diag)
+{
+    const lt_path_info_t *p = lt_paths_of_qt_enc(o->enc);
+    if (src == NULL || dst == NULL || src->z == NULL || src->layers < 1 ||
+        src->layers > LT_RP_MAX_LAYERS) {
+        lt_diag_fail(diag, "reproject: bad source (layers must be 1..%d)", LT_RP_MAX_LAYERS);
+        return NULL;
+    }
+    if (src->width < 1 || src->height < 1 || src->width > LT_QT_MAX_DIM ||
+        src->height > LT_QT_MAX_DIM || dst->width < 1 || dst->height < 1 ||
+        dst->width > LT_QT_MAX_DIM || dst->height > LT_QT_MAX_DIM) {
+        lt_diag_fail(diag, "reproject: source %ux%u or target %ux%u outside 1..%u (LT_QT_MAX_DIM) "
+                     "per side", src->width, src->height, dst->width, dst->height, LT_QT_MAX_DIM);
+        return NULL;
+    }
+    if (p == NULL || p->screen == NULL || (unsigned)o->tracer > (unsigned)LT_RP_HIZ) {
+        lt_diag_fail(diag, "reproject: unknown node encoding %d or tracer %d (0..2 each)",
+                     (int)o->enc, (int)o->tracer);
+        return NULL;
+    }
+    return p;
+}
+
+int lt_rp_run(const lt_rp_source_t *src, const lt_reproj_cam_t *dst, const lt_rp_opts_t *o,
+              lt_rp_result_t *res, lt_diag_t *diag)
+{
+    lt_rp_opts_t od;
+    static rp_tracer_t tr;
+    lt_reproj_opts_t ro;
+    rp_run_t rr;
+    fetch_ctx_t fc;
+    void *arena = NULL, *w = NULL;
+    float *wf = NULL;
+    uint8_t *valid = NULL;
+    size_t n, np, bytes, i;
+    int e, status = -1;
+    lt_status_t s;
+    double t0;
+    lt_meter_totals_t m0, m1;
+
+    memset(res, 0, sizeof *res);
+    memset(&rr, 0, sizeof rr);
+    if (o == NULL) {
+        lt_rp_opts_default(&od);
+        o = &od;
+    }
+    if ((rr.p = run_check(src, dst, o, diag)) == NULL)
+        return -1;
+    rr.ops = rr.p->screen;
+    rr.tr = &tr;
+    n = (size_t)src->width * src->height * src->layers;
+    if (lt_qt_zref_exp(src->z, n, &e) != 0) {
+        lt_diag_fail(diag, "reproject: the depth image has no valid depth (all NaN, inf or <= 0)");
+        return -1;
+    }
+    res->st.zref = ldexp(1.0, e);
+
+    /* w per layer in the path's format (and as float: the fetch compares with the same values
+       the core saw), the mapping, a packet and its results */
+    wf = malloc(n * sizeof *wf);
+    if (rr.ops->w_bytes > 0)
+        w = malloc(n * rr.ops->w_bytes);
+    rr.map = alloc64z(rr.ops->map_bytes);
+    rr.ray = alloc64z(rr.ops->ray_bytes);
+    rr.hit = alloc64z(rr.ops->hit_bytes);
+    if (wf == NULL || (rr.ops->w_bytes > 0 && w == NULL) || rr.map == NULL || rr.ray == NULL ||
+        rr.hit == NULL) {
+        lt_diag_fail(diag, "reproject: out of memory for %zu depth samples", n);
+        goto done;
+    }
+    rr.ops->w_from_depth(src->z, n, e, w != NULL ? w : wf, wf);
+
+    /* mapping */
+    memset(&ro, 0, sizeof ro);
+    ro.z_ref = res->st.zref;
+    ro.z_near_dst = o->z_near_dst;
+    s = rr.ops->setup(&src->cam, dst, &ro, rr.map);
+    if (s != LT_OK) {
+        lt_diag_fail(diag,
+                     "reproject: camera setup failed (%s): focal lengths must be > 0 and finite, "
+                     "rotations orthonormal, sizes 1..%u, z_ref / near < 2",
+                     lt_status_str(s), LT_QT_MAX_DIM);
+        goto done;
+    }
+
+    /* the tracer: quadtree (built), DDA (no structure) or Hi-Z (built) */
+    t0 = lt_now_s();
+    lt_meter_region(w != NULL ? w : (void *)wf, n * (w != NULL ? rr.ops->w_bytes : sizeof *wf),
+                    0x50000000u);
+    lt_meter_totals(&m0);
+    if (tracer_build(&tr, o, rr.p, src->width, src->height, src->layers, w != NULL ? w : wf,
+                     &arena, &bytes, diag) != 0)
+        goto done;
+    res->st.t_build = lt_now_s() - t0;
+    res->st.qt_bytes = bytes;
+    if (o->tracer == LT_RP_QUADTREE) {
+        res->st.qt_nodes = (uint64_t)tr.qt.layer_nodes * tr.qt.layers;
+        res->st.qt_planes = rr.ops->qt_planes(arena, res->st.qt_nodes);
+    }
+
+    /* outputs */
+    np = (size_t)dst->width * dst->height;
+    valid = malloc(np);
+    if (result_alloc(res, dst->width, dst->height) != 0 || valid == NULL) {
+        lt_diag_fail(diag, "reproject: out of memory for a %ux%u target", dst->width,
+                     dst->height);
+        goto done;
+    }
+    fc.src = src;
+    fc.wl = wf;
+    fc.zref = res->st.zref;
+    fc.bilinear = o->bilinear;
+
+    t0 = lt_now_s();
+    trace_tiles(&rr, &fc, dst, o, res);
     res->st.t_trace = lt_now_s() - t0;
     /* one source of truth with the cycle report: the model's phase totals over the call */
     lt_meter_totals(&m1);
@@ -717,9 +710,12 @@ int lt_rp_run(const lt_rp_source_t *src, const lt_reproj_cam_t *dst, const lt_rp
     status = 0;
 done:
     free(arena);
-    free(wq);
+    free(w);
     free(wf);
     free(valid);
+    free(rr.map);
+    free(rr.ray);
+    free(rr.hit);
     if (status != 0)
         lt_rp_result_free(res);
     return status;

@@ -50,7 +50,9 @@ typedef struct lt_rp_source {
 } lt_rp_source_t;
 
 typedef struct lt_rp_opts {
-    lt_qt_enc_t enc;      /* LT_QT_N64, LT_QT_N32 (s1.30 rays) or LT_QT_F32 (float32 rays) */
+    lt_qt_enc_t enc;      /* the quadtree node encoding: LT_QT_N64, LT_QT_N32 (s1.30 rays) or
+                             LT_QT_F32 (float32 rays); its registry entry (lt_paths_of_qt_enc)
+                             gives the numeric path's screen ops */
     int bilinear;         /* 1: depth-aware bilinear colour fetch (default), 0: nearest pixel */
     int inpaint;          /* 1: fill holes (default); 0: holes stay black with depth NaN */
     uint32_t max_steps;   /* nodes per lane per layer, 0 = lt_qt_default_steps */

@@ -3,9 +3,11 @@
  * filtering of Benthin & Wald 2009 [Benthin09], section 4.5, the 256-sample reference, quality
  * metrics and brute-force audits, on the core's kernels (lt_frusta.h, lt_bvh.h). Every per-pixel
  * stage runs lane ops, so the sim build charges it to its phase (SETUP, TRAVERSE, INTERSECT, SHADE,
- * FILTER). Host only.
+ * FILTER). Written once for every numeric path: the stages' lane work is the path's frusta ops
+ * (ss->ops, lt_softshadow_path.inc), the rest works on the path's 4-byte buffers through the
+ * registry's conversions (lt_softshadow_int.h). Host only.
  */
-#include "render/lt_softshadow.h"
+#include "render/lt_softshadow_int.h"
 #include "io/lt_fx_float.h"
 #include "lt_meter.h"
 #include "io/lt_png.h"
@@ -14,41 +16,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
-struct lt_softshadow {
-    const lt_scene_t *s;
-    lt_camera_t cam;
-    lt_ss_light_t light;
-    lt_ss_opts_t o;
-    uint32_t w, h;
-    size_t n;
-    void *adeep, *ashal;
-    lt_bvh_t deep, shal;
-    lt_qmc_sets_t sets;
-    lt_frusta_table_q16_t *tbq;
-    lt_frusta_table_f32_t *tbf;
-    lt_q16_t mq[3];             /* light centre, s15.16 */
-    lt_q30_t nlq[3];            /* light normal (emitting side), s1.30 */
-    float mf[3], nlf[3];
-    lt_q30_t *tnq;              /* per triangle unit normal, s1.30 (3 per triangle) */
-    float *tnf;
-    /* per pixel (row-major) */
-    int32_t *id;
-    lt_q16_t *oq[3], *zq, *gq, *eq, *efq, *erq, *efrq, *vq, *vrq;
-    lt_q30_t *nq[3];
-    float *nf[3];
-    float *of[3], *zf, *gf, *ef, *eff, *erf, *efrf, *vf, *vrf;
-    uint8_t *valid, *lit;
-    uint16_t *occ[2];
-    int have[2], last;
-    lt_frusta_vtable_q16_t *vtq; /* the linear camera of both primary methods */
-    lt_frusta_vtable_f32_t *vtf;
-    int32_t *pid[2];             /* per pixel: closest-hit id of P-Packet (0) / P-Frusta (1) */
-    uint32_t *pt[2];             /* ... and the bits of its t */
-    int have_prim[2];
-    double *vref;
-    lt_ss_counts_t cnt;
-};
 
 typedef struct named_view {
     const char *name;
@@ -83,7 +50,7 @@ void lt_ss_opts_default(const lt_scene_t *s, lt_ss_opts_t *o)
 {
     int e;
     memset(o, 0, sizeof *o);
-    o->path = LT_PATH_Q16;
+    o->path = lt_paths_find("q16", LT_PATHS_FRUSTA);
     o->leaf = 8;
     o->flags = LT_FRUSTA_BACKFACE | LT_FRUSTA_CORNER | LT_FRUSTA_CR;
     o->pflags = LT_FRUSTA_BACKFACE | LT_FRUSTA_CORNER | LT_FRUSTA_CR;
@@ -230,6 +197,27 @@ static void *alloc64(size_t bytes)
     return p;
 }
 
+/* Element q of one of the path's 4-byte buffers: its bits, and its value in scaled units (a
+ * position-format buffer: s15.16 raw or binary32, lt_path_to_double). */
+static uint32_t bits_at(const void *buf, size_t q)
+{
+    uint32_t u;
+    memcpy(&u, (const char *)buf + q * LT_SS_ELEM, sizeof u);
+    return u;
+}
+
+static double value_at(const lt_softshadow_t *ss, const void *buf, size_t q)
+{
+    return lt_path_to_double(ss->p, (int64_t)(int32_t)bits_at(buf, q));
+}
+
+/* ... and a double stored there (half up and saturating, or rounded to float). */
+static void store_at(const lt_softshadow_t *ss, void *buf, size_t q, double v)
+{
+    uint32_t u = (uint32_t)lt_path_from_double(ss->p, v);
+    memcpy((char *)buf + q * LT_SS_ELEM, &u, sizeof u);
+}
+
 static int build_tree(const lt_softshadow_t *ss, uint32_t max_leaf, uint32_t min_leaf, void **arena,
                       lt_bvh_t *bvh, lt_diag_t *diag)
 {
@@ -243,9 +231,7 @@ static int build_tree(const lt_softshadow_t *ss, uint32_t max_leaf, uint32_t min
     if (st == LT_OK && (*arena = alloc64(bytes)) == NULL)
         st = LT_E_SPACE;
     if (st == LT_OK)
-        st = ss->o.path == LT_PATH_Q16
-                 ? lt_bvh_build_q16(bvh, &d, ss->s->tq, ss->s->ntris, *arena, bytes)
-                 : lt_bvh_build_f32(bvh, &d, ss->s->tf, ss->s->ntris, *arena, bytes);
+        st = ss->p->render->bvh_build(bvh, &d, ss->tris, ss->s->ntris, *arena, bytes);
     if (st != LT_OK) {
         lt_diag_fail(diag, "building a BVH (leaf %u) over %u triangles: %s", max_leaf,
                      ss->s->ntris, lt_status_str(st));
@@ -254,34 +240,41 @@ static int build_tree(const lt_softshadow_t *ss, uint32_t max_leaf, uint32_t min
     return 0;
 }
 
+/* The per-pixel buffers in the path's formats (4 bytes each). */
+#define SS_NBUF 12
+static void **pixel_bufs(lt_softshadow_t *ss, void **b[SS_NBUF])
+{
+    b[0] = &ss->org[0], b[1] = &ss->org[1], b[2] = &ss->org[2], b[3] = &ss->nrm[0];
+    b[4] = &ss->nrm[1], b[5] = &ss->nrm[2], b[6] = &ss->z, b[7] = &ss->g, b[8] = &ss->e;
+    b[9] = &ss->ef, b[10] = &ss->er, b[11] = &ss->efr;
+    return b[0];
+}
+
 void lt_ss_free(lt_softshadow_t *ss)
 {
+    void **b[SS_NBUF];
     int a;
     if (ss == NULL)
         return;
+    (void)pixel_bufs(ss, b);
+    for (a = 0; a < SS_NBUF; a++)
+        free(*b[a]);
     free(ss->adeep);
     free(ss->ashal);
-    free(ss->tbq);
-    free(ss->tbf);
-    free(ss->tnq);
-    free(ss->tnf);
+    free(ss->tb);
+    free(ss->vt);
+    free(ss->lm);
+    free(ss->ln);
+    free(ss->tn);
+    free(ss->v);
+    free(ss->vr);
+    free(ss->ray1);
     free(ss->id);
-    for (a = 0; a < 3; a++) {
-        free(ss->oq[a]);
-        free(ss->nq[a]);
-        free(ss->of[a]);
-        free(ss->nf[a]);
-    }
-    free(ss->zq), free(ss->gq), free(ss->eq), free(ss->efq), free(ss->erq), free(ss->efrq);
-    free(ss->zf), free(ss->gf), free(ss->ef), free(ss->eff), free(ss->erf), free(ss->efrf);
-    free(ss->vq), free(ss->vrq), free(ss->vf), free(ss->vrf);
     free(ss->valid);
     free(ss->lit);
     free(ss->occ[0]);
     free(ss->occ[1]);
     free(ss->vref);
-    free(ss->vtq);
-    free(ss->vtf);
     for (a = 0; a < 2; a++) {
         free(ss->pid[a]);
         free(ss->pt[a]);
@@ -296,41 +289,43 @@ static void region(const void *p, size_t bytes, unsigned slot)
     lt_meter_region(p, bytes, 0x10000000u + (uint64_t)slot * 0x01000000u);
 }
 
-lt_softshadow_t *lt_ss_create(const lt_scene_t *s, const lt_camera_t *cam, const lt_ss_light_t *l,
-                              const lt_ss_opts_t *o, lt_diag_t *diag)
+/* Every buffer of a w x h frame and of the path's data; 0 or -1. */
+static int alloc_buffers(lt_softshadow_t *ss)
 {
-    lt_softshadow_t *ss = calloc(1, sizeof *ss);
-    size_t n = (size_t)cam->width * cam->height, bq = n * sizeof(lt_q16_t), bf = n * sizeof(float);
-    double m[3], nl[3], len;
-    uint32_t i;
+    const lt_ss_ops_t *ops = ss->ops;
+    size_t n = ss->n, bq = n * LT_SS_ELEM;
+    void **b[SS_NBUF];
     int a, fail = 0;
-    lt_status_t st;
+    (void)pixel_bufs(ss, b);
+    for (a = 0; a < SS_NBUF; a++)
+        fail |= (*b[a] = alloc64(bq)) == NULL;
+    ss->v = alloc64(bq), ss->vr = alloc64(bq);
+    ss->tb = alloc64(ops->table_bytes);
+    ss->vt = alloc64(ops->vtable_bytes);
+    ss->lm = alloc64(3 * LT_SS_ELEM), ss->ln = alloc64(3 * LT_SS_ELEM);
+    ss->tn = malloc((size_t)ss->s->ntris * 3 * LT_SS_ELEM + 4);
+    ss->ray1 = alloc64(ops->ray1_bytes);
+    ss->id = malloc(n * sizeof *ss->id);
+    ss->valid = alloc64(n), ss->lit = alloc64(n);
+    ss->occ[0] = alloc64(n * 2), ss->occ[1] = alloc64(n * 2);
+    ss->vref = calloc(n + 1, sizeof(double));
+    for (a = 0; a < 2; a++) {
+        ss->pid[a] = calloc(n + 1, sizeof(int32_t));
+        ss->pt[a] = calloc(n + 1, sizeof(uint32_t));
+        fail |= ss->pid[a] == NULL || ss->pt[a] == NULL;
+    }
+    fail |= ss->v == NULL || ss->vr == NULL || ss->tb == NULL || ss->vt == NULL ||
+            ss->lm == NULL || ss->ln == NULL || ss->tn == NULL || ss->ray1 == NULL ||
+            ss->id == NULL || ss->valid == NULL || ss->lit == NULL || ss->occ[0] == NULL ||
+            ss->occ[1] == NULL || ss->vref == NULL;
+    return fail ? -1 : 0;
+}
 
-    if (ss == NULL) {
-        lt_diag_fail(diag, "out of memory");
-        return NULL;
-    }
-    if (o->leaf < 1 || o->leaf > LT_BVH_MAX_LEAF) {
-        lt_diag_fail(diag, "frusta leaf size %u outside 1..%d (LT_BVH_MAX_LEAF)", o->leaf,
-                     LT_BVH_MAX_LEAF);
-        free(ss);
-        return NULL;
-    }
-    ss->s = s;
-    ss->cam = *cam;
-    ss->light = *l;
-    ss->o = *o;
-    ss->w = cam->width;
-    ss->h = cam->height;
-    ss->n = n;
-    ss->last = -1;
-    if (build_tree(ss, 4, 1, &ss->adeep, &ss->deep, diag) != 0 ||
-        build_tree(ss, o->leaf, o->leaf > 1 ? o->leaf / 2 : 1, &ss->ashal, &ss->shal, diag) != 0) {
-        lt_ss_free(ss);
-        return NULL;
-    }
-    (void)lt_qmc_interleave4x4(o->qmc, o->scramble, &ss->sets);
-    /* light centre and its emitting normal (eu x ev, flipped toward the scene centre) */
+/* The light's centre and its emitting normal (eu x ev, flipped toward the scene centre). */
+static void light_frame(const lt_ss_light_t *l, double m[3], double nl[3])
+{
+    double len;
+    int a;
     for (a = 0; a < 3; a++)
         m[a] = l->c[a] + 0.5 * (l->eu[a] + l->ev[a]);
     nl[0] = l->eu[1] * l->ev[2] - l->eu[2] * l->ev[1];
@@ -344,302 +339,70 @@ lt_softshadow_t *lt_ss_create(const lt_scene_t *s, const lt_camera_t *cam, const
     }
     if (nl[0] * -m[0] + nl[1] * -m[1] + nl[2] * -m[2] < 0.0)
         len = -len;
-    for (a = 0; a < 3; a++) {
+    for (a = 0; a < 3; a++)
         nl[a] /= len;
-        ss->mq[a] = lt_q16_from_double_sat(m[a]);
-        ss->nlq[a] = lt_q30_from_double_sat(nl[a]);
-        ss->mf[a] = (float)m[a];
-        ss->nlf[a] = (float)nl[a];
+}
+
+lt_softshadow_t *lt_ss_create(const lt_scene_t *s, const lt_camera_t *cam, const lt_ss_light_t *l,
+                              const lt_ss_opts_t *o, lt_diag_t *diag)
+{
+    lt_softshadow_t *ss = calloc(1, sizeof *ss);
+    size_t n = (size_t)cam->width * cam->height, bq = n * LT_SS_ELEM;
+    double m[3], nl[3];
+
+    if (ss == NULL) {
+        lt_diag_fail(diag, "out of memory");
+        return NULL;
     }
-    ss->tbq = alloc64(sizeof *ss->tbq);
-    ss->tbf = alloc64(sizeof *ss->tbf);
-    ss->tnq = malloc((size_t)s->ntris * 3 * sizeof(lt_q30_t) + 4);
-    ss->tnf = malloc((size_t)s->ntris * 3 * sizeof(float) + 4);
-    ss->id = malloc(n * sizeof *ss->id);
-    for (a = 0; a < 3; a++) {
-        ss->oq[a] = alloc64(bq), ss->nq[a] = alloc64(bq), ss->of[a] = alloc64(bf);
-        ss->nf[a] = alloc64(bf);
-        fail |= ss->oq[a] == NULL || ss->nq[a] == NULL || ss->of[a] == NULL || ss->nf[a] == NULL;
+    if (o->path == NULL || o->path->frusta == NULL || o->path->render == NULL) {
+        lt_diag_fail(diag, "numeric path '%s' has no soft-shadow operations",
+                     o->path != NULL ? o->path->name : "(none)");
+        free(ss);
+        return NULL;
     }
-    ss->zq = alloc64(bq), ss->gq = alloc64(bq), ss->eq = alloc64(bq), ss->efq = alloc64(bq);
-    ss->erq = alloc64(bq), ss->efrq = alloc64(bq);
-    ss->zf = alloc64(bf), ss->gf = alloc64(bf), ss->ef = alloc64(bf), ss->eff = alloc64(bf);
-    ss->erf = alloc64(bf), ss->efrf = alloc64(bf);
-    ss->vq = alloc64(bq), ss->vrq = alloc64(bq), ss->vf = alloc64(bf), ss->vrf = alloc64(bf);
-    ss->valid = alloc64(n), ss->lit = alloc64(n);
-    ss->occ[0] = alloc64(n * 2), ss->occ[1] = alloc64(n * 2);
-    ss->vref = calloc(n + 1, sizeof(double));
-    ss->vtq = alloc64(sizeof *ss->vtq);
-    ss->vtf = alloc64(sizeof *ss->vtf);
-    for (a = 0; a < 2; a++) {
-        ss->pid[a] = calloc(n + 1, sizeof(int32_t));
-        ss->pt[a] = calloc(n + 1, sizeof(uint32_t));
-        fail |= ss->pid[a] == NULL || ss->pt[a] == NULL;
+    if (o->leaf < 1 || o->leaf > LT_BVH_MAX_LEAF) {
+        lt_diag_fail(diag, "frusta leaf size %u outside 1..%d (LT_BVH_MAX_LEAF)", o->leaf,
+                     LT_BVH_MAX_LEAF);
+        free(ss);
+        return NULL;
     }
-    fail |= ss->vtq == NULL || ss->vtf == NULL;
-    fail |= ss->tbq == NULL || ss->tbf == NULL || ss->tnq == NULL || ss->tnf == NULL ||
-            ss->id == NULL || ss->zq == NULL || ss->gq == NULL || ss->eq == NULL ||
-            ss->efq == NULL || ss->erq == NULL || ss->efrq == NULL || ss->zf == NULL ||
-            ss->gf == NULL || ss->ef == NULL || ss->eff == NULL || ss->erf == NULL ||
-            ss->efrf == NULL || ss->vq == NULL || ss->vrq == NULL || ss->vf == NULL ||
-            ss->vrf == NULL || ss->valid == NULL || ss->lit == NULL || ss->occ[0] == NULL ||
-            ss->occ[1] == NULL || ss->vref == NULL;
-    if (fail) {
+    ss->s = s;
+    ss->p = o->path;
+    ss->ops = o->path->frusta;
+    ss->tris = o->path->render->tris(s);
+    ss->cam = *cam;
+    ss->light = *l;
+    ss->o = *o;
+    ss->w = cam->width;
+    ss->h = cam->height;
+    ss->n = n;
+    ss->last = -1;
+    if (build_tree(ss, 4, 1, &ss->adeep, &ss->deep, diag) != 0 ||
+        build_tree(ss, o->leaf, o->leaf > 1 ? o->leaf / 2 : 1, &ss->ashal, &ss->shal, diag) != 0) {
+        lt_ss_free(ss);
+        return NULL;
+    }
+    (void)lt_qmc_interleave4x4(o->qmc, o->scramble, &ss->sets);
+    if (alloc_buffers(ss) != 0) {
         lt_diag_fail(diag, "out of memory for a %ux%u soft-shadow frame", ss->w, ss->h);
         lt_ss_free(ss);
         return NULL;
     }
-    /* per-triangle geometric normals (scene data, like a stored vertex attribute) */
-    for (i = 0; i < s->ntris; i++) {
-        const double *v = &s->vd[(size_t)i * 9];
-        double e1[3], e2[3], nn[3], ln;
-        for (a = 0; a < 3; a++) {
-            e1[a] = v[3 + a] - v[a];
-            e2[a] = v[6 + a] - v[a];
-        }
-        nn[0] = e1[1] * e2[2] - e1[2] * e2[1];
-        nn[1] = e1[2] * e2[0] - e1[0] * e2[2];
-        nn[2] = e1[0] * e2[1] - e1[1] * e2[0];
-        ln = sqrt(nn[0] * nn[0] + nn[1] * nn[1] + nn[2] * nn[2]);
-        for (a = 0; a < 3; a++) {
-            double c = ln > 0.0 ? nn[a] / ln : (a == 1 ? 1.0 : 0.0);
-            ss->tnq[(size_t)i * 3 + (size_t)a] = lt_q30_from_double_sat(c);
-            ss->tnf[(size_t)i * 3 + (size_t)a] = (float)c;
-        }
-    }
-    /* the sample table of the light */
-    if (o->path == LT_PATH_Q16) {
-        lt_frusta_light_q16_t fl;
-        for (a = 0; a < 3; a++) {
-            fl.c[a] = lt_q16_from_double_sat(l->c[a]);
-            fl.eu[a] = lt_q16_from_double_sat(l->eu[a]);
-            fl.ev[a] = lt_q16_from_double_sat(l->ev[a]);
-        }
-        fl.flags = o->flags;
-        fl.end_shift = 0;
-        st = lt_frusta_table_q16(&fl, &ss->sets, ss->tbq);
-    } else {
-        lt_frusta_light_f32_t fl;
-        for (a = 0; a < 3; a++) {
-            fl.c[a] = (float)l->c[a];
-            fl.eu[a] = (float)l->eu[a];
-            fl.ev[a] = (float)l->ev[a];
-        }
-        fl.flags = o->flags;
-        fl.end_shift = 0;
-        st = lt_frusta_table_f32(&fl, &ss->sets, ss->tbf);
-    }
-    if (st != LT_OK) {
-        lt_diag_fail(diag, "light table: %s (edges must be multiples of 2^-7 units, corners "
-                     "within the geometry bound)", lt_status_str(st));
+    light_frame(l, m, nl);
+    if (ss->ops->init(ss, m, nl, diag) != 0) {
         lt_ss_free(ss);
         return NULL;
     }
-    /* the linear camera shared by P-Packet and P-Frusta */
-    {
-        lt_frusta_view_q16_t vq;
-        lt_frusta_view_f32_t vf;
-        if (lt_ss_pview(cam, o->pflags, &vq, &vf, diag) != 0) {
-            lt_ss_free(ss);
-            return NULL;
-        }
-        st = lt_frusta_vtable_q16(&vq, ss->vtq);
-        if (st == LT_OK)
-            st = lt_frusta_vtable_f32(&vf, ss->vtf);
-        if (st != LT_OK) {
-            lt_diag_fail(diag, "primary view table (%ux%u, flags %u): %s (the directions must "
-                         "stay below 1 per axis, the eye within the geometry bound, the size "
-                         "within LT_FRUSTA_PMAX_DIM %u)", cam->width, cam->height, o->pflags,
-                         lt_status_str(st), LT_FRUSTA_PMAX_DIM);
-            lt_ss_free(ss);
-            return NULL;
-        }
-    }
-    if (o->path == LT_PATH_Q16) {
-        region(s->tq, s->ntris * sizeof *s->tq, 0);
-        region(ss->tnq, s->ntris * 3 * sizeof *ss->tnq, 3);
-        region(ss->tbq, sizeof *ss->tbq, 4);
-        region(ss->zq, bq, 5), region(ss->nq[0], bq, 6), region(ss->nq[1], bq, 7);
-        region(ss->nq[2], bq, 8), region(ss->eq, bq, 9), region(ss->efq, bq, 10);
-    } else {
-        region(s->tf, s->ntris * sizeof *s->tf, 0);
-        region(ss->tnf, s->ntris * 3 * sizeof *ss->tnf, 3);
-        region(ss->tbf, sizeof *ss->tbf, 4);
-        region(ss->zf, bf, 5), region(ss->nf[0], bf, 6), region(ss->nf[1], bf, 7);
-        region(ss->nf[2], bf, 8), region(ss->ef, bf, 9), region(ss->eff, bf, 10);
-    }
+    region(ss->tris, s->ntris * ss->p->render->tri_bytes, 0);
+    region(ss->tn, s->ntris * 3 * LT_SS_ELEM, 3);
+    region(ss->tb, ss->ops->table_bytes, 4);
+    region(ss->z, bq, 5), region(ss->nrm[0], bq, 6), region(ss->nrm[1], bq, 7);
+    region(ss->nrm[2], bq, 8), region(ss->e, bq, 9), region(ss->ef, bq, 10);
     region(ss->adeep, ss->deep.bytes, 1);
     region(ss->ashal, ss->shal.bytes, 2);
     region(ss->valid, n, 11);
-    if (o->path == LT_PATH_Q16)
-        region(ss->vtq, sizeof *ss->vtq, 12);
-    else
-        region(ss->vtf, sizeof *ss->vtf, 12);
+    region(ss->vt, ss->ops->vtable_bytes, 12);
     return ss;
-}
-
-/* Pixel of lane i of the 4x4 tile at (tx, ty), or SIZE_MAX outside the image. */
-static size_t pix(const lt_softshadow_t *ss, uint32_t tx, uint32_t ty, int i)
-{
-    uint32_t x = tx + (uint32_t)(i % 4), y = ty + (uint32_t)(i / 4);
-    return x < ss->w && y < ss->h ? (size_t)y * ss->w + x : (size_t)-1;
-}
-
-/* Reinterpret s1.30 lanes as s15.16 lanes for the sign-agnostic int32 ops (a register rename). */
-static lt_vq16_t as16(lt_vq30_t a)
-{
-    lt_vq16_t r;
-    memcpy(&r, &a, sizeof r);
-    return r;
-}
-
-static lt_vq30_t as30(lt_vq16_t a)
-{
-    lt_vq30_t r;
-    memcpy(&r, &a, sizeof r);
-    return r;
-}
-
-/* Shading of one 4x4 tile from its primary rays and closest hits (SHADE): hit point o + t d, the
- * triangle's normal (a gather) turned toward the eye, the shadow origin lifted by eps along it,
- * and the direct term; the same code after P-Packet and P-Frusta. */
-static void shade_tile_q16(lt_softshadow_t *ss, uint32_t tx, uint32_t ty, const lt_ray16_q16_t *r,
-                           const lt_hit16_t *hit, lt_mask16_t k)
-{
-    lt_mask16_t hm, lm;
-    lt_vq30_t n[3];
-    lt_vq16_t p[3], g, eps = lt_vq16_set1(lt_q16_from_double_sat(ss->o.eps));
-    lt_vi32_t idx;
-    lt_vql_t dn;
-    lt_phase_t prev = LT_PHASE_ENTER(SHADE);
-    int i, a;
-    hm = (lt_mask16_t)(k & ~lt_vi32_cmpeq(hit->id, lt_vi32_set1(-1)));
-    /* hit point, the triangle's normal turned toward the eye, the origin lifted by eps */
-    p[0] = lt_vq16_add_sat(r->ox, lt_vq16_mul_q30_sat(r->tmax, r->dx));
-    p[1] = lt_vq16_add_sat(r->oy, lt_vq16_mul_q30_sat(r->tmax, r->dy));
-    p[2] = lt_vq16_add_sat(r->oz, lt_vq16_mul_q30_sat(r->tmax, r->dz));
-    idx = lt_vi32_add_wrap(lt_vi32_add_wrap(hit->id, hit->id), hit->id);
-    for (a = 0; a < 3; a++) {
-        n[a] = lt_vq30_gather_m(lt_vq30_set1(0), hm, ss->tnq + a, idx);
-    }
-    dn = lt_vql_add_wrap(
-        lt_vql_add_wrap(lt_vql_mul(lt_vi32_from_q30(n[0]), lt_vi32_from_q30(r->dx)),
-                        lt_vql_mul(lt_vi32_from_q30(n[1]), lt_vi32_from_q30(r->dy))),
-        lt_vql_mul(lt_vi32_from_q30(n[2]), lt_vi32_from_q30(r->dz)));
-    {
-        lt_mask16_t back = lt_vql_cmpgt_m(hm, dn, lt_vql_set1(0));
-        for (a = 0; a < 3; a++) {
-            n[a] = as30(lt_vq16_neg_sat_m(as16(n[a]), back, as16(n[a])));
-            p[a] = lt_vq16_add_sat(p[a], lt_vq16_mul_q30_sat(eps, n[a]));
-        }
-    }
-    lm = lt_frusta_direct16_q16(p, n, ss->mq, ss->nlq, hm, &g);
-    LT_COST(VSTORE, 9);
-    for (i = 0; i < LT_LANES; i++) {
-        size_t q = pix(ss, tx, ty, i);
-        if (q == (size_t)-1)
-            continue;
-        ss->id[q] = hit->id.l[i];
-        ss->valid[q] = (uint8_t)(((unsigned)hm >> i) & 1u);
-        ss->lit[q] = (uint8_t)(((unsigned)lm >> i) & 1u);
-        ss->zq[q] = r->tmax.l[i];
-        ss->gq[q] = (((unsigned)lm >> i) & 1u) ? g.l[i] : 0;
-        for (a = 0; a < 3; a++) {
-            ss->oq[a][q] = p[a].l[i];
-            ss->nq[a][q] = n[a].l[i];
-        }
-    }
-    LT_PHASE_LEAVE(prev);
-}
-
-static void shade_tile_f32(lt_softshadow_t *ss, uint32_t tx, uint32_t ty, const lt_ray16_f32_t *r,
-                           const lt_hit16_t *hit, lt_mask16_t k)
-{
-    lt_mask16_t hm, lm, back;
-    lt_vf32_t n[3], p[3], g, dn, eps = lt_vf32_set1((float)ss->o.eps);
-    lt_vi32_t idx;
-    lt_phase_t prev = LT_PHASE_ENTER(SHADE);
-    int i, a;
-    hm = (lt_mask16_t)(k & ~lt_vi32_cmpeq(hit->id, lt_vi32_set1(-1)));
-    p[0] = lt_vf32_add(r->ox, lt_vf32_mul(r->tmax, r->dx));
-    p[1] = lt_vf32_add(r->oy, lt_vf32_mul(r->tmax, r->dy));
-    p[2] = lt_vf32_add(r->oz, lt_vf32_mul(r->tmax, r->dz));
-    idx = lt_vi32_add_wrap(lt_vi32_add_wrap(hit->id, hit->id), hit->id);
-    for (a = 0; a < 3; a++)
-        n[a] = lt_vf32_gather_m(lt_vf32_set1(0.0f), hm, ss->tnf + a, idx);
-    dn = lt_vf32_add(lt_vf32_add(lt_vf32_mul(n[0], r->dx), lt_vf32_mul(n[1], r->dy)),
-                     lt_vf32_mul(n[2], r->dz));
-    back = lt_vf32_cmpgt_m(hm, dn, lt_vf32_set1(0.0f));
-    for (a = 0; a < 3; a++) {
-        n[a] = lt_vf32_neg_m(n[a], back, n[a]);
-        p[a] = lt_vf32_add(p[a], lt_vf32_mul(eps, n[a]));
-    }
-    lm = lt_frusta_direct16_f32(p, n, ss->mf, ss->nlf, hm, &g);
-    LT_COST(VSTORE, 9);
-    for (i = 0; i < LT_LANES; i++) {
-        size_t q = pix(ss, tx, ty, i);
-        if (q == (size_t)-1)
-            continue;
-        ss->id[q] = hit->id.l[i];
-        ss->valid[q] = (uint8_t)(((unsigned)hm >> i) & 1u);
-        ss->lit[q] = (uint8_t)(((unsigned)lm >> i) & 1u);
-        ss->zf[q] = r->tmax.l[i];
-        ss->gf[q] = (((unsigned)lm >> i) & 1u) ? g.l[i] : 0.0f;
-        for (a = 0; a < 3; a++) {
-            ss->of[a][q] = p[a].l[i];
-            ss->nf[a][q] = n[a].l[i];
-        }
-    }
-    LT_PHASE_LEAVE(prev);
-}
-
-/* Keep one primary method's answer per pixel (id and t bits) for the P-Packet / P-Frusta check;
- * host bookkeeping, not charged. */
-static void keep_prim(lt_softshadow_t *ss, int which, uint32_t tx, uint32_t ty,
-                      const lt_hit16_t *hit, const void *tmax)
-{
-    int i;
-    for (i = 0; i < LT_LANES; i++) {
-        size_t q = pix(ss, tx, ty, i);
-        if (q == (size_t)-1)
-            continue;
-        ss->pid[which][q] = hit->id.l[i];
-        memcpy(&ss->pt[which][q], (const char *)tmax + 4 * (size_t)i, 4);
-    }
-}
-
-/* P-Packet: the tile's 16 camera rays (the linear camera shared with the frusta) as one packet,
- * closest hit through the deep tree, then shading. */
-static void primary_q16(lt_softshadow_t *ss, uint32_t tx, uint32_t ty)
-{
-    static lt_ray16_q16_t r;
-    lt_hit16_t hit;
-    lt_mask16_t k = 0;
-    lt_phase_t prev = LT_PHASE_ENTER(SETUP);
-    (void)lt_frusta_prays16_q16(ss->vtq, tx, ty, &r, &k);
-    LT_EVENT(RAYS, lt__popcount32(k));
-    LT_PHASE_LEAVE(prev);
-    (void)lt_frusta_packet_trace16_q16(&ss->deep, ss->s->tq, ss->o.pflags, ss->vtq->o, &r, k,
-                                       &hit);
-    ss->cnt.primary_rays += lt__popcount32(k);
-    keep_prim(ss, 0, tx, ty, &hit, r.tmax.l);
-    shade_tile_q16(ss, tx, ty, &r, &hit, k);
-}
-
-static void primary_f32(lt_softshadow_t *ss, uint32_t tx, uint32_t ty)
-{
-    static lt_ray16_f32_t r;
-    lt_hit16_t hit;
-    lt_mask16_t k = 0;
-    lt_phase_t prev = LT_PHASE_ENTER(SETUP);
-    (void)lt_frusta_prays16_f32(ss->vtf, tx, ty, &r, &k);
-    LT_EVENT(RAYS, lt__popcount32(k));
-    LT_PHASE_LEAVE(prev);
-    (void)lt_frusta_packet_trace16_f32(&ss->deep, ss->s->tf, ss->o.pflags, ss->vtf->o, &r, k,
-                                       &hit);
-    ss->cnt.primary_rays += lt__popcount32(k);
-    keep_prim(ss, 0, tx, ty, &hit, r.tmax.l);
-    shade_tile_f32(ss, tx, ty, &r, &hit, k);
 }
 
 static void primary_counts(lt_softshadow_t *ss, int which)
@@ -665,81 +428,20 @@ void lt_ss_primary(lt_softshadow_t *ss)
     uint32_t tx, ty;
     ss->cnt.primary_rays = 0;
     for (ty = 0; ty < ss->h; ty += 4)
-        for (tx = 0; tx < ss->w; tx += 4) {
-            if (ss->o.path == LT_PATH_Q16)
-                primary_q16(ss, tx, ty);
-            else
-                primary_f32(ss, tx, ty);
-        }
+        for (tx = 0; tx < ss->w; tx += 4)
+            ss->ops->primary_tile(ss, tx, ty);
     primary_counts(ss, 0);
 }
 
 /* P-Frusta: 16 frusta (the 4x4 tiles of a 16x16 block) through the shallow tree, then each tile
- * shaded from its frustum's hits (its rays regenerated from ray 0 and the deltas: 3 broadcasts
- * and 3 adds, charged to SHADE). */
+ * shaded from its frustum's hits. */
 void lt_ss_primary_frusta(lt_softshadow_t *ss)
 {
-    static lt_frusta_prim16_q16_t Pq;
-    static lt_frusta_prim16_f32_t Pf;
-    uint32_t bx, by, f;
+    uint32_t bx, by;
     ss->cnt.primary_rays = 0;
     for (by = 0; by < ss->h; by += 16)
-        for (bx = 0; bx < ss->w; bx += 16) {
-            lt_mask16_t act;
-            if (ss->o.path == LT_PATH_Q16) {
-                (void)lt_frusta_psetup16_q16(ss->vtq, bx, by, &Pq);
-                (void)lt_frusta_trace16_q16(&ss->shal, ss->s->tq, ss->vtq, &Pq);
-                act = Pq.active;
-            } else {
-                (void)lt_frusta_psetup16_f32(ss->vtf, bx, by, &Pf);
-                (void)lt_frusta_trace16_f32(&ss->shal, ss->s->tf, ss->vtf, &Pf);
-                act = Pf.active;
-            }
-            for (f = 0; f < LT_LANES; f++) {
-                uint32_t tx = bx + 4u * (f & 3u), ty = by + 4u * (f >> 2);
-                lt_hit16_t hit;
-                if (((unsigned)act >> f & 1u) == 0)
-                    continue;
-                if (ss->o.path == LT_PATH_Q16) {
-                    static lt_ray16_q16_t r;
-                    lt_vq16_t d[3];
-                    lt_phase_t prev = LT_PHASE_ENTER(SHADE);
-                    const lt_vq30_t *g[3];
-                    int a;
-                    g[0] = &ss->vtq->gx, g[1] = &ss->vtq->gy, g[2] = &ss->vtq->gz;
-                    for (a = 0; a < 3; a++) {
-                        const lt_vq30_t *c = a == 0 ? &Pq.cx : (a == 1 ? &Pq.cy : &Pq.cz);
-                        d[a] = lt_vq16_add_wrap(lt_vq16_set1(c->l[f]), as16(*g[a]));
-                    }
-                    r.ox = lt_vq16_set1(ss->vtq->o[0]);
-                    r.oy = lt_vq16_set1(ss->vtq->o[1]);
-                    r.oz = lt_vq16_set1(ss->vtq->o[2]);
-                    r.dx = as30(d[0]), r.dy = as30(d[1]), r.dz = as30(d[2]);
-                    r.tmax = Pq.t[f];
-                    hit.id = Pq.id[f];
-                    LT_PHASE_LEAVE(prev);
-                    keep_prim(ss, 1, tx, ty, &hit, r.tmax.l);
-                    shade_tile_q16(ss, tx, ty, &r, &hit, Pq.live[f]);
-                    ss->cnt.primary_rays += lt__popcount32(Pq.live[f]);
-                } else {
-                    static lt_ray16_f32_t r;
-                    lt_phase_t prev = LT_PHASE_ENTER(SHADE);
-                    r.ox = lt_vf32_set1(ss->vtf->o[0]);
-                    r.oy = lt_vf32_set1(ss->vtf->o[1]);
-                    r.oz = lt_vf32_set1(ss->vtf->o[2]);
-                    r.dx = lt_vf32_add(lt_vf32_set1(Pf.cx.l[f]), ss->vtf->gx);
-                    r.dy = lt_vf32_add(lt_vf32_set1(Pf.cy.l[f]), ss->vtf->gy);
-                    r.dz = lt_vf32_add(lt_vf32_set1(Pf.cz.l[f]), ss->vtf->gz);
-                    r.tmax = Pf.t[f];
-                    hit.id = Pf.id[f];
-                    LT_PHASE_LEAVE(prev);
-                    keep_prim(ss, 1, tx, ty, &hit, r.tmax.l);
-                    shade_tile_f32(ss, tx, ty, &r, &hit, Pf.live[f]);
-                    ss->cnt.primary_rays += lt__popcount32(Pf.live[f]);
-                }
-            }
-            /* tiles of the block with no frustum (off the image) have no pixels to shade */
-        }
+        for (bx = 0; bx < ss->w; bx += 16)
+            ss->ops->primary_block(ss, bx, by);
     primary_counts(ss, 1);
 }
 
@@ -753,21 +455,11 @@ uint32_t lt_ss_primary_hash(const lt_softshadow_t *ss)
         int j, a;
         v[0] = (uint32_t)ss->id[q];
         v[1] = ss->valid[q] | (uint32_t)ss->lit[q] << 1;
-        if (ss->o.path == LT_PATH_Q16) {
-            v[2] = (uint32_t)ss->zq[q];
-            v[3] = (uint32_t)ss->gq[q];
-            for (a = 0; a < 3; a++) {
-                v[4 + a] = (uint32_t)ss->oq[a][q];
-            }
-            v[7] = (uint32_t)ss->nq[0][q] ^ ((uint32_t)ss->nq[1][q] << 1) ^
-                   ((uint32_t)ss->nq[2][q] << 2);
-        } else {
-            memcpy(&v[2], &ss->zf[q], 4);
-            memcpy(&v[3], &ss->gf[q], 4);
-            for (a = 0; a < 3; a++)
-                memcpy(&v[4 + a], &ss->of[a][q], 4);
-            memcpy(&v[7], &ss->nf[0][q], 4);
-        }
+        v[2] = bits_at(ss->z, q);
+        v[3] = bits_at(ss->g, q);
+        for (a = 0; a < 3; a++)
+            v[4 + a] = bits_at(ss->org[a], q);
+        v[7] = ss->ops->normal_word(ss, q);
         v[8] = (uint32_t)q;
         memcpy(b, v, 36);
         for (j = 0; j < 36; j++) {
@@ -810,71 +502,11 @@ static void count_occ(lt_softshadow_t *ss, int which)
 
 void lt_ss_shadows_frusta(lt_softshadow_t *ss)
 {
-    static lt_frusta16_q16_t Fq;
-    static lt_frusta16_f32_t Ff;
     uint32_t tx, ty;
     for (ty = 0; ty < ss->h; ty += 4)
-        for (tx = 0; tx < ss->w; tx += 4) {
-            lt_mask16_t k = 0;
-            int i;
-            lt_phase_t prev = LT_PHASE_ENTER(SETUP);
-            /* the tile's origins: three vector loads in a tile-major layout */
-            LT_COST(VLOAD, 4);
-            for (i = 0; i < LT_LANES; i++) {
-                size_t q = pix(ss, tx, ty, i);
-                int a = q != (size_t)-1 && ss->lit[q];
-                if (a)
-                    k = (lt_mask16_t)(k | (1u << i));
-                if (ss->o.path == LT_PATH_Q16) {
-                    Fq.ox.l[i] = a ? ss->oq[0][q] : 0;
-                    Fq.oy.l[i] = a ? ss->oq[1][q] : 0;
-                    Fq.oz.l[i] = a ? ss->oq[2][q] : 0;
-                } else {
-                    Ff.ox.l[i] = a ? ss->of[0][q] : 0.0f;
-                    Ff.oy.l[i] = a ? ss->of[1][q] : 0.0f;
-                    Ff.oz.l[i] = a ? ss->of[2][q] : 0.0f;
-                }
-            }
-            LT_PHASE_LEAVE(prev);
-            if (ss->o.path == LT_PATH_Q16) {
-                (void)lt_frusta_setup16_q16(ss->tbq, k, &Fq);
-                (void)lt_frusta_occluded16_q16(&ss->shal, ss->s->tq, ss->tbq, &Fq);
-            } else {
-                (void)lt_frusta_setup16_f32(ss->tbf, k, &Ff);
-                (void)lt_frusta_occluded16_f32(&ss->shal, ss->s->tf, ss->tbf, &Ff);
-            }
-            LT_COST(VSTORE, 1);
-            for (i = 0; i < LT_LANES; i++) {
-                size_t q = pix(ss, tx, ty, i);
-                if (q != (size_t)-1)
-                    ss->occ[0][q] = ss->o.path == LT_PATH_Q16 ? Fq.occl[i] : Ff.occl[i];
-            }
-        }
+        for (tx = 0; tx < ss->w; tx += 4)
+            ss->ops->shadows_tile(ss, tx, ty);
     count_occ(ss, 0);
-}
-
-/* One pixel's 16 samples of set `set` as a packet, any hit; returns the occluded mask. */
-static uint16_t packet1(lt_softshadow_t *ss, size_t q, unsigned set)
-{
-    lt_mask16_t pk = 0, occ = 0;
-    if (ss->o.path == LT_PATH_Q16) {
-        static lt_ray16_q16_t r;
-        lt_q16_t o[3];
-        o[0] = ss->oq[0][q], o[1] = ss->oq[1][q], o[2] = ss->oq[2][q];
-        lt_phase_t prev = LT_PHASE_ENTER(SETUP);
-        (void)lt_frusta_rays16_q16(ss->tbq, o, set, &r, &pk);
-        LT_PHASE_LEAVE(prev);
-        (void)lt_frusta_packet_occluded16_q16(&ss->deep, ss->s->tq, ss->o.flags, o, &r, pk, &occ);
-    } else {
-        static lt_ray16_f32_t r;
-        float o[3];
-        o[0] = ss->of[0][q], o[1] = ss->of[1][q], o[2] = ss->of[2][q];
-        lt_phase_t prev = LT_PHASE_ENTER(SETUP);
-        (void)lt_frusta_rays16_f32(ss->tbf, o, set, &r, &pk);
-        LT_PHASE_LEAVE(prev);
-        (void)lt_frusta_packet_occluded16_f32(&ss->deep, ss->s->tf, ss->o.flags, o, &r, pk, &occ);
-    }
-    return occ;
 }
 
 void lt_ss_shadows_packet(lt_softshadow_t *ss)
@@ -883,7 +515,7 @@ void lt_ss_shadows_packet(lt_softshadow_t *ss)
     for (y = 0; y < ss->h; y++)
         for (x = 0; x < ss->w; x++) {
             size_t q = (size_t)y * ss->w + x;
-            ss->occ[1][q] = ss->lit[q] ? packet1(ss, q, (x & 3u) + 4u * (y & 3u)) : 0;
+            ss->occ[1][q] = ss->lit[q] ? ss->ops->packet(ss, q, (x & 3u) + 4u * (y & 3u)) : 0;
         }
     count_occ(ss, 1);
 }
@@ -894,118 +526,16 @@ void lt_ss_shade(lt_softshadow_t *ss, int which)
     for (ty = 0; ty < ss->h; ty += 4)
         for (tx = 0; tx < ss->w; tx += 4) {
             lt_phase_t prev = LT_PHASE_ENTER(SHADE);
-            int i;
             /* E = G x (16 - occluded) / 16: a popcount per lane, a shift and one multiply */
             LT_COST(VLOAD, 2);
             LT_COST(VALU, 3);
             LT_COST(VSTORE, 1);
-            if (ss->o.path == LT_PATH_Q16) {
-                lt_vq16_t g, v, e;
-                for (i = 0; i < LT_LANES; i++) {
-                    size_t q = pix(ss, tx, ty, i);
-                    g.l[i] = q != (size_t)-1 ? ss->gq[q] : 0;
-                    v.l[i] = q != (size_t)-1
-                                 ? (lt_q16_t)((16u - lt__popcount32(ss->occ[which][q])) << 12)
-                                 : 0;
-                }
-                e = lt_vq16_mul_sat(g, v);
-                for (i = 0; i < LT_LANES; i++) {
-                    size_t q = pix(ss, tx, ty, i);
-                    if (q != (size_t)-1) {
-                        ss->eq[q] = e.l[i];
-                        ss->vq[q] = v.l[i];
-                    }
-                }
-            } else {
-                lt_vf32_t g, v, e;
-                for (i = 0; i < LT_LANES; i++) {
-                    size_t q = pix(ss, tx, ty, i);
-                    g.l[i] = q != (size_t)-1 ? ss->gf[q] : 0.0f;
-                    v.l[i] = q != (size_t)-1
-                                 ? (float)(16u - lt__popcount32(ss->occ[which][q])) * 0.0625f
-                                 : 0.0f;
-                }
-                e = lt_vf32_mul(g, v);
-                for (i = 0; i < LT_LANES; i++) {
-                    size_t q = pix(ss, tx, ty, i);
-                    if (q != (size_t)-1) {
-                        ss->ef[q] = e.l[i];
-                        ss->vf[q] = v.l[i];
-                    }
-                }
-            }
+            ss->ops->shade_tile(ss, tx, ty, which);
             LT_PHASE_LEAVE(prev);
         }
 }
 
-static void filter_into(lt_softshadow_t *ss, int ref)
-{
-    uint32_t x, y;
-    int vis = ss->o.filter_vis;
-    if (ss->o.path == LT_PATH_Q16) {
-        lt_frusta_filter_q16_t par;
-        const lt_q16_t *in = vis ? (ref ? ss->vrq : ss->vq) : (ref ? ss->erq : ss->eq);
-        lt_q16_t *out = ref ? ss->efrq : ss->efq;
-        par.depth_rel = lt_q16_from_double_sat(ss->o.depth_rel);
-        par.cos_min = lt_q30_from_double_sat(ss->o.cos_min);
-        for (y = 0; y < ss->h; y++)
-            for (x = 0; x < ss->w; x += 16) {
-                lt_frusta_filter16_q16(in, ss->zq, ss->nq[0], ss->nq[1], ss->nq[2], ss->valid,
-                                       ss->w, ss->h, x, y, &par, out);
-                if (vis) {
-                    /* E = G x filtered V, one multiply per 16 pixels */
-                    lt_phase_t prev = LT_PHASE_ENTER(SHADE);
-                    lt_vq16_t g, v;
-                    int i;
-                    LT_COST(VLOAD, 2);
-                    LT_COST(VSTORE, 1);
-                    for (i = 0; i < LT_LANES; i++) {
-                        size_t q = (size_t)y * ss->w + x + (size_t)i;
-                        g.l[i] = x + (uint32_t)i < ss->w ? ss->gq[q] : 0;
-                        v.l[i] = x + (uint32_t)i < ss->w ? out[q] : 0;
-                    }
-                    v = lt_vq16_mul_sat(g, v);
-                    for (i = 0; i < LT_LANES && x + (uint32_t)i < ss->w; i++)
-                        out[(size_t)y * ss->w + x + (size_t)i] = v.l[i];
-                    LT_PHASE_LEAVE(prev);
-                }
-            }
-    } else {
-        lt_frusta_filter_f32_t par;
-        const float *in = vis ? (ref ? ss->vrf : ss->vf) : (ref ? ss->erf : ss->ef);
-        float *out = ref ? ss->efrf : ss->eff;
-        par.depth_rel = (float)ss->o.depth_rel;
-        par.cos_min = (float)ss->o.cos_min;
-        for (y = 0; y < ss->h; y++)
-            for (x = 0; x < ss->w; x += 16) {
-                lt_frusta_filter16_f32(in, ss->zf, ss->nf[0], ss->nf[1], ss->nf[2], ss->valid,
-                                       ss->w, ss->h, x, y, &par, out);
-                if (vis) {
-                    lt_phase_t prev = LT_PHASE_ENTER(SHADE);
-                    lt_vf32_t g, v;
-                    int i;
-                    LT_COST(VLOAD, 2);
-                    LT_COST(VSTORE, 1);
-                    for (i = 0; i < LT_LANES; i++) {
-                        size_t q = (size_t)y * ss->w + x + (size_t)i;
-                        g.l[i] = x + (uint32_t)i < ss->w ? ss->gf[q] : 0.0f;
-                        v.l[i] = x + (uint32_t)i < ss->w ? out[q] : 0.0f;
-                    }
-                    v = lt_vf32_mul(g, v);
-                    for (i = 0; i < LT_LANES && x + (uint32_t)i < ss->w; i++)
-                        out[(size_t)y * ss->w + x + (size_t)i] = v.l[i];
-                    LT_PHASE_LEAVE(prev);
-                }
-            }
-    }
-}
-
-void lt_ss_filter(lt_softshadow_t *ss) { filter_into(ss, 0); }
-
-static double gval(const lt_softshadow_t *ss, size_t q)
-{
-    return ss->o.path == LT_PATH_Q16 ? (double)ss->gq[q] / 65536.0 : (double)ss->gf[q];
-}
+void lt_ss_filter(lt_softshadow_t *ss) { ss->ops->filter(ss, 0); }
 
 void lt_ss_reference(lt_softshadow_t *ss, void (*progress)(double done))
 {
@@ -1014,36 +544,26 @@ void lt_ss_reference(lt_softshadow_t *ss, void (*progress)(double done))
         for (x = 0; x < ss->w; x++) {
             size_t q = (size_t)y * ss->w + x;
             unsigned s, occ = 0;
-            double e;
             if (ss->lit[q])
                 for (s = 0; s < LT_FRUSTA_SETS; s++)
-                    occ += lt__popcount32(packet1(ss, q, s));
+                    occ += lt__popcount32(ss->ops->packet(ss, q, s));
             ss->vref[q] = ss->lit[q] ? 1.0 - (double)occ / 256.0 : 0.0;
-            e = gval(ss, q) * ss->vref[q];
-            ss->erq[q] = lt_q16_from_double_sat(e);
-            ss->erf[q] = (float)e;
-            ss->vrq[q] = lt_q16_from_double_sat(ss->vref[q]);
-            ss->vrf[q] = (float)ss->vref[q];
+            store_at(ss, ss->er, q, value_at(ss, ss->g, q) * ss->vref[q]);
+            store_at(ss, ss->vr, q, ss->vref[q]);
         }
         if (progress != NULL && (y & 15u) == 15u)
             progress((double)(y + 1) / (double)ss->h);
     }
-    filter_into(ss, 1);
+    ss->ops->filter(ss, 1);
 }
 
 void lt_ss_counts(const lt_softshadow_t *ss, lt_ss_counts_t *c) { *c = ss->cnt; }
 
+/* E per pixel: filtered (which 0), unfiltered (1), reference (2), filtered reference (3). */
 static double eval(const lt_softshadow_t *ss, size_t q, int which)
 {
-    if (ss->o.path == LT_PATH_Q16) {
-        const lt_q16_t *a = which == 0 ? ss->efq : (which == 1 ? ss->eq : (which == 2 ? ss->erq
-                                                                                      : ss->efrq));
-        return (double)a[q] / 65536.0;
-    } else {
-        const float *a = which == 0 ? ss->eff : (which == 1 ? ss->ef : (which == 2 ? ss->erf
-                                                                                   : ss->efrf));
-        return (double)a[q];
-    }
+    const void *a = which == 0 ? ss->ef : (which == 1 ? ss->e : (which == 2 ? ss->er : ss->efr));
+    return value_at(ss, a, q);
 }
 
 static double psnr(double se, uint64_t n)
@@ -1117,10 +637,7 @@ uint32_t lt_ss_hash(const lt_softshadow_t *ss)
         unsigned char b[8];
         int j;
         v[0] = ss->last >= 0 ? ss->occ[ss->last][q] : 0u;
-        if (ss->o.path == LT_PATH_Q16)
-            v[1] = (uint32_t)ss->efq[q];
-        else
-            memcpy(&v[1], &ss->eff[q], 4);
+        v[1] = bits_at(ss->ef, q);
         memcpy(b, v, 8);
         for (j = 0; j < 8; j++) {
             h ^= b[j];
@@ -1141,8 +658,7 @@ void lt_ss_origins(const lt_softshadow_t *ss, double *o, uint8_t *lit)
     int a;
     for (q = 0; q < ss->n; q++) {
         for (a = 0; a < 3; a++)
-            o[q * 3 + (size_t)a] = ss->o.path == LT_PATH_Q16 ? (double)ss->oq[a][q] / 65536.0
-                                                             : (double)ss->of[a][q];
+            o[q * 3 + (size_t)a] = value_at(ss, ss->org[a], q);
         lit[q] = ss->lit[q];
     }
 }
@@ -1191,87 +707,21 @@ static int genuine(const double o[3], const double d[3], double tmin, double tma
  * some such hit that is genuine. */
 static void brute1(const lt_softshadow_t *ss, size_t q, unsigned set, unsigned j, int *any, int *gen)
 {
+    const lt_ss_ops_t *ops = ss->ops;
     uint32_t i;
-    double o[3], d[3], tmin, tmax;
-    int a, cull = (ss->o.flags & LT_FRUSTA_BACKFACE) != 0;
+    double o[3], d[3], tmin, tmax, t, v[9];
+    int cull = (ss->o.flags & LT_FRUSTA_BACKFACE) != 0;
     *any = *gen = 0;
-    if (ss->o.path == LT_PATH_Q16) {
-        lt_ray1_q16_t r;
-        lt_q16_t oq[3];
-        for (a = 0; a < 3; a++)
-            oq[a] = ss->oq[a][q];
-        if (lt_frusta_ray1_q16(ss->tbq, oq, set, j, &r) != LT_OK)
+    if (ops->shadow_ray1(ss, q, set, j, ss->ray1, o, d, &tmin, &tmax) != 0)
+        return;
+    for (i = 0; i < ss->s->ntris; i++) {
+        if (!ops->tri1(ss, ss->ray1, i, cull, &t))
+            continue;
+        ops->tri_vertices(ss, i, v);
+        *any = 1;
+        if (genuine(o, d, tmin, tmax, v)) {
+            *gen = 1;
             return;
-        for (a = 0; a < 3; a++) {
-            o[a] = (double)r.o[a] / 65536.0;
-            d[a] = (double)r.d[a] / 1073741824.0;
-        }
-        tmin = (double)r.tmin / 65536.0;
-        tmax = (double)r.tmax / 65536.0;
-        for (i = 0; i < ss->s->ntris; i++) {
-            lt_ray1_q16_t rr = r;
-            const lt_tri_q16_t *t = &ss->s->tq[i];
-            if (!lt_tri1_q16(&rr, t))
-                continue;
-            if (cull) {
-                int64_t p0 = lt__round_sat32((int64_t)r.d[1] * t->e2[2] - (int64_t)r.d[2] * t->e2[1], 30);
-                int64_t p1 = lt__round_sat32((int64_t)r.d[2] * t->e2[0] - (int64_t)r.d[0] * t->e2[2], 30);
-                int64_t p2 = lt__round_sat32((int64_t)r.d[0] * t->e2[1] - (int64_t)r.d[1] * t->e2[0], 30);
-                if (t->e1[0] * p0 + t->e1[1] * p1 + t->e1[2] * p2 <= 0)
-                    continue;
-            }
-            {
-                double v[9];
-                for (a = 0; a < 3; a++) {
-                    v[a] = (double)t->v0[a] / 65536.0;
-                    v[3 + a] = (double)((int64_t)t->v0[a] + t->e1[a]) / 65536.0;
-                    v[6 + a] = (double)((int64_t)t->v0[a] + t->e2[a]) / 65536.0;
-                }
-                *any = 1;
-                if (genuine(o, d, tmin, tmax, v)) {
-                    *gen = 1;
-                    return;
-                }
-            }
-        }
-    } else {
-        lt_ray1_f32_t r;
-        float of[3];
-        for (a = 0; a < 3; a++)
-            of[a] = ss->of[a][q];
-        if (lt_frusta_ray1_f32(ss->tbf, of, set, j, &r) != LT_OK)
-            return;
-        for (a = 0; a < 3; a++) {
-            o[a] = (double)r.o[a];
-            d[a] = (double)r.d[a];
-        }
-        tmin = (double)r.tmin;
-        tmax = (double)r.tmax;
-        for (i = 0; i < ss->s->ntris; i++) {
-            lt_ray1_f32_t rr = r;
-            const lt_tri_f32_t *t = &ss->s->tf[i];
-            if (!lt_tri1_f32(&rr, t))
-                continue;
-            if (cull) {
-                float px = r.d[1] * t->e2[2] - r.d[2] * t->e2[1];
-                float py = r.d[2] * t->e2[0] - r.d[0] * t->e2[2];
-                float pz = r.d[0] * t->e2[1] - r.d[1] * t->e2[0];
-                if ((t->e1[0] * px + t->e1[1] * py) + t->e1[2] * pz <= 0.0f)
-                    continue;
-            }
-            {
-                double v[9];
-                for (a = 0; a < 3; a++) {
-                    v[a] = (double)t->v0[a];
-                    v[3 + a] = (double)t->v0[a] + (double)t->e1[a];
-                    v[6 + a] = (double)t->v0[a] + (double)t->e2[a];
-                }
-                *any = 1;
-                if (genuine(o, d, tmin, tmax, v)) {
-                    *gen = 1;
-                    return;
-                }
-            }
         }
     }
 }
@@ -1308,88 +758,31 @@ int lt_ss_hit_genuine(const double o[3], const double d[3], const double v[9], d
 
 /* A primary answer (id, t) is right for pixel (x, y) when it is a kernel hit of the pixel's ray (or
  * a miss) and no kernel hit before it in (t, id) order is genuine. With ref != NULL also the
- * brute-force closest hit's id (the first smallest kernel t). */
+ * brute-force closest hit's id (the first smallest kernel t). Distances compare as doubles: the
+ * path's values convert exactly. */
 static int prim_right(const lt_softshadow_t *ss, uint32_t x, uint32_t y, int32_t id, uint32_t tbits,
                       int32_t *ref)
 {
-    double o[3], d[3], v[9];
+    const lt_ss_ops_t *ops = ss->ops;
+    double o[3], d[3], v[9], t = lt_path_to_double(ss->p, (int64_t)(int32_t)tbits), rt = 0.0;
     uint32_t i;
-    int a, cull = (ss->o.pflags & LT_FRUSTA_BACKFACE) != 0;
-    if (ss->o.path == LT_PATH_Q16) {
-        lt_ray1_q16_t r;
-        lt_q16_t t, rt = 0;
-        memcpy(&t, &tbits, 4);
-        if (lt_frusta_pray1_q16(ss->vtq, x, y, &r) != LT_OK)
-            return 0;
-        for (a = 0; a < 3; a++) {
-            o[a] = (double)r.o[a] / 65536.0;
-            d[a] = (double)r.d[a] / 1073741824.0;
+    int cull = (ss->o.pflags & LT_FRUSTA_BACKFACE) != 0;
+    if (ops->primary_ray1(ss, x, y, ss->ray1, o, d) != 0)
+        return 0;
+    for (i = 0; i < ss->s->ntris; i++) {
+        double ti;
+        int hit = ops->tri1(ss, ss->ray1, i, cull, &ti);
+        if (hit && ref != NULL && (*ref < 0 || ti < rt)) {
+            *ref = (int32_t)i;
+            rt = ti;
         }
-        for (i = 0; i < ss->s->ntris; i++) {
-            lt_ray1_q16_t rr = r;
-            const lt_tri_q16_t *tr = &ss->s->tq[i];
-            int hit = lt_tri1_q16(&rr, tr);
-            if (hit && cull) {
-                int64_t p0 = lt__round_sat32((int64_t)r.d[1] * tr->e2[2] -
-                                                 (int64_t)r.d[2] * tr->e2[1], 30);
-                int64_t p1 = lt__round_sat32((int64_t)r.d[2] * tr->e2[0] -
-                                                 (int64_t)r.d[0] * tr->e2[2], 30);
-                int64_t p2 = lt__round_sat32((int64_t)r.d[0] * tr->e2[1] -
-                                                 (int64_t)r.d[1] * tr->e2[0], 30);
-                hit = tr->e1[0] * p0 + tr->e1[1] * p1 + tr->e1[2] * p2 > 0;
-            }
-            if (hit && ref != NULL && (*ref < 0 || rr.tmax < rt)) {
-                *ref = (int32_t)i;
-                rt = rr.tmax;
-            }
-            if ((int32_t)i == id && (!hit || rr.tmax != t))
-                return 0; /* the answer is not a kernel hit of this ray */
-            if (!hit || (id >= 0 && (rr.tmax > t || (rr.tmax == t && (int32_t)i >= id))))
-                continue;
-            for (a = 0; a < 3; a++) {
-                v[a] = (double)tr->v0[a] / 65536.0;
-                v[3 + a] = (double)((int64_t)tr->v0[a] + tr->e1[a]) / 65536.0;
-                v[6 + a] = (double)((int64_t)tr->v0[a] + tr->e2[a]) / 65536.0;
-            }
-            if (lt_ss_hit_genuine(o, d, v, LT_SS_GENUINE_PAD, (double)rr.tmax / 65536.0))
-                return 0; /* a genuine hit before the answer was missed */
-        }
-    } else {
-        lt_ray1_f32_t r;
-        float t, rt = 0.0f;
-        memcpy(&t, &tbits, 4);
-        if (lt_frusta_pray1_f32(ss->vtf, x, y, &r) != LT_OK)
-            return 0;
-        for (a = 0; a < 3; a++) {
-            o[a] = (double)r.o[a];
-            d[a] = (double)r.d[a];
-        }
-        for (i = 0; i < ss->s->ntris; i++) {
-            lt_ray1_f32_t rr = r;
-            const lt_tri_f32_t *tr = &ss->s->tf[i];
-            int hit = lt_tri1_f32(&rr, tr);
-            if (hit && cull) {
-                float px = r.d[1] * tr->e2[2] - r.d[2] * tr->e2[1];
-                float py = r.d[2] * tr->e2[0] - r.d[0] * tr->e2[2];
-                float pz = r.d[0] * tr->e2[1] - r.d[1] * tr->e2[0];
-                hit = (tr->e1[0] * px + tr->e1[1] * py) + tr->e1[2] * pz > 0.0f;
-            }
-            if (hit && ref != NULL && (*ref < 0 || rr.tmax < rt)) {
-                *ref = (int32_t)i;
-                rt = rr.tmax;
-            }
-            if ((int32_t)i == id && (!hit || rr.tmax != t))
-                return 0;
-            if (!hit || (id >= 0 && (rr.tmax > t || (rr.tmax == t && (int32_t)i >= id))))
-                continue;
-            for (a = 0; a < 3; a++) {
-                v[a] = (double)tr->v0[a];
-                v[3 + a] = (double)tr->v0[a] + (double)tr->e1[a];
-                v[6 + a] = (double)tr->v0[a] + (double)tr->e2[a];
-            }
-            if (lt_ss_hit_genuine(o, d, v, LT_SS_GENUINE_PAD, (double)rr.tmax))
-                return 0;
-        }
+        if ((int32_t)i == id && (!hit || ti != t))
+            return 0; /* the answer is not a kernel hit of this ray */
+        if (!hit || (id >= 0 && (ti > t || (ti == t && (int32_t)i >= id))))
+            continue;
+        ops->tri_vertices(ss, i, v);
+        if (lt_ss_hit_genuine(o, d, v, LT_SS_GENUINE_PAD, ti))
+            return 0; /* a genuine hit before the answer was missed */
     }
     return 1;
 }

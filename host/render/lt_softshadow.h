@@ -23,7 +23,7 @@ typedef struct lt_ss_light {
 } lt_ss_light_t;
 
 typedef struct lt_ss_opts {
-    lt_path_t path;      /* numeric path of every stage */
+    const lt_path_info_t *path; /* numeric path of every stage (serving LT_PATHS_FRUSTA) */
     uint32_t leaf;       /* frusta BVH: max_leaf (min_leaf = leaf / 2); 1..LT_BVH_MAX_LEAF */
     uint32_t flags;      /* LT_FRUSTA_BACKFACE | LT_FRUSTA_CORNER | LT_FRUSTA_CR */
     lt_qmc_kind_t qmc;   /* sample set */

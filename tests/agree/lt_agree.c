@@ -301,7 +301,8 @@ int main(int argc, char **argv)
             const char *base;
             if (st == 3 && path == 1)
                 continue; /* the quantised BVH is s15.16 only */
-            acc = lt_accel_build(&s, all[st], (lt_path_t)path, &diag);
+            acc = lt_accel_build(&s, all[st], lt_paths_find(path ? "f32" : "q16", LT_PATHS_OBJECT),
+                                 &diag);
             if (acc == NULL || lt_frame_alloc(&fr[st][path], res, res, &diag) != 0) {
                 fprintf(stderr, "%s: %s\n", mesh_path, diag.msg);
                 return 1;

@@ -279,7 +279,8 @@ int main(int argc, char **argv)
         double light[3] = {r.light[0], r.light[1], r.light[2]};
         const char *name = a == 0 ? "s15.16 " : "float32";
         t0 = lt_now_s();
-        acc = lt_accel_build(&sc, structure, (lt_path_t)a, &diag);
+        acc = lt_accel_build(&sc, structure, lt_paths_find(a ? "f32" : "q16", LT_PATHS_OBJECT),
+                             &diag);
         lb = 1e3 * (lt_now_s() - t0);
         if (acc == NULL) {
             fprintf(stderr, "%s\n", diag.msg);

@@ -119,7 +119,7 @@ int main(int argc, char **argv)
         return 1;
     }
     lt_ss_opts_default(&sc, &o);
-    o.path = f32 ? LT_PATH_F32 : LT_PATH_Q16;
+    o.path = lt_paths_find(f32 ? "f32" : "q16", LT_PATHS_FRUSTA);
     o.leaf = leaf;
     o.flags = flags;
     ss = lt_ss_create(&sc, &cam, &light, &o, &diag);

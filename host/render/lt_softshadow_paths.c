@@ -1,0 +1,23 @@
+/* lt_softshadow_paths.c - the soft-shadow stages of each numeric path (lt_ss_ops_t,
+ * lt_path_ops.h): lt_softshadow_path.inc instantiated once per path with that path's generic
+ * names. Adding a path: its lt_path_<suffix>.h, three lines here, its entry in lt_paths.c.
+ * Host only.
+ */
+#include "render/lt_softshadow_int.h"
+#include "io/lt_fx_float.h"
+#include "lt_meter.h"
+
+#include <math.h>
+#include <string.h>
+
+/* s15.16 */
+#include "render/lt_path_q16.h"
+#include "render/lt_softshadow_path.inc"
+const lt_ss_ops_t lt_ss_ops_q16 = LT_SS_OPS;
+#include "render/lt_path_undef.h"
+
+/* float32 */
+#include "render/lt_path_f32.h"
+#include "render/lt_softshadow_path.inc"
+const lt_ss_ops_t lt_ss_ops_f32 = LT_SS_OPS;
+#include "render/lt_path_undef.h"
