@@ -565,40 +565,50 @@ static int any_part_view(exr_context_t ctx, int nparts)
     return 0;
 }
 
+/* Views each_view walks at most (a file may name more; view_known sees them all). */
+#define EXR_MAX_VIEWS 256
+
+static int in_list(const char *const *l, int n, const char *s)
+{
+    int i;
+    for (i = 0; i < n; i++)
+        if (strcmp(l[i], s) == 0)
+            return 1;
+    return 0;
+}
+
 /* Call fn(s, arg) once per view of the file: multiView's entries, then the `view` attributes of
- * parts not among them, in part order (each name once). Stops when fn returns nonzero; returns
- * that value (0: all seen). */
+ * parts not among them, in part order, each name once, the first EXR_MAX_VIEWS names (so the
+ * walk stays linear in the parts). Stops when fn returns nonzero; returns that value (0: all
+ * seen). */
 static int each_view(exr_context_t ctx, int nparts, int (*fn)(const char *, void *), void *arg)
 {
     const exr_attr_string_vector_t *mv = multiview(ctx, nparts);
-    int nmv = mv != NULL ? mv->n_strings : 0, i, p, q, r;
-    for (i = 0; i < nmv; i++)
-        if (mv->strings[i].str != NULL && (r = fn(mv->strings[i].str, arg)) != 0)
-            return r;
-    for (p = 0; p < nparts; p++) {
-        const char *pv = part_view(ctx, p);
-        int seen = 0;
-        if (pv == NULL)
+    const char *seen[EXR_MAX_VIEWS];
+    int nmv = mv != NULL ? mv->n_strings : 0, nseen = 0, i, r;
+    for (i = 0; i < nmv + nparts && nseen < EXR_MAX_VIEWS; i++) {
+        const char *v = i < nmv ? mv->strings[i].str : part_view(ctx, i - nmv);
+        if (v == NULL || in_list(seen, nseen, v))
             continue;
-        for (i = 0; i < nmv && !seen; i++)
-            seen = mv->strings[i].str != NULL && strcmp(mv->strings[i].str, pv) == 0;
-        for (q = 0; q < p && !seen; q++)
-            seen = part_view(ctx, q) != NULL && strcmp(part_view(ctx, q), pv) == 0;
-        if (!seen && (r = fn(pv, arg)) != 0)
+        seen[nseen++] = v;
+        if ((r = fn(v, arg)) != 0)
             return r;
     }
     return 0;
 }
 
-static int view_is(const char *v, void *arg)
-{
-    return strcmp(v, (const char *)arg) == 0;
-}
-
 /* 1 when the file names view v (multiView or a part's `view`). */
 static int view_known(exr_context_t ctx, int nparts, const char *v)
 {
-    return each_view(ctx, nparts, view_is, (void *)(uintptr_t)v);
+    const exr_attr_string_vector_t *mv = multiview(ctx, nparts);
+    int i;
+    for (i = 0; mv != NULL && i < mv->n_strings; i++)
+        if (mv->strings[i].str != NULL && strcmp(mv->strings[i].str, v) == 0)
+            return 1;
+    for (i = 0; i < nparts; i++)
+        if (part_view(ctx, i) != NULL && strcmp(part_view(ctx, i), v) == 0)
+            return 1;
+    return 0;
 }
 
 /* Append s to the list in dst (size cap), "..." once it is full. */
