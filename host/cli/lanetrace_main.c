@@ -918,16 +918,6 @@ static int info_exr_text(const char *path, const lt_sniff_t *sn, lt_exr_probe_t 
     return 0;
 }
 
-/* 1 when the file names view v (or has more views than the probe names). */
-static int exr_has_view(const lt_exr_probe_t *pr, const char *v)
-{
-    int k;
-    for (k = 0; k < pr->nviews && k < LT_EXR_PROBE_VIEWS; k++)
-        if (strcmp(pr->views[k], v) == 0)
-            return 1;
-    return pr->nviews > LT_EXR_PROBE_VIEWS;
-}
-
 static int info_exr(const char *path, const lt_sniff_t *sn, int json, int part, const char *view)
 {
     lt_exr_probe_t *pr = malloc(sizeof *pr);
@@ -945,8 +935,8 @@ static int info_exr(const char *path, const lt_sniff_t *sn, int json, int part, 
     ro.part = part;
     ro.view = view;
     have_depth = lt_exr_read_depth(path, NULL, &ro, &d, &diag) == 0;
-    if (!have_depth && (part >= pr->parts || (view != NULL && !exr_has_view(pr, view)))) {
-        fprintf(stderr, "%s\n", diag.msg); /* the view or part asked for is not in the file */
+    if (!have_depth && (part >= 0 || view != NULL)) {
+        fprintf(stderr, "%s\n", diag.msg); /* no such view or part, or no depth there */
         free(pr);
         return EXIT_INPUT;
     }
