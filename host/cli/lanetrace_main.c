@@ -735,7 +735,6 @@ static int cmd_run(int argc, char **argv)
 
 /* ---- info ----------------------------------------------------------------------------------- */
 
-/* EXR: the header (parts, storage, windows, channels) and statistics of the depth channel. */
 /* j as one line on stdout, then freed */
 static void print_json_line(cJSON *j)
 {
@@ -746,83 +745,242 @@ static void print_json_line(cJSON *j)
     cJSON_Delete(j);
 }
 
-static int info_exr(const char *path, const lt_sniff_t *sn, int json)
+/* EXR: every part's header (name, view, storage, compression, windows, channels), the views and
+ * the depth statistics of one view or part (--view, --part; default: the file's default view). */
+#define INFO_EXR_PARTS 64 /* parts listed (the rest are counted) */
+static const char *const exr_storage_name[] = {"scanline", "tiled", "deep scanline", "deep tiled"};
+static const char *const exr_type_name[] = {"?", "HALF", "FLOAT", "UINT"};
+
+static const char *exr_comp_name(int c)
 {
-    static const char *const storage[] = {"scanline", "tiled", "deep scanline", "deep tiled"};
-    static const char *const types[] = {"?", "HALF", "FLOAT", "UINT"};
-    lt_exr_probe_t pr;
+    static const char *const names[] = {"none", "rle", "zips", "zip", "piz", "pxr24",
+                                        "b44",  "b44a", "dwaa", "dwab"};
+    return c >= 0 && c < 10 ? names[c] : "unknown";
+}
+
+/* Depth statistics over the pixels with a positive finite depth. */
+typedef struct exr_stats {
+    size_t n, holes;
+    double mn, mx, sum;
+} exr_stats_t;
+
+static void exr_depth_stats(const lt_exr_depth_t *d, exr_stats_t *s)
+{
+    size_t k;
+    memset(s, 0, sizeof *s);
+    s->mn = INFINITY;
+    s->mx = -INFINITY;
+    for (k = 0; k < (size_t)d->width * (size_t)d->height; k++) {
+        double z = d->z[k];
+        if (!isfinite(z) || z <= 0.0) {
+            s->holes++;
+            continue;
+        }
+        s->n++;
+        s->sum += z;
+        s->mn = z < s->mn ? z : s->mn;
+        s->mx = z > s->mx ? z : s->mx;
+    }
+    if (s->n == 0)
+        s->mn = s->mx = 0.0;
+}
+
+/* One part as a JSON object. */
+static cJSON *exr_part_json(const lt_exr_probe_t *pr)
+{
+    cJSON *o = cJSON_CreateObject(), *ch = cJSON_CreateArray();
+    const int dw[4] = {pr->data_window.x0, pr->data_window.y0, pr->data_window.x1,
+                       pr->data_window.y1},
+              vw[4] = {pr->display_window.x0, pr->display_window.y0, pr->display_window.x1,
+                       pr->display_window.y1};
+    int c;
+    cJSON_AddNumberToObject(o, "index", pr->part);
+    cJSON_AddStringToObject(o, "name", pr->part_name);
+    if (pr->view[0] != '\0')
+        cJSON_AddStringToObject(o, "view", pr->view);
+    else
+        cJSON_AddNullToObject(o, "view");
+    cJSON_AddStringToObject(o, "storage", exr_storage_name[pr->storage & 3]);
+    cJSON_AddStringToObject(o, "compression", exr_comp_name(pr->compression));
+    cJSON_AddItemToObject(o, "data_window", cJSON_CreateIntArray(dw, 4));
+    cJSON_AddItemToObject(o, "display_window", cJSON_CreateIntArray(vw, 4));
+    cJSON_AddNumberToObject(o, "nchannels", pr->nchannels);
+    for (c = 0; c < pr->nchannels && c < LT_EXR_PROBE_CHANNELS; c++) {
+        cJSON *e = cJSON_CreateObject();
+        cJSON_AddStringToObject(e, "name", pr->name[c]);
+        cJSON_AddStringToObject(e, "type", exr_type_name[pr->type[c] & 3]);
+        cJSON_AddItemToArray(ch, e);
+    }
+    cJSON_AddItemToObject(o, "channels", ch);
+    return o;
+}
+
+/* One part as text: "part N    name ..., view ..., storage, compression, windows" and its
+ * channels. */
+static void exr_part_text(const lt_exr_probe_t *pr)
+{
+    int c;
+    printf("part %-5d", pr->part);
+    if (pr->part_name[0] != '\0')
+        printf("name '%s', ", pr->part_name);
+    if (pr->view[0] != '\0')
+        printf("view %s%s, ", pr->view,
+               strcmp(pr->view, pr->default_view) == 0 ? " (default)" : "");
+    printf("%s, %s, data window (%d,%d)-(%d,%d), display window (%d,%d)-(%d,%d)\n",
+           exr_storage_name[pr->storage & 3], exr_comp_name(pr->compression),
+           pr->data_window.x0, pr->data_window.y0, pr->data_window.x1, pr->data_window.y1,
+           pr->display_window.x0, pr->display_window.y0, pr->display_window.x1,
+           pr->display_window.y1);
+    printf("channels  %d:", pr->nchannels);
+    for (c = 0; c < pr->nchannels && c < LT_EXR_PROBE_CHANNELS; c++)
+        printf(" %s(%s)", pr->name[c], exr_type_name[pr->type[c] & 3]);
+    printf("%s\n", pr->nchannels > LT_EXR_PROBE_CHANNELS ? " ..." : "");
+}
+
+/* The views line: "views right left (default right)" or "no views". */
+static void exr_views_text(const lt_exr_probe_t *pr, char *buf, size_t cap)
+{
+    size_t n = 0;
+    int v;
+    if (pr->nviews == 0) {
+        snprintf(buf, cap, "no views");
+        return;
+    }
+    n += (size_t)snprintf(buf, cap, "views");
+    for (v = 0; v < pr->nviews && v < LT_EXR_PROBE_VIEWS && n < cap; v++)
+        n += (size_t)snprintf(buf + n, cap - n, " %s", pr->views[v]);
+    if (pr->nviews > LT_EXR_PROBE_VIEWS && n < cap)
+        n += (size_t)snprintf(buf + n, cap - n, " ... (%d)", pr->nviews);
+    if (n < cap)
+        snprintf(buf + n, cap - n, " (default %s)", pr->default_view);
+}
+
+/* Probe part p into pr (part 0 is there already). 0, or -1 after a message on stderr. */
+static int exr_probe_next(const char *path, int p, lt_exr_probe_t *pr)
+{
+    lt_diag_t diag;
+    if (p == 0 || lt_exr_probe_part(path, p, pr, &diag) == 0)
+        return 0;
+    fprintf(stderr, "%s\n", diag.msg);
+    return -1;
+}
+
+/* info --json: the file, its views, part 0's header at the top level (as before parts were
+ * listed), "part_list" with every part, "depth" (d NULL: "depth_error", why none). */
+static int info_exr_json(const char *path, const lt_sniff_t *sn, lt_exr_probe_t *pr,
+                         const lt_exr_depth_t *d, const exr_stats_t *s, const char *why)
+{
+    cJSON *j = cJSON_CreateObject(), *a;
+    const int dw[4] = {pr->data_window.x0, pr->data_window.y0, pr->data_window.x1,
+                       pr->data_window.y1},
+              vw[4] = {pr->display_window.x0, pr->display_window.y0, pr->display_window.x1,
+                       pr->display_window.y1};
+    char *txt;
+    int p, rc = 0;
+    cJSON_AddStringToObject(j, "file", path);
+    cJSON_AddStringToObject(j, "detected", sn->what);
+    cJSON_AddBoolToObject(j, "name_agrees", sn->name_agrees);
+    cJSON_AddNumberToObject(j, "parts", pr->parts);
+    a = cJSON_AddArrayToObject(j, "views");
+    for (p = 0; p < pr->nviews && p < LT_EXR_PROBE_VIEWS; p++)
+        cJSON_AddItemToArray(a, cJSON_CreateString(pr->views[p]));
+    if (pr->default_view[0] != '\0')
+        cJSON_AddStringToObject(j, "default_view", pr->default_view);
+    else
+        cJSON_AddNullToObject(j, "default_view");
+    cJSON_AddStringToObject(j, "storage", exr_storage_name[pr->storage & 3]);
+    cJSON_AddItemToObject(j, "data_window", cJSON_CreateIntArray(dw, 4));
+    cJSON_AddItemToObject(j, "display_window", cJSON_CreateIntArray(vw, 4));
+    cJSON_AddNumberToObject(j, "channels", pr->nchannels);
+    a = cJSON_AddArrayToObject(j, "part_list");
+    for (p = 0; p < pr->parts && p < INFO_EXR_PARTS && rc == 0; p++)
+        if ((rc = exr_probe_next(path, p, pr)) == 0)
+            cJSON_AddItemToArray(a, exr_part_json(pr));
+    if (d != NULL) {
+        a = cJSON_AddObjectToObject(j, "depth");
+        cJSON_AddNumberToObject(a, "part", d->part);
+        if (d->view[0] != '\0')
+            cJSON_AddStringToObject(a, "view", d->view);
+        else
+            cJSON_AddNullToObject(a, "view");
+        cJSON_AddStringToObject(a, "channel", d->channel);
+        cJSON_AddBoolToObject(a, "deep", d->deep);
+        cJSON_AddNumberToObject(a, "pixels", (double)s->n);
+        cJSON_AddNumberToObject(a, "holes", (double)s->holes);
+        cJSON_AddNumberToObject(a, "min", s->mn);
+        cJSON_AddNumberToObject(a, "max", s->mx);
+        cJSON_AddNumberToObject(a, "mean", s->n ? s->sum / (double)s->n : 0.0);
+    } else {
+        cJSON_AddStringToObject(j, "depth_error", why);
+    }
+    txt = cJSON_PrintUnformatted(j);
+    if (txt != NULL && rc == 0)
+        printf("%s\n", txt);
+    cJSON_free(txt);
+    cJSON_Delete(j);
+    return rc == 0 ? 0 : EXIT_INPUT;
+}
+
+/* info: the file and its views, every part, the depth statistics (d NULL: why none). */
+static int info_exr_text(const char *path, const lt_sniff_t *sn, lt_exr_probe_t *pr,
+                         const lt_exr_depth_t *d, const exr_stats_t *s, const char *why)
+{
+    char views[1024];
+    int p;
+    exr_views_text(pr, views, sizeof views);
+    printf("detected  %s by its content%s\n", sn->what,
+           sn->name_agrees ? "" : " (its name says otherwise)");
+    printf("%s: OpenEXR, %d part%s, %s\n", path, pr->parts, pr->parts == 1 ? "" : "s", views);
+    for (p = 0; p < pr->parts && p < INFO_EXR_PARTS; p++) {
+        if (exr_probe_next(path, p, pr) != 0)
+            return EXIT_INPUT;
+        exr_part_text(pr);
+    }
+    if (pr->parts > INFO_EXR_PARTS)
+        printf("...       %d more parts not listed\n", pr->parts - INFO_EXR_PARTS);
+    if (d != NULL)
+        printf("depth     part %d%s%s, channel %s%s: %zu pixels with depth, %zu holes (0, "
+               "negative, NaN or inf), min %g max %g mean %g\n",
+               d->part, d->view[0] != '\0' ? ", view " : "", d->view, d->channel,
+               d->deep ? " (deep: front-most sample)" : "", s->n, s->holes, s->mn, s->mx,
+               s->n ? s->sum / (double)s->n : 0.0);
+    else
+        printf("depth     none readable: %s\n", why);
+    return 0;
+}
+
+static int info_exr(const char *path, const lt_sniff_t *sn, int json, int part, const char *view)
+{
+    lt_exr_probe_t *pr = malloc(sizeof *pr);
     lt_exr_depth_t d;
     lt_exr_read_opts_t ro = LT_EXR_READ_OPTS_DEFAULT;
     lt_diag_t diag;
-    int c, have_depth;
-    double mn = INFINITY, mx = -INFINITY, sum = 0.0;
-    size_t k, n = 0, holes = 0;
-    if (lt_exr_probe(path, &pr, &diag) != 0) {
-        fprintf(stderr, "%s\n", diag.msg);
+    exr_stats_t s;
+    int have_depth, rc;
+    if (pr == NULL || lt_exr_probe(path, pr, &diag) != 0) {
+        fprintf(stderr, "%s\n", pr == NULL ? "lanetrace info: out of memory" : diag.msg);
+        free(pr);
         return EXIT_INPUT;
     }
     ro.deep = LT_EXR_DEEP_FRONT;
+    ro.part = part;
+    ro.view = view;
     have_depth = lt_exr_read_depth(path, NULL, &ro, &d, &diag) == 0;
-    if (have_depth) {
-        for (k = 0; k < (size_t)d.width * (size_t)d.height; k++) {
-            double z = d.z[k];
-            if (!isfinite(z) || z <= 0.0) {
-                holes++;
-                continue;
-            }
-            n++;
-            sum += z;
-            mn = z < mn ? z : mn;
-            mx = z > mx ? z : mx;
-        }
-    }
-    if (json) {
-        cJSON *j = cJSON_CreateObject(), *a;
-        const int dw[4] = {pr.data_window.x0, pr.data_window.y0, pr.data_window.x1,
-                           pr.data_window.y1},
-                  vw[4] = {pr.display_window.x0, pr.display_window.y0, pr.display_window.x1,
-                           pr.display_window.y1};
-        cJSON_AddStringToObject(j, "file", path);
-        cJSON_AddStringToObject(j, "detected", sn->what);
-        cJSON_AddBoolToObject(j, "name_agrees", sn->name_agrees);
-        cJSON_AddNumberToObject(j, "parts", pr.parts);
-        cJSON_AddStringToObject(j, "storage", storage[pr.storage & 3]);
-        cJSON_AddItemToObject(j, "data_window", cJSON_CreateIntArray(dw, 4));
-        cJSON_AddItemToObject(j, "display_window", cJSON_CreateIntArray(vw, 4));
-        cJSON_AddNumberToObject(j, "channels", pr.nchannels);
-        if (have_depth) {
-            a = cJSON_AddObjectToObject(j, "depth");
-            cJSON_AddStringToObject(a, "channel", d.channel);
-            cJSON_AddNumberToObject(a, "pixels", (double)n);
-            cJSON_AddNumberToObject(a, "holes", (double)holes);
-            cJSON_AddNumberToObject(a, "min", n ? mn : 0.0);
-            cJSON_AddNumberToObject(a, "max", n ? mx : 0.0);
-            cJSON_AddNumberToObject(a, "mean", n ? sum / (double)n : 0.0);
-        }
-        print_json_line(j);
-    } else {
-        printf("detected  %s by its content%s\n", sn->what,
-               sn->name_agrees ? "" : " (its name says otherwise)");
-        printf("%s: OpenEXR, %d part(s), %s, data window (%d,%d)-(%d,%d), display window "
-               "(%d,%d)-(%d,%d)\n",
-               path, pr.parts, storage[pr.storage & 3], pr.data_window.x0, pr.data_window.y0,
-               pr.data_window.x1, pr.data_window.y1, pr.display_window.x0, pr.display_window.y0,
-               pr.display_window.x1, pr.display_window.y1);
-        printf("channels  %d:", pr.nchannels);
-        for (c = 0; c < pr.nchannels && c < LT_EXR_PROBE_CHANNELS; c++)
-            printf(" %s(%s)", pr.name[c], types[pr.type[c] & 3]);
-        printf("\n");
-        if (have_depth)
-            printf("depth     %s%s: %zu pixels with depth, %zu holes (0, negative, NaN or inf), "
-                   "min %g max %g mean %g\n",
-                   d.channel, d.deep ? " (deep: front-most sample)" : "", n, holes,
-                   n ? mn : 0.0, n ? mx : 0.0, n ? sum / (double)n : 0.0);
-        else
-            printf("depth     none readable: %s\n", diag.msg);
+    if (!have_depth && (part >= 0 || view != NULL)) {
+        fprintf(stderr, "%s\n", diag.msg); /* no such view or part, or no depth there */
+        free(pr);
+        return EXIT_INPUT;
     }
     if (have_depth)
+        exr_depth_stats(&d, &s);
+    if (json)
+        rc = info_exr_json(path, sn, pr, have_depth ? &d : NULL, &s, diag.msg);
+    else
+        rc = info_exr_text(path, sn, pr, have_depth ? &d : NULL, &s, diag.msg);
+    if (have_depth)
         lt_exr_depth_free(&d);
-    return 0;
+    free(pr);
+    return rc;
 }
 
 static int cmd_info(int argc, char **argv)
@@ -833,14 +991,20 @@ static int cmd_info(int argc, char **argv)
     lt_diag_t diag;
     lt_sniff_t sn;
     uint32_t i, zero = 0;
-    int json = 0, rc;
-    const char *path = NULL;
-    const lt_opt_t opts[] = {LT_OPT_FLAG_("--json", &json, "one JSON object on stdout"),
-                             LT_OPT_END_};
-    lt_opt_cmd_t cmd = {who, "FILE [--json]",
+    int json = 0, rc, part = -1;
+    const char *path = NULL, *view = NULL;
+    const lt_opt_t opts[] = {
+        LT_OPT_FLAG_("--json", &json, "one JSON object on stdout"),
+        LT_OPT_STR("--view", "NAME", &view,
+                   "EXR: the depth statistics of view NAME (default: the file's\n"
+                   "default view, multiView's first)"),
+        LT_OPT_INT("--part", "N", &part, 0, 1e9,
+                   "EXR: the depth statistics of part N (0 = the first)"),
+        LT_OPT_END_};
+    lt_opt_cmd_t cmd = {who, "FILE [--json] [--view NAME] [--part N]",
                         "Describe a mesh (triangles, zero-area triangles, bounds, the fixed-point "
-                        "scale lanetrace\npicks) or an EXR file (parts, windows, channels, depth "
-                        "statistics).\n",
+                        "scale lanetrace\npicks) or an EXR file (every part: name, view, storage, "
+                        "windows, channels; the\nviews; depth statistics of one view or part).\n",
                         NULL, opts, &path, 1, NULL};
     snprintf(who, sizeof who, "%s info", prog);
     rc = lt_opt_parse(&cmd, argc, argv, 2);
@@ -855,7 +1019,12 @@ static int cmd_info(int argc, char **argv)
         return EXIT_INPUT;
     }
     if (sn.kind == LT_SNIFF_EXR)
-        return info_exr(path, &sn, json);
+        return info_exr(path, &sn, json, part, view);
+    if (part >= 0 || view != NULL) {
+        fprintf(stderr, "%s info: %s: --view and --part select in an EXR file, this is %s\n", prog,
+                path, sn.what);
+        return EXIT_USAGE;
+    }
     if (lt_mesh_load(path, &m, &diag) != 0) {
         fprintf(stderr, "%s (detected by content: %s)\n", diag.msg, sn.what);
         return EXIT_INPUT;

@@ -41,6 +41,8 @@ typedef struct rp {
     const char *mesh_over; /* --mesh: the scene's mesh without a scene file */
     int deep_front;        /* --deep-front: a deep EXR is read front-most sample per pixel */
     lt_outset_t *set;      /* the outputs, renamed into place together at the end */
+    const char *view;      /* --view: the EXR view (NULL: the file's default view) */
+    int part;              /* --part: the EXR part, -1: chosen by the view */
     const char *report, *machine;
     int npos, truth, color, dist, json, layers, enc, tracer, sample, inpaint, max_steps;
     int seen_move, seen_move_rel, seen_rot, seen_enc, seen_srck, seen_dstk, seen_res;
@@ -101,12 +103,19 @@ static int rp_options(rp_t *r, int *quiet, const char *prog, int argc, char **ar
                      "(least Z) sample of each pixel"),
         LT_OPT_STR("--channel", "NAME", &r->channel,
                    "depth channel (default: Z, depth, the default view's Z)"),
+        LT_OPT_STR("--view", "NAME", &r->view,
+                   "the view to read, depth and colour (a stereo EXR: left, right;\n"
+                   "default: the file's default view, multiView's first)"),
+        LT_OPT_INT("--part", "N", &r->part, 0, 1e9,
+                   "read depth and colour from part N of a multi-part EXR only\n"
+                   "(0 = the first; default: the parts of the view)"),
         LT_OPT_INT("--layers", "K", &r->layers, 1, LT_RP_MAX_LAYERS,
                    "use the depth peels layer0.Z .. layer<K-1>.Z (lanetrace\n"
                    "render --layers K), {range}"),
         {.name = "--color", .kind = LT_OPT_FLAG, .dest = &r->color, .value = 1,
          .alias = "--colour",
-         .help = "fetch colour from R G B of the depth's layer (else grey = w)"},
+         .help = "fetch colour from R G B of the depth's layer and view (its part,\n"
+                 "else a part of the view with the same data window; else grey = w)"},
         LT_OPT_FLAG_("--dist", &r->dist,
                      "depth values are distances along the pixel ray (lanetrace\n"
                      "render's Z; the default with a mesh scene)"),
@@ -450,6 +459,8 @@ static int rp_load_depth(rp_t *r, const char *prog, int quiet)
     xo.deep = r->deep_front ? LT_EXR_DEEP_FRONT : LT_EXR_DEEP_REJECT;
     if (r->layers == 0)
         r->layers = 1;
+    xo.part = r->part;
+    xo.view = r->view;
     for (l = 0; l < r->layers; l++) {
         char name[64];
         const char *ch = r->channel;
@@ -489,8 +500,9 @@ static int rp_load_depth(rp_t *r, const char *prog, int quiet)
             r->dl[0].rgba[1] = dc->rgba[1];
             r->dl[0].rgba[2] = dc->rgba[2];
         } else if (!quiet) {
-            fprintf(stderr, "%s: no R G B channels next to %s: layer 0 shown as grey = w\n",
-                    r->depth, r->dl[0].channel);
+            fprintf(stderr, "%s: no R G B channels next to %s (part %d%s%s): layer 0 shown as "
+                    "grey = w\n", r->depth, r->dl[0].channel, r->dl[0].part,
+                    r->dl[0].view[0] != '\0' ? ", view " : "", r->dl[0].view);
         }
     }
     r->zall = malloc(n * (size_t)r->layers * sizeof *r->zall);
@@ -902,9 +914,10 @@ static void rp_print_summary(const rp_t *r, const rp_figs_t *f)
     const char *enc = r->path->name;
     double rays = f->rays, px = f->px;
     char rt[LT_RATE_TEXT];
-    printf("source    %s: %ux%u, %d layer(s), channel %s%s, z_ref %g, median depth %.4g\n",
-           r->depth, r->W, r->H, r->layers, r->dl[0].channel, r->dist == 1 ? " (distances)" : "",
-           st->zref, r->median);
+    printf("source    %s: %ux%u, %d layer(s), channel %s%s (part %d%s%s), z_ref %g, median depth "
+           "%.4g\n", r->depth, r->W, r->H, r->layers, r->dl[0].channel,
+           r->dist == 1 ? " (distances)" : "", r->dl[0].part,
+           r->dl[0].view[0] != '\0' ? ", view " : "", r->dl[0].view, st->zref, r->median);
     printf("cameras   source %s: f %.2f,%.2f c %.2f,%.2f; target moved %.4g,%.4g,%.4g "
            "rotated %.3g,%.3g,%.3g deg, %ux%u\n",
            r->cam_desc, sc->fx, sc->fy, sc->cx, sc->cy, dc->c[0] - sc->c[0], dc->c[1] - sc->c[1],
@@ -1027,6 +1040,11 @@ static void rp_print_json(const rp_t *r, const rp_figs_t *f)
             cJSON_AddItemToArray(files, cJSON_CreateString(fl[k]));
     cJSON_AddStringToObject(o, "depth", r->depth);
     cJSON_AddStringToObject(o, "channel", r->dl[0].channel);
+    cJSON_AddNumberToObject(o, "part", r->dl[0].part);
+    if (r->dl[0].view[0] != '\0')
+        cJSON_AddStringToObject(o, "view", r->dl[0].view);
+    else
+        cJSON_AddNullToObject(o, "view");
     cJSON_AddNumberToObject(o, "layers", r->layers);
     cJSON_AddStringToObject(o, "encoding", r->path->name);
     cJSON_AddStringToObject(o, "tracer", tracer_name[r->tracer]);
@@ -1105,6 +1123,7 @@ int lt_rp_cli(int argc, char **argv, const char *prog, const lt_rp_cli_hooks_t *
     r.truth_tol = RP_DEFAULT_TRUTH_TOL;
     r.fov = RP_DEFAULT_FOV;
     r.cam_desc = "default";
+    r.part = -1;
     rc = rp_options(&r, hk->quiet, prog, argc, argv, NULL);
     if (rc != LT_OPT_OK)
         return rc == LT_OPT_HELP ? 0 : EXIT_USAGE;

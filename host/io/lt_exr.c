@@ -1,8 +1,9 @@
 /* lt_exr.c - OpenEXR writer (scanline, named HALF/FLOAT channels, atomic temp + rename) and depth
- * reader (scanline/tiled flat parts, multi-part, multi-view, deep scanline front-most sample)
- * over OpenEXR's C API, OpenEXRCore 3.1 (Debian). The library's file I/O is replaced by pread/
- * pwrite callbacks on our own descriptor, so open errors carry errno and library messages are
- * captured for our error text instead of going to stderr. Host only; docs/io.md.
+ * reader (scanline/tiled flat parts, multi-part and multi-view files read by part or view, deep
+ * scanline front-most sample) over OpenEXR's C API, OpenEXRCore 3.1 (Debian). The library's file
+ * I/O is replaced by pread/pwrite callbacks on our own descriptor, so open errors carry errno and
+ * library messages are captured for our error text instead of going to stderr. Host only;
+ * docs/io.md.
  */
 #include "io/lt_exr.h"
 #include "io/lt_tmpfiles.h"
@@ -523,24 +524,156 @@ static int ends_with_dot_z(const char *s)
     return n >= 2 && strcmp(s + n - 2, ".Z") == 0;
 }
 
-/* First view of the part's multiView attribute, or NULL. */
-static const char *default_view(exr_context_t ctx, int part)
+/* A string attribute of a part, or NULL. */
+static const char *attr_str(exr_context_t ctx, int part, const char *name)
 {
     const exr_attribute_t *a = NULL;
-    if (exr_get_attribute_by_name(ctx, part, "multiView", &a) != EXR_ERR_SUCCESS || a == NULL ||
-        a->type != EXR_ATTR_STRING_VECTOR || a->stringvector == NULL ||
-        a->stringvector->n_strings < 1)
+    if (exr_get_attribute_by_name(ctx, part, name, &a) != EXR_ERR_SUCCESS || a == NULL ||
+        a->type != EXR_ATTR_STRING || a->string == NULL || a->string->str == NULL)
         return NULL;
-    return a->stringvector->strings[0].str;
+    return a->string->str;
 }
 
-/* Resolve the depth channel of one part (rules in lt_exr.h); the index into cl, or -1. buf holds
- * composed names. *ambiguous is set when several "*.Z" channels exist and none is preferred. */
-static int pick_channel(exr_context_t ctx, int part, const exr_attr_chlist_t *cl,
-                        const char *want, int *ambiguous)
+/* The `view` attribute of a part (multi-part multi-view files: the view the part holds), or NULL. */
+static const char *part_view(exr_context_t ctx, int part)
+{
+    return attr_str(ctx, part, "view");
+}
+
+/* The multiView attribute of the first part that carries one, or NULL. */
+static const exr_attr_string_vector_t *multiview(exr_context_t ctx, int nparts)
+{
+    int p;
+    for (p = 0; p < nparts; p++) {
+        const exr_attribute_t *a = NULL;
+        if (exr_get_attribute_by_name(ctx, p, "multiView", &a) == EXR_ERR_SUCCESS && a != NULL &&
+            a->type == EXR_ATTR_STRING_VECTOR && a->stringvector != NULL &&
+            a->stringvector->n_strings > 0 && a->stringvector->strings != NULL)
+            return a->stringvector;
+    }
+    return NULL;
+}
+
+/* The file's default view: the first entry of multiView, else the view of part 0, else NULL. */
+static const char *file_default_view(exr_context_t ctx, int nparts)
+{
+    const exr_attr_string_vector_t *mv = multiview(ctx, nparts);
+    if (mv != NULL && mv->strings[0].str != NULL)
+        return mv->strings[0].str;
+    return nparts > 0 ? part_view(ctx, 0) : NULL;
+}
+
+/* 1 when some part carries a `view` attribute. */
+static int any_part_view(exr_context_t ctx, int nparts)
+{
+    int p;
+    for (p = 0; p < nparts; p++)
+        if (part_view(ctx, p) != NULL)
+            return 1;
+    return 0;
+}
+
+/* Views each_view walks at most (a file may name more; view_known sees them all). */
+#define EXR_MAX_VIEWS 256
+
+static int in_list(const char *const *l, int n, const char *s)
+{
+    int i;
+    for (i = 0; i < n; i++)
+        if (strcmp(l[i], s) == 0)
+            return 1;
+    return 0;
+}
+
+/* Call fn(s, arg) once per view of the file: multiView's entries, then the `view` attributes of
+ * parts not among them, in part order, each name once, the first EXR_MAX_VIEWS names (so the
+ * walk stays linear in the parts). Stops when fn returns nonzero; returns that value (0: all
+ * seen). */
+static int each_view(exr_context_t ctx, int nparts, int (*fn)(const char *, void *), void *arg)
+{
+    const exr_attr_string_vector_t *mv = multiview(ctx, nparts);
+    const char *seen[EXR_MAX_VIEWS];
+    int nmv = mv != NULL ? mv->n_strings : 0, nseen = 0, i, r;
+    for (i = 0; i < nmv + nparts && nseen < EXR_MAX_VIEWS; i++) {
+        const char *v = i < nmv ? mv->strings[i].str : part_view(ctx, i - nmv);
+        if (v == NULL || in_list(seen, nseen, v))
+            continue;
+        seen[nseen++] = v;
+        if ((r = fn(v, arg)) != 0)
+            return r;
+    }
+    return 0;
+}
+
+/* 1 when the file names view v (multiView or a part's `view`). */
+static int view_known(exr_context_t ctx, int nparts, const char *v)
+{
+    const exr_attr_string_vector_t *mv = multiview(ctx, nparts);
+    int i;
+    for (i = 0; mv != NULL && i < mv->n_strings; i++)
+        if (mv->strings[i].str != NULL && strcmp(mv->strings[i].str, v) == 0)
+            return 1;
+    for (i = 0; i < nparts; i++)
+        if (part_view(ctx, i) != NULL && strcmp(part_view(ctx, i), v) == 0)
+            return 1;
+    return 0;
+}
+
+/* Append s to the list in dst (size cap), "..." once it is full. */
+static void list_add(char *dst, size_t cap, const char *s)
+{
+    size_t n = strlen(dst);
+    if (n + 5 >= cap)
+        return;
+    if (n + strlen(s) + 6 >= cap) {
+        (void)snprintf(dst + n, cap - n, "%s...", n > 0 ? " " : "");
+        return;
+    }
+    (void)snprintf(dst + n, cap - n, "%s%s", n > 0 ? " " : "", s);
+}
+
+typedef struct strlist {
+    char *dst;
+    size_t cap;
+} strlist_t;
+
+static int view_add(const char *v, void *arg)
+{
+    strlist_t *l = (strlist_t *)arg;
+    list_add(l->dst, l->cap, v);
+    return 0;
+}
+
+/* The views of the file, space-separated ("" when it names none). */
+static void list_views(exr_context_t ctx, int nparts, char *dst, size_t cap)
+{
+    strlist_t l;
+    dst[0] = '\0';
+    l.dst = dst;
+    l.cap = cap;
+    (void)each_view(ctx, nparts, view_add, &l);
+}
+
+/* 1 when a dot-separated component of name other than the last is v ("left.Z", "a.left.R"). */
+static int names_view(const char *name, const char *v)
+{
+    size_t n = strlen(v);
+    const char *s = name, *dot;
+    while ((dot = strchr(s, '.')) != NULL) {
+        if ((size_t)(dot - s) == n && strncmp(s, v, n) == 0)
+            return 1;
+        s = dot + 1;
+    }
+    return 0;
+}
+
+/* Resolve the depth channel of one part (rules in lt_exr.h); the index into cl, or -1. dv is the
+ * file's default view (or NULL). *ambiguous is set when several "*.Z" channels exist and none is
+ * preferred. */
+static int pick_channel(const char *dv, const exr_attr_chlist_t *cl, const char *want,
+                        int *ambiguous)
 {
     char buf[LT_EXR_MAX_NAME + 8];
-    const char *dv = default_view(ctx, part);
     int i, k, found = -1, nz = 0;
     *ambiguous = 0;
     if (want != NULL) {
@@ -574,51 +707,183 @@ static int pick_channel(exr_context_t ctx, int part, const exr_attr_chlist_t *cl
     return nz == 1 ? found : -1;
 }
 
-/* Append s to the list in dst (size cap), "..." once it is full. */
-static void list_add(char *dst, size_t cap, const char *s)
+/* The depth channel of view v in a part that holds its views by channel name (a single-part
+ * multi-view file): want (NULL: "Z", then "depth") as "<view>.<chan>" or "<layer>.<view>.<chan>"
+ * for "<layer>.<chan>"; the default view's also unprefixed; a name that already names the view
+ * as itself. The index into cl, or -1. */
+static int pick_in_view(const exr_attr_chlist_t *cl, const char *want, const char *v,
+                        int is_default)
 {
-    size_t n = strlen(dst);
-    if (n + 5 >= cap)
-        return;
-    if (n + strlen(s) + 6 >= cap) {
-        (void)snprintf(dst + n, cap - n, "%s...", n > 0 ? " " : "");
-        return;
+    static const char *const picks[2] = {"Z", "depth"};
+    char buf[2 * LT_EXR_MAX_NAME + 8];
+    int i, k;
+    for (i = 0; i < (want != NULL ? 1 : 2); i++) {
+        const char *w = want != NULL ? want : picks[i];
+        const char *dot = strrchr(w, '.');
+        if (is_default && (k = find_chan(cl, w)) >= 0)
+            return k;
+        if (dot == NULL)
+            (void)snprintf(buf, sizeof buf, "%s.%s", v, w);
+        else
+            (void)snprintf(buf, sizeof buf, "%.*s.%s.%s", (int)(dot - w), w, v, dot + 1);
+        if ((k = find_chan(cl, buf)) >= 0)
+            return k;
     }
-    (void)snprintf(dst + n, cap - n, "%s%s", n > 0 ? " " : "", s);
+    return want != NULL && names_view(want, v) ? find_chan(cl, want) : -1;
 }
 
-/* Error text for a channel that was not found: views and depth-like channels of every part. */
+/* Error text for a channel that was not found (in scope, e.g. " in view 'left'"): the views, the
+ * depth-like channels and the channels of every part (per part when there are several). */
 static void describe_missing(exr_context_t ctx, int nparts, const char *path, const char *want,
-                             int ambiguous, lt_diag_t *diag)
+                             int ambiguous, const char *scope, lt_diag_t *diag)
 {
-    char views[256] = "", depths[512] = "", all[512] = "";
-    int p, i;
+    char views[256] = "", depths[512] = "", all[640] = "", tag[48];
+    int p, i, tagged;
+    list_views(ctx, nparts, views, sizeof views);
     for (p = 0; p < nparts; p++) {
         const exr_attr_chlist_t *cl = NULL;
-        const exr_attribute_t *a = NULL;
-        if (exr_get_attribute_by_name(ctx, p, "multiView", &a) == EXR_ERR_SUCCESS && a != NULL &&
-            a->type == EXR_ATTR_STRING_VECTOR && a->stringvector != NULL)
-            for (i = 0; i < a->stringvector->n_strings; i++)
-                list_add(views, sizeof views, a->stringvector->strings[i].str);
+        const char *pv = part_view(ctx, p);
         if (exr_get_channels(ctx, p, &cl) != EXR_ERR_SUCCESS || cl == NULL)
             continue;
-        for (i = 0; i < cl->num_channels; i++) {
+        (void)snprintf(tag, sizeof tag, "[part %d%s%.24s]", p, pv != NULL ? " " : "",
+                       pv != NULL ? pv : "");
+        if (nparts > 1)
+            list_add(all, sizeof all, tag);
+        for (i = 0, tagged = nparts < 2; i < cl->num_channels; i++) {
             const char *nm = cl->entries[i].name.str;
             list_add(all, sizeof all, nm);
-            if (strcmp(nm, "Z") == 0 || strcmp(nm, "depth") == 0 || ends_with_dot_z(nm))
-                list_add(depths, sizeof depths, nm);
+            if (strcmp(nm, "Z") != 0 && strcmp(nm, "depth") != 0 && !ends_with_dot_z(nm))
+                continue;
+            if (!tagged)
+                list_add(depths, sizeof depths, tag);
+            tagged = 1;
+            list_add(depths, sizeof depths, nm);
         }
     }
     if (want != NULL)
-        lt_diag_fail(diag, "%s: no channel '%s' (nor '%s.Z'); views: %s; depth channels: %s; "
-                     "channels: %s", path, want, want, views[0] ? views : "(none)",
+        lt_diag_fail(diag, "%s: no channel '%s' (nor '%s.Z')%s; views: %s; depth channels: %s; "
+                     "channels: %s", path, want, want, scope, views[0] ? views : "(none)",
                      depths[0] ? depths : "(none)", all[0] ? all : "(none)");
     else
-        lt_diag_fail(diag, "%s: %s; views: %s; depth channels: %s; channels: %s", path,
+        lt_diag_fail(diag, "%s: %s%s; views: %s; depth channels: %s; channels: %s", path,
                      ambiguous ? "several depth channels, name one"
                                : "no depth channel (Z, depth, *.Z)",
-                     views[0] ? views : "(none)", depths[0] ? depths : "(none)",
+                     scope, views[0] ? views : "(none)", depths[0] ? depths : "(none)",
                      all[0] ? all : "(none)");
+}
+
+/* What a read selected: the depth channel's part and index, the view, the colour's part. */
+typedef struct exr_pick {
+    int part;                    /* part of the depth channel */
+    int chan;                    /* its index in cl */
+    const exr_attr_chlist_t *cl; /* that part's channels */
+    const char *view;            /* the view read, or NULL */
+    int cpart;                   /* part of the colour channels, -1: none */
+} exr_pick_t;
+
+/* Whether part p (view pv) is searched in pass 0 or 1: --part: that part only; a view in a file
+ * whose parts name views: its parts (pass 0), then the parts that name none (pass 1); else every
+ * part (pass 0). */
+static int searched(int p, const char *pv, int pass, int only, const char *v, int part_views)
+{
+    if (only >= 0)
+        return pass == 0 && p == only;
+    if (v == NULL || !part_views)
+        return pass == 0;
+    if (pass == 0)
+        return pv != NULL && strcmp(pv, v) == 0;
+    return pv == NULL;
+}
+
+/* The view the depth channel of a part without a `view` attribute belongs to: the view its name
+ * carries ("left.Z"), else the default view, else NULL. */
+typedef struct view_of {
+    const char *name, *found;
+} view_of_t;
+
+static int view_in_name(const char *v, void *arg)
+{
+    view_of_t *w = (view_of_t *)arg;
+    if (!names_view(w->name, v))
+        return 0;
+    w->found = v;
+    return 1;
+}
+
+/* Choose the part and depth channel (rules in lt_exr.h). 0, or -1 with the message in diag. */
+static int select_depth(exr_context_t ctx, int nparts, const char *channel,
+                        const lt_exr_read_opts_t *o, exr_pick_t *pk, const char *path,
+                        lt_diag_t *diag)
+{
+    const char *v = o->view, *dv = file_default_view(ctx, nparts), *pv;
+    int part_views = any_part_view(ctx, nparts), named = v != NULL, pass, p, k = -1, amb = 0;
+    int any_amb = 0;
+    char scope[LT_EXR_MAX_NAME + 64] = "", views[256];
+    memset(pk, 0, sizeof *pk);
+    pk->part = pk->cpart = -1;
+    if (o->part < -1 || o->part >= nparts)
+        return lt_diag_fail(diag, "%s: part %d out of range: the file has %d part%s (0..%d)", path,
+                            o->part, nparts, nparts == 1 ? "" : "s", nparts - 1);
+    /* a channel that is no channel of the file but one of its views selects that view */
+    if (v == NULL && channel != NULL && part_views && view_known(ctx, nparts, channel)) {
+        for (p = 0; p < nparts && k < 0; p++) {
+            const exr_attr_chlist_t *cl = NULL;
+            if (exr_get_channels(ctx, p, &cl) == EXR_ERR_SUCCESS && cl != NULL)
+                k = find_chan(cl, channel);
+        }
+        if (k < 0) {
+            v = channel;
+            channel = NULL;
+            named = 1;
+        }
+        k = -1;
+    }
+    if (v != NULL && !view_known(ctx, nparts, v)) {
+        list_views(ctx, nparts, views, sizeof views);
+        return lt_diag_fail(diag, "%s: no view '%s'; views: %s%s%s", path, v,
+                            views[0] ? views : "(none: the file names no views)",
+                            dv != NULL ? "; default " : "", dv != NULL ? dv : "");
+    }
+    if (o->part >= 0 && v != NULL && (pv = part_view(ctx, o->part)) != NULL && strcmp(pv, v) != 0)
+        return lt_diag_fail(diag, "%s: part %d holds view '%s', not '%s'", path, o->part, pv, v);
+    if (v == NULL && o->part < 0 && part_views)
+        v = dv; /* the default view: chooses parts, never renames channels */
+    for (pass = 0; pass < 2 && k < 0; pass++)
+        for (p = 0; p < nparts && k < 0; p++) {
+            pv = part_view(ctx, p);
+            if (!searched(p, pv, pass, o->part, v, part_views) ||
+                exr_get_channels(ctx, p, &pk->cl) != EXR_ERR_SUCCESS || pk->cl == NULL)
+                continue;
+            if (named && pv == NULL)
+                k = pick_in_view(pk->cl, channel, v, dv != NULL && strcmp(dv, v) == 0);
+            else
+                k = pick_channel(dv, pk->cl, channel, &amb);
+            any_amb |= amb;
+            pk->part = p;
+        }
+    if (k < 0) {
+        if (o->part >= 0)
+            (void)snprintf(scope, sizeof scope, " in part %d", o->part);
+        else if (v != NULL && part_views)
+            (void)snprintf(scope, sizeof scope, " in view '%s'%s", v,
+                           named ? "" : " (the default view)");
+        else if (v != NULL)
+            (void)snprintf(scope, sizeof scope, " of view '%s'", v);
+        describe_missing(ctx, nparts, path, channel, any_amb, scope, diag);
+        return -1;
+    }
+    pk->chan = k;
+    pk->view = part_view(ctx, pk->part);
+    if (pk->view == NULL && named)
+        pk->view = v;
+    if (pk->view == NULL && dv != NULL) {
+        view_of_t w;
+        w.name = pk->cl->entries[k].name.str;
+        w.found = dv;
+        (void)each_view(ctx, nparts, view_in_name, &w);
+        pk->view = w.found;
+    }
+    return 0;
 }
 
 /* Output targets of one read: up to 5 channel names (depth first) and their data-window rasters. */
@@ -936,23 +1201,184 @@ static void fill_f(float *p, size_t n, float v)
         p[i] = v;
 }
 
+/* The depth part's storage and windows, checked against what is read (rules in lt_exr.h).
+ * 0, or -1 with the message in diag. */
+static int check_part(exr_context_t ctx, int part, const exr_attr_chlist_entry_t *ze,
+                      const lt_exr_read_opts_t *o, exr_storage_t *st, exr_attr_box2i_t *dw,
+                      exr_attr_box2i_t *disp, exr_io_t *io, const char *path, lt_diag_t *diag)
+{
+    int64_t W, H, dispW, dispH;
+    if (exr_get_storage(ctx, part, st) != EXR_ERR_SUCCESS ||
+        exr_get_data_window(ctx, part, dw) != EXR_ERR_SUCCESS ||
+        exr_get_display_window(ctx, part, disp) != EXR_ERR_SUCCESS)
+        return lt_diag_fail(diag, "%s: part %d: missing storage type or windows: %s", path, part,
+                            lib_text(io, EXR_ERR_MISSING_REQ_ATTR));
+    W = (int64_t)dw->max.x - dw->min.x + 1;
+    H = (int64_t)dw->max.y - dw->min.y + 1;
+    dispW = (int64_t)disp->max.x - disp->min.x + 1;
+    dispH = (int64_t)disp->max.y - disp->min.y + 1;
+    if (W < 1 || H < 1 || W > LT_EXR_MAX_DIM || H > LT_EXR_MAX_DIM)
+        return lt_diag_fail(diag, "%s: data window %lldx%lld outside 1..LT_EXR_MAX_DIM %d", path,
+                            (long long)W, (long long)H, LT_EXR_MAX_DIM);
+    if (o->window == LT_EXR_WINDOW_DISPLAY &&
+        (dispW < 1 || dispH < 1 || dispW > LT_EXR_MAX_DIM || dispH > LT_EXR_MAX_DIM))
+        return lt_diag_fail(diag, "%s: display window %lldx%lld outside 1..LT_EXR_MAX_DIM %d",
+                            path, (long long)dispW, (long long)dispH, LT_EXR_MAX_DIM);
+    if (ze->pixel_type != EXR_PIXEL_HALF && ze->pixel_type != EXR_PIXEL_FLOAT)
+        return lt_diag_fail(diag, "%s: channel '%s' is UINT; a depth channel must be HALF or "
+                            "FLOAT", path, ze->name.str);
+    if (ze->x_sampling != 1 || ze->y_sampling != 1)
+        return lt_diag_fail(diag, "%s: channel '%s' is subsampled %dx%d; only 1x1 sampling is "
+                            "read", path, ze->name.str, (int)ze->x_sampling, (int)ze->y_sampling);
+    if (*st == EXR_STORAGE_DEEP_TILED)
+        return lt_diag_fail(diag, "%s: part %d is a deep tiled image (deeptile); only deep "
+                            "scanline images are read (front-most sample)", path, part);
+    if (*st == EXR_STORAGE_DEEP_SCANLINE && o->deep != LT_EXR_DEEP_FRONT)
+        return lt_diag_fail(diag, "%s: part %d is a deep image (deepscanline: a variable number "
+                            "of samples per pixel); read its front-most sample per pixel (least "
+                            "Z): lanetrace reproject --deep-front, LT_EXR_DEEP_FRONT in the API",
+                            path, part);
+    if (*st != EXR_STORAGE_SCANLINE && *st != EXR_STORAGE_TILED &&
+        *st != EXR_STORAGE_DEEP_SCANLINE)
+        return lt_diag_fail(diag, "%s: part %d: unsupported storage %s", path, part,
+                            storage_name(*st));
+    return 0;
+}
+
+/* Index of colour channel name in cl when it can be read as float32 1x1 (else -1: counts as
+ * absent, documented). */
+static int color_chan(const exr_attr_chlist_t *cl, const char *name)
+{
+    int k = find_chan(cl, name);
+    if (k < 0 || cl->entries[k].pixel_type == EXR_PIXEL_UINT || cl->entries[k].x_sampling != 1 ||
+        cl->entries[k].y_sampling != 1)
+        return -1;
+    return k;
+}
+
+static int has_rgb(const exr_attr_chlist_t *cl, char cname[4][LT_EXR_MAX_NAME + 2])
+{
+    return color_chan(cl, cname[0]) >= 0 || color_chan(cl, cname[1]) >= 0 ||
+           color_chan(cl, cname[2]) >= 0;
+}
+
+/* The part to read colour from: the depth's own part when it has <prefix>R, G or B; else (no
+ * --part, a flat depth part) the first other flat part of the same view (or, like the depth's,
+ * of none) with the same data window that has them. -1: none. */
+static int color_part(exr_context_t ctx, int nparts, const exr_pick_t *pk, exr_storage_t st,
+                      const exr_attr_box2i_t *dw, int only, char cname[4][LT_EXR_MAX_NAME + 2])
+{
+    const char *pv = part_view(ctx, pk->part);
+    int p;
+    if (has_rgb(pk->cl, cname))
+        return pk->part;
+    if (only >= 0 || st == EXR_STORAGE_DEEP_SCANLINE)
+        return -1;
+    for (p = 0; p < nparts; p++) {
+        const char *qv = part_view(ctx, p);
+        const exr_attr_chlist_t *cl = NULL;
+        exr_storage_t qs;
+        exr_attr_box2i_t qd;
+        if (p == pk->part || (pv == NULL) != (qv == NULL) ||
+            (pv != NULL && strcmp(pv, qv) != 0) ||
+            exr_get_storage(ctx, p, &qs) != EXR_ERR_SUCCESS ||
+            (qs != EXR_STORAGE_SCANLINE && qs != EXR_STORAGE_TILED) ||
+            exr_get_data_window(ctx, p, &qd) != EXR_ERR_SUCCESS || qd.min.x != dw->min.x ||
+            qd.min.y != dw->min.y || qd.max.x != dw->max.x || qd.max.y != dw->max.y ||
+            exr_get_channels(ctx, p, &cl) != EXR_ERR_SUCCESS || cl == NULL || !has_rgb(cl, cname))
+            continue;
+        return p;
+    }
+    return -1;
+}
+
+/* Colour (opts->color): <prefix>R G B A of the depth's layer (prefix: the depth channel's name up
+ * to its last dot) from color_part's part, as targets of t (the depth's part) or tc (another
+ * part, its index in pk->cpart); slot[i] = raster index of R, G, B, A (t's first, then tc's) or
+ * -1. */
+static void color_targets(exr_context_t ctx, int nparts, exr_pick_t *pk, exr_storage_t st,
+                          const exr_attr_box2i_t *dw, int only,
+                          char cname[4][LT_EXR_MAX_NAME + 2], read_target_t *t,
+                          read_target_t *tc, int slot[4])
+{
+    static const char *const rgba_base[4] = {"R", "G", "B", "A"};
+    const char *zn = pk->cl->entries[pk->chan].name.str;
+    const char *dot = strrchr(zn, '.');
+    size_t prefix = dot != NULL ? (size_t)(dot - zn + 1) : 0;
+    const exr_attr_chlist_t *cl = NULL;
+    read_target_t *dst;
+    int i;
+    for (i = 0; i < 4; i++)
+        slot[i] = -1;
+    if (prefix > LT_EXR_MAX_NAME - 1)
+        return;
+    for (i = 0; i < 4; i++) {
+        memcpy(cname[i], zn, prefix);
+        (void)strcpy(cname[i] + prefix, rgba_base[i]);
+    }
+    pk->cpart = color_part(ctx, nparts, pk, st, dw, only, cname);
+    if (pk->cpart < 0 || exr_get_channels(ctx, pk->cpart, &cl) != EXR_ERR_SUCCESS || cl == NULL) {
+        pk->cpart = -1;
+        return;
+    }
+    dst = pk->cpart == pk->part ? t : tc;
+    for (i = 0; i < 4; i++) {
+        if (color_chan(cl, cname[i]) < 0)
+            continue;
+        slot[i] = dst == t ? t->n : t->n + tc->n;
+        dst->name[dst->n++] = cname[i];
+    }
+}
+
+/* Copy the data-window rasters win[0..n-1] into display-window rasters (outside: fill for [0],
+ * 0 for colour), in dd[0..n-1]. 0, or -1 when out of memory (nothing left allocated). */
+static int to_display(float *const *win, int n, const exr_attr_box2i_t *dw,
+                      const exr_attr_box2i_t *disp, float fill, float **dd)
+{
+    int64_t W = (int64_t)dw->max.x - dw->min.x + 1;
+    int64_t dispW = (int64_t)disp->max.x - disp->min.x + 1;
+    int64_t dispH = (int64_t)disp->max.y - disp->min.y + 1;
+    int64_t ix0 = dw->min.x > disp->min.x ? dw->min.x : disp->min.x;
+    int64_t iy0 = dw->min.y > disp->min.y ? dw->min.y : disp->min.y;
+    int64_t ix1 = dw->max.x < disp->max.x ? dw->max.x : disp->max.x;
+    int64_t iy1 = dw->max.y < disp->max.y ? dw->max.y : disp->max.y;
+    int64_t yy;
+    int i, j;
+    for (i = 0; i < n; i++) {
+        dd[i] = (float *)malloc((size_t)dispW * (size_t)dispH * sizeof(float));
+        if (dd[i] == NULL) {
+            for (j = 0; j < i; j++) {
+                free(dd[j]);
+                dd[j] = NULL;
+            }
+            return -1;
+        }
+        fill_f(dd[i], (size_t)dispW * (size_t)dispH, i == 0 ? fill : 0.0f);
+        for (yy = iy0; ix0 <= ix1 && yy <= iy1; yy++)
+            memcpy(dd[i] + (size_t)(yy - disp->min.y) * (size_t)dispW +
+                       (size_t)(ix0 - disp->min.x),
+                   win[i] + (size_t)(yy - dw->min.y) * (size_t)W + (size_t)(ix0 - dw->min.x),
+                   (size_t)(ix1 - ix0 + 1) * sizeof(float));
+    }
+    return 0;
+}
+
 int lt_exr_read_depth(const char *path, const char *channel, const lt_exr_read_opts_t *opts,
                       lt_exr_depth_t *out, lt_diag_t *diag)
 {
     static const lt_exr_read_opts_t defaults = LT_EXR_READ_OPTS_DEFAULT;
-    static const char *const rgba_base[4] = {"R", "G", "B", "A"};
     lt_exr_read_opts_t o = opts != NULL ? *opts : defaults;
     exr_context_t ctx = NULL;
     exr_io_t io;
-    exr_storage_t st = EXR_STORAGE_SCANLINE;
+    exr_storage_t st = EXR_STORAGE_SCANLINE, cst = EXR_STORAGE_SCANLINE;
     exr_attr_box2i_t dw, disp;
-    const exr_attr_chlist_t *cl = NULL;
-    read_target_t t;
+    exr_pick_t pk;
+    read_target_t t, tc;
     char cname[4][LT_EXR_MAX_NAME + 2];
-    float *win[5] = {NULL, NULL, NULL, NULL, NULL};
-    int nparts = 0, part, k = -1, ambiguous = 0, any_amb = 0, i, ok = 0, slot[4];
-    int64_t W, H, dispW, dispH;
-    size_t prefix;
+    float *win[5] = {NULL, NULL, NULL, NULL, NULL}, *dd[5] = {NULL, NULL, NULL, NULL, NULL};
+    float **ras = win;
+    int nparts = 0, i, ok = 0, slot[4] = {-1, -1, -1, -1};
+    int64_t W, H;
     uint64_t nsamples = 0;
     const exr_attr_chlist_entry_t *ze;
 
@@ -961,98 +1387,29 @@ int lt_exr_read_depth(const char *path, const char *channel, const lt_exr_read_o
         return -1;
     }
     memset(out, 0, sizeof *out);
+    out->color_part = -1;
     if (open_read(&ctx, &io, path, diag) != 0)
         return -1;
     if (exr_get_count(ctx, &nparts) != EXR_ERR_SUCCESS || nparts < 1) {
         lt_diag_fail(diag, "%s: no parts", path);
         goto done;
     }
-    for (part = 0; part < nparts; part++) {
-        if (exr_get_channels(ctx, part, &cl) != EXR_ERR_SUCCESS || cl == NULL)
-            continue;
-        k = pick_channel(ctx, part, cl, channel, &ambiguous);
-        any_amb |= ambiguous;
-        if (k >= 0)
-            break;
-    }
-    if (k < 0) {
-        describe_missing(ctx, nparts, path, channel, any_amb, diag);
+    if (select_depth(ctx, nparts, channel, &o, &pk, path, diag) != 0)
         goto done;
-    }
-    ze = &cl->entries[k];
-    if (exr_get_storage(ctx, part, &st) != EXR_ERR_SUCCESS ||
-        exr_get_data_window(ctx, part, &dw) != EXR_ERR_SUCCESS ||
-        exr_get_display_window(ctx, part, &disp) != EXR_ERR_SUCCESS) {
-        lt_diag_fail(diag, "%s: part %d: missing storage type or windows: %s", path, part,
-                     lib_text(&io, EXR_ERR_MISSING_REQ_ATTR));
+    ze = &pk.cl->entries[pk.chan];
+    if (check_part(ctx, pk.part, ze, &o, &st, &dw, &disp, &io, path, diag) != 0)
         goto done;
-    }
     W = (int64_t)dw.max.x - dw.min.x + 1;
     H = (int64_t)dw.max.y - dw.min.y + 1;
-    dispW = (int64_t)disp.max.x - disp.min.x + 1;
-    dispH = (int64_t)disp.max.y - disp.min.y + 1;
-    if (W < 1 || H < 1 || W > LT_EXR_MAX_DIM || H > LT_EXR_MAX_DIM) {
-        lt_diag_fail(diag, "%s: data window %lldx%lld outside 1..LT_EXR_MAX_DIM %d", path,
-                     (long long)W, (long long)H, LT_EXR_MAX_DIM);
-        goto done;
-    }
-    if (o.window == LT_EXR_WINDOW_DISPLAY &&
-        (dispW < 1 || dispH < 1 || dispW > LT_EXR_MAX_DIM || dispH > LT_EXR_MAX_DIM)) {
-        lt_diag_fail(diag, "%s: display window %lldx%lld outside 1..LT_EXR_MAX_DIM %d", path,
-                     (long long)dispW, (long long)dispH, LT_EXR_MAX_DIM);
-        goto done;
-    }
-    if (ze->pixel_type != EXR_PIXEL_HALF && ze->pixel_type != EXR_PIXEL_FLOAT) {
-        lt_diag_fail(diag, "%s: channel '%s' is UINT; a depth channel must be HALF or FLOAT", path,
-                     ze->name.str);
-        goto done;
-    }
-    if (ze->x_sampling != 1 || ze->y_sampling != 1) {
-        lt_diag_fail(diag, "%s: channel '%s' is subsampled %dx%d; only 1x1 sampling is read",
-                     path, ze->name.str, (int)ze->x_sampling, (int)ze->y_sampling);
-        goto done;
-    }
-    if (st == EXR_STORAGE_DEEP_TILED) {
-        lt_diag_fail(diag, "%s: part %d is a deep tiled image (deeptile); only deep scanline "
-                     "images are read (front-most sample)", path, part);
-        goto done;
-    }
-    if (st == EXR_STORAGE_DEEP_SCANLINE && o.deep != LT_EXR_DEEP_FRONT) {
-        lt_diag_fail(diag, "%s: part %d is a deep image (deepscanline: a variable number of "
-                     "samples per pixel); read its front-most sample per pixel (least Z): "
-                     "lanetrace reproject --deep-front, LT_EXR_DEEP_FRONT in the API", path,
-                     part);
-        goto done;
-    }
-    if (st != EXR_STORAGE_SCANLINE && st != EXR_STORAGE_TILED &&
-        st != EXR_STORAGE_DEEP_SCANLINE) {
-        lt_diag_fail(diag, "%s: part %d: unsupported storage %s", path, part, storage_name(st));
-        goto done;
-    }
 
-    /* the depth channel and, when asked, <prefix>R/G/B/A of its layer */
+    /* the depth channel and, when asked, R G B A of its layer (its part or one of its view) */
     memset(&t, 0, sizeof t);
+    memset(&tc, 0, sizeof tc);
     t.n = 1;
     t.name[0] = ze->name.str;
-    prefix = (size_t)(strrchr(ze->name.str, '.') != NULL
-                          ? strrchr(ze->name.str, '.') - ze->name.str + 1
-                          : 0);
-    for (i = 0; i < 4; i++) {
-        int ck;
-        slot[i] = -1;
-        if (!o.color || prefix > LT_EXR_MAX_NAME - 1)
-            continue;
-        memcpy(cname[i], ze->name.str, prefix);
-        (void)strcpy(cname[i] + prefix, rgba_base[i]);
-        ck = find_chan(cl, cname[i]);
-        /* colour that cannot be read as float32 1x1 counts as absent (documented) */
-        if (ck < 0 || cl->entries[ck].pixel_type == EXR_PIXEL_UINT ||
-            cl->entries[ck].x_sampling != 1 || cl->entries[ck].y_sampling != 1)
-            continue;
-        slot[i] = t.n;
-        t.name[t.n++] = cname[i];
-    }
-    for (i = 0; i < t.n; i++) {
+    if (o.color)
+        color_targets(ctx, nparts, &pk, st, &dw, o.part, cname, &t, &tc, slot);
+    for (i = 0; i < t.n + tc.n; i++) {
         win[i] = (float *)malloc((size_t)W * (size_t)H * sizeof(float));
         if (win[i] == NULL) {
             lt_diag_fail(diag, "%s: out of memory for %lldx%lld pixels", path, (long long)W,
@@ -1060,15 +1417,47 @@ int lt_exr_read_depth(const char *path, const char *channel, const lt_exr_read_o
             goto done;
         }
         fill_f(win[i], (size_t)W * (size_t)H, i == 0 ? o.fill : 0.0f);
-        t.dst[i] = win[i];
+        if (i < t.n)
+            t.dst[i] = win[i];
+        else
+            tc.dst[i - t.n] = win[i];
     }
     if (st == EXR_STORAGE_DEEP_SCANLINE) {
-        if (read_deep(ctx, part, &dw, &t, &io, &nsamples, path, diag) != 0)
+        if (read_deep(ctx, pk.part, &dw, &t, &io, &nsamples, path, diag) != 0)
             goto done;
-    } else if (read_flat(ctx, part, st, &dw, &t, &io, path, diag) != 0) {
+    } else if (read_flat(ctx, pk.part, st, &dw, &t, &io, path, diag) != 0) {
         goto done;
     }
-
+    if (tc.n > 0) { /* colour from another part of the view (color_part checked its storage) */
+        (void)exr_get_storage(ctx, pk.cpart, &cst);
+        if (read_flat(ctx, pk.cpart, cst, &dw, &tc, &io, path, diag) != 0)
+            goto done;
+    }
+    if (o.window == LT_EXR_WINDOW_DISPLAY) {
+        if (to_display(win, t.n + tc.n, &dw, &disp, o.fill, dd) != 0) {
+            lt_diag_fail(diag, "%s: out of memory for %lldx%lld pixels", path,
+                         (long long)disp.max.x - disp.min.x + 1,
+                         (long long)disp.max.y - disp.min.y + 1);
+            goto done;
+        }
+        ras = dd;
+        out->width = (int32_t)((int64_t)disp.max.x - disp.min.x + 1);
+        out->height = (int32_t)((int64_t)disp.max.y - disp.min.y + 1);
+        out->x0 = disp.min.x;
+        out->y0 = disp.min.y;
+    } else {
+        out->width = (int32_t)W;
+        out->height = (int32_t)H;
+        out->x0 = dw.min.x;
+        out->y0 = dw.min.y;
+    }
+    out->z = ras[0];
+    ras[0] = NULL;
+    for (i = 0; i < 4; i++)
+        if (slot[i] >= 0) {
+            out->rgba[i] = ras[slot[i]];
+            ras[slot[i]] = NULL;
+        }
     out->data_window.x0 = dw.min.x;
     out->data_window.y0 = dw.min.y;
     out->data_window.x1 = dw.max.x;
@@ -1078,68 +1467,35 @@ int lt_exr_read_depth(const char *path, const char *channel, const lt_exr_read_o
     out->display_window.x1 = disp.max.x;
     out->display_window.y1 = disp.max.y;
     out->z_type = ze->pixel_type == EXR_PIXEL_HALF ? LT_EXR_HALF : LT_EXR_FLOAT;
-    out->part = part;
+    out->part = pk.part;
+    out->color_part = pk.cpart;
     out->deep = st == EXR_STORAGE_DEEP_SCANLINE;
     out->deep_samples = nsamples;
     (void)snprintf(out->channel, sizeof out->channel, "%s", ze->name.str);
-    if (o.window == LT_EXR_WINDOW_DATA) {
-        out->width = (int32_t)W;
-        out->height = (int32_t)H;
-        out->x0 = dw.min.x;
-        out->y0 = dw.min.y;
-        out->z = win[0];
-        win[0] = NULL;
-        for (i = 0; i < 4; i++)
-            if (slot[i] >= 0) {
-                out->rgba[i] = win[slot[i]];
-                win[slot[i]] = NULL;
-            }
-    } else {
-        /* copy the intersection of the data and display windows into display-sized rasters */
-        int64_t ix0 = dw.min.x > disp.min.x ? dw.min.x : disp.min.x;
-        int64_t iy0 = dw.min.y > disp.min.y ? dw.min.y : disp.min.y;
-        int64_t ix1 = dw.max.x < disp.max.x ? dw.max.x : disp.max.x;
-        int64_t iy1 = dw.max.y < disp.max.y ? dw.max.y : disp.max.y;
-        int64_t yy;
-        float *dd[5] = {NULL, NULL, NULL, NULL, NULL};
-        for (i = 0; i < t.n; i++) {
-            dd[i] = (float *)malloc((size_t)dispW * (size_t)dispH * sizeof(float));
-            if (dd[i] == NULL) {
-                int j;
-                for (j = 0; j < i; j++)
-                    free(dd[j]);
-                lt_diag_fail(diag, "%s: out of memory for %lldx%lld pixels", path,
-                             (long long)dispW, (long long)dispH);
-                goto done;
-            }
-            fill_f(dd[i], (size_t)dispW * (size_t)dispH, i == 0 ? o.fill : 0.0f);
-            for (yy = iy0; ix0 <= ix1 && yy <= iy1; yy++)
-                memcpy(dd[i] + (size_t)(yy - disp.min.y) * (size_t)dispW +
-                           (size_t)(ix0 - disp.min.x),
-                       win[i] + (size_t)(yy - dw.min.y) * (size_t)W + (size_t)(ix0 - dw.min.x),
-                       (size_t)(ix1 - ix0 + 1) * sizeof(float));
-        }
-        out->width = (int32_t)dispW;
-        out->height = (int32_t)dispH;
-        out->x0 = disp.min.x;
-        out->y0 = disp.min.y;
-        out->z = dd[0];
-        for (i = 0; i < 4; i++)
-            if (slot[i] >= 0)
-                out->rgba[i] = dd[slot[i]];
-    }
+    (void)snprintf(out->view, sizeof out->view, "%s", pk.view != NULL ? pk.view : "");
     ok = 1;
 
 done:
-    for (i = 0; i < 5; i++)
+    for (i = 0; i < 5; i++) {
         free(win[i]);
+        free(dd[i]);
+    }
     close_read(&ctx, &io);
     if (!ok)
         lt_exr_depth_free(out);
     return ok ? 0 : -1;
 }
 
-int lt_exr_probe(const char *path, lt_exr_probe_t *info, lt_diag_t *diag)
+static int probe_view(const char *v, void *arg)
+{
+    lt_exr_probe_t *info = (lt_exr_probe_t *)arg;
+    if (info->nviews < LT_EXR_PROBE_VIEWS)
+        (void)snprintf(info->views[info->nviews], sizeof info->views[0], "%s", v);
+    info->nviews++;
+    return 0;
+}
+
+int lt_exr_probe_part(const char *path, int part, lt_exr_probe_t *info, lt_diag_t *diag)
 {
     exr_context_t ctx = NULL;
     exr_io_t io;
@@ -1147,6 +1503,7 @@ int lt_exr_probe(const char *path, lt_exr_probe_t *info, lt_diag_t *diag)
     exr_compression_t comp;
     exr_attr_box2i_t dw, disp;
     const exr_attr_chlist_t *cl = NULL;
+    const char *s;
     int i, ok = 0;
 
     if (info == NULL || path == NULL) {
@@ -1156,16 +1513,25 @@ int lt_exr_probe(const char *path, lt_exr_probe_t *info, lt_diag_t *diag)
     memset(info, 0, sizeof *info);
     if (open_read(&ctx, &io, path, diag) != 0)
         return -1;
-    if (exr_get_count(ctx, &info->parts) != EXR_ERR_SUCCESS || info->parts < 1 ||
-        exr_get_storage(ctx, 0, &st) != EXR_ERR_SUCCESS ||
-        exr_get_compression(ctx, 0, &comp) != EXR_ERR_SUCCESS ||
-        exr_get_data_window(ctx, 0, &dw) != EXR_ERR_SUCCESS ||
-        exr_get_display_window(ctx, 0, &disp) != EXR_ERR_SUCCESS ||
-        exr_get_channels(ctx, 0, &cl) != EXR_ERR_SUCCESS || cl == NULL) {
-        lt_diag_fail(diag, "%s: header incomplete: %s", path,
+    if (exr_get_count(ctx, &info->parts) != EXR_ERR_SUCCESS || info->parts < 1) {
+        lt_diag_fail(diag, "%s: no parts", path);
+        goto done;
+    }
+    if (part < 0 || part >= info->parts) {
+        lt_diag_fail(diag, "%s: part %d out of range: the file has %d part%s (0..%d)", path, part,
+                     info->parts, info->parts == 1 ? "" : "s", info->parts - 1);
+        goto done;
+    }
+    if (exr_get_storage(ctx, part, &st) != EXR_ERR_SUCCESS ||
+        exr_get_compression(ctx, part, &comp) != EXR_ERR_SUCCESS ||
+        exr_get_data_window(ctx, part, &dw) != EXR_ERR_SUCCESS ||
+        exr_get_display_window(ctx, part, &disp) != EXR_ERR_SUCCESS ||
+        exr_get_channels(ctx, part, &cl) != EXR_ERR_SUCCESS || cl == NULL) {
+        lt_diag_fail(diag, "%s: part %d: header incomplete: %s", path, part,
                      lib_text(&io, EXR_ERR_MISSING_REQ_ATTR));
         goto done;
     }
+    info->part = part;
     info->storage = (int)st;
     info->compression = (int)comp;
     info->data_window.x0 = dw.min.x;
@@ -1176,6 +1542,13 @@ int lt_exr_probe(const char *path, lt_exr_probe_t *info, lt_diag_t *diag)
     info->display_window.y0 = disp.min.y;
     info->display_window.x1 = disp.max.x;
     info->display_window.y1 = disp.max.y;
+    if ((s = attr_str(ctx, part, "name")) != NULL)
+        (void)snprintf(info->part_name, sizeof info->part_name, "%s", s);
+    if ((s = part_view(ctx, part)) != NULL)
+        (void)snprintf(info->view, sizeof info->view, "%s", s);
+    if ((s = file_default_view(ctx, info->parts)) != NULL)
+        (void)snprintf(info->default_view, sizeof info->default_view, "%s", s);
+    (void)each_view(ctx, info->parts, probe_view, info);
     info->nchannels = cl->num_channels;
     for (i = 0; i < cl->num_channels && i < LT_EXR_PROBE_CHANNELS; i++) {
         const exr_attr_chlist_entry_t *e = &cl->entries[i];
@@ -1188,4 +1561,9 @@ int lt_exr_probe(const char *path, lt_exr_probe_t *info, lt_diag_t *diag)
 done:
     close_read(&ctx, &io);
     return ok ? 0 : -1;
+}
+
+int lt_exr_probe(const char *path, lt_exr_probe_t *info, lt_diag_t *diag)
+{
+    return lt_exr_probe_part(path, 0, info, diag);
 }

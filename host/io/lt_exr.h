@@ -1,7 +1,8 @@
 /* lt_exr.h - OpenEXR output of object-space renders (named FLOAT/HALF channels, multi-layer
  * "layer<k>.Z" depth peels, R G B A) and input of depth buffers (flat scanline or tiled, HALF or
- * FLOAT Z, multi-view, optional colour, deep files read front-most), through OpenEXR's C API
- * (OpenEXRCore 3.1, Debian libopenexr-dev). Host only; see docs/io.md for formats and limits.
+ * FLOAT Z, multi-part and multi-view files read by part or view, optional colour, deep files read
+ * front-most), through OpenEXR's C API (OpenEXRCore 3.1, Debian libopenexr-dev). Host only; see
+ * docs/io.md for formats and limits.
  */
 #ifndef LT_EXR_H
 #define LT_EXR_H
@@ -87,9 +88,11 @@ typedef struct lt_exr_read_opts {
     float fill;             /* depth outside the data window and of deep pixels with no sample */
     int color;              /* 1: also read <layer>.R/G/B/A (absent ones stay NULL) */
     lt_exr_deep_t deep;     /* what to do with deep images */
+    int part;               /* -1: choose (by view, see lt_exr_read_depth); N: read part N only */
+    const char *view;       /* NULL: the file's default view; else the view to read */
 } lt_exr_read_opts_t;
 
-#define LT_EXR_READ_OPTS_DEFAULT {LT_EXR_WINDOW_DATA, 0.0f, 0, LT_EXR_DEEP_REJECT}
+#define LT_EXR_READ_OPTS_DEFAULT {LT_EXR_WINDOW_DATA, 0.0f, 0, LT_EXR_DEEP_REJECT, -1, NULL}
 
 /* A depth buffer read from a file. Free with lt_exr_depth_free. */
 typedef struct lt_exr_depth {
@@ -101,22 +104,40 @@ typedef struct lt_exr_depth {
     float *rgba[4];               /* R, G, B, A of the same layer, or NULL (absent, not asked) */
     lt_exr_type_t z_type;         /* storage type of the depth channel in the file */
     int part;                     /* index of the part read */
+    int color_part;               /* index of the part the colour came from, -1: no colour */
     int deep;                     /* 1: a deep part, front-most sample per pixel */
     uint64_t deep_samples;        /* deep parts: samples seen over the data window */
     char channel[LT_EXR_MAX_NAME + 1]; /* name of the depth channel read */
+    char view[LT_EXR_MAX_NAME + 1];    /* view read ("" when the file names no views) */
 } lt_exr_depth_t;
 
-/* Read one depth channel. channel NULL picks, in this order: "Z"; "depth"; "<default view>.Z"
- * (the first view of the multiView attribute); the only channel named "*.Z". A channel that is
- * not in the file but names a view reads "<view>.Z" ("left" -> "left.Z"; the default view ->
- * "Z"). Any other channel ("R", "layer2.Z") can be read the same way. Every part of a multi-part
- * file is searched, the first match wins. Background values (0 or +inf, whatever the renderer
- * wrote) and NaN are returned as stored: nothing is remapped.
+/* Read one depth channel.
+ * Views and parts: the multiView attribute (of any part) lists the file's views, the first is
+ * the default view. A multi-part file holds a view per part (each part's `view` attribute); a
+ * part without one (every single-part file) holds its views by channel name: "<view>.<chan>" or
+ * "<layer>.<view>.<chan>", the default view's channels unprefixed. Which part:
+ *   opts->part N: part N only (out of range: an error naming N and the part count; with a view,
+ *     part N must hold that view or none);
+ *   opts->view NAME: the parts whose `view` is NAME, then the parts without a `view`, where
+ *     NAME's channels are read ("Z" -> "NAME.Z", "layer1.Z" -> "layer1.NAME.Z"; the default
+ *     view's also as named);
+ *   neither: the default view's parts (multiView[0]; without multiView, part 0's view), then
+ *     parts without a `view`; a file whose parts name no view: every part, the first match wins.
+ * A view the file does not name is an error that lists the views (multiView's and the parts').
+ * Which channel of a part: channel NULL picks, in this order: "Z"; "depth"; "<default view>.Z";
+ * the only channel named "*.Z". A channel that is not in the file but names a view reads that
+ * view: "<view>.Z" ("left" -> "left.Z"; the default view -> "Z"), or in a multi-part file the
+ * view's part(s). Any other channel ("R", "layer2.Z") can be read the same way.
+ * Colour (opts->color): R G B A next to the depth channel (its name's prefix up to the last dot)
+ * in its part; when that part has none of R G B, in a multi-part file without opts->part: the
+ * first other flat part of the same view (or, like the depth's, of none) with the same data
+ * window (out->color_part). Background values (0 or +inf, whatever the renderer wrote) and NaN
+ * are returned as stored: nothing is remapped.
  * Format: HALF or FLOAT in the file -> float32 (HALF converts exactly). Range: any.
  * Rounding: none. Overflow: none. Cost: host only, not charged.
  * Returns: 0, or -1 with a message naming the path and the problem in diag (a missing channel
- * lists the views and depth channels found; a deep image says how to read it; subsampled, UINT,
- * oversized or corrupt inputs name the limit). */
+ * lists the views and depth channels found, per part; an unknown view lists the views; a deep
+ * image says how to read it; subsampled, UINT, oversized or corrupt inputs name the limit). */
 int lt_exr_read_depth(const char *path, const char *channel, const lt_exr_read_opts_t *opts,
                       lt_exr_depth_t *out, lt_diag_t *diag);
 
@@ -124,23 +145,34 @@ int lt_exr_read_depth(const char *path, const char *channel, const lt_exr_read_o
  * Cost: host only. */
 void lt_exr_depth_free(lt_exr_depth_t *d);
 
-/* What a file holds, for listings and checks. Channels past LT_EXR_PROBE_CHANNELS are counted but
- * not named. 8.6 KiB; not for the stack of small threads. */
+/* What a file holds, for listings and checks: the part count, the views and one part's header.
+ * Channels past LT_EXR_PROBE_CHANNELS and views past LT_EXR_PROBE_VIEWS are counted but not
+ * named. 13 KiB; not for the stack of small threads. */
 #define LT_EXR_PROBE_CHANNELS 32
+#define LT_EXR_PROBE_VIEWS 16
 typedef struct lt_exr_probe {
     int parts;                    /* parts in the file */
-    int storage;                  /* part 0: 0 scanline, 1 tiled, 2 deep scanline, 3 deep tiled */
-    int compression;              /* part 0: EXR compression id (0 none, 2 ZIPS, 3 ZIP, ...) */
-    lt_exr_box_t data_window;     /* part 0 */
-    lt_exr_box_t display_window;  /* part 0 */
-    int nchannels;                /* channels of part 0 */
+    int part;                     /* the part described below */
+    int storage;                  /* 0 scanline, 1 tiled, 2 deep scanline, 3 deep tiled */
+    int compression;              /* EXR compression id (0 none, 2 ZIPS, 3 ZIP, ...) */
+    lt_exr_box_t data_window;     /* of the part */
+    lt_exr_box_t display_window;  /* of the part */
+    char part_name[LT_EXR_MAX_NAME + 1]; /* the part's `name` attribute, "" if none */
+    char view[LT_EXR_MAX_NAME + 1];      /* the part's `view` attribute, "" if none */
+    int nviews;                   /* views of the file: multiView's, then parts' `view`s */
+    char views[LT_EXR_PROBE_VIEWS][LT_EXR_MAX_NAME + 1];
+    char default_view[LT_EXR_MAX_NAME + 1]; /* multiView[0], else part 0's view, else "" */
+    int nchannels;                /* channels of the part */
     lt_exr_type_t type[LT_EXR_PROBE_CHANNELS];           /* storage type per channel */
     char name[LT_EXR_PROBE_CHANNELS][LT_EXR_MAX_NAME + 1]; /* names, sorted as in the file */
 } lt_exr_probe_t;
 
-/* Read the header of part 0 (and the part count); no pixels. Cost: host only.
+/* Read the header of part 0 (and the part count and views); no pixels. Cost: host only.
  * Returns: 0, or -1 with a message naming the path and the problem in diag. */
 int lt_exr_probe(const char *path, lt_exr_probe_t *info, lt_diag_t *diag);
+
+/* The same for part `part` (0 .. parts - 1; out of range: an error naming the part count). */
+int lt_exr_probe_part(const char *path, int part, lt_exr_probe_t *info, lt_diag_t *diag);
 
 /* IEEE binary16 <-> binary32 as used by the writer (host helpers, exported for tests).
  * Format: float32 -> binary16 bits. Range: any. Rounding: to nearest, ties to even.

@@ -1,5 +1,6 @@
 # cli.sh - lanetrace command-line behaviour: help, exit codes, bad flags, missing and malformed
-# files, scene validation, unwritable outputs, diff and info. Sourced by tests/run_tests.sh.
+# files, scene validation, unwritable outputs, diff and info (meshes, EXR files, multi-part stereo
+# EXR files: parts, views, --view, --part). Sourced by tests/run_tests.sh.
 LT="$B/sim/lanetrace"
 expect() { # name, expected rc, pattern in output ("" = any), command...
     local name=$1 want=$2 pat=$3
@@ -97,6 +98,41 @@ elif [ "${CI:-}" = "true" ]; then
 else
     echo "SKIP info on shared EXR files: ../shared/depth not found"
 fi
+# a multi-part stereo EXR (build/host/lt-exr-stereo: part 0 left, part 1 right, multiView right
+# left, so the default view is part 1; Z 2.. for the left eye, 4.. for the right)
+"$B/host/lt-exr-stereo" stereo "$tmp/stereo.exr" && "$B/host/lt-exr-stereo" split "$tmp/split.exr"
+check "lt-exr-stereo writes the multi-part test files" test -s "$tmp/stereo.exr" -a -s "$tmp/split.exr"
+expect "info on a stereo EXR names the views and the default" 0 "stereo.exr: OpenEXR, 2 parts, views right left (default right)" \
+    "$LT" info "$tmp/stereo.exr"
+expect "info lists part 0 with its name, view, storage and windows" 0 \
+    "^part 0    name 'left', view left, scanline, zip, data window (2,3)-(25,18), display window (0,0)-(31,23)" \
+    "$LT" info "$tmp/stereo.exr"
+expect "info lists part 1, the default view" 0 "^part 1    name 'right', view right (default), scanline" \
+    "$LT" info "$tmp/stereo.exr"
+expect "info lists each part's channels" 0 "^channels  4: A(HALF) B(HALF) G(HALF) R(HALF)$" "$LT" info "$tmp/split.exr"
+expect "info: depth statistics of the default view say their part (right eye)" 0 \
+    "^depth     part 1, view right, channel Z: 384 pixels with depth, 0 holes .* min 4 max 5.90625" \
+    "$LT" info "$tmp/stereo.exr"
+expect "info --view left: the left eye" 0 "^depth     part 0, view left, channel Z: .* min 2 max 3.90625" \
+    "$LT" info "$tmp/stereo.exr" --view left
+expect "info --part 1: the right eye" 0 "^depth     part 1, view right, channel Z: .* min 4 max" \
+    "$LT" info "$tmp/stereo.exr" --part 1
+expect "info --view center: exit 1, the views listed" 1 "no view 'center'; views: right left; default right" \
+    "$LT" info "$tmp/stereo.exr" --view center
+expect "info --part 2: exit 1, the part count named" 1 "part 2 out of range: the file has 2 parts (0..1)" \
+    "$LT" info "$tmp/stereo.exr" --part 2
+expect "info --part of a colour-only part: exit 1, no depth channel there" 1 "no depth channel (Z, depth, \*.Z) in part 2;" \
+    "$LT" info "$tmp/split.exr" --part 2
+expect "info --view on a mesh: usage error" 2 "select in an EXR file" "$LT" info scenes/teapot.obj --view left
+"$LT" info "$tmp/stereo.exr" --json >"$tmp/infost.json" 2>&1
+check "info --json lists the parts with views and channels, the views, and the depth's part" \
+    python3 -c "
+import json, sys
+j = json.load(open(sys.argv[1])); pl = j['part_list']; d = j['depth']
+sys.exit(0 if j['parts'] == 2 and j['views'] == ['right', 'left'] and j['default_view'] == 'right'
+         and [p['view'] for p in pl] == ['left', 'right'] and [p['name'] for p in pl] == ['left', 'right']
+         and [c['name'] for c in pl[1]['channels']] == ['A', 'B', 'G', 'R', 'Z']
+         and d['part'] == 1 and d['view'] == 'right' and d['min'] == 4 else 1)" "$tmp/infost.json"
 # every structure traces the same image: compared with the chunks (brute force over boxes)
 "$B/host/lanetrace-native" run --structure chunks --res 32 -q >"$tmp/chunks.txt" 2>&1
 for st in bvh bvhq; do

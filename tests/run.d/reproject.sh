@@ -3,8 +3,9 @@
 # builds and in the firmware images under QEMU (cm4, cm55, rv32); `lanetrace reproject` help, exit
 # codes, bad flags, missing / malformed EXR, unwritable outputs; the make-run pipeline on the bundled
 # teapot (render a 2-layer depth EXR, reproject it; native = sim result for n64/n32/f32, outputs
-# written, cycle report); the beachball EXR when ../shared exists (SKIP otherwise, FAIL under
-# CI=true).
+# written, cycle report); multi-part stereo EXR files (build/host/lt-exr-stereo: --view, --part,
+# the default view, colour of the view, errors); the beachball EXR when ../shared exists, also
+# rewritten as a 2-part stereo file (SKIP otherwise, FAIL under CI=true).
 RP_SIM="$B/sim/lanetrace"
 RP_NAT="$B/host/lanetrace-native"
 rp_expect() { # name, expected rc, pattern ("" = any), command...
@@ -219,6 +220,36 @@ else
     echo "SKIP reproject --truth bunny: $bun not found (a fresh clone has no ../shared)"
 fi
 
+# ---- multi-part stereo EXR (build/host/lt-exr-stereo: part 0 left Z 2.., part 1 right Z 4..,
+# multiView right left; split: colour in parts of its own) ----
+"$B/host/lt-exr-stereo" stereo "$tmp/rpst.exr"
+"$B/host/lt-exr-stereo" split "$tmp/rpsp.exr"
+rpst=(reproject --depth "$tmp/rpst.exr" --color --move-rel 0.02,0,0)
+rp_expect "reproject stereo EXR: the default view is the right eye (part 1)" 0 \
+    "channel Z (part 1, view right), z_ref 2, median depth 4.969" "$RP_NAT" "${rpst[@]}"
+rp_expect "reproject --view left reads the left eye" 0 "channel Z (part 0, view left), z_ref 1, median depth 2.969" \
+    "$RP_NAT" "${rpst[@]}" --view left
+rp_expect "reproject --view right reads the right eye" 0 "channel Z (part 1, view right), z_ref 2, median depth 4.969" \
+    "$RP_NAT" "${rpst[@]}" --view right
+rp_expect "reproject --part 0 reads the left eye" 0 "(part 0, view left)" "$RP_NAT" "${rpst[@]}" --part 0
+rp_expect "reproject --part 1 (sim) reads the right eye" 0 "(part 1, view right)" "$RP_SIM" "${rpst[@]}" --part 1
+rp_expect "reproject --channel right (a view's name) reads the right eye" 0 "(part 1, view right)" \
+    "$RP_NAT" "${rpst[@]}" --channel right
+rp_expect "reproject --view center: exit 1, the views listed" 1 "no view 'center'; views: right left; default right" \
+    "$RP_NAT" "${rpst[@]}" --view center
+rp_expect "reproject --part 5: exit 1, the part count named" 1 "part 5 out of range: the file has 2 parts (0..1)" \
+    "$RP_NAT" "${rpst[@]}" --part 5
+rp_expect "reproject --part 0 --view right: exit 1, part 0 is the left eye" 1 "part 0 holds view 'left', not 'right'" \
+    "$RP_NAT" "${rpst[@]}" --part 0 --view right
+rp_expect "reproject --part -1: usage error with the range" 2 "expected 0..1000000000" "$RP_NAT" "${rpst[@]}" --part -1
+for v in left right; do
+    "$RP_NAT" reproject --depth "$tmp/rpsp.exr" --color --view $v --move-rel 0.02,0,0 --json >"$tmp/rpsp.$v" 2>&1
+    check "reproject --view $v --color, colour in a part of its own: read from the view's colour part, no grey fallback" \
+        bash -c "grep -q '\"view\":[[:space:]]*\"$v\"' '$tmp/rpsp.$v' && ! grep -q 'no R G B channels' '$tmp/rpsp.$v'"
+done
+rp_expect "reproject --part 1 --color reads that part only: no colour there, grey" 0 "no R G B channels next to Z (part 1, view right)" \
+    "$RP_NAT" reproject --depth "$tmp/rpsp.exr" --color --part 1 --move-rel 0.02,0,0
+
 # ---- the shared beachball (no camera: the default 60-degree camera) ----
 bb=../shared/depth/beachball_singlepart.0001.exr
 if [ -f "$bb" ]; then
@@ -228,6 +259,19 @@ if [ -f "$bb" ]; then
     check "reproject: beachball outputs written" test -s "$tmp/bb.exr" -a -s "$tmp/bb.png" -a -s "$tmp/bbs.png"
     rp_expect "reproject: beachball f32 in the simulator, cycle report" 0 "^== cycle report" \
         "$RP_SIM" reproject --depth "$bb" --num f32 --move-rel 0.05,0,0 --res 228x219
+    # the frame rewritten as a multi-part stereo file (part 0 left, part 1 right): each eye gives
+    # the image of the single-part file's view, byte for byte (depth and colour)
+    "$B/host/lt-exr-stereo" beachball "$tmp/bbst.exr" "$bb"
+    bbargs=(reproject --color --move-rel 0.05,0,0 --rot -2,0,0 --res 228x219 -q)
+    for v in left right; do
+        "$RP_NAT" "${bbargs[@]}" --depth "$bb" --view $v --out "$tmp/bb1.$v.exr" >/dev/null 2>&1
+        "$RP_NAT" "${bbargs[@]}" --depth "$tmp/bbst.exr" --view $v --out "$tmp/bb2.$v.exr" >/dev/null 2>&1
+        check "reproject beachball --view $v: multi-part stereo file = single-part file (output EXR identical)" \
+            bash -c "[ -s '$tmp/bb1.$v.exr' ] && cmp -s '$tmp/bb1.$v.exr' '$tmp/bb2.$v.exr'"
+    done
+    "$RP_NAT" "${bbargs[@]}" --depth "$tmp/bbst.exr" --out "$tmp/bb2.default.exr" >/dev/null 2>&1
+    check "reproject beachball stereo file: the default view is right (= --view right), not left" \
+        bash -c "cmp -s '$tmp/bb2.default.exr' '$tmp/bb2.right.exr' && ! cmp -s '$tmp/bb2.left.exr' '$tmp/bb2.right.exr'"
 elif [ "${CI:-}" = "true" ]; then
     ko "reproject: shared depth file missing under CI: $bb"
 else

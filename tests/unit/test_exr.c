@@ -2,8 +2,11 @@
  * against a double-precision reference, FLOAT/HALF round trips over three compressions, data
  * windows inside and outside the display window, multi-layer names, NaN/inf/0 kept, tiled and
  * deep files made here with the raw C API (front-most sample checked by hand), size limits,
- * corrupt and truncated files, atomic writes, and the shared production files ../shared/depth
- * (skipped when absent, failed under CI=true). Builds: host, sim, asan.
+ * corrupt and truncated files, atomic writes, multi-part stereo and multi-view files made with
+ * the C API (lt_exr_testlib.h: part and view selection, colour of the view, errors that list the
+ * views or the part count), and the shared production files ../shared/depth, the Beachball frame
+ * also rewritten as a 2-part stereo file (skipped when absent, failed under CI=true). Builds:
+ * host, sim, asan.
  */
 #include <stdarg.h>
 #include <stddef.h>
@@ -31,6 +34,7 @@
 #pragma GCC diagnostic pop
 
 #include "io/lt_exr.h"
+#include "lt_exr_testlib.h"
 #include "lt_test_util.h"
 
 static char g_dir[64]; /* per-run temp directory */
@@ -1145,6 +1149,218 @@ static void test_atomic_kill(void **state)
     assert_int_equal(bad, 0);
 }
 
+/* ---- multi-part and multi-view files (tests/unit/lt_exr_testlib.h, OpenEXR's C API) ----------- */
+
+/* Read path with part / view / colour; 0 or -1 (diag). */
+static int read_sel(const char *path, const char *channel, int part, const char *view, int color,
+                    lt_exr_depth_t *d, lt_diag_t *diag)
+{
+    lt_exr_read_opts_t o = LT_EXR_READ_OPTS_DEFAULT;
+    o.part = part;
+    o.view = view;
+    o.color = color;
+    return lt_exr_read_depth(path, channel, &o, d, diag);
+}
+
+/* Pixels of d (data window of the synthetic files) that differ from eye e's Z and, when d has
+ * colour, from its R G B A. */
+static long eye_mismatch(const lt_exr_depth_t *d, int e)
+{
+    long bad = 0;
+    int x, y, c;
+    if (d->width != LTX_W || d->height != LTX_H || d->x0 != LTX_X0 || d->y0 != LTX_Y0)
+        return -1;
+    for (y = 0; y < LTX_H; y++)
+        for (x = 0; x < LTX_W; x++) {
+            bad += d->z[y * LTX_W + x] != ltx_value(e, 4, x, y);
+            for (c = 0; c < 4; c++)
+                bad += d->rgba[c] != NULL && d->rgba[c][y * LTX_W + x] != ltx_value(e, c, x, y);
+        }
+    return bad;
+}
+
+/* One read that must succeed: part, view and channel read, eye e's values. */
+static void expect_eye(const char *path, const char *channel, int part, const char *view,
+                       int color, int want_part, const char *want_view, const char *want_chan,
+                       int e, unsigned *cases)
+{
+    lt_exr_depth_t d;
+    lt_diag_t diag;
+    if (read_sel(path, channel, part, view, color, &d, &diag) != 0) {
+        ltt_report("FAIL %s: %s\n", path, diag.msg);
+        fail();
+    }
+    if (d.part != want_part || strcmp(d.view, want_view) != 0 || strcmp(d.channel, want_chan) != 0)
+        ltt_report("FAIL %s channel %s part %d view %s: read part %d view '%s' channel %s\n", path,
+                   channel != NULL ? channel : "(default)", part, view != NULL ? view : "(default)",
+                   d.part, d.view, d.channel);
+    assert_int_equal(d.part, want_part);
+    assert_string_equal(d.view, want_view);
+    assert_string_equal(d.channel, want_chan);
+    assert_int_equal(eye_mismatch(&d, e), 0);
+    if (color) {
+        assert_non_null(d.rgba[0]);
+        assert_non_null(d.rgba[3]);
+    }
+    lt_exr_depth_free(&d);
+    (*cases)++;
+}
+
+/* One read that must fail with a message naming the file and containing must (and not "(none)"
+ * when views exist). */
+static void expect_sel_error(const char *path, const char *channel, int part, const char *view,
+                             const char *must, unsigned *cases)
+{
+    lt_exr_depth_t d;
+    lt_diag_t diag;
+    assert_int_equal(read_sel(path, channel, part, view, 0, &d, &diag), -1);
+    ltt_report("  %s\n", diag.msg);
+    assert_non_null(strstr(diag.msg, path));
+    assert_non_null(strstr(diag.msg, must));
+    assert_null(strstr(diag.msg, "views: (none)"));
+    assert_null(d.z);
+    (*cases)++;
+}
+
+static void test_multipart_stereo(void **state)
+{
+    const char *p = tpath("stereo.exr");
+    lt_exr_probe_t *pr = malloc(sizeof *pr);
+    lt_exr_depth_t d;
+    lt_diag_t diag;
+    unsigned cases = 0;
+    long outside = 0;
+    int x, y;
+    (void)state;
+    assert_int_equal(ltx_write_kind(p, "stereo", &diag), 0);
+    /* the default view is multiView[0] = right, part 1 (it used to read part 0, the left eye) */
+    expect_eye(p, NULL, -1, NULL, 1, 1, "right", "Z", 1, &cases);
+    expect_eye(p, NULL, -1, "left", 1, 0, "left", "Z", 0, &cases);
+    expect_eye(p, NULL, -1, "right", 1, 1, "right", "Z", 1, &cases);
+    expect_eye(p, NULL, 0, NULL, 1, 0, "left", "Z", 0, &cases);
+    expect_eye(p, NULL, 1, NULL, 0, 1, "right", "Z", 1, &cases);
+    expect_eye(p, NULL, 0, "left", 0, 0, "left", "Z", 0, &cases);
+    expect_eye(p, "Z", -1, "left", 1, 0, "left", "Z", 0, &cases);
+    /* a view named as the channel (lt_exr.h: a channel that names a view reads it) */
+    expect_eye(p, "left", -1, NULL, 1, 0, "left", "Z", 0, &cases);
+    expect_eye(p, "right", -1, NULL, 0, 1, "right", "Z", 1, &cases);
+    expect_sel_error(p, NULL, -1, "center", "no view 'center'; views: right left; default right",
+                     &cases);
+    expect_sel_error(p, "center", -1, NULL, "views: right left", &cases);
+    expect_sel_error(p, NULL, 2, NULL, "part 2 out of range: the file has 2 parts (0..1)", &cases);
+    expect_sel_error(p, NULL, -5, NULL, "part -5 out of range", &cases);
+    expect_sel_error(p, NULL, 0, "right", "part 0 holds view 'left', not 'right'", &cases);
+    expect_sel_error(p, "N.x", -1, "left", "no channel 'N.x' (nor 'N.x.Z') in view 'left'",
+                     &cases);
+    /* colour of the view, in the display window */
+    {
+        lt_exr_read_opts_t o = LT_EXR_READ_OPTS_DEFAULT;
+        o.view = "left";
+        o.color = 1;
+        o.window = LT_EXR_WINDOW_DISPLAY;
+        o.fill = INFINITY;
+        assert_int_equal(lt_exr_read_depth(p, NULL, &o, &d, &diag), 0);
+        assert_int_equal(d.width, 32);
+        assert_int_equal(d.height, 24);
+        assert_int_equal(d.color_part, 0);
+        for (y = 0; y < 24; y++)
+            for (x = 0; x < 32; x++) {
+                int in = x >= LTX_X0 && x < LTX_X0 + LTX_W && y >= LTX_Y0 && y < LTX_Y0 + LTX_H;
+                float z = d.z[y * 32 + x], r = d.rgba[0][y * 32 + x];
+                outside += in ? z != ltx_value(0, 4, x - LTX_X0, y - LTX_Y0) || r != 0.25f
+                              : !isinf(z) || r != 0.0f;
+            }
+        lt_exr_depth_free(&d);
+        assert_int_equal(outside, 0);
+    }
+    /* the header of every part */
+    assert_int_equal(lt_exr_probe_part(p, 1, pr, &diag), 0);
+    assert_int_equal(pr->parts, 2);
+    assert_int_equal(pr->part, 1);
+    assert_string_equal(pr->part_name, "right");
+    assert_string_equal(pr->view, "right");
+    assert_string_equal(pr->default_view, "right");
+    assert_int_equal(pr->nviews, 2);
+    assert_string_equal(pr->views[0], "right");
+    assert_string_equal(pr->views[1], "left");
+    assert_int_equal(pr->nchannels, 5);
+    assert_string_equal(pr->name[4], "Z");
+    assert_int_equal(lt_exr_probe_part(p, 0, pr, &diag), 0);
+    assert_string_equal(pr->view, "left");
+    assert_int_equal(lt_exr_probe_part(p, 2, pr, &diag), -1);
+    assert_non_null(strstr(diag.msg, "part 2 out of range: the file has 2 parts"));
+    free(pr);
+    ltt_report("multi-part stereo (part 0 left, part 1 right, multiView right left): default, "
+               "--view, --part, view as channel, colour, display window: %u cases, 0 wrong eyes "
+               "or values; bad view / part / view of part refused with the views or the count\n",
+               cases);
+}
+
+static void test_multipart_variants(void **state)
+{
+    const char *sp = tpath("split.exr"), *nm = tpath("nomv.exr"), *sg = tpath("single.exr");
+    lt_exr_depth_t d;
+    lt_diag_t diag;
+    unsigned cases = 0;
+    (void)state;
+    assert_int_equal(ltx_write_kind(sp, "split", &diag), 0);
+    assert_int_equal(ltx_write_kind(nm, "nomv", &diag), 0);
+    assert_int_equal(ltx_write_kind(sg, "single", &diag), 0);
+
+    /* colour in a part of its own: from the part of the same view and data window */
+    expect_eye(sp, NULL, -1, NULL, 1, 1, "right", "Z", 1, &cases);
+    expect_eye(sp, NULL, -1, "left", 1, 0, "left", "Z", 0, &cases);
+    assert_int_equal(read_sel(sp, NULL, -1, NULL, 1, &d, &diag), 0);
+    assert_int_equal(d.color_part, 3);
+    lt_exr_depth_free(&d);
+    assert_int_equal(read_sel(sp, NULL, -1, "left", 1, &d, &diag), 0);
+    assert_int_equal(d.color_part, 2);
+    lt_exr_depth_free(&d);
+    /* --part N reads part N only: no colour there */
+    assert_int_equal(read_sel(sp, NULL, 1, NULL, 1, &d, &diag), 0);
+    assert_int_equal(d.color_part, -1);
+    assert_null(d.rgba[0]);
+    lt_exr_depth_free(&d);
+    expect_sel_error(sp, NULL, 2, NULL, "no depth channel (Z, depth, *.Z) in part 2", &cases);
+    cases++;
+
+    /* no multiView: the default view is part 0's */
+    expect_eye(nm, NULL, -1, NULL, 1, 0, "left", "Z", 0, &cases);
+    expect_eye(nm, NULL, -1, "right", 1, 1, "right", "Z", 1, &cases);
+    expect_eye(nm, "right", -1, NULL, 1, 1, "right", "Z", 1, &cases);
+    expect_sel_error(nm, NULL, -1, "center", "views: left right; default left", &cases);
+
+    /* single-part multi-view: views by channel name, the default view's unprefixed */
+    expect_eye(sg, NULL, -1, NULL, 1, 0, "right", "Z", 1, &cases);
+    expect_eye(sg, NULL, -1, "right", 1, 0, "right", "Z", 1, &cases);
+    expect_eye(sg, NULL, -1, "left", 1, 0, "left", "left.Z", 0, &cases);
+    expect_eye(sg, "Z", -1, "left", 1, 0, "left", "left.Z", 0, &cases);
+    expect_eye(sg, "left.Z", -1, "left", 1, 0, "left", "left.Z", 0, &cases);
+    expect_eye(sg, "left", -1, NULL, 1, 0, "left", "left.Z", 0, &cases);
+    expect_eye(sg, NULL, 0, "left", 1, 0, "left", "left.Z", 0, &cases);
+    expect_sel_error(sg, NULL, -1, "center", "no view 'center'; views: right left", &cases);
+    expect_sel_error(sg, NULL, 1, NULL, "part 1 out of range: the file has 1 part (0..0)", &cases);
+    /* a plain file names no views */
+    {
+        float z[4] = {1.0f, 2.0f, 3.0f, 4.0f};
+        lt_exr_channel_t ch = {"Z", LT_EXR_FLOAT, z};
+        lt_exr_image_t img;
+        memset(&img, 0, sizeof img);
+        img.width = 2;
+        img.height = 2;
+        img.nchannels = 1;
+        img.channels = &ch;
+        assert_int_equal(lt_exr_write(tpath("plain.exr"), &img, &diag), 0);
+        assert_int_equal(read_sel(tpath("plain.exr"), NULL, -1, "left", 0, &d, &diag), -1);
+        ltt_report("  %s\n", diag.msg);
+        assert_non_null(strstr(diag.msg, "no view 'left'; views: (none: the file names no views)"));
+        cases++;
+    }
+    ltt_report("multi-part variants (colour in parts of its own, no multiView, single-part "
+               "multi-view, plain): %u cases, 0 wrong eyes, colour from the view's part (3 right, "
+               "2 left), none with --part\n", cases);
+}
+
 /* ---- shared production files ----------------------------------------------------------------- */
 
 static void stats(const lt_exr_depth_t *d, double *mn, double *mx, double *mean, long *n)
@@ -1298,6 +1514,63 @@ static void test_shared_cut(void **state)
     ltt_report("beachball cut in half: clear error, no crash\n");
 }
 
+/* The shared single-part frame rewritten as a 2-part stereo file (part 0 left, part 1 right,
+ * multiView right left, made here with the OpenEXR C API): each eye reads the same values as the
+ * single-part file's view, colour included. */
+static void test_shared_beachball_multipart(void **state)
+{
+    const char *rel = "depth/beachball_singlepart.0001.exr";
+    const char *p = shared_file(rel), *mp = tpath("beach_stereo.exr");
+    static const char *const eyes[2] = {"left", "right"};
+    lt_exr_read_opts_t o = LT_EXR_READ_OPTS_DEFAULT;
+    lt_exr_depth_t s, m;
+    lt_diag_t diag;
+    double mn[2], mx[2], mean[2], mmn, mmx, mmean;
+    long n[2], mn_n, bad = 0, i;
+    int e, c;
+    (void)state;
+    if (p == NULL) {
+        assert_int_equal(shared_missing(rel), 0);
+        return;
+    }
+    assert_int_equal(ltx_beachball_stereo(p, mp, &diag), 0);
+    o.color = 1;
+    for (e = 0; e < 2; e++) {
+        /* the single-part file: "left" reads left.Z, "right" (the default view) Z */
+        o.view = eyes[e];
+        assert_int_equal(lt_exr_read_depth(p, NULL, &o, &s, &diag), 0);
+        assert_string_equal(s.channel, e == 0 ? "left.Z" : "Z");
+        stats(&s, &mn[e], &mx[e], &mean[e], &n[e]);
+        /* the multi-part file: --view NAME, and the default view for right */
+        assert_int_equal(lt_exr_read_depth(mp, NULL, &o, &m, &diag), 0);
+        assert_int_equal(m.part, e);
+        assert_string_equal(m.view, eyes[e]);
+        assert_int_equal(m.color_part, e);
+        stats(&m, &mmn, &mmx, &mmean, &mn_n);
+        assert_int_equal(mn_n, n[e]);
+        assert_true(mmn == mn[e] && mmx == mx[e] && mmean == mean[e]);
+        for (i = 0; i < (long)s.width * s.height; i++) {
+            bad += fbits(s.z[i]) != fbits(m.z[i]);
+            for (c = 0; c < 4; c++)
+                bad += fbits(s.rgba[c][i]) != fbits(m.rgba[c][i]);
+        }
+        lt_exr_depth_free(&s);
+        lt_exr_depth_free(&m);
+    }
+    o.view = NULL;
+    assert_int_equal(lt_exr_read_depth(mp, NULL, &o, &m, &diag), 0);
+    assert_int_equal(m.part, 1);
+    assert_string_equal(m.view, "right");
+    lt_exr_depth_free(&m);
+    ltt_report("beachball as a 2-part stereo file: default view right = part 1; left: %ld px, "
+               "min %.4g max %.4g mean %.4f; right: %ld px, min %.4g max %.4g mean %.4f; both "
+               "= the single-part file's views (Z and R G B A bit for bit: %ld differ, bound 0)\n",
+               n[0], mn[0], mx[0], mean[0], n[1], mn[1], mx[1], mean[1], bad);
+    assert_int_equal(bad, 0);
+    assert_true(fabs(mx[0] - 10.26) < 0.005);
+    assert_true(fabs(mx[1] - 10.92) < 0.005);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -1309,6 +1582,8 @@ int main(void)
         cmocka_unit_test(test_corrupt),          cmocka_unit_test(test_write_errors),
         cmocka_unit_test(test_atomic_kill),      cmocka_unit_test(test_shared_beachball),
         cmocka_unit_test(test_shared_deep),      cmocka_unit_test(test_shared_cut),
+        cmocka_unit_test(test_multipart_stereo), cmocka_unit_test(test_multipart_variants),
+        cmocka_unit_test(test_shared_beachball_multipart),
     };
     return cmocka_run_group_tests(tests, setup_dir, teardown_dir);
 }
