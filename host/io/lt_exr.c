@@ -31,14 +31,20 @@ typedef struct exr_io {
     char msg[256]; /* first message the library reported for this context */
 } exr_io_t;
 
+/* The message, on one line: names and library texts come from the file, and a control byte
+ * there (a newline, an escape sequence) is shown as '?'. */
 static void fail(char *err, size_t errlen, const char *fmt, ...)
 {
     va_list ap;
+    char *p;
     if (err == NULL || errlen == 0)
         return;
     va_start(ap, fmt);
     (void)vsnprintf(err, errlen, fmt, ap);
     va_end(ap);
+    for (p = err; *p != '\0'; p++)
+        if ((unsigned char)*p < 0x20 || *p == 0x7F)
+            *p = '?';
 }
 
 static void on_lib_error(exr_const_context_t ctxt, exr_result_t code, const char *msg)
