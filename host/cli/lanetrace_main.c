@@ -959,6 +959,7 @@ static int cmd_diff(int argc, char **argv)
     if ((ja = load_json(pa, err, sizeof err)) == NULL ||
         (jb = load_json(pb, err, sizeof err)) == NULL) {
         fprintf(stderr, "%s\n", err);
+        cJSON_Delete(ja); /* the first report when the second one fails (NULL-safe) */
         return EXIT_INPUT;
     }
     rows = cJSON_CreateArray();
