@@ -1,6 +1,6 @@
 # cli.sh - lanetrace command-line behaviour: help, exit codes, bad flags, missing and malformed
 # files, scene validation, unwritable outputs, diff and info. Sourced by tests/run_tests.sh.
-LT="$B/sim/lanetrace"
+LT="$SIMBIN/lanetrace"
 expect() { # name, expected rc, pattern in output ("" = any), command...
     local name=$1 want=$2 pat=$3
     shift 3
@@ -81,7 +81,7 @@ else
 fi
 for st in bvh bvhq; do
     nm=both; [ $st = bvhq ] && nm=q16
-    "$B/host/lanetrace-native" run --structure $st --num $nm --res 32 -q >"$tmp/n_$st.txt" 2>&1
+    "$HOSTBIN/lanetrace-native" run --structure $st --num $nm --res 32 -q >"$tmp/n_$st.txt" 2>&1
     "$LT" run --structure $st --num $nm --res 32 -q >"$tmp/s_$st.txt" 2>&1
     a=$(grep "result    q16" "$tmp/n_$st.txt"); b=$(grep "result    q16" "$tmp/s_$st.txt")
     c=$(grep "result    q16" "$tmp/native.txt")
@@ -105,7 +105,7 @@ check "render --report JSON counts primary + shadow + peel rays" python3 -c "
 import json,sys; r=json.load(open('$tmp/gr.json')); x=r.get('extra', r)
 print('render report rays', r['rays'], 'primary', x['primary_rays'], 'shadow', x['shadow_rays'], 'peel', x['peel_rays'])
 sys.exit(0 if x['primary_rays']==256 and x['peel_rays']>0 and x['shadow_rays']>0 else 1)"
-expect "render --report in the native build: usage error" 2 "simulator build" "$B/host/lanetrace-native" render --res 8 --out "$tmp/rn" --report "$tmp/rn.json"
+expect "render --report in the native build: usage error" 2 "simulator build" "$HOSTBIN/lanetrace-native" render --res 8 --out "$tmp/rn" --report "$tmp/rn.json"
 # a scene whose dynamic range exceeds s15.16: one 2e6-unit triangle and ten 1e-3-unit ones
 {
     echo "v -1000000 0 0"; echo "v 1000000 0 0"; echo "v 0 1000000 0"
@@ -117,7 +117,7 @@ expect "run: a scene s15.16 cannot represent is an input error naming the file a
 expect "render: the same error for the s15.16 path" 1 "cannot be represented in s15.16" "$LT" render --mesh "$tmp/wide.obj" --res 8 --out "$tmp/wide"
 check "render: nothing written for the unrepresentable scene" test ! -e "$tmp/wide.exr"
 expect "run --num f32 traces the same scene" 0 "result    f32" "$LT" run --mesh "$tmp/wide.obj" --res 8 -q --num f32 --no-ref
-expect "info says which paths can represent a mesh" 0 "10 of 11 non-degenerate triangles collapse.*NOT representable" "$B/host/lanetrace-native" info "$tmp/wide.obj"
+expect "info says which paths can represent a mesh" 0 "10 of 11 non-degenerate triangles collapse.*NOT representable" "$HOSTBIN/lanetrace-native" info "$tmp/wide.obj"
 # ---- option parsing (host/cli/lt_opt): values are read whole, numbers must be finite, ranges are
 # named; each of these was accepted before (atoi read "1e9" as 1, sscanf ignored trailing text,
 # NaN passed the range checks, --tol had none)

@@ -5,8 +5,8 @@
 # teapot (render a 2-layer depth EXR, reproject it; native = sim result for n64/n32/f32, outputs
 # written, cycle report); the beachball EXR when ../shared exists (SKIP otherwise, FAIL under
 # CI=true).
-RP_SIM="$B/sim/lanetrace"
-RP_NAT="$B/host/lanetrace-native"
+RP_SIM="$SIMBIN/lanetrace"
+RP_NAT="$HOSTBIN/lanetrace-native"
 rp_expect() { # name, expected rc, pattern ("" = any), command...
     local name=$1 want=$2 pat=$3
     shift 3
