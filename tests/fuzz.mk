@@ -12,6 +12,7 @@
 #   make fuzz-campaign SECONDS=N   every target for N s under ASan + UBSan: one table of executions,
 #                           exec/s, new inputs and crashes (also build/fuzz/campaign.md); exit 1 on
 #                           any crash, hang or out-of-memory
+#   make fuzz-doc           copy that table into docs/reliability.md (between its markers)
 #   make fuzz-merge         minimise build/fuzz/corpus-<t> + tests/fuzz/corpus/<t> into the latter
 #                           (libFuzzer -merge=1, tests/fuzz/merge.sh; regress-* inputs kept by
 #                           name): the step before committing a corpus
@@ -64,8 +65,8 @@ $(B)/asan/fuzz-$(1): $(B)/asan/obj/tests/fuzz/fuzz_$(1).o $(B)/asan/obj/tests/fu
 $(B)/fuzz/fuzz-$(1): tests/fuzz/fuzz_$(1).c $(FUZZ_SRCS_$(1)) tests/fuzz.mk | $(B)/gen/lt_machines.inc
 	@mkdir -p $$(@D)
 	@echo "CLANG [libFuzzer] $$@"
-	@$(FUZZ_CLANG) $(FUZZ_CFLAGS) $(FUZZ_CFLAGS_$(1)) tests/fuzz/fuzz_$(1).c $(FUZZ_SRCS_$(1)) \
-	    -o $$@ $(FUZZ_LIBS_$(1))
+	@$(FUZZ_CLANG) $(FUZZ_CFLAGS) $(FUZZ_CFLAGS_$(1)) -MMD -MP -MF $$@.d tests/fuzz/fuzz_$(1).c \
+	    $(FUZZ_SRCS_$(1)) -o $$@ $(FUZZ_LIBS_$(1))
 fuzz-$(1): $(B)/asan/fuzz-$(1) $(FUZZ_HAVE)
 	@if [ "$$$$(cat $(FUZZ_HAVE))" = yes ]; then \
 	    $(MAKE) --no-print-directory $(B)/fuzz/fuzz-$(1) && \
@@ -107,4 +108,7 @@ $(B)/fuzz/seeds-exr: tests/fuzz/seeds_exr.c tests/fuzz.mk
 	@$(CC) $(WARN) -D_POSIX_C_SOURCE=200809L -isystem /usr/include/OpenEXR $< -o $@ -lOpenEXRCore-3_1
 fuzz-seeds: $(B)/fuzz/seeds-exr
 	@B=$(B) tests/fuzz/seeds.sh
-.PHONY: fuzz-seeds
+# the last campaign's table (build/fuzz/campaign.md) into docs/reliability.md, between its markers
+fuzz-doc:
+	@tests/fuzz/doc.sh $(B)/fuzz/campaign.md docs/reliability.md
+.PHONY: fuzz-seeds fuzz-doc
