@@ -83,7 +83,8 @@ done
 
 # the CLI scripts again, against the ASan + UBSan builds of every shipped program (build/asan/,
 # host/host.mk): a sanitizer report fails the run's own check (its exit code is 86, never an
-# expected one) and the closing check (every report is also written under $tmp/san/)
+# expected one); ASan and LeakSanitizer reports also go to files under $tmp/san/, which fail the
+# closing check (GCC's UBSan prints on stderr whatever log_path says: its exit code 86 is the sign)
 ASAN_CLI_SCRIPTS=${LT_ASAN_CLI_SCRIPTS-cli machines meshin stream reproject frusta assimp_models}
 if [ -n "$ASAN_CLI_SCRIPTS" ] && [ "$SIMBIN" != "$B/asan" ]; then
     echo "== CLI scripts against the ASan + UBSan builds ($B/asan: LeakSanitizer on)"

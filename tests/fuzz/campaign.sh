@@ -11,9 +11,12 @@ FLAGS=${FUZZ_RUN_FLAGS:--timeout=10 -rss_limit_mb=2048 -print_final_stats=1 -clo
 [ $# -gt 0 ] || { echo "usage: $0 TARGET..." >&2; exit 2; }
 case $T in '' | *[!0-9]*) echo "fuzz-campaign: SECONDS=$T is not a whole number" >&2; exit 2 ;; esac
 out=$B/fuzz/campaign.md
+started=$(date -u +%Y-%m-%dT%H:%MZ)
+commit=$(git rev-parse --short HEAD 2>/dev/null || echo '?')
+[ -n "$(git status --porcelain --untracked-files=no 2>/dev/null)" ] && commit="$commit + local changes"
 bad=0
 rows=()
-stat() { sed -n "s/^stat::$1: *\([0-9]*\).*/\1/p" "$2" | tail -n 1; }
+final_stat() { sed -n "s/^stat::$1: *\([0-9]*\).*/\1/p" "$2" | tail -n 1; }
 for t in "$@"; do
     bin=$B/fuzz/fuzz-$t
     log=$B/fuzz/$t.log
@@ -29,10 +32,10 @@ for t in "$@"; do
         "${dict[@]}" "$B/fuzz/corpus-$t" "tests/fuzz/corpus/$t" >"$log" 2>&1
     rc=$?
     after=$(find "$art" -maxdepth 1 -type f | wc -l)
-    execs=$(stat number_of_executed_units "$log")
-    eps=$(stat average_exec_per_sec "$log")
-    news=$(stat new_units_added "$log")
-    rss=$(stat peak_rss_mb "$log")
+    execs=$(final_stat number_of_executed_units "$log")
+    eps=$(final_stat average_exec_per_sec "$log")
+    news=$(final_stat new_units_added "$log")
+    rss=$(final_stat peak_rss_mb "$log")
     corpus=$(( $(find "$B/fuzz/corpus-$t" "tests/fuzz/corpus/$t" -type f | wc -l) ))
     crashes=$((after - before))
     if [ $rc -ne 0 ] && [ $crashes -eq 0 ]; then crashes=1; fi
@@ -47,7 +50,7 @@ for t in "$@"; do
     rows+=("| $t | $T | ${execs:-?} | ${eps:-?} | $corpus | ${news:-?} | ${rss:-?} | $crashes$note |")
 done
 {
-    echo "Fuzz campaign: $(date -u +%Y-%m-%dT%H:%MZ), commit $(git rev-parse --short HEAD 2>/dev/null || echo '?'), $(clang --version 2>/dev/null | head -n 1), ASan + UBSan, ${T} s per target, one process each on $(nproc) cores"
+    echo "Fuzz campaign: started $started, commit $commit, $(clang --version 2>/dev/null | head -n 1), ASan + UBSan, ${T} s per target, one process each on $(nproc) cores"
     echo
     echo "| target | seconds | executions | exec/s | corpus | new inputs | peak RSS MB | crashes |"
     echo "|---|---:|---:|---:|---:|---:|---:|---:|"
