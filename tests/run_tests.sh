@@ -85,7 +85,7 @@ done
 # host/host.mk): a sanitizer report fails the run's own check (its exit code is 86, never an
 # expected one); ASan and LeakSanitizer reports also go to files under $tmp/san/, which fail the
 # closing check (GCC's UBSan prints on stderr whatever log_path says: its exit code 86 is the sign)
-ASAN_CLI_SCRIPTS=${LT_ASAN_CLI_SCRIPTS-cli machines meshin stream reproject frusta assimp_models}
+ASAN_CLI_SCRIPTS=${LT_ASAN_CLI_SCRIPTS-cli errpaths machines meshin stream reproject frusta assimp_models}
 if [ -n "$ASAN_CLI_SCRIPTS" ] && [ "$SIMBIN" != "$B/asan" ]; then
     echo "== CLI scripts against the ASan + UBSan builds ($B/asan: LeakSanitizer on)"
     mkdir -p "$tmp/san"
