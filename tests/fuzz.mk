@@ -49,7 +49,7 @@ FUZZ_CFLAGS := -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=
 # the libFuzzer options of every run (docs/reliability.md): a hang is an input over 10 s, memory
 # is capped at 2 GiB, the targets' own messages are not printed (crash reports still are)
 FUZZ_RUN_FLAGS := -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 -close_fd_mask=3
-FUZZ_HAVE := $(B)/fuzz/.have-libfuzzer
+FUZZ_HAVE := $(B)/fuzz/.have-libfuzzer-$(notdir $(FUZZ_CLANG))
 
 $(FUZZ_HAVE): tests/fuzz.mk
 	@mkdir -p $(@D)
