@@ -12,6 +12,7 @@ FLAGS=${FUZZ_RUN_FLAGS:--timeout=10 -rss_limit_mb=2048 -print_final_stats=1 -clo
 case $T in '' | *[!0-9]*) echo "fuzz-campaign: SECONDS=$T is not a whole number" >&2; exit 2 ;; esac
 out=$B/fuzz/campaign.md
 started=$(date -u +%Y-%m-%dT%H:%MZ)
+load0=$(cut -d' ' -f1 /proc/loadavg 2>/dev/null || echo '?')
 commit=$(git rev-parse --short HEAD 2>/dev/null || echo '?')
 [ -n "$(git status --porcelain --untracked-files=no 2>/dev/null)" ] && commit="$commit + local changes"
 bad=0
@@ -50,7 +51,7 @@ for t in "$@"; do
     rows+=("| $t | $T | ${execs:-?} | ${eps:-?} | $corpus | ${news:-?} | ${rss:-?} | $crashes$note |")
 done
 {
-    echo "Fuzz campaign: started $started, commit $commit, $(clang --version 2>/dev/null | head -n 1), ASan + UBSan, ${T} s per target, one process each on $(nproc) cores"
+    echo "Fuzz campaign: started $started, commit $commit, $(clang --version 2>/dev/null | head -n 1), ASan + UBSan, ${T} s per target, one process each on $(nproc) cores (load average $load0 at the start, $(cut -d' ' -f1 /proc/loadavg 2>/dev/null || echo '?') at the end: other work on the machine lowers exec/s)"
     echo
     echo "| target | seconds | executions | exec/s | corpus | new inputs | peak RSS MB | crashes |"
     echo "|---|---:|---:|---:|---:|---:|---:|---:|"
