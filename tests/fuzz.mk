@@ -18,7 +18,7 @@
 #                           name): the step before committing a corpus
 FUZZ_TARGETS := scene frame exr mesh meshcheck cache opt
 
-FUZZ_SRCS_scene := host/io/lt_scenefile.c
+FUZZ_SRCS_scene := host/io/lt_scenefile.c tests/fuzz/fuzz_util.c
 FUZZ_LIBS_scene := -lcjson
 FUZZ_SRCS_frame := firmware/core/stream/lt_stream.c firmware/core/numerics/lt_mem.c \
     host/stream/lt_rx.c host/stream/lt_faults.c

@@ -46,13 +46,18 @@ typedef struct ctx {
     size_t errlen;
 } ctx_t;
 
+/* The message, on one line: keys and values come from the file, and a control byte there (a
+ * newline, an escape sequence) is shown as '?'. */
 static int fail(ctx_t *c, const char *fmt, ...)
 {
-    char msg[768];
+    char msg[768], *p;
     va_list ap;
     va_start(ap, fmt);
     vsnprintf(msg, sizeof msg, fmt, ap);
     va_end(ap);
+    for (p = msg; *p != '\0'; p++)
+        if ((unsigned char)*p < 0x20 || *p == 0x7F)
+            *p = '?';
     snprintf(c->err, c->errlen, "%s: %s", c->name, msg);
     return -1;
 }

@@ -49,3 +49,5 @@ check "render: nothing written for the cut .obj.gz" test ! -e "$E/g.exr"
 printf 'ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n\0\0' >"$E/cut.ply"
 ep_expect "shadows: a PLY cut in its body" 1 "cut.ply" \
     "$SIMBIN/lanetrace" shadows --mesh "$E/cut.ply" --res 8 --no-ref
+ep_expect "run: a scene key holding a newline and an escape sequence: one line, shown as '?'" 1 \
+    "unknown key 'co?lour?\[31m'" "$SIMBIN/lanetrace" run tests/fuzz/corpus/scene/regress-key-newline-escape.json
