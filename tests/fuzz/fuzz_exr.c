@@ -35,7 +35,8 @@ static void check_depth(const lt_exr_depth_t *d)
     volatile float sink = 0.0f;
     int c;
     if (d->width < 1 || d->height < 1 || d->width > LT_EXR_MAX_DIM ||
-        d->height > LT_EXR_MAX_DIM || d->z == NULL || memchr(d->channel, '\0', sizeof d->channel) == NULL)
+        d->height > LT_EXR_MAX_DIM || d->z == NULL ||
+        memchr(d->channel, '\0', sizeof d->channel) == NULL)
         abort();
     n = (size_t)d->width * (size_t)d->height;
     for (i = 0; i < n; i++)

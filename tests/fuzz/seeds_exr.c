@@ -281,10 +281,10 @@ int main(int argc, char **argv)
     static const struct {
         const char *name;
         exr_compression_t c;
-    } comps[] = {{"scan_none.exr", EXR_COMPRESSION_NONE},   {"scan_rle.exr", EXR_COMPRESSION_RLE},
-                 {"scan_zips.exr", EXR_COMPRESSION_ZIPS},   {"scan_zip.exr", EXR_COMPRESSION_ZIP},
-                 {"scan_piz.exr", EXR_COMPRESSION_PIZ},     {"scan_pxr24.exr", EXR_COMPRESSION_PXR24},
-                 {"scan_b44.exr", EXR_COMPRESSION_B44},     {"scan_b44a.exr", EXR_COMPRESSION_B44A}};
+    } comps[] = {{"scan_none.exr", EXR_COMPRESSION_NONE}, {"scan_rle.exr", EXR_COMPRESSION_RLE},
+                 {"scan_zips.exr", EXR_COMPRESSION_ZIPS}, {"scan_zip.exr", EXR_COMPRESSION_ZIP},
+                 {"scan_piz.exr", EXR_COMPRESSION_PIZ},   {"scan_pxr24.exr", EXR_COMPRESSION_PXR24},
+                 {"scan_b44.exr", EXR_COMPRESSION_B44},   {"scan_b44a.exr", EXR_COMPRESSION_B44A}};
     /* DWAA/DWAB: OpenEXRCore 3.1 cannot write them (nor read them: "not implemented in C") */
     size_t i;
     if (argc != 2) {
