@@ -1,7 +1,8 @@
 # lanetrace - one non-recursive Makefile for the three builds of one source:
 #   build/host  native (LT_COST_OFF, -O2 -march=native): the golden reference and the speed race
 #   build/sim   the same kernels with LT_COST_SIM, linked to sim/: cycle reports
-#   build/asan  host build with ASan + UBSan, used by the tests
+#   build/asan  host build with ASan + UBSan, used by the tests; also the sanitizer builds of every
+#               shipped program (host/host.mk), the simulator ones from build/asansim objects
 #   build/fw/<target>  freestanding firmware images for cm4, cm55, rv32 (QEMU)
 # Main targets: deps all run test firmware sim bench clean (see README.md).
 
@@ -71,12 +72,18 @@ CFLAGS_sim := $(HOST_CFLAGS) $(NATIVE_ARCH) -DLT_COST_MODE=LT_COST_SIM
 CFLAGS_asan := $(HOST_CFLAGS) -O1 -fsanitize=address,undefined -fno-sanitize-recover=all \
     -fno-omit-frame-pointer -DLT_COST_MODE=LT_COST_OFF -DLT_CFG_ASSERT=1
 LDFLAGS_asan := -fsanitize=address,undefined
+# the simulator build (LT_COST_SIM) under ASan + UBSan: objects of the sanitizer builds of the
+# simulator programs (build/asan/lanetrace, build/asan/lt-stream-dev; host/host.mk)
+CFLAGS_asansim := $(subst LT_COST_OFF,LT_COST_SIM,$(CFLAGS_asan))
+LDFLAGS_asansim := $(LDFLAGS_asan)
 # host-side libraries (Debian): assimp, cJSON, OpenEXR's C API (OpenEXRCore), libpng, zlib
 HOST_LIBS = -lassimp -lcjson -lOpenEXRCore-3_1 -lpng16 -lz -lm
 LIBS_host = $(HOST_LIBS)
 LIBS_sim = $(HOST_LIBS)
 LIBS_asan = $(HOST_LIBS)
+LIBS_asansim = $(HOST_LIBS)
 VARIANTS := host sim asan
+SIM_VARIANTS := sim asansim
 
 all: $(B)/sim/lanetrace $(B)/host/lanetrace-native
 
@@ -94,9 +101,9 @@ $(B)/$(1)/obj/%.o: %.c Makefile | $(B)/gen/lt_machines.inc
 	@$(CC) $(CFLAGS_$(1)) $$(SRC_INC) -c $$< -o $$@
 $(1)_CORE_OBJS := $(CORE_SRCS:%.c=$(B)/$(1)/obj/%.o)
 # the sim build meters through sim/lt_meter_sim.c (SIM_SRCS), the others through lt_meter_null.c
-$(1)_HOST_OBJS := $(filter-out $(if $(filter sim,$(1)),%/lt_meter_null.o),$(HOSTLIB_SRCS:%.c=$(B)/$(1)/obj/%.o)) \
+$(1)_HOST_OBJS := $(filter-out $(if $(filter $(SIM_VARIANTS),$(1)),%/lt_meter_null.o),$(HOSTLIB_SRCS:%.c=$(B)/$(1)/obj/%.o)) \
     $(CACHE_SRCS:%.c=$(B)/$(1)/obj/%.o)
-$(1)_EXTRA_OBJS := $(if $(filter sim,$(1)),$(SIM_SRCS:%.c=$(B)/$(1)/obj/%.o) \
+$(1)_EXTRA_OBJS := $(if $(filter $(SIM_VARIANTS),$(1)),$(SIM_SRCS:%.c=$(B)/$(1)/obj/%.o) \
     $(CACHE_SRCS:%.c=$(B)/$(1)/obj/%.o) $(SIM_HOST_DEPS:%.c=$(B)/$(1)/obj/%.o))
 $(B)/$(1)/test_%: $(B)/$(1)/obj/tests/unit/test_%.o $$($(1)_CORE_OBJS) $$($(1)_HOST_OBJS) \
     $$($(1)_EXTRA_OBJS)
@@ -107,7 +114,7 @@ $(B)/$(1)/lt-vectors: $(B)/$(1)/obj/tests/vectors/vec_host.o $(B)/$(1)/obj/$(VEC
 	@echo "LD $$@"
 	@$(CC) $(LDFLAGS_$(1)) -o $$@ $$^ $(LIBS_$(1))
 endef
-$(foreach v,$(VARIANTS),$(eval $(call variant_rules,$(v))))
+$(foreach v,$(VARIANTS) asansim,$(eval $(call variant_rules,$(v))))
 
 $(B)/sim/test_cache: $(B)/sim/obj/tests/unit/test_cache.o $(B)/sim/obj/sim/lt_cache.o \
     $(SIM_HOST_DEPS:%.c=$(B)/sim/obj/%.o)

@@ -52,9 +52,26 @@ $(B)/sim/lt-stream-dev: $(PROD_lt_stream_dev)
 	@echo "LD $@"
 	@$(CC) -o $@ $^ $(LIBS_sim)
 
+# Sanitizer builds (ASan + UBSan) of every shipped program: build/asan/<program>, linked from the
+# same inputs as the program with build/host -> build/asan and build/sim -> build/asansim objects
+# (the USB backend: its own rule below). The CLI tests run against them in make test
+# (tests/run_tests.sh, LT_HOSTBIN / LT_SIMBIN).
+ASAN_PRODUCTS := $(foreach v,$(PRODUCT_VARS),$(B)/asan/$(subst _,-,$(v)))
+define asan_product
+$(B)/asan/$(subst _,-,$(1)): $$(subst $(B)/sim/,$(B)/asansim/,$$(subst $(B)/host/,$(B)/asan/,$$(PROD_$(1))))
+	@echo "LD $$@"
+	@$$(CC) $$(LDFLAGS_asan) -o $$@ $$^ $$(LIBS_asan) $(if $(filter lt_stream,$(1)),$$(STREAM_HID_LIBS))
+endef
+$(foreach v,$(PRODUCT_VARS),$(eval $(call asan_product,$(v))))
+$(B)/asan/obj/host/stream/usb/lt_rx_hid.o: host/stream/usb/lt_rx_hid.c host/host.mk | $(B)/gen/lt_machines.inc
+	@mkdir -p $(@D)
+	@echo "CC [asan] $<"
+	@$(CC) $(CFLAGS_asan) $(HOST_INC) $(STREAM_HID_CFLAGS) -c $< -o $@
+asan-products: $(ASAN_PRODUCTS)
+
 products: $(PRODUCTS)
 # the link inputs of every shipped program, one program per line (`make layout` reads them)
 print-product-deps:
 	@$(foreach v,$(PRODUCT_VARS),echo "$(v): $(PROD_$(v))";)
-EXTRA_TEST_BINS += $(PRODUCTS)
-.PHONY: products print-product-deps
+EXTRA_TEST_BINS += $(PRODUCTS) $(ASAN_PRODUCTS)
+.PHONY: products asan-products print-product-deps

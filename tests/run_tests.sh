@@ -5,6 +5,10 @@
 # Ends with "N passed, N failed". Run from the repository root.
 set -uo pipefail
 B=${B:-build}
+# where the shipped programs are: the release builds, or (LT_SIMBIN=build/asan LT_HOSTBIN=build/asan)
+# their ASan + UBSan builds; the CLI scripts are also run against those below
+SIMBIN=${LT_SIMBIN:-$B/sim}
+HOSTBIN=${LT_HOSTBIN:-$B/host}
 UNIT_TESTS=${UNIT_TESTS:-port fx v16 isect}
 pass=0
 fail=0
@@ -55,9 +59,9 @@ echo "== QEMU instruction-count plugin"
 check "plugin/test_plugin.sh" sh sim/qemu/test_plugin.sh
 
 echo "== lanetrace on the bundled scene (native and simulator builds)"
-"$B/host/lanetrace-native" run scenes/teapot.json --res 32 >"$tmp/native.txt" 2>&1
+"$HOSTBIN/lanetrace-native" run scenes/teapot.json --res 32 >"$tmp/native.txt" 2>&1
 check "lanetrace-native run exits 0" test $? -eq 0
-"$B/sim/lanetrace" run scenes/teapot.json --res 32 --report "$tmp/r.json" >"$tmp/sim.txt" 2>&1
+"$SIMBIN/lanetrace" run scenes/teapot.json --res 32 --report "$tmp/r.json" >"$tmp/sim.txt" 2>&1
 check "lanetrace run (sim) exits 0" test $? -eq 0
 for p in q16 f32; do
     a=$(grep "result    $p" "$tmp/native.txt")
@@ -77,10 +81,41 @@ for f in tests/run.d/*.sh; do
     source "$f"
 done
 
+# the CLI scripts again, against the ASan + UBSan builds of every shipped program (build/asan/,
+# host/host.mk): a sanitizer report fails the run's own check (its exit code is 86, never an
+# expected one); ASan and LeakSanitizer reports also go to files under $tmp/san/, which fail the
+# closing check (GCC's UBSan prints on stderr whatever log_path says: its exit code 86 is the sign)
+ASAN_CLI_SCRIPTS=${LT_ASAN_CLI_SCRIPTS-cli errpaths machines meshin stream reproject frusta assimp_models}
+if [ -n "$ASAN_CLI_SCRIPTS" ] && [ "$SIMBIN" != "$B/asan" ]; then
+    echo "== CLI scripts against the ASan + UBSan builds ($B/asan: LeakSanitizer on)"
+    mkdir -p "$tmp/san"
+    export ASAN_OPTIONS="detect_leaks=1:exitcode=86:log_path=$tmp/san/asan:abort_on_error=0"
+    export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1:exitcode=86:log_path=$tmp/san/ubsan"
+    SIMBIN=$B/asan
+    HOSTBIN=$B/asan
+    for s in $ASAN_CLI_SCRIPTS; do
+        echo "== $s (ASan + UBSan)"
+        # shellcheck disable=SC1090
+        source "tests/run.d/$s.sh"
+    done
+    unset ASAN_OPTIONS UBSAN_OPTIONS
+    SIMBIN=${LT_SIMBIN:-$B/sim}
+    HOSTBIN=${LT_HOSTBIN:-$B/host}
+    nsan=$(find "$tmp/san" -type f | wc -l)
+    check "no ASan/UBSan/LeakSanitizer report from the CLI scripts ($ASAN_CLI_SCRIPTS) run against $B/asan ($nsan reports)" \
+        test "$nsan" -eq 0
+    if [ "$nsan" -ne 0 ]; then
+        for f in $(find "$tmp/san" -type f | head -n 5); do
+            echo "--- $f"
+            grep -m 3 -E 'ERROR|SUMMARY|runtime error|#[0-9] ' "$f" | head -n 12
+        done
+    fi
+fi
+
 echo "== shared scenes"
 shared=../shared/scenes
 if [ -f "$shared/bunny.obj" ]; then
-    "$B/host/lanetrace-native" run --mesh "$shared/bunny.obj" --res 32 -q >"$tmp/bunny.txt" 2>&1
+    "$HOSTBIN/lanetrace-native" run --mesh "$shared/bunny.obj" --res 32 -q >"$tmp/bunny.txt" 2>&1
     acc=$(grep "accuracy  q16" "$tmp/bunny.txt" | sed -E 's/.*same triangle ([0-9.]+)%.*/\1/')
     check "bunny.obj q16 same triangle as double ($acc%)" awk -v a="$acc" 'BEGIN{exit !(a >= 99.0)}'
 elif [ "${CI:-}" = "true" ]; then

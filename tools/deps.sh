@@ -5,6 +5,7 @@ set -euo pipefail
 PKGS=(gcc make pkg-config gcc-arm-none-eabi libnewlib-arm-none-eabi gcc-riscv64-unknown-elf
       qemu-system-arm qemu-system-misc libcmocka-dev libcjson-dev libassimp-dev
       libopenexr-dev libpng-dev zlib1g-dev libembree-dev libhidapi-dev gnuplot-nox clang
+      libclang-rt-14-dev
       assimp-testmodels)
 missing=()
 for p in "${PKGS[@]}"; do

@@ -1197,6 +1197,7 @@ static int cmd_diff(int argc, char **argv)
     if ((ja = load_json(pa, &diag)) == NULL ||
         (jb = load_json(pb, &diag)) == NULL) {
         fprintf(stderr, "%s\n", diag.msg);
+        cJSON_Delete(ja); /* the first report when the second one fails (NULL-safe) */
         return EXIT_INPUT;
     }
     rows = cJSON_CreateArray();

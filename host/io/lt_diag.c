@@ -14,10 +14,13 @@ static void mark_cut(lt_diag_t *diag)
 }
 
 /* Format into buf (n bytes, n >= 1); returns 1 when the text did not fit. An encoding error (a
- * wide string that has no multibyte form, say) leaves the format itself as the message. */
+ * wide string that has no multibyte form, say) leaves the format itself as the message. A message
+ * is one line: a control byte in it - names and texts often come from the input file (a newline
+ * in an EXR attribute name, an escape sequence in a JSON key) - is shown as '?'. */
 static int diag_format(char *buf, size_t n, const char *fmt, va_list ap) LT_DIAG_PRINTF(3, 0);
 static int diag_format(char *buf, size_t n, const char *fmt, va_list ap)
 {
+    char *p;
     int r = vsnprintf(buf, n, fmt, ap);
     if (r < 0) {
         r = snprintf(buf, n, "%s (message could not be formatted)", fmt);
@@ -26,6 +29,9 @@ static int diag_format(char *buf, size_t n, const char *fmt, va_list ap)
             return 0;
         }
     }
+    for (p = buf; *p != '\0'; p++)
+        if ((unsigned char)*p < 0x20 || *p == 0x7F)
+            *p = '?';
     return (size_t)r >= n;
 }
 

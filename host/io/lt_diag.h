@@ -6,6 +6,7 @@
  * exit code follows (0 ok, 1 input or runtime error, 2 usage). The core (firmware/) never sees
  * this type: it returns lt_status_t and never prints. docs/architecture.md, "Errors".
  *
+ * A message is one line: control bytes in it (from file names, keys, library texts) show as '?'.
  * A message is never silently cut: one longer than LT_DIAG_MAX - 1 bytes keeps its first
  * LT_DIAG_MAX - 4 bytes and ends with "..." (LT_DIAG_CUT), so a reader can tell.
  */

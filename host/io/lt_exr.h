@@ -16,8 +16,11 @@
 extern "C" {
 #endif
 
-/* Largest data-window (and, when it is read, display-window) width or height accepted. */
+/* Largest data-window (and, when it is read, display-window) width or height accepted (a build
+ * may set a smaller one: the libFuzzer build does, tests/fuzz.mk). */
+#ifndef LT_EXR_MAX_DIM
 #define LT_EXR_MAX_DIM 16384
+#endif
 /* Most channels one lt_exr_write call writes. */
 #define LT_EXR_MAX_CHANNELS 256
 /* Longest channel name in bytes (names over 31 bytes switch the file to EXR "long names"). */

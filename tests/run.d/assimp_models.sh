@@ -28,7 +28,7 @@ else
         case "$am_exts" in *" $am_e "*) ;; *) continue ;; esac
         am_n=$((am_n + 1))
         am_tot[$am_e]=$((${am_tot[$am_e]:-0} + 1))
-        LT_IMPORT_TIMEOUT=30 timeout 60 "$B/host/lanetrace-native" info "$am_f" \
+        LT_IMPORT_TIMEOUT=30 timeout 60 "$HOSTBIN/lanetrace-native" info "$am_f" \
             >"$tmp/am.out" 2>"$tmp/am.err" </dev/null
         am_rc=$?
         if [ $am_rc -eq 0 ] && grep -q ' triangles' "$tmp/am.out"; then

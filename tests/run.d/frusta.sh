@@ -7,8 +7,8 @@
 # workload (shadow and primary frusta) hashes the same in the firmware images under QEMU (cm4,
 # cm55, rv32) as on the host; the bunny runs when ../shared exists (SKIP otherwise, FAIL under
 # CI=true).
-SH_SIM="$B/sim/lanetrace"
-SH_NAT="$B/host/lanetrace-native"
+SH_SIM="$SIMBIN/lanetrace"
+SH_NAT="$HOSTBIN/lanetrace-native"
 fr_expect() { # name, expected rc, pattern ("" = any), command...
     local name=$1 want=$2 pat=$3
     shift 3

@@ -5,7 +5,7 @@
 # `run --machine`; an unknown machine is refused (exit 2) with the names of the table by every CLI
 # that takes --machine (run in both builds, reproject, lanetrace shadows, lt-stream-dev) and by the
 # scene-file validator.
-LT="$B/sim/lanetrace"
+LT="$SIMBIN/lanetrace"
 mc_expect() { # name, expected rc, fixed string in the output ("" = any), command...
     local name=$1 want=$2 pat=$3
     shift 3
@@ -42,7 +42,7 @@ check "lanetrace machines --ops: a latency/issue row for each of the $(echo $mc_
 "$LT" machines --json >"$tmp/mc.json" 2>&1
 check "lanetrace machines --json: every machine with its clock and ops" \
     bash -c "[ \$(grep -c '\"clock_mhz\"' '$tmp/mc.json') -eq $mc_n ] && [ \$(grep -c '\"SALU\"' '$tmp/mc.json') -eq $mc_n ]"
-"$B/host/lanetrace-native" machines >"$tmp/mc_native.txt" 2>/dev/null
+"$HOSTBIN/lanetrace-native" machines >"$tmp/mc_native.txt" 2>/dev/null
 check "lanetrace-native machines: the names, one per line, in file order" \
     test "$(cat "$tmp/mc_native.txt")" = "$mc_names"
 mc_expect "lanetrace machines --frobnicate: usage error" 2 "unknown option" "$LT" machines --frobnicate
@@ -54,14 +54,14 @@ done
 mc_expect "run --machine nosuch: refused, names the known machines" 2 "(known: $mc_list)" \
     "$LT" run --machine nosuch --res 4
 mc_expect "native run --machine nosuch: refused the same way" 2 "(known: $mc_list)" \
-    "$B/host/lanetrace-native" run --machine nosuch --res 4
+    "$HOSTBIN/lanetrace-native" run --machine nosuch --res 4
 mc_expect "run --help lists the machines" 0 "machine model: $mc_list" "$LT" run --help
 mc_expect "reproject --machine nosuch: refused with the names" 2 "$mc_list" \
     "$LT" reproject --depth x.exr --machine nosuch
 mc_expect "lanetrace shadows --machine nosuch: refused with the names" 2 "(known: $mc_list)" \
-    "$B/sim/lanetrace" shadows --mesh scenes/teapot.obj --res 8 --machine nosuch
+    "$SIMBIN/lanetrace" shadows --mesh scenes/teapot.obj --res 8 --machine nosuch
 mc_expect "lt-stream-dev --machine nosuch: refused with the names" 2 "(known: $mc_list)" \
-    "$B/sim/lt-stream-dev" --machine nosuch
+    "$SIMBIN/lt-stream-dev" --machine nosuch
 printf '{"mesh": "%s/scenes/teapot.obj", "machine": "nosuch"}\n' "$PWD" >"$tmp/mc_scene.json"
 mc_expect "scene file with machine nosuch: refused with the names" 1 "is not one of: $mc_list" \
-    "$B/host/lanetrace-native" run "$tmp/mc_scene.json"
+    "$HOSTBIN/lanetrace-native" run "$tmp/mc_scene.json"

@@ -59,9 +59,9 @@ mi_refused() { # file, pattern: exit 1, one stderr line naming the file with the
     local f="$mi_dir/$1" pat=$2 how
     for how in "sim run" "native info" "native render"; do
         case $how in
-        "sim run") mi_run 60 "$B/sim/lanetrace" run --mesh "$f" --res 8 -q ;;
-        "native info") mi_run 60 "$B/host/lanetrace-native" info "$f" ;;
-        "native render") mi_run 60 "$B/host/lanetrace-native" render --mesh "$f" --res 8 --out "$tmp/mi_r" ;;
+        "sim run") mi_run 60 "$SIMBIN/lanetrace" run --mesh "$f" --res 8 -q ;;
+        "native info") mi_run 60 "$HOSTBIN/lanetrace-native" info "$f" ;;
+        "native render") mi_run 60 "$HOSTBIN/lanetrace-native" render --mesh "$f" --res 8 --out "$tmp/mi_r" ;;
         esac
         if [ "$mi_rc" -eq 1 ] && [ "$(wc -l <"$tmp/mi.err")" -eq 1 ] && [ "$mi_s" -lt 10000 ] &&
             grep -q "^$f: .*$pat" "$tmp/mi.err"; then
@@ -72,7 +72,7 @@ mi_refused() { # file, pattern: exit 1, one stderr line naming the file with the
     done
 }
 for mi_f in ok.ply ok_le.ply ok.off ok.stl lamp.ogex; do
-    mi_run 60 "$B/host/lanetrace-native" info "$mi_dir/$mi_f"
+    mi_run 60 "$HOSTBIN/lanetrace-native" info "$mi_dir/$mi_f"
     check "info $mi_f loads ($(head -1 "$tmp/mi.out" | sed "s|^$mi_dir/||"))" \
         bash -c "[ $mi_rc -eq 0 ] && grep -q ' triangles' '$tmp/mi.out'"
 done
@@ -84,9 +84,9 @@ mi_refused cut_header.off "header declares 4 vertices"
 mi_refused cut_face.off "face 2 of 2 lists 2 of its 3 vertex indices"
 mi_refused count.stl "header declares 1000 triangles; the file's 184 bytes hold at most 2"
 # the OpenGEX light without a node: every program that loads meshes
-mi_run 60 "$B/sim/lanetrace" run --mesh "$mi_dir/lamp.ogex" --res 8 -q
+mi_run 60 "$SIMBIN/lanetrace" run --mesh "$mi_dir/lamp.ogex" --res 8 -q
 check "run lamp.ogex (aborted in PretransformVertices before): exit 0 (rc $mi_rc)" test "$mi_rc" -eq 0
-mi_run 60 "$B/host/lanetrace-native" render --mesh "$mi_dir/lamp.ogex" --res 8 --out "$tmp/mi_lamp"
+mi_run 60 "$HOSTBIN/lanetrace-native" render --mesh "$mi_dir/lamp.ogex" --res 8 --out "$tmp/mi_lamp"
 check "render lamp.ogex: exit 0 (rc $mi_rc)" test "$mi_rc" -eq 0
 if [ -x "$B/host/lt-agree" ]; then
     mi_run 120 "$B/host/lt-agree" "$mi_dir/lamp.ogex" --res 16
@@ -94,13 +94,13 @@ if [ -x "$B/host/lt-agree" ]; then
 fi
 # inside assimp: a crash and a hang, each contained in the importer process
 mi_refused crash.mdl "the importer (assimp) crashed (signal 11, SIGSEGV) on this file\|not a readable mesh"
-mi_run 60 env LT_IMPORT_TIMEOUT=2 "$B/host/lanetrace-native" info "$mi_dir/hang.lws"
+mi_run 60 env LT_IMPORT_TIMEOUT=2 "$HOSTBIN/lanetrace-native" info "$mi_dir/hang.lws"
 if [ "$mi_rc" -eq 1 ] && [ "$mi_s" -lt 5000 ] && [ "$(wc -l <"$tmp/mi.err")" -eq 1 ] &&
     grep -q "^$mi_dir/hang.lws: " "$tmp/mi.err"; then
     ok "info hang.lws with LT_IMPORT_TIMEOUT=2: exit 1 in ${mi_s} ms: $(sed "s|^$mi_dir/||" "$tmp/mi.err")"
 else
     ko "info hang.lws with LT_IMPORT_TIMEOUT=2 (rc $mi_rc, ${mi_s} ms; stderr: $(head -c 300 "$tmp/mi.err"))"
 fi
-mi_run 60 env LT_IMPORT_TIMEOUT=soon "$B/host/lanetrace-native" info "$mi_dir/ok.ply"
+mi_run 60 env LT_IMPORT_TIMEOUT=soon "$HOSTBIN/lanetrace-native" info "$mi_dir/ok.ply"
 check "a bad LT_IMPORT_TIMEOUT is an error naming it (rc $mi_rc)" \
     bash -c "[ $mi_rc -eq 1 ] && grep -q \"LT_IMPORT_TIMEOUT='soon'\" '$tmp/mi.err'"

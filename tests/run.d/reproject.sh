@@ -6,8 +6,8 @@
 # written, cycle report); multi-part stereo EXR files (build/host/lt-exr-stereo: --view, --part,
 # the default view, colour of the view, errors); the beachball EXR when ../shared exists, also
 # rewritten as a 2-part stereo file (SKIP otherwise, FAIL under CI=true).
-RP_SIM="$B/sim/lanetrace"
-RP_NAT="$B/host/lanetrace-native"
+RP_SIM="$SIMBIN/lanetrace"
+RP_NAT="$HOSTBIN/lanetrace-native"
 rp_expect() { # name, expected rc, pattern ("" = any), command...
     local name=$1 want=$2 pat=$3
     shift 3

@@ -10,17 +10,15 @@ mkdir -p "$S"
 # value of "key" in the one-key-per-line JSON that lt-stream and lt-faultinject write
 jget() { sed -n "s/^ *\"$1\": *\"\{0,1\}\([^\",]*\)\"\{0,1\},\{0,1\}\$/\1/p" "$2" | head -n 1; }
 
-echo "-- fuzz corpus and firmware symbols"
-check "fuzz-frame replays tests/fuzz/corpus/frame (ASan+UBSan)" \
-    "$B/asan/fuzz-frame" tests/fuzz/corpus/frame
+echo "-- firmware symbols (the frame fuzz corpus is replayed by fuzz.sh)"
 check "stream.elf images link no libc or simulator symbol" \
     tools/check_fw.sh "$B/fw/cm4/stream.elf" "$B/fw/cm55/stream.elf" "$B/fw/rv32/stream.elf"
 
 echo "-- the simulator as a device vs a direct run"
-"$B/sim/lt-stream-dev" --out "$S/sim.bin" 2>"$S/sim.err"
+"$SIMBIN/lt-stream-dev" --out "$S/sim.bin" 2>"$S/sim.err"
 check "lt-stream-dev (mcu-m4) exits 0" test $? -eq 0
-"$B/sim/lt-stream-dev" --direct >"$S/direct.txt"
-"$B/host/lt-stream" --file "$S/sim.bin" --tiles "$S/sim.tiles" --json >"$S/sim.json"
+"$SIMBIN/lt-stream-dev" --direct >"$S/direct.txt"
+"$HOSTBIN/lt-stream" --file "$S/sim.bin" --tiles "$S/sim.tiles" --json >"$S/sim.json"
 check "lt-stream on the sim stream: exit 0 (END, nothing lost, damaged, duplicated, reordered)" \
     test $? -eq 0
 grep '^summary' "$S/sim.tiles" | sed 's/ dropped [0-9]*$//' >"$S/sim.sum"
@@ -32,8 +30,8 @@ awk '$1 == "tile" { k = $2; r[k] += $5; h[k] += $7; c[k] += $13; a[k] += $15; ar
      END { exit !(m > 0 && bad == 0) }' "$S/sim.tiles"
 check "sim tile reports add up to their frame summaries (rays, hits, cycles, box and triangle tests)" \
     test $? -eq 0
-"$B/sim/lt-stream-dev" --machine lrb16 --out "$S/lrb.bin" 2>/dev/null
-"$B/host/lt-stream" --file "$S/lrb.bin" --json >"$S/lrb.json"
+"$SIMBIN/lt-stream-dev" --machine lrb16 --out "$S/lrb.bin" 2>/dev/null
+"$HOSTBIN/lt-stream" --file "$S/lrb.bin" --json >"$S/lrb.json"
 rc=$?
 t=$(jget tiles "$S/lrb.json"); d=$(jget dev_dropped_tile "$S/lrb.json"); n=$(jget tiles_traced "$S/lrb.json")
 check "lrb16 device (faster than the link): drops $d of $n tile reports and says so; received $t + dropped $d = traced $n, link clean" \
@@ -49,7 +47,7 @@ for t in cm4 cm55 rv32; do
     timeout 60 ${!qvar} "$B/fw/$t/stream.elf" >"$S/$t.bin" 2>"$S/$t.err" </dev/null
     rc=$?
     check "stream.elf/$t exits 0 under QEMU (rc=$rc)" test "$rc" -eq 0
-    "$B/host/lt-stream" --file "$S/$t.bin" --tiles "$S/$t.tiles" --json >"$S/$t.json"
+    "$HOSTBIN/lt-stream" --file "$S/$t.bin" --tiles "$S/$t.tiles" --json >"$S/$t.json"
     rc=$?
     check "lt-stream on the $t UART stream: exit 0 ($(jget valid "$S/$t.json") frames, clean)" \
         test "$rc" -eq 0
@@ -66,7 +64,7 @@ for t in cm4 cm55 rv32; do
     check "fw/$t: scene hash = sim's" test "$(jget scene_hash "$S/$t.json")" = "$(jget scene_hash "$S/sim.json")"
 done
 timeout 60 $QEMU_rv32 "$B/fw/rv32/stream.elf" </dev/null 2>/dev/null |
-    "$B/host/lt-stream" -q --json >"$S/pipe.json"
+    "$HOSTBIN/lt-stream" -q --json >"$S/pipe.json"
 st=("${PIPESTATUS[@]}")
 check "fw/rv32 piped into lt-stream: QEMU exit ${st[0]}, lt-stream exit ${st[1]}" \
     test "${st[0]}" -eq 0 -a "${st[1]}" -eq 0
@@ -79,7 +77,7 @@ while (exec 3<>"/dev/tcp/127.0.0.1/$port") 2>/dev/null; do port=$((port + 1)); d
 ${QEMU_cm4/-serial stdio/-serial tcp:127.0.0.1:$port,server=on,wait=on} "$B/fw/cm4/stream.elf" \
     </dev/null >/dev/null 2>"$S/tcp.err" &
 qpid=$!
-timeout 60 "$B/host/lt-stream" --tcp "127.0.0.1:$port" -q --tiles "$S/tcp.tiles" >"$S/tcp.txt"
+timeout 60 "$HOSTBIN/lt-stream" --tcp "127.0.0.1:$port" -q --tiles "$S/tcp.tiles" >"$S/tcp.txt"
 rc=$?
 wait $qpid
 qrc=$?
@@ -88,82 +86,82 @@ check "fw/cm4 over QEMU -serial tcp (port $port) into lt-stream --tcp: exit $rc,
     bash -c "[ $rc -eq 0 ] && [ $qrc -eq 0 ] && cmp -s '$S/tcp.tiles' '$S/cm4.tiles'"
 
 echo "-- receiver and tool errors"
-"$B/host/lt-stream" --hid 1209:0001 -q >"$S/e.txt" 2>&1
+"$HOSTBIN/lt-stream" --hid 1209:0001 -q >"$S/e.txt" 2>&1
 rc=$?
 check "lt-stream --hid 1209:0001 with no device: exit 1, names it ($(head -n 1 "$S/e.txt" | cut -c 1-110))" \
     bash -c "[ $rc -eq 1 ] && grep -q 1209:0001 '$S/e.txt'"
-"$B/host/lt-stream" --hid-path /dev/hidraw99 -q >"$S/e.txt" 2>&1
+"$HOSTBIN/lt-stream" --hid-path /dev/hidraw99 -q >"$S/e.txt" 2>&1
 rc=$?
 check "lt-stream --hid-path /dev/hidraw99: exit 1, names it" \
     bash -c "[ $rc -eq 1 ] && grep -q /dev/hidraw99 '$S/e.txt'"
-"$B/host/lt-stream" --hid-path "$S/sim.bin" -q >"$S/e.txt" 2>&1
+"$HOSTBIN/lt-stream" --hid-path "$S/sim.bin" -q >"$S/e.txt" 2>&1
 rc=$?
 check "lt-stream --hid-path on a regular file: exit 1, says it is not a device node (not 'hidapi: Success')" \
     bash -c "[ $rc -eq 1 ] && grep -q 'not a HID device node (a regular file)' '$S/e.txt' && ! grep -q Success '$S/e.txt'"
-"$B/host/lt-stream" --serial /dev/null -q >"$S/e.txt" 2>&1
+"$HOSTBIN/lt-stream" --serial /dev/null -q >"$S/e.txt" 2>&1
 rc=$?
 check "lt-stream --serial /dev/null: exit 1, not a serial device" \
     bash -c "[ $rc -eq 1 ] && grep -q 'not a serial device' '$S/e.txt'"
-"$B/host/lt-stream" --file /nonexistent.bin >"$S/e.txt" 2>&1
+"$HOSTBIN/lt-stream" --file /nonexistent.bin >"$S/e.txt" 2>&1
 rc=$?
 check "lt-stream --file /nonexistent.bin: exit 1, names it" \
     bash -c "[ $rc -eq 1 ] && grep -q /nonexistent.bin '$S/e.txt'"
-"$B/host/lt-stream" --tcp >"$S/e.txt" 2>&1
+"$HOSTBIN/lt-stream" --tcp >"$S/e.txt" 2>&1
 check "lt-stream --tcp without a value: exit 2" test $? -eq 2
-"$B/host/lt-faultinject" --rate 0.3 <"$S/sim.bin" >/dev/null 2>"$S/e.txt"
+"$HOSTBIN/lt-faultinject" --rate 0.3 <"$S/sim.bin" >/dev/null 2>"$S/e.txt"
 rc=$?
 check "lt-faultinject --rate 0.3 (sum 1.5): exit 2 with the reason" \
     bash -c "[ $rc -eq 2 ] && grep -q 'sum' '$S/e.txt'"
-"$B/sim/lt-stream-dev" --frames 0 >/dev/null 2>"$S/e.txt"
+"$SIMBIN/lt-stream-dev" --frames 0 >/dev/null 2>"$S/e.txt"
 check "lt-stream-dev --frames 0: exit 2" test $? -eq 2
 # the three programs parse options with the CLI's table parser (host/cli/lt_opt): the same
 # messages (value, range, option named) and --help from the table
-for p in host/lt-stream host/lt-faultinject sim/lt-stream-dev; do
-    "$B/$p" --help >"$S/h.txt" 2>&1
+for p in "$HOSTBIN/lt-stream" "$HOSTBIN/lt-faultinject" "$SIMBIN/lt-stream-dev"; do
+    "$p" --help >"$S/h.txt" 2>&1
     rc=$?
     check "$(basename $p) --help: exit 0, usage and options from the table" \
         bash -c "[ $rc -eq 0 ] && grep -q '^usage: $(basename $p)' '$S/h.txt' && grep -q 'exit status' '$S/h.txt'"
-    "$B/$p" --frobnicate >/dev/null 2>"$S/e.txt"
+    "$p" --frobnicate >/dev/null 2>"$S/e.txt"
     rc=$?
     check "$(basename $p) --frobnicate: exit 2, names the option" \
         bash -c "[ $rc -eq 2 ] && grep -q -- \"unknown option '--frobnicate'\" '$S/e.txt'"
 done
-for c in "host/lt-stream --baud 9600x:--baud 9600x" "host/lt-stream --timeout nan:--timeout nan" \
-    "host/lt-faultinject --flips 9:1..8" "host/lt-faultinject --seed -1:--seed -1" \
-    "host/lt-faultinject --drop 1e300:[0, 1]" "sim/lt-stream-dev --cap 3:4..64" \
-    "sim/lt-stream-dev --link 1e6:--link 1e6"; do
+for c in "$HOSTBIN/lt-stream --baud 9600x:--baud 9600x" "$HOSTBIN/lt-stream --timeout nan:--timeout nan" \
+    "$HOSTBIN/lt-faultinject --flips 9:1..8" "$HOSTBIN/lt-faultinject --seed -1:--seed -1" \
+    "$HOSTBIN/lt-faultinject --drop 1e300:[0, 1]" "$SIMBIN/lt-stream-dev --cap 3:4..64" \
+    "$SIMBIN/lt-stream-dev --link 1e6:--link 1e6"; do
     cmdline=${c%%:*} want=${c#*:}
     # shellcheck disable=SC2086
-    "$B"/$cmdline </dev/null >/dev/null 2>"$S/e.txt"
+    $cmdline </dev/null >/dev/null 2>"$S/e.txt"
     rc=$?
-    check "${cmdline#*/}: exit 2 ($(head -n 1 "$S/e.txt" | cut -c 1-90))" \
+    check "$(basename "${cmdline%% *}") ${cmdline#* }: exit 2 ($(head -n 1 "$S/e.txt" | cut -c 1-90))" \
         bash -c "[ $rc -eq 2 ] && grep -qF -- '$want' '$S/e.txt'"
 done
-"$B/host/lt-faultinject" --rate 0.1 --drop 0.5 --json "$S/rates.json" <"$S/sim.bin" >/dev/null 2>&1
+"$HOSTBIN/lt-faultinject" --rate 0.1 --drop 0.5 --json "$S/rates.json" <"$S/sim.bin" >/dev/null 2>&1
 check "lt-faultinject --rate 0.1 --drop 0.5: the later --drop wins ($(grep rates "$S/rates.json" | tr -d ' '))" \
     grep -q '"rates": \[0.5, 0.1, 0.1, 0.1, 0.1\]' "$S/rates.json"
-"$B/host/lt-faultinject" --drop 0.5 --rate 0.1 --json "$S/rates.json" <"$S/sim.bin" >/dev/null 2>&1
+"$HOSTBIN/lt-faultinject" --drop 0.5 --rate 0.1 --json "$S/rates.json" <"$S/sim.bin" >/dev/null 2>&1
 check "lt-faultinject --drop 0.5 --rate 0.1: the later --rate wins ($(grep rates "$S/rates.json" | tr -d ' '))" \
     grep -q '"rates": \[0.1, 0.1, 0.1, 0.1, 0.1\]' "$S/rates.json"
 # a replayed session (the same stream twice: HELLO after END) is a fault unless --sessions allows it
 cat "$S/sim.bin" "$S/sim.bin" >"$S/twice.bin"
-"$B/host/lt-stream" --file "$S/twice.bin" -q --json >"$S/twice.json" 2>&1
+"$HOSTBIN/lt-stream" --file "$S/twice.bin" -q --json >"$S/twice.json" 2>&1
 rc=$?
 check "lt-stream on a session sent twice (HELLO after END): exit 1, 2 sessions, not clean (rc $rc)" \
     bash -c "[ $rc -eq 1 ] && [ \"$(jget sessions "$S/twice.json")\" = 2 ] && [ \"$(jget clean "$S/twice.json")\" = 0 ]"
-"$B/host/lt-stream" --file "$S/twice.bin" -q --sessions 2 >/dev/null 2>&1
+"$HOSTBIN/lt-stream" --file "$S/twice.bin" -q --sessions 2 >/dev/null 2>&1
 check "lt-stream --sessions 2 accepts the two sessions: exit 0" test $? -eq 0
-head -c 5000 /dev/urandom | "$B/host/lt-stream" -q --json >"$S/rand.json"
+head -c 5000 /dev/urandom | "$HOSTBIN/lt-stream" -q --json >"$S/rand.json"
 rc=$?
 check "random bytes: lt-stream exit 1, all $(jget garbage_bytes "$S/rand.json") bytes reported as garbage, no HELLO" \
     bash -c "[ $rc -eq 1 ] && [ \"$(jget garbage_bytes "$S/rand.json")\" = 5000 ] && [ \"$(jget have_hello "$S/rand.json")\" = 0 ]"
-script -qec "'$B/host/lt-stream' --file '$S/sim.bin'" /dev/null >"$S/tty.txt" 2>&1
+script -qec "'$HOSTBIN/lt-stream' --file '$S/sim.bin'" /dev/null >"$S/tty.txt" 2>&1
 check "live line on a terminal (frames/s, bytes/s, rays/s, cycles/s)" \
     grep -q 'fr/s.*kB/s.*rays/s.*cycles/s' "$S/tty.txt"
 
 echo "-- fault injection matrix (sim device, 16 frames; one fault at most per frame)"
-"$B/sim/lt-stream-dev" --frames 16 --image-from 8 --out "$S/long.bin" 2>/dev/null
-"$B/host/lt-faultinject" <"$S/long.bin" >"$S/f0.bin" 2>/dev/null
+"$SIMBIN/lt-stream-dev" --frames 16 --image-from 8 --out "$S/long.bin" 2>/dev/null
+"$HOSTBIN/lt-faultinject" <"$S/long.bin" >"$S/f0.bin" 2>/dev/null
 check "rates 0: output identical to input" cmp -s "$S/long.bin" "$S/f0.bin"
 printf '   %-28s %4s | %5s %5s %5s %5s %5s | %5s %7s %5s %5s %7s %3s\n' "drop/corrupt/dup/reorder/trunc" \
     seed drop corr dup reord trunc lost damaged dup reord garbage end
@@ -171,9 +169,9 @@ for rates in "0.01 0 0 0 0" "0 0.01 0 0 0" "0 0 0.01 0 0" "0 0 0 0.01 0" "0 0 0 
     "0.01 0.01 0.01 0.01 0.01" "0.05 0.05 0.05 0.05 0.05" "0.1 0.1 0.1 0.1 0.1"; do
     read -r r1 r2 r3 r4 r5 <<<"$rates"
     for seed in 1 2 3; do
-        "$B/host/lt-faultinject" --drop "$r1" --corrupt "$r2" --dup "$r3" --reorder "$r4" \
+        "$HOSTBIN/lt-faultinject" --drop "$r1" --corrupt "$r2" --dup "$r3" --reorder "$r4" \
             --trunc "$r5" --seed "$seed" --json "$S/truth.json" -q <"$S/long.bin" >"$S/f.bin"
-        "$B/host/lt-stream" --file "$S/f.bin" -q --json >"$S/rx.json"
+        "$HOSTBIN/lt-stream" --file "$S/f.bin" -q --json >"$S/rx.json"
         rc=$?
         d=$(jget dropped "$S/truth.json"); c=$(jget corrupted "$S/truth.json")
         u=$(jget duplicated "$S/truth.json"); o=$(jget reordered "$S/truth.json")
