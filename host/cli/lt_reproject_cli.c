@@ -245,7 +245,7 @@ static double median_depth(const float *z, size_t n)
 
 /* lanetrace render's camera (lt_camera_t: eye, fwd, right, up, fov_y over the image height) as
  * the reprojection's pinhole: rows right, -up, fwd; fx = fy = H / (2 tan(fov_y / 2)), centred. */
-static void cam_from_camera(const lt_camera_t *cam, uint32_t w, uint32_t h, lt_reproj_cam_t *c)
+void lt_rp_cam_from_camera(const lt_camera_t *cam, uint32_t w, uint32_t h, lt_reproj_cam_t *c)
 {
     int i;
     memset(c, 0, sizeof *c);
@@ -265,7 +265,7 @@ static void cam_from_camera(const lt_camera_t *cam, uint32_t w, uint32_t h, lt_r
 /* Ground truth: the target view rendered by the object-space tracer (float32 BVH packets, the
  * path lanetrace render uses) as z-depths along the target's optical axis, +inf on a miss. The
  * tracer's camera is centred with square pixels, so the target's intrinsics must be too. */
-static int render_truth(const lt_scene_t *sc, const lt_reproj_cam_t *d, float *ztrue, lt_diag_t *diag)
+int lt_rp_render_truth(const lt_scene_t *sc, const lt_reproj_cam_t *d, float *ztrue, lt_diag_t *diag)
 {
     lt_camera_t cam;
     lt_frame_t fr;
@@ -542,7 +542,7 @@ static int rp_source_camera(rp_t *r)
         } else {
             lt_camera_default(&r->sc, W, H, &cam);
         }
-        cam_from_camera(&cam, W, H, &src->cam);
+        lt_rp_cam_from_camera(&cam, W, H, &src->cam);
         if (r->dist < 0)
             r->dist = 1;
         r->cam_desc = "the scene's render camera";
@@ -558,7 +558,7 @@ static int rp_source_camera(rp_t *r)
         }
         lt_camera_basis(&cam, dir, sf->up);
         cam.tan_half_fov = tan(0.5 * sf->fov_y_deg * 3.14159265358979323846 / 180.0);
-        cam_from_camera(&cam, W, H, &src->cam);
+        lt_rp_cam_from_camera(&cam, W, H, &src->cam);
         r->cam_desc = "the scene's camera";
     } else {
         const lt_exr_depth_t *d = &r->dl[0];
@@ -637,7 +637,7 @@ static int rp_ground_truth(rp_t *r, const char *prog, const lt_rp_cli_hooks_t *h
         return EXIT_INPUT;
     }
     hk->begin("ground truth");
-    if (render_truth(&r->sc, &r->dcam, r->ztrue, &diag) != 0) {
+    if (lt_rp_render_truth(&r->sc, &r->dcam, r->ztrue, &diag) != 0) {
         hk->end();
         fprintf(stderr, "%s reproject: %s\n", prog, diag.msg);
         return EXIT_USAGE;

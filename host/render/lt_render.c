@@ -30,6 +30,7 @@ struct lt_accel {
     lt_grid_q16_t gq;
     lt_grid_f32_t gf;
     size_t bytes;            /* structure memory */
+    uint32_t leaf;           /* lt_accel_params_t.leaf (0: default) */
 };
 
 const char *const lt_render_structures[] = {"chunks", "bvh", "bvhq", "kd", "grid", NULL};
@@ -76,6 +77,7 @@ static lt_accel_t *build_bvh(const lt_scene_t *s, lt_accel_t *a, int quantised, 
     size_t bytes = 0;
     lt_status_t st;
     memset(&desc, 0, sizeof desc);
+    desc.max_leaf = a->leaf;
     if (quantised && a->path != LT_PATH_Q16) {
         lt_diag_fail(diag, "structure 'bvhq' (quantised nodes) exists in s15.16 only");
         return NULL;
@@ -122,6 +124,8 @@ static lt_accel_t *build_kdgrid(const lt_scene_t *s, lt_accel_t *a, lt_diag_t *d
     if (a->kind == ACC_KD) {
         lt_kd_params_t p;
         lt_kd_params_default(&p);
+        if (a->leaf != 0)
+            p.leaf_tris = a->leaf;
         st = lt_kd_size(s->ntris, &p, &bytes);
         if (st == LT_OK && (a->mem = alloc64(bytes)) == NULL)
             st = LT_E_SPACE;
@@ -153,6 +157,12 @@ static lt_accel_t *build_kdgrid(const lt_scene_t *s, lt_accel_t *a, lt_diag_t *d
 lt_accel_t *lt_accel_build(const lt_scene_t *s, const char *structure, lt_path_t path,
                            lt_diag_t *diag)
 {
+    return lt_accel_build_ex(s, structure, path, NULL, diag);
+}
+
+lt_accel_t *lt_accel_build_ex(const lt_scene_t *s, const char *structure, lt_path_t path,
+                              const lt_accel_params_t *prm, lt_diag_t *diag)
+{
     lt_accel_t *a;
     size_t nb = LT_CHUNK_COUNT(s->ntris);
     lt_status_t st;
@@ -173,11 +183,21 @@ lt_accel_t *lt_accel_build(const lt_scene_t *s, const char *structure, lt_path_t
                      structure);
         return NULL;
     }
+    if (prm != NULL && prm->leaf != 0 &&
+        (kind == ACC_CHUNKS || kind == ACC_GRID ||
+         prm->leaf > (kind == ACC_BVHQ ? LT_BVHQ_MAX_LEAF : (kind == ACC_BVH ? LT_BVH_MAX_LEAF
+                                                                             : UINT32_MAX)))) {
+        lt_diag_fail(diag, "structure '%s': leaf size %u is not available (%s)", structure,
+                     prm->leaf, kind == ACC_CHUNKS || kind == ACC_GRID ? "it has no leaf size"
+                     : kind == ACC_BVHQ ? "1..LT_BVHQ_MAX_LEAF = 15" : "1..LT_BVH_MAX_LEAF = 64");
+        return NULL;
+    }
     a = calloc(1, sizeof *a);
     if (a == NULL) {
         lt_diag_fail(diag, "out of memory");
         return NULL;
     }
+    a->leaf = prm != NULL ? prm->leaf : 0;
     a->path = path;
     a->kind = kind;
     a->n = s->ntris;
