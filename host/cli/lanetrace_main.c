@@ -16,6 +16,7 @@
 #include "render/lt_render.h"
 #include "cli/lt_reproject_cli.h"
 #include "cli/lt_shadows_cli.h"
+#include "cli/lt_tune_cli.h"
 #include "render/lt_scene.h"
 #include "io/lt_scenefile.h"
 
@@ -1701,6 +1702,8 @@ static void usage(FILE *f)
             "                     inpainting; EXR + PNG + heatmaps; sim build: cycle report)\n"
             "  shadows --mesh FILE  soft shadows by multi-frusta and 16-ray packets, Table-1\n"
             "                     report (sim build: cycles per stage), images, reference\n"
+            "  tune SCENE|MESH    Pareto fronts of cycles vs error per family and machine;\n"
+            "                     --budget picks the cheapest configuration (docs/tune.md)\n"
             "  info FILE          describe a mesh or EXR file\n"
             "  stream [SOURCE]    receive a device's report frames (see lt-stream --help)\n"
             "  diff A.json B.json compare two JSON reports\n"
@@ -1735,6 +1738,8 @@ int main(int argc, char **argv)
         return lt_shadows_cli(argc, argv, prog);
     if (strcmp(argv[1], "machines") == 0)
         return cmd_machines(argc, argv);
+    if (strcmp(argv[1], "tune") == 0)
+        return lt_tune_cli(argc, argv, prog);
     fprintf(stderr, "%s: unknown command '%s'\n", prog, argv[1]);
     usage(stderr);
     return EXIT_USAGE;

@@ -78,6 +78,7 @@ static lt_accel_t *build_bvh(const lt_scene_t *s, lt_accel_t *a, int quantised, 
     lt_status_t st;
     memset(&desc, 0, sizeof desc);
     desc.max_leaf = a->leaf;
+    desc.min_leaf = a->leaf / 2u; /* 0 (the default, 1) for leaf 0 and 1 */
     if (quantised && a->path != LT_PATH_Q16) {
         lt_diag_fail(diag, "structure 'bvhq' (quantised nodes) exists in s15.16 only");
         return NULL;
@@ -87,6 +88,8 @@ static lt_accel_t *build_bvh(const lt_scene_t *s, lt_accel_t *a, int quantised, 
         a->arena = alloc64(bytes);
         if (a->arena == NULL)
             st = LT_E_SPACE;
+        else /* before the build: its writes are charged at the same simulated addresses */
+            lt_meter_region(a->arena, bytes, 0x20000000u);
     }
     if (st == LT_OK)
         st = a->path == LT_PATH_Q16 ? lt_bvh_build_q16(&a->bvh, &desc, s->tq, s->ntris, a->arena, bytes)
@@ -101,8 +104,10 @@ static lt_accel_t *build_bvh(const lt_scene_t *s, lt_accel_t *a, int quantised, 
         st = lt_bvhq_size(&a->bvh, &qb);
         if (st == LT_OK && (a->qmem = alloc64(qb)) == NULL)
             st = LT_E_SPACE;
-        if (st == LT_OK)
+        if (st == LT_OK) {
+            lt_meter_region(a->qmem, qb, 0x30000000u);
             st = lt_bvhq_build_q16(&a->bvhq, &a->bvh, a->qmem, qb);
+        }
         if (st != LT_OK) {
             lt_diag_fail(diag, "quantising the BVH: %s", lt_status_str(st));
             return NULL;
@@ -110,9 +115,6 @@ static lt_accel_t *build_bvh(const lt_scene_t *s, lt_accel_t *a, int quantised, 
         /* the quantised tree keeps its nodes plus the source tree's index array */
         a->bytes = a->bvhq.bytes + (size_t)s->ntris * sizeof(uint32_t);
     }
-    lt_meter_region(a->arena, a->bvh.bytes, 0x20000000u);
-    if (quantised)
-        lt_meter_region(a->qmem, a->bvhq.bytes, 0x30000000u);
     return a;
 }
 
@@ -130,6 +132,8 @@ static lt_accel_t *build_kdgrid(const lt_scene_t *s, lt_accel_t *a, lt_diag_t *d
         if (st == LT_OK && (a->mem = alloc64(bytes)) == NULL)
             st = LT_E_SPACE;
         if (st == LT_OK)
+            lt_meter_region(a->mem, bytes, 0x20000000u);
+        if (st == LT_OK)
             st = a->path == LT_PATH_Q16 ? lt_kd_build_q16(&a->kdq, s->tq, s->ntris, &p, a->mem, &bytes)
                                         : lt_kd_build_f32(&a->kdf, s->tf, s->ntris, &p, a->mem, &bytes);
         a->bytes = a->path == LT_PATH_Q16 ? a->kdq.bytes : a->kdf.bytes;
@@ -141,6 +145,8 @@ static lt_accel_t *build_kdgrid(const lt_scene_t *s, lt_accel_t *a, lt_diag_t *d
         if (st == LT_OK && (a->mem = alloc64(bytes)) == NULL)
             st = LT_E_SPACE;
         if (st == LT_OK)
+            lt_meter_region(a->mem, bytes, 0x20000000u);
+        if (st == LT_OK)
             st = a->path == LT_PATH_Q16 ? lt_grid_build_q16(&a->gq, s->tq, s->ntris, &p, a->mem, &bytes)
                                         : lt_grid_build_f32(&a->gf, s->tf, s->ntris, &p, a->mem, &bytes);
         a->bytes = bytes;
@@ -150,7 +156,6 @@ static lt_accel_t *build_kdgrid(const lt_scene_t *s, lt_accel_t *a, lt_diag_t *d
                      a->kind == ACC_KD ? "kd-tree" : "grid", s->ntris, lt_status_str(st));
         return NULL;
     }
-    lt_meter_region(a->mem, a->bytes, 0x20000000u);
     return a;
 }
 
@@ -197,6 +202,8 @@ lt_accel_t *lt_accel_build_ex(const lt_scene_t *s, const char *structure, lt_pat
         lt_diag_fail(diag, "out of memory");
         return NULL;
     }
+    /* the descriptor (the kernels read its root box and pointers) at a fixed simulated address */
+    lt_meter_region(a, sizeof *a, 0x40000000u);
     a->leaf = prm != NULL ? prm->leaf : 0;
     a->path = path;
     a->kind = kind;

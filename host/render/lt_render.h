@@ -39,8 +39,8 @@ lt_accel_t *lt_accel_build(const lt_scene_t *s, const char *structure, lt_path_t
                            lt_diag_t *diag);
 
 /* Build knobs of lt_accel_build_ex (0 = the structure's default): leaf = the BVH's max_leaf
- * (bvh 1..LT_BVH_MAX_LEAF, bvhq 1..LT_BVHQ_MAX_LEAF; min_leaf stays 1) or the kd-tree's leaf_tris
- * (>= 1); chunks and grid have no leaf size (a non-zero leaf is refused). */
+ * (bvh 1..LT_BVH_MAX_LEAF, bvhq 1..LT_BVHQ_MAX_LEAF; min_leaf = leaf / 2, as the frusta BVH)
+ * or the kd-tree's leaf_tris (>= 1); chunks and grid have no leaf size (a non-zero leaf is refused). */
 typedef struct lt_accel_params {
     uint32_t leaf;
 } lt_accel_params_t;

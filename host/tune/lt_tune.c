@@ -219,12 +219,32 @@ int lt_tune_objectives(int family, const lt_tune_meas_t *m, double *obj)
     return 3;
 }
 
-/* ---- workers -------------------------------------------------------------------------------- */
+/* ---- the measurement server ------------------------------------------------------------------
+ * One process, forked before the search allocates anything, loads the contexts (full and probe
+ * size) and forks a child per requested run: every measurement starts from the same memory
+ * state, so buffers the cycle model does not place at fixed simulated addresses (the soft-shadow
+ * renderer's per-pixel buffers) land at the same addresses, and a run gives the same cycles with
+ * any --jobs, in the verification and in a --job of a plan. Children write their records to one
+ * pipe (a record is smaller than PIPE_BUF: writes do not interleave). */
+
+#define REC_HELLO (-2000000000L)
 
 typedef struct rec {
-    long idx; /* point index, or -1 - run: the run is done */
+    long idx; /* point index; -1 - run: the run is done; REC_HELLO: the server's first word */
     lt_tune_meas_t m;
 } rec_t;
+
+typedef struct req {
+    int run, full;
+    char img[1024]; /* image prefix, "" for none */
+} req_t;
+
+struct lt_tune_server {
+    pid_t pid;
+    int req_fd, res_fd;
+    lt_tune_point_t *pts; /* the server's own enumeration (same as the caller's) */
+    size_t np;
+};
 
 static int write_all(int fd, const void *buf, size_t n)
 {
@@ -259,121 +279,207 @@ static int read_all(int fd, void *buf, size_t n)
     return 1;
 }
 
-/* A worker: runs w, w + jobs, ... of runs[], each point's measurement to fd. */
-static void worker(lt_tune_ctx_t *c, lt_tune_point_t *pts, size_t np, const int *runs,
-                   size_t nruns, int full, int w, int jobs, int fd)
+/* Records of every point of run (its measurements, or `why` as a failure), then "done". */
+static void send_run(int fd, lt_tune_point_t *pts, size_t np, int run, int full, uint32_t res,
+                     const char *why)
 {
-    size_t r, i;
-    for (r = (size_t)w; r < nruns; r += (size_t)jobs) {
-        rec_t rec;
-        lt_tune_eval_run(c, pts, np, runs[r], full, NULL);
-        for (i = 0; i < np; i++)
-            if (pts[i].run == runs[r]) {
-                rec.idx = (long)i;
-                rec.m = full ? pts[i].full : pts[i].probe;
-                if (write_all(fd, &rec, sizeof rec) != 0)
-                    _exit(3);
-            }
-        memset(&rec, 0, sizeof rec);
-        rec.idx = -1 - runs[r];
-        if (write_all(fd, &rec, sizeof rec) != 0)
-            _exit(3);
-    }
-}
-
-/* Collect the workers' records until every pipe closes. */
-static int collect(lt_tune_point_t *pts, size_t np, int full, struct pollfd *pf, int jobs,
-                   size_t nruns, void (*progress)(const char *, size_t, size_t),
-                   const char *stage)
-{
-    int open = jobs, j, bad = 0;
-    size_t done = 0;
     rec_t rec;
-    while (open > 0) {
-        if (poll(pf, (nfds_t)jobs, -1) < 0) {
-            if (errno == EINTR)
-                continue;
-            return -1;
-        }
-        for (j = 0; j < jobs; j++) {
-            int rr;
-            if (pf[j].fd < 0 || !(pf[j].revents & (POLLIN | POLLHUP | POLLERR)))
-                continue;
-            rr = read_all(pf[j].fd, &rec, sizeof rec);
-            if (rr <= 0) {
-                bad |= rr < 0;
-                close(pf[j].fd);
-                pf[j].fd = -1;
-                open--;
-                continue;
+    size_t i;
+    for (i = 0; i < np; i++)
+        if (pts[i].run == run) {
+            memset(&rec, 0, sizeof rec);
+            rec.idx = (long)i;
+            rec.m = full ? pts[i].full : pts[i].probe;
+            if (why != NULL) {
+                memset(&rec.m, 0, sizeof rec.m);
+                rec.m.res = res;
+                snprintf(rec.m.msg, sizeof rec.m.msg, "%s", why);
             }
-            if (rec.idx >= 0 && (size_t)rec.idx < np) {
-                if (full)
-                    pts[rec.idx].full = rec.m;
-                else
-                    pts[rec.idx].probe = rec.m;
-            } else if (rec.idx < 0 && progress != NULL) {
-                progress(stage, ++done, nruns);
-            }
+            (void)write_all(fd, &rec, sizeof rec);
         }
-    }
-    return bad ? -1 : 0;
+    memset(&rec, 0, sizeof rec);
+    rec.idx = -1 - run;
+    (void)write_all(fd, &rec, sizeof rec);
 }
 
-int lt_tune_run_workers(lt_tune_ctx_t *c, lt_tune_point_t *pts, size_t np, const int *runs,
-                        size_t nruns, int full, int jobs,
-                        void (*progress)(const char *stage, size_t done, size_t total),
-                        const char *stage, lt_diag_t *diag)
+typedef struct child {
+    pid_t pid;
+    int run, full;
+} child_t;
+
+/* Reap finished children; a child that did not exit 0 gets its run reported as failed. */
+static void reap(child_t *ch, int *nch, lt_tune_point_t *pts, size_t np, int fd, uint32_t res[2],
+                 int block)
 {
-    struct pollfd pf[64];
-    pid_t pid[64];
-    int j, st, rc = 0;
-    size_t r;
-    if (jobs > (int)nruns)
-        jobs = nruns > 0 ? (int)nruns : 1;
-    if (jobs > 64)
-        jobs = 64;
-    if (jobs <= 1) {
-        for (r = 0; r < nruns; r++) {
-            lt_tune_eval_run(c, pts, np, runs[r], full, NULL);
-            if (progress != NULL)
-                progress(stage, r + 1, nruns);
+    int st, i;
+    pid_t pid;
+    while (*nch > 0 && (pid = waitpid(-1, &st, block ? 0 : WNOHANG)) > 0) {
+        for (i = 0; i < *nch; i++)
+            if (ch[i].pid == pid)
+                break;
+        if (i == *nch)
+            continue;
+        if (!WIFEXITED(st) || WEXITSTATUS(st) != 0) {
+            char why[96];
+            snprintf(why, sizeof why, "the measurement process died (%s %d)",
+                     WIFSIGNALED(st) ? "signal" : "exit", WIFSIGNALED(st) ? WTERMSIG(st) : WEXITSTATUS(st));
+            send_run(fd, pts, np, ch[i].run, ch[i].full, res[ch[i].full], why);
         }
-        return 0;
+        ch[i] = ch[--*nch];
+        block = 0;
     }
-    fflush(NULL);
-    for (j = 0; j < jobs; j++) {
-        int fds[2];
-        if (pipe(fds) != 0 || (pid[j] = fork()) < 0) {
-            lt_diag_fail(diag, "cannot start worker %d of --jobs %d: %s", j + 1, jobs,
-                         strerror(errno));
-            for (st = 0; st < j; st++) {
-                kill(pid[st], SIGTERM);
-                waitpid(pid[st], NULL, 0);
-                close(pf[st].fd);
-            }
-            return -1;
+}
+
+/* The server's loop: one child per request; at most 64 at once (the caller keeps --jobs). */
+static void server_loop(lt_tune_ctx_t *c[2], lt_tune_point_t *pts, size_t np, int rq, int fd,
+                        uint32_t res[2])
+{
+    child_t ch[64];
+    int nch = 0;
+    req_t q;
+    while (read_all(rq, &q, sizeof q) == 1) {
+        pid_t pid;
+        reap(ch, &nch, pts, np, fd, res, 0);
+        if (nch == 64)
+            reap(ch, &nch, pts, np, fd, res, 1);
+        if (c[q.full] == NULL) {
+            send_run(fd, pts, np, q.run, q.full, res[q.full], "no context for this size");
+            continue;
         }
-        if (pid[j] == 0) {
-            close(fds[0]);
-            for (st = 0; st < j; st++)
-                close(pf[st].fd);
-            worker(c, pts, np, runs, nruns, full, j, jobs, fds[1]);
-            close(fds[1]);
+        pid = fork();
+        if (pid == 0) {
+            close(rq);
+            lt_tune_eval_run(c[q.full], pts, np, q.run, q.full, q.img[0] ? q.img : NULL);
+            send_run(fd, pts, np, q.run, q.full, res[q.full], NULL);
             _exit(0);
         }
-        close(fds[1]);
-        pf[j].fd = fds[0];
-        pf[j].events = POLLIN;
+        if (pid < 0) {
+            send_run(fd, pts, np, q.run, q.full, res[q.full], "fork failed");
+            continue;
+        }
+        ch[nch].pid = pid;
+        ch[nch].run = q.run;
+        ch[nch++].full = q.full;
     }
-    if (collect(pts, np, full, pf, jobs, nruns, progress, stage) != 0)
-        rc = lt_diag_fail(diag, "reading the workers' results failed");
-    for (j = 0; j < jobs; j++) {
-        if (waitpid(pid[j], &st, 0) < 0 || !WIFEXITED(st) || WEXITSTATUS(st) != 0)
-            rc = lt_diag_fail(diag, "worker %d of --jobs %d ended abnormally (status %d)", j + 1,
-                              jobs, st);
+    while (nch > 0)
+        reap(ch, &nch, pts, np, fd, res, 1);
+}
+
+/* The server process: contexts, enumeration, hello (the q16 note or the load error), loop. */
+static void server_main(const lt_tune_input_t *in, const lt_tune_opts_t *o, int rq, int fd)
+{
+    lt_tune_ctx_t *c[2] = {NULL, NULL};
+    lt_tune_point_t *pts = NULL;
+    size_t np = 0;
+    uint32_t res[2];
+    lt_diag_t d;
+    rec_t hello;
+    memset(&hello, 0, sizeof hello);
+    hello.idx = REC_HELLO;
+    res[0] = o->probe_res;
+    res[1] = o->res;
+    c[1] = lt_tune_ctx_new(in, o->families, o->res, &d);
+    if (c[1] != NULL && o->probe_res > 0 && o->probe_res < o->res)
+        c[0] = lt_tune_ctx_new(in, o->families, o->probe_res, &d);
+    if (c[1] == NULL || (o->probe_res > 0 && o->probe_res < o->res && c[0] == NULL)) {
+        snprintf(hello.m.msg, sizeof hello.m.msg, "%s", d.msg);
+        (void)write_all(fd, &hello, sizeof hello);
+        _exit(1);
     }
-    return rc;
+    (void)lt_tune_ctx_q16_refused(c[1], hello.m.msg, sizeof hello.m.msg);
+    if (lt_tune_enumerate(o->families, o->machines, o->nmach, hello.m.msg[0] != '\0', &pts, &np,
+                          &d) != 0) {
+        snprintf(hello.m.msg, sizeof hello.m.msg, "%s", d.msg);
+        (void)write_all(fd, &hello, sizeof hello);
+        _exit(1);
+    }
+    hello.m.ok = 1;
+    (void)write_all(fd, &hello, sizeof hello);
+    server_loop(c, pts, np, rq, fd, res);
+    _exit(0);
+}
+
+lt_tune_server_t *lt_tune_server_start(const lt_tune_input_t *in, const lt_tune_opts_t *o,
+                                       char *q16_note, size_t n, lt_diag_t *diag)
+{
+    lt_tune_server_t *s = calloc(1, sizeof *s);
+    int rq[2], rs[2];
+    rec_t hello;
+    if (s == NULL || pipe(rq) != 0 || pipe(rs) != 0) {
+        free(s);
+        lt_diag_fail(diag, "cannot start the measurement server: %s", strerror(errno));
+        return NULL;
+    }
+    fflush(NULL);
+    s->pid = fork();
+    if (s->pid < 0) {
+        lt_diag_fail(diag, "cannot start the measurement server: %s", strerror(errno));
+        free(s);
+        return NULL;
+    }
+    if (s->pid == 0) {
+        close(rq[1]);
+        close(rs[0]);
+        server_main(in, o, rq[0], rs[1]);
+    }
+    close(rq[0]);
+    close(rs[1]);
+    s->req_fd = rq[1];
+    s->res_fd = rs[0];
+    if (read_all(s->res_fd, &hello, sizeof hello) != 1 || hello.idx != REC_HELLO || !hello.m.ok) {
+        lt_diag_fail(diag, "%s", hello.idx == REC_HELLO && hello.m.msg[0] ? hello.m.msg
+                                 : "the measurement server did not start");
+        lt_tune_server_stop(s);
+        return NULL;
+    }
+    snprintf(q16_note, n, "%s", hello.m.msg);
+    return s;
+}
+
+void lt_tune_server_stop(lt_tune_server_t *s)
+{
+    if (s == NULL)
+        return;
+    close(s->req_fd);
+    close(s->res_fd);
+    waitpid(s->pid, NULL, 0);
+    free(s);
+}
+
+int lt_tune_server_run(lt_tune_server_t *s, lt_tune_point_t *pts, size_t np, const int *runs,
+                       size_t nruns, int full, int jobs, const char *img_prefix,
+                       void (*progress)(const char *stage, size_t done, size_t total),
+                       const char *stage, lt_diag_t *diag)
+{
+    size_t sent = 0, done = 0;
+    req_t q;
+    rec_t rec;
+    memset(&q, 0, sizeof q);
+    q.full = full;
+    if (img_prefix != NULL)
+        snprintf(q.img, sizeof q.img, "%s", img_prefix);
+    if (jobs < 1)
+        jobs = 1;
+    while (done < nruns) {
+        while (sent < nruns && sent - done < (size_t)jobs) {
+            q.run = runs[sent++];
+            if (write_all(s->req_fd, &q, sizeof q) != 0)
+                return lt_diag_fail(diag, "the measurement server stopped");
+        }
+        if (read_all(s->res_fd, &rec, sizeof rec) != 1)
+            return lt_diag_fail(diag, "the measurement server stopped");
+        if (rec.idx >= 0 && (size_t)rec.idx < np) {
+            if (full)
+                pts[rec.idx].full = rec.m;
+            else
+                pts[rec.idx].probe = rec.m;
+        } else if (rec.idx < 0 && rec.idx != REC_HELLO) {
+            done++;
+            if (progress != NULL)
+                progress(stage, done, nruns);
+        }
+    }
+    return 0;
 }
 
 /* ---- the search ------------------------------------------------------------------------------ */
@@ -421,10 +527,22 @@ static int le(double a, double b)
     return !isnan(a) && a <= b;
 }
 
+/* A probe's cycles scaled to full size: the per-pixel phases times the pixel ratio; the object and
+ * shadows structures' BUILD phase does not depend on the image size (the screen family builds
+ * over the image: it scales too). */
+static double est_cycles(const lt_tune_point_t *p, double ratio)
+{
+    double build = p->probe.phase[LT_PH_BUILD];
+    if (p->k.family == 1)
+        return p->probe.m[LT_M_CYCLES] * ratio;
+    return build + (p->probe.m[LT_M_CYCLES] - build) * ratio;
+}
+
 /* Prune at the probe resolution: p goes when some q of its family and machine is no worse in both
- * errors and in bytes and cheaper by the slack in cycles. Returns the runs to measure at full
- * size (into runs, *nruns). */
-static void prune(lt_tune_point_t *pts, size_t np, double slack, int *runs, size_t *nruns)
+ * errors and in bytes and cheaper by the slack in cycles (estimated at full size, est_cycles).
+ * Returns the runs to measure at full size (into runs, *nruns). */
+static void prune(lt_tune_point_t *pts, size_t np, double slack, double ratio, int *runs,
+                  size_t *nruns)
 {
     size_t i, j;
     int last = -1;
@@ -435,11 +553,13 @@ static void prune(lt_tune_point_t *pts, size_t np, double slack, int *runs, size
         if (!pts[i].probe.ok)
             continue;
         (void)lt_tune_objectives(pts[i].k.family, &pts[i].probe, a);
+        a[0] = est_cycles(&pts[i], ratio);
         for (j = 0; j < np && !pts[i].pruned; j++) {
             if (j == i || !pts[j].probe.ok || pts[j].k.family != pts[i].k.family ||
                 pts[j].k.machine != pts[i].k.machine)
                 continue;
             (void)lt_tune_objectives(pts[j].k.family, &pts[j].probe, b);
+            b[0] = est_cycles(&pts[j], ratio);
             if (b[0] * (1.0 + slack) <= a[0] && le(b[1], a[1]) && le(b[2], a[2]) &&
                 le(pts[j].probe.m[LT_M_BYTES], pts[i].probe.m[LT_M_BYTES]))
                 pts[i].pruned = 1;
@@ -452,7 +572,7 @@ static void prune(lt_tune_point_t *pts, size_t np, double slack, int *runs, size
         }
 }
 
-static void tally(lt_tune_result_t *r)
+void lt_tune_tally(lt_tune_result_t *r)
 {
     size_t i;
     r->probed = r->measured = r->pruned = r->failed = r->front = 0;
@@ -475,56 +595,49 @@ static void tally(lt_tune_result_t *r)
     }
 }
 
-int lt_tune_search(const lt_tune_input_t *in, const lt_tune_opts_t *o, lt_tune_result_t *r,
+int lt_tune_search(lt_tune_server_t *srv, const lt_tune_opts_t *o, lt_tune_result_t *r,
                    lt_diag_t *diag)
 {
-    lt_tune_ctx_t *full, *probe = NULL;
     int *runs = NULL, nrun = 0;
     size_t i, nr = 0;
     double t0;
+    char note[sizeof r->q16_note];
+    snprintf(note, sizeof note, "%s", r->q16_note);
     memset(r, 0, sizeof *r);
-    full = lt_tune_ctx_new(in, o->families, o->res, diag);
-    if (full == NULL)
-        return -1;
-    (void)lt_tune_ctx_q16_refused(full, r->q16_note, sizeof r->q16_note);
+    snprintf(r->q16_note, sizeof r->q16_note, "%s", note);
     if (lt_tune_enumerate(o->families, o->machines, o->nmach, r->q16_note[0] != '\0', &r->pts,
                           &r->np, diag) != 0)
-        goto fail;
+        return -1;
     for (i = 0; i < r->np; i++)
         nrun = r->pts[i].run + 1 > nrun ? r->pts[i].run + 1 : nrun;
     runs = malloc((size_t)(nrun ? nrun : 1) * sizeof *runs);
     if (runs == NULL) {
-        lt_diag_fail(diag, "out of memory");
-        goto fail;
+        lt_tune_result_free(r);
+        return lt_diag_fail(diag, "out of memory");
     }
     for (i = 0; i < (size_t)nrun; i++)
         runs[i] = (int)i;
     nr = (size_t)nrun;
     if (o->probe_res > 0 && o->probe_res < o->res) {
         t0 = now_s();
-        probe = lt_tune_ctx_new(in, o->families, o->probe_res, diag);
-        if (probe == NULL ||
-            lt_tune_run_workers(probe, r->pts, r->np, runs, nr, 0, o->jobs, o->progress, "probe",
-                                diag) != 0)
+        if (lt_tune_server_run(srv, r->pts, r->np, runs, nr, 0, o->jobs, NULL, o->progress,
+                               "probe", diag) != 0)
             goto fail;
-        prune(r->pts, r->np, o->slack, runs, &nr);
+        prune(r->pts, r->np, o->slack,
+              ((double)o->res * o->res) / ((double)o->probe_res * o->probe_res), runs, &nr);
         r->secs_probe = now_s() - t0;
     }
     t0 = now_s();
-    if (lt_tune_run_workers(full, r->pts, r->np, runs, nr, 1, o->jobs, o->progress, "full size",
-                            diag) != 0)
+    if (lt_tune_server_run(srv, r->pts, r->np, runs, nr, 1, o->jobs, NULL, o->progress,
+                           "full size", diag) != 0)
         goto fail;
     r->secs_full = now_s() - t0;
     lt_tune_mark_fronts(r->pts, r->np);
-    tally(r);
+    lt_tune_tally(r);
     free(runs);
-    lt_tune_ctx_free(probe);
-    lt_tune_ctx_free(full);
     return 0;
 fail:
     free(runs);
-    lt_tune_ctx_free(probe);
-    lt_tune_ctx_free(full);
     lt_tune_result_free(r);
     return -1;
 }

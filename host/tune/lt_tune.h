@@ -159,21 +159,81 @@ typedef struct lt_tune_result {
     char q16_note[256];              /* why s15.16 was left out ("" if it was not) */
 } lt_tune_result_t;
 
-/* Enumerate, probe, prune, measure at full size, mark the fronts. Returns 0, or -1 with a
- * message (input, memory, workers). */
-int lt_tune_search(const lt_tune_input_t *in, const lt_tune_opts_t *o, lt_tune_result_t *r,
+/* The measurement server (lt_tune.c): a process forked before the search that loads the contexts
+ * at full and probe size (the probe one only when 0 < probe_res < res) and measures each
+ * requested run in a child forked from that fixed state, so a run's cycles do not depend on which
+ * worker, stage or process measures it. q16_note receives why s15.16 is left out ("" if it is
+ * not). Returns NULL with a message (the input could not be loaded). */
+typedef struct lt_tune_server lt_tune_server_t;
+lt_tune_server_t *lt_tune_server_start(const lt_tune_input_t *in, const lt_tune_opts_t *o,
+                                       char *q16_note, size_t n, lt_diag_t *diag);
+void lt_tune_server_stop(lt_tune_server_t *s);
+
+/* Measure runs[0..nruns) at full (1) or probe (0) size, at most jobs at once, into the probe or
+ * full measurements of pts (which must be lt_tune_enumerate's list for the server's options);
+ * img_prefix (may be NULL): each point's image to "<prefix>-<index>.png". Returns 0 or -1. */
+int lt_tune_server_run(lt_tune_server_t *s, lt_tune_point_t *pts, size_t np, const int *runs,
+                       size_t nruns, int full, int jobs, const char *img_prefix,
+                       void (*progress)(const char *stage, size_t done, size_t total),
+                       const char *stage, lt_diag_t *diag);
+
+/* Enumerate, probe, prune, measure at full size, mark the fronts, count (r->q16_note is kept).
+ * Returns 0, or -1 with a message. */
+int lt_tune_search(lt_tune_server_t *srv, const lt_tune_opts_t *o, lt_tune_result_t *r,
                    lt_diag_t *diag);
 void lt_tune_result_free(lt_tune_result_t *r);
 
 /* Mark pts[i].front: non-dominated among the full measurements of its family and machine. */
 void lt_tune_mark_fronts(lt_tune_point_t *pts, size_t np);
 
-/* Run `run` indices in worker processes (jobs of them, fork; 1: in this process) at the context's
- * size, filling probe or full measurements. Returns 0 or -1 (fork/pipe failure). */
-int lt_tune_run_workers(lt_tune_ctx_t *c, lt_tune_point_t *pts, size_t np, const int *runs,
-                        size_t nruns, int full, int jobs,
-                        void (*progress)(const char *stage, size_t done, size_t total),
-                        const char *stage, lt_diag_t *diag);
+/* The counts and per-family times of r from its points. */
+void lt_tune_tally(lt_tune_result_t *r);
+
+/* ---- picks and outputs (lt_tune_out.c) ----------------------------------------------------- */
+
+/* A family's pick under a budget, its verification and the most accurate configuration. */
+typedef struct lt_tune_pick {
+    int family;              /* 0 object, 1 screen, 2 shadows */
+    int applies;             /* 1 when the family measures every metric of the budget */
+    long pick;               /* index into pts, -1: the budget is impossible */
+    long best;               /* the most accurate point (its full measurement), -1: none */
+    int binding;             /* index of the binding term, -1: none binds */
+    lt_tune_meas_t verify;   /* the pick re-run at full size */
+    int verified;            /* 1 when the verification meets the budget */
+    char scene[1100];        /* the chosen configuration as a scene file */
+    char img_pick[1100], img_best[1100]; /* their images */
+} lt_tune_pick_t;
+
+/* The most accurate full measurement of a family (errors first, then cycles), or -1. */
+long lt_tune_most_accurate(const lt_tune_point_t *pts, size_t np, int family);
+
+/* Budget metrics of the full measurement of every point, rows of LT_M__COUNT, for lt_budget_*
+ * (NaN rows for points without one); include[i] = full.ok && family matches. malloc'ed. */
+double *lt_tune_metric_rows(const lt_tune_point_t *pts, size_t np, int family,
+                            unsigned char **include);
+
+/* The outputs in dir (created if missing): front.csv, front.json, front.md, front.png (gnuplot),
+ * report.html; the picks' scene files are written by lt_tune_write_scene. title names the input.
+ * Returns 0 or -1 with a message naming the file. */
+typedef struct lt_tune_report {
+    const char *title;        /* the input */
+    const lt_tune_input_t *in;
+    const lt_tune_opts_t *opts;
+    const lt_tune_result_t *res;
+    const lt_budget_t *budget; /* NULL: none */
+    const lt_tune_pick_t *picks; /* LT_TUNE_NFAM, or NULL */
+    double secs;              /* wall seconds of the whole tune */
+} lt_tune_report_t;
+
+int lt_tune_write_outputs(const char *dir, const lt_tune_report_t *rep, lt_diag_t *diag);
+
+/* The JSON document of front.json (cJSON *, caller deletes) as a string (free()). */
+char *lt_tune_json(const lt_tune_report_t *rep);
+
+/* The chosen configuration of point p as a scene file that run/render/reproject/shadows accept
+ * (docs/scene-format.md). Returns 0 or -1 with a message naming path. */
+int lt_tune_write_scene(const char *path, const lt_tune_input_t *in, const lt_tune_point_t *p,
+                        uint32_t res, lt_diag_t *diag);
 
 #ifdef __cplusplus
 }

@@ -335,13 +335,23 @@ int lt_tune_ctx_q16_refused(const lt_tune_ctx_t *c, char *why, size_t n)
 
 /* ---- evaluation ---------------------------------------------------------------------------- */
 
+/* The anchor of the stack window (a local of lt_tune_eval_run): see machine_init. */
+static uintptr_t stack_anchor;
+
+/* The machine, and the stack below lt_tune_eval_run registered as a simulator region: the
+ * kernels' packets, hits and traversal stacks live there, and unregistered memory is charged at
+ * its real address, so the cycles would depend on how deep the caller's stack is (in a worker,
+ * in the verification, in a --job). With the window at a fixed simulated address every caller
+ * gets the same cycles. */
 static int machine_init(const lt_tune_knobs_t *k, lt_tune_meas_t *m)
 {
     lt_diag_t d;
+    const size_t window = (size_t)1 << 20;
     if (lt_meter_init(lt_meter_machine_name(k->machine), NULL, NULL, &d) != 0) {
         snprintf(m->msg, sizeof m->msg, "%s", d.msg);
         return -1;
     }
+    lt_meter_region((const void *)(stack_anchor - window), window, 0x70000000u);
     return 0;
 }
 
@@ -607,7 +617,9 @@ void lt_tune_eval_run(lt_tune_ctx_t *c, lt_tune_point_t *pts, size_t np, int run
                       const char *img_prefix)
 {
     lt_tune_point_t *first = NULL;
+    volatile char anchor = 0;
     size_t i;
+    stack_anchor = (uintptr_t)&anchor;
     for (i = 0; i < np; i++)
         if (pts[i].run == run) {
             meas_clear(full ? &pts[i].full : &pts[i].probe, c->res);
