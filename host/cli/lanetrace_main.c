@@ -174,6 +174,13 @@ static int num_choices(unsigned families, int with_both, const char **names, uns
     return n;
 }
 
+/* 1 for the structures with a leaf size (the scene file's "leaf": bvh, bvhq, kd). */
+static int structure_has_leaf(const char *structure)
+{
+    return strcmp(structure, "bvh") == 0 || strcmp(structure, "bvhq") == 0 ||
+           strcmp(structure, "kd") == 0;
+}
+
 /* ---- run ------------------------------------------------------------------------------------ */
 
 /* lanetrace run: the options (the flags override the scene file), the inputs, then per numeric
@@ -542,7 +549,11 @@ static int run_path(run_t *r, const lt_path_info_t *p)
     size_t acc_bytes;
     uint64_t rays = (uint64_t)sf->width * sf->height * (uint64_t)r->repeat;
     lt_meter_reset();
-    acc = lt_accel_build(&r->sc, sf->structure, (lt_path_t)p->path, &diag);
+    {
+        /* the scene file's "leaf", for the structures that have a leaf size */
+        lt_accel_params_t prm = {structure_has_leaf(sf->structure) ? sf->leaf : 0};
+        acc = lt_accel_build_ex(&r->sc, sf->structure, (lt_path_t)p->path, &prm, &diag);
+    }
     if (acc == NULL) {
         fprintf(stderr, "%s: %s\n", sf->path[0] ? sf->path : prog, diag.msg);
         r->status = EXIT_INPUT;
@@ -1171,7 +1182,10 @@ static int render_trace(render_t *r)
         fprintf(stderr, "%s\n", diag.msg);
         return EXIT_INPUT;
     }
-    r->acc = lt_accel_build(&r->sc, structure, (lt_path_t)r->path->path, &diag);
+    {
+        lt_accel_params_t prm = {structure_has_leaf(structure) ? sf->leaf : 0};
+        r->acc = lt_accel_build_ex(&r->sc, structure, (lt_path_t)r->path->path, &prm, &diag);
+    }
     if (r->acc == NULL) {
         fprintf(stderr, "%s render: %s\n", prog, diag.msg);
         return EXIT_USAGE;

@@ -38,7 +38,7 @@ typedef struct rp {
     const char *scene_path, *depth, *channel, *out, *png, *heat_steps, *heat_cycles, *heat_error;
     const char *report, *machine;
     int npos, truth, color, dist, json, layers, enc, tracer, sample, inpaint, max_steps;
-    int seen_move, seen_move_rel, seen_rot, seen_enc, seen_srck, seen_dstk, seen_res;
+    int seen_move, seen_move_rel, seen_rot, seen_enc, seen_srck, seen_dstk, seen_res, seen_tracer;
     double truth_tol, move[3], rot[3], srck[4], dstk[4], fov, thickness;
     double qtp[4]; /* lambda_h, lambda_d, gamma_norm, gamma_dist; -1: the default */
     uint32_t dwh[2];
@@ -125,10 +125,11 @@ static int rp_options(rp_t *r, int *quiet, const char *prog, int argc, char **ar
         LT_OPT_SECTION_("tracing:"),
         {.name = "--num", .kind = LT_OPT_ENUM, .dest = &r->enc, .seen = &r->seen_enc,
          .names = r->enc_names, .alias = "--enc", .flags = LT_OPT_DEPRECATED, .help = num_help},
-        LT_OPT_ENUM_("--tracer", &r->tracer, tracer_name,
-                     "the screen-space tracer (default quadtree); the DDA\n"
-                     "(McGuire & Mara) and Hi-Z (Uludag) baselines run on the\n"
-                     "same rays, s1.30 for n64/n32, float32 for f32"),
+        {.name = "--tracer", .kind = LT_OPT_ENUM, .dest = &r->tracer, .seen = &r->seen_tracer,
+         .names = tracer_name,
+         .help = "the screen-space tracer (default quadtree); the DDA\n"
+                 "(McGuire & Mara) and Hi-Z (Uludag) baselines run on the\n"
+                 "same rays, s1.30 for n64/n32, float32 for f32"},
         {.name = "--thickness", .kind = LT_OPT_DOUBLE, .dest = &r->thickness, .meta = "REL",
          .lo = 0.0, .hi = 2.0, .flags = LT_OPT_HI_OPEN,
          .help = "DDA and Hi-Z: relative depth thickness of a pixel, {range} (1/64)"},
@@ -358,6 +359,7 @@ static int rp_settle(rp_t *r, const char *prog)
 {
     lt_scenefile_t *sf = &r->sf;
     const lt_path_info_t *scene_enc;
+    int k;
     lt_diag_t diag;
     if (!lt_meter_available() &&
         (r->heat_cycles != NULL || r->report != NULL || r->machine != NULL)) {
@@ -405,6 +407,13 @@ static int rp_settle(rp_t *r, const char *prog)
         r->color |= sf->rp_color;
         if (r->dist < 0 && sf->rp_distance)
             r->dist = 1;
+        for (k = 0; !r->seen_tracer && sf->rp_tracer[0] != '\0' && tracer_name[k] != NULL; k++)
+            if (strcmp(tracer_name[k], sf->rp_tracer) == 0)
+                r->tracer = k;
+        if (r->qtp[2] < 0.0 && sf->rp_gamma_norm >= 0.0)
+            r->qtp[2] = sf->rp_gamma_norm;
+        if (r->qtp[3] < 0.0 && sf->rp_gamma_dist >= 0.0)
+            r->qtp[3] = sf->rp_gamma_dist;
     }
     if (r->machine == NULL)
         r->machine = sf->machine;
