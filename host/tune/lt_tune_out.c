@@ -349,16 +349,28 @@ static const char *const err_head[LT_TUNE_NFAM] = {
     "wrong % | depth RMSE | max err", "wrong % | rel. err median % | rel99 % | within 1 %",
     "PSNR dB | off > 1/255 %"};
 
-static void err_cells(FILE *f, const lt_tune_point_t *p)
+/* The error cells of a point, separated by sep (" | " in Markdown, "</td><td>" in HTML). */
+static void err_cells(FILE *f, const lt_tune_point_t *p, const char *sep)
 {
     const lt_tune_meas_t *x = &p->full;
     if (p->k.family == 0)
-        fprintf(f, "%.3f | %.3g | %.3g", x->m[LT_M_WRONG], x->m[LT_M_RMSE], x->maxerr);
+        fprintf(f, "%.3f%s%.3g%s%.3g", x->m[LT_M_WRONG], sep, x->m[LT_M_RMSE], sep, x->maxerr);
     else if (p->k.family == 1)
-        fprintf(f, "%.3f | %.3g | %.3g | %.2f", x->m[LT_M_WRONG], x->rel50, x->m[LT_M_REL99],
-                x->within);
+        fprintf(f, "%.3f%s%.3g%s%.3g%s%.2f", x->m[LT_M_WRONG], sep, x->rel50, sep,
+                x->m[LT_M_REL99], sep, x->within);
     else
-        fprintf(f, "%.2f | %.2f", x->m[LT_M_PSNR], x->off);
+        fprintf(f, "%.2f%s%.2f", x->m[LT_M_PSNR], sep, x->off);
+}
+
+/* err_head[fam] with its " | " separators replaced by sep. */
+static void err_header(FILE *f, int fam, const char *sep)
+{
+    const char *s = err_head[fam], *bar;
+    while ((bar = strstr(s, " | ")) != NULL) {
+        fprintf(f, "%.*s%s", (int)(bar - s), s, sep);
+        s = bar + 3;
+    }
+    fputs(s, f);
 }
 
 static void md_picks(FILE *f, const lt_tune_report_t *rep)
@@ -428,7 +440,7 @@ static int write_md(const char *path, const lt_tune_report_t *rep, lt_diag_t *di
                     fprintf(f, "- | ");
                 else
                     fprintf(f, "%.0f | ", p->full.m[LT_M_BYTES]);
-                err_cells(f, p);
+                err_cells(f, p, " | ");
                 fprintf(f, " |\n");
             }
         }
@@ -599,7 +611,7 @@ static void html_fronts(FILE *f, const lt_tune_report_t *rep, size_t *idx)
             fprintf(f, "<h3>%s on %s: %zu points on the front</h3>\n<table><tr><th>configuration"
                        "</th><th>cycles</th><th>cycles/px</th><th>bytes</th><th>",
                     lt_tune_family_names[fam], lt_meter_machine_name(mach), n);
-            html_text(f, err_head[fam]);
+            err_header(f, fam, "</th><th>");
             fprintf(f, "</th></tr>\n");
             for (i = 0; i < n; i++) {
                 const lt_tune_point_t *p = &r->pts[idx[i]];
@@ -614,7 +626,7 @@ static void html_fronts(FILE *f, const lt_tune_report_t *rep, size_t *idx)
                 else
                     fprintf(f, "%.0f", p->full.m[LT_M_BYTES]);
                 fprintf(f, "</td><td>");
-                err_cells(f, p);
+                err_cells(f, p, "</td><td>");
                 fprintf(f, "</td></tr>\n");
             }
             fprintf(f, "</table>\n");
@@ -645,7 +657,9 @@ static void html_picks(FILE *f, const lt_tune_report_t *rep)
         fprintf(f, "</b> on %s. Verification at %u px: %.0f cycles, ",
                 lt_meter_machine_name(pts[k->pick].k.machine), k->verify.res,
                 k->verify.m[LT_M_CYCLES]);
-        err_cells(f, &pts[k->pick]);
+        err_header(f, fam, ", ");
+        fprintf(f, ": ");
+        err_cells(f, &pts[k->pick], ", ");
         fprintf(f, " (%s). Binding constraint: %s.", k->verified ? "meets the budget" : "FAILS the budget",
                 k->binding >= 0 ? lt_metric_names[rep->budget->t[k->binding].metric] : "none");
         if (k->best >= 0) {
@@ -707,7 +721,12 @@ static int write_html(const char *dir, const lt_tune_report_t *rep, lt_diag_t *d
     fprintf(f, "<h2>The fronts</h2>\n");
     html_fronts(f, rep, idx);
     fprintf(f, "<p>Every point (knobs, cycles per phase, bytes, errors, probe figures): "
-               "front.csv, front.json.</p>\n</body></html>\n");
+               "front.csv, front.json.</p>\n<script>window.addEventListener('load', function () {"
+               "var n = 0, i; for (i = 0; i < document.images.length; i++) if "
+               "(!document.images[i].complete || document.images[i].naturalWidth === 0) n++; "
+               "document.body.setAttribute('data-broken-images', String(n)); "
+               "document.body.setAttribute('data-images', String(document.images.length));});"
+               "</script>\n</body></html>\n");
     free(idx);
     return fclose(f) == 0 ? 0 : lt_diag_fail(diag, "%s/report.html: write failed", dir);
 }
