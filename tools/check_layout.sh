@@ -43,7 +43,7 @@ check_includes() {
                 name=${BASH_REMATCH[1]}
                 # files the Makefile generates into $(B)/gen (the machine list) exist only after
                 # a build; they belong to sim/
-                if [[ $label == "host and sim" && " $GENERATED " == *" $name "* ]]; then continue; fi
+                if [[ ($label == "host" || $label == "sim") && " $GENERATED " == *" $name "* ]]; then continue; fi
                 if ! path=$(resolve "$(dirname "$f")" "$name" "${roots[@]}"); then
                     bad "$f: #include \"$name\" resolves nowhere in ${roots[*]}"; v=$((v + 1))
                 elif ! [[ $(realpath --relative-to=. "$path") =~ $allow ]]; then
