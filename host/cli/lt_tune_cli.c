@@ -3,6 +3,7 @@
  * full size, and the outputs (CSV, JSON, Markdown, PNG plot, HTML report, the chosen scene file).
  * Host only; cycles need the simulator build.
  */
+#define _XOPEN_SOURCE 700 /* realpath, readlink */
 #include "cli/lt_tune_cli.h"
 
 #include "cli/lt_cliutil.h"
@@ -27,7 +28,9 @@
 #define MAX_MACH 8
 
 typedef struct tune {
-    const char *input, *family, *budget_text, *out;
+    const char *input, *family, *budget_text, *out, *plan;
+    const char *pos[16];
+    int merge, job, seen_job;
     const char *mach_names[MAX_MACH];
     int nmach_names, npos, jobs, json, quiet, res, probe_res, seen_res, seen_probe;
     double slack;
@@ -99,9 +102,22 @@ static int tune_parse(tune_t *t, int argc, char **argv, const char *prog)
                    "worse in every error and bytes and cheaper by this fraction\n"
                    "of cycles (estimated at full size), {range} (default 0.2)"),
         LT_OPT_FLAG_("--json", &t->json, "the result (front.json's document) on stdout"),
+        LT_OPT_SECTION_("beyond one machine (every configuration at full size, no probes):"),
+        LT_OPT_STR("--plan", "DIR", &t->plan,
+                   "write DIR/jobs.txt (one command per configuration and\n"
+                   "machine, for GNU parallel), DIR/tune.slurm (a Slurm array\n"
+                   "job of the same lines) and DIR/plan.json; measure nothing"),
+        {.name = "--job", .kind = LT_OPT_INT, .dest = &t->job, .seen = &t->seen_job, .meta = "N",
+         .lo = 0, .hi = 100000000,
+         .help = "measure run N of the configurations into --out DIR/run-N.json\n"
+                 "(what a line of jobs.txt does)"},
+        LT_OPT_FLAG_("--merge", &t->merge,
+                     "the arguments are plan folders: join their results\n"
+                     "into the outputs (--out, default DIR/merged); the\n"
+                     "front equals tune --probe-res 0's"),
         LT_OPT_FLAG_("-q", &t->quiet, "quiet: no progress, summary lines only"),
         LT_OPT_END_};
-    lt_opt_cmd_t cmd = {t->who, "SCENE.json|MESH [options]",
+    lt_opt_cmd_t cmd = {t->who, "SCENE.json|MESH [options] | --merge DIR...",
                         "Measure every configuration of a scene's families in the simulator "
                         "(cycles per\nphase, structure bytes) with its error against the "
                         "family's reference, prune\ndominated ones with cheap probes, keep the "
@@ -109,11 +125,19 @@ static int tune_parse(tune_t *t, int argc, char **argv, const char *prog)
                         "cheapest configuration that meets it (docs/tune.md).\n",
                         "Exit: 0 ok, 1 input or runtime error or an impossible budget, 2 usage "
                         "or a bad budget.\n",
-                        opts, &t->input, 1, &t->npos};
+                        opts, t->pos, 16, &t->npos};
+    int rc;
     snprintf(t->who, sizeof t->who, "%s tune", prog);
     snprintf(mhelp, sizeof mhelp, "machine models to tune for, repeatable (default all: %s)",
              lt_meter_machine_names());
-    return lt_opt_parse(&cmd, argc, argv, 2);
+    rc = lt_opt_parse(&cmd, argc, argv, 2);
+    if (rc == LT_OPT_OK && !t->merge && t->npos > 1) {
+        fprintf(stderr, "%s: one input, not %d (%s ...; --merge takes several folders)\n",
+                t->who, t->npos, t->pos[1]);
+        return LT_OPT_USAGE;
+    }
+    t->input = t->npos > 0 ? t->pos[0] : NULL;
+    return rc;
 }
 
 /* --family: comma-separated names or all. 0 or an exit code. */
@@ -506,11 +530,202 @@ static void fixed_layout(char **argv)
     (void)personality((unsigned long)p); /* exec failed: carry on as we were */
 }
 
+/* The budget's picks (verified through the server, started here when the caller has none) and
+ * the outputs. Returns the exit code. */
+static int finish(tune_t *t)
+{
+    lt_diag_t d;
+    lt_tune_report_t rep;
+    int rc = 0;
+    if (t->budget_text != NULL && t->srv == NULL) {
+        char note[256];
+        t->srv = lt_tune_server_start(&t->in, &t->o, note, sizeof note, &d);
+        if (t->srv == NULL) {
+            fprintf(stderr, "%s: %s\n", t->who, d.msg);
+            return EXIT_INPUT;
+        }
+    }
+    if (mkdir_out(t, &d) != 0 || (t->budget_text != NULL && (rc = do_budget(t, &d)) < 0)) {
+        fprintf(stderr, "%s: %s\n", t->who, d.msg);
+        return EXIT_INPUT;
+    }
+    memset(&rep, 0, sizeof rep);
+    rep.title = t->input;
+    rep.in = &t->in;
+    rep.opts = &t->o;
+    rep.res = &t->r;
+    rep.budget = t->budget_text != NULL ? &t->budget : NULL;
+    rep.picks = t->picks;
+    rep.secs = lt_now_s() - t->t0;
+    if (lt_tune_write_outputs(t->out, &rep, &d) != 0) {
+        fprintf(stderr, "%s: %s\n", t->who, d.msg);
+        return EXIT_INPUT;
+    }
+    if (t->json) {
+        char *js = lt_tune_json(&rep);
+        if (js != NULL)
+            puts(js);
+        free(js);
+    } else {
+        printf("outputs   %s/front.csv front.json front.md front.png report.html\n", t->out);
+    }
+    return rc;
+}
+
+/* The options into t->o; the timer. */
+static void settle_opts(tune_t *t)
+{
+    if (!lt_meter_available())
+        fprintf(stderr, "%s: the native build has no cycle model: every cycle count is 0 "
+                        "(build/sim/lanetrace tune measures them)\n", t->who);
+    t->o.res = (uint32_t)t->res;
+    t->o.probe_res = (uint32_t)t->probe_res;
+    t->o.slack = t->slack;
+    t->o.jobs = t->jobs;
+    t->o.progress = progress;
+    g_tune = t;
+    t->t0 = lt_now_s();
+}
+
+/* The plan's facts from the settled options (families as text, machine names, runs). */
+static int plan_facts(tune_t *t, lt_tune_plan_t *p, lt_diag_t *d)
+{
+    lt_tune_point_t *pts = NULL;
+    size_t np = 0;
+    int f, m;
+    memset(p, 0, sizeof *p);
+    if (realpath(t->input, p->input) == NULL)
+        snprintf(p->input, sizeof p->input, "%s", t->input);
+    for (f = 0; f < LT_TUNE_NFAM; f++)
+        if (t->o.families & (1u << f))
+            snprintf(p->families + strlen(p->families), sizeof p->families - strlen(p->families),
+                     "%s%s", p->families[0] ? "," : "", lt_tune_family_names[f]);
+    for (m = 0; m < t->o.nmach; m++)
+        snprintf(p->machines[p->nmach++], 32, "%s", lt_meter_machine_name(t->o.machines[m]));
+    p->res = t->o.res;
+    snprintf(p->q16_note, sizeof p->q16_note, "%s", t->r.q16_note);
+    if (lt_tune_enumerate(t->o.families, t->o.machines, t->o.nmach, p->q16_note[0] != '\0', &pts,
+                          &np, d) != 0)
+        return -1;
+    p->nruns = np > 0 ? (size_t)pts[np - 1].run + 1 : 0;
+    free(pts);
+    return 0;
+}
+
+/* --plan DIR: the job list, the Slurm script, plan.json. */
+static int tune_plan(tune_t *t)
+{
+    lt_tune_plan_t p;
+    lt_diag_t d;
+    char exe[1024];
+    ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
+    exe[n > 0 ? n : 0] = '\0';
+    if (plan_facts(t, &p, &d) != 0 || lt_tune_write_plan(t->plan, exe, &p, &d) != 0) {
+        fprintf(stderr, "%s: %s\n", t->who, d.msg);
+        return EXIT_INPUT;
+    }
+    printf("plan      %zu jobs (configurations x machines of %s at %u px): %s/jobs.txt\n", p.nruns,
+           p.families, p.res, t->plan);
+    printf("run       parallel --jobs 2 < %s/jobs.txt   (or: sbatch %s/tune.slurm)\n", t->plan,
+           t->plan);
+    printf("merge     %s --merge %s [--budget ...]\n", t->who, t->plan);
+    return 0;
+}
+
+/* --job N: measure run N at full size into --out DIR/run-N.json. */
+static int tune_job(tune_t *t)
+{
+    lt_diag_t d;
+    char path[1200];
+    int run = t->job, rc;
+    if (t->seen_probe == 0)
+        t->o.probe_res = 0;
+    if (lt_tune_enumerate(t->o.families, t->o.machines, t->o.nmach, t->r.q16_note[0] != '\0',
+                          &t->r.pts, &t->r.np, &d) != 0) {
+        fprintf(stderr, "%s: %s\n", t->who, d.msg);
+        return EXIT_INPUT;
+    }
+    if (t->r.np == 0 || run > t->r.pts[t->r.np - 1].run) {
+        fprintf(stderr, "%s: --job %d is out of range [0, %d] (the runs of these families and "
+                        "machines)\n", t->who, run, t->r.np ? t->r.pts[t->r.np - 1].run : -1);
+        return EXIT_USAGE;
+    }
+    snprintf(path, sizeof path, "%s/run-%d.json", t->out, run);
+    rc = mkdir_out(t, &d) != 0 ||
+         lt_tune_server_run(t->srv, t->r.pts, t->r.np, &run, 1, 1, 1, NULL, NULL, "job", &d) != 0 ||
+         lt_tune_write_job(path, t->r.pts, t->r.np, run, &d) != 0;
+    if (rc != 0) {
+        fprintf(stderr, "%s: %s\n", t->who, d.msg);
+        return EXIT_INPUT;
+    }
+    if (!t->quiet)
+        printf("job       %d: %s\n", run, path);
+    return 0;
+}
+
+/* --merge DIR...: the plan of the first folder, the results of all, the fronts, the outputs. */
+static int tune_merge(tune_t *t)
+{
+    lt_tune_plan_t p;
+    lt_diag_t d;
+    unsigned char *seen;
+    size_t r, missing = 0, first = 0;
+    int i, rc;
+    if (t->npos < 1 || lt_tune_read_plan(t->pos[0], &p, &d) != 0) {
+        fprintf(stderr, "%s: --merge %s\n", t->who, t->npos < 1 ? "needs plan folders" : d.msg);
+        return t->npos < 1 ? EXIT_USAGE : EXIT_INPUT;
+    }
+    t->input = p.input;
+    t->family = p.families;
+    for (i = 0; i < p.nmach; i++)
+        t->mach_names[i] = p.machines[i];
+    t->nmach_names = p.nmach;
+    t->res = (int)p.res;
+    t->seen_res = t->seen_probe = 1;
+    t->probe_res = 0;
+    if (t->out == NULL) {
+        snprintf(t->outbuf, sizeof t->outbuf, "%s/merged", t->pos[0]);
+        t->out = t->outbuf;
+    }
+    if ((rc = settle_input(t)) != 0 || (rc = settle_family(t)) != 0 ||
+        (rc = settle_machines(t)) != 0 || (rc = settle_budget(t)) != 0)
+        return rc;
+    settle_opts(t);
+    snprintf(t->r.q16_note, sizeof t->r.q16_note, "%s", p.q16_note);
+    seen = calloc(p.nruns ? p.nruns : 1, 1);
+    if (seen == NULL || lt_tune_enumerate(t->o.families, t->o.machines, t->o.nmach,
+                                          p.q16_note[0] != '\0', &t->r.pts, &t->r.np, &d) != 0) {
+        free(seen);
+        fprintf(stderr, "%s: %s\n", t->who, seen == NULL ? "out of memory" : d.msg);
+        return EXIT_INPUT;
+    }
+    for (i = 0; i < t->npos; i++)
+        if (lt_tune_read_results(t->pos[i], t->r.pts, t->r.np, seen, p.nruns, &d) < 0) {
+            free(seen);
+            fprintf(stderr, "%s: %s\n", t->who, d.msg);
+            return EXIT_INPUT;
+        }
+    for (r = 0; r < p.nruns; r++)
+        if (!seen[r] && missing++ == 0)
+            first = r;
+    free(seen);
+    if (missing > 0) {
+        fprintf(stderr, "%s: --merge: %zu of the plan's %zu runs have no result (the first: run "
+                        "%zu, line %zu of %s/jobs.txt)\n", t->who, missing, p.nruns, first,
+                first + 1, t->pos[0]);
+        return EXIT_INPUT;
+    }
+    lt_tune_mark_fronts(t->r.pts, t->r.np);
+    lt_tune_tally(&t->r);
+    if (!t->json)
+        print_summary(t, lt_now_s() - t->t0);
+    return finish(t);
+}
+
 int lt_tune_cli(int argc, char **argv, const char *prog)
 {
     tune_t t;
     lt_diag_t d;
-    lt_tune_report_t rep;
     int rc;
     fixed_layout(argv);
     memset(&t, 0, sizeof t);
@@ -520,54 +735,34 @@ int lt_tune_cli(int argc, char **argv, const char *prog)
     rc = tune_parse(&t, argc, argv, prog);
     if (rc != LT_OPT_OK)
         return rc == LT_OPT_HELP ? 0 : EXIT_USAGE;
-    if ((rc = settle_input(&t)) != 0 || (rc = settle_family(&t)) != 0 ||
-        (rc = settle_machines(&t)) != 0 || (rc = settle_budget(&t)) != 0)
-        return rc;
-    if (!lt_meter_available())
-        fprintf(stderr, "%s: the native build has no cycle model: every cycle count is 0 "
-                        "(build/sim/lanetrace tune measures them)\n", t.who);
-    t.o.res = (uint32_t)t.res;
-    t.o.probe_res = (uint32_t)t.probe_res;
-    t.o.slack = t.slack;
-    t.o.jobs = t.jobs;
-    t.o.progress = progress;
-    g_tune = &t;
-    t.t0 = lt_now_s();
-    t.srv = lt_tune_server_start(&t.in, &t.o, t.r.q16_note, sizeof t.r.q16_note, &d);
-    if (t.srv == NULL || lt_tune_search(t.srv, &t.o, &t.r, &d) != 0) {
-        fprintf(stderr, "%s: %s\n", t.who, d.msg);
-        lt_tune_server_stop(t.srv);
-        return EXIT_INPUT;
-    }
-    if (!t.json)
-        print_summary(&t, lt_now_s() - t.t0);
-    rc = 0;
-    if (mkdir_out(&t, &d) != 0 || (t.budget_text != NULL && (rc = do_budget(&t, &d)) < 0)) {
-        fprintf(stderr, "%s: %s\n", t.who, d.msg);
-        lt_tune_result_free(&t.r);
-        lt_tune_server_stop(t.srv);
-        return EXIT_INPUT;
+    if (t.merge) {
+        rc = tune_merge(&t);
+    } else {
+        if ((rc = settle_input(&t)) != 0 || (rc = settle_family(&t)) != 0 ||
+            (rc = settle_machines(&t)) != 0 || (rc = settle_budget(&t)) != 0)
+            return rc;
+        settle_opts(&t);
+        if (t.plan != NULL || t.seen_job)
+            t.o.probe_res = 0; /* a plan measures every configuration at full size */
+        t.srv = lt_tune_server_start(&t.in, &t.o, t.r.q16_note, sizeof t.r.q16_note, &d);
+        if (t.srv == NULL) {
+            fprintf(stderr, "%s: %s\n", t.who, d.msg);
+            return EXIT_INPUT;
+        }
+        if (t.plan != NULL)
+            rc = tune_plan(&t);
+        else if (t.seen_job)
+            rc = tune_job(&t);
+        else if (lt_tune_search(t.srv, &t.o, &t.r, &d) != 0) {
+            fprintf(stderr, "%s: %s\n", t.who, d.msg);
+            rc = EXIT_INPUT;
+        } else {
+            if (!t.json)
+                print_summary(&t, lt_now_s() - t.t0);
+            rc = finish(&t);
+        }
     }
     lt_tune_server_stop(t.srv);
-    memset(&rep, 0, sizeof rep);
-    rep.title = t.input;
-    rep.in = &t.in;
-    rep.opts = &t.o;
-    rep.res = &t.r;
-    rep.budget = t.budget_text != NULL ? &t.budget : NULL;
-    rep.picks = t.picks;
-    rep.secs = lt_now_s() - t.t0;
-    if (lt_tune_write_outputs(t.out, &rep, &d) != 0) {
-        fprintf(stderr, "%s: %s\n", t.who, d.msg);
-        rc = EXIT_INPUT;
-    } else if (t.json) {
-        char *js = lt_tune_json(&rep);
-        if (js != NULL)
-            puts(js);
-        free(js);
-    } else {
-        printf("outputs   %s/front.csv front.json front.md front.png report.html\n", t.out);
-    }
     lt_tune_result_free(&t.r);
     return rc;
 }

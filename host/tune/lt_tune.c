@@ -239,11 +239,15 @@ typedef struct req {
     char img[1024]; /* image prefix, "" for none */
 } req_t;
 
-struct lt_tune_server {
+/* One server process per size (probe, full), each forked from the caller's state before any
+ * context exists, so the full-size measurements do not depend on whether probes run. */
+typedef struct one_server {
     pid_t pid;
     int req_fd, res_fd;
-    lt_tune_point_t *pts; /* the server's own enumeration (same as the caller's) */
-    size_t np;
+} one_server_t;
+
+struct lt_tune_server {
+    one_server_t s[2]; /* [0] probe size (pid 0: none), [1] full size */
 };
 
 static int write_all(int fd, const void *buf, size_t n)
@@ -331,8 +335,8 @@ static void reap(child_t *ch, int *nch, lt_tune_point_t *pts, size_t np, int fd,
 }
 
 /* The server's loop: one child per request; at most 64 at once (the caller keeps --jobs). */
-static void server_loop(lt_tune_ctx_t *c[2], lt_tune_point_t *pts, size_t np, int rq, int fd,
-                        uint32_t res[2])
+static void server_loop(lt_tune_ctx_t *c, int full, lt_tune_point_t *pts, size_t np, int rq,
+                        int fd, uint32_t res[2])
 {
     child_t ch[64];
     int nch = 0;
@@ -342,14 +346,14 @@ static void server_loop(lt_tune_ctx_t *c[2], lt_tune_point_t *pts, size_t np, in
         reap(ch, &nch, pts, np, fd, res, 0);
         if (nch == 64)
             reap(ch, &nch, pts, np, fd, res, 1);
-        if (c[q.full] == NULL) {
+        if (q.full != full) {
             send_run(fd, pts, np, q.run, q.full, res[q.full], "no context for this size");
             continue;
         }
         pid = fork();
         if (pid == 0) {
             close(rq);
-            lt_tune_eval_run(c[q.full], pts, np, q.run, q.full, q.img[0] ? q.img : NULL);
+            lt_tune_eval_run(c, pts, np, q.run, q.full, q.img[0] ? q.img : NULL);
             send_run(fd, pts, np, q.run, q.full, res[q.full], NULL);
             _exit(0);
         }
@@ -365,10 +369,12 @@ static void server_loop(lt_tune_ctx_t *c[2], lt_tune_point_t *pts, size_t np, in
         reap(ch, &nch, pts, np, fd, res, 1);
 }
 
-/* The server process: contexts, enumeration, hello (the q16 note or the load error), loop. */
-static void server_main(const lt_tune_input_t *in, const lt_tune_opts_t *o, int rq, int fd)
+/* A server process: its context (full or probe size), the enumeration, hello (the q16 note or the
+ * load error), the loop. */
+static void server_main(const lt_tune_input_t *in, const lt_tune_opts_t *o, int full, int rq,
+                        int fd)
 {
-    lt_tune_ctx_t *c[2] = {NULL, NULL};
+    lt_tune_ctx_t *c;
     lt_tune_point_t *pts = NULL;
     size_t np = 0;
     uint32_t res[2];
@@ -378,15 +384,13 @@ static void server_main(const lt_tune_input_t *in, const lt_tune_opts_t *o, int 
     hello.idx = REC_HELLO;
     res[0] = o->probe_res;
     res[1] = o->res;
-    c[1] = lt_tune_ctx_new(in, o->families, o->res, &d);
-    if (c[1] != NULL && o->probe_res > 0 && o->probe_res < o->res)
-        c[0] = lt_tune_ctx_new(in, o->families, o->probe_res, &d);
-    if (c[1] == NULL || (o->probe_res > 0 && o->probe_res < o->res && c[0] == NULL)) {
+    c = lt_tune_ctx_new(in, o->families, res[full], &d);
+    if (c == NULL) {
         snprintf(hello.m.msg, sizeof hello.m.msg, "%s", d.msg);
         (void)write_all(fd, &hello, sizeof hello);
         _exit(1);
     }
-    (void)lt_tune_ctx_q16_refused(c[1], hello.m.msg, sizeof hello.m.msg);
+    (void)lt_tune_ctx_q16_refused(c, hello.m.msg, sizeof hello.m.msg);
     if (lt_tune_enumerate(o->families, o->machines, o->nmach, hello.m.msg[0] != '\0', &pts, &np,
                           &d) != 0) {
         snprintf(hello.m.msg, sizeof hello.m.msg, "%s", d.msg);
@@ -395,44 +399,70 @@ static void server_main(const lt_tune_input_t *in, const lt_tune_opts_t *o, int 
     }
     hello.m.ok = 1;
     (void)write_all(fd, &hello, sizeof hello);
-    server_loop(c, pts, np, rq, fd, res);
+    server_loop(c, full, pts, np, rq, fd, res);
     _exit(0);
+}
+
+static void one_stop(one_server_t *s)
+{
+    if (s->pid <= 0)
+        return;
+    close(s->req_fd);
+    close(s->res_fd);
+    waitpid(s->pid, NULL, 0);
+    s->pid = 0;
+}
+
+/* Fork one server; its hello into *hello. Returns 0 or -1 with a message. */
+static int one_start(one_server_t *s, const lt_tune_input_t *in, const lt_tune_opts_t *o,
+                     int full, rec_t *hello, lt_diag_t *diag)
+{
+    int rq[2], rs[2];
+    if (pipe(rq) != 0 || pipe(rs) != 0)
+        return lt_diag_fail(diag, "cannot start the measurement server: %s", strerror(errno));
+    fflush(NULL);
+    s->pid = fork();
+    if (s->pid < 0)
+        return lt_diag_fail(diag, "cannot start the measurement server: %s", strerror(errno));
+    if (s->pid == 0) {
+        close(rq[1]);
+        close(rs[0]);
+        server_main(in, o, full, rq[0], rs[1]);
+    }
+    close(rq[0]);
+    close(rs[1]);
+    s->req_fd = rq[1];
+    s->res_fd = rs[0];
+    if (read_all(s->res_fd, hello, sizeof *hello) != 1 || hello->idx != REC_HELLO || !hello->m.ok) {
+        lt_diag_fail(diag, "%s", hello->idx == REC_HELLO && hello->m.msg[0] ? hello->m.msg
+                                  : "the measurement server did not start");
+        one_stop(s);
+        return -1;
+    }
+    return 0;
 }
 
 lt_tune_server_t *lt_tune_server_start(const lt_tune_input_t *in, const lt_tune_opts_t *o,
                                        char *q16_note, size_t n, lt_diag_t *diag)
 {
     lt_tune_server_t *s = calloc(1, sizeof *s);
-    int rq[2], rs[2];
     rec_t hello;
-    if (s == NULL || pipe(rq) != 0 || pipe(rs) != 0) {
-        free(s);
-        lt_diag_fail(diag, "cannot start the measurement server: %s", strerror(errno));
+    if (s == NULL) {
+        lt_diag_fail(diag, "out of memory");
         return NULL;
     }
-    fflush(NULL);
-    s->pid = fork();
-    if (s->pid < 0) {
-        lt_diag_fail(diag, "cannot start the measurement server: %s", strerror(errno));
+    memset(&hello, 0, sizeof hello);
+    /* the full-size server first: forked from the same state whether probes run or not */
+    if (one_start(&s->s[1], in, o, 1, &hello, diag) != 0) {
         free(s);
-        return NULL;
-    }
-    if (s->pid == 0) {
-        close(rq[1]);
-        close(rs[0]);
-        server_main(in, o, rq[0], rs[1]);
-    }
-    close(rq[0]);
-    close(rs[1]);
-    s->req_fd = rq[1];
-    s->res_fd = rs[0];
-    if (read_all(s->res_fd, &hello, sizeof hello) != 1 || hello.idx != REC_HELLO || !hello.m.ok) {
-        lt_diag_fail(diag, "%s", hello.idx == REC_HELLO && hello.m.msg[0] ? hello.m.msg
-                                 : "the measurement server did not start");
-        lt_tune_server_stop(s);
         return NULL;
     }
     snprintf(q16_note, n, "%s", hello.m.msg);
+    if (o->probe_res > 0 && o->probe_res < o->res &&
+        one_start(&s->s[0], in, o, 0, &hello, diag) != 0) {
+        lt_tune_server_stop(s);
+        return NULL;
+    }
     return s;
 }
 
@@ -440,9 +470,8 @@ void lt_tune_server_stop(lt_tune_server_t *s)
 {
     if (s == NULL)
         return;
-    close(s->req_fd);
-    close(s->res_fd);
-    waitpid(s->pid, NULL, 0);
+    one_stop(&s->s[0]);
+    one_stop(&s->s[1]);
     free(s);
 }
 
@@ -452,8 +481,11 @@ int lt_tune_server_run(lt_tune_server_t *s, lt_tune_point_t *pts, size_t np, con
                        const char *stage, lt_diag_t *diag)
 {
     size_t sent = 0, done = 0;
+    one_server_t *os = &s->s[full ? 1 : 0];
     req_t q;
     rec_t rec;
+    if (os->pid <= 0)
+        return lt_diag_fail(diag, "no measurement server for the %s size", full ? "full" : "probe");
     memset(&q, 0, sizeof q);
     q.full = full;
     if (img_prefix != NULL)
@@ -463,10 +495,10 @@ int lt_tune_server_run(lt_tune_server_t *s, lt_tune_point_t *pts, size_t np, con
     while (done < nruns) {
         while (sent < nruns && sent - done < (size_t)jobs) {
             q.run = runs[sent++];
-            if (write_all(s->req_fd, &q, sizeof q) != 0)
+            if (write_all(os->req_fd, &q, sizeof q) != 0)
                 return lt_diag_fail(diag, "the measurement server stopped");
         }
-        if (read_all(s->res_fd, &rec, sizeof rec) != 1)
+        if (read_all(os->res_fd, &rec, sizeof rec) != 1)
             return lt_diag_fail(diag, "the measurement server stopped");
         if (rec.idx >= 0 && (size_t)rec.idx < np) {
             if (full)

@@ -235,6 +235,44 @@ char *lt_tune_json(const lt_tune_report_t *rep);
 int lt_tune_write_scene(const char *path, const lt_tune_input_t *in, const lt_tune_point_t *p,
                         uint32_t res, lt_diag_t *diag);
 
+/* A measurement as JSON (front.json's "full"/"probe" objects) and back: numbers print so that
+ * they read back bit for bit (cJSON prints %.17g when %.15g does not round-trip). */
+struct cJSON;
+struct cJSON *lt_tune_meas_json(const lt_tune_meas_t *x);
+int lt_tune_meas_from_json(const struct cJSON *o, lt_tune_meas_t *x);
+
+/* ---- beyond one machine: plans, jobs, merges (lt_tune_dist.c) -------------------------------- */
+
+/* What a plan fixes: the input, the families and machines (by name) and the size. Every job and
+ * the merge enumerate the same configurations from it. */
+typedef struct lt_tune_plan {
+    char input[1024];       /* absolute path of the input as given to tune */
+    char families[64];      /* --family text ("object,screen,shadows") */
+    char machines[8][32];
+    int nmach;
+    uint32_t res;
+    char q16_note[256];     /* why s15.16 was left out ("" if not) */
+    size_t nruns;
+} lt_tune_plan_t;
+
+/* DIR/plan.json, DIR/jobs.txt (one command per run: a configuration - for shadows its group of
+ * eight points - on one machine, for GNU parallel), DIR/tune.slurm (the same as a Slurm array job)
+ * and DIR/results/. exe: the lanetrace binary (absolute). Returns 0 or -1 with a message. */
+int lt_tune_write_plan(const char *dir, const char *exe, const lt_tune_plan_t *p, lt_diag_t *diag);
+
+/* Read DIR/plan.json. Returns 0 or -1 with a message naming the file. */
+int lt_tune_read_plan(const char *dir, lt_tune_plan_t *p, lt_diag_t *diag);
+
+/* One job's result: the full measurements of run's points to path (JSON). Returns 0 or -1. */
+int lt_tune_write_job(const char *path, const lt_tune_point_t *pts, size_t np, int run,
+                      lt_diag_t *diag);
+
+/* Every run-*.json of DIR/results (or of DIR itself) into the full measurements of pts (each
+ * point checked against its knobs' text); seen[run] = 1 for each run read. Returns the number of
+ * files read, or -1 with a message naming the file. */
+long lt_tune_read_results(const char *dir, lt_tune_point_t *pts, size_t np, unsigned char *seen,
+                          size_t nruns, lt_diag_t *diag);
+
 #ifdef __cplusplus
 }
 #endif

@@ -3,6 +3,7 @@
  * cycle model charging every op (lt_meter), and compared with its family's reference, which is
  * computed once per context. Host only.
  */
+#define _XOPEN_SOURCE 600 /* makecontext, swapcontext */
 #include "tune/lt_tune.h"
 
 #include "cli/lt_reproject_cli.h"
@@ -20,6 +21,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <ucontext.h>
 #include <unistd.h>
 
 #define MAX_LAYERS 4
@@ -335,23 +337,28 @@ int lt_tune_ctx_q16_refused(const lt_tune_ctx_t *c, char *why, size_t n)
 
 /* ---- evaluation ---------------------------------------------------------------------------- */
 
-/* The anchor of the stack window (a local of lt_tune_eval_run): see machine_init. */
-static uintptr_t stack_anchor;
+/* Measurements run on a stack of their own (eval_stack, switched to with swapcontext), registered
+ * with the cycle model at a fixed simulated address: the kernels' packets, hits and traversal
+ * stacks live there, and memory the model has no region for is charged at its real address, so on
+ * the process stack the cycles would depend on the caller's depth and on the size of the
+ * environment (frames realigned to 64 bytes move with it): a worker, the verification and a
+ * --job under GNU parallel would disagree by a few cycles. */
+#define EVAL_STACK (8u << 20)
+static union {
+    double align;
+    unsigned char b[EVAL_STACK + 64];
+} eval_stack_mem;
+static unsigned char *eval_stack; /* 64-byte aligned start inside eval_stack_mem */
 
-/* The machine, and the stack below lt_tune_eval_run registered as a simulator region: the
- * kernels' packets, hits and traversal stacks live there, and unregistered memory is charged at
- * its real address, so the cycles would depend on how deep the caller's stack is (in a worker,
- * in the verification, in a --job). With the window at a fixed simulated address every caller
- * gets the same cycles. */
+/* The machine and the measurement stack as a region. */
 static int machine_init(const lt_tune_knobs_t *k, lt_tune_meas_t *m)
 {
     lt_diag_t d;
-    const size_t window = (size_t)1 << 20;
     if (lt_meter_init(lt_meter_machine_name(k->machine), NULL, NULL, &d) != 0) {
         snprintf(m->msg, sizeof m->msg, "%s", d.msg);
         return -1;
     }
-    lt_meter_region((const void *)(stack_anchor - window), window, 0x70000000u);
+    lt_meter_region(eval_stack, EVAL_STACK, 0x70000000u);
     return 0;
 }
 
@@ -613,13 +620,11 @@ static void eval_shadows(lt_tune_ctx_t *c, lt_tune_point_t *pts, size_t np, int 
     rm_dir_pngs(dir);
 }
 
-void lt_tune_eval_run(lt_tune_ctx_t *c, lt_tune_point_t *pts, size_t np, int run, int full,
-                      const char *img_prefix)
+static void eval_run(lt_tune_ctx_t *c, lt_tune_point_t *pts, size_t np, int run, int full,
+                     const char *img_prefix)
 {
     lt_tune_point_t *first = NULL;
-    volatile char anchor = 0;
     size_t i;
-    stack_anchor = (uintptr_t)&anchor;
     for (i = 0; i < np; i++)
         if (pts[i].run == run) {
             meas_clear(full ? &pts[i].full : &pts[i].probe, c->res);
@@ -646,4 +651,41 @@ void lt_tune_eval_run(lt_tune_ctx_t *c, lt_tune_point_t *pts, size_t np, int run
             eval_screen(c, first, m, img_prefix != NULL ? img : NULL);
         m->secs = now_s() - t0;
     }
+}
+
+static struct {
+    lt_tune_ctx_t *c;
+    lt_tune_point_t *pts;
+    size_t np;
+    int run, full;
+    const char *img_prefix;
+} eval_args;
+static ucontext_t uc_caller, uc_eval;
+
+static void eval_trampoline(void)
+{
+    eval_run(eval_args.c, eval_args.pts, eval_args.np, eval_args.run, eval_args.full,
+             eval_args.img_prefix);
+}
+
+void lt_tune_eval_run(lt_tune_ctx_t *c, lt_tune_point_t *pts, size_t np, int run, int full,
+                      const char *img_prefix)
+{
+    eval_stack = eval_stack_mem.b + ((64u - (uintptr_t)eval_stack_mem.b % 64u) % 64u);
+    eval_args.c = c;
+    eval_args.pts = pts;
+    eval_args.np = np;
+    eval_args.run = run;
+    eval_args.full = full;
+    eval_args.img_prefix = img_prefix;
+    if (getcontext(&uc_eval) != 0) {
+        eval_trampoline(); /* no context switching: on this stack */
+        return;
+    }
+    uc_eval.uc_stack.ss_sp = eval_stack;
+    uc_eval.uc_stack.ss_size = EVAL_STACK;
+    uc_eval.uc_link = &uc_caller;
+    makecontext(&uc_eval, eval_trampoline, 0);
+    if (swapcontext(&uc_caller, &uc_eval) != 0)
+        eval_trampoline();
 }

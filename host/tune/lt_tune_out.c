@@ -162,7 +162,7 @@ static void jnum(cJSON *o, const char *k, double v)
         cJSON_AddNumberToObject(o, k, v);
 }
 
-static cJSON *meas_json(const lt_tune_meas_t *x)
+cJSON *lt_tune_meas_json(const lt_tune_meas_t *x)
 {
     cJSON *o = cJSON_CreateObject(), *mm, *ph;
     int m, i;
@@ -184,6 +184,44 @@ static cJSON *meas_json(const lt_tune_meas_t *x)
         jnum(ph, phase_names[i], x->phase[i]);
     jnum(o, "host_s", x->secs);
     return o;
+}
+
+/* A number member (null: NaN); missing: NaN. */
+static double jget(const cJSON *o, const char *k)
+{
+    const cJSON *x = cJSON_GetObjectItemCaseSensitive(o, k);
+    return cJSON_IsNumber(x) ? x->valuedouble : (double)NAN;
+}
+
+int lt_tune_meas_from_json(const cJSON *o, lt_tune_meas_t *x)
+{
+    const cJSON *mm, *ph, *ok, *err;
+    int m, i;
+    memset(x, 0, sizeof *x);
+    if (!cJSON_IsObject(o) || !cJSON_IsNumber(cJSON_GetObjectItemCaseSensitive(o, "res")))
+        return -1;
+    x->res = (uint32_t)jget(o, "res");
+    ok = cJSON_GetObjectItemCaseSensitive(o, "ok");
+    x->ok = cJSON_IsTrue(ok);
+    if (!x->ok) {
+        err = cJSON_GetObjectItemCaseSensitive(o, "error");
+        snprintf(x->msg, sizeof x->msg, "%s", cJSON_IsString(err) ? err->valuestring : "failed");
+        return 0;
+    }
+    mm = cJSON_GetObjectItemCaseSensitive(o, "metrics");
+    ph = cJSON_GetObjectItemCaseSensitive(o, "phases");
+    if (!cJSON_IsObject(mm) || !cJSON_IsObject(ph))
+        return -1;
+    for (m = 0; m < LT_M__COUNT; m++)
+        x->m[m] = jget(mm, lt_metric_names[m]);
+    x->maxerr = jget(mm, "maxerr");
+    x->rel50 = jget(mm, "rel50");
+    x->within = jget(mm, "within1");
+    x->off = jget(mm, "off");
+    for (i = 0; i < LT_PH__COUNT; i++)
+        x->phase[i] = jget(ph, phase_names[i]);
+    x->secs = jget(o, "host_s");
+    return 0;
 }
 
 static cJSON *knobs_json(const lt_tune_knobs_t *k)
@@ -225,9 +263,9 @@ static cJSON *point_json(const lt_tune_report_t *rep, size_t i)
     cJSON_AddStringToObject(o, "status", p->full.ok ? "full"
                                          : (p->pruned && p->probe.ok ? "pruned" : "failed"));
     if (p->probe.res != 0)
-        cJSON_AddItemToObject(o, "probe", meas_json(&p->probe));
+        cJSON_AddItemToObject(o, "probe", lt_tune_meas_json(&p->probe));
     if (p->full.res != 0)
-        cJSON_AddItemToObject(o, "full", meas_json(&p->full));
+        cJSON_AddItemToObject(o, "full", lt_tune_meas_json(&p->full));
     cJSON_AddBoolToObject(o, "front", p->front);
     cJSON_AddBoolToObject(o, "pick", is_pick(rep, i));
     return o;
@@ -251,7 +289,7 @@ static cJSON *picks_json(const lt_tune_report_t *rep)
         if (k->pick >= 0) {
             cJSON_AddNumberToObject(o, "id", (double)k->pick);
             cJSON_AddItemToObject(o, "knobs", knobs_json(&pts[k->pick].k));
-            cJSON_AddItemToObject(o, "verification", meas_json(&k->verify));
+            cJSON_AddItemToObject(o, "verification", lt_tune_meas_json(&k->verify));
             cJSON_AddBoolToObject(o, "verified", k->verified);
             if (k->binding >= 0)
                 cJSON_AddStringToObject(o, "binding", lt_metric_names[rep->budget->t[k->binding].metric]);

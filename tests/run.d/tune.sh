@@ -114,3 +114,29 @@ elif [ "${CI:-}" = "true" ]; then
 else
     echo "SKIP tune report in headless Chromium: chromium not installed (make deps installs it)"
 fi
+
+# beyond one machine: --plan, GNU parallel on local jobs, --merge == the in-process tune
+if command -v parallel >/dev/null 2>&1; then
+    "$LT" tune scenes/teapot.obj --family object,screen --machine lrb16 --res 32 --plan "$TU/plan" \
+        >"$TU/plan.txt" 2>&1
+    check "tune --plan writes jobs.txt ($(wc -l <"$TU/plan/jobs.txt" 2>/dev/null) lines), tune.slurm, plan.json" \
+        test -s "$TU/plan/jobs.txt" -a -s "$TU/plan/tune.slurm" -a -s "$TU/plan/plan.json"
+    check "tune.slurm is an array job over the lines of jobs.txt" \
+        grep -q "^#SBATCH --array=0-$(($(wc -l <"$TU/plan/jobs.txt") - 1))\$" "$TU/plan/tune.slurm"
+    parallel --will-cite --jobs 2 <"$TU/plan/jobs.txt" >"$TU/parallel.txt" 2>&1
+    check "GNU parallel runs every job of the plan (exit $?)" \
+        test "$(ls "$TU/plan/results" | grep -c '^run-')" -eq "$(wc -l <"$TU/plan/jobs.txt")"
+    "$LT" tune --merge "$TU/plan" --out "$TU/merged" -q >"$TU/merge.txt" 2>&1
+    check "tune --merge exits 0" test $? -eq 0
+    "$LT" tune scenes/teapot.obj --family object,screen --machine lrb16 --res 32 --probe-res 0 \
+        --jobs 2 --out "$TU/inproc" -q >/dev/null 2>&1
+    check "plan + GNU parallel + merge == the in-process tune, every point and front ($(tu_py same "$TU/inproc/front.json" "$TU/merged/front.json" 2>&1))" \
+        tu_py same "$TU/inproc/front.json" "$TU/merged/front.json"
+    rm -f "$TU/plan/results/run-3.json"
+    tu_expect "tune --merge with a missing result names the run" 1 "1 of the plan's" \
+        "$LT" tune --merge "$TU/plan" --out "$TU/merged2"
+elif [ "${CI:-}" = "true" ]; then
+    ko "GNU parallel missing under CI (tools/deps.sh installs it)"
+else
+    echo "SKIP tune --plan/--merge with GNU parallel: parallel not installed (make deps installs it)"
+fi
