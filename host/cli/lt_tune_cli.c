@@ -411,7 +411,7 @@ static void print_pick(const tune_t *t, int f)
 {
     const lt_tune_pick_t *k = &t->picks[f];
     const lt_tune_point_t *pts = t->r.pts;
-    char kt[160], v[64];
+    char kt[160], v[160];
     int j;
     lt_tune_knobs_text(&pts[k->pick].k, kt, sizeof kt);
     printf("pick      %s: %s on %s\n", lt_tune_family_names[f], kt,
@@ -424,9 +424,9 @@ static void print_pick(const tune_t *t, int f)
                t->budget.t[j].ge ? ">=" : "<=", t->budget.t[j].bound);
     }
     printf(": %s\n", k->verified ? "meets the budget" : "FAILS the budget");
+    lt_budget_binding_text(&t->budget, k->binding, v, sizeof v);
     printf("binding   %s: %s\n", lt_tune_family_names[f],
-           k->binding >= 0 ? lt_metric_names[t->budget.t[k->binding].metric]
-                           : "none (the cheapest configuration measured meets the budget)");
+           k->binding == -1 ? "none (the cheapest configuration measured meets the budget)" : v);
     if (k->best >= 0) {
         double cb = pts[k->best].full.m[LT_M_CYCLES], cp = k->verify.m[LT_M_CYCLES];
         lt_tune_knobs_text(&pts[k->best].k, kt, sizeof kt);

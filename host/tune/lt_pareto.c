@@ -233,5 +233,32 @@ int lt_budget_binding(const lt_budget_t *b, const double *vals, size_t n,
             bind = i;
         }
     }
+    if (bind < 0 && b->n > 1) {
+        /* no term alone: do they bind together (a cheaper row meets none of them)? */
+        lt_budget_t none;
+        long p;
+        memset(&none, 0, sizeof none);
+        p = lt_budget_pick(&none, vals, n, include);
+        if (p >= 0 && vals[(size_t)p * LT_M__COUNT + LT_M_CYCLES] < c0)
+            bind = LT_BUDGET_JOINT;
+    }
     return bind;
+}
+
+void lt_budget_binding_text(const lt_budget_t *b, int binding, char *buf, size_t n)
+{
+    size_t len = 0;
+    int i;
+    if (binding >= 0 && binding < b->n) {
+        snprintf(buf, n, "%s", lt_metric_names[b->t[binding].metric]);
+    } else if (binding == LT_BUDGET_JOINT) {
+        buf[0] = '\0';
+        for (i = 0; i < b->n && len < n; i++)
+            len += (size_t)snprintf(buf + len, n - len, "%s%s", i ? ", " : "",
+                                    lt_metric_names[b->t[i].metric]);
+        if (len < n)
+            snprintf(buf + len, n - len, " together (no bound alone)");
+    } else {
+        snprintf(buf, n, "none");
+    }
 }

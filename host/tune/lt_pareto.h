@@ -84,8 +84,13 @@ long lt_budget_pick(const lt_budget_t *b, const double *vals, size_t n,
                     const unsigned char *include);
 
 /* The binding term of the pick: the term whose removal lets a row with fewer cycles meet the rest
- * (of several, the one whose removal saves the most cycles). Returns its index, or -1 when none
- * binds (the cheapest row overall meets the budget). */
+ * (of several, the one whose removal saves the most cycles). Returns its index; LT_BUDGET_JOINT
+ * when no term alone binds but the terms do together (a cheaper row breaks several of them);
+ * -1 when none binds (the cheapest row overall meets the budget). */
+#define LT_BUDGET_JOINT (-2)
+
+/* A binding as text: the metric's name, "wrong, rel99 together", or "none". */
+void lt_budget_binding_text(const lt_budget_t *b, int binding, char *buf, size_t n);
 int lt_budget_binding(const lt_budget_t *b, const double *vals, size_t n,
                       const unsigned char *include, long pick);
 

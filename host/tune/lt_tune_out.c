@@ -291,10 +291,13 @@ static cJSON *picks_json(const lt_tune_report_t *rep)
             cJSON_AddItemToObject(o, "knobs", knobs_json(&pts[k->pick].k));
             cJSON_AddItemToObject(o, "verification", lt_tune_meas_json(&k->verify));
             cJSON_AddBoolToObject(o, "verified", k->verified);
-            if (k->binding >= 0)
-                cJSON_AddStringToObject(o, "binding", lt_metric_names[rep->budget->t[k->binding].metric]);
-            else
+            if (k->binding != -1) {
+                char bt2[160];
+                lt_budget_binding_text(rep->budget, k->binding, bt2, sizeof bt2);
+                cJSON_AddStringToObject(o, "binding", bt2);
+            } else {
                 cJSON_AddNullToObject(o, "binding");
+            }
             cJSON_AddStringToObject(o, "scene", k->scene);
         } else {
             cJSON_AddNullToObject(o, "id");
@@ -414,7 +417,7 @@ static void err_header(FILE *f, int fam, const char *sep)
 static void md_picks(FILE *f, const lt_tune_report_t *rep)
 {
     const lt_tune_point_t *pts = rep->res->pts;
-    char bt[512], kt[160];
+    char bt[512], kt[160], bind[160];
     int fam;
     lt_budget_text(rep->budget, bt, sizeof bt);
     fprintf(f, "\n## Picks for the budget `%s`\n\n", bt);
@@ -430,7 +433,7 @@ static void md_picks(FILE *f, const lt_tune_report_t *rep)
         fprintf(f, "- %s: **%s on %s**, %.0f cycles verified at %u px (%s); binding: %s; ",
                 lt_tune_family_names[fam], kt, lt_meter_machine_name(pts[k->pick].k.machine),
                 k->verify.m[LT_M_CYCLES], k->verify.res, k->verified ? "meets the budget" : "FAILS",
-                k->binding >= 0 ? lt_metric_names[rep->budget->t[k->binding].metric] : "none");
+                (lt_budget_binding_text(rep->budget, k->binding, bind, sizeof bind), bind));
         if (k->best >= 0)
             fprintf(f, "%.0f cycles saved against the most accurate configuration (%.0f)",
                     pts[k->best].full.m[LT_M_CYCLES] - k->verify.m[LT_M_CYCLES],
@@ -674,7 +677,7 @@ static void html_fronts(FILE *f, const lt_tune_report_t *rep, size_t *idx)
 static void html_picks(FILE *f, const lt_tune_report_t *rep)
 {
     const lt_tune_point_t *pts = rep->res->pts;
-    char bt[512], kt[160];
+    char bt[512], kt[160], bind[160];
     int fam;
     lt_budget_text(rep->budget, bt, sizeof bt);
     fprintf(f, "<h2>The pick for the budget <code>");
@@ -699,7 +702,7 @@ static void html_picks(FILE *f, const lt_tune_report_t *rep)
         fprintf(f, ": ");
         err_cells(f, &pts[k->pick], ", ");
         fprintf(f, " (%s). Binding constraint: %s.", k->verified ? "meets the budget" : "FAILS the budget",
-                k->binding >= 0 ? lt_metric_names[rep->budget->t[k->binding].metric] : "none");
+                (lt_budget_binding_text(rep->budget, k->binding, bind, sizeof bind), bind));
         if (k->best >= 0) {
             lt_tune_knobs_text(&pts[k->best].k, kt, sizeof kt);
             fprintf(f, " Most accurate: ");

@@ -197,6 +197,10 @@ static void test_budget_pick(void **state)
     assert_int_equal(lt_budget_parse("cycles<=1e9", &b, &d), 0);
     assert_int_equal(lt_budget_pick(&b, v, 5, inc), 3);
     assert_int_equal(lt_budget_binding(&b, v, 5, inc, 3), -1); /* nothing binds */
+    /* row 3 breaks both wrong and rmse: neither alone binds, together they do */
+    assert_int_equal(lt_budget_parse("wrong<=0.5%,rmse<=1e-4", &b, &d), 0);
+    assert_int_equal(lt_budget_pick(&b, v, 5, inc), 2);
+    assert_int_equal(lt_budget_binding(&b, v, 5, inc, 2), LT_BUDGET_JOINT);
     assert_int_equal(lt_budget_parse("wrong<=0.01%,cycles<=800", &b, &d), 0);
     assert_int_equal(lt_budget_pick(&b, v, 5, inc), -1); /* impossible */
     assert_int_equal(lt_budget_parse("psnr>=25", &b, &d), 0);
