@@ -344,6 +344,10 @@ char *lt_tune_json(const lt_tune_report_t *rep)
     for (f = 0; f < LT_TUNE_NFAM; f++)
         if (rep->opts->families & (1u << f))
             jnum(c, lt_tune_family_names[f], r->fam_secs[f]);
+    c = cJSON_AddObjectToObject(o, "family_measurements");
+    for (f = 0; f < LT_TUNE_NFAM; f++)
+        if (rep->opts->families & (1u << f))
+            cJSON_AddNumberToObject(c, lt_tune_family_names[f], (double)r->fam_points[f]);
     if (r->q16_note[0] != '\0')
         cJSON_AddStringToObject(o, "q16_left_out", r->q16_note);
     if (rep->budget != NULL && rep->picks != NULL)
