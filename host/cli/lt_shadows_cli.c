@@ -248,7 +248,9 @@ static int shadows_scene(shadows_t *s)
         s->png_which = sf->sh_filter ? 0 : 1;
     }
     if (s->mesh_path == NULL) {
-        fprintf(stderr, "%s: no mesh: give --mesh PATH or a scene file with \"mesh\"\n", who);
+        fprintf(stderr, "%s: no mesh: give --mesh PATH or a scene file with \"mesh\"\n"
+                        "usage: %s [SCENE.json] [--mesh PATH] [options]  (--help lists them)\n",
+                who, who);
         return EXIT_USAGE;
     }
     if (s->machine == NULL)
