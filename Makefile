@@ -182,7 +182,12 @@ plots: deps
 	@B=$(B) tools/plots/sweep.sh $(B)/plots/sweep.csv
 	@tools/plots/plots.sh $(B)/plots/sweep.csv $(B)/plots
 
+# lanetrace tune on the teapot and the shared meshes -> docs/tradeoffs.md and docs/tradeoffs/*.png
+pareto: deps
+	@$(MAKE) --no-print-directory all
+	@B=$(B) tools/pareto.sh
+
 clean:
 	rm -rf $(B)
 
-.PHONY: all sim deps run test test-build bench clean firmware plots layout index
+.PHONY: all sim deps run test test-build bench clean firmware plots layout index pareto

@@ -17,6 +17,7 @@
 #include "render/lt_render.h"
 #include "cli/lt_reproject_cli.h"
 #include "cli/lt_shadows_cli.h"
+#include "cli/lt_tune_cli.h"
 #include "render/lt_scene.h"
 #include "io/lt_scenefile.h"
 #include "io/lt_sniff.h"
@@ -166,6 +167,13 @@ static int num_choices(unsigned families, int with_both, const char **names, uns
     }
     names[n] = NULL;
     return n;
+}
+
+/* 1 for the structures with a leaf size (the scene file's "leaf": bvh, bvhq, kd). */
+static int structure_has_leaf(const char *structure)
+{
+    return strcmp(structure, "bvh") == 0 || strcmp(structure, "bvhq") == 0 ||
+           strcmp(structure, "kd") == 0;
 }
 
 /* ---- run ------------------------------------------------------------------------------------ */
@@ -568,7 +576,11 @@ static int run_path(run_t *r, const lt_path_info_t *p)
     size_t acc_bytes;
     uint64_t rays = (uint64_t)sf->width * sf->height * (uint64_t)r->repeat;
     lt_meter_reset();
-    acc = lt_accel_build(&r->sc, sf->structure, p, &diag);
+    {
+        /* the scene file's "leaf", for the structures that have a leaf size */
+        lt_accel_params_t prm = {structure_has_leaf(sf->structure) ? sf->leaf : 0};
+        acc = lt_accel_build_ex(&r->sc, sf->structure, p, &prm, &diag);
+    }
     if (acc == NULL) {
         fprintf(stderr, "%s: %s\n", sf->path[0] ? sf->path : prog, diag.msg);
         r->status = EXIT_INPUT;
@@ -1486,7 +1498,10 @@ static int render_trace(render_t *r)
     int a;
     if ((a = render_memory(r)) != 0)
         return a;
-    r->acc = lt_accel_build(&r->sc, structure, r->path, &diag);
+    {
+        lt_accel_params_t prm = {structure_has_leaf(structure) ? sf->leaf : 0};
+        r->acc = lt_accel_build_ex(&r->sc, structure, r->path, &prm, &diag);
+    }
     if (r->acc == NULL) {
         fprintf(stderr, "%s render: %s\n", prog, diag.msg);
         return EXIT_USAGE;
@@ -2050,6 +2065,8 @@ static void usage(FILE *f)
             "                     inpainting; EXR + PNG + heatmaps; sim build: cycle report)\n"
             "  shadows --mesh FILE  soft shadows by multi-frusta and 16-ray packets, Table-1\n"
             "                     report (sim build: cycles per stage), images, reference\n"
+            "  tune SCENE|MESH    Pareto fronts of cycles vs error per family and machine;\n"
+            "                     --budget picks the cheapest configuration (docs/tune.md)\n"
             "  info FILE          describe a mesh or EXR file\n"
             "  stream [SOURCE]    receive a device's report frames (see lt-stream --help)\n"
             "  diff A.json B.json compare two JSON reports\n"
@@ -2083,6 +2100,8 @@ int main(int argc, char **argv)
         return lt_shadows_cli(argc, argv, prog);
     if (strcmp(argv[1], "machines") == 0)
         return cmd_machines(argc, argv);
+    if (strcmp(argv[1], "tune") == 0)
+        return lt_tune_cli(argc, argv, prog);
     fprintf(stderr, "%s: unknown command '%s'\n", prog, argv[1]);
     usage(stderr);
     return EXIT_USAGE;

@@ -45,7 +45,7 @@ typedef struct rp {
     int part;              /* --part: the EXR part, -1: chosen by the view */
     const char *report, *machine;
     int npos, truth, color, dist, json, layers, enc, tracer, sample, inpaint, max_steps;
-    int seen_move, seen_move_rel, seen_rot, seen_enc, seen_srck, seen_dstk, seen_res;
+    int seen_move, seen_move_rel, seen_rot, seen_enc, seen_srck, seen_dstk, seen_res, seen_tracer;
     double truth_tol, move[3], rot[3], srck[4], dstk[4], fov, thickness;
     double qtp[4]; /* lambda_h, lambda_d, gamma_norm, gamma_dist; -1: the default */
     uint32_t dwh[2];
@@ -146,10 +146,11 @@ static int rp_options(rp_t *r, int *quiet, const char *prog, int argc, char **ar
         LT_OPT_SECTION_("tracing:"),
         {.name = "--num", .kind = LT_OPT_ENUM, .dest = &r->enc, .seen = &r->seen_enc,
          .names = r->enc_names, .alias = "--enc", .flags = LT_OPT_DEPRECATED, .help = num_help},
-        LT_OPT_ENUM_("--tracer", &r->tracer, tracer_name,
-                     "the screen-space tracer (default quadtree); the DDA\n"
-                     "(McGuire & Mara) and Hi-Z (Uludag) baselines run on the\n"
-                     "same rays, s1.30 for n64/n32, float32 for f32"),
+        {.name = "--tracer", .kind = LT_OPT_ENUM, .dest = &r->tracer, .seen = &r->seen_tracer,
+         .names = tracer_name,
+         .help = "the screen-space tracer (default quadtree); the DDA\n"
+                 "(McGuire & Mara) and Hi-Z (Uludag) baselines run on the\n"
+                 "same rays, s1.30 for n64/n32, float32 for f32"},
         {.name = "--thickness", .kind = LT_OPT_DOUBLE, .dest = &r->thickness, .meta = "REL",
          .lo = 0.0, .hi = 2.0, .flags = LT_OPT_HI_OPEN,
          .help = "DDA and Hi-Z: relative depth thickness of a pixel, {range} (1/64)"},
@@ -266,7 +267,7 @@ static double median_depth(const float *z, size_t n)
 
 /* lanetrace render's camera (lt_camera_t: eye, fwd, right, up, fov_y over the image height) as
  * the reprojection's pinhole: rows right, -up, fwd; fx = fy = H / (2 tan(fov_y / 2)), centred. */
-static void cam_from_camera(const lt_camera_t *cam, uint32_t w, uint32_t h, lt_reproj_cam_t *c)
+void lt_rp_cam_from_camera(const lt_camera_t *cam, uint32_t w, uint32_t h, lt_reproj_cam_t *c)
 {
     int i;
     memset(c, 0, sizeof *c);
@@ -286,7 +287,7 @@ static void cam_from_camera(const lt_camera_t *cam, uint32_t w, uint32_t h, lt_r
 /* Ground truth: the target view rendered by the object-space tracer (float32 BVH packets, the
  * path lanetrace render uses) as z-depths along the target's optical axis, +inf on a miss. The
  * tracer's camera is centred with square pixels, so the target's intrinsics must be too. */
-static int render_truth(const lt_scene_t *sc, const lt_reproj_cam_t *d, float *ztrue, lt_diag_t *diag)
+int lt_rp_render_truth(const lt_scene_t *sc, const lt_reproj_cam_t *d, float *ztrue, lt_diag_t *diag)
 {
     lt_camera_t cam;
     lt_frame_t fr;
@@ -379,6 +380,7 @@ static int rp_settle(rp_t *r, const char *prog)
 {
     lt_scenefile_t *sf = &r->sf;
     const lt_path_info_t *scene_enc;
+    int k;
     lt_diag_t diag;
     if (!lt_meter_available() &&
         (r->heat_cycles != NULL || r->report != NULL || r->machine != NULL)) {
@@ -433,6 +435,13 @@ static int rp_settle(rp_t *r, const char *prog)
         r->color |= sf->rp_color;
         if (r->dist < 0 && sf->rp_distance)
             r->dist = 1;
+        for (k = 0; !r->seen_tracer && sf->rp_tracer[0] != '\0' && tracer_name[k] != NULL; k++)
+            if (strcmp(tracer_name[k], sf->rp_tracer) == 0)
+                r->tracer = k;
+        if (r->qtp[2] < 0.0 && sf->rp_gamma_norm >= 0.0)
+            r->qtp[2] = sf->rp_gamma_norm;
+        if (r->qtp[3] < 0.0 && sf->rp_gamma_dist >= 0.0)
+            r->qtp[3] = sf->rp_gamma_dist;
     }
     if (r->machine == NULL)
         r->machine = sf->machine;
@@ -574,7 +583,7 @@ static int rp_source_camera(rp_t *r)
         } else {
             lt_camera_default(&r->sc, W, H, &cam);
         }
-        cam_from_camera(&cam, W, H, &src->cam);
+        lt_rp_cam_from_camera(&cam, W, H, &src->cam);
         if (r->dist < 0)
             r->dist = 1;
         r->cam_desc = "the scene's render camera";
@@ -590,7 +599,7 @@ static int rp_source_camera(rp_t *r)
         }
         lt_camera_basis(&cam, dir, sf->up);
         cam.tan_half_fov = tan(0.5 * sf->fov_y_deg * 3.14159265358979323846 / 180.0);
-        cam_from_camera(&cam, W, H, &src->cam);
+        lt_rp_cam_from_camera(&cam, W, H, &src->cam);
         r->cam_desc = "the scene's camera";
     } else {
         const lt_exr_depth_t *d = &r->dl[0];
@@ -669,7 +678,7 @@ static int rp_ground_truth(rp_t *r, const char *prog, const lt_rp_cli_hooks_t *h
         return EXIT_INPUT;
     }
     hk->begin("ground truth");
-    if (render_truth(&r->sc, &r->dcam, r->ztrue, &diag) != 0) {
+    if (lt_rp_render_truth(&r->sc, &r->dcam, r->ztrue, &diag) != 0) {
         hk->end();
         fprintf(stderr, "%s reproject: %s\n", prog, diag.msg);
         return EXIT_USAGE;

@@ -15,6 +15,7 @@
 #include "cli/lt_shadows_cli.h"
 #include "lt_meter.h"
 #include "render/lt_paths.h"
+#include "io/lt_scenefile.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -74,8 +75,10 @@ static double k_(uint64_t v) { return (double)v / 1000.0; }
 /* lanetrace shadows: the options, the scene and light, the stages, the report and the images. */
 typedef struct shadows {
     /* options */
-    const char *mesh_path, *png, *raw_png, *ref_png, *machine;
+    const char *mesh_path, *png, *raw_png, *ref_png, *machine, *scene_path;
     int res, leaf, num, prim, only, qmc, filter, report, no_ref, ground, quiet;
+    int npos, seen_res, seen_num, seen_leaf, seen_cull, seen_prim, seen_only, png_which;
+    lt_scenefile_t sf;
     int seen_light, seen_eye, seen_target, seen_fov;
     uint32_t flags, pflags;
     double light_c[4]; /* X, Y, Z, SIZE */
@@ -142,21 +145,25 @@ static int shadows_parse(shadows_t *s, int argc, char **argv)
     char num_help[256], machine_help[256], paths[64];
     const lt_opt_t opts[] = {
         {.name = "--mesh", .kind = LT_OPT_STRING, .dest = &s->mesh_path, .meta = "PATH",
-         .help = "the mesh (required)", .flags = LT_OPT_REQUIRED},
-        LT_OPT_INT("--res", "N", &s->res, 4, 8192,
-                   "image N x N, {range} (default 128; multiples of 4 keep tiles full)"),
-        {.name = "--num", .kind = LT_OPT_ENUM, .dest = &s->num, .names = s->num_names,
-         .help = num_help},
-        {.name = "--leaf", .kind = LT_OPT_INT, .dest = &s->leaf, .meta = "N", .lo = 1,
+         .help = "the mesh (required unless SCENE.json names one)"},
+        {.name = "--res", .kind = LT_OPT_INT, .dest = &s->res, .seen = &s->seen_res, .meta = "N",
+         .lo = 4, .hi = 8192,
+         .help = "image N x N, {range} (default 128; multiples of 4 keep tiles full)"},
+        {.name = "--num", .kind = LT_OPT_ENUM, .dest = &s->num, .seen = &s->seen_num,
+         .names = s->num_names, .help = num_help},
+        {.name = "--leaf", .kind = LT_OPT_INT, .dest = &s->leaf, .seen = &s->seen_leaf, .meta = "N",
+         .lo = 1,
          .hi = LT_BVH_MAX_LEAF, .limit = "LT_BVH_MAX_LEAF",
          .help = "frusta BVH leaf size, {range} (max_leaf N, min_leaf N/2; default 8)"},
-        {.name = "--cull", .kind = LT_OPT_CUSTOM, .dest = &s->flags, .meta = "LIST",
+        {.name = "--cull", .kind = LT_OPT_CUSTOM, .dest = &s->flags, .seen = &s->seen_cull,
+         .meta = "LIST",
          .parse = parse_cull, .expect = "letters b, c, r or none",
          .help = "shadow culling: any of b (back-face), c (corner rays), r (CR),\n"
                  "or none (default bcr)"},
-        LT_OPT_ENUM_("--prim", &s->prim, prim_names,
-                     "primary method(s) (default both: P-Packet feeds S-Packet and\n"
-                     "P-Frusta S-Frusta; with one, both S rows use it)"),
+        {.name = "--prim", .kind = LT_OPT_ENUM, .dest = &s->prim, .seen = &s->seen_prim,
+         .names = prim_names,
+         .help = "primary method(s) (default both: P-Packet feeds S-Packet and\n"
+                 "P-Frusta S-Frusta; with one, both S rows use it)"},
         {.name = "--pcull", .kind = LT_OPT_CUSTOM, .dest = &s->pflags, .meta = "LIST",
          .parse = parse_cull, .expect = "letters b, c, r or none",
          .help = "primary culling: b (back faces, both methods), c (corner rays),\n"
@@ -189,23 +196,70 @@ static int shadows_parse(shadows_t *s, int argc, char **argv)
         LT_OPT_OUT("--png", "PATH.png", &s->png, "png", "filtered image"),
         LT_OPT_STR("--raw-png", "PATH", &s->raw_png, "unfiltered image"),
         LT_OPT_OUT("--ref-png", "PATH.png", &s->ref_png, "png", "the reference"),
-        LT_OPT_ENUM_("--only", &s->only, only_names, "run one shadow method (default both, compared)"),
+        {.name = "--only", .kind = LT_OPT_ENUM, .dest = &s->only, .seen = &s->seen_only,
+         .names = only_names, .help = "run one shadow method (default both, compared)"},
         LT_OPT_STR("--machine", "NAME", &s->machine, machine_help),
         LT_OPT_FLAG_("--report", &s->report,
                      "sim builds: the full cycle report of each shadow stage and the filter"),
         LT_OPT_FLAG_("-q", &s->quiet, "only the result lines"),
         LT_OPT_END_};
-    lt_opt_cmd_t cmd = {who, "--mesh PATH [options]",
+    lt_opt_cmd_t cmd = {who, "[SCENE.json] [--mesh PATH] [options]",
                         "Soft shadows of a square area light by multi-frusta and by 16-ray "
                         "packets (Benthin &\nWald 2009): the Table-1 report (sim build: cycles "
-                        "per stage), images, the reference.\n",
-                        NULL, opts, NULL, 0, NULL};
+                        "per stage), images, the reference.\nA scene file gives the mesh, "
+                        "resolution, numeric path, machine and its \"shadows\"\nobject "
+                        "(docs/scene-format.md); flags override it.\n",
+                        NULL, opts, &s->scene_path, 1, &s->npos};
     lt_paths_names(LT_PATHS_FRUSTA, s->num_names, 8);
     lt_paths_list(LT_PATHS_FRUSTA, paths, sizeof paths);
     snprintf(num_help, sizeof num_help, "numeric path, %s (default q16)", paths);
     snprintf(machine_help, sizeof machine_help, "sim builds: machine model (%s; default lrb16)",
              lt_meter_machine_names());
     return lt_opt_parse(&cmd, argc, argv, 2);
+}
+
+/* SCENE.json under the flags: mesh, resolution, numeric path, machine and the "shadows" object.
+ * Returns 0 or an exit code. */
+static int shadows_scene(shadows_t *s)
+{
+    lt_scenefile_t *sf = &s->sf;
+    lt_diag_t diag;
+    int i;
+    if (s->scene_path != NULL) {
+        if (lt_sf_load(s->scene_path, sf, &diag) != 0) {
+            fprintf(stderr, "%s: %s\n", who, diag.msg);
+            return EXIT_INPUT;
+        }
+        if (s->mesh_path == NULL && sf->mesh[0] != '\0')
+            s->mesh_path = sf->mesh;
+        if (!s->seen_res)
+            s->res = (int)(sf->width < 4 ? 4 : sf->width);
+        for (i = 0; !s->seen_num && sf->numeric != LT_SF_NUM_BOTH && s->num_names[i] != NULL; i++)
+            if ((unsigned)lt_paths_find(s->num_names[i], LT_PATHS_FRUSTA)->sf_num == (unsigned)sf->numeric)
+                s->num = i;
+        if (s->machine == NULL)
+            s->machine = sf->machine;
+        if (!s->seen_leaf && sf->sh_leaf > 0)
+            s->leaf = (int)sf->sh_leaf;
+        if (!s->seen_cull && sf->sh_cull[0] != '\0')
+            (void)parse_cull(sf->sh_cull, &s->flags, NULL);
+        for (i = 0; !s->seen_prim && sf->sh_primary[0] != '\0' && prim_names[i] != NULL; i++)
+            if (strcmp(prim_names[i], sf->sh_primary) == 0)
+                s->prim = i;
+        if (!s->seen_only && sf->sh_method[0] != '\0')
+            s->only = strcmp(sf->sh_method, "frusta") == 0 ? 0
+                      : strcmp(sf->sh_method, "packet") == 0 ? 1 : -1;
+        s->png_which = sf->sh_filter ? 0 : 1;
+    }
+    if (s->mesh_path == NULL) {
+        fprintf(stderr, "%s: no mesh: give --mesh PATH or a scene file with \"mesh\"\n"
+                        "usage: %s [SCENE.json] [--mesh PATH] [options]  (--help lists them)\n",
+                who, who);
+        return EXIT_USAGE;
+    }
+    if (s->machine == NULL)
+        s->machine = "lrb16";
+    return 0;
 }
 
 /* The mesh (and ground), the light, the scene, the camera, the machine and the renderer.
@@ -648,7 +702,7 @@ static void shadows_outputs(shadows_t *s)
             s->rc = EXIT_INPUT;
         }
     }
-    if (s->png != NULL && lt_ss_write_png(s->ss, s->png, 0, &diag) != 0) {
+    if (s->png != NULL && lt_ss_write_png(s->ss, s->png, s->png_which, &diag) != 0) {
         fprintf(stderr, "%s: %s\n", who, diag.msg);
         s->rc = EXIT_INPUT;
     }
@@ -663,7 +717,6 @@ int lt_shadows_cli(int argc, char **argv, const char *prog)
     shadows_t s;
     int rc;
     memset(&s, 0, sizeof s);
-    s.machine = "lrb16";
     s.res = 128;
     s.leaf = 8;
     s.ground = -1;
@@ -678,6 +731,9 @@ int lt_shadows_cli(int argc, char **argv, const char *prog)
     rc = shadows_parse(&s, argc, argv);
     if (rc != LT_OPT_OK)
         return rc == LT_OPT_HELP ? 0 : EXIT_USAGE;
+    rc = shadows_scene(&s);
+    if (rc != 0)
+        return rc;
     s.path = lt_paths_find(s.num_names[s.num], LT_PATHS_FRUSTA);
     s.run_pp = s.prim != 1; /* not frusta only */
     s.run_pf = s.prim != 0; /* not packets only */

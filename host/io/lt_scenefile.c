@@ -67,6 +67,8 @@ void lt_sf_defaults(lt_scenefile_t *sf)
     snprintf(sf->structure, sizeof sf->structure, "bvh");
     sf->numeric = LT_SF_NUM_BOTH;
     snprintf(sf->machine, sizeof sf->machine, "lrb16");
+    sf->rp_gamma_norm = sf->rp_gamma_dist = -1.0;
+    sf->sh_filter = 1;
 }
 
 /* Every member of obj must be one of the names in known (NULL-terminated), and appear once (JSON
@@ -234,8 +236,10 @@ static int parse_camera(ctx_t *c, const cJSON *cam, lt_scenefile_t *sf)
 static int parse_reproject(ctx_t *c, const cJSON *rp, lt_scenefile_t *sf)
 {
     static const char *const keys[] = {"move", "move_relative", "rot", "encoding", "layers",
-                                       "channel", "color", "distance", NULL};
+                                       "channel", "color", "distance", "tracer", "gamma_norm",
+                                       "gamma_dist", NULL};
     static const char *const encs[] = {"n64", "n32", "f32", NULL};
+    static const char *const tracers[] = {"quadtree", "dda", "hiz", NULL};
     const cJSON *it;
     double v;
     if (!cJSON_IsObject(rp))
@@ -282,7 +286,59 @@ static int parse_reproject(ctx_t *c, const cJSON *rp, lt_scenefile_t *sf)
             return fail(c, "'reproject.distance' must be true or false");
         sf->rp_distance = cJSON_IsTrue(it);
     }
+    if ((it = cJSON_GetObjectItemCaseSensitive(rp, "tracer")) != NULL &&
+        get_choice(c, it, "reproject.tracer", tracers, sf->rp_tracer, sizeof sf->rp_tracer) != 0)
+        return -1;
+    if ((it = cJSON_GetObjectItemCaseSensitive(rp, "gamma_norm")) != NULL &&
+        get_number(c, it, "reproject.gamma_norm", 0.0, 1.0, &sf->rp_gamma_norm) != 0)
+        return -1;
+    if ((it = cJSON_GetObjectItemCaseSensitive(rp, "gamma_dist")) != NULL &&
+        get_number(c, it, "reproject.gamma_dist", 0.0, 1.0, &sf->rp_gamma_dist) != 0)
+        return -1;
     sf->has_reproject = 1;
+    return 0;
+}
+
+/* "shadows": { "primary": "packet"|"frusta"|"both", "method": "frusta"|"packet"|"both",
+ * "filter": bool, "leaf": N, "cull": "bcr" } (lanetrace shadows; written by lanetrace tune) */
+static int parse_shadows(ctx_t *c, const cJSON *sh, lt_scenefile_t *sf)
+{
+    static const char *const keys[] = {"primary", "method", "filter", "leaf", "cull", NULL};
+    static const char *const both[] = {"packet", "frusta", "both", NULL};
+    const cJSON *it;
+    double v;
+    if (!cJSON_IsObject(sh))
+        return fail(c, "'shadows' must be an object");
+    if (check_keys(c, sh, "shadows", keys) != 0)
+        return -1;
+    if ((it = cJSON_GetObjectItemCaseSensitive(sh, "primary")) != NULL &&
+        get_choice(c, it, "shadows.primary", both, sf->sh_primary, sizeof sf->sh_primary) != 0)
+        return -1;
+    if ((it = cJSON_GetObjectItemCaseSensitive(sh, "method")) != NULL &&
+        get_choice(c, it, "shadows.method", both, sf->sh_method, sizeof sf->sh_method) != 0)
+        return -1;
+    if ((it = cJSON_GetObjectItemCaseSensitive(sh, "filter")) != NULL) {
+        if (!cJSON_IsBool(it))
+            return fail(c, "'shadows.filter' must be true or false");
+        sf->sh_filter = cJSON_IsTrue(it);
+    }
+    if ((it = cJSON_GetObjectItemCaseSensitive(sh, "leaf")) != NULL) {
+        if (get_number(c, it, "shadows.leaf", 1, 64, &v) != 0)
+            return -1;
+        if (v != floor(v))
+            return fail(c, "'shadows.leaf' must be a whole number");
+        sf->sh_leaf = (uint32_t)v;
+    }
+    if ((it = cJSON_GetObjectItemCaseSensitive(sh, "cull")) != NULL) {
+        const char *p;
+        if (get_string(c, it, "shadows.cull", sf->sh_cull, sizeof sf->sh_cull) != 0)
+            return -1;
+        for (p = sf->sh_cull; *p != '\0' && strcmp(sf->sh_cull, "none") != 0; p++)
+            if (*p != 'b' && *p != 'c' && *p != 'r')
+                return fail(c, "'shadows.cull' = \"%s\": expected letters of b, c, r or "
+                               "\"none\"", sf->sh_cull);
+    }
+    sf->has_shadows = 1;
     return 0;
 }
 
@@ -290,7 +346,7 @@ static int parse_root(ctx_t *c, const cJSON *root, lt_scenefile_t *sf)
 {
     static const char *const keys[] = {"lanetrace", "mesh",   "depth",   "camera",  "resolution",
                                        "structure", "numeric", "machine", "caches", "lights",
-                                       "outputs",   "reproject", NULL};
+                                       "outputs",   "reproject", "leaf", "shadows", NULL};
     static const char *const cache_keys[] = {"l1", "l2", NULL};
     static const char *const light_keys[] = {"type", "position", "intensity", NULL};
     static const char *const out_keys[] = {"report", "csv", NULL};
@@ -400,6 +456,16 @@ static int parse_root(ctx_t *c, const cJSON *root, lt_scenefile_t *sf)
     if ((it = cJSON_GetObjectItemCaseSensitive(root, "reproject")) != NULL &&
         parse_reproject(c, it, sf) != 0)
         return -1;
+    if ((it = cJSON_GetObjectItemCaseSensitive(root, "shadows")) != NULL &&
+        parse_shadows(c, it, sf) != 0)
+        return -1;
+    if ((it = cJSON_GetObjectItemCaseSensitive(root, "leaf")) != NULL) {
+        if (get_number(c, it, "leaf", 1, 64, &v) != 0)
+            return -1;
+        if (v != floor(v))
+            return fail(c, "'leaf' must be a whole number");
+        sf->leaf = (uint32_t)v;
+    }
     if ((it = cJSON_GetObjectItemCaseSensitive(root, "outputs")) != NULL) {
         const cJSON *x;
         if (!cJSON_IsObject(it))

@@ -49,6 +49,18 @@ typedef struct lt_scenefile {
     char rp_channel[64];             /* depth channel ("" = automatic) */
     int rp_color;                    /* 1: read R G B */
     int rp_distance;                 /* 1: depth values are distances along the pixel ray */
+    char rp_tracer[16];              /* "quadtree", "dda", "hiz" ("" = quadtree) */
+    double rp_gamma_norm, rp_gamma_dist; /* quadtree thresholds, fractions (< 0 = default) */
+    /* object space */
+    uint32_t leaf;                   /* "leaf": bvh/bvhq max_leaf or kd leaf_tris (0 = default) */
+    /* "shadows": soft shadows (lanetrace shadows SCENE.json, docs/frusta.md) */
+    int has_shadows;                 /* 1 when the object is present */
+    char sh_primary[8];              /* "packet", "frusta", "both" ("" = both) */
+    char sh_method[8];               /* "frusta", "packet", "both" ("" = both) */
+    int sh_filter;                   /* 1: the filtered image is the result (default), 0: the
+                                        16-spp image unfiltered */
+    uint32_t sh_leaf;                /* frusta BVH leaf size (0 = 8) */
+    char sh_cull[8];                 /* shadow-ray culling letters b, c, r or "none" ("" = bcr) */
 } lt_scenefile_t;
 
 /* Defaults: no mesh, default camera, 128x128, "chunks", both paths, lrb16, no lights, no outputs. */

@@ -29,6 +29,7 @@ struct lt_accel {
     void *hdr;               /* kd, grid: the path's tree or grid header */
     void *ray;               /* one packet in the path's format, the traces' scratch */
     size_t bytes;            /* structure memory */
+    uint32_t leaf;           /* lt_accel_params_t.leaf (0: default) */
 };
 
 const char *const lt_render_structures[] = {"chunks", "bvh", "bvhq", "kd", "grid", NULL};
@@ -89,6 +90,8 @@ static lt_accel_t *build_bvh(const lt_scene_t *s, lt_accel_t *a, int quantised, 
     size_t bytes = 0;
     lt_status_t st;
     memset(&desc, 0, sizeof desc);
+    desc.max_leaf = a->leaf;
+    desc.min_leaf = a->leaf / 2u; /* 0 (the default, 1) for leaf 0 and 1 */
     if (quantised && a->ops->bvhq_build == NULL) {
         lt_diag_fail(diag, "structure 'bvhq' (quantised nodes) exists in %s only", bvhq_formats());
         return NULL;
@@ -98,6 +101,8 @@ static lt_accel_t *build_bvh(const lt_scene_t *s, lt_accel_t *a, int quantised, 
         a->arena = alloc64(bytes);
         if (a->arena == NULL)
             st = LT_E_SPACE;
+        else /* before the build: its writes are charged at the same simulated addresses */
+            lt_meter_region(a->arena, bytes, 0x20000000u);
     }
     if (st == LT_OK)
         st = a->ops->bvh_build(&a->bvh, &desc, a->tris, s->ntris, a->arena, bytes);
@@ -111,8 +116,10 @@ static lt_accel_t *build_bvh(const lt_scene_t *s, lt_accel_t *a, int quantised, 
         st = lt_bvhq_size(&a->bvh, &qb);
         if (st == LT_OK && (a->qmem = alloc64(qb)) == NULL)
             st = LT_E_SPACE;
-        if (st == LT_OK)
+        if (st == LT_OK) {
+            lt_meter_region(a->qmem, qb, 0x30000000u);
             st = a->ops->bvhq_build(&a->bvhq, &a->bvh, a->qmem, qb);
+        }
         if (st != LT_OK) {
             lt_diag_fail(diag, "quantising the BVH: %s", lt_status_str(st));
             return NULL;
@@ -120,9 +127,6 @@ static lt_accel_t *build_bvh(const lt_scene_t *s, lt_accel_t *a, int quantised, 
         /* the quantised tree keeps its nodes plus the source tree's index array */
         a->bytes = a->bvhq.bytes + (size_t)s->ntris * sizeof(uint32_t);
     }
-    lt_meter_region(a->arena, a->bvh.bytes, 0x20000000u);
-    if (quantised)
-        lt_meter_region(a->qmem, a->bvhq.bytes, 0x30000000u);
     return a;
 }
 
@@ -137,9 +141,13 @@ static lt_accel_t *build_kdgrid(const lt_scene_t *s, lt_accel_t *a, lt_diag_t *d
     } else if (a->kind == ACC_KD) {
         lt_kd_params_t p;
         lt_kd_params_default(&p);
+        if (a->leaf != 0)
+            p.leaf_tris = a->leaf;
         st = lt_kd_size(s->ntris, &p, &bytes);
         if (st == LT_OK && (a->mem = alloc64(bytes)) == NULL)
             st = LT_E_SPACE;
+        if (st == LT_OK)
+            lt_meter_region(a->mem, bytes, 0x20000000u);
         if (st == LT_OK)
             st = a->ops->kd_build(a->hdr, a->tris, s->ntris, &p, a->mem, &bytes);
         a->bytes = bytes;
@@ -150,6 +158,8 @@ static lt_accel_t *build_kdgrid(const lt_scene_t *s, lt_accel_t *a, lt_diag_t *d
         if (st == LT_OK && (a->mem = alloc64(bytes)) == NULL)
             st = LT_E_SPACE;
         if (st == LT_OK)
+            lt_meter_region(a->mem, bytes, 0x20000000u);
+        if (st == LT_OK)
             st = a->ops->grid_build(a->hdr, a->tris, s->ntris, &p, a->mem, &bytes);
         a->bytes = bytes;
     }
@@ -158,12 +168,18 @@ static lt_accel_t *build_kdgrid(const lt_scene_t *s, lt_accel_t *a, lt_diag_t *d
                      a->kind == ACC_KD ? "kd-tree" : "grid", s->ntris, lt_status_str(st));
         return NULL;
     }
-    lt_meter_region(a->mem, a->bytes, 0x20000000u);
     return a;
 }
 
 lt_accel_t *lt_accel_build(const lt_scene_t *s, const char *structure,
                            const lt_path_info_t *path, lt_diag_t *diag)
+{
+    return lt_accel_build_ex(s, structure, path, NULL, diag);
+}
+
+lt_accel_t *lt_accel_build_ex(const lt_scene_t *s, const char *structure,
+                              const lt_path_info_t *path, const lt_accel_params_t *prm,
+                              lt_diag_t *diag)
 {
     lt_accel_t *a;
     size_t nb = LT_CHUNK_COUNT(s->ntris);
@@ -190,6 +206,15 @@ lt_accel_t *lt_accel_build(const lt_scene_t *s, const char *structure,
                      path != NULL ? path->name : "(none)");
         return NULL;
     }
+    if (prm != NULL && prm->leaf != 0 &&
+        (kind == ACC_CHUNKS || kind == ACC_GRID ||
+         prm->leaf > (kind == ACC_BVHQ ? LT_BVHQ_MAX_LEAF : (kind == ACC_BVH ? LT_BVH_MAX_LEAF
+                                                                             : UINT32_MAX)))) {
+        lt_diag_fail(diag, "structure '%s': leaf size %u is not available (%s)", structure,
+                     prm->leaf, kind == ACC_CHUNKS || kind == ACC_GRID ? "it has no leaf size"
+                     : kind == ACC_BVHQ ? "1..LT_BVHQ_MAX_LEAF = 15" : "1..LT_BVH_MAX_LEAF = 64");
+        return NULL;
+    }
     a = calloc(1, sizeof *a);
     if (a != NULL && (a->ray = alloc64(path->render->ray16_bytes)) != NULL)
         memset(a->ray, 0, path->render->ray16_bytes);
@@ -198,6 +223,10 @@ lt_accel_t *lt_accel_build(const lt_scene_t *s, const char *structure,
         lt_diag_fail(diag, "out of memory");
         return NULL;
     }
+    /* the descriptor (the kernels read its root box and pointers) at a fixed simulated address */
+    lt_meter_region(a, sizeof *a, 0x40000000u);
+    lt_meter_region(a->ray, path->render->ray16_bytes, 0x48000000u); /* the packet's lanes */
+    a->leaf = prm != NULL ? prm->leaf : 0;
     a->path = path;
     a->ops = path->render;
     a->kind = kind;

@@ -38,6 +38,18 @@ extern const char *const lt_render_structures[];
  * path without object-space operations). */
 lt_accel_t *lt_accel_build(const lt_scene_t *s, const char *structure,
                            const lt_path_info_t *path, lt_diag_t *diag);
+
+/* Build knobs of lt_accel_build_ex (0 = the structure's default): leaf = the BVH's max_leaf
+ * (bvh 1..LT_BVH_MAX_LEAF, bvhq 1..LT_BVHQ_MAX_LEAF; min_leaf = leaf / 2, as the frusta BVH)
+ * or the kd-tree's leaf_tris (>= 1); chunks and grid have no leaf size (a non-zero leaf is refused). */
+typedef struct lt_accel_params {
+    uint32_t leaf;
+} lt_accel_params_t;
+
+/* lt_accel_build with knobs (p may be NULL: the defaults). */
+lt_accel_t *lt_accel_build_ex(const lt_scene_t *s, const char *structure,
+                              const lt_path_info_t *path, const lt_accel_params_t *p,
+                              lt_diag_t *diag);
 void lt_accel_free(lt_accel_t *a);
 
 /* Bytes of the built structure (nodes, indices, boxes; not the triangles). */

@@ -11,7 +11,9 @@
 #  7. the multi-frusta Table 1 (docs/frusta.md): P-Packet vs P-Frusta and S-Packet vs S-Frusta in
 #     the simulator on Sibenik at 1024x1024 (~20 s), the bundled teapot at 256x256 without ../shared;
 #  8. view synthesis against ray-traced ground truth (tests/bench/rptruth.sh): depth error of the
-#     quadtree reprojection per numeric configuration on the teapot and the shared meshes (~15 s).
+#     quadtree reprojection per numeric configuration on the teapot and the shared meshes (~15 s);
+#  9. lanetrace tune: how long each family's sweep takes and how many points it measures
+#     (tests/bench/tune_bench.sh; teapot and bunny, 128 px, --jobs 2, ~1 min).
 # Run from the repository root after make all firmware build/sim/slab-model build/plugin/lt_icount.so.
 set -euo pipefail
 B=build
@@ -73,3 +75,6 @@ fi
 
 echo "== 8. view synthesis vs ray-traced ground truth: depth error per numeric configuration (lrb16 simulator; docs/reproject.md)"
 B=$B tests/bench/rptruth.sh
+
+echo "== 9. lanetrace tune: each family's sweep, its points and wall time (--jobs 2, docs/tune.md)"
+B=$B tests/bench/tune_bench.sh
