@@ -275,7 +275,10 @@ static void test_meter_null(void **state)
     assert_int_equal(lt_meter_available(), 0);
     for (i = 0; i < ntm; i++) {
         assert_int_equal(lt_meter_machine_info(tm[i].name, &m), -1);
-        assert_int_equal(lt_meter_init(tm[i].name, "63:8:64", NULL, &diag), 0);
+        /* no cache model here, but a geometry the simulator refuses is refused the same way */
+        assert_int_equal(lt_meter_init(tm[i].name, "64:8:64", "512:8:64", &diag), 0);
+        assert_int_equal(lt_meter_init(tm[i].name, "63:8:64", NULL, &diag), -1);
+        assert_non_null(strstr(diag.msg, "63:8:64"));
     }
     lt_meter_region(&m, sizeof m, 0x10000000u);
     lt_meter_reset();
