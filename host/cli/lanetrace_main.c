@@ -1304,7 +1304,7 @@ static int render_out(render_t *r, const char *suffix, char path[LT_TMP_PATH_MAX
     }
     if (lt_outset_add(r->set, path, dst, &diag) != 0) {
         fprintf(stderr, "%s render: %s\n", prog, diag.msg);
-        return EXIT_USAGE;
+        return EXIT_INPUT;
     }
     return 0;
 }

@@ -88,6 +88,23 @@ int lt_outset_add(lt_outset_t *s, const char *path, const char **tmp, lt_diag_t 
         if (strcmp(s->path[i], path) == 0)
             return lt_diag_fail(diag, "%s: named twice in one output set (two outputs would "
                                 "overwrite each other)", path);
+    {
+        /* the directory must take the file: said now, with the output's own name */
+        char dir[LT_TMP_PATH_MAX];
+        const char *slash = strrchr(path, '/');
+        struct stat st;
+        if (slash == NULL)
+            (void)snprintf(dir, sizeof dir, ".");
+        else if (slash == path)
+            (void)snprintf(dir, sizeof dir, "/");
+        else
+            (void)snprintf(dir, sizeof dir, "%.*s", (int)(slash - path), path);
+        if (stat(dir, &st) != 0 || !S_ISDIR(st.st_mode) || access(dir, W_OK | X_OK) != 0)
+            return lt_diag_fail(diag, "%s: cannot create the output: directory '%s' %s", path,
+                                dir, stat(dir, &st) != 0 ? "does not exist"
+                                     : !S_ISDIR(st.st_mode) ? "is not a directory"
+                                                            : "is not writable");
+    }
     if (lt_tmp_begin(path, s->tmp[s->n], diag) != 0)
         return -1;
     memcpy(s->path[s->n], path, strlen(path) + 1);

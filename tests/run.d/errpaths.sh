@@ -21,7 +21,7 @@ mkdir -p "$E"
 check "errpaths: a 2-layer depth EXR to reproject" test -s "$E/d.exr"
 ep_expect "render: unwritable output set" 1 "/nonexistent-ep/r.exr: cannot create" \
     "$HOSTBIN/lanetrace-native" render --res 8 --out /nonexistent-ep/r
-ep_expect "run: unwritable reports of both paths" 1 "/nonexistent-ep/r.json.f32: cannot create" \
+ep_expect "run: unwritable reports of both paths" 1 "/nonexistent-ep/r.f32.json: cannot create" \
     "$SIMBIN/lanetrace" run --res 8 --num both --report /nonexistent-ep/r.json -q
 ep_expect "run: unwritable depth EXR" 1 "/nonexistent-ep/x.exr: cannot create" \
     "$HOSTBIN/lanetrace-native" run --res 8 --depth /nonexistent-ep/x.exr -q
