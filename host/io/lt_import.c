@@ -220,28 +220,43 @@ static void last_words(const char *tail, size_t n, char *out, size_t outlen)
     out[o] = '\0';
 }
 
-int lt_import_isolated(const char *path, lt_import_child_fn fn, void *ctx, lt_mesh_t *m, lt_diag_t *diag)
-{
-    int dp[2], ep[2], status = 0, timed_out = 0, data_open = 1, err_open = 1, rc = -1;
-    unsigned limit;
-    pid_t pid;
-    double deadline;
-    wire_t w;
-    size_t got_w = 0, got_p = 0, want_p = 0, tail_n = 0, extra = 0;
-    char *payload = NULL, msg[MSG_MAX + 1], tail[TAIL_MAX], words[256];
+/* The parent's view of the child: its pipes, the record read so far, the tail of its output. */
+typedef struct reader {
+    int dp, ep;                  /* data and stdout/stderr pipes (read ends) */
+    int data_open, err_open;
+    wire_t w;                    /* the record's header */
+    size_t got_w, got_p, want_p; /* header and payload bytes read, payload expected */
+    size_t extra;                /* bytes after the record (or 1: not our record) */
+    char *payload;               /* the triangles (malloc) or msg */
+    char msg[MSG_MAX + 1];
+    char tail[TAIL_MAX];         /* the last TAIL_MAX bytes of the child's output */
+    size_t tail_n;
+} reader_t;
 
-    memset(m, 0, sizeof *m);
-    memset(&w, 0, sizeof w);
-    if (timeout_seconds(path, &limit, diag) != 0)
-        return -1;
+/* Pipes and fork; the child runs fn and never returns. Returns the child's pid, or -1 with a
+ * message. */
+static pid_t start_child(const char *path, lt_import_child_fn fn, void *ctx, unsigned limit,
+                         int dp[2], int ep[2], lt_diag_t *diag)
+{
+    static const int crash_signals[] = {SIGSEGV, SIGABRT, SIGFPE, SIGILL,
+#ifdef SIGBUS
+                                        SIGBUS,
+#endif
+#ifdef SIGSYS
+                                        SIGSYS,
+#endif
+                                        SIGPIPE, SIGINT, SIGTERM, SIGALRM};
+    struct rlimit nocore;
+    size_t k;
+    pid_t pid;
     if (pipe(dp) != 0) {
         lt_diag_fail(diag, "%s: cannot start the importer process: pipe: %s", path,
-             strerror(errno));
+                     strerror(errno));
         return -1;
     }
     if (pipe(ep) != 0) {
         lt_diag_fail(diag, "%s: cannot start the importer process: pipe: %s", path,
-             strerror(errno));
+                     strerror(errno));
         (void)close(dp[0]);
         (void)close(dp[1]);
         return -1;
@@ -250,70 +265,133 @@ int lt_import_isolated(const char *path, lt_import_child_fn fn, void *ctx, lt_me
     pid = fork();
     if (pid < 0) {
         lt_diag_fail(diag, "%s: cannot start the importer process: fork: %s", path,
-             strerror(errno));
+                     strerror(errno));
         (void)close(dp[0]);
         (void)close(dp[1]);
         (void)close(ep[0]);
         (void)close(ep[1]);
         return -1;
     }
-    if (pid == 0) {
-        static const int crash_signals[] = {SIGSEGV, SIGABRT, SIGFPE, SIGILL,
-#ifdef SIGBUS
-                                            SIGBUS,
-#endif
-#ifdef SIGSYS
-                                            SIGSYS,
-#endif
-                                            SIGPIPE, SIGINT, SIGTERM, SIGALRM};
-        struct rlimit nocore;
-        size_t k;
-        nocore.rlim_cur = 0;
-        nocore.rlim_max = 0;
-        (void)setrlimit(RLIMIT_CORE, &nocore); /* a crash leaves no core file */
-        /* a crash or an interrupt ends the child: no handler of the parent's (a test
-         * framework's, a sanitizer's, the CLI's clean-up on Ctrl-C) may run in here */
-        for (k = 0; k < sizeof crash_signals / sizeof crash_signals[0]; k++)
-            (void)signal(crash_signals[k], SIG_DFL);
-        /* a backstop should the parent die without killing it (SIGKILL): the child ends
-         * shortly after the deadline on its own */
-        if (limit > 0)
-            (void)alarm(limit + 5);
-        (void)close(dp[0]);
-        (void)close(ep[0]);
-        (void)dup2(ep[1], STDOUT_FILENO);
-        (void)dup2(ep[1], STDERR_FILENO);
-        if (ep[1] > STDERR_FILENO)
-            (void)close(ep[1]);
-        child_main(dp[1], path, fn, ctx);
-        _exit(4); /* not reached */
+    if (pid > 0) {
+        (void)close(dp[1]);
+        (void)close(ep[1]);
+        return pid;
     }
-    (void)close(dp[1]);
-    (void)close(ep[1]);
-    (void)fcntl(dp[0], F_SETFL, fcntl(dp[0], F_GETFL) | O_NONBLOCK);
-    (void)fcntl(ep[0], F_SETFL, fcntl(ep[0], F_GETFL) | O_NONBLOCK);
-    deadline = limit > 0 ? now_s() + (double)limit : 0.0;
+    nocore.rlim_cur = 0;
+    nocore.rlim_max = 0;
+    (void)setrlimit(RLIMIT_CORE, &nocore); /* a crash leaves no core file */
+    /* a crash or an interrupt ends the child: no handler of the parent's (a test framework's, a
+     * sanitizer's, the CLI's clean-up on Ctrl-C) may run in here */
+    for (k = 0; k < sizeof crash_signals / sizeof crash_signals[0]; k++)
+        (void)signal(crash_signals[k], SIG_DFL);
+    /* a backstop should the parent die without killing it (SIGKILL): the child ends shortly
+     * after the deadline on its own */
+    if (limit > 0)
+        (void)alarm(limit + 5);
+    (void)close(dp[0]);
+    (void)close(ep[0]);
+    (void)dup2(ep[1], STDOUT_FILENO);
+    (void)dup2(ep[1], STDERR_FILENO);
+    if (ep[1] > STDERR_FILENO)
+        (void)close(ep[1]);
+    child_main(dp[1], path, fn, ctx);
+    _exit(4); /* not reached */
+}
 
-    while (data_open || err_open) {
+/* The child's output: keep the last TAIL_MAX bytes. */
+static void read_tail(reader_t *rd)
+{
+    char buf[65536];
+    ssize_t r = read(rd->ep, buf, sizeof buf);
+    if (r > 0) {
+        size_t k = (size_t)r;
+        if (k >= TAIL_MAX) {
+            memcpy(rd->tail, buf + k - TAIL_MAX, TAIL_MAX);
+            rd->tail_n = TAIL_MAX;
+        } else {
+            if (rd->tail_n + k > TAIL_MAX) {
+                memmove(rd->tail, rd->tail + (rd->tail_n + k - TAIL_MAX), TAIL_MAX - k);
+                rd->tail_n = TAIL_MAX - k;
+            }
+            memcpy(rd->tail + rd->tail_n, buf, k);
+            rd->tail_n += k;
+        }
+    } else if (r == 0 || (errno != EINTR && errno != EAGAIN)) {
+        rd->err_open = 0;
+    }
+}
+
+/* The record: header, then payload (triangles or message), then end of file. Returns 0, or -1
+ * with a message (out of memory). */
+static int read_record(reader_t *rd, const char *path, lt_diag_t *diag)
+{
+    char buf[65536], *dst;
+    size_t room;
+    ssize_t r;
+    if (rd->got_w < sizeof rd->w) {
+        dst = (char *)&rd->w + rd->got_w;
+        room = sizeof rd->w - rd->got_w;
+    } else if (rd->got_p < rd->want_p) {
+        dst = rd->payload + rd->got_p;
+        room = rd->want_p - rd->got_p;
+    } else {
+        dst = buf;
+        room = sizeof buf;
+    }
+    r = read(rd->dp, dst, room);
+    if (r == 0 || (r < 0 && errno != EINTR && errno != EAGAIN)) {
+        rd->data_open = 0;
+        return 0;
+    }
+    if (r < 0)
+        return 0;
+    if (rd->got_w < sizeof rd->w) {
+        const wire_t *w = &rd->w;
+        rd->got_w += (size_t)r;
+        if (rd->got_w < sizeof rd->w)
+            return 0;
+        if (w->magic != WIRE_MAGIC || (w->status != 0 && w->status != -1) ||
+            (w->status == 0 && (w->ntris == 0 || w->ntris > LT_MESH_MAX_TRIS)) ||
+            (w->status != 0 && w->msglen > MSG_MAX)) {
+            rd->extra = 1; /* not our record: refused by the verdict */
+            rd->data_open = 0;
+            return 0;
+        }
+        rd->want_p = w->status == 0 ? (size_t)w->ntris * 9 * sizeof(double) : w->msglen;
+        rd->payload = w->status == 0 ? (char *)malloc(rd->want_p) : rd->msg;
+        if (rd->payload == NULL)
+            return lt_diag_fail(diag, "%s: out of memory for %u triangles from the importer",
+                                path, w->ntris);
+    } else if (rd->got_p < rd->want_p) {
+        rd->got_p += (size_t)r;
+    } else {
+        rd->extra += (size_t)r;
+    }
+    return 0;
+}
+
+/* Read both pipes until they close or the deadline passes. Returns 0 (closed), 1 (time-out) or
+ * -1 (an error, message set). */
+static int pump(reader_t *rd, unsigned limit, double deadline, const char *path, lt_diag_t *diag)
+{
+    while (rd->data_open || rd->err_open) {
         struct pollfd pf[2];
         nfds_t n = 0;
         int ms = -1, pr, i;
         if (limit > 0) {
             double left = deadline - now_s();
-            if (left <= 0) {
-                timed_out = 1;
-                break;
-            }
+            if (left <= 0)
+                return 1;
             ms = left > 3600.0 ? 3600000 : (int)(left * 1000.0) + 1;
         }
-        if (data_open) {
-            pf[n].fd = dp[0];
+        if (rd->data_open) {
+            pf[n].fd = rd->dp;
             pf[n].events = POLLIN;
             pf[n].revents = 0;
             n++;
         }
-        if (err_open) {
-            pf[n].fd = ep[0];
+        if (rd->err_open) {
+            pf[n].fd = rd->ep;
             pf[n].events = POLLIN;
             pf[n].revents = 0;
             n++;
@@ -321,99 +399,39 @@ int lt_import_isolated(const char *path, lt_import_child_fn fn, void *ctx, lt_me
         pr = poll(pf, n, ms);
         if (pr < 0 && errno == EINTR)
             continue;
-        if (pr < 0) {
-            lt_diag_fail(diag, "%s: waiting for the importer process: poll: %s", path,
-                 strerror(errno));
-            timed_out = -1; /* stop it, report this */
-            break;
-        }
+        if (pr < 0)
+            return lt_diag_fail(diag, "%s: waiting for the importer process: poll: %s", path,
+                                strerror(errno));
         for (i = 0; i < (int)n; i++) {
-            char buf[65536], *dst;
-            size_t room;
-            ssize_t r;
             if (pf[i].revents == 0)
                 continue;
-            if (pf[i].fd == ep[0]) {
-                r = read(ep[0], buf, sizeof buf);
-                if (r > 0) { /* keep the last TAIL_MAX bytes */
-                    size_t k = (size_t)r;
-                    if (k >= TAIL_MAX) {
-                        memcpy(tail, buf + k - TAIL_MAX, TAIL_MAX);
-                        tail_n = TAIL_MAX;
-                    } else {
-                        if (tail_n + k > TAIL_MAX) {
-                            memmove(tail, tail + (tail_n + k - TAIL_MAX), TAIL_MAX - k);
-                            tail_n = TAIL_MAX - k;
-                        }
-                        memcpy(tail + tail_n, buf, k);
-                        tail_n += k;
-                    }
-                } else if (r == 0 || (errno != EINTR && errno != EAGAIN)) {
-                    err_open = 0;
-                }
-                continue;
-            }
-            /* the record: header, then payload (triangles or message), then end of file */
-            if (got_w < sizeof w) {
-                dst = (char *)&w + got_w;
-                room = sizeof w - got_w;
-            } else if (got_p < want_p) {
-                dst = payload + got_p;
-                room = want_p - got_p;
-            } else {
-                dst = buf;
-                room = sizeof buf;
-            }
-            r = read(dp[0], dst, room);
-            if (r == 0 || (r < 0 && errno != EINTR && errno != EAGAIN)) {
-                data_open = 0;
-                continue;
-            }
-            if (r < 0)
-                continue;
-            if (got_w < sizeof w) {
-                got_w += (size_t)r;
-                if (got_w == sizeof w) {
-                    if (w.magic != WIRE_MAGIC || (w.status != 0 && w.status != -1) ||
-                        (w.status == 0 && (w.ntris == 0 || w.ntris > LT_MESH_MAX_TRIS)) ||
-                        (w.status != 0 && w.msglen > MSG_MAX)) {
-                        extra = 1; /* not our record: refuse it below */
-                        data_open = 0;
-                        continue;
-                    }
-                    want_p = w.status == 0 ? (size_t)w.ntris * 9 * sizeof(double) : w.msglen;
-                    payload = w.status == 0 ? (char *)malloc(want_p) : msg;
-                    if (payload == NULL) {
-                        lt_diag_fail(diag, "%s: out of memory for %u triangles from the importer",
-                             path, w.ntris);
-                        timed_out = -1;
-                        break;
-                    }
-                }
-            } else if (got_p < want_p) {
-                got_p += (size_t)r;
-            } else {
-                extra += (size_t)r;
-            }
+            if (pf[i].fd == rd->ep)
+                read_tail(rd);
+            else if (read_record(rd, path, diag) != 0)
+                return -1;
         }
-        if (timed_out < 0)
-            break;
     }
-    if (timed_out != 0)
+    return 0;
+}
+
+/* Wait for the child (killed first when *timed_out != 0), still within the deadline. Returns 0,
+ * or -1 with a message. */
+static int reap(pid_t pid, int *status, int *timed_out, unsigned limit, double deadline,
+                const char *path, lt_diag_t *diag)
+{
+    if (*timed_out != 0)
         (void)kill(pid, SIGKILL);
-    /* the pipes are closed when the child ends; wait for it, still within the deadline */
     for (;;) {
-        pid_t r = waitpid(pid, &status, timed_out != 0 ? 0 : WNOHANG);
+        pid_t r = waitpid(pid, status, *timed_out != 0 ? 0 : WNOHANG);
         if (r == pid)
-            break;
+            return 0;
         if (r < 0 && errno == EINTR)
             continue;
-        if (r < 0) {
-            lt_diag_fail(diag, "%s: waiting for the importer process: %s", path, strerror(errno));
-            goto done_closed;
-        }
+        if (r < 0)
+            return lt_diag_fail(diag, "%s: waiting for the importer process: %s", path,
+                                strerror(errno));
         if (limit > 0 && now_s() >= deadline) {
-            timed_out = 1;
+            *timed_out = 1;
             (void)kill(pid, SIGKILL);
             continue;
         }
@@ -422,55 +440,86 @@ int lt_import_isolated(const char *path, lt_import_child_fn fn, void *ctx, lt_me
             (void)nanosleep(&ts, NULL);
         }
     }
-    (void)close(dp[0]);
-    (void)close(ep[0]);
-    last_words(tail, tail_n, words, sizeof words);
+}
 
-    if (timed_out < 0)
-        goto done; /* message set above */
-    if (timed_out > 0) {
-        lt_diag_fail(diag, "%s: the importer (assimp) did not finish within %u s (%s); stopped it",
-             path, limit, LT_IMPORT_TIMEOUT_ENV);
-        goto done;
-    }
+/* How the child ended, as the result: 0 with the mesh, or -1 with one line. */
+static int verdict(reader_t *rd, int status, int timed_out, unsigned limit, const char *path,
+                   lt_mesh_t *m, lt_diag_t *diag)
+{
+    char words[256];
+    last_words(rd->tail, rd->tail_n, words, sizeof words);
+    if (timed_out > 0)
+        return lt_diag_fail(diag, "%s: the importer (assimp) did not finish within %u s (%s); "
+                            "stopped it", path, limit, LT_IMPORT_TIMEOUT_ENV);
     if (WIFSIGNALED(status)) {
         int s = WTERMSIG(status);
-        lt_diag_fail(diag, "%s: the importer (assimp) crashed (signal %d, %s) on this file%s%s",
-             path, s, signal_name(s),
-             words[0] != '\0' ? ": " : s == SIGKILL ? " (killed: out of memory?)" : "", words);
-        goto done;
+        return lt_diag_fail(diag, "%s: the importer (assimp) crashed (signal %d, %s) on this "
+                            "file%s%s", path, s, signal_name(s),
+                            words[0] != '\0' ? ": " : s == SIGKILL ? " (killed: out of memory?)"
+                                                                   : "", words);
     }
     if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
         int sanitizer = strstr(words, "Sanitizer") != NULL || strstr(words, "runtime error") != NULL;
-        lt_diag_fail(diag, "%s: the importer (assimp) %s (exit status %d) on this file%s%s", path,
-             sanitizer ? "crashed" : "failed", WIFEXITED(status) ? WEXITSTATUS(status) : -1,
-             words[0] != '\0' ? ": " : "", words);
-        goto done;
+        return lt_diag_fail(diag, "%s: the importer (assimp) %s (exit status %d) on this file%s%s",
+                            path, sanitizer ? "crashed" : "failed",
+                            WIFEXITED(status) ? WEXITSTATUS(status) : -1,
+                            words[0] != '\0' ? ": " : "", words);
     }
-    if (got_w < sizeof w || got_p < want_p || extra != 0) {
-        lt_diag_fail(diag, "%s: the importer process ended with %s (%zu of %zu header bytes, %zu of "
-             "%zu data bytes%s)", path, extra != 0 ? "an invalid record" : "an incomplete record",
-             got_w, sizeof w, got_p, want_p, extra != 0 ? ", unexpected bytes" : "");
-        goto done;
+    if (rd->got_w < sizeof rd->w || rd->got_p < rd->want_p || rd->extra != 0)
+        return lt_diag_fail(diag, "%s: the importer process ended with %s (%zu of %zu header "
+                            "bytes, %zu of %zu data bytes%s)", path,
+                            rd->extra != 0 ? "an invalid record" : "an incomplete record",
+                            rd->got_w, sizeof rd->w, rd->got_p, rd->want_p,
+                            rd->extra != 0 ? ", unexpected bytes" : "");
+    if (rd->w.status != 0) {
+        rd->msg[rd->w.msglen] = '\0';
+        return lt_diag_fail(diag, "%s", rd->msg);
     }
-    if (w.status != 0) {
-        msg[w.msglen] = '\0';
-        lt_diag_fail(diag, "%s", msg);
-        goto done;
+    m->v = (double *)(void *)rd->payload;
+    rd->payload = NULL;
+    m->ntris = rd->w.ntris;
+    memcpy(m->lo, rd->w.lo, sizeof m->lo);
+    memcpy(m->hi, rd->w.hi, sizeof m->hi);
+    return 0;
+}
+
+int lt_import_isolated(const char *path, lt_import_child_fn fn, void *ctx, lt_mesh_t *m,
+                       lt_diag_t *diag)
+{
+    static reader_t rd0;
+    reader_t *rd;
+    int dp[2], ep[2], status = 0, timed_out, rc = -1;
+    unsigned limit;
+    pid_t pid;
+    double deadline;
+
+    memset(m, 0, sizeof *m);
+    if (timeout_seconds(path, &limit, diag) != 0)
+        return -1;
+    rd = malloc(sizeof *rd);
+    if (rd == NULL)
+        return lt_diag_fail(diag, "%s: out of memory", path);
+    *rd = rd0;
+    pid = start_child(path, fn, ctx, limit, dp, ep, diag);
+    if (pid < 0) {
+        free(rd);
+        return -1;
     }
-    m->v = (double *)(void *)payload;
-    payload = NULL;
-    m->ntris = w.ntris;
-    memcpy(m->lo, w.lo, sizeof m->lo);
-    memcpy(m->hi, w.hi, sizeof m->hi);
-    rc = 0;
-    goto done;
-done_closed:
-    (void)close(dp[0]);
-    (void)close(ep[0]);
-done:
-    if (payload != NULL && payload != msg)
-        free(payload);
+    rd->dp = dp[0];
+    rd->ep = ep[0];
+    rd->data_open = rd->err_open = 1;
+    (void)fcntl(rd->dp, F_SETFL, fcntl(rd->dp, F_GETFL) | O_NONBLOCK);
+    (void)fcntl(rd->ep, F_SETFL, fcntl(rd->ep, F_GETFL) | O_NONBLOCK);
+    deadline = limit > 0 ? now_s() + (double)limit : 0.0;
+    timed_out = pump(rd, limit, deadline, path, diag);
+    /* the pipes are closed when the child ends; wait for it, still within the deadline */
+    if (reap(pid, &status, &timed_out, limit, deadline, path, diag) == 0 && timed_out >= 0)
+        rc = verdict(rd, status, timed_out, limit, path, m, diag);
+    (void)close(rd->dp);
+    (void)close(rd->ep);
+    if (rd->payload != NULL && rd->payload != rd->msg)
+        free(rd->payload);
+    free(rd);
     return rc;
 }
 

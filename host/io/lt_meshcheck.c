@@ -727,7 +727,11 @@ static int off_line(const unsigned char *b, size_t len, size_t *pos, unsigned lo
     }
 }
 
-static int check_off(const char *where, const unsigned char *b, size_t len, lt_diag_t *diag)
+/* OFF: the header line, the counts, and the counts against the file size. Leaves *pos and *ln at
+ * the first vertex line; *need = values per vertex line. */
+static int off_header(const char *where, const unsigned char *b, size_t len, size_t *pos_,
+                      unsigned long *ln_, uint64_t *nv_, uint64_t *nf_, unsigned *need_,
+                      lt_diag_t *diag)
 {
     size_t pos = 0, i;
     unsigned long ln = 1;
@@ -735,7 +739,7 @@ static int check_off(const char *where, const unsigned char *b, size_t len, lt_d
     size_t tn;
     int st = 0, col = 0, nrm = 0, hom = 0, ndim = 0;
     unsigned dims = 3, need;
-    uint64_t nv, nf, ne, f, v, d64;
+    uint64_t nv, nf, ne, d64;
     char q[32];
 
     for (i = 0; i < len; i++)
@@ -856,6 +860,23 @@ static int check_off(const char *where, const unsigned char *b, size_t len, lt_d
             return -1;
         }
     }
+    *pos_ = pos;
+    *ln_ = ln;
+    *nv_ = nv;
+    *nf_ = nf;
+    *need_ = need;
+    return 0;
+}
+
+/* OFF: nv vertex lines of need numbers each (comments after them allowed). */
+static int off_vertices(const char *where, const unsigned char *b, size_t len, size_t *pos_,
+                        unsigned long *ln_, uint64_t nv, unsigned need, lt_diag_t *diag)
+{
+    size_t pos = *pos_, tn;
+    unsigned long ln = *ln_;
+    const unsigned char *t;
+    uint64_t v;
+    char q[32];
     for (v = 0; v < nv; v++) {
         line_t l;
         int toolong;
@@ -896,6 +917,20 @@ static int check_off(const char *where, const unsigned char *b, size_t len, lt_d
             return -1;
         }
     }
+    *pos_ = pos;
+    *ln_ = ln;
+    return 0;
+}
+
+/* OFF: nf face lines, 3..9 indices below nv each. */
+static int off_faces(const char *where, const unsigned char *b, size_t len, size_t *pos_,
+                     unsigned long *ln_, uint64_t nv, uint64_t nf, lt_diag_t *diag)
+{
+    size_t pos = *pos_, tn;
+    unsigned long ln = *ln_;
+    const unsigned char *t;
+    uint64_t f;
+    char q[32];
     for (f = 0; f < nf; f++) {
         line_t l;
         int toolong;
@@ -946,6 +981,21 @@ static int check_off(const char *where, const unsigned char *b, size_t len, lt_d
         }
         /* colour values after the indices are allowed (and ignored) */
     }
+    *pos_ = pos;
+    *ln_ = ln;
+    return 0;
+}
+
+static int check_off(const char *where, const unsigned char *b, size_t len, lt_diag_t *diag)
+{
+    size_t pos;
+    unsigned long ln;
+    uint64_t nv, nf;
+    unsigned need;
+    if (off_header(where, b, len, &pos, &ln, &nv, &nf, &need, diag) != 0 ||
+        off_vertices(where, b, len, &pos, &ln, nv, need, diag) != 0 ||
+        off_faces(where, b, len, &pos, &ln, nv, nf, diag) != 0)
+        return -1;
     return 0;
 }
 
