@@ -30,6 +30,7 @@ struct lt_accel {
     lt_grid_q16_t gq;
     lt_grid_f32_t gf;
     size_t bytes;            /* structure memory */
+    uint32_t isect;          /* the intersector of every walk (LT_ISECT_WT unless set) */
 };
 
 const char *const lt_render_structures[] = {"chunks", "bvh", "bvhq", "kd", "grid", NULL};
@@ -222,6 +223,17 @@ lt_accel_t *lt_accel_build(const lt_scene_t *s, const char *structure, lt_path_t
 
 size_t lt_accel_bytes(const lt_accel_t *a) { return a->bytes; }
 
+void lt_accel_set_isect(lt_accel_t *a, uint32_t isect)
+{
+    a->isect = isect;
+    a->bvh.isect = isect;
+    a->bvhq.isect = isect;
+    a->kdq.isect = isect;
+    a->kdf.isect = isect;
+    a->gq.isect = isect;
+    a->gf.isect = isect;
+}
+
 void lt_accel_free(lt_accel_t *a)
 {
     if (a == NULL)
@@ -244,9 +256,9 @@ static void trace16(const lt_scene_t *s, const lt_accel_t *a, lt_ray16_q16_t *rq
 {
     if (a->kind == ACC_CHUNKS) {
         if (a->path == LT_PATH_Q16)
-            lt_chunks_trace16_q16(s->tq, a->n, a->boxes_q, rq, k, hit);
+            lt_chunks_trace16_q16(s->tq, a->n, a->boxes_q, a->isect, rq, k, hit);
         else
-            lt_chunks_trace16_f32(s->tf, a->n, a->boxes_f, rf, k, hit);
+            lt_chunks_trace16_f32(s->tf, a->n, a->boxes_f, a->isect, rf, k, hit);
     } else if (a->kind == ACC_KD) {
         if (a->path == LT_PATH_Q16)
             (void)lt_kd_trace16_q16(&a->kdq, rq, k, hit);

@@ -2272,9 +2272,9 @@ static void test_object_costs(void **state)
         rq2 = rq;
         rf2 = rf;
         if (f)
-            CHECKC(nm, lt_chunks_trace16_f32(tf, 1, &boxf, &rf2, LT_MASK_ALL, &hit), &want);
+            CHECKC(nm, lt_chunks_trace16_f32(tf, 1, &boxf, LT_ISECT_WT, &rf2, LT_MASK_ALL, &hit), &want);
         else
-            CHECKC(nm, lt_chunks_trace16_q16(tq, 1, &boxq, &rq2, LT_MASK_ALL, &hit), &want);
+            CHECKC(nm, lt_chunks_trace16_q16(tq, 1, &boxq, LT_ISECT_WT, &rq2, LT_MASK_ALL, &hit), &want);
         /* BVH walks over the one-leaf tree */
         memset(&want, 0, sizeof want);
         ph = LT_PH_OTHER;
