@@ -146,8 +146,8 @@ static int verify(const char *name, const uint64_t b[LT_OP__COUNT], const want_t
 
 static void sim_start(void)
 {
-    char err[128];
-    assert_int_equal(lt_sim_init(lt_sim_machine_find("lrb16"), NULL, NULL, err, sizeof err), 0);
+    lt_diag_t diag;
+    assert_int_equal(lt_sim_init(lt_sim_machine_find("lrb16"), NULL, NULL, &diag), 0);
     lt_sim_reset();
 }
 
