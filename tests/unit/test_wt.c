@@ -1963,10 +1963,10 @@ static void test_single_ray(void **state)
                 hit1 = lt_tri1_wt_q16(&w1, &tq, p0.tmin.l[i], &tmax);
                 cases++;
                 hits += (unsigned long)hit1;
-                if (hit1 != (int)((got >> i) & 1u) || tmax != p.tmax.l[i] || w1.sh != w.sh[i]) {
+                if (hit1 != (int)(((unsigned)got >> (unsigned)i) & 1u) || tmax != p.tmax.l[i] || w1.sh != w.sh[i]) {
                     if (bad < 5)
                         ltt_report("  FAIL q16 single ray: case %d lane %d: hit %d/%d t %d/%d\n", it,
-                                   i, hit1, (int)((got >> i) & 1u), tmax, p.tmax.l[i]);
+                                   i, hit1, (int)(((unsigned)got >> (unsigned)i) & 1u), tmax, p.tmax.l[i]);
                     bad++;
                 }
             }
@@ -2006,10 +2006,10 @@ static void test_single_ray(void **state)
                     hit1 = lt_tri1_wt_f32(&w1, &tf, p0.tmin.l[i], &tmax);
                     cases++;
                     hits += (unsigned long)hit1;
-                    if (hit1 != (int)((got >> i) & 1u) || memcmp(&tmax, &pf.tmax.l[i], 4) != 0) {
+                    if (hit1 != (int)(((unsigned)got >> (unsigned)i) & 1u) || memcmp(&tmax, &pf.tmax.l[i], 4) != 0) {
                         if (bad < 5)
                             ltt_report("  FAIL f32 single ray: case %d lane %d: hit %d/%d\n", it, i,
-                                       hit1, (int)((got >> i) & 1u));
+                                       hit1, (int)(((unsigned)got >> (unsigned)i) & 1u));
                         bad++;
                     }
                 }
