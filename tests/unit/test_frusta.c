@@ -76,6 +76,8 @@ static void build(const tscene_t *s, uint32_t max_leaf, uint32_t min_leaf, tbvh_
     assert_int_equal(posix_memalign(&b->af, 64, bytes + 64), 0);
     assert_int_equal(lt_bvh_build_q16(&b->q, &d, s->tq, s->n, b->aq, bytes), LT_OK);
     assert_int_equal(lt_bvh_build_f32(&b->f, &d, s->tf, s->n, b->af, bytes), LT_OK);
+    /* the intersector of the walks and of the per-ray references (lt_isect_oracle.h) */
+    b->q.isect = b->f.isect = ltt_isect;
 }
 
 static void unbuild(tbvh_t *b)
@@ -365,6 +367,8 @@ static void test_random_scenes(void **state)
         tbvh_t shallow, deep;
         unsigned n = sc < 3 ? 200u + 300u * sc : 1500u;
         double size = sc % 3 == 0 ? 5.0 : (sc % 3 == 1 ? 20.0 : 60.0);
+        /* odd scenes with Moller-Trumbore: its corner culling is checked too */
+        ltt_isect = sc & 1u ? LT_ISECT_MT : LT_ISECT_WT;
         random_scene(&r, &s, n, size);
         build(&s, 16, 8, &shallow);
         build(&s, 4, 1, &deep);
@@ -380,8 +384,9 @@ static void test_random_scenes(void **state)
         unbuild(&shallow);
         unbuild(&deep);
     }
+    ltt_isect = LT_ISECT_WT;
     tally_print("random scenes (6 scenes, 6 flag sets, 3 light sizes, coherent and scattered "
-                "origins, random masks)", &t);
+                "origins, random masks; odd scenes Moller-Trumbore)", &t);
 #if LT_COST_MODE == LT_COST_SIM
     {
         /* the equality above is only worth something if the culling actually removed pairs */
@@ -1396,6 +1401,8 @@ static void test_primary_random(void **state)
         tbvh_t shal, deep;
         unsigned n = 150u + 150u * sc;
         double size = sc % 3 == 0 ? 8.0 : (sc % 3 == 1 ? 30.0 : 80.0);
+        /* odd scenes with Moller-Trumbore: its corner culling is checked too */
+        ltt_isect = sc & 1u ? LT_ISECT_MT : LT_ISECT_WT;
         random_scene(&r, &s, n, size);
         build(&s, sc & 1u ? 16 : 8, sc & 1u ? 8 : 4, &shal);
         build(&s, 4, 1, &deep);
@@ -1418,7 +1425,9 @@ static void test_primary_random(void **state)
         unbuild(&shal);
         unbuild(&deep);
     }
-    ptally_print("primary random scenes (6 scenes, 2 cameras each, 6 flag sets, leaf 8 and 16)",
+    ltt_isect = LT_ISECT_WT;
+    ptally_print("primary random scenes (6 scenes, 2 cameras each, 6 flag sets, leaf 8 and 16; "
+                 "odd scenes Moller-Trumbore)",
                  &t, ties);
 #if LT_COST_MODE == LT_COST_SIM
     {
