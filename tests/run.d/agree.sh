@@ -41,7 +41,7 @@ if [ -d "$shared_scenes" ]; then
         grep "^agree .* q16 \|^agree .* f32 " "$tmp/agree256.txt" | grep -v " vs \|single" | sed 's/^/  /'
         grep '^agree verdict' "$tmp/agree256.txt" | cut -c 1-200 | sed 's/^/  /'
         check "agree dragon_res3.obj 256x256 --min 100: 100% same triangle or tie, 0 edge, 0 unexplained in every structure and path" \
-            bash -c "[ $rc -eq 0 ] && [ \$(grep -c ', 0 edge, 0 unexplained' '$tmp/agree256.txt') -eq 7 ] && ! grep -q 'unexplained pixel' '$tmp/agree256.txt'"
+            bash -c "[ $rc -eq 0 ] && [ \$(grep -c '; 0 edge, 0 unexplained' '$tmp/agree256.txt') -eq 7 ] && ! grep -q 'unexplained pixel' '$tmp/agree256.txt'"
     fi
 elif [ "${CI:-}" = "true" ]; then
     ko "agree: ../shared/scenes missing under CI"
