@@ -271,7 +271,8 @@ int lt_sdev_run(const lt_sdev_port_t *p, const lt_sdev_cfg_t *c, lt_sdev_result_
                         status = 3;
                     LT_EVENT(RAYS, LT_LANES);
                     LT_PHASE_LEAVE(prev);
-                    (void)lt_chunks_trace16_q16(tris, NTRIS, boxes, &ray, LT_MASK_ALL, &hit);
+                    (void)lt_chunks_trace16_q16(tris, NTRIS, boxes, LT_ISECT_WT, &ray, LT_MASK_ALL,
+                                                &hit);
                     for (i = 0; i < LT_LANES; i++) {
                         int32_t id = hit.id.l[i];
                         uint32_t pix = (py - ty0 + i / 4) * LT_SDEV_TILE + (px - tx0 + i % 4);

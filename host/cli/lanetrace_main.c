@@ -187,8 +187,8 @@ typedef struct run {
     int npos;
     const char *mesh_over, *report, *csv, *depth_out, *heat_out, *machine, *l1, *l2;
     uint32_t wh[2];
-    int num, structure, json, repeat, do_ref, native;
-    int seen_res, seen_num, seen_structure, seen_machine, seen_l1, seen_l2;
+    int num, structure, isect, json, repeat, do_ref, native;
+    int seen_res, seen_num, seen_structure, seen_isect, seen_machine, seen_l1, seen_l2;
     const char *num_names[8];
     unsigned num_sets[8];
     /* inputs */
@@ -234,6 +234,10 @@ static int run_parse(run_t *r, int argc, char **argv)
         {.name = "--structure", .kind = LT_OPT_ENUM, .dest = &r->structure,
          .seen = &r->seen_structure, .meta = "NAME", .names = lt_render_structures,
          .help = "acceleration structure: {choices} (default bvh)"},
+        {.name = "--isect", .kind = LT_OPT_ENUM, .dest = &r->isect, .seen = &r->seen_isect,
+         .meta = "NAME", .names = lt_sf_isects,
+         .help = "ray/triangle test: {choices} (default wt: watertight; mt: Moller-Trumbore,\n"
+                 "cheaper, leaks at shared edges)"},
         {.name = "--machine", .kind = LT_OPT_STRING, .dest = &r->machine,
          .seen = &r->seen_machine, .meta = "NAME", .help = machine_help},
         {.name = "--l1", .kind = LT_OPT_STRING, .dest = &r->l1, .seen = &r->seen_l1,
@@ -292,6 +296,8 @@ static int run_settle(run_t *r)
         sf->numeric = (lt_sf_num_t)r->num_sets[r->num];
     if (r->seen_structure)
         snprintf(sf->structure, sizeof sf->structure, "%s", lt_render_structures[r->structure]);
+    if (r->seen_isect)
+        snprintf(sf->isect, sizeof sf->isect, "%s", lt_sf_isects[r->isect]);
     if (r->seen_machine)
         snprintf(sf->machine, sizeof sf->machine, "%s", r->machine);
     if (r->seen_l1)
@@ -447,6 +453,7 @@ static void run_facts(const run_t *r, const char *pname, double ms, size_t acc_b
     char *xs;
     cJSON_AddStringToObject(x, "path", pname);
     cJSON_AddStringToObject(x, "structure", sf->structure);
+    cJSON_AddStringToObject(x, "isect", sf->isect);
     cJSON_AddStringToObject(x, "scene", sf->mesh);
     cJSON_AddNumberToObject(x, "width", sf->width);
     cJSON_AddNumberToObject(x, "height", sf->height);
@@ -586,6 +593,7 @@ static int run_path(run_t *r, const lt_path_info_t *p)
         r->status = EXIT_INPUT;
         return -1;
     }
+    lt_accel_set_isect(acc, strcmp(sf->isect, "mt") == 0 ? LT_ISECT_MT : LT_ISECT_WT);
     progress_begin(pname);
     t0 = lt_now_s();
     for (rep = 0; rep < r->repeat; rep++)
@@ -682,9 +690,9 @@ static int run_trace(run_t *r)
     lt_diag_t diag;
     if (!quiet)
         printf("scene     %s: %u triangles, scale %g (file units -> s15.16 units), radius %.1f, "
-               "%ux%u pixels, %u packets, structure %s\n",
+               "%ux%u pixels, %u packets, structure %s, isect %s\n",
                sf->mesh, r->sc.ntris, r->sc.scale, r->sc.radius, sf->width, sf->height,
-               ((sf->width + 3) / 4) * ((sf->height + 3) / 4), sf->structure);
+               ((sf->width + 3) / 4) * ((sf->height + 3) / 4), sf->structure, sf->isect);
     if (lt_frame_alloc(&r->ref, sf->width, sf->height, &diag) != 0 ||
         lt_frame_alloc(&r->fr, sf->width, sf->height, &diag) != 0) {
         fprintf(stderr, "%s\n", diag.msg);
@@ -1270,7 +1278,7 @@ typedef struct render {
     const char *mesh_over, *out, *report;
     uint32_t wh[2];
     double lf[3];
-    int seen_res, seen_light, num, structure, layers, json;
+    int seen_res, seen_light, num, structure, isect, seen_isect, layers, json;
     const char *num_names[8];
     unsigned num_sets[8];
     const lt_path_info_t *path;
@@ -1326,6 +1334,10 @@ static int render_parse(render_t *r, int argc, char **argv)
         {.name = "--structure", .kind = LT_OPT_ENUM, .dest = &r->structure, .meta = "NAME",
          .names = lt_render_structures,
          .help = "acceleration structure: {choices}\n(default bvh; chunks: no shadows, no peels)"},
+        {.name = "--isect", .kind = LT_OPT_ENUM, .dest = &r->isect, .seen = &r->seen_isect,
+         .meta = "NAME", .names = lt_sf_isects,
+         .help = "ray/triangle test: {choices} (default: the scene's, else wt:\n"
+                 "watertight; mt: Moller-Trumbore, cheaper, leaks at shared edges)"},
         LT_OPT_INT("--layers", "K", &r->layers, 1, 16, "depth peels, {range} (default 1)"),
         LT_OPT_OUT("--report", "PATH.json",
                    &r->report, "json", "(simulator build) write the cycle report of the whole render as\n"
@@ -1506,6 +1518,9 @@ static int render_trace(render_t *r)
         fprintf(stderr, "%s render: %s\n", prog, diag.msg);
         return EXIT_USAGE;
     }
+    if (r->seen_isect)
+        snprintf(r->sf.isect, sizeof r->sf.isect, "%s", lt_sf_isects[r->isect]);
+    lt_accel_set_isect(r->acc, strcmp(sf->isect, "mt") == 0 ? LT_ISECT_MT : LT_ISECT_WT);
     progress_begin("render");
     lt_render_primary(&r->sc, r->acc, &r->cam, &r->fr, progress);
     progress_end();
@@ -1757,6 +1772,7 @@ static void render_summary(const render_t *r)
         }
         cJSON_AddStringToObject(o, "mesh", r->sf.mesh);
         cJSON_AddStringToObject(o, "structure", lt_render_structures[r->structure]);
+        cJSON_AddStringToObject(o, "isect", r->sf.isect);
         cJSON_AddStringToObject(o, "path", r->path->name);
         cJSON_AddNumberToObject(o, "width", r->sf.width);
         cJSON_AddNumberToObject(o, "height", r->sf.height);

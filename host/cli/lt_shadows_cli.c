@@ -9,6 +9,7 @@
  * docs/frusta.md.
  */
 #include "render/lt_softshadow.h"
+#include "io/lt_scenefile.h"
 #include "cli/lt_cliutil.h"
 #include "lt_rate.h"
 #include "cli/lt_opt.h"
@@ -76,7 +77,7 @@ static double k_(uint64_t v) { return (double)v / 1000.0; }
 typedef struct shadows {
     /* options */
     const char *mesh_path, *png, *raw_png, *ref_png, *machine, *scene_path;
-    int res, leaf, num, prim, only, qmc, filter, report, no_ref, ground, quiet;
+    int res, leaf, num, prim, only, qmc, filter, report, no_ref, ground, quiet, isect;
     int npos, seen_res, seen_num, seen_leaf, seen_cull, seen_prim, seen_only, png_which;
     lt_scenefile_t sf;
     int seen_light, seen_eye, seen_target, seen_fov;
@@ -169,6 +170,9 @@ static int shadows_parse(shadows_t *s, int argc, char **argv)
          .help = "primary culling: b (back faces, both methods), c (corner rays),\n"
                  "r (corner rays through the on-image pixels), or none (default bcr)"},
         LT_OPT_ENUM_("--qmc", &s->qmc, qmc_names, "sample set (default lp)"),
+        LT_OPT_ENUM_("--isect", &s->isect, lt_sf_isects,
+                     "ray/triangle test of every stage: wt (watertight, default) or mt\n"
+                     "(Moller-Trumbore: cheaper, leaks at shared edges)"),
         {.name = "--light", .kind = LT_OPT_CUSTOM, .dest = s->light_c, .seen = &s->seen_light,
          .meta = "X,Y,Z,S", .parse = parse_light,
          .expect = "X,Y,Z,SIZE (4 finite numbers, SIZE >= 0)",
@@ -341,6 +345,7 @@ static int shadows_load(shadows_t *s)
     o.cos_min = s->cos_min;
     o.filter_vis = s->filter == 1;
     o.pflags = s->pflags;
+    o.isect = s->isect == 1 ? LT_ISECT_MT : LT_ISECT_WT;
     s->ss = lt_ss_create(&s->sc, &s->cam, &s->light, &o, &diag);
     if (s->ss == NULL) {
         fprintf(stderr, "%s: %s\n", who, diag.msg);
@@ -356,7 +361,7 @@ static void shadows_print_scene(const shadows_t *s)
     uint32_t flags = s->flags, pflags = s->pflags;
     printf("scene     %s: %u triangles%s, radius %.1f units (scale %g), %ux%u, %s, light "
            "%.3g x %.3g units at (%.1f, %.1f, %.1f), frusta leaf %u, culling %s%s%s%s, "
-           "primary culling %s%s%s%s, %s samples\n",
+           "primary culling %s%s%s%s, %s samples, isect %s\n",
            s->mesh_path, s->sc.ntris, s->ground ? " (with ground quad)" : "", s->sc.radius,
            s->sc.scale, s->res, s->res, s->path->format, light->eu[0], light->ev[2],
            light->c[0] + 0.5 * light->eu[0], light->c[1], light->c[2] + 0.5 * light->ev[2],
@@ -364,7 +369,8 @@ static void shadows_print_scene(const shadows_t *s)
            flags & LT_FRUSTA_CORNER ? "c" : "", flags & LT_FRUSTA_CR ? "r" : "",
            pflags == 0 ? "none" : "", pflags & LT_FRUSTA_BACKFACE ? "b" : "",
            pflags & LT_FRUSTA_CORNER ? "c" : "", pflags & LT_FRUSTA_CR ? "r" : "",
-           qmc_kinds[s->qmc] == LT_QMC_LP ? "Larcher-Pillichshammer" : "Hammersley");
+           qmc_kinds[s->qmc] == LT_QMC_LP ? "Larcher-Pillichshammer" : "Hammersley",
+           lt_sf_isects[s->isect]);
 }
 
 /* The stages, each measured alone: P-Packet then S-Packet on its hit points, P-Frusta then

@@ -14,6 +14,7 @@
 #include <sys/stat.h>
 
 const char *const lt_sf_structures[] = {"chunks", "bvh", "bvhq", "kd", "grid", NULL};
+const char *const lt_sf_isects[] = {"wt", "mt", NULL};
 
 /* The machine models' names, from the same generated list as the simulator's table
  * (sim/lt_machines.h): names only, so the validator links without the simulator. */
@@ -65,6 +66,7 @@ void lt_sf_defaults(lt_scenefile_t *sf)
     sf->up[1] = 1.0;
     sf->width = sf->height = 128;
     snprintf(sf->structure, sizeof sf->structure, "bvh");
+    snprintf(sf->isect, sizeof sf->isect, "wt");
     sf->numeric = LT_SF_NUM_BOTH;
     snprintf(sf->machine, sizeof sf->machine, "lrb16");
     sf->rp_gamma_norm = sf->rp_gamma_dist = -1.0;
@@ -345,8 +347,9 @@ static int parse_shadows(ctx_t *c, const cJSON *sh, lt_scenefile_t *sf)
 static int parse_root(ctx_t *c, const cJSON *root, lt_scenefile_t *sf)
 {
     static const char *const keys[] = {"lanetrace", "mesh",   "depth",   "camera",  "resolution",
-                                       "structure", "numeric", "machine", "caches", "lights",
-                                       "outputs",   "reproject", "leaf", "shadows", NULL};
+                                       "structure", "isect",  "numeric", "machine", "caches",
+                                       "lights",    "outputs", "reproject", "leaf", "shadows",
+                                       NULL};
     static const char *const cache_keys[] = {"l1", "l2", NULL};
     static const char *const light_keys[] = {"type", "position", "intensity", NULL};
     static const char *const out_keys[] = {"report", "csv", NULL};
@@ -395,6 +398,9 @@ static int parse_root(ctx_t *c, const cJSON *root, lt_scenefile_t *sf)
     }
     if ((it = cJSON_GetObjectItemCaseSensitive(root, "structure")) != NULL &&
         get_choice(c, it, "structure", lt_sf_structures, sf->structure, sizeof sf->structure) != 0)
+        return -1;
+    if ((it = cJSON_GetObjectItemCaseSensitive(root, "isect")) != NULL &&
+        get_choice(c, it, "isect", lt_sf_isects, sf->isect, sizeof sf->isect) != 0)
         return -1;
     if ((it = cJSON_GetObjectItemCaseSensitive(root, "numeric")) != NULL) {
         if (get_choice(c, it, "numeric", nums, tmp, sizeof tmp) != 0)

@@ -31,6 +31,8 @@ typedef struct lt_scenefile {
     double fov_y_deg;              /* vertical field of view, (1, 179) */
     uint32_t width, height;        /* 1..LT_SF_MAX_RES */
     char structure[16];            /* "chunks" */
+    char isect[4];                 /* ray/triangle intersector: "wt" (watertight, the default) or
+                                      "mt" (Moller-Trumbore) */
     lt_sf_num_t numeric;
     char machine[32];              /* one of lt_sf_machines ("lrb16") */
     char l1[32], l2[32];           /* cache overrides, "" = the machine's */
@@ -76,6 +78,9 @@ int lt_sf_parse(const char *text, const char *name, const char *base_dir, lt_sce
 
 /* Structure names the tracer accepts (NULL-terminated). */
 extern const char *const lt_sf_structures[];
+
+/* Intersector names (NULL-terminated): "wt" (LT_ISECT_WT), "mt" (LT_ISECT_MT), in that order. */
+extern const char *const lt_sf_isects[];
 
 /* Machine model names (NULL-terminated, in file name order): one per sim/machines/<name>.def, known
  * in every build (the native one runs no cycle model). */

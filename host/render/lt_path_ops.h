@@ -46,8 +46,8 @@ typedef struct lt_render_ops {
     /* chunks: a box per LT_CHUNK triangles */
     size_t box_bytes;
     lt_status_t (*chunks_build)(const void *tris, uint32_t n, void *boxes);
-    void (*chunks_trace16)(const void *tris, uint32_t n, const void *boxes, void *r, lt_mask16_t k,
-                           lt_hit16_t *hit);
+    void (*chunks_trace16)(const void *tris, uint32_t n, const void *boxes, uint32_t isect,
+                           void *r, lt_mask16_t k, lt_hit16_t *hit);
     /* the BVH (lt_bvh_t is the same type in every path) */
     lt_status_t (*bvh_build)(lt_bvh_t *bvh, const lt_bvh_desc_t *desc, const void *tris,
                              uint32_t n, void *arena, size_t bytes);
@@ -71,6 +71,7 @@ typedef struct lt_render_ops {
                             void *mem, size_t *bytes);
     void (*kd_trace16)(const void *kd, void *r, lt_mask16_t k, lt_hit16_t *hit);
     lt_mask16_t (*kd_occluded16)(const void *kd, void *r, lt_mask16_t k);
+    void (*kd_set_isect)(void *kd, uint32_t isect); /* the intersector of its walks (lt_isect.h) */
     /* uniform grid */
     size_t grid_bytes;
     lt_status_t (*grid_size)(const void *tris, uint32_t n, const lt_grid_params_t *p,
@@ -79,6 +80,7 @@ typedef struct lt_render_ops {
                               void *mem, size_t *bytes);
     void (*grid_trace16)(const void *grid, void *r, lt_mask16_t k, lt_hit16_t *hit);
     lt_mask16_t (*grid_occluded16)(const void *grid, void *r, lt_mask16_t k);
+    void (*grid_set_isect)(void *grid, uint32_t isect);
 
     /* packets */
     size_t ray16_bytes;

@@ -30,6 +30,7 @@ struct lt_accel {
     void *ray;               /* one packet in the path's format, the traces' scratch */
     size_t bytes;            /* structure memory */
     uint32_t leaf;           /* lt_accel_params_t.leaf (0: default) */
+    uint32_t isect;          /* the intersector of every walk (LT_ISECT_WT unless set) */
 };
 
 const char *const lt_render_structures[] = {"chunks", "bvh", "bvhq", "kd", "grid", NULL};
@@ -262,6 +263,17 @@ lt_accel_t *lt_accel_build_ex(const lt_scene_t *s, const char *structure,
 
 size_t lt_accel_bytes(const lt_accel_t *a) { return a->bytes; }
 
+void lt_accel_set_isect(lt_accel_t *a, uint32_t isect)
+{
+    a->isect = isect;
+    a->bvh.isect = isect;
+    a->bvhq.isect = isect;
+    if (a->hdr != NULL && a->kind == ACC_KD)
+        a->ops->kd_set_isect(a->hdr, isect);
+    if (a->hdr != NULL && a->kind == ACC_GRID)
+        a->ops->grid_set_isect(a->hdr, isect);
+}
+
 void lt_accel_free(lt_accel_t *a)
 {
     if (a == NULL)
@@ -284,7 +296,7 @@ static void trace16(const lt_accel_t *a, lt_mask16_t k, lt_hit16_t *hit)
 {
     const lt_render_ops_t *ops = a->ops;
     if (a->kind == ACC_CHUNKS)
-        ops->chunks_trace16(a->tris, a->n, a->boxes, a->ray, k, hit);
+        ops->chunks_trace16(a->tris, a->n, a->boxes, a->isect, a->ray, k, hit);
     else if (a->kind == ACC_KD)
         ops->kd_trace16(a->hdr, a->ray, k, hit);
     else if (a->kind == ACC_GRID)

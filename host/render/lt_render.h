@@ -55,6 +55,10 @@ void lt_accel_free(lt_accel_t *a);
 /* Bytes of the built structure (nodes, indices, boxes; not the triangles). */
 size_t lt_accel_bytes(const lt_accel_t *a);
 
+/* The ray/triangle intersector of every walk over the structure (lt_isect.h): LT_ISECT_WT,
+ * watertight, what lt_accel_build sets, or LT_ISECT_MT, Moller-Trumbore. */
+void lt_accel_set_isect(lt_accel_t *a, uint32_t isect);
+
 /* Trace all primary rays of the camera into f (allocated to the camera size). progress (may be
  * NULL) is called with the fraction done. */
 void lt_render_primary(const lt_scene_t *s, const lt_accel_t *a, const lt_camera_t *c,

@@ -38,13 +38,30 @@ int lt_scene_prepare(const lt_mesh_t *m, lt_scene_t *s, lt_diag_t *diag)
         lt_diag_fail(diag, "out of memory for %u triangles", m->ntris);
         return -1;
     }
+    /* float32 vertices on one grid, 2^(e - 23) for |coordinate| <= 2^e (here e <= 10: every
+       coordinate lies within the radius): each is then exact in float, and so is every
+       difference of two (|v1 - v0| <= 2^(e+1) in steps of 2^(e-23): 24 bits), so the kernels'
+       rebuild fl(v0 + e1) gives back v1 bit for bit in every triangle that shares it - what the
+       watertight test needs (docs/watertight.md). The grid step is at most twice the float
+       spacing at the largest coordinate. */
+    {
+        double mx = 0.0;
+        for (i = 0; i < m->ntris * 9u; i++) {
+            double c = fabs((m->v[i] - s->center[i % 3u]) * s->scale);
+            mx = c > mx ? c : mx;
+        }
+        frexp(mx, &e);
+        s->fgrid = ldexp(1.0, e - 23);
+    }
     for (i = 0; i < m->ntris; i++) {
         lt_q16_t q[3][3];
+        float fv[3][3];
         for (j = 0; j < 3; j++)
             for (a = 0; a < 3; a++) {
                 double c = (m->v[i * 9 + j * 3 + a] - s->center[a]) * s->scale;
                 s->vd[i * 9 + j * 3 + a] = c;
                 q[j][a] = lt_q16_from_double_sat(c);
+                fv[j][a] = (float)(nearbyint(c / s->fgrid) * s->fgrid);
             }
         {
             /* area in double of the file's own coordinates (before centring: a unit triangle
@@ -81,13 +98,12 @@ int lt_scene_prepare(const lt_mesh_t *m, lt_scene_t *s, lt_diag_t *diag)
             }
         }
         for (a = 0; a < 3; a++) {
-            float v0 = (float)s->vd[i * 9 + a];
             s->tq[i].v0[a] = q[0][a];
             s->tq[i].e1[a] = q[1][a] - q[0][a];
             s->tq[i].e2[a] = q[2][a] - q[0][a];
-            s->tf[i].v0[a] = v0;
-            s->tf[i].e1[a] = (float)s->vd[i * 9 + 3 + a] - v0;
-            s->tf[i].e2[a] = (float)s->vd[i * 9 + 6 + a] - v0;
+            s->tf[i].v0[a] = fv[0][a];
+            s->tf[i].e1[a] = fv[1][a] - fv[0][a]; /* exact: both on the grid */
+            s->tf[i].e2[a] = fv[2][a] - fv[0][a];
         }
     }
     return 0;

@@ -13,11 +13,14 @@
 typedef struct lt_scene {
     uint32_t ntris;
     lt_tri_q16_t *tq;      /* s15.16 triangles (edges from quantised vertices) */
-    lt_tri_f32_t *tf;      /* float32 triangles of the same scaled geometry */
+    lt_tri_f32_t *tf;      /* float32 triangles of the same scaled geometry, vertices on the grid
+                              fgrid (exact edges: watertight) */
     double *vd;            /* 9 doubles per triangle: scaled, unquantised (the reference) */
     double center[3];      /* file units: the origin of the scaled space */
     double scale;          /* scaled = (file - center) * scale; a power of two */
     double radius;         /* half the bounding-box diagonal, scaled units */
+    double fgrid;          /* the float32 vertices' grid (a power of two, scaled units): their
+                              edges are exact, so fl(v0 + e1) rebuilds v1 bit for bit */
     uint32_t collapsed_q16; /* triangles of non-zero area whose s15.16 vertices span zero area */
     uint32_t nonzero;       /* triangles of non-zero area (double, file geometry) */
     double min_edge;        /* shortest non-zero edge of a non-degenerate triangle, scaled units */

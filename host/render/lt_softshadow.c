@@ -237,6 +237,7 @@ static int build_tree(const lt_softshadow_t *ss, uint32_t max_leaf, uint32_t min
                      ss->s->ntris, lt_status_str(st));
         return -1;
     }
+    bvh->isect = ss->o.isect; /* the intersector of every walk over it, frusta included */
     return 0;
 }
 

@@ -36,6 +36,8 @@ typedef struct lt_ss_opts {
     uint32_t pflags;     /* primary rays (both methods): LT_FRUSTA_BACKFACE (cull back faces; the
                             packets skip them per triangle too), LT_FRUSTA_CORNER and LT_FRUSTA_CR
                             (P-Frusta only) */
+    uint32_t isect;      /* ray/triangle test of every stage and of the reference: LT_ISECT_WT
+                            (watertight, the default: 0) or LT_ISECT_MT (Moller-Trumbore) */
 } lt_ss_opts_t;
 
 /* Defaults: q16, leaf 8, all three culling flags for shadows and for primary rays (the paper's

@@ -9,6 +9,7 @@
 #if LT_COST_MODE == LT_COST_SIM
 #include "lt_sim.h"
 #endif
+#include "lt_isect_oracle.h"
 
 #define ULP16 (1.0 / 65536.0)
 
@@ -379,7 +380,7 @@ static lt_mask16_t ch_tq(const void *a, lt_ray16_q16_t *r, lt_mask16_t k, lt_hit
         h->id = lt_vi32_set1(-1);
         return 0;
     }
-    return lt_chunks_trace16_q16(m->tq, m->n, m->bq, r, k, h);
+    return lt_chunks_trace16_q16(m->tq, m->n, m->bq, LT_ISECT_WT, r, k, h);
 }
 
 #if LT_CFG_FLOAT32
@@ -398,7 +399,7 @@ static lt_mask16_t ch_tf(const void *a, lt_ray16_f32_t *r, lt_mask16_t k, lt_hit
         h->id = lt_vi32_set1(-1);
         return 0;
     }
-    return lt_chunks_trace16_f32(m->tf, m->n, m->bf, r, k, h);
+    return lt_chunks_trace16_f32(m->tf, m->n, m->bf, LT_ISECT_WT, r, k, h);
 }
 
 #endif
@@ -596,14 +597,14 @@ static int real_hit(const mesh_t *m, int f32, const pk_t *p, int i, int32_t id, 
     h.id = lt_vi32_set1(-1);
     if (!f32) {
         lt_ray16_q16_t r = p->q;
-        if (lt_tri16_q16(&r, (lt_mask16_t)(1u << i), &m->tq[id], id, &h) == 0)
+        if (ltt_tri16_q16(&r, (lt_mask16_t)(1u << i), &m->tq[id], id, &h) == 0)
             return 0;
         return lt_q16_to_double(r.tmax.l[i]) == t;
     }
 #if LT_CFG_FLOAT32
     {
         lt_ray16_f32_t r = p->f;
-        if (lt_tri16_f32(&r, (lt_mask16_t)(1u << i), &m->tf[id], id, &h) == 0)
+        if (ltt_tri16_f32(&r, (lt_mask16_t)(1u << i), &m->tf[id], id, &h) == 0)
             return 0;
         return (double)r.tmax.l[i] == t;
     }

@@ -25,6 +25,7 @@
 #include "io/lt_mesh.h"
 #include "render/lt_scene.h"
 #include "lt_test_util.h"
+#include "lt_isect_oracle.h"
 #if LT_COST_MODE == LT_COST_SIM
 #include "lt_sim.h"
 #endif
@@ -632,7 +633,7 @@ static int tie_q16(const lt_scene_t *s, const lt_ray16_q16_t *p0, int i, int32_t
     h.id = lt_vi32_set1(-1);
     if (id < 0 || (uint32_t)id >= s->ntris)
         return 0;
-    return LTT_ON(lt_tri16_q16(&pt, (lt_mask16_t)(1u << i), &s->tq[id], id, &h), i) &&
+    return LTT_ON(ltt_tri16_q16(&pt, (lt_mask16_t)(1u << i), &s->tq[id], id, &h), i) &&
            pt.tmax.l[i] == t;
 }
 
@@ -644,7 +645,7 @@ static int tie_f32(const lt_scene_t *s, const lt_ray16_f32_t *p0, int i, int32_t
     h.id = lt_vi32_set1(-1);
     if (id < 0 || (uint32_t)id >= s->ntris)
         return 0;
-    return LTT_ON(lt_tri16_f32(&pt, (lt_mask16_t)(1u << i), &s->tf[id], id, &h), i) &&
+    return LTT_ON(ltt_tri16_f32(&pt, (lt_mask16_t)(1u << i), &s->tf[id], id, &h), i) &&
            pt.tmax.l[i] == t;
 }
 #endif
@@ -669,7 +670,7 @@ static void cmp_q16(const lt_bvh_t *bvh0, const lt_scene_t *s, const dray_t *rs,
         c->errs++;
     hr.id = lt_vi32_set1(-1);
     for (t = 0; t < s->ntris; t++)
-        (void)lt_tri16_q16(&pr, k, &s->tq[t], (int32_t)t, &hr);
+        (void)ltt_tri16_q16(&pr, k, &s->tq[t], (int32_t)t, &hr);
     po = p0;
     for (i = 0; i < LT_LANES; i++) {
         int32_t got = hb.id.l[i], want = hr.id.l[i], id1;
@@ -754,7 +755,7 @@ static void cmp_f32(const lt_bvh_t *bvh0, const lt_scene_t *s, const dray_t *rs,
         c->errs++;
     hr.id = lt_vi32_set1(-1);
     for (t = 0; t < s->ntris; t++)
-        (void)lt_tri16_f32(&pr, k, &s->tf[t], (int32_t)t, &hr);
+        (void)ltt_tri16_f32(&pr, k, &s->tf[t], (int32_t)t, &hr);
     po = p0;
     for (i = 0; i < LT_LANES; i++) {
         int32_t got = hb.id.l[i], want = hr.id.l[i], id1;
@@ -1424,7 +1425,7 @@ static void test_stack_overflow(void **state)
             lt_hit16_t hq;
             q16_packet(rs, &q);
             hq.id = lt_vi32_set1(-1);
-            (void)lt_tri16_q16(&q, (lt_mask16_t)(1u << lane), &s.tq[h.id.l[lane]], h.id.l[lane],
+            (void)ltt_tri16_q16(&q, (lt_mask16_t)(1u << lane), &s.tq[h.id.l[lane]], h.id.l[lane],
                                &hq);
             wrong += q.tmax.l[lane] != p.tmax.l[lane];
         }
@@ -1946,10 +1947,10 @@ static double sim_method(int meth, const lt_scene_t *s, const lt_camera_t *cam, 
             rays += lt__popcount32(k);
             c0 = lt_sim_cycles_total();
             switch (meth) {
-            case M_CHUNK_Q: (void)lt_chunks_trace16_q16(s->tq, s->ntris, cq, &p, k, &h); break;
+            case M_CHUNK_Q: (void)lt_chunks_trace16_q16(s->tq, s->ntris, cq, LT_ISECT_WT, &p, k, &h); break;
             case M_BVH16_Q: (void)lt_bvh_trace16_q16(bq, s->tq, &p, k, &h); break;
             case M_BVHQ16_Q: (void)lt_bvhq_trace16_q16(qq, s->tq, &p, k, &h); break;
-            case M_CHUNK_F: (void)lt_chunks_trace16_f32(s->tf, s->ntris, cf, &pf, k, &h); break;
+            case M_CHUNK_F: (void)lt_chunks_trace16_f32(s->tf, s->ntris, cf, LT_ISECT_WT, &pf, k, &h); break;
             case M_BVH16_F: (void)lt_bvh_trace16_f32(bf, s->tf, &pf, k, &h); break;
             default: /* single rays: setup is part of the ray, as the packet setup is not */
                 for (i = 0; i < LT_LANES; i++) {

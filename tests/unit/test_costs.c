@@ -251,12 +251,20 @@ static void test_kernel_costs_q16(void **state)
     CHECK("lt_tri1_q16 (hit)", lt_tri1_q16(&r1[0], &th), W(SLOAD, 9), W(SMUL, 24), W(SALU, 24),
           W(BRANCH, 2), W(SDIV, 1));
     /* lt_wt.h */
-    CHECK("lt_ray16_wt_setup_q16", lt_ray16_wt_setup_q16(&r, &w), W(VALU, 16), W(VCMP, 5),
+    CHECK("lt_ray16_wt_setup_q16", lt_ray16_wt_setup_q16(&r, &w), W(VALU, 18), W(VSHIFT, 1), W(VCMP, 5),
           W(VDIV, 3), W(VBCAST, 1), W(MASK, 23));
     CHECK("lt_tri16_wt_q16 (one permutation, miss)",
           lt_tri16_wt_q16(&r, &w, 0xFFFFu, &tm, 0, &hit), W(SLOAD, 9), W(SALU, 15), W(SMUL, 6),
           W(BRANCH, 1), W(MASK, 27), W(VBCAST, 10), W(VALU, 15), W(VMUL, 12), W(VMULW, 5),
           W(VCMP, 8));
+    {
+        lt_wt1_q16_t w1;
+        lt_q16_t tmx = r1[0].tmax;
+        CHECK("lt_ray1_wt_setup_q16", lt_ray1_wt_setup_q16(r1[0].o, r1[0].d, &w1), W(SALU, 12),
+              W(SDIV, 3), W(BRANCH, 2));
+        CHECK("lt_tri1_wt_q16 (hit)", lt_tri1_wt_q16(&w1, &th, r1[0].tmin, &tmx), W(SLOAD, 9),
+              W(SALU, 27 + 9 + 12), W(SMUL, 12 + 6 + 9), W(BRANCH, 2 + 1), W(SDIV, 2));
+    }
     assert_int_equal(bad, 0);
 }
 
@@ -284,6 +292,7 @@ static void test_bvh_step_q16(void **state)
     assert_int_equal(lt_bvh_size(1, NULL, &need), LT_OK);
     assert_true(need <= sizeof arena);
     assert_int_equal(lt_bvh_build_q16(&bvh, NULL, &th, 1, arena, sizeof arena), LT_OK);
+    bvh.isect = LT_ISECT_MT; /* the walks' Cost lines are composed with lt_tri16 (the MT option) */
     assert_int_equal(bvh.nnodes, 1);
     /* the kernels alone, on a copy of the packet */
     snap(b);
@@ -1633,6 +1642,7 @@ static void test_frusta_costs(void **state)
     }
     assert_int_equal(lt_bvh_build_q16(&bq, NULL, tq, 1, arena[0], sizeof arena[0]), LT_OK);
     assert_int_equal(lt_bvh_build_f32(&bf, NULL, tf, 1, arena[1], sizeof arena[1]), LT_OK);
+    bq.isect = bf.isect = LT_ISECT_MT; /* walks composed with lt_tri16 (the MT option) */
     CHECKC("lt_qmc_interleave4x4", lt_qmc_interleave4x4(LT_QMC_LP, 0, &sets), &none);
     /* a 1 x 1 light at z = 4 over the origins at z = -4 */
     memset(&lq, 0, sizeof lq);
@@ -2111,6 +2121,7 @@ static void test_object_costs(void **state)
            lt_bvh_build_q16(&bq, NULL, tq, 1, arena[0], sizeof arena[0]), &want);
     CHECKC("lt_bvh_build_f32 (one triangle)",
            lt_bvh_build_f32(&bf, NULL, tf, 1, arena[1], sizeof arena[1]), &want);
+    bq.isect = bf.isect = LT_ISECT_MT; /* walks composed with lt_tri16 (the MT option) */
     CHECKC("lt_bvhq_size", lt_bvhq_size(&bq, &bytes), &none);
     memset(&want, 0, sizeof want);
     CR(BVHQ_BUILD_NODE, 1);
@@ -2272,9 +2283,9 @@ static void test_object_costs(void **state)
         rq2 = rq;
         rf2 = rf;
         if (f)
-            CHECKC(nm, lt_chunks_trace16_f32(tf, 1, &boxf, &rf2, LT_MASK_ALL, &hit), &want);
+            CHECKC(nm, lt_chunks_trace16_f32(tf, 1, &boxf, LT_ISECT_MT, &rf2, LT_MASK_ALL, &hit), &want);
         else
-            CHECKC(nm, lt_chunks_trace16_q16(tq, 1, &boxq, &rq2, LT_MASK_ALL, &hit), &want);
+            CHECKC(nm, lt_chunks_trace16_q16(tq, 1, &boxq, LT_ISECT_MT, &rq2, LT_MASK_ALL, &hit), &want);
         /* BVH walks over the one-leaf tree */
         memset(&want, 0, sizeof want);
         ph = LT_PH_OTHER;

@@ -25,6 +25,7 @@
 #include "render/lt_scene.h"
 #include "render/lt_softshadow.h"
 #include "lt_test_util.h"
+#include "lt_isect_oracle.h"
 #include "lt_frusta_tile.h"
 #if LT_COST_MODE == LT_COST_SIM
 #include "lt_sim.h"
@@ -75,6 +76,8 @@ static void build(const tscene_t *s, uint32_t max_leaf, uint32_t min_leaf, tbvh_
     assert_int_equal(posix_memalign(&b->af, 64, bytes + 64), 0);
     assert_int_equal(lt_bvh_build_q16(&b->q, &d, s->tq, s->n, b->aq, bytes), LT_OK);
     assert_int_equal(lt_bvh_build_f32(&b->f, &d, s->tf, s->n, b->af, bytes), LT_OK);
+    /* the intersector of the walks and of the per-ray references (lt_isect_oracle.h) */
+    b->q.isect = b->f.isect = ltt_isect;
 }
 
 static void unbuild(tbvh_t *b)
@@ -106,14 +109,53 @@ static int det_sign_f32(const lt_ray1_f32_t *r, const lt_tri_f32_t *t)
     return (det > 0.0f) - (det < 0.0f);
 }
 
-/* Brute force: any triangle the single-ray kernel hits (with det > 0 under back-face culling). */
+/* The kernels' back-face rule for the watertight test: the sign of the Moller-Trumbore tnum of the
+ * ray's origin (lt_frusta.c's q_tnum_sign1 / f_tnum_sign1, the rule of the packet baselines), the
+ * one per-origin decision all paths share; for Moller-Trumbore it equals det > 0 of every hit. */
+static int tnum_sign_q16(const lt_ray1_q16_t *r, const lt_tri_q16_t *t)
+{
+    int32_t tv[3], q[3];
+    int64_t tn;
+    int a;
+    for (a = 0; a < 3; a++)
+        tv[a] = lt__q16_sub_sat(r->o[a], t->v0[a]);
+    q[0] = lt__round_sat32((int64_t)tv[1] * t->e1[2] - (int64_t)tv[2] * t->e1[1], 26);
+    q[1] = lt__round_sat32((int64_t)tv[2] * t->e1[0] - (int64_t)tv[0] * t->e1[2], 26);
+    q[2] = lt__round_sat32((int64_t)tv[0] * t->e1[1] - (int64_t)tv[1] * t->e1[0], 26);
+    tn = (int64_t)t->e2[0] * q[0] + (int64_t)t->e2[1] * q[1] + (int64_t)t->e2[2] * q[2];
+    return (tn > 0) - (tn < 0);
+}
+
+static int tnum_sign_f32(const lt_ray1_f32_t *r, const lt_tri_f32_t *t)
+{
+    float tx = r->o[0] - t->v0[0], ty = r->o[1] - t->v0[1], tz = r->o[2] - t->v0[2];
+    float qx = ty * t->e1[2] - tz * t->e1[1];
+    float qy = tz * t->e1[0] - tx * t->e1[2];
+    float qz = tx * t->e1[1] - ty * t->e1[0];
+    float tn = (t->e2[0] * qx + t->e2[1] * qy) + t->e2[2] * qz;
+    return (tn > 0.0f) - (tn < 0.0f);
+}
+
+/* Front face for back-face culling, per intersector (see above). */
+static int front_q16(const lt_ray1_q16_t *r, const lt_tri_q16_t *t)
+{
+    return ltt_isect == LT_ISECT_MT ? det_sign_q16(r, t) > 0 : tnum_sign_q16(r, t) > 0;
+}
+
+static int front_f32(const lt_ray1_f32_t *r, const lt_tri_f32_t *t)
+{
+    return ltt_isect == LT_ISECT_MT ? det_sign_f32(r, t) > 0 : tnum_sign_f32(r, t) > 0;
+}
+
+/* Brute force: any triangle the single-ray kernel hits (front faces only under back-face
+ * culling). */
 static int ref_q16(const tscene_t *s, const lt_ray1_q16_t *r0, uint32_t flags)
 {
     uint32_t i;
     for (i = 0; i < s->n; i++) {
         lt_ray1_q16_t r = *r0;
-        if (lt_tri1_q16(&r, &s->tq[i]) &&
-            ((flags & LT_FRUSTA_BACKFACE) == 0 || det_sign_q16(r0, &s->tq[i]) > 0))
+        if (ltt_tri1_q16(&r, &s->tq[i]) &&
+            ((flags & LT_FRUSTA_BACKFACE) == 0 || front_q16(r0, &s->tq[i])))
             return 1;
     }
     return 0;
@@ -124,8 +166,8 @@ static int ref_f32(const tscene_t *s, const lt_ray1_f32_t *r0, uint32_t flags)
     uint32_t i;
     for (i = 0; i < s->n; i++) {
         lt_ray1_f32_t r = *r0;
-        if (lt_tri1_f32(&r, &s->tf[i]) &&
-            ((flags & LT_FRUSTA_BACKFACE) == 0 || det_sign_f32(r0, &s->tf[i]) > 0))
+        if (ltt_tri1_f32(&r, &s->tf[i]) &&
+            ((flags & LT_FRUSTA_BACKFACE) == 0 || front_f32(r0, &s->tf[i])))
             return 1;
     }
     return 0;
@@ -325,6 +367,8 @@ static void test_random_scenes(void **state)
         tbvh_t shallow, deep;
         unsigned n = sc < 3 ? 200u + 300u * sc : 1500u;
         double size = sc % 3 == 0 ? 5.0 : (sc % 3 == 1 ? 20.0 : 60.0);
+        /* odd scenes with Moller-Trumbore: its corner culling is checked too */
+        ltt_isect = sc & 1u ? LT_ISECT_MT : LT_ISECT_WT;
         random_scene(&r, &s, n, size);
         build(&s, 16, 8, &shallow);
         build(&s, 4, 1, &deep);
@@ -340,8 +384,9 @@ static void test_random_scenes(void **state)
         unbuild(&shallow);
         unbuild(&deep);
     }
+    ltt_isect = LT_ISECT_WT;
     tally_print("random scenes (6 scenes, 6 flag sets, 3 light sizes, coherent and scattered "
-                "origins, random masks)", &t);
+                "origins, random masks; odd scenes Moller-Trumbore)", &t);
 #if LT_COST_MODE == LT_COST_SIM
     {
         /* the equality above is only worth something if the culling actually removed pairs */
@@ -964,8 +1009,8 @@ static void pref1_q16(const tscene_t *s, const lt_ray1_q16_t *r0, uint32_t flags
     *id = -1;
     for (i = 0; i < s->n; i++) {
         lt_ray1_q16_t rr = cur;
-        if (lt_tri1_q16(&rr, &s->tq[i]) &&
-            ((flags & LT_FRUSTA_BACKFACE) == 0 || det_sign_q16(r0, &s->tq[i]) > 0)) {
+        if (ltt_tri1_q16(&rr, &s->tq[i]) &&
+            ((flags & LT_FRUSTA_BACKFACE) == 0 || front_q16(r0, &s->tq[i]))) {
             cur = rr;
             *id = (int32_t)i;
         }
@@ -981,8 +1026,8 @@ static void pref1_f32(const tscene_t *s, const lt_ray1_f32_t *r0, uint32_t flags
     *id = -1;
     for (i = 0; i < s->n; i++) {
         lt_ray1_f32_t rr = cur;
-        if (lt_tri1_f32(&rr, &s->tf[i]) &&
-            ((flags & LT_FRUSTA_BACKFACE) == 0 || det_sign_f32(r0, &s->tf[i]) > 0)) {
+        if (ltt_tri1_f32(&rr, &s->tf[i]) &&
+            ((flags & LT_FRUSTA_BACKFACE) == 0 || front_f32(r0, &s->tf[i]))) {
             cur = rr;
             *id = (int32_t)i;
         }
@@ -1007,7 +1052,7 @@ static int pexcused_q16(const tscene_t *s, const lt_ray1_q16_t *r1, uint32_t fla
     uint32_t i;
     unsigned a;
     if (id >= 0 && (!ptie_q16(s, r1, id, t) ||
-                    ((flags & LT_FRUSTA_BACKFACE) != 0 && det_sign_q16(r1, &s->tq[id]) <= 0)))
+                    ((flags & LT_FRUSTA_BACKFACE) != 0 && !front_q16(r1, &s->tq[id]))))
         return 0;
     for (a = 0; a < 3; a++) {
         o[a] = (double)r1->o[a] / 65536.0;
@@ -1016,8 +1061,8 @@ static int pexcused_q16(const tscene_t *s, const lt_ray1_q16_t *r1, uint32_t fla
     for (i = 0; i < s->n; i++) {
         lt_ray1_q16_t rr = *r1;
         const lt_tri_q16_t *tr = &s->tq[i];
-        if (!lt_tri1_q16(&rr, tr) ||
-            ((flags & LT_FRUSTA_BACKFACE) != 0 && det_sign_q16(r1, tr) <= 0))
+        if (!ltt_tri1_q16(&rr, tr) ||
+            ((flags & LT_FRUSTA_BACKFACE) != 0 && !front_q16(r1, tr)))
             continue;
         if (id >= 0 && (rr.tmax > t || (rr.tmax == t && (int32_t)i >= id)))
             continue;
@@ -1041,8 +1086,8 @@ static int pexcused_f32(const tscene_t *s, const lt_ray1_f32_t *r1, uint32_t fla
     unsigned a;
     if (id >= 0) {
         lt_ray1_f32_t rr = *r1;
-        if ((uint32_t)id >= s->n || !lt_tri1_f32(&rr, &s->tf[id]) || rr.tmax != t ||
-            ((flags & LT_FRUSTA_BACKFACE) != 0 && det_sign_f32(r1, &s->tf[id]) <= 0))
+        if ((uint32_t)id >= s->n || !ltt_tri1_f32(&rr, &s->tf[id]) || rr.tmax != t ||
+            ((flags & LT_FRUSTA_BACKFACE) != 0 && !front_f32(r1, &s->tf[id])))
             return 0;
     }
     /* the float BVH pads by 2^-18 of the largest coordinate */
@@ -1060,8 +1105,8 @@ static int pexcused_f32(const tscene_t *s, const lt_ray1_f32_t *r1, uint32_t fla
     for (i = 0; i < s->n; i++) {
         lt_ray1_f32_t rr = *r1;
         const lt_tri_f32_t *tr = &s->tf[i];
-        if (!lt_tri1_f32(&rr, tr) ||
-            ((flags & LT_FRUSTA_BACKFACE) != 0 && det_sign_f32(r1, tr) <= 0))
+        if (!ltt_tri1_f32(&rr, tr) ||
+            ((flags & LT_FRUSTA_BACKFACE) != 0 && !front_f32(r1, tr)))
             continue;
         if (id >= 0 && (rr.tmax > t || (rr.tmax == t && (int32_t)i >= id)))
             continue;
@@ -1109,7 +1154,7 @@ static void pref_fill(const tscene_t *s, const lt_frusta_vtable_q16_t *vq,
             if (R->idq[0][y][x] >= 0)
                 for (i = 0; i < s->n; i++) {
                     lt_ray1_q16_t rr = r1;
-                    if ((int32_t)i != R->idq[0][y][x] && lt_tri1_q16(&rr, &s->tq[i]) &&
+                    if ((int32_t)i != R->idq[0][y][x] && ltt_tri1_q16(&rr, &s->tq[i]) &&
                         rr.tmax == R->tq[0][y][x]) {
                         R->ties++;
                         break;
@@ -1122,7 +1167,7 @@ static void pref_fill(const tscene_t *s, const lt_frusta_vtable_q16_t *vq,
 static int ptie_q16(const tscene_t *s, const lt_ray1_q16_t *r1, int32_t id, lt_q16_t t)
 {
     lt_ray1_q16_t rr = *r1;
-    return id >= 0 && (uint32_t)id < s->n && lt_tri1_q16(&rr, &s->tq[id]) && rr.tmax == t;
+    return id >= 0 && (uint32_t)id < s->n && ltt_tri1_q16(&rr, &s->tq[id]) && rr.tmax == t;
 }
 
 /* P-Frusta (shallow tree), P-Packet (deep tree) and, two-sided, lt_bvh_trace16 against the
@@ -1356,6 +1401,8 @@ static void test_primary_random(void **state)
         tbvh_t shal, deep;
         unsigned n = 150u + 150u * sc;
         double size = sc % 3 == 0 ? 8.0 : (sc % 3 == 1 ? 30.0 : 80.0);
+        /* odd scenes with Moller-Trumbore: its corner culling is checked too */
+        ltt_isect = sc & 1u ? LT_ISECT_MT : LT_ISECT_WT;
         random_scene(&r, &s, n, size);
         build(&s, sc & 1u ? 16 : 8, sc & 1u ? 8 : 4, &shal);
         build(&s, 4, 1, &deep);
@@ -1378,7 +1425,9 @@ static void test_primary_random(void **state)
         unbuild(&shal);
         unbuild(&deep);
     }
-    ptally_print("primary random scenes (6 scenes, 2 cameras each, 6 flag sets, leaf 8 and 16)",
+    ltt_isect = LT_ISECT_WT;
+    ptally_print("primary random scenes (6 scenes, 2 cameras each, 6 flag sets, leaf 8 and 16; "
+                 "odd scenes Moller-Trumbore)",
                  &t, ties);
 #if LT_COST_MODE == LT_COST_SIM
     {

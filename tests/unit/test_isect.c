@@ -1441,7 +1441,7 @@ static void test_chunks_q16(void **state)
         }
         lt_ray16_q16_setup(&p);
         h.id = lt_vi32_set1(77);
-        any = lt_chunks_trace16_q16(tris, MESH_TRIS, boxes, &p, LT_MASK_ALL, &h);
+        any = lt_chunks_trace16_q16(tris, MESH_TRIS, boxes, LT_ISECT_WT, &p, LT_MASK_ALL, &h);
         for (i = 0; i < LT_LANES; i++) {
             /* brute force: every triangle's reference verdict */
             verdict_t v[MESH_TRIS];
@@ -1519,7 +1519,7 @@ static void test_chunks_f32(void **state)
             f32_lane(&p, i, o, d, 1000.0, &dr[i]);
         }
         lt_ray16_f32_setup(&p);
-        (void)lt_chunks_trace16_f32(tris, MESH_TRIS, boxes, &p, LT_MASK_ALL, &h);
+        (void)lt_chunks_trace16_f32(tris, MESH_TRIS, boxes, LT_ISECT_WT, &p, LT_MASK_ALL, &h);
         for (i = 0; i < LT_LANES; i++) {
             verdict_t v[MESH_TRIS];
             int best, got = h.id.l[i], j;

@@ -694,10 +694,10 @@ static void scene_run(const char *path, const char *name, uint32_t res, int bund
                         lt_hit16_t h;
                         (void)cam_packet(&cam, tx, ty, &p);
                         if (!f32)
-                            (void)lt_chunks_trace16_q16(m.tq, m.n, m.bq, &p.q, p.k, &h);
+                            (void)lt_chunks_trace16_q16(m.tq, m.n, m.bq, LT_ISECT_WT, &p.q, p.k, &h);
 #if LT_CFG_FLOAT32
                         else
-                            (void)lt_chunks_trace16_f32(m.tf, m.n, m.bf, &p.f, p.k, &h);
+                            (void)lt_chunks_trace16_f32(m.tf, m.n, m.bf, LT_ISECT_WT, &p.f, p.k, &h);
 #endif
                     }
                 ctr_end(&cn, &ct, &ctr_, &cc);

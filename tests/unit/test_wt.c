@@ -1876,10 +1876,150 @@ static void test_bad_dir(void **state)
     bad = lt_ray16_wt_setup_q16(&p, &w);
     h.id = lt_vi32_set1(-1);
     got = lt_tri16_wt_q16(&p, &w, LT_MASK_ALL, &tq, 1, &h);
-    ltt_report("lt_ray16_wt_setup_q16: |d|max <= 1/2 flagged: mask 0x%04x (expected 0x000f), "
-               "hits 0x%04x (expected 0xfff0)\n", (unsigned)bad, (unsigned)got);
-    assert_int_equal(bad, 0x000F);
-    assert_int_equal(got, 0xFFF0);
+    /* only d == 0 is bad; short directions are scaled by 2^sh for Sz and t = T 2^sh / det comes
+     * back in units of |d| (10 / (1/8) = 80, 40, 80/3) */
+    ltt_report("lt_ray16_wt_setup_q16: d == 0 flagged: mask 0x%04x (expected 0x0001), hits 0x%04x "
+               "(expected 0xfffe), t = %.6f %.6f %.6f (80, 40, 26.666667), shifts %u %u %u\n",
+               (unsigned)bad, (unsigned)got, p.tmax.l[1] / 65536.0, p.tmax.l[2] / 65536.0,
+               p.tmax.l[3] / 65536.0, w.sh[1], w.sh[2], w.sh[3]);
+    assert_int_equal(bad, 0x0001);
+    assert_int_equal(got, 0xFFFE);
+    assert_int_equal(p.tmax.l[1], LT_Q16(80.0));
+    assert_int_equal(p.tmax.l[2], LT_Q16(40.0));
+    /* z is rounded in units of d 2^sh, so t carries up to 2^(sh - 17) + 2^-17 of rounding */
+    assert_true(fabs(p.tmax.l[3] / 65536.0 - 10.0 / 0.375) <= ldexp(1.0, w.sh[3] - 17) + ldexp(1.0, -17));
+    assert_int_equal(p.tmax.l[4], LT_Q16(10.0));
+}
+
+/* The single-ray test (lt_ray1_wt_setup_*, lt_tri1_wt_*) equals its packet lane bit for bit:
+ * random triangles (some sharing vertices, some zero-area) and rays, unit and short directions
+ * (components down to 2^-20), aimed at vertices, edges and random points. */
+static void test_single_ray(void **state)
+{
+    ltt_rng_t rng;
+    unsigned long cases = 0, hits = 0, bad = 0;
+    int it;
+    (void)state;
+    ltt_rng_seed(&rng, 91);
+    for (it = 0; it < 4000; it++) {
+        lt_ray16_q16_t p;
+        lt_wt16_q16_t w;
+        lt_tri_q16_t tq;
+        lt_hit16_t h;
+        double v[3][3];
+        int i, a;
+        lt_mask16_t got;
+        memset(&p, 0, sizeof p);
+        for (i = 0; i < 3; i++)
+            for (a = 0; a < 3; a++)
+                v[i][a] = ltt_rng_uniform(&rng, -50.0, 50.0);
+        if (it % 17 == 0)
+            for (a = 0; a < 3; a++)
+                v[2][a] = v[1][a]; /* zero area */
+        for (a = 0; a < 3; a++) {
+            tq.v0[a] = LT_Q16(v[0][a]);
+            tq.e1[a] = LT_Q16(v[1][a]) - tq.v0[a];
+            tq.e2[a] = LT_Q16(v[2][a]) - tq.v0[a];
+        }
+        for (i = 0; i < LT_LANES; i++) {
+            double o[3], tg[3], d[3], l = 0.0, sc;
+            int k = (int)(ltt_rng_u32(&rng) % 3u);
+            for (a = 0; a < 3; a++) {
+                double b0 = ltt_rng_uniform(&rng, 0.0, 1.0), b1 = ltt_rng_uniform(&rng, 0.0, 1.0);
+                o[a] = ltt_rng_uniform(&rng, -200.0, 200.0);
+                (void)b1;
+                tg[a] = i % 3 == 0 ? v[k][a] : (i % 3 == 1 ? v[k][a] + b0 * (v[(k + 1) % 3][a] - v[k][a])
+                                                           : v[0][a]);
+            }
+            for (a = 0; a < 3; a++) {
+                d[a] = tg[a] - o[a];
+                l += d[a] * d[a];
+            }
+            l = sqrt(l);
+            /* unit, or short: scaled by 2^-e, e up to 20 */
+            sc = i < 8 ? 1.0 : ldexp(1.0, -(int)(ltt_rng_u32(&rng) % 21u));
+            for (a = 0; a < 3; a++) {
+                lt_q16_t *oo = a == 0 ? &p.ox.l[i] : (a == 1 ? &p.oy.l[i] : &p.oz.l[i]);
+                lt_q30_t *dd = a == 0 ? &p.dx.l[i] : (a == 1 ? &p.dy.l[i] : &p.dz.l[i]);
+                *oo = LT_Q16(o[a]);
+                *dd = (lt_q30_t)(d[a] / l * sc * 1073741824.0);
+            }
+            p.tmin.l[i] = 0;
+            p.tmax.l[i] = LT_Q16_MAX - 1;
+        }
+        (void)lt_ray16_wt_setup_q16(&p, &w);
+        {
+            lt_ray16_q16_t p0 = p;
+            h.id = lt_vi32_set1(-1);
+            got = lt_tri16_wt_q16(&p, &w, LT_MASK_ALL, &tq, 3, &h);
+            for (i = 0; i < LT_LANES; i++) {
+                lt_q16_t o[3], tmax = p0.tmax.l[i];
+                lt_q30_t d[3];
+                lt_wt1_q16_t w1;
+                int hit1;
+                o[0] = p0.ox.l[i], o[1] = p0.oy.l[i], o[2] = p0.oz.l[i];
+                d[0] = p0.dx.l[i], d[1] = p0.dy.l[i], d[2] = p0.dz.l[i];
+                (void)lt_ray1_wt_setup_q16(o, d, &w1);
+                hit1 = lt_tri1_wt_q16(&w1, &tq, p0.tmin.l[i], &tmax);
+                cases++;
+                hits += (unsigned long)hit1;
+                if (hit1 != (int)(((unsigned)got >> (unsigned)i) & 1u) || tmax != p.tmax.l[i] || w1.sh != w.sh[i]) {
+                    if (bad < 5)
+                        ltt_report("  FAIL q16 single ray: case %d lane %d: hit %d/%d t %d/%d\n", it,
+                                   i, hit1, (int)(((unsigned)got >> (unsigned)i) & 1u), tmax, p.tmax.l[i]);
+                    bad++;
+                }
+            }
+        }
+#if LT_CFG_FLOAT32
+        {
+            lt_ray16_f32_t pf;
+            lt_wt16_f32_t wf;
+            lt_tri_f32_t tf;
+            memset(&pf, 0, sizeof pf);
+            for (a = 0; a < 3; a++) {
+                tf.v0[a] = (float)tq.v0[a] / 65536.0f;
+                tf.e1[a] = (float)tq.e1[a] / 65536.0f;
+                tf.e2[a] = (float)tq.e2[a] / 65536.0f;
+            }
+            for (i = 0; i < LT_LANES; i++) {
+                pf.ox.l[i] = (float)p.ox.l[i] / 65536.0f;
+                pf.oy.l[i] = (float)p.oy.l[i] / 65536.0f;
+                pf.oz.l[i] = (float)p.oz.l[i] / 65536.0f;
+                pf.dx.l[i] = (float)p.dx.l[i] / 1073741824.0f;
+                pf.dy.l[i] = (float)p.dy.l[i] / 1073741824.0f;
+                pf.dz.l[i] = (float)p.dz.l[i] / 1073741824.0f;
+                pf.tmax.l[i] = 3.0e38f;
+            }
+            (void)lt_ray16_wt_setup_f32(&pf, &wf);
+            {
+                lt_ray16_f32_t p0 = pf;
+                h.id = lt_vi32_set1(-1);
+                got = lt_tri16_wt_f32(&pf, &wf, LT_MASK_ALL, &tf, 3, &h);
+                for (i = 0; i < LT_LANES; i++) {
+                    float o[3], d[3], tmax = p0.tmax.l[i];
+                    lt_wt1_f32_t w1;
+                    int hit1;
+                    o[0] = p0.ox.l[i], o[1] = p0.oy.l[i], o[2] = p0.oz.l[i];
+                    d[0] = p0.dx.l[i], d[1] = p0.dy.l[i], d[2] = p0.dz.l[i];
+                    (void)lt_ray1_wt_setup_f32(o, d, &w1);
+                    hit1 = lt_tri1_wt_f32(&w1, &tf, p0.tmin.l[i], &tmax);
+                    cases++;
+                    hits += (unsigned long)hit1;
+                    if (hit1 != (int)(((unsigned)got >> (unsigned)i) & 1u) || memcmp(&tmax, &pf.tmax.l[i], 4) != 0) {
+                        if (bad < 5)
+                            ltt_report("  FAIL f32 single ray: case %d lane %d: hit %d/%d\n", it, i,
+                                       hit1, (int)(((unsigned)got >> (unsigned)i) & 1u));
+                        bad++;
+                    }
+                }
+            }
+        }
+#endif
+    }
+    ltt_report("lt_tri1_wt_q16/_f32 vs their packet lane: %lu cases, %lu hits, %lu differ\n", cases,
+               hits, bad);
+    assert_int_equal(bad, 0);
 }
 
 /* ---- cost (sim build) ------------------------------------------------------------------------ */
@@ -2016,6 +2156,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_axes_ties),
         cmocka_unit_test(test_bad_dir),
+        cmocka_unit_test(test_single_ray),
         cmocka_unit_test(test_crack_tetra),
         cmocka_unit_test(test_crack_octasphere),
         cmocka_unit_test(test_crack_teapot),

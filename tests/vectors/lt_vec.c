@@ -362,7 +362,7 @@ static void run_kernels_q16(void (*put)(const char *))
     for (i = 0; i < 40; i++) {
         lt_hit16_t hit;
         rand_ray_q16(&r);
-        h_case(&h, lt_chunks_trace16_q16(mesh_q, N_MESH, boxes_q, &r, rmask(i), &hit));
+        h_case(&h, lt_chunks_trace16_q16(mesh_q, N_MESH, boxes_q, LT_ISECT_WT, &r, rmask(i), &hit));
         for (j = 0; j < LT_LANES; j++)
             h_u32(&h, (uint32_t)hit.id.l[j]);
         h_vq16(&h, r.tmax);
@@ -579,7 +579,7 @@ static void run_f32(void (*put)(const char *))
         h_case(&h, lt_slab16_f32(&r, rmask(i), &b, &tn));
         for (j = 0; j < LT_LANES; j++)
             h_u32(&h, fbits(tn.l[j]));
-        h_case(&h, lt_chunks_trace16_f32(tris, N_MESH, bx, &r, rmask(i), &hit));
+        h_case(&h, lt_chunks_trace16_f32(tris, N_MESH, bx, LT_ISECT_WT, &r, rmask(i), &hit));
         for (j = 0; j < LT_LANES; j++) {
             h_u32(&h, (uint32_t)hit.id.l[j]);
             h_u32(&h, fbits(r.tmax.l[j]));

@@ -9,6 +9,7 @@
  */
 #include "lt/lt_frusta.h"
 #include "object/lt_tri.h"
+#include "object/lt_isel.h"
 
 /* ---- s15.16 --------------------------------------------------------------------------------- */
 
@@ -374,6 +375,7 @@ LT_INLINE int32_t q_pdelta(const lt_frusta_vtable_q16_t *vt, uint32_t jx, uint32
 #define LTN_WC lt_vql36_t /* corner forms and margins: s27.36 */
 #define LTN_QV lt_vq6_t   /* qvec and edge normals: s25.6 */
 #define LTN_FR lt_frusta16_q16_t
+#define LTN_FR_WT lt_wt16_q16_t
 #define LTN_FRT lt_frusta_table_q16_t
 #define LTN_FRF lt_frusta_filter_q16_t
 #define LTN_RAY1 lt_ray1_q16_t
@@ -511,6 +513,7 @@ LT_INLINE lt_vq30_t lt__frusta_q30_of(lt_vq16_t a)
 #undef LTN_WC_CMPGT_M
 #undef LTN_QV
 #undef LTN_FR
+#undef LTN_FR_WT
 #undef LTN_FRT
 #undef LTN_FRF
 #undef LTN_RAY1
@@ -922,6 +925,7 @@ static lt_vf32_t f_nextup_m(lt_vf32_t src, lt_mask16_t k, lt_vf32_t a)
 #define LTN_WC lt_vf32_t
 #define LTN_QV lt_vf32_t
 #define LTN_FR lt_frusta16_f32_t
+#define LTN_FR_WT lt_wt16_f32_t
 #define LTN_FRT lt_frusta_table_f32_t
 #define LTN_FRF lt_frusta_filter_f32_t
 #define LTN_RAY1 lt_ray1_f32_t

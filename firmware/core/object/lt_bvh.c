@@ -5,6 +5,12 @@
  */
 #include "lt/lt_bvh.h"
 #include "lt_tri.h"
+#include "lt_isel.h"
+
+LT__ISEL1_DEFINE(q16, lt_ray1_q16_t, lt_tri_q16_t, lt_wt1_q16_t)
+#if LT_CFG_FLOAT32
+LT__ISEL1_DEFINE(f32, lt_ray1_f32_t, lt_tri_f32_t, lt_wt1_f32_t)
+#endif
 
 /* ---- shared: parameters, arena layout, depth budget ------------------------------------------ */
 
@@ -405,6 +411,8 @@ lt_status_t lt_bvhq_build_q16(lt_bvhq_t *out, const lt_bvh_t *src, void *mem, si
     out->nnodes = out->ntris = 0;
     out->bytes = 0;
     out->stats = NULL;
+    out->isect = src->isect;
+    out->pad_ = 0;
     lt__memset(&out->root, 0, sizeof out->root);
     if (src->nnodes == 0)
         return LT_OK;
@@ -495,7 +503,9 @@ static lt_status_t bvhq_trav16(const lt_bvhq_t *bvh, const lt_tri_q16_t *tris, l
     lt_vq16_t tl, tr;
     lt_aabb_q16_t cur = bvh->root;
     lt_phase_t prev;
+    lt__isel16_q16 isel;
 
+    lt__isel16_init_q16(&isel, bvh->isect);
     hit->id = lt_vi32_set1(-1);
     if (stats != NULL) {
         stats->calls++;
@@ -534,7 +544,7 @@ static lt_status_t bvhq_trav16(const lt_bvhq_t *bvh, const lt_tri_q16_t *tris, l
                     stats->tris++;
                     stats->tri_lanes += lt__popcount32(m);
                 }
-                got = lt_tri16_q16(r, m, &tris[id], (int32_t)id, hit);
+                got = lt__isel16_tri_q16(&isel, r, m, &tris[id], (int32_t)id, hit);
                 if (any) {
                     done = (lt_mask16_t)(done | got);
                     m = (lt_mask16_t)(m & ~got);
@@ -615,7 +625,8 @@ lt_status_t lt_bvhq_trace16_q16(const lt_bvhq_t *bvh, const lt_tri_q16_t *tris, 
                                 lt_mask16_t k, lt_hit16_t *hit)
 {
     lt_mask16_t unused;
-    if (bvh == NULL || r == NULL || hit == NULL || (tris == NULL && bvh->nnodes != 0))
+    if (bvh == NULL || r == NULL || hit == NULL || bvh->isect > LT_ISECT_MT ||
+        (tris == NULL && bvh->nnodes != 0))
         return LT_E_ARG;
     return bvhq_trav16(bvh, tris, r, k, hit, 0, &unused);
 }
@@ -624,7 +635,8 @@ lt_status_t lt_bvhq_occluded16_q16(const lt_bvhq_t *bvh, const lt_tri_q16_t *tri
                                    lt_ray16_q16_t *r, lt_mask16_t k, lt_mask16_t *occluded)
 {
     lt_hit16_t h;
-    if (bvh == NULL || r == NULL || occluded == NULL || (tris == NULL && bvh->nnodes != 0))
+    if (bvh == NULL || r == NULL || occluded == NULL || bvh->isect > LT_ISECT_MT ||
+        (tris == NULL && bvh->nnodes != 0))
         return LT_E_ARG;
     return bvhq_trav16(bvh, tris, r, k, &h, 1, occluded);
 }
@@ -648,9 +660,12 @@ lt_status_t lt_bvhq_trace1_q16(const lt_bvhq_t *bvh, const lt_tri_q16_t *tris, l
     lt_q16_t tl = 0, tr = 0;
     lt_aabb_q16_t cur;
     lt_phase_t prev;
+    lt__isel1_q16 isel;
 
-    if (bvh == NULL || r == NULL || id == NULL || (tris == NULL && bvh->nnodes != 0))
+    if (bvh == NULL || r == NULL || id == NULL || bvh->isect > LT_ISECT_MT ||
+        (tris == NULL && bvh->nnodes != 0))
         return LT_E_ARG;
+    lt__isel1_init_q16(&isel, bvh->isect);
     nodes = bvh->nodes;
     stats = bvh->stats;
     cur = bvh->root;
@@ -687,7 +702,7 @@ lt_status_t lt_bvhq_trace1_q16(const lt_bvhq_t *bvh, const lt_tri_q16_t *tris, l
                     stats->tris++;
                     stats->tri_lanes++;
                 }
-                if (lt_tri1_q16(r, &tris[t]))
+                if (lt__isel1_tri_q16(&isel, r, &tris[t]))
                     *id = (int32_t)t;
             }
             (void)LT_PHASE_ENTER(TRAVERSE);

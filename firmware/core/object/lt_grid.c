@@ -4,6 +4,7 @@
  * Builds: all; float32 only with LT_CFG_FLOAT32.
  */
 #include "lt/lt_grid.h"
+#include "lt_isel.h"
 #include "lt/lt_kd.h"
 
 void lt_grid_params_default(lt_grid_params_t *p)

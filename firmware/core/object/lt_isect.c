@@ -5,6 +5,7 @@
  */
 #include "lt/lt_isect.h"
 #include "lt_tri.h"
+#include "lt_isel.h"
 
 /* ---- fixed point: s15.16 positions, s1.30 directions ---------------------------------------- */
 

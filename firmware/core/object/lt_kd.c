@@ -4,6 +4,7 @@
  * Builds: all; float32 only with LT_CFG_FLOAT32.
  */
 #include "lt/lt_kd.h"
+#include "lt_isel.h"
 
 /* Bytes of one pending-node record of the build (6 coordinates + 6 words), the same in both paths. */
 #define KD_JOB_BYTES 48u

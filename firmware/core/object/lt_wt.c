@@ -4,6 +4,7 @@
  * are the only place where the two paths differ. Builds: all; float32 only with LT_CFG_FLOAT32.
  */
 #include "lt/lt_wt.h"
+#include "lt_isel.h"
 
 /* The bit budget of docs/watertight.md: |A| <= 2^13, sheared |x| <= 2^14 units (2^30 raw), edge
  * functions <= 2^61, det < 2^63. A larger geometry bound would overflow them. */
@@ -11,36 +12,69 @@ LT_STATIC_ASSERT(LT_CFG_GEOM_MAX_LOG2 <= 12, "lt_wt's exact int64 edge functions
 
 /* ---- fixed point: s15.16 positions, s1.30 directions and shear ------------------------------- */
 
-/* Lanes whose d[kz] cannot be sheared in s1.30: |d[kz]| <= 1/2 (a unit vector has its largest
- * component >= 1/sqrt3), so Sz = 1/d[kz] < 2 always fits. Cost: VBCAST x1, VALU x1, VCMP x1. */
+/* Lanes with d[kz] == 0 (the whole direction is zero: d[kz] is its largest component): no shear.
+ * Any other direction is accepted; q_norm scales d[kz] for Sz. Cost: VBCAST x1, VALU x1,
+ * VCMP x1. */
 static lt_mask16_t q_baddir(lt_vq30_t dkz)
 {
-    lt_vq30_t half = lt_vq30_set1((lt_q30_t)((1 << 29) + 1));
-    return (lt_mask16_t)~lt_vq30_cmpge(lt_vq30_abs_sat(dkz), half);
+    return lt_vq30_cmpeq(lt_vq30_abs_sat(dkz), lt_vq30_set1(0));
 }
 
-/* num / den in s1.30, half up, for |num| <= |den| (so |S| <= 1); bad lanes get 0. Cost: VDIV x1. */
+/* Per lane (shared by the packet and the single-ray test): num / den in s1.30, half up, for
+ * |num| <= |den| (|S| <= 1); 1 / den as 2^60 / den_raw (|den| > 2^29 after q_norm1: |Sz| < 2);
+ * the shift that brings |d[kz]| into (2^29, 2^31) raw, i.e. (1/2, 2): 0 for every |d[kz]| > 1/2
+ * (all unit directions), else the smallest sh with |d[kz]| 2^sh > 2^29 (<= 30). */
+static lt_q30_t q_ratio1(lt_q30_t num, lt_q30_t den)
+{
+    return lt__ssat32(lt__div_round64((int64_t)num * 1073741824, den));
+}
+
+static lt_q30_t q_recip1(lt_q30_t den) { return lt__ssat32(lt__div_round64((int64_t)1 << 60, den)); }
+
+static unsigned q_norm1(lt_q30_t dkz)
+{
+    uint32_t a = dkz < 0 ? 0u - (uint32_t)dkz : (uint32_t)dkz;
+    unsigned bits = 32u - lt__clz32(a), sh;
+    if (a == 0 || bits >= 31u)
+        return 0;
+    sh = 30u - bits;
+    if ((a << sh) == (1u << 29))
+        sh++;
+    return sh;
+}
+
+/* num / den in s1.30 per lane, bad lanes get 0. Cost: VDIV x1. */
 static lt_vq30_t q_ratio(lt_vq30_t num, lt_vq30_t den, lt_mask16_t bad)
 {
     int i;
     LT_CHARGE(WT_Q_RATIO);
     for (i = 0; i < LT_LANES; i++)
-        num.l[i] = LT__ON(bad, i) ? 0
-                                  : lt__ssat32(lt__div_round64((int64_t)num.l[i] * 1073741824,
-                                                               den.l[i]));
+        num.l[i] = LT__ON(bad, i) ? 0 : q_ratio1(num.l[i], den.l[i]);
     return num;
 }
 
-/* 1 / den in s1.30 (2^60 / den_raw), half up: |den| > 1/2 gives |Sz| < 2; bad lanes get 0.
- * Cost: VDIV x1. */
+/* 1 / den in s1.30 per lane (den normalised by q_norm), bad lanes get 0. Cost: VDIV x1. */
 static lt_vq30_t q_recip(lt_vq30_t den, lt_mask16_t bad)
 {
     int i;
     LT_CHARGE(WT_Q_RECIP);
     for (i = 0; i < LT_LANES; i++)
-        den.l[i] = LT__ON(bad, i) ? 0
-                                  : lt__ssat32(lt__div_round64((int64_t)1 << 60, den.l[i]));
+        den.l[i] = LT__ON(bad, i) ? 0 : q_recip1(den.l[i]);
     return den;
+}
+
+/* The shift of each lane into w->sh, and d[kz] 2^sh (exact: |d[kz]| 2^sh < 2^31). A lane
+ * count-leading-zeros, a compare and a variable shift. Cost: WT_Q_NORM (VALU x2, VSHIFT x1). */
+static lt_vq30_t q_norm(lt_wt16_q16_t *w, lt_vq30_t dkz)
+{
+    int i;
+    LT_CHARGE(WT_Q_NORM);
+    for (i = 0; i < LT_LANES; i++) {
+        unsigned sh = q_norm1(dkz.l[i]);
+        w->sh[i] = (uint8_t)sh;
+        dkz.l[i] = (lt_q30_t)(dkz.l[i] * (int32_t)(1u << sh));
+    }
+    return dkz;
 }
 
 /* 16 signed 128-bit integers, two's complement in two unsigned words: value = hi 2^64 + lo
@@ -103,45 +137,55 @@ static uint32_t q_udiv128(uint64_t nh, uint64_t nl, uint64_t d, uint64_t *rem)
     return q;
 }
 
-/* t = T / det as s15.16 (48 - 32 fractional bits), rounded half up from the exact quotient, for
- * lanes in k (det != 0 there); other lanes keep src. A hit has |t| <= max |z| < 2^30 raw; a
- * quotient >= 2^31 (only for out-of-range input) saturates. Cost: VDIV x2 (128/64 bits). */
-static lt_vq16_t q_tdiv_m(lt_vq16_t src, lt_mask16_t k, wt_v128_t tn, lt_vql32_t det)
+/* One lane of q_tdiv_m: t = round(T 2^sh / det) as s15.16 (48 - 32 fractional bits), half up
+ * from the exact quotient, det != 0. |T| < 2^93 and sh <= 30 keep T 2^sh inside 128 bits. A
+ * quotient >= 2^31 (out-of-range input, or a far hit of a short direction) saturates (*sat = 1).
+ * For unit directions sh = 0 and this is T / det. */
+static lt_q16_t q_tdiv1(uint64_t nh, uint64_t nl, int64_t d, unsigned sh, int *sat)
+{
+    uint64_t ad, rem;
+    uint32_t q;
+    int neg = (int)(nh >> 63) != (d < 0);
+    *sat = 0;
+    /* magnitudes, in unsigned arithmetic (no overflow for any input) */
+    if ((nh >> 63) != 0) {
+        nl = ~nl + 1u;
+        nh = ~nh + (uint64_t)(nl == 0);
+    }
+    if (sh != 0) {
+        nh = (nh << sh) | (nl >> (64u - sh));
+        nl <<= sh;
+    }
+    ad = d < 0 ? 0u - (uint64_t)d : (uint64_t)d;
+    /* n >= ad 2^31: the quotient does not fit s15.16 */
+    if (nh > (ad >> 33) || (nh == (ad >> 33) && nl >= (ad << 31))) {
+        *sat = 1;
+        return neg ? LT_Q16_MIN : LT_Q16_MAX;
+    }
+    q = q_udiv128(nh, nl, ad, &rem);
+    /* half up: x = q + f rounds to q + 1 when f >= 1/2; -x rounds to -(q + 1) when f > 1/2 */
+    if (neg) {
+        q += (uint32_t)(rem > ad - rem);
+        return q == 0 ? 0 : -(int32_t)(q - 1u) - 1;
+    }
+    q += (uint32_t)(rem >= ad - rem);
+    return lt__ssat32((int64_t)q);
+}
+
+/* t = T 2^sh / det per lane for lanes in k (det != 0 there); other lanes keep src. A hit has
+ * |t| <= max |z| 2^sh; saturated quotients count a SAT event. Cost: VDIV x2 (128/64 bits). */
+static lt_vq16_t q_tdiv_m(lt_vq16_t src, lt_mask16_t k, wt_v128_t tn, lt_vql32_t det,
+                          const lt_wt16_q16_t *w)
 {
     int i;
     LT_CHARGE(WT_Q_TDIV);
     LT_UTIL(k);
     for (i = 0; i < LT_LANES; i++) {
-        int64_t d = det.l[i];
-        uint64_t nh, nl, ad, rem;
-        uint32_t q;
-        int neg;
+        int sat;
         if (!LT__ON(k, i))
             continue;
-        /* magnitudes, in unsigned arithmetic (no overflow for any input) */
-        nh = tn.hi[i];
-        nl = tn.lo[i];
-        neg = (int)(nh >> 63) != (d < 0);
-        if ((nh >> 63) != 0) {
-            nl = ~nl + 1u;
-            nh = ~nh + (uint64_t)(nl == 0);
-        }
-        ad = d < 0 ? 0u - (uint64_t)d : (uint64_t)d;
-        /* n >= ad 2^31: the quotient does not fit s15.16 */
-        if (nh > (ad >> 33) || (nh == (ad >> 33) && nl >= (ad << 31))) {
-            LT_EVENT(SAT, 1);
-            src.l[i] = neg ? LT_Q16_MIN : LT_Q16_MAX;
-            continue;
-        }
-        q = q_udiv128(nh, nl, ad, &rem);
-        /* half up: x = q + f rounds to q + 1 when f >= 1/2; -x rounds to -(q + 1) when f > 1/2 */
-        if (neg) {
-            q += (uint32_t)(rem > ad - rem);
-            src.l[i] = q == 0 ? 0 : -(int32_t)(q - 1u) - 1;
-        } else {
-            q += (uint32_t)(rem >= ad - rem);
-            src.l[i] = lt__ssat32((int64_t)q);
-        }
+        src.l[i] = q_tdiv1(tn.hi[i], tn.lo[i], det.l[i], w->sh[i], &sat);
+        LT_EVENT(SAT, sat);
     }
     return src;
 }
@@ -162,6 +206,97 @@ static int q_zero_area(lt_q16_t p[3][3])
            lt__mul32x32_64(a[0], b[1]) == lt__mul32x32_64(a[1], b[0]);
 }
 
+/* The ray axis of one ray, as the packet setup computes it per lane from |d|: the largest
+ * component, ties to z, then y. */
+#define WT1_KZ(ax, ay, az) ((az) >= (ax) && (az) >= (ay) ? 2u : ((ay) >= (ax) ? 1u : 0u))
+
+/* kx, ky from kz and the sign of d[kz]: the next axes in cyclic order, swapped when d[kz] < 0
+ * (the masks of the packet setup). */
+static void wt1_kxky(unsigned k[3], int neg)
+{
+    k[0] = (k[2] + (neg ? 2u : 1u)) % 3u;
+    k[1] = (k[2] + (neg ? 1u : 2u)) % 3u;
+}
+
+/* ---- single rays: one lane of the packet test, scalar ----------------------------------------- */
+
+/* The setup of one ray: the lane arithmetic of lt_ray16_wt_setup_q16 (same primitives, same
+ * order), so lt_tri1_wt_q16 equals a packet lane bit for bit. Cost: WT_RAY1_SETUP. */
+int lt_ray1_wt_setup_q16(const lt_q16_t o[3], const lt_q30_t d[3], lt_wt1_q16_t *w)
+{
+    unsigned k[3];
+    lt_q30_t dkz;
+    int32_t a0 = lt__q16_abs_sat(d[0]), a1 = lt__q16_abs_sat(d[1]), a2 = lt__q16_abs_sat(d[2]);
+    LT_CHARGE(WT_RAY1_SETUP);
+    k[2] = WT1_KZ(a0, a1, a2);
+    dkz = d[k[2]];
+    wt1_kxky(k, dkz < 0);
+    w->k[0] = (uint8_t)k[0];
+    w->k[1] = (uint8_t)k[1];
+    w->k[2] = (uint8_t)k[2];
+    w->o[0] = o[k[0]];
+    w->o[1] = o[k[1]];
+    w->o[2] = o[k[2]];
+    w->bad = (uint8_t)(lt__q16_abs_sat(dkz) == 0);
+    w->sh = (uint8_t)(w->bad ? 0u : q_norm1(dkz));
+    w->s[0] = w->bad ? 0 : q_ratio1(d[k[0]], dkz);
+    w->s[1] = w->bad ? 0 : q_ratio1(d[k[1]], dkz);
+    w->s[2] = w->bad ? 0 : q_recip1((lt_q30_t)(dkz * (int32_t)(1u << w->sh)));
+    w->pad_[0] = w->pad_[1] = w->pad_[2] = 0;
+    return w->bad;
+}
+
+int lt_tri1_wt_q16(const lt_wt1_q16_t *w, const lt_tri_q16_t *tri, lt_q16_t tmin, lt_q16_t *tmax)
+{
+    lt_q16_t p[3][3], x[3], y[3], zk[3], z[3], t;
+    int64_t eu, ev, ew, det;
+    uint64_t h = 0, l = 0;
+    int i, a, neg, pos, sat;
+
+    LT_CHARGE(WT_TRI1);
+    LT_MEM(tri, sizeof *tri, LT_MEM_READ);
+    LT_EVENT(TRIS, 1);
+    LT_EVENT(TRI_RAYS, 1);
+    if (w->bad)
+        return 0;
+    for (a = 0; a < 3; a++) {
+        p[0][a] = tri->v0[a];
+        p[1][a] = lt__q16_add_sat(tri->v0[a], tri->e1[a]);
+        p[2][a] = lt__q16_add_sat(tri->v0[a], tri->e2[a]);
+    }
+    if (q_zero_area(p))
+        return 0;
+    for (i = 0; i < 3; i++) {
+        lt_q16_t ax = lt__q16_sub_sat(p[i][w->k[0]], w->o[0]);
+        lt_q16_t ay = lt__q16_sub_sat(p[i][w->k[1]], w->o[1]);
+        zk[i] = lt__q16_sub_sat(p[i][w->k[2]], w->o[2]);
+        x[i] = lt__q16_sub_sat(ax, lt__q16_mul_q30_sat(zk[i], w->s[0]));
+        y[i] = lt__q16_sub_sat(ay, lt__q16_mul_q30_sat(zk[i], w->s[1]));
+    }
+    eu = lt__l64_sub_wrap(lt__mul32x32_64(x[2], y[1]), lt__mul32x32_64(y[2], x[1]));
+    ev = lt__l64_sub_wrap(lt__mul32x32_64(x[0], y[2]), lt__mul32x32_64(y[0], x[2]));
+    ew = lt__l64_sub_wrap(lt__mul32x32_64(x[1], y[0]), lt__mul32x32_64(y[1], x[0]));
+    neg = eu < 0 || ev < 0 || ew < 0;
+    pos = eu > 0 || ev > 0 || ew > 0;
+    det = lt__l64_add_wrap(lt__l64_add_wrap(eu, ev), ew);
+    if ((neg && pos) || det == 0)
+        return 0;
+    LT_CHARGE(WT_TRI1_T);
+    for (i = 0; i < 3; i++)
+        z[i] = lt__q16_mul_q30_sat(zk[i], w->s[2]);
+    q_mac128(&h, &l, eu, z[0]);
+    q_mac128(&h, &l, ev, z[1]);
+    q_mac128(&h, &l, ew, z[2]);
+    t = q_tdiv1(h, l, det, w->sh, &sat);
+    LT_EVENT(SAT, sat);
+    if (t > tmin && t < *tmax) {
+        *tmax = t;
+        LT_EVENT(HITS, 1);
+        return 1;
+    }
+    return 0;
+}
+
 #include "numerics/lt_traits_q16.h"
 #define LTN_WT lt_wt16_q16_t
 #define LTN_DV lt_vq30_t
@@ -172,6 +307,7 @@ static int q_zero_area(lt_q16_t p[3][3])
 #define LTN_WT_BADDIR q_baddir
 #define LTN_WT_RATIO q_ratio
 #define LTN_WT_RECIP q_recip
+#define LTN_WT_NORM q_norm
 /* round(S * a): s1.30 x s15.16 -> 46 fractional bits -> s15.16, half up. Cost: VMUL x1. */
 #define LTN_WT_MULS(s, a) lt_vq16_mul_q30_sat((a), (s))
 #define LTN_E lt_vql32_t /* edge functions and det: s31.32 */
@@ -198,6 +334,7 @@ static int q_zero_area(lt_q16_t p[3][3])
 #undef LTN_WT_BADDIR
 #undef LTN_WT_RATIO
 #undef LTN_WT_RECIP
+#undef LTN_WT_NORM
 #undef LTN_WT_MULS
 #undef LTN_E
 #undef LTN_E_ADD
@@ -307,6 +444,81 @@ static int f_zero_area(float p[3][3])
 #define F_EXACT_EDGES 1
 #endif
 
+/* ---- single rays in float32: one lane of the packet test ----------------------------------- */
+
+int lt_ray1_wt_setup_f32(const float o[3], const float d[3], lt_wt1_f32_t *w)
+{
+    unsigned k[3];
+    float dkz, a0 = lt__f32_abs(d[0]), a1 = lt__f32_abs(d[1]), a2 = lt__f32_abs(d[2]);
+    LT_CHARGE(WT_RAY1_SETUP);
+    k[2] = WT1_KZ(a0, a1, a2);
+    dkz = d[k[2]];
+    wt1_kxky(k, dkz < 0.0f);
+    w->k[0] = (uint8_t)k[0];
+    w->k[1] = (uint8_t)k[1];
+    w->k[2] = (uint8_t)k[2];
+    w->o[0] = o[k[0]];
+    w->o[1] = o[k[1]];
+    w->o[2] = o[k[2]];
+    w->bad = (uint8_t)!(lt__f32_abs(dkz) > 0.0f);
+    w->s[0] = w->bad ? 0.0f : d[k[0]] / dkz;
+    w->s[1] = w->bad ? 0.0f : d[k[1]] / dkz;
+    w->s[2] = w->bad ? 0.0f : 1.0f / dkz;
+    w->pad_[0] = w->pad_[1] = w->pad_[2] = w->pad_[3] = 0;
+    return w->bad;
+}
+
+int lt_tri1_wt_f32(const lt_wt1_f32_t *w, const lt_tri_f32_t *tri, float tmin, float *tmax)
+{
+    float p[3][3], x[3], y[3], zk[3], eu, ev, ew, det, tn, t;
+    int i, a, neg, pos;
+
+    LT_CHARGE(WT_TRI1);
+    LT_MEM(tri, sizeof *tri, LT_MEM_READ);
+    LT_EVENT(TRIS, 1);
+    LT_EVENT(TRI_RAYS, 1);
+    if (w->bad)
+        return 0;
+    for (a = 0; a < 3; a++) {
+        p[0][a] = tri->v0[a];
+        p[1][a] = tri->v0[a] + tri->e1[a];
+        p[2][a] = tri->v0[a] + tri->e2[a];
+    }
+    if (f_zero_area(p))
+        return 0;
+    for (i = 0; i < 3; i++) {
+        float ax = p[i][w->k[0]] - w->o[0], ay = p[i][w->k[1]] - w->o[1];
+        zk[i] = p[i][w->k[2]] - w->o[2];
+        x[i] = ax - w->s[0] * zk[i];
+        y[i] = ay - w->s[1] * zk[i];
+    }
+    eu = x[2] * y[1] - y[2] * x[1];
+    ev = x[0] * y[2] - y[0] * x[2];
+    ew = x[1] * y[0] - y[1] * x[0];
+#if !F_EXACT_EDGES
+    if (eu == 0.0f || ev == 0.0f || ew == 0.0f) {
+        LT_CHARGE(WT_F_EDGE_FIX1);
+        eu = f_narrow((double)x[2] * (double)y[1] - (double)y[2] * (double)x[1]);
+        ev = f_narrow((double)x[0] * (double)y[2] - (double)y[0] * (double)x[2]);
+        ew = f_narrow((double)x[1] * (double)y[0] - (double)y[1] * (double)x[0]);
+    }
+#endif
+    neg = eu < 0.0f || ev < 0.0f || ew < 0.0f;
+    pos = eu > 0.0f || ev > 0.0f || ew > 0.0f;
+    det = (eu + ev) + ew;
+    if ((neg && pos) || !(det < 0.0f || det > 0.0f))
+        return 0;
+    LT_CHARGE(WT_TRI1_T);
+    tn = (eu * (w->s[2] * zk[0]) + ev * (w->s[2] * zk[1])) + ew * (w->s[2] * zk[2]);
+    t = tn / det;
+    if (t > tmin && t < *tmax) {
+        *tmax = t;
+        LT_EVENT(HITS, 1);
+        return 1;
+    }
+    return 0;
+}
+
 #include "numerics/lt_traits_f32.h"
 #define LTN_WT lt_wt16_f32_t
 #define LTN_DV lt_vf32_t
@@ -317,6 +529,7 @@ static int f_zero_area(float p[3][3])
 #define LTN_WT_BADDIR f_baddir
 #define LTN_WT_RATIO f_ratio
 #define LTN_WT_RECIP f_recip
+#define LTN_WT_NORM(w, dkz) ((void)(w), (dkz)) /* float needs no scaling */
 #define LTN_WT_MULS lt_vf32_mul
 #define LTN_E lt_vf32_t
 #define LTN_E_ADD lt_vf32_add
@@ -331,7 +544,7 @@ static int f_zero_area(float p[3][3])
 #define LTN_TT lt_vf32_t
 #define LTN_WT_TSUM(k, u, v, w, za, zb, zc)                                                       \
     ((void)(k), lt_vf32_dot3((u), (v), (w), (za), (zb), (zc)))
-#define LTN_WT_TDIV_M(src, k, n, d) lt_vf32_div_m((src), (k), (n), (d))
+#define LTN_WT_TDIV_M(src, k, n, d, w) ((void)(w), lt_vf32_div_m((src), (k), (n), (d)))
 #define LTN_WT_ZERO_AREA f_zero_area
 #include "lt_wt.inc"
 #include "numerics/lt_traits_undef.h"

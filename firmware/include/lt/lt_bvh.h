@@ -90,7 +90,7 @@ typedef struct lt_bvh_stats {
 #define LT_BVH_NUM_Q16 1u
 #define LT_BVH_NUM_F32 2u
 
-/* A built tree: a handle into the caller's arena, 56 bytes on LP64 hosts, 40 on 32-bit targets.
+/* A built tree: a handle into the caller's arena, 64 bytes on LP64 hosts, 44 on 32-bit targets.
  * Transparent (tests and tools walk it); the core never writes it after the build except through
  * `stats`. */
 typedef struct lt_bvh {
@@ -103,6 +103,9 @@ typedef struct lt_bvh {
     uint32_t leaves;       /* leaf count */
     uint32_t num;          /* LT_BVH_NUM_Q16 or LT_BVH_NUM_F32 */
     uint32_t bad_tri;      /* after LT_E_RANGE: the first triangle outside the range; else 0 */
+    uint32_t isect;        /* intersector of every walk over this tree, the multi-frusta ones
+                              included: LT_ISECT_WT (set by the build) or LT_ISECT_MT (set it after
+                              the build); another value makes the walks return LT_E_ARG */
     size_t bytes;          /* bytes of the arena the tree keeps (nodes + idx; the rest is free
                               after the build); after LT_E_SPACE: the bytes needed */
     lt_bvh_stats_t *stats; /* NULL, or counters the traversal adds to (set it after the build;
@@ -218,14 +221,17 @@ lt_status_t lt_bvh_build_q16(lt_bvh_t *out, const lt_bvh_desc_t *desc, const lt_
  * Ordered traversal: both children are slab-tested (lt_slab16_q16) with the packet's mask; when
  * both are hit, the one with the smaller min tnear over its lanes is entered and the other pushed
  * as (node, mask, min tnear); a popped entry is skipped when its tnear exceeds every remaining
- * tmax. Leaves run lt_tri16_q16 on their lanes. The stack holds LT_BVH_MAX_DEPTH entries, which a
+ * tmax. Leaves run the tree's intersector on their lanes: lt_tri16_wt_q16 (LT_ISECT_WT, the
+ * default; the packet's lt_ray16_wt_setup_q16 once per call, before its first triangle test)
+ * or lt_tri16_q16 (LT_ISECT_MT). The stack holds LT_BVH_MAX_DEPTH entries, which a
  * built tree never exceeds; should a foreign tree need more, the far child is dropped (its lanes
  * may miss a closer hit), nothing is written past the stack, and LT_E_DEPTH is returned.
  * Format: as lt_slab16_q16 / lt_tri16_q16. Cost: VBCAST x1 in the caller's phase (hit->id = -1);
  * TRAVERSE: VBCAST x2 per call, lt_slab16_q16 per box test, per node BVH_TRAV_NODE, interior:
  * BVH_TRAV_CHILDREN16 (+ VRED x2, BVH_TRAV_ORDER, BVH_TRAV16_PUSH with both children entered),
  * leaf: BVH_TRAV_ANY_EXIT after it; BVH_TRAV16_POP per entry popped (+ VRED x1 if it has live
- * lanes); INTERSECT: BVH_TRAV_LEAF_TRI and lt_tri16_q16 per leaf triangle; NODES per node, LT_MEM
+ * lanes); INTERSECT: BVH_TRAV_LEAF_TRI and the intersector per leaf triangle (lt_tri16_wt_q16,
+ * and lt_ray16_wt_setup_q16 before the first; or lt_tri16_q16); NODES per node, LT_MEM
  * per node read.
  * Returns: LT_OK, LT_E_ARG (NULL, or a tree of the other numeric path), LT_E_DEPTH (see above). */
 lt_status_t lt_bvh_trace16_q16(const lt_bvh_t *bvh, const lt_tri_q16_t *tris, lt_ray16_q16_t *r,
@@ -241,10 +247,12 @@ lt_status_t lt_bvh_occluded16_q16(const lt_bvh_t *bvh, const lt_tri_q16_t *tris,
 
 /* Closest hit of one ray: *id = original triangle id or -1, r->tmax = its distance. The same
  * ordered traversal with a stack of (node, tnear), scalar slab and triangle tests (bit-identical to
- * a packet lane, so the packet and single-ray paths return the same hit). Cost: TRAVERSE
+ * a packet lane, so the packet and single-ray paths return the same hit): lt_tri1_wt_q16 after
+ * one lt_ray1_wt_setup_q16 per call (LT_ISECT_WT), or lt_tri1_q16 (LT_ISECT_MT). Cost: TRAVERSE
  * lt_slab1_q16 per box test, per node BVH_TRAV_NODE, interior: BVH_TRAV1_CHILDREN (+
  * BVH_TRAV_ORDER, BVH_TRAV1_PUSH with both children entered); BVH_TRAV1_POP per entry popped;
- * INTERSECT BVH_TRAV_LEAF_TRI and lt_tri1_q16 per leaf triangle; NODES per node. Returns: as
+ * INTERSECT BVH_TRAV_LEAF_TRI and lt_tri1_wt_q16 (its setup before the first) or lt_tri1_q16
+ * per leaf triangle; NODES per node. Returns: as
  * lt_bvh_trace16_q16. */
 lt_status_t lt_bvh_trace1_q16(const lt_bvh_t *bvh, const lt_tri_q16_t *tris, lt_ray1_q16_t *r,
                               int32_t *id);
@@ -303,6 +311,9 @@ typedef struct lt_bvhq {
     uint32_t ntris;              /* as the source tree */
     size_t bytes;                /* nnodes x 16 */
     lt_bvh_stats_t *stats;       /* NULL, or traversal counters (as lt_bvh_t) */
+    uint32_t isect;              /* intersector of its walks, as lt_bvh_t (the build copies the
+                                    source tree's) */
+    uint32_t pad_;               /* private */
 } lt_bvhq_t;
 
 /* Bytes of the buffer lt_bvhq_build_q16 needs for src: 16 x src->nnodes for the nodes (kept, at

@@ -38,6 +38,8 @@ typedef struct lt_grid_q16 {
     lt_q16_t cell[3];          /* cell size per axis, s15.16 raw >= 1 */
     lt_aabb_q16_t bounds;      /* lo = scene minimum; hi = lo + res x cell >= scene maximum */
     size_t bytes;              /* (ncells + 1 + nrefs) x 4: exactly what lt_grid_size reported */
+    uint32_t isect;            /* intersector of its walks: LT_ISECT_WT (set by the build) or
+                                  LT_ISECT_MT (set after the build; lt_isect.h) */
 } lt_grid_q16_t;
 
 /* The default parameters above. */
@@ -77,7 +79,8 @@ lt_status_t lt_grid_build_q16(lt_grid_q16_t *g, const lt_tri_q16_t *tris, uint32
  * origin, inside or outside the grid. Rounding: a hit within the plane rounding bound of a cell boundary
  * may be passed over for one equally close (docs/kdtree-grid.md). Overflow: none. Steps per lane
  * <= res[0] + res[1] + res[2] (a hard bound, also for degenerate rays). Cost: NODES per cell visited
- * by a lane group (TRAVERSE), lt_tri16_q16 per tested reference (INTERSECT), LT_MEM per cell; the
+ * by a lane group (TRAVERSE), the grid's intersector per tested reference (INTERSECT:
+ * lt_tri16_wt_q16 with lt_ray16_wt_setup_q16 before the first, or lt_tri16_q16), LT_MEM per cell; the
  * GRID_WALK_* and GRID_MAILBOX_CLEAR recipes, GRID_LIN, GRID_OUTSIDE and the GRID_Q_* cell
  * routines with their lane ops (not checked by tests/unit/test_costs.c).
  * Returns: the mask of lanes that hit. */
@@ -98,6 +101,7 @@ typedef struct lt_grid_f32 {
     float cell[3];             /* cell size per axis (> 0); boundary j is lo + (float)j x cell */
     lt_aabb_f32_t bounds;
     size_t bytes;
+    uint32_t isect; /* as lt_grid_q16_t */
 } lt_grid_f32_t;
 
 /* The float32 twins: same contracts; vertices must be finite with |x| <= 1e30 (else LT_E_RANGE). */

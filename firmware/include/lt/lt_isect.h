@@ -14,6 +14,15 @@
 extern "C" {
 #endif
 
+/* The ray/triangle intersector a traversal uses: a field `isect` of every structure's handle
+ * (lt_bvh_t, lt_bvhq_t, lt_kd_*_t, lt_grid_*_t; the BVH's also serves the multi-frusta kernels)
+ * and a parameter of lt_chunks_trace16_*. The builds set LT_ISECT_WT; set the field after the
+ * build to choose Moller-Trumbore. One body per intersector (lt_tri16_wt_* / lt_tri16_*); the
+ * choice is made per triangle test on a value that is constant over a trace (not charged: it
+ * is loop-invariant, a compiler unswitches it). docs/watertight.md. */
+#define LT_ISECT_WT 0u /* watertight (Woop, Benthin, Wald 2013; lt_wt.h): the default */
+#define LT_ISECT_MT 1u /* Moller-Trumbore (lt_tri16_*): cheaper, leaks at shared edges */
+
 /* A packet of 16 rays in fixed point. 16 x 64 B x 11 = 704 bytes, 4-byte aligned. */
 typedef struct lt_ray16_q16 {
     lt_vq16_t ox, oy, oz;   /* origin, s15.16 world units (scene-scaled, |x| <= 2^LT_CFG_GEOM_MAX_LOG2) */
@@ -90,11 +99,14 @@ lt_mask16_t lt_tri16_q16(lt_ray16_q16_t *r, lt_mask16_t k, const lt_tri_q16_t *t
 lt_status_t lt_chunks_build_q16(const lt_tri_q16_t *tris, uint32_t n, lt_aabb_q16_t *boxes);
 
 /* Closest hit of a packet against a chunk scene: slab test per chunk (TRAVERSE), triangle tests of
- * the hit chunks (INTERSECT). hit->id is reset to -1 first. Cost: TRAVERSE VBCAST x2 per call, per
+ * the hit chunks (INTERSECT) with the intersector isect (LT_ISECT_WT or LT_ISECT_MT; another value
+ * is taken as LT_ISECT_WT). hit->id is reset to -1 first. Cost: TRAVERSE VBCAST x2 per call, per
  * chunk ISECT_CHUNK_STEP, lt_slab16_q16 and MASK x1; INTERSECT per triangle of an entered chunk
- * ISECT_CHUNK_TRI and lt_tri16_q16. Returns: mask of lanes that hit. */
+ * ISECT_CHUNK_TRI and lt_tri16_q16 (MT) or lt_tri16_wt_q16 (WT; before the first one the
+ * packet's lt_ray16_wt_setup_q16). Returns: mask of lanes that hit. */
 lt_mask16_t lt_chunks_trace16_q16(const lt_tri_q16_t *tris, uint32_t n, const lt_aabb_q16_t *boxes,
-                                  lt_ray16_q16_t *r, lt_mask16_t k, lt_hit16_t *hit);
+                                  uint32_t isect, lt_ray16_q16_t *r, lt_mask16_t k,
+                                  lt_hit16_t *hit);
 
 #if LT_CFG_FLOAT32
 /* The same in float32: what a Larrabee-like machine would run. 704 bytes. */
@@ -132,7 +144,8 @@ lt_mask16_t lt_tri16_f32(lt_ray16_f32_t *r, lt_mask16_t k, const lt_tri_f32_t *t
                          lt_hit16_t *hit);
 lt_status_t lt_chunks_build_f32(const lt_tri_f32_t *tris, uint32_t n, lt_aabb_f32_t *boxes);
 lt_mask16_t lt_chunks_trace16_f32(const lt_tri_f32_t *tris, uint32_t n, const lt_aabb_f32_t *boxes,
-                                  lt_ray16_f32_t *r, lt_mask16_t k, lt_hit16_t *hit);
+                                  uint32_t isect, lt_ray16_f32_t *r, lt_mask16_t k,
+                                  lt_hit16_t *hit);
 #endif
 
 #ifdef __cplusplus

@@ -65,6 +65,8 @@ typedef struct lt_kd_q16 {
     uint32_t depth;                /* deepest leaf level (root = 0) */
     lt_aabb_q16_t bounds;          /* scene bounds (triangle vertices), s15.16 */
     size_t bytes;                  /* bytes the finished tree occupies at the arena start */
+    uint32_t isect;                /* intersector of its walks: LT_ISECT_WT (set by the build) or
+                                      LT_ISECT_MT (set after the build; lt_isect.h) */
 } lt_kd_q16_t;
 
 /* The default parameters above. Cost: none. */
@@ -103,8 +105,9 @@ lt_status_t lt_kd_build_q16(lt_kd_q16_t *kd, const lt_tri_q16_t *tris, uint32_t 
  * divide exactly; parallel lanes go to the side of their origin. Range: rays from
  * lt_ray16_q16_setup, tmax < LT_Q16_MAX; any origin, inside or outside the tree. Rounding: a hit within the plane
  * rounding bound (docs/numerics.md slab bound) of a split plane may be passed over in favour of
- * one equally close. Overflow: none. Cost: NODES per node visited (TRAVERSE), lt_tri16_q16 per
- * leaf reference (INTERSECT), LT_MEM per node and leaf reference block; the KD_WALK_* recipes,
+ * one equally close. Overflow: none. Cost: NODES per node visited (TRAVERSE), the tree's intersector per
+ * leaf reference (INTERSECT: lt_tri16_wt_q16 with lt_ray16_wt_setup_q16 before the first, or
+ * lt_tri16_q16), LT_MEM per node and leaf reference block; the KD_WALK_* recipes,
  * lt__kd_span16_q16 and lt__kd_tplane16_q16 with their lane ops (not checked by
  * tests/unit/test_costs.c).
  * Returns: the mask of lanes that hit. */
@@ -146,6 +149,7 @@ typedef struct lt_kd_f32 {
     uint32_t ntris, nnodes, nrefs, nleaves, nempty, depth;
     lt_aabb_f32_t bounds;
     size_t bytes;
+    uint32_t isect; /* as lt_kd_q16_t */
 } lt_kd_f32_t;
 
 /* The float32 twins: same contracts; vertices must be finite (else LT_E_RANGE). */

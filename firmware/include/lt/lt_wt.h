@@ -14,27 +14,31 @@ extern "C" {
 #endif
 
 
-/* Per-packet shear constants of the watertight test, from lt_ray16_wt_setup_q16. 416 bytes,
+/* Per-packet shear constants of the watertight test, from lt_ray16_wt_setup_q16. 432 bytes,
  * 4-byte aligned. Per lane: kz = the axis of largest |d| (ties prefer z, then y, then x),
  * (kx, ky) = the next two axes in cyclic order, swapped when d[kz] < 0 so that the winding is
  * kept. Recompute after changing a ray's origin or direction. */
 typedef struct lt_wt16_q16 {
     lt_vq16_t ox, oy, oz;  /* origin permuted to (kx, ky, kz), s15.16 */
-    lt_vq30_t sx, sy, sz;  /* Sx = d[kx]/d[kz], Sy = d[ky]/d[kz] (|S| <= 1), Sz = 1/d[kz]
-                              (1 <= |Sz| < 2 for |d[kz]| > 1/2), s1.30, rounded half up */
+    lt_vq30_t sx, sy, sz;  /* Sx = d[kx]/d[kz], Sy = d[ky]/d[kz] (|S| <= 1), Sz = 1/(d[kz] 2^sh)
+                              (1/2 < |Sz| < 2), s1.30, rounded half up */
     lt_mask16_t kx[3];     /* kx[a]: lanes whose sheared x axis is world axis a */
     lt_mask16_t ky[3];     /* ky[a]: lanes whose sheared y axis is world axis a */
     lt_mask16_t kz[3];     /* kz[a]: lanes whose ray axis is world axis a */
-    lt_mask16_t bad;       /* lanes with |d[kz]| <= 1/2 (not a unit direction): never hit */
+    lt_mask16_t bad;       /* lanes with d == 0: never hit */
+    uint8_t sh[LT_LANES];  /* per lane: the shift sh >= 0 that brings |d[kz]| 2^sh into
+                              (1/2, 2) (0 for every unit direction); t = round(T 2^sh / det) */
     uint16_t pad_[6];      /* private: keeps the size a multiple of 16 */
 } lt_wt16_q16_t;
-LT_STATIC_ASSERT(sizeof(lt_wt16_q16_t) == 6 * 64 + 32, "wt setup is 6 lane vectors + masks");
+LT_STATIC_ASSERT(sizeof(lt_wt16_q16_t) == 6 * 64 + 48, "wt setup is 6 lane vectors + masks");
 
-/* Permutation and shear constants of each lane of r (its origin and unit direction) into w.
- * Format: s1.30 / s1.30 -> s1.30 (Sx, Sy: round(d * 2^30 / dz)), 2^60 / dz_raw (Sz).
- * Range: unit directions; lanes whose largest |d| component is <= 1/2 are flagged in w->bad.
- * Rounding: half up. Overflow: none for |d[kz]| > 1/2. Cost: VALU x16 (abs, permuting blends),
- * VCMP x5, VDIV x3, VBCAST x1, MASK x23.
+/* Permutation and shear constants of each lane of r (its origin and direction) into w.
+ * Format: s1.30 / s1.30 -> s1.30 (Sx, Sy: round(d * 2^30 / dz)), 2^60 / (dz_raw 2^sh) (Sz).
+ * Range: any nonzero direction in s1.30 (unit or not: the frusta's rays are not); the exact
+ * power of two sh normalises d[kz] for Sz and is undone in t, so t is in units of |d| as in
+ * lt_tri16_q16; for unit directions sh = 0. Lanes with d == 0 are flagged in w->bad.
+ * Rounding: half up. Overflow: none. Cost: WT_SETUP_KZ, WT_SETUP_KXKY, WT_Q_NORM, WT_Q_RATIO x2,
+ * WT_Q_RECIP, VALU x16 (abs, permuting blends), VCMP x5, VBCAST x1.
  * Returns: the mask of lanes flagged bad (they never hit). */
 lt_mask16_t lt_ray16_wt_setup_q16(const lt_ray16_q16_t *r, lt_wt16_q16_t *w);
 
@@ -48,7 +52,8 @@ lt_mask16_t lt_ray16_wt_setup_q16(const lt_ray16_q16_t *r, lt_wt16_q16_t *w);
  * T = U*Az + V*Bz + W*Cz exact in 128 bits (48 fractional bits); t = T / det.
  * Range: |vertex|, |origin| <= 2^LT_CFG_GEOM_MAX_LOG2 (= 4096) per axis keeps every value above
  * inside its format. Outside it results are defined (saturating / wrapping) but not meaningful.
- * Rounding: t rounded half up from the exact quotient; t always lies between the vertices' z.
+ * Rounding: t = round(T 2^sh / det) half up from the exact quotient (in units of |d|); t always
+ * lies between the vertices' z.
  * Hit rule: U, V, W all >= 0 or all <= 0, det != 0, and the triangle's area is not exactly zero
  * (e1 x e2 != 0, tested exactly): zero-area triangles never hit. No crack: a ray through a shared
  * edge or vertex of triangles with bit-identical shared vertices hits at least one of them
@@ -62,8 +67,35 @@ lt_mask16_t lt_ray16_wt_setup_q16(const lt_ray16_q16_t *r, lt_wt16_q16_t *w);
 lt_mask16_t lt_tri16_wt_q16(lt_ray16_q16_t *r, const lt_wt16_q16_t *w, lt_mask16_t k,
                             const lt_tri_q16_t *tri, int32_t id, lt_hit16_t *hit);
 
+
+/* One ray's watertight setup (the scalar twin of a packet lane), 32 bytes. */
+typedef struct lt_wt1_q16 {
+    lt_q16_t o[3];   /* origin permuted to (kx, ky, kz), s15.16 */
+    lt_q30_t s[3];   /* Sx, Sy, Sz as a packet lane's sx, sy, sz (s1.30) */
+    uint8_t k[3];    /* kx, ky, kz: world axes */
+    uint8_t sh;      /* the lane's shift (see lt_wt16_q16_t) */
+    uint8_t bad;     /* d == 0: never hits */
+    uint8_t pad_[3]; /* private */
+} lt_wt1_q16_t;
+LT_STATIC_ASSERT(sizeof(lt_wt1_q16_t) == 32, "single-ray wt setup is 32 bytes");
+
+/* The setup of one ray (origin o, direction d): exactly what lt_ray16_wt_setup_q16 computes for a
+ * lane holding that ray, so that lt_tri1_wt_q16 equals the packet test lane for lane, bit for
+ * bit (the single-ray BVH walks use it). Format, Range, Rounding: as the packet setup.
+ * Cost: WT_RAY1_SETUP (SALU x12, SDIV x3, BRANCH x2). Returns: 1 if the ray is bad (d == 0). */
+int lt_ray1_wt_setup_q16(const lt_q16_t o[3], const lt_q30_t d[3], lt_wt1_q16_t *w);
+
+/* One ray against one triangle: one lane of lt_tri16_wt_q16 (the same primitives in the same
+ * order). Hit iff the lane would hit: then *tmax = t. Format, Range, Rounding: as the packet
+ * test. Cost: WT_TRI1 (SLOAD x9, SALU x27, SMUL x12, BRANCH x2: the shear, the exact edge
+ * functions) and WT_ZERO_AREA (none for a bad ray); a candidate adds WT_TRI1_T (SMUL x9,
+ * SALU x12, SDIV x2, BRANCH x1: the exact 128-bit T and its division). Returns: 1 if tmin < t < *tmax (then *tmax = t). */
+int lt_tri1_wt_q16(const lt_wt1_q16_t *w, const lt_tri_q16_t *tri, lt_q16_t tmin,
+                   lt_q16_t *tmax);
+
 #if LT_CFG_FLOAT32
-/* Float32 twin of lt_wt16_q16_t (same layout rules). 416 bytes. */
+/* Float32 twin of lt_wt16_q16_t (same layout rules; no shift: Sz = 1/d[kz] in float). 416
+ * bytes. */
 typedef struct lt_wt16_f32 {
     lt_vf32_t ox, oy, oz;  /* origin permuted to (kx, ky, kz) */
     lt_vf32_t sx, sy, sz;  /* Sx = d[kx]/d[kz], Sy = d[ky]/d[kz], Sz = 1/d[kz] (IEEE division) */
@@ -91,6 +123,20 @@ lt_mask16_t lt_ray16_wt_setup_f32(const lt_ray16_f32_t *r, lt_wt16_f32_t *w);
  * Returns: the mask of lanes whose ray was shortened by this triangle. */
 lt_mask16_t lt_tri16_wt_f32(lt_ray16_f32_t *r, const lt_wt16_f32_t *w, lt_mask16_t k,
                             const lt_tri_f32_t *tri, int32_t id, lt_hit16_t *hit);
+
+/* Float32 twins of the single-ray setup and test (one lane of the float packet test; the double
+ * fallback for 0.0f edge functions charges WT_F_EDGE_FIX1). */
+typedef struct lt_wt1_f32 {
+    float o[3];      /* origin permuted to (kx, ky, kz) */
+    float s[3];      /* Sx, Sy, Sz */
+    uint8_t k[3];    /* kx, ky, kz */
+    uint8_t bad;     /* d == 0 or NaN */
+    uint8_t pad_[4]; /* private */
+} lt_wt1_f32_t;
+LT_STATIC_ASSERT(sizeof(lt_wt1_f32_t) == 32, "single-ray f32 wt setup is 32 bytes");
+
+int lt_ray1_wt_setup_f32(const float o[3], const float d[3], lt_wt1_f32_t *w);
+int lt_tri1_wt_f32(const lt_wt1_f32_t *w, const lt_tri_f32_t *tri, float tmin, float *tmax);
 #endif
 
 #ifdef __cplusplus

@@ -1,0 +1,75 @@
+/* lt_isel.h - internal header: the one intersector selection of every traversal (the chunks,
+ * BVH, quantised BVH, kd-tree and grid walks, single rays, and the multi-frusta kernels). A
+ * traversal keeps one lt__isel16_* (or lt__isel1_*) per call: the intersector (LT_ISECT_WT or
+ * LT_ISECT_MT, from the structure's handle) and, for the watertight test, the packet's (or ray's)
+ * permutation and shear, computed once per call before its first triangle test, never per
+ * triangle. Then each triangle test calls lt__isel16_tri_*: lt_tri16_wt_* or lt_tri16_* on the
+ * same ray, the one body of each test. Not part of the public API. Builds: all.
+ */
+#ifndef LT_ISEL_H
+#define LT_ISEL_H
+
+#include "lt/lt_wt.h"
+
+/* Watertight meet test of lt_wt.inc without the interval (lt_wt.c): lanes of k whose ray meets
+ * tri, t written for those lanes. For kernels that apply their own acceptance rule to t (the
+ * frusta). */
+lt_mask16_t lt__wt16_meet_q16(const lt_wt16_q16_t *w, lt_mask16_t k, const lt_tri_q16_t *tri,
+                              lt_vq16_t *t);
+#if LT_CFG_FLOAT32
+lt_mask16_t lt__wt16_meet_f32(const lt_wt16_f32_t *w, lt_mask16_t k, const lt_tri_f32_t *tri,
+                              lt_vf32_t *t);
+#endif
+
+/* One selection per packet and per single ray, for both numeric paths. */
+#define LT__ISEL_DEFINE(SFX, RAY, TRI, WT16, WT1, T)                                               \
+    typedef struct {                                                                               \
+        uint32_t mt;    /* Moller-Trumbore chosen */                                               \
+        uint32_t ready; /* the watertight setup is computed */                                     \
+        WT16 wt;        /* the packet's watertight setup */                                        \
+    } lt__isel16_##SFX;                                                                        \
+    LT_INLINE void lt__isel16_init_##SFX(lt__isel16_##SFX *s, uint32_t isect)                  \
+    {                                                                                              \
+        s->mt = isect == LT_ISECT_MT;                                                              \
+        s->ready = 0;                                                                              \
+    }                                                                                              \
+    LT_INLINE lt_mask16_t lt__isel16_tri_##SFX(lt__isel16_##SFX *s, RAY *r, lt_mask16_t k,     \
+                                               const TRI *tri, int32_t id, lt_hit16_t *hit)        \
+    {                                                                                              \
+        if (s->mt)                                                                                 \
+            return lt_tri16_##SFX(r, k, tri, id, hit);                                             \
+        if (!s->ready) {                                                                           \
+            (void)lt_ray16_wt_setup_##SFX(r, &s->wt);                                              \
+            s->ready = 1;                                                                          \
+        }                                                                                          \
+        return lt_tri16_wt_##SFX(r, &s->wt, k, tri, id, hit);                                      \
+    }
+
+#define LT__ISEL1_DEFINE(SFX, RAY1, TRI, WT1)                                                      \
+    typedef struct {                                                                               \
+        uint32_t mt;    /* Moller-Trumbore chosen */                                               \
+        uint32_t ready; /* the watertight setup is computed */                                     \
+        WT1 wt;         /* the ray's watertight setup */                                           \
+    } lt__isel1_##SFX;                                                                         \
+    LT_INLINE void lt__isel1_init_##SFX(lt__isel1_##SFX *s, uint32_t isect)                    \
+    {                                                                                              \
+        s->mt = isect == LT_ISECT_MT;                                                              \
+        s->ready = 0;                                                                              \
+    }                                                                                              \
+    LT_INLINE int lt__isel1_tri_##SFX(lt__isel1_##SFX *s, RAY1 *r, const TRI *tri)             \
+    {                                                                                              \
+        if (s->mt)                                                                                 \
+            return lt_tri1_##SFX(r, tri);                                                          \
+        if (!s->ready) {                                                                           \
+            (void)lt_ray1_wt_setup_##SFX(r->o, r->d, &s->wt);                                      \
+            s->ready = 1;                                                                          \
+        }                                                                                          \
+        return lt_tri1_wt_##SFX(&s->wt, tri, r->tmin, &r->tmax);                                   \
+    }
+
+LT__ISEL_DEFINE(q16, lt_ray16_q16_t, lt_tri_q16_t, lt_wt16_q16_t, lt_wt1_q16_t, lt_q16_t)
+#if LT_CFG_FLOAT32
+LT__ISEL_DEFINE(f32, lt_ray16_f32_t, lt_tri_f32_t, lt_wt16_f32_t, lt_wt1_f32_t, float)
+#endif
+
+#endif /* LT_ISEL_H */
