@@ -14,6 +14,7 @@
 #include "lt_meter.h"
 #include "io/lt_png.h"
 #include "render/lt_paths.h"
+#include "tune/lt_recommend.h"
 #include "render/lt_render.h"
 #include "cli/lt_reproject_cli.h"
 #include "cli/lt_shadows_cli.h"
@@ -1029,6 +1030,40 @@ static int info_exr(const char *path, const lt_sniff_t *sn, int json, int part, 
     return rc;
 }
 
+/* The recommendation block of `info MESH` (lt_recommend_mesh): text lines, or the "recommend"
+ * object of j. */
+static void info_recommend(const lt_mesh_t *m, const lt_scene_t *sc, cJSON *j)
+{
+    lt_rec_mesh_facts_t f;
+    lt_rec_t r;
+    int a, i;
+    memset(&f, 0, sizeof f);
+    f.ntris = m->ntris;
+    f.nonzero = sc->nonzero;
+    f.collapsed_q16 = sc->collapsed_q16;
+    for (a = 0; a < 3; a++)
+        if (m->hi[a] - m->lo[a] > f.extent)
+            f.extent = m->hi[a] - m->lo[a];
+    f.scale = sc->scale;
+    f.min_edge = sc->scale > 0.0 ? sc->min_edge / sc->scale : 0.0;
+    lt_recommend_mesh(&f, &r);
+    if (j != NULL) {
+        cJSON *o = cJSON_AddObjectToObject(j, "recommend");
+        cJSON_AddBoolToObject(o, "q16_representable", r.q16_ok);
+        cJSON_AddNumberToObject(o, "dynamic_range_log2", r.range_log2);
+        cJSON_AddNumberToObject(o, "shortest_edge_q16_steps", r.edge_steps);
+        for (i = 0; i < r.n; i++) {
+            cJSON *k = cJSON_AddObjectToObject(o, r.k[i].knob);
+            cJSON_AddStringToObject(k, "pick", r.k[i].pick);
+            cJSON_AddStringToObject(k, "reason", r.k[i].reason);
+        }
+        return;
+    }
+    printf("recommend (no sweep; lanetrace tune measures it)\n");
+    for (i = 0; i < r.n; i++)
+        printf("  %-10s %-7s %s\n", r.k[i].knob, r.k[i].pick, r.k[i].reason);
+}
+
 static int cmd_info(int argc, char **argv)
 {
     lt_mesh_t m;
@@ -1107,6 +1142,7 @@ static int cmd_info(int argc, char **argv)
         cJSON_AddNumberToObject(j, "collapsed_q16", sc.collapsed_q16);
         cJSON_AddNumberToObject(j, "nonzero", sc.nonzero);
         cJSON_AddBoolToObject(j, "q16_representable", lt_scene_check_q16(&sc, path, &diag) == 0);
+        info_recommend(&m, &sc, j);
         print_json_line(j);
     } else {
         printf("detected  %s by its content%s\n", sn.what,
@@ -1123,6 +1159,7 @@ static int cmd_info(int argc, char **argv)
                lt_scene_check_q16(&sc, path, &diag) == 0 ? "representable"
                                                                  : "NOT representable, float32 only",
                sc.min_edge);
+        info_recommend(&m, &sc, NULL);
     }
     lt_scene_free(&sc);
     lt_mesh_free(&m);

@@ -190,6 +190,13 @@ check "render --num q16: nothing written for the unrepresentable scene" test ! -
 expect "render: the scene file's \"numeric\": \"q16\": refused" 1 "cannot be represented in s15.16" "$LT" render "$tmp/wideq.json" --out "$tmp/wideq"
 expect "run --num f32 traces the same scene" 0 "result    f32" "$LT" run --mesh "$tmp/wide.obj" --res 8 -q --num f32 --no-ref
 expect "info says which paths can represent a mesh" 0 "10 of 11 non-degenerate triangles collapse.*NOT representable" "$HOSTBIN/lanetrace-native" info "$tmp/wide.obj"
+check "info recommends f32 for it with the collapse counts" grep -q "numeric    f32     not representable in s15.16: 10 of 11 triangles collapse" "$tmp/o.txt"
+check "info recommends chunks for its 11 triangles" grep -q "structure  chunks  11 triangles (<= 256)" "$tmp/o.txt"
+expect "info on the teapot recommends a bvh from its triangle count" 0 "structure  bvh     992 triangles (> 256)" "$HOSTBIN/lanetrace-native" info scenes/teapot.obj
+"$HOSTBIN/lanetrace-native" info scenes/teapot.obj --json >"$tmp/infor.json" 2>&1
+check "info --json has a recommend object (numeric, structure, leaf: pick and reason)" python3 -c "
+import json,sys; r=json.load(open('$tmp/infor.json'))['recommend']
+sys.exit(0 if r['q16_representable'] and r['structure']['pick']=='bvh' and r['leaf']['pick']=='16' and r['numeric']['pick']=='f32' and '992' in r['structure']['reason'] else 1)"
 expect "shadows: the same fallback to f32" 0 "shadows: numeric path q16 (s15.16) dropped, running f32 (float32): .*wide.obj: cannot be represented in s15.16" "$LT" shadows --mesh "$tmp/wide.obj" --res 8 --no-ref -q
 check "shadows: the fallback's result is f32" grep -q "result    f32" "$tmp/o.txt"
 expect "shadows --num q16: refused" 1 "wide.obj: cannot be represented in s15.16" "$LT" shadows --mesh "$tmp/wide.obj" --res 8 --no-ref --num q16
