@@ -14,6 +14,7 @@
 #include "lt_meter.h"
 #include "io/lt_png.h"
 #include "render/lt_paths.h"
+#include "tune/lt_recommend.h"
 #include "render/lt_render.h"
 #include "cli/lt_reproject_cli.h"
 #include "cli/lt_shadows_cli.h"
@@ -202,6 +203,9 @@ typedef struct run {
     cJSON *jout;
     FILE *csvf;
     int status, heat_warned;
+    /* a selected path dropped because it cannot represent the scene, and the reason */
+    const lt_path_info_t *dropped;
+    char drop_reason[LT_DIAG_MAX];
 } run_t;
 
 /* Whether the scene file's path bits select p (an object-space path). */
@@ -218,6 +222,23 @@ static int run_npaths(const lt_scenefile_t *sf)
     for (p = lt_paths; p->name != NULL; p++)
         n += run_selects(sf, p);
     return n;
+}
+
+/* The selected paths' names, "q16 and f32" (a static buffer). */
+static const char *run_selected_names(const lt_scenefile_t *sf)
+{
+    static char buf[128];
+    const lt_path_info_t *p;
+    size_t len = 0;
+    buf[0] = '\0';
+    for (p = lt_paths; p->name != NULL && len < sizeof buf; p++)
+        if (run_selects(sf, p)) {
+            int w = snprintf(buf + len, sizeof buf - len, "%s%s", len ? " and " : "", p->name);
+            if (w < 0)
+                break;
+            len += (size_t)w;
+        }
+    return buf;
 }
 
 /* The options into r; LT_OPT_OK, LT_OPT_HELP or LT_OPT_USAGE. */
@@ -338,12 +359,20 @@ static int run_load(run_t *r)
         fprintf(stderr, "%s: %s\n", sf->mesh, diag.msg);
         return EXIT_INPUT;
     }
-    /* every selected path must represent the scene */
+    /* a selected path that cannot represent the scene is dropped while another selected path
+       remains (--num both, the default); asked for alone (--num q16), it is refused */
     for (p = lt_paths; p->name != NULL; p++)
         if (run_selects(sf, p) && p->render->scene_check != NULL &&
             p->render->scene_check(&r->sc, sf->mesh, &diag) != 0) {
-            fprintf(stderr, "%s\n", diag.msg);
-            return EXIT_INPUT;
+            if (run_npaths(sf) < 2) {
+                fprintf(stderr, "%s\n", diag.msg);
+                return EXIT_INPUT;
+            }
+            sf->numeric = (lt_sf_num_t)((unsigned)sf->numeric & ~(unsigned)p->sf_num);
+            r->dropped = p;
+            snprintf(r->drop_reason, sizeof r->drop_reason, "%s", diag.msg);
+            fprintf(stderr, "%s run: numeric path %s (%s) dropped, running %s: %s\n", prog,
+                    p->name, p->format, run_selected_names(sf), diag.msg);
         }
     if (sf->has_camera) {
         if (lt_camera_look(&r->sc, sf->eye, sf->target, sf->up, sf->fov_y_deg, sf->width,
@@ -460,6 +489,12 @@ static void run_facts(const run_t *r, const char *pname, double ms, size_t acc_b
     cJSON_AddNumberToObject(x, "host_ms", ms);
     cJSON_AddNumberToObject(x, "frame_hash", lt_frame_hash(&r->fr));
     cJSON_AddNumberToObject(x, "structure_bytes", (double)acc_bytes);
+    if (r->dropped != NULL) {
+        cJSON *y = cJSON_AddObjectToObject(x, "numeric_pick");
+        cJSON_AddStringToObject(y, "path", pname);
+        cJSON_AddStringToObject(y, "dropped", r->dropped->name);
+        cJSON_AddStringToObject(y, "reason", r->drop_reason);
+    }
     if (r->do_ref) {
         cJSON *y = cJSON_AddObjectToObject(x, "accuracy");
         cJSON_AddNumberToObject(y, "same_triangle_pct", 100.0 * ac->same_id / ac->pixels);
@@ -579,7 +614,7 @@ static int run_path(run_t *r, const lt_path_info_t *p)
     double t0, ms;
     int rep;
     cJSON *jr;
-    char extra[2048];
+    char extra[4096];
     size_t acc_bytes;
     uint64_t rays = (uint64_t)sf->width * sf->height * (uint64_t)r->repeat;
     lt_meter_reset();
@@ -1003,6 +1038,40 @@ static int info_exr(const char *path, const lt_sniff_t *sn, int json, int part, 
     return rc;
 }
 
+/* The recommendation block of `info MESH` (lt_recommend_mesh): text lines, or the "recommend"
+ * object of j. */
+static void info_recommend(const lt_mesh_t *m, const lt_scene_t *sc, cJSON *j)
+{
+    lt_rec_mesh_facts_t f;
+    lt_rec_t r;
+    int a, i;
+    memset(&f, 0, sizeof f);
+    f.ntris = m->ntris;
+    f.nonzero = sc->nonzero;
+    f.collapsed_q16 = sc->collapsed_q16;
+    for (a = 0; a < 3; a++)
+        if (m->hi[a] - m->lo[a] > f.extent)
+            f.extent = m->hi[a] - m->lo[a];
+    f.scale = sc->scale;
+    f.min_edge = sc->scale > 0.0 ? sc->min_edge / sc->scale : 0.0;
+    lt_recommend_mesh(&f, &r);
+    if (j != NULL) {
+        cJSON *o = cJSON_AddObjectToObject(j, "recommend");
+        cJSON_AddBoolToObject(o, "q16_representable", r.q16_ok);
+        cJSON_AddNumberToObject(o, "dynamic_range_log2", r.range_log2);
+        cJSON_AddNumberToObject(o, "shortest_edge_q16_steps", r.edge_steps);
+        for (i = 0; i < r.n; i++) {
+            cJSON *k = cJSON_AddObjectToObject(o, r.k[i].knob);
+            cJSON_AddStringToObject(k, "pick", r.k[i].pick);
+            cJSON_AddStringToObject(k, "reason", r.k[i].reason);
+        }
+        return;
+    }
+    printf("recommend (no sweep; lanetrace tune measures it)\n");
+    for (i = 0; i < r.n; i++)
+        printf("  %-10s %-7s %s\n", r.k[i].knob, r.k[i].pick, r.k[i].reason);
+}
+
 static int cmd_info(int argc, char **argv)
 {
     lt_mesh_t m;
@@ -1081,6 +1150,7 @@ static int cmd_info(int argc, char **argv)
         cJSON_AddNumberToObject(j, "collapsed_q16", sc.collapsed_q16);
         cJSON_AddNumberToObject(j, "nonzero", sc.nonzero);
         cJSON_AddBoolToObject(j, "q16_representable", lt_scene_check_q16(&sc, path, &diag) == 0);
+        info_recommend(&m, &sc, j);
         print_json_line(j);
     } else {
         printf("detected  %s by its content%s\n", sn.what,
@@ -1097,6 +1167,7 @@ static int cmd_info(int argc, char **argv)
                lt_scene_check_q16(&sc, path, &diag) == 0 ? "representable"
                                                                  : "NOT representable, float32 only",
                sc.min_edge);
+        info_recommend(&m, &sc, NULL);
     }
     lt_scene_free(&sc);
     lt_mesh_free(&m);
@@ -1278,10 +1349,13 @@ typedef struct render {
     const char *mesh_over, *out, *report;
     uint32_t wh[2];
     double lf[3];
-    int seen_res, seen_light, num, structure, isect, seen_isect, layers, json;
+    int seen_res, seen_light, seen_num, num, structure, isect, seen_isect, layers, json;
     const char *num_names[8];
     unsigned num_sets[8];
     const lt_path_info_t *path;
+    /* the path asked for when it cannot represent the scene and another runs, and the reason */
+    const lt_path_info_t *dropped;
+    char drop_reason[LT_DIAG_MAX];
     /* inputs */
     lt_mesh_t mesh;
     lt_scene_t sc;
@@ -1329,8 +1403,8 @@ static int render_parse(render_t *r, int argc, char **argv)
                    "mesh file (overrides the scene's \"mesh\"; default scenes/teapot.obj)"),
         {.name = "--res", .kind = LT_OPT_SIZE, .dest = r->wh, .seen = &r->seen_res,
          .meta = "WxH|N", .help = "image size ({range} per side)", .lo = 1, .hi = LT_SF_MAX_RES},
-        {.name = "--num", .kind = LT_OPT_ENUM, .dest = &r->num, .names = r->num_names,
-         .help = num_help},
+        {.name = "--num", .kind = LT_OPT_ENUM, .dest = &r->num, .seen = &r->seen_num,
+         .names = r->num_names, .help = num_help},
         {.name = "--structure", .kind = LT_OPT_ENUM, .dest = &r->structure, .meta = "NAME",
          .names = lt_render_structures,
          .help = "acceleration structure: {choices}\n(default bvh; chunks: no shadows, no peels)"},
@@ -1361,12 +1435,44 @@ static int render_parse(render_t *r, int argc, char **argv)
     int rc;
     snprintf(who, sizeof who, "%s render", prog);
     num_choices(LT_PATHS_OBJECT, 0, r->num_names, r->num_sets, num_help, sizeof num_help);
-    strncat(num_help, "; default q16", sizeof num_help - strlen(num_help) - 1);
+    strncat(num_help, "; default the scene file's \"numeric\" when it names one path, else q16\n"
+                      "(f32 when s15.16 cannot represent the scene and q16 was not asked for)",
+            sizeof num_help - strlen(num_help) - 1);
     rc = lt_opt_parse(&cmd, argc, argv, 2);
     if (r->json)
         quiet = 1;
     r->path = lt_paths_find(r->num_names[r->num], LT_PATHS_OBJECT);
     return rc;
+}
+
+/* The path: --num, else the scene file's "numeric" when it names one path, else q16; one that
+ * cannot represent the scene is refused when asked for (--num, the scene file), else replaced by
+ * the first path that can, with a line saying why. Returns 0 or -1 after the message. */
+static int render_pick_path(render_t *r)
+{
+    const lt_scenefile_t *sf = &r->sf;
+    const lt_path_info_t *p, *alt;
+    lt_diag_t diag;
+    int asked = r->seen_num;
+    for (p = lt_paths; !asked && sf->numeric != LT_SF_NUM_BOTH && p->name != NULL; p++)
+        if ((p->families & LT_PATHS_OBJECT) && (unsigned)p->sf_num == (unsigned)sf->numeric) {
+            r->path = p;
+            asked = 1;
+        }
+    if (r->path->render->scene_check == NULL ||
+        r->path->render->scene_check(&r->sc, sf->mesh, &diag) == 0)
+        return 0;
+    alt = asked ? NULL : lt_paths_fallback(&r->sc, LT_PATHS_OBJECT, r->path);
+    if (alt == NULL) {
+        fprintf(stderr, "%s\n", diag.msg);
+        return -1;
+    }
+    fprintf(stderr, "%s render: numeric path %s (%s) dropped, running %s (%s): %s\n", prog,
+            r->path->name, r->path->format, alt->name, alt->format, diag.msg);
+    r->dropped = r->path;
+    snprintf(r->drop_reason, sizeof r->drop_reason, "%s", diag.msg);
+    r->path = alt;
+    return 0;
 }
 
 /* The scene file under the flags, the mesh, the prepared scene, the camera and the light.
@@ -1409,11 +1515,8 @@ static int render_load(render_t *r)
         fprintf(stderr, "%s: %s\n", sf->mesh, diag.msg);
         return EXIT_INPUT;
     }
-    if (r->path->render->scene_check != NULL &&
-        r->path->render->scene_check(&r->sc, sf->mesh, &diag) != 0) {
-        fprintf(stderr, "%s\n", diag.msg);
+    if (render_pick_path(r) != 0)
         return EXIT_INPUT;
-    }
     if (sf->has_camera) {
         if (lt_camera_look(&r->sc, sf->eye, sf->target, sf->up, sf->fov_y_deg, sf->width,
                            sf->height, &r->cam, &diag) != 0) {
@@ -1660,21 +1763,43 @@ static int render_write_exr(render_t *r)
     return status;
 }
 
+/* The numeric pick into o when the path asked for was dropped: {"path", "dropped", "reason"}. */
+static void render_pick_json(const render_t *r, cJSON *o)
+{
+    cJSON *y;
+    if (r->dropped == NULL)
+        return;
+    y = cJSON_AddObjectToObject(o, "numeric_pick");
+    cJSON_AddStringToObject(y, "path", r->path->name);
+    cJSON_AddStringToObject(y, "dropped", r->dropped->name);
+    cJSON_AddStringToObject(y, "reason", r->drop_reason);
+}
+
 /* (sim build) the cycle report of every ray of the render: primary packets, shadow packets,
  * peels (and the build); --report writes it as JSON. Returns 0 or an exit code. */
 static int render_report(render_t *r)
 {
     const lt_scenefile_t *sf = &r->sf;
     lt_diag_t diag;
-    char title[1400], extra[256], *js;
+    char title[1400], extra[2048], *js;
     if (!lt_meter_available())
         return 0;
     snprintf(title, sizeof title, "render %s %ux%u %s, %s, %d layer(s), shadows", sf->mesh,
              sf->width, sf->height, r->path->name, lt_render_structures[r->structure], r->layers);
     if (!quiet)
         lt_meter_report_text(stdout, title, r->nrays);
-    snprintf(extra, sizeof extra, "{\"primary_rays\": %zu, \"shadow_rays\": %u, \"peel_rays\": %llu}",
-             r->n, r->nshadow, (unsigned long long)(r->nrays - r->n - r->nshadow));
+    {
+        cJSON *x = cJSON_CreateObject();
+        char *xs;
+        cJSON_AddNumberToObject(x, "primary_rays", (double)r->n);
+        cJSON_AddNumberToObject(x, "shadow_rays", r->nshadow);
+        cJSON_AddNumberToObject(x, "peel_rays", (double)(r->nrays - r->n - r->nshadow));
+        render_pick_json(r, x);
+        xs = cJSON_PrintUnformatted(x);
+        snprintf(extra, sizeof extra, "%s", xs != NULL ? xs : "{}");
+        free(xs);
+        cJSON_Delete(x);
+    }
     js = lt_meter_report_json(title, r->nrays, extra);
     if (r->report != NULL) {
         const char *dst = NULL;
@@ -1774,6 +1899,7 @@ static void render_summary(const render_t *r)
         cJSON_AddStringToObject(o, "structure", lt_render_structures[r->structure]);
         cJSON_AddStringToObject(o, "isect", r->sf.isect);
         cJSON_AddStringToObject(o, "path", r->path->name);
+        render_pick_json(r, o);
         cJSON_AddNumberToObject(o, "width", r->sf.width);
         cJSON_AddNumberToObject(o, "height", r->sf.height);
         cJSON_AddNumberToObject(o, "layers", r->layers);

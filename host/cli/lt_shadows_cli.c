@@ -301,11 +301,21 @@ static int shadows_load(shadows_t *s)
         fprintf(stderr, "%s: %s: %s\n", who, s->mesh_path, diag.msg);
         return EXIT_INPUT;
     }
-    /* the same representability rule as run and render (the ground plane included) */
+    /* the same representability rule as run and render (the ground plane included): a path
+       that cannot represent the scene is refused when asked for (--num, the scene file's
+       "numeric"), else the first frusta path that can runs, with a line saying why */
     if (s->path->render->scene_check != NULL &&
         s->path->render->scene_check(&s->sc, s->mesh_path, &diag) != 0) {
-        fprintf(stderr, "%s: %s\n", who, diag.msg);
-        return EXIT_INPUT;
+        int asked = s->seen_num || (s->scene_path != NULL && s->sf.numeric != LT_SF_NUM_BOTH);
+        const lt_path_info_t *alt = asked ? NULL
+                                          : lt_paths_fallback(&s->sc, LT_PATHS_FRUSTA, s->path);
+        if (alt == NULL) {
+            fprintf(stderr, "%s: %s\n", who, diag.msg);
+            return EXIT_INPUT;
+        }
+        fprintf(stderr, "%s: numeric path %s (%s) dropped, running %s (%s): %s\n", who,
+                s->path->name, s->path->format, alt->name, alt->format, diag.msg);
+        s->path = alt;
     }
     if (s->seen_eye || (s->pre != NULL && s->pre->has_camera)) {
         if (!s->seen_eye)

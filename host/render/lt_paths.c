@@ -54,6 +54,18 @@ const lt_path_info_t *lt_paths_of_qt_enc(lt_qt_enc_t e)
     return NULL;
 }
 
+const lt_path_info_t *lt_paths_fallback(const lt_scene_t *s, unsigned families,
+                                        const lt_path_info_t *except)
+{
+    const lt_path_info_t *p;
+    lt_diag_t diag;
+    for (p = lt_paths; p->name != NULL; p++)
+        if (p != except && (p->families & families) != 0 && p->render != NULL &&
+            (p->render->scene_check == NULL || p->render->scene_check(s, "", &diag) == 0))
+            return p;
+    return NULL;
+}
+
 int lt_paths_names(unsigned families, const char **names, int max)
 {
     const lt_path_info_t *p;

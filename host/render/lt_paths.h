@@ -81,6 +81,12 @@ int lt_paths_names(unsigned families, const char **names, int max);
 /* Those names joined for messages and help: "n64, n32 or f32". */
 void lt_paths_list(unsigned families, char *buf, size_t n);
 
+/* The first path in table order serving any of families (with object-space ops) other than
+ * `except` that represents the prepared scene s (no scene_check, or the check passes): where a
+ * scene one path cannot represent runs when the user did not ask for that path. NULL: none. */
+const lt_path_info_t *lt_paths_fallback(const lt_scene_t *s, unsigned families,
+                                        const lt_path_info_t *except);
+
 /* Fixed-point paths: a raw value of the format as a double (exact) and a double as the nearest raw
  * value (half up, saturating to int32 like the core). Float paths: raw is the binary32 bit pattern
  * (to_double) / the binary32 bit pattern of the value rounded to float (from_double). */

@@ -169,12 +169,37 @@ expect "render --report in the native build: usage error" 2 "simulator build" "$
     echo "f 1 2 3"
     for i in 0 1 2 3 4 5 6 7 8 9; do b=$((4 + 3 * i)); echo "f $b $((b + 1)) $((b + 2))"; done
 } >"$tmp/wide.obj"
-expect "run: a scene s15.16 cannot represent is an input error naming the file and the limit" 1 "wide.obj: cannot be represented in s15.16: 10 of 11 triangles.*limit 0.1%" "$LT" run --mesh "$tmp/wide.obj" --res 8 -q
-expect "render: the same error for the s15.16 path" 1 "cannot be represented in s15.16" "$LT" render --mesh "$tmp/wide.obj" --res 8 --out "$tmp/wide"
-check "render: nothing written for the unrepresentable scene" test ! -e "$tmp/wide.exr"
+# not asked for s15.16 (run's default --num both, render's and shadows' default q16): s15.16 is
+# dropped with the reason on one line and float32 runs; asked for (--num q16, the scene file's
+# "numeric": "q16"): refused naming the file and the limit
+expect "run: a scene s15.16 cannot represent runs on f32, the reason on one line" 0 "run: numeric path q16 (s15.16) dropped, running f32: .*wide.obj: cannot be represented in s15.16: 10 of 11 triangles.*limit 0.1%" "$LT" run --mesh "$tmp/wide.obj" --res 8 -q
+check "run: the fallback traced f32 only" grep -q "result    f32" "$tmp/o.txt"
+check "run: ... and not q16" test "$(grep -c 'result    q16' "$tmp/o.txt")" -eq 0
+"$LT" run --mesh "$tmp/wide.obj" --res 8 --no-ref --json >"$tmp/wide.json" 2>/dev/null
+check "run --json records the pick and the reason (numeric_pick)" python3 -c "
+import json,sys; r=json.load(open('$tmp/wide.json')); x=r[0].get('extra', r[0]); p=x['numeric_pick']
+sys.exit(0 if len(r)==1 and p['path']=='f32' and p['dropped']=='q16' and 'cannot be represented in s15.16' in p['reason'] else 1)"
+expect "run --num q16: a scene s15.16 cannot represent is refused naming the file and the limit" 1 "wide.obj: cannot be represented in s15.16: 10 of 11 triangles.*limit 0.1%" "$LT" run --mesh "$tmp/wide.obj" --res 8 -q --num q16
+printf '{"mesh": "%s", "numeric": "q16", "resolution": [8, 8]}\n' "$tmp/wide.obj" >"$tmp/wideq.json"
+expect "run: the scene file's \"numeric\": \"q16\" is asked for too: refused" 1 "cannot be represented in s15.16" "$LT" run "$tmp/wideq.json" -q
+expect "render: the same fallback to f32" 0 "render: numeric path q16 (s15.16) dropped, running f32 (float32): .*cannot be represented in s15.16" "$LT" render --mesh "$tmp/wide.obj" --res 8 --out "$tmp/wide" --json
+check "render --json records the pick" grep -q '"dropped":.*"q16"' "$tmp/o.txt"
+check "render: the fallback wrote its images" test -s "$tmp/wide.exr"
+expect "render --num q16: refused" 1 "cannot be represented in s15.16" "$LT" render --mesh "$tmp/wide.obj" --res 8 --out "$tmp/wideq" --num q16
+check "render --num q16: nothing written for the unrepresentable scene" test ! -e "$tmp/wideq.exr"
+expect "render: the scene file's \"numeric\": \"q16\": refused" 1 "cannot be represented in s15.16" "$LT" render "$tmp/wideq.json" --out "$tmp/wideq"
 expect "run --num f32 traces the same scene" 0 "result    f32" "$LT" run --mesh "$tmp/wide.obj" --res 8 -q --num f32 --no-ref
 expect "info says which paths can represent a mesh" 0 "10 of 11 non-degenerate triangles collapse.*NOT representable" "$HOSTBIN/lanetrace-native" info "$tmp/wide.obj"
-expect "shadows: the same error for the s15.16 path" 1 "wide.obj: cannot be represented in s15.16" "$LT" shadows --mesh "$tmp/wide.obj" --res 8 --no-ref
+check "info recommends f32 for it with the collapse counts" grep -q "numeric    f32     not representable in s15.16: 10 of 11 triangles collapse" "$tmp/o.txt"
+check "info recommends chunks for its 11 triangles" grep -q "structure  chunks  11 triangles (<= 256)" "$tmp/o.txt"
+expect "info on the teapot recommends a bvh from its triangle count" 0 "structure  bvh     992 triangles (> 256)" "$HOSTBIN/lanetrace-native" info scenes/teapot.obj
+"$HOSTBIN/lanetrace-native" info scenes/teapot.obj --json >"$tmp/infor.json" 2>&1
+check "info --json has a recommend object (numeric, structure, leaf: pick and reason)" python3 -c "
+import json,sys; r=json.load(open('$tmp/infor.json'))['recommend']
+sys.exit(0 if r['q16_representable'] and r['structure']['pick']=='bvh' and r['leaf']['pick']=='16' and r['numeric']['pick']=='f32' and '992' in r['structure']['reason'] else 1)"
+expect "shadows: the same fallback to f32" 0 "shadows: numeric path q16 (s15.16) dropped, running f32 (float32): .*wide.obj: cannot be represented in s15.16" "$LT" shadows --mesh "$tmp/wide.obj" --res 8 --no-ref -q
+check "shadows: the fallback's result is f32" grep -q "result    f32" "$tmp/o.txt"
+expect "shadows --num q16: refused" 1 "wide.obj: cannot be represented in s15.16" "$LT" shadows --mesh "$tmp/wide.obj" --res 8 --no-ref --num q16
 expect "lt-agree: the same error (it traces s15.16)" 1 "wide.obj: cannot be represented in s15.16" "$B/host/lt-agree" "$tmp/wide.obj" --res 8
 # a unit triangle beside a 1e30 one: centring in double alone erases it (range above 2^53); the
 # check measures area on the file's coordinates, so it counts as collapsed (it was "representable")
