@@ -694,50 +694,6 @@ static const char *extension(const char *path)
     return dot + 1;
 }
 
-/* Read the whole file, at most LT_MESH_MAX_BYTES. */
-static int read_file(const char *path, char **buf, size_t *len, lt_diag_t *diag)
-{
-    FILE *f = fopen(path, "rb");
-    struct stat st;
-    size_t got;
-    *buf = NULL;
-    *len = 0;
-    if (f == NULL) {
-        lt_diag_fail(diag, "%s: cannot open the mesh file: %s", path, strerror(errno));
-        return -1;
-    }
-    if (fstat(fileno(f), &st) != 0 || !S_ISREG(st.st_mode)) {
-        lt_diag_fail(diag, "%s: not a regular file", path);
-        (void)fclose(f);
-        return -1;
-    }
-    if ((uint64_t)st.st_size > LT_MESH_MAX_BYTES) {
-        lt_diag_fail(diag, "%s: %lld bytes exceed LT_MESH_MAX_BYTES %u", path,
-             (long long)st.st_size, LT_MESH_MAX_BYTES);
-        (void)fclose(f);
-        return -1;
-    }
-    *buf = (char *)malloc((size_t)st.st_size + 1);
-    if (*buf == NULL) {
-        lt_diag_fail(diag, "%s: out of memory for %lld bytes", path, (long long)st.st_size);
-        (void)fclose(f);
-        return -1;
-    }
-    got = fread(*buf, 1, (size_t)st.st_size, f);
-    if (got != (size_t)st.st_size || ferror(f)) {
-        lt_diag_fail(diag, "%s: read error after %zu of %lld bytes", path, got,
-             (long long)st.st_size);
-        (void)fclose(f);
-        free(*buf);
-        *buf = NULL;
-        return -1;
-    }
-    (void)fclose(f);
-    (*buf)[got] = '\0';
-    *len = got;
-    return 0;
-}
-
 int lt_import_mesh(const char *path, const char *data, size_t len, const char *hint,
                    unsigned flags, lt_import_convert_fn conv, lt_mesh_t *m, lt_diag_t *diag)
 {
@@ -757,7 +713,7 @@ int lt_import_mesh(const char *path, const char *data, size_t len, const char *h
         }
         kind = lt_meshcheck_kind(extension(path), head, hn);
         if (kind != LT_MESHCHECK_NONE) {
-            if (read_file(path, &own, &len, diag) != 0)
+            if (lt_mesh_read_file(path, &own, &len, diag) != 0)
                 return -1;
             data = own;
         }

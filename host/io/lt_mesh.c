@@ -36,8 +36,7 @@ static int ends_with(const char *s, const char *suffix)
 
 /* ---- whole-file reading and gunzip ----------------------------------------------------------- */
 
-/* Read the file into a NUL-terminated buffer (*len bytes + 1). */
-static int read_all(const char *path, char **buf, size_t *len, lt_diag_t *diag)
+int lt_mesh_read_file(const char *path, char **buf, size_t *len, lt_diag_t *diag)
 {
     FILE *f = fopen(path, "rb");
     struct stat st;
@@ -478,7 +477,7 @@ int lt_mesh_load(const char *path, lt_mesh_t *m, lt_diag_t *diag)
         hint[n - k] = '\0';
     }
     if (gz || obj) {
-        if (read_all(path, &raw, &rawlen, diag) != 0)
+        if (lt_mesh_read_file(path, &raw, &rawlen, diag) != 0)
             return -1;
         if (rawlen == 0) {
             lt_diag_fail(diag, "%s: empty file (0 bytes)", path);

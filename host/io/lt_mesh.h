@@ -45,6 +45,11 @@ int lt_mesh_load(const char *path, lt_mesh_t *m, lt_diag_t *diag);
 
 void lt_mesh_free(lt_mesh_t *m);
 
+/* The whole file (a regular file of at most LT_MESH_MAX_BYTES) into a malloc'ed buffer with a NUL
+ * after its *len bytes. Returns 0, or -1 with a message naming the file (cannot open, not a
+ * regular file, too large, out of memory, read error). */
+int lt_mesh_read_file(const char *path, char **buf, size_t *len, lt_diag_t *diag);
+
 #ifdef __cplusplus
 }
 #endif
