@@ -486,7 +486,6 @@ static int verdict(reader_t *rd, int status, int timed_out, unsigned limit, cons
 int lt_import_isolated(const char *path, lt_import_child_fn fn, void *ctx, lt_mesh_t *m,
                        lt_diag_t *diag)
 {
-    static reader_t rd0;
     reader_t *rd;
     int dp[2], ep[2], status = 0, timed_out, rc = -1;
     unsigned limit;
@@ -496,10 +495,9 @@ int lt_import_isolated(const char *path, lt_import_child_fn fn, void *ctx, lt_me
     memset(m, 0, sizeof *m);
     if (timeout_seconds(path, &limit, diag) != 0)
         return -1;
-    rd = malloc(sizeof *rd);
+    rd = calloc(1, sizeof *rd);
     if (rd == NULL)
         return lt_diag_fail(diag, "%s: out of memory", path);
-    *rd = rd0;
     pid = start_child(path, fn, ctx, limit, dp, ep, diag);
     if (pid < 0) {
         free(rd);
