@@ -21,7 +21,7 @@ lt_status_t lt_frusta_table_q16(const lt_frusta_light_q16_t *light, const lt_qmc
 {
     unsigned s, j, a, c;
     if (light == NULL || sets == NULL || tb == NULL || light->end_shift > 30u ||
-        (light->flags & ~(LT_FRUSTA_BACKFACE | LT_FRUSTA_CORNER | LT_FRUSTA_CR)) != 0)
+        (light->flags & ~(LT_FRUSTA_BACKFACE | LT_FRUSTA_CORNER | LT_FRUSTA_CR | LT_FRUSTA_LEAFRAY)) != 0)
         return LT_E_ARG;
     for (a = 0; a < 3; a++)
         if ((light->eu[a] % LT_FRUSTA_GRID) != 0 || (light->ev[a] % LT_FRUSTA_GRID) != 0)
@@ -452,6 +452,7 @@ LT_INLINE int32_t q_pdelta(const lt_frusta_vtable_q16_t *vt, uint32_t jx, uint32
 #define LTN_CDELTA(tb, u, v, a) ((u) * (tb)->eu9[a] + (v) * (tb)->ev9[a])
 #define LTN_O_OK(x) ((int64_t)(x) <= FR_GEOM_RAW && (int64_t)(x) >= -FR_GEOM_RAW)
 #define LTN_RAYSETUP lt_ray16_q16_setup
+#define LTN_SLAB lt_slab16_q16
 #define LTN_RAY1SETUP lt_ray1_q16_setup
 #define LTN_ADD_M lt_vq16_add_sat_m
 #define LTN_STORE_M lt_vq16_store_m
@@ -574,6 +575,7 @@ LT_INLINE lt_vq30_t lt__frusta_q30_of(lt_vq16_t a)
 #undef LTN_CDELTA
 #undef LTN_O_OK
 #undef LTN_RAYSETUP
+#undef LTN_SLAB
 #undef LTN_RAY1SETUP
 #undef LTN_ADD_M
 #undef LTN_STORE_M
@@ -618,7 +620,7 @@ lt_status_t lt_frusta_table_f32(const lt_frusta_light_f32_t *light, const lt_qmc
 {
     unsigned s, j, a;
     if (light == NULL || sets == NULL || tb == NULL || light->end_shift > 30u ||
-        (light->flags & ~(LT_FRUSTA_BACKFACE | LT_FRUSTA_CORNER | LT_FRUSTA_CR)) != 0)
+        (light->flags & ~(LT_FRUSTA_BACKFACE | LT_FRUSTA_CORNER | LT_FRUSTA_CR | LT_FRUSTA_LEAFRAY)) != 0)
         return LT_E_ARG;
     for (a = 0; a < 3; a++)
         if (!f_finite(light->c[a]) || !f_finite(light->eu[a]) || !f_finite(light->ev[a]))
@@ -998,6 +1000,7 @@ static lt_vf32_t f_nextup_m(lt_vf32_t src, lt_mask16_t k, lt_vf32_t a)
     ((float)(u) * (1.0f / 512.0f) * (tb)->eu[a] + (float)(v) * (1.0f / 512.0f) * (tb)->ev[a])
 #define LTN_O_OK f_finite
 #define LTN_RAYSETUP lt_ray16_f32_setup
+#define LTN_SLAB lt_slab16_f32
 #define LTN_RAY1SETUP lt_ray1_f32_setup
 #define LTN_ADD_M lt_vf32_add_m
 #define LTN_STORE_M lt_vf32_store_m

@@ -37,6 +37,9 @@ extern "C" {
 #define LT_FRUSTA_CORNER 2u   /* corner-ray culling of triangles per frustum (frusta only) */
 #define LT_FRUSTA_CR 4u       /* recompute the corner rays of partially occluded frusta after a
                                  leaf in which one of their rays terminated (the paper's "CR") */
+#define LT_FRUSTA_LEAFRAY 8u  /* ray-AABB leaf culling ([Benthin09] Table 2 "Ray-AABB"): at a
+                                 leaf, a frustum whose own live rays (a 16-ray packet with
+                                 reciprocals, made once per call) miss the leaf's box skips it */
 
 #define LT_FRUSTA_END_SHIFT 10u /* default: rays stop 2^-10 of their length short of the light */
 
@@ -52,7 +55,7 @@ typedef struct lt_frusta_light_q16 {
     lt_q16_t c[3];      /* corner, s15.16 world units, |c| and |c + eu + ev| <= 2^GEOM */
     lt_q16_t eu[3];     /* edge u, s15.16, each a multiple of LT_FRUSTA_GRID raw (may be 0) */
     lt_q16_t ev[3];     /* edge v, s15.16, as eu */
-    uint32_t flags;     /* LT_FRUSTA_BACKFACE | LT_FRUSTA_CORNER | LT_FRUSTA_CR */
+    uint32_t flags;     /* LT_FRUSTA_BACKFACE | LT_FRUSTA_CORNER | LT_FRUSTA_CR | LEAFRAY */
     uint32_t end_shift; /* rays end at t_end - t_end / 2^end_shift (1..30; 0 = default 10) */
 } lt_frusta_light_q16_t;
 LT_STATIC_ASSERT(sizeof(lt_frusta_light_q16_t) == 44, "q16 light is 44 bytes");
@@ -132,7 +135,10 @@ lt_status_t lt_frusta_setup16_q16(const lt_frusta_table_q16_t *tb, lt_mask16_t k
  * (fr_gen: FR_GEN, VBCAST x3, VALU x3, FR_Q_TOD x3), the test (fr_tri: FR_TRI, VBCAST x16, 3
  * rounded cross products, 2 dot products, d . qvec, VCMP x4, VMULW x1; tnum < 0: VMULW x4,
  * VBCAST x4; candidates: TRI_Q_TDIV16, VBCAST x3, VCMP x2), FR_LEAF_OCCLUDED when rays were newly
- * occluded; with CR FR_RECORNER per such frustum after the leaf.
+ * occluded; with CR FR_RECORNER per such frustum after the leaf. With LEAFRAY, before the leaf's
+ * triangles, per frustum in the leaf's mask: FR_LEAF_RAYBOX, VBCAST x2 and lt_slab16_q16 on the
+ * leaf's box with its live rays over [tmin, tmax] (dropped from the leaf when none meets it), and
+ * on the frustum's first leaf of the call its packet: fr_gen, VBCAST x5, lt_ray16_q16_setup.
  * Format: as lt_slab16 / lt_tri16. Rounding: conservative (docs/frusta.md). Overflow: none.
  * Returns: LT_OK, LT_E_ARG (NULL, a tree of the other path), LT_E_DEPTH (foreign tree too deep). */
 lt_status_t lt_frusta_occluded16_q16(const lt_bvh_t *bvh, const lt_tri_q16_t *tris,
@@ -220,7 +226,8 @@ typedef struct lt_frusta_view_q16 {
     lt_q30_t dx[3], dy[3]; /* direction step per pixel in x and in y, s1.30 raw */
     uint32_t width;        /* image width in pixels, 1..LT_FRUSTA_PMAX_DIM */
     uint32_t height;       /* image height in pixels, 1..LT_FRUSTA_PMAX_DIM */
-    uint32_t flags;        /* LT_FRUSTA_BACKFACE | LT_FRUSTA_CORNER | LT_FRUSTA_CR (see below) */
+    uint32_t flags;        /* LT_FRUSTA_BACKFACE | LT_FRUSTA_CORNER | LT_FRUSTA_CR |
+                              LT_FRUSTA_LEAFRAY (see below) */
 } lt_frusta_view_q16_t;
 LT_STATIC_ASSERT(sizeof(lt_frusta_view_q16_t) == 60, "q16 view is 60 bytes");
 
@@ -302,6 +309,10 @@ lt_status_t lt_frusta_psetup16_q16(const lt_frusta_vtable_q16_t *vt, uint32_t bx
  * products, 2 dot products, d . qvec, VCMP x4, VBCAST x3, VMULW x1; sigma < 0: VMULW x3,
  * VBCAST x3; candidates: TRI_Q_TDIV16, VCMP x3, VBCAST x2, FR_PTRI_HITS, VALU x2, + FR_IDGT on a
  * tie); then a bit-scan of the frusta that took a hit, per frustum FR_PLEAF_TMAX and VRED x1.
+ * With LEAFRAY, before the leaf's triangles, per frustum in the leaf's mask: FR_LEAF_RAYBOX,
+ * VBCAST x1 and lt_slab16_q16 on the leaf's box with its live rays from tmin up to each ray's
+ * nearest hit so far (dropped from the leaf when none meets it), and on the frustum's first leaf
+ * of the call its packet: pr_gen, VBCAST x5, lt_ray16_q16_setup.
  * Format: as lt_slab16 / lt_tri16. Rounding: conservative (docs/frusta.md). Overflow: none.
  * Returns: LT_OK, LT_E_ARG (NULL, a tree of the other path), LT_E_DEPTH (foreign tree too deep). */
 lt_status_t lt_frusta_trace16_q16(const lt_bvh_t *bvh, const lt_tri_q16_t *tris,
