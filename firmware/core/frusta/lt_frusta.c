@@ -181,6 +181,49 @@ static void q_margins(lt_vq16_t tx, lt_vq16_t ty, lt_vq16_t tz, const lt_tri_q16
     *mvn = lt_vql36_set1(15);
 }
 
+/* Corner-culling margins for the watertight test (LT_ISECT_WT), s15.16 (docs/frusta.md, "Corner
+ * culling with the watertight test"). With p_i = v_i - o and P >= max |p_i|_inf, the kernel's
+ * sheared vertex coordinates are the exact ones for the ray's direction within
+ * delta <= 2^-31 2^13 + 2^-17 <= 3 2^-17 units (Sx, Sy in s1.30, one rounded product), so each of
+ * its edge functions is the exact one, F(d) / d_kz with |d_kz| < 1, within
+ * delta (|x1| + |y1| + |x2| + |y2|) + 2 delta^2 <= 24 2^-17 P + 2^-30: in the forms' 2^-36 units
+ * at most 192 P_raw + 72. The forms' own rounding (one or two 6-bit normals, or qvec) adds C1/2 or
+ * C1, so: mu = mv = C1/2 + 256 P_raw + 144, mw = C1 + 256 P_raw + 160 (V needs a margin here: the
+ * watertight test does not use qvec). A form beyond its margin at all four corners therefore has
+ * the kernel's edge sign against the triangle's side (sigma) for every ray of the frustum; the
+ * test could still accept such a ray if it saw the triangle's other winding, i.e. a hit behind
+ * the origin, which its t > tmin >= 0 rejects as long as the origin is not within the vertex
+ * perturbation of the triangle's plane. Lanes where |tnum| <= 2^-10 P^2 + 2^-13 (|e1|_1 + 2^-14)
+ * (|e2|_1 + 2^-14) + 2^-7 |e2|_1 (tnum's own qvec rounding), in tnum's 22 fractional bits, are
+ * returned (not corner-culled). All in int64: |tvec|_1 <= 3 2^29 and |e|_1 <= 3 2^30 raw. */
+static lt_mask16_t q_margins_wt(lt_vq16_t tx, lt_vq16_t ty, lt_vq16_t tz, const lt_tri_q16_t *tri,
+                                const lt_vql22_t *tnum, lt_vql36_t *mu, lt_vql36_t *mw,
+                                lt_vql36_t *mvp, lt_vql36_t *mvn)
+{
+    int64_t e1 = 0, e2 = 0, eg;
+    unsigned m = 0, a;
+    int i;
+    for (a = 0; a < 3; a++) {
+        e1 += lt__q16_abs_sat(tri->e1[a]);
+        e2 += lt__q16_abs_sat(tri->e2[a]);
+    }
+    /* 2^-13 (|e1|_1 + 4) (|e2|_1 + 4) + 2^-7 |e2|_1 in 2^-22 units, rounded up */
+    eg = ((((e1 + 4) >> 8) + 1) * (((e2 + 4) >> 8) + 1) >> 7) + 1 + (e2 >> 1) + 1;
+    LT_CHARGE(FR_Q_WTMARGINS);
+    for (i = 0; i < LT_LANES; i++) {
+        int64_t t1 = (int64_t)lt__q16_abs_sat(tx.l[i]) + lt__q16_abs_sat(ty.l[i]) +
+                     lt__q16_abs_sat(tz.l[i]);
+        int64_t pm = t1 + (e1 > e2 ? e1 : e2), ph = (pm >> 8) + 1, g, tn = tnum->l[i];
+        /* 2^-10 P^2 in 2^-22 units: P_raw^2 2^-32 2^-10 2^22 = P_raw^2 2^-20, rounded up */
+        g = ((ph * ph) >> 4) + 1 + eg;
+        mu->l[i] = mvp->l[i] = mvn->l[i] = ((int64_t)3 << 29) + 256 * pm + 144;
+        mw->l[i] = ((int64_t)3 << 30) + 256 * pm + 160;
+        if (tn <= g && tn >= -g)
+            m |= 1u << i;
+    }
+    return (lt_mask16_t)m;
+}
+
 /* e2 x e1 of a triangle rounded to qvec's s25.6, broadcast (a per-triangle constant). */
 static void q_tri_a(const lt_tri_q16_t *t, lt_vq6_t *ax, lt_vq6_t *ay, lt_vq6_t *az)
 {
@@ -336,6 +379,29 @@ static void q_pmarg1(const int32_t t[3], const lt_tri_q16_t *tri, int64_t *mu, i
     LT_CHARGE(FR_Q_PMARG);
 }
 
+/* q_margins_wt for one tvec (common eye), scalars: the margins mu = mv, mw of the watertight test,
+ * in the forms' 36 fractional bits. Returns 0 if the eye is within the guard of the triangle's
+ * plane (|tnum| too small: no corner culling). Cost: FR_Q_PWTMARG. */
+static int q_pmarg1_wt(const int32_t t[3], int64_t tnum, const lt_tri_q16_t *tri, int64_t *mu,
+                       int64_t *mw, int64_t *mvp, int64_t *mvn)
+{
+    int64_t t1 = 0, e1 = 0, e2 = 0, pm, ph, g;
+    unsigned a;
+    for (a = 0; a < 3; a++) {
+        t1 += t[a] < 0 ? -(int64_t)t[a] : (int64_t)t[a];
+        e1 += lt__q16_abs_sat(tri->e1[a]);
+        e2 += lt__q16_abs_sat(tri->e2[a]);
+    }
+    pm = t1 + (e1 > e2 ? e1 : e2);
+    ph = (pm >> 8) + 1;
+    g = ((ph * ph) >> 4) + 1 + ((((e1 + 4) >> 8) + 1) * (((e2 + 4) >> 8) + 1) >> 7) + 1 +
+        (e2 >> 1) + 1;
+    *mu = *mvp = *mvn = ((int64_t)3 << 29) + 256 * pm + 144;
+    *mw = ((int64_t)3 << 30) + 256 * pm + 160;
+    LT_CHARGE(FR_Q_PWTMARG);
+    return tnum > g || tnum < -g;
+}
+
 /* Direction component of pixel (x, y): d0 + x dx + y dy, exact in int64 (in range by the view
  * table's check), s1.30 raw. */
 LT_INLINE int32_t q_pbase1(const lt_frusta_vtable_q16_t *vt, uint32_t x, uint32_t y, unsigned a)
@@ -435,6 +501,7 @@ LT_INLINE int32_t q_pdelta(const lt_frusta_vtable_q16_t *vt, uint32_t jx, uint32
 #define LTN_LINEAR_CORNERS 1
 #define LTN_NSAT q_nsat
 #define LTN_MARGINS q_margins
+#define LTN_MARGINS_WT q_margins_wt
 #define LTN_TNUM_SIGN1 q_tnum_sign1
 #define LTN_NDOT lt_vq16_dot3_q30_sat
 #define LTN_GTERM q_gterm
@@ -468,6 +535,7 @@ LT_INLINE int32_t q_pdelta(const lt_frusta_vtable_q16_t *vt, uint32_t jx, uint32
 #define LTN_PNRM1 q_pnrm1
 #define LTN_ASAT q_asat
 #define LTN_PMARG1 q_pmarg1
+#define LTN_PMARG1_WT q_pmarg1_wt
 #define LTN_PBASE1 q_pbase1
 #define LTN_PBASEV q_pbasev
 #define LTN_PDIR_OK q_pdir_ok
@@ -559,6 +627,7 @@ LT_INLINE lt_vq30_t lt__frusta_q30_of(lt_vq16_t a)
 #undef LTN_NSAT
 #undef LTN_W_CMPGT0
 #undef LTN_MARGINS
+#undef LTN_MARGINS_WT
 #undef LTN_TNUM_SIGN1
 #undef LTN_NDOT
 #undef LTN_GTERM
@@ -591,6 +660,7 @@ LT_INLINE lt_vq30_t lt__frusta_q30_of(lt_vq16_t a)
 #undef LTN_PNRM1
 #undef LTN_ASAT
 #undef LTN_PMARG1
+#undef LTN_PMARG1_WT
 #undef LTN_PBASE1
 #undef LTN_PBASEV
 #undef LTN_PDIR_OK
@@ -858,6 +928,48 @@ static int f_pnrm1(const lt_tri_f32_t *tri, const float t[3], float n[3])
 }
 
 /* f_margins for one tvec, scalars. */
+/* The watertight test's margins, float32: f_margins plus 2^-14 P^2 (P = |tvec|_1 + max |e|_1, the
+ * sheared coordinates' rounding times the edge's reach), and the lanes whose origin lies within
+ * 2^-16 (P^3 + P |e1|_1 |e2|_1) of the triangle's plane in tnum (not corner-culled). Not a proof
+ * (as f_margins): checked by the same tests. Cost: FR_F_WTMARGINS. */
+static lt_mask16_t f_margins_wt(lt_vf32_t tx, lt_vf32_t ty, lt_vf32_t tz, const lt_tri_f32_t *tri,
+                                const lt_vf32_t *tnum, lt_vf32_t *mu, lt_vf32_t *mw,
+                                lt_vf32_t *mvp, lt_vf32_t *mvn)
+{
+    float e1 = lt__f32_abs(tri->e1[0]) + lt__f32_abs(tri->e1[1]) + lt__f32_abs(tri->e1[2]);
+    float e2 = lt__f32_abs(tri->e2[0]) + lt__f32_abs(tri->e2[1]) + lt__f32_abs(tri->e2[2]);
+    float em = e1 > e2 ? e1 : e2;
+    unsigned m = 0;
+    int i;
+    LT_CHARGE(FR_F_WTMARGINS);
+    for (i = 0; i < LT_LANES; i++) {
+        float t1 = lt__f32_abs(tx.l[i]) + lt__f32_abs(ty.l[i]) + lt__f32_abs(tz.l[i]);
+        float pm = t1 + em, w = pm * pm * 0x1p-14f, g = (pm * pm * pm + pm * e1 * e2) * 0x1p-16f;
+        mu->l[i] = t1 * (e2 * 0x1p-15f) + w;
+        mvp->l[i] = mvn->l[i] = t1 * (e1 * 0x1p-15f) + w;
+        mw->l[i] = mu->l[i] + mvp->l[i] + e1 * e2 * 0x1p-15f + w;
+        if (!(tnum->l[i] > g || tnum->l[i] < -g))
+            m |= 1u << i;
+    }
+    return (lt_mask16_t)m;
+}
+
+/* f_margins_wt for one tvec (common eye). Returns 0 within the plane guard. Cost: FR_F_PWTMARG. */
+static int f_pmarg1_wt(const float t[3], float tnum, const lt_tri_f32_t *tri, float *mu, float *mw,
+                       float *mvp, float *mvn)
+{
+    float t1 = lt__f32_abs(t[0]) + lt__f32_abs(t[1]) + lt__f32_abs(t[2]);
+    float e1 = lt__f32_abs(tri->e1[0]) + lt__f32_abs(tri->e1[1]) + lt__f32_abs(tri->e1[2]);
+    float e2 = lt__f32_abs(tri->e2[0]) + lt__f32_abs(tri->e2[1]) + lt__f32_abs(tri->e2[2]);
+    float pm = t1 + (e1 > e2 ? e1 : e2), w = pm * pm * 0x1p-14f;
+    float g = (pm * pm * pm + pm * e1 * e2) * 0x1p-16f;
+    LT_CHARGE(FR_F_PWTMARG);
+    *mu = t1 * (e2 * 0x1p-15f) + w;
+    *mvp = *mvn = t1 * (e1 * 0x1p-15f) + w;
+    *mw = (*mu + *mvp) + e1 * e2 * 0x1p-15f + w;
+    return tnum > g || tnum < -g;
+}
+
 static void f_pmarg1(const float t[3], const lt_tri_f32_t *tri, float *mu, float *mw, float *mvp,
                      float *mvn)
 {
@@ -983,6 +1095,7 @@ static lt_vf32_t f_nextup_m(lt_vf32_t src, lt_mask16_t k, lt_vf32_t a)
     ((void)(nx), (void)(ny), (void)(nz), (void)(ax), (void)(ay), (void)(az), (lt_mask16_t)0)
 #define LTN_W_CMPGT0(k, a) lt_vf32_cmpgt_m((k), (a), lt_vf32_set1(0.0f))
 #define LTN_MARGINS f_margins
+#define LTN_MARGINS_WT f_margins_wt
 #define LTN_TNUM_SIGN1 f_tnum_sign1
 #define LTN_NDOT lt_vf32_dot3
 #define LTN_GTERM f_gterm
@@ -1016,6 +1129,7 @@ static lt_vf32_t f_nextup_m(lt_vf32_t src, lt_mask16_t k, lt_vf32_t a)
 #define LTN_PNRM1 f_pnrm1
 #define LTN_ASAT(ax, ay, az) ((void)(ax), (void)(ay), (void)(az), 0)
 #define LTN_PMARG1 f_pmarg1
+#define LTN_PMARG1_WT f_pmarg1_wt
 #define LTN_PBASE1 f_pbase1
 #define LTN_PBASEV f_pbasev
 #define LTN_PDIR_OK f_pdir_ok

@@ -41,6 +41,12 @@ extern "C" {
                                  leaf, a frustum whose own live rays (a 16-ray packet with
                                  reciprocals, made once per call) miss the leaf's box skips it */
 
+/* Corner culling runs for a triangle only when at least this many frusta of the leaf still take
+ * it (after back-face culling): the culling pass is 16-lane work whatever the number of frusta,
+ * about the cost of 2-3 of the 16-ray tests it can save (lrb16; docs/frusta.md, measured: 3 is
+ * best of 1, 3, 6, 10 on the dragon and Sibenik at 512 x 512). */
+#define LT_FRUSTA_CORNER_MIN 3u
+
 #define LT_FRUSTA_END_SHIFT 10u /* default: rays stop 2^-10 of their length short of the light */
 
 /* Interval slab test margin, s15.16 raw in t units: a bound (plane - o) x round(1/d) is off the
