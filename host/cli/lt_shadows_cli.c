@@ -109,7 +109,7 @@ static const lt_qmc_kind_t qmc_kinds[] = {LT_QMC_LP, LT_QMC_HAMMERSLEY};
 static const char *const filter_names[] = {"irradiance", "visibility", NULL};
 
 /* --cull, --pcull: any of the letters b (back-face), c (corner rays), r (CR), l (ray-AABB leaf
- * culling), or "none" */
+ * culling), s (wide frusta split into packets), or "none" */
 static int parse_cull(const char *text, void *dest, const void *ctx)
 {
     uint32_t f = 0;
@@ -125,6 +125,8 @@ static int parse_cull(const char *text, void *dest, const void *ctx)
                 f |= LT_FRUSTA_CR;
             else if (*c == 'l')
                 f |= LT_FRUSTA_LEAFRAY;
+            else if (*c == 's')
+                f |= LT_FRUSTA_SPLIT;
             else
                 return -1;
         }
@@ -161,18 +163,19 @@ static int shadows_parse(shadows_t *s, int argc, char **argv)
          .help = "frusta BVH leaf size, {range} (max_leaf N, min_leaf N/2; default 8)"},
         {.name = "--cull", .kind = LT_OPT_CUSTOM, .dest = &s->flags, .seen = &s->seen_cull,
          .meta = "LIST",
-         .parse = parse_cull, .expect = "letters b, c, r, l or none",
+         .parse = parse_cull, .expect = "letters b, c, r, l, s or none",
          .help = "shadow culling: any of b (back-face), c (corner rays), r (CR),\n"
-                 "l (ray-AABB leaf culling), or none (default bcrl)"},
+                 "l (ray-AABB leaf culling), s (wide frusta go on as packets),\n"
+                 "or none (default bcrls)"},
         {.name = "--prim", .kind = LT_OPT_ENUM, .dest = &s->prim, .seen = &s->seen_prim,
          .names = prim_names,
          .help = "primary method(s) (default both: P-Packet feeds S-Packet and\n"
                  "P-Frusta S-Frusta; with one, both S rows use it)"},
         {.name = "--pcull", .kind = LT_OPT_CUSTOM, .dest = &s->pflags, .meta = "LIST",
-         .parse = parse_cull, .expect = "letters b, c, r, l or none",
+         .parse = parse_cull, .expect = "letters b, c, r, l, s or none",
          .help = "primary culling: b (back faces, both methods), c (corner rays),\n"
                  "r (corner rays through the on-image pixels), l (ray-AABB leaf\n"
-                 "culling), or none (default bcrl)"},
+                 "culling), s (wide frusta go on as packets), or none (default bcrls)"},
         LT_OPT_ENUM_("--qmc", &s->qmc, qmc_names, "sample set (default lp)"),
         LT_OPT_ENUM_("--isect", &s->isect, lt_sf_isects,
                      "ray/triangle test of every stage: wt (watertight, default) or mt\n"
@@ -374,16 +377,17 @@ static void shadows_print_scene(const shadows_t *s)
     const lt_ss_light_t *light = &s->light;
     uint32_t flags = s->flags, pflags = s->pflags;
     printf("scene     %s: %u triangles%s, radius %.1f units (scale %g), %ux%u, %s, light "
-           "%.3g x %.3g units at (%.1f, %.1f, %.1f), frusta leaf %u, culling %s%s%s%s%s, "
-           "primary culling %s%s%s%s%s, %s samples, isect %s\n",
+           "%.3g x %.3g units at (%.1f, %.1f, %.1f), frusta leaf %u, culling %s%s%s%s%s%s, "
+           "primary culling %s%s%s%s%s%s, %s samples, isect %s\n",
            s->mesh_path, s->sc.ntris, s->ground ? " (with ground quad)" : "", s->sc.radius,
            s->sc.scale, s->res, s->res, s->path->format, light->eu[0], light->ev[2],
            light->c[0] + 0.5 * light->eu[0], light->c[1], light->c[2] + 0.5 * light->ev[2],
            s->leaf, flags == 0 ? "none" : "", flags & LT_FRUSTA_BACKFACE ? "b" : "",
            flags & LT_FRUSTA_CORNER ? "c" : "", flags & LT_FRUSTA_CR ? "r" : "",
-           flags & LT_FRUSTA_LEAFRAY ? "l" : "", pflags == 0 ? "none" : "",
-           pflags & LT_FRUSTA_BACKFACE ? "b" : "", pflags & LT_FRUSTA_CORNER ? "c" : "",
-           pflags & LT_FRUSTA_CR ? "r" : "", pflags & LT_FRUSTA_LEAFRAY ? "l" : "",
+           flags & LT_FRUSTA_LEAFRAY ? "l" : "", flags & LT_FRUSTA_SPLIT ? "s" : "",
+           pflags == 0 ? "none" : "", pflags & LT_FRUSTA_BACKFACE ? "b" : "",
+           pflags & LT_FRUSTA_CORNER ? "c" : "", pflags & LT_FRUSTA_CR ? "r" : "",
+           pflags & LT_FRUSTA_LEAFRAY ? "l" : "", pflags & LT_FRUSTA_SPLIT ? "s" : "",
            qmc_kinds[s->qmc] == LT_QMC_LP ? "Larcher-Pillichshammer" : "Hammersley",
            lt_sf_isects[s->isect]);
 }
@@ -747,7 +751,8 @@ int lt_shadows_cli(int argc, char **argv, const char *prog)
     s.tol = 0.05;
     s.depth_rel = 0.05;
     s.cos_min = 0.9;
-    s.flags = s.pflags = LT_FRUSTA_BACKFACE | LT_FRUSTA_CORNER | LT_FRUSTA_CR | LT_FRUSTA_LEAFRAY;
+    s.flags = s.pflags = LT_FRUSTA_BACKFACE | LT_FRUSTA_CORNER | LT_FRUSTA_CR | LT_FRUSTA_LEAFRAY |
+                                LT_FRUSTA_SPLIT;
     snprintf(who, sizeof who, "%s shadows", prog);
     rc = shadows_parse(&s, argc, argv);
     if (rc != LT_OPT_OK)

@@ -52,8 +52,10 @@ void lt_ss_opts_default(const lt_scene_t *s, lt_ss_opts_t *o)
     memset(o, 0, sizeof *o);
     o->path = lt_paths_find("q16", LT_PATHS_FRUSTA);
     o->leaf = 8;
-    o->flags = LT_FRUSTA_BACKFACE | LT_FRUSTA_CORNER | LT_FRUSTA_CR | LT_FRUSTA_LEAFRAY;
-    o->pflags = LT_FRUSTA_BACKFACE | LT_FRUSTA_CORNER | LT_FRUSTA_CR | LT_FRUSTA_LEAFRAY;
+    o->flags = LT_FRUSTA_BACKFACE | LT_FRUSTA_CORNER | LT_FRUSTA_CR | LT_FRUSTA_LEAFRAY |
+                LT_FRUSTA_SPLIT;
+    o->pflags = LT_FRUSTA_BACKFACE | LT_FRUSTA_CORNER | LT_FRUSTA_CR | LT_FRUSTA_LEAFRAY |
+                LT_FRUSTA_SPLIT;
     o->qmc = LT_QMC_LP;
     o->depth_rel = 0.05;
     o->cos_min = 0.9;

@@ -50,7 +50,7 @@ extern const lt_tune_gamma_t lt_tune_gammas[LT_TUNE_NGAMMA];
 
 /* Culling sets of the shadows family (index = knobs.cull): the LT_FRUSTA_* flags of shadow rays. */
 #define LT_TUNE_NCULL 3
-extern const char *const lt_tune_cull_names[LT_TUNE_NCULL]; /* "bcrl", "bcr", "b" */
+extern const char *const lt_tune_cull_names[LT_TUNE_NCULL]; /* "bcrls", "bcr", "b" */
 extern const unsigned lt_tune_cull_flags[LT_TUNE_NCULL];
 
 /* One configuration. Unused knobs are 0 (-1 for leaf: the default). */

@@ -185,6 +185,8 @@ static const uint32_t g_flagsets[] = {
     0u, LT_FRUSTA_BACKFACE, LT_FRUSTA_CORNER, LT_FRUSTA_CORNER | LT_FRUSTA_BACKFACE,
     LT_FRUSTA_CORNER | LT_FRUSTA_CR, LT_FRUSTA_CORNER | LT_FRUSTA_CR | LT_FRUSTA_BACKFACE,
     LT_FRUSTA_LEAFRAY, LT_FRUSTA_CORNER | LT_FRUSTA_CR | LT_FRUSTA_BACKFACE | LT_FRUSTA_LEAFRAY,
+    LT_FRUSTA_SPLIT,
+    LT_FRUSTA_CORNER | LT_FRUSTA_CR | LT_FRUSTA_BACKFACE | LT_FRUSTA_LEAFRAY | LT_FRUSTA_SPLIT,
 };
 #define NFLAGS (sizeof g_flagsets / sizeof g_flagsets[0])
 
@@ -386,7 +388,7 @@ static void test_random_scenes(void **state)
         unbuild(&deep);
     }
     ltt_isect = LT_ISECT_WT;
-    tally_print("random scenes (6 scenes, 8 flag sets, 3 light sizes, coherent and scattered "
+    tally_print("random scenes (6 scenes, 10 flag sets, 3 light sizes, coherent and scattered "
                 "origins, random masks; odd scenes Moller-Trumbore)", &t);
 #if LT_COST_MODE == LT_COST_SIM
     {
@@ -628,7 +630,7 @@ static void test_generator_and_args(void **state)
     l.end_shift = 31;
     assert_int_equal(lt_frusta_table_q16(&l, &g_sets, &tb), LT_E_ARG);
     l.end_shift = 0;
-    l.flags = 16;
+    l.flags = 32;
     assert_int_equal(lt_frusta_table_q16(&l, &g_sets, &tb), LT_E_ARG);
     l.flags = 0;
     l.c[1] = 4097 * U;
@@ -894,7 +896,7 @@ static void test_tile_hash(void **state)
         ltt_report("frusta fw tile hash: q16 0x%08x f32 0x%08x\n", fq, ff);
         assert_true(fq != 0 && ff != 0);
     }
-    ltt_report("frusta tile hash: q16 %08x f32 %08x (24 tiles of 16 frusta, 8 flag sets)\n", h, hf);
+    ltt_report("frusta tile hash: q16 %08x f32 %08x (24 tiles of 16 frusta, 10 flag sets)\n", h, hf);
 }
 
 static int shared_missing(const char *path)
@@ -1427,7 +1429,7 @@ static void test_primary_random(void **state)
         unbuild(&deep);
     }
     ltt_isect = LT_ISECT_WT;
-    ptally_print("primary random scenes (6 scenes, 2 cameras each, 8 flag sets, leaf 8 and 16; "
+    ptally_print("primary random scenes (6 scenes, 2 cameras each, 10 flag sets, leaf 8 and 16; "
                  "odd scenes Moller-Trumbore)",
                  &t, ties);
 #if LT_COST_MODE == LT_COST_SIM
@@ -1617,7 +1619,7 @@ static void test_primary_args(void **state)
     assert_int_equal(lt_frusta_vtable_q16(&v, &vt), LT_OK);
     assert_int_equal(lt_frusta_vtable_f32(&vf, &vtf), LT_OK);
     assert_int_equal(lt_frusta_vtable_q16(NULL, &vt), LT_E_ARG), n++;
-    v.flags = 16u;
+    v.flags = 32u;
     assert_int_equal(lt_frusta_vtable_q16(&v, &vt), LT_E_ARG), n++;
     v.flags = 0u;
     v.width = 0;
@@ -1695,7 +1697,7 @@ static void test_primary_bunny(void **state)
     lt_scene_free(&sc);
     lt_mesh_free(&m);
     ptally_print("primary bunny + ground (3678 triangles, default camera zoomed 2x, 64 x 48, "
-                 "8 flag sets)",
+                 "10 flag sets)",
                  &t, ties);
     assert_true(t.hits > 5000);
     ptally_assert(&t);

@@ -21,7 +21,7 @@ lt_status_t lt_frusta_table_q16(const lt_frusta_light_q16_t *light, const lt_qmc
 {
     unsigned s, j, a, c;
     if (light == NULL || sets == NULL || tb == NULL || light->end_shift > 30u ||
-        (light->flags & ~(LT_FRUSTA_BACKFACE | LT_FRUSTA_CORNER | LT_FRUSTA_CR | LT_FRUSTA_LEAFRAY)) != 0)
+        (light->flags & ~(LT_FRUSTA_BACKFACE | LT_FRUSTA_CORNER | LT_FRUSTA_CR | LT_FRUSTA_LEAFRAY | LT_FRUSTA_SPLIT)) != 0)
         return LT_E_ARG;
     for (a = 0; a < 3; a++)
         if ((light->eu[a] % LT_FRUSTA_GRID) != 0 || (light->ev[a] % LT_FRUSTA_GRID) != 0)
@@ -502,6 +502,9 @@ LT_INLINE int32_t q_pdelta(const lt_frusta_vtable_q16_t *vt, uint32_t jx, uint32
 #define LTN_NSAT q_nsat
 #define LTN_MARGINS q_margins
 #define LTN_MARGINS_WT q_margins_wt
+#define LTN_MID(lo, hi) ((lt_q16_t)(((int64_t)(lo) + (hi)) >> 1))
+/* (angular width w, s1.30) x (distance d, s15.16) x 2 > K x extent, in int64 */
+#define LTN_WIDER(w, d, ext) ((((int64_t)(w) * (d)) >> 29) > (int64_t)LT_FRUSTA_SPLIT_K * (ext))
 #define LTN_TNUM_SIGN1 q_tnum_sign1
 #define LTN_NDOT lt_vq16_dot3_q30_sat
 #define LTN_GTERM q_gterm
@@ -628,6 +631,8 @@ LT_INLINE lt_vq30_t lt__frusta_q30_of(lt_vq16_t a)
 #undef LTN_W_CMPGT0
 #undef LTN_MARGINS
 #undef LTN_MARGINS_WT
+#undef LTN_MID
+#undef LTN_WIDER
 #undef LTN_TNUM_SIGN1
 #undef LTN_NDOT
 #undef LTN_GTERM
@@ -690,7 +695,7 @@ lt_status_t lt_frusta_table_f32(const lt_frusta_light_f32_t *light, const lt_qmc
 {
     unsigned s, j, a;
     if (light == NULL || sets == NULL || tb == NULL || light->end_shift > 30u ||
-        (light->flags & ~(LT_FRUSTA_BACKFACE | LT_FRUSTA_CORNER | LT_FRUSTA_CR | LT_FRUSTA_LEAFRAY)) != 0)
+        (light->flags & ~(LT_FRUSTA_BACKFACE | LT_FRUSTA_CORNER | LT_FRUSTA_CR | LT_FRUSTA_LEAFRAY | LT_FRUSTA_SPLIT)) != 0)
         return LT_E_ARG;
     for (a = 0; a < 3; a++)
         if (!f_finite(light->c[a]) || !f_finite(light->eu[a]) || !f_finite(light->ev[a]))
@@ -1096,6 +1101,8 @@ static lt_vf32_t f_nextup_m(lt_vf32_t src, lt_mask16_t k, lt_vf32_t a)
 #define LTN_W_CMPGT0(k, a) lt_vf32_cmpgt_m((k), (a), lt_vf32_set1(0.0f))
 #define LTN_MARGINS f_margins
 #define LTN_MARGINS_WT f_margins_wt
+#define LTN_MID(lo, hi) (0.5f * ((lo) + (hi)))
+#define LTN_WIDER(w, d, ext) (2.0f * (w) * (d) > (float)LT_FRUSTA_SPLIT_K * (ext))
 #define LTN_TNUM_SIGN1 f_tnum_sign1
 #define LTN_NDOT lt_vf32_dot3
 #define LTN_GTERM f_gterm

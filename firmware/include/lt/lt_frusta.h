@@ -37,6 +37,8 @@ extern "C" {
 #define LT_FRUSTA_CORNER 2u   /* corner-ray culling of triangles per frustum (frusta only) */
 #define LT_FRUSTA_CR 4u       /* recompute the corner rays of partially occluded frusta after a
                                  leaf in which one of their rays terminated (the paper's "CR") */
+#define LT_FRUSTA_SPLIT 16u   /* a subtree entered by at most LT_FRUSTA_SPLIT_MAX frusta is walked
+                                 by each of them as its own 16-ray packet (slab tests, any hit) */
 #define LT_FRUSTA_LEAFRAY 8u  /* ray-AABB leaf culling ([Benthin09] Table 2 "Ray-AABB"): at a
                                  leaf, a frustum whose own live rays (a 16-ray packet with
                                  reciprocals, made once per call) miss the leaf's box skips it */
@@ -46,6 +48,16 @@ extern "C" {
  * about the cost of 2-3 of the 16-ray tests it can save (lrb16; docs/frusta.md, measured: 3 is
  * best of 1, 3, 6, 10 on the dragon and Sibenik at 512 x 512). */
 #define LT_FRUSTA_CORNER_MIN 3u
+
+/* LT_FRUSTA_SPLIT's threshold: frusta left in a subtree at or below which they go on as packets. */
+#ifndef LT_FRUSTA_SPLIT_MAX
+#define LT_FRUSTA_SPLIT_MAX 2u
+#endif
+/* ... and any frustum whose cross-section at a node's box exceeds this many times the box's
+ * largest extent (fr_wide). */
+#ifndef LT_FRUSTA_SPLIT_K
+#define LT_FRUSTA_SPLIT_K 1
+#endif
 
 #define LT_FRUSTA_END_SHIFT 10u /* default: rays stop 2^-10 of their length short of the light */
 
@@ -61,7 +73,7 @@ typedef struct lt_frusta_light_q16 {
     lt_q16_t c[3];      /* corner, s15.16 world units, |c| and |c + eu + ev| <= 2^GEOM */
     lt_q16_t eu[3];     /* edge u, s15.16, each a multiple of LT_FRUSTA_GRID raw (may be 0) */
     lt_q16_t ev[3];     /* edge v, s15.16, as eu */
-    uint32_t flags;     /* LT_FRUSTA_BACKFACE | LT_FRUSTA_CORNER | LT_FRUSTA_CR | LEAFRAY */
+    uint32_t flags;     /* LT_FRUSTA_BACKFACE | CORNER | CR | LEAFRAY | SPLIT */
     uint32_t end_shift; /* rays end at t_end - t_end / 2^end_shift (1..30; 0 = default 10) */
 } lt_frusta_light_q16_t;
 LT_STATIC_ASSERT(sizeof(lt_frusta_light_q16_t) == 44, "q16 light is 44 bytes");
@@ -145,6 +157,11 @@ lt_status_t lt_frusta_setup16_q16(const lt_frusta_table_q16_t *tb, lt_mask16_t k
  * triangles, per frustum in the leaf's mask: FR_LEAF_RAYBOX, VBCAST x2 and lt_slab16_q16 on the
  * leaf's box with its live rays over [tmin, tmax] (dropped from the leaf when none meets it), and
  * on the frustum's first leaf of the call its packet: fr_gen, VBCAST x5, lt_ray16_q16_setup.
+ * With SPLIT: once per call FR_DWID; per node FR_SPLIT_TEST and, with more than
+ * LT_FRUSTA_SPLIT_MAX frusta, fr_wide (FR_WIDE); per frustum going on as a packet FR_SPLIT,
+ * VBCAST x2, on first use its packet (as LEAFRAY's), then the packet baseline's walk from that
+ * node (its costs below, from one lt_slab16_q16 of the node's box), FR_LEAF_OCCLUDED (+ CR's
+ * FR_RECORNER) when rays were newly occluded, and FR_ACTIVE_EXIT.
  * Format: as lt_slab16 / lt_tri16. Rounding: conservative (docs/frusta.md). Overflow: none.
  * Returns: LT_OK, LT_E_ARG (NULL, a tree of the other path), LT_E_DEPTH (foreign tree too deep). */
 lt_status_t lt_frusta_occluded16_q16(const lt_bvh_t *bvh, const lt_tri_q16_t *tris,
@@ -232,8 +249,8 @@ typedef struct lt_frusta_view_q16 {
     lt_q30_t dx[3], dy[3]; /* direction step per pixel in x and in y, s1.30 raw */
     uint32_t width;        /* image width in pixels, 1..LT_FRUSTA_PMAX_DIM */
     uint32_t height;       /* image height in pixels, 1..LT_FRUSTA_PMAX_DIM */
-    uint32_t flags;        /* LT_FRUSTA_BACKFACE | LT_FRUSTA_CORNER | LT_FRUSTA_CR |
-                              LT_FRUSTA_LEAFRAY (see below) */
+    uint32_t flags;        /* LT_FRUSTA_BACKFACE | CORNER | CR | LEAFRAY | SPLIT (see
+                              below) */
 } lt_frusta_view_q16_t;
 LT_STATIC_ASSERT(sizeof(lt_frusta_view_q16_t) == 60, "q16 view is 60 bytes");
 
@@ -318,7 +335,10 @@ lt_status_t lt_frusta_psetup16_q16(const lt_frusta_vtable_q16_t *vt, uint32_t bx
  * With LEAFRAY, before the leaf's triangles, per frustum in the leaf's mask: FR_LEAF_RAYBOX,
  * VBCAST x1 and lt_slab16_q16 on the leaf's box with its live rays from tmin up to each ray's
  * nearest hit so far (dropped from the leaf when none meets it), and on the frustum's first leaf
- * of the call its packet: pr_gen, VBCAST x5, lt_ray16_q16_setup.
+ * of the call its packet: pr_gen, VBCAST x5, lt_ray16_q16_setup. With SPLIT: once per call
+ * VBCAST x3 and FR_DWID; per node FR_SPLIT_TEST and, with more than LT_FRUSTA_SPLIT_MAX tiles,
+ * fr_wide (FR_WIDE); per tile going on as a packet FR_SPLIT, VBCAST x1, on first use its packet,
+ * then the packet baseline's closest-hit walk from that node, FR_PLEAF_TMAX and VRED x1.
  * Format: as lt_slab16 / lt_tri16. Rounding: conservative (docs/frusta.md). Overflow: none.
  * Returns: LT_OK, LT_E_ARG (NULL, a tree of the other path), LT_E_DEPTH (foreign tree too deep). */
 lt_status_t lt_frusta_trace16_q16(const lt_bvh_t *bvh, const lt_tri_q16_t *tris,
