@@ -2,9 +2,10 @@
 # frusta_sweep.sh - the multi-frusta reduction sweep of docs/frusta.md ("Reduction sweep"): for
 # every shared scene (and a 4x-subdivided copy of the shared dragon, written to build/sweep/), at
 # each resolution, `lanetrace shadows --no-ref` in the simulator (lrb16), s15.16 and float32 with
-# the default culling (bcrl) and s15.16 with the old default (bcr, no ray-AABB leaf culling); one
+# the default culling and s15.16 with the paper's set (bcr: no leaf culling, no split); one
 # Markdown row per run: P reduction without (with) shading, S reduction (all stages), the shadow
-# stage alone, and whether frusta = packets on every pixel (primary hits and shadow bits).
+# stage alone, and whether frusta = packets on every pixel (primary hits and shadow bits). The
+# culling column is the set the run used (the scene line of its output).
 # Usage: tools/frusta_sweep.sh [RES ...]   (default 256 512 1024; SHARED=../shared, B=build)
 # Needs build/sim/lanetrace (make) and ../shared/scenes; takes about 15 minutes at the defaults.
 set -euo pipefail
@@ -49,19 +50,22 @@ PY
 fi
 meshes=("$SHARED/scenes/bunny.obj" "$SHARED/scenes/dragon_res3.obj" "$d4" "$SHARED/scenes/sibenik.obj"
         "$SHARED/scenes/sponza.obj" "$SHARED/scenes/conference.obj.gz")
-echo "| scene | res | path | culling | P reduction (with shading) | S reduction | shadow stage alone | frusta = packets |"
+echo "| scene | res | path | culling (shadow / primary) | P reduction (with shading) | S reduction | shadow stage alone | frusta = packets |"
 echo "|---|---:|---|---|---|---|---|---|"
 for r in "${res[@]}"; do
     for m in "${meshes[@]}"; do
-        for v in "q16 bcrl" "f32 bcrl" "q16 bcr"; do
+        for v in "q16 default" "f32 default" "q16 bcr"; do
             set -- $v
-            out=$("$LT" shadows --mesh "$m" --res "$r" --no-ref --num "$1" --cull "$2" --pcull "$2" 2>&1) ||
+            cull=()
+            [ "$2" = default ] || cull=(--cull "$2" --pcull "$2")
+            out=$("$LT" shadows --mesh "$m" --res "$r" --no-ref --num "$1" "${cull[@]}" 2>&1) ||
                 { echo "frusta_sweep: $m $r $v failed" >&2; exit 1; }
+            used=$(grep -oE 'culling [a-z]+, primary culling [a-z]+' <<<"$out" | awk '{sub(",", "", $2); print $2 " / " $5}')
             p=$(grep '^P Reduction' <<<"$out" | grep -oE '[0-9.]+x \([0-9.]+x\)' | head -1)
             s=$(grep '^S Reduction' <<<"$out" | grep -oE '[0-9.]+x +\(paper' | grep -oE '^[0-9.]+x')
             a=$(grep '^S shadows only' <<<"$out" | grep -oE '[0-9.]+x +\(shadow' | grep -oE '^[0-9.]+x')
             eq=$(grep -c ' (0 differ)' <<<"$out" || true)
-            echo "| $(basename "$m") | $r | $1 | $2 | $p | $s | $a | $([ "$eq" = 2 ] && echo yes || echo NO) |"
+            echo "| $(basename "$m") | $r | $1 | $used | $p | $s | $a | $([ "$eq" = 2 ] && echo yes || echo NO) |"
         done
     done
 done

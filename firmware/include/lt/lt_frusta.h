@@ -54,9 +54,15 @@ extern "C" {
 #define LT_FRUSTA_SPLIT_MAX 2u
 #endif
 /* ... and any frustum whose cross-section at a node's box exceeds this many times the box's
- * largest extent (fr_wide). */
+ * largest extent (fr_wide; measured 1, 2, 4: 1 is best on the dense meshes, equal elsewhere). */
 #ifndef LT_FRUSTA_SPLIT_K
 #define LT_FRUSTA_SPLIT_K 1
+#endif
+/* Primary frusta apply the width test only where at most this many tiles are left: camera tiles
+ * that share a node are coherent, and the per-node test costs more than it finds there
+ * (measured 4, 8, 12, 16 on the dragons, Sibenik and Sponza at 256 x 256: 4 is best). */
+#ifndef LT_FRUSTA_PSPLIT_WIDE
+#define LT_FRUSTA_PSPLIT_WIDE 4u
 #endif
 
 #define LT_FRUSTA_END_SHIFT 10u /* default: rays stop 2^-10 of their length short of the light */
@@ -336,8 +342,8 @@ lt_status_t lt_frusta_psetup16_q16(const lt_frusta_vtable_q16_t *vt, uint32_t bx
  * VBCAST x1 and lt_slab16_q16 on the leaf's box with its live rays from tmin up to each ray's
  * nearest hit so far (dropped from the leaf when none meets it), and on the frustum's first leaf
  * of the call its packet: pr_gen, VBCAST x5, lt_ray16_q16_setup. With SPLIT: once per call
- * VBCAST x3 and FR_DWID; per node FR_SPLIT_TEST and, with more than LT_FRUSTA_SPLIT_MAX tiles,
- * fr_wide (FR_WIDE); per tile going on as a packet FR_SPLIT, VBCAST x1, on first use its packet,
+ * VBCAST x3 and FR_DWID; per node FR_SPLIT_TEST and, with more than LT_FRUSTA_SPLIT_MAX and at
+ * most LT_FRUSTA_PSPLIT_WIDE tiles, fr_wide (FR_WIDE); per tile going on as a packet FR_SPLIT, VBCAST x1, on first use its packet,
  * then the packet baseline's closest-hit walk from that node, FR_PLEAF_TMAX and VRED x1.
  * Format: as lt_slab16 / lt_tri16. Rounding: conservative (docs/frusta.md). Overflow: none.
  * Returns: LT_OK, LT_E_ARG (NULL, a tree of the other path), LT_E_DEPTH (foreign tree too deep). */
