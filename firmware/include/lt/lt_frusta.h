@@ -41,7 +41,8 @@ extern "C" {
                                  by each of them as its own 16-ray packet (slab tests, any hit) */
 #define LT_FRUSTA_LEAFRAY 8u  /* ray-AABB leaf culling ([Benthin09] Table 2 "Ray-AABB"): at a
                                  leaf, a frustum whose own live rays (a 16-ray packet with
-                                 reciprocals, made once per call) miss the leaf's box skips it */
+                                 reciprocals, made once per call) miss the leaf's box skips it;
+                                 with SPLIT only frusta wide at the leaf are tested */
 
 /* Corner culling runs for a triangle only when at least this many frusta of the leaf still take
  * it (after back-face culling): the culling pass is 16-lane work whatever the number of frusta,
@@ -160,7 +161,8 @@ lt_status_t lt_frusta_setup16_q16(const lt_frusta_table_q16_t *tb, lt_mask16_t k
  * rounded cross products, 2 dot products, d . qvec, VCMP x4, VMULW x1; tnum < 0: VMULW x4,
  * VBCAST x4; candidates: TRI_Q_TDIV16, VBCAST x3, VCMP x2), FR_LEAF_OCCLUDED when rays were newly
  * occluded; with CR FR_RECORNER per such frustum after the leaf. With LEAFRAY, before the leaf's
- * triangles, per frustum in the leaf's mask: FR_LEAF_RAYBOX, VBCAST x2 and lt_slab16_q16 on the
+ * triangles (with SPLIT too: fr_wide of the leaf's box, FR_WIDE, and only its wide frusta), per
+ * frustum in the leaf's mask: FR_LEAF_RAYBOX, VBCAST x2 and lt_slab16_q16 on the
  * leaf's box with its live rays over [tmin, tmax] (dropped from the leaf when none meets it), and
  * on the frustum's first leaf of the call its packet: fr_gen, VBCAST x5, lt_ray16_q16_setup.
  * With SPLIT: once per call FR_DWID; per node FR_SPLIT_TEST and, with more than
@@ -338,8 +340,8 @@ lt_status_t lt_frusta_psetup16_q16(const lt_frusta_vtable_q16_t *vt, uint32_t bx
  * products, 2 dot products, d . qvec, VCMP x4, VBCAST x3, VMULW x1; sigma < 0: VMULW x3,
  * VBCAST x3; candidates: TRI_Q_TDIV16, VCMP x3, VBCAST x2, FR_PTRI_HITS, VALU x2, + FR_IDGT on a
  * tie); then a bit-scan of the frusta that took a hit, per frustum FR_PLEAF_TMAX and VRED x1.
- * With LEAFRAY, before the leaf's triangles, per frustum in the leaf's mask: FR_LEAF_RAYBOX,
- * VBCAST x1 and lt_slab16_q16 on the leaf's box with its live rays from tmin up to each ray's
+ * With LEAFRAY, before the leaf's triangles (with SPLIT too: FR_WIDE, and only the tiles wide
+ * at the leaf), per frustum in the leaf's mask: FR_LEAF_RAYBOX, VBCAST x1 and lt_slab16_q16 on the leaf's box with its live rays from tmin up to each ray's
  * nearest hit so far (dropped from the leaf when none meets it), and on the frustum's first leaf
  * of the call its packet: pr_gen, VBCAST x5, lt_ray16_q16_setup. With SPLIT: once per call
  * VBCAST x3 and FR_DWID; per node FR_SPLIT_TEST and, with more than LT_FRUSTA_SPLIT_MAX and at
