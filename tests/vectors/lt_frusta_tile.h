@@ -2,7 +2,7 @@
  * asan) and the firmware image tests/fw/fw_frusta.c (cm4, cm55, rv32 under QEMU), so that one
  * hash proves every build traces the same shadow tiles bit for bit: 300 triangles from an integer
  * PRNG, BVH leaf 8, a 48 x 48 unit light on the 2^-7 grid, LP sample sets, 4 tiles of 16 frusta
- * per flag set (none, b, c, bc, cr, bcr); plus primary frusta (P-Frusta) and their packet
+ * per flag set (none, b, c, bc, cr, bcr, ls, bcrls); plus primary frusta (P-Frusta) and their packet
  * baseline (P-Packet) on a 22 x 18 view of the same scene (4 blocks, partial tiles) per flag set,
  * closest-hit t and id of every pixel. Header only (static functions); freestanding.
  */
@@ -44,9 +44,12 @@ static uint32_t ltft_fnv(uint32_t h, uint32_t v)
 
 static lt_tri_q16_t ltft_tq[LTFT_TRIS];
 static uint64_t ltft_arena_q[LTFT_ARENA / 8];
-static const uint32_t ltft_flags[6] = {
+#define LTFT_NFLAGS 8
+static const uint32_t ltft_flags[LTFT_NFLAGS] = {
     0u, LT_FRUSTA_BACKFACE, LT_FRUSTA_CORNER, LT_FRUSTA_CORNER | LT_FRUSTA_BACKFACE,
-    LT_FRUSTA_CORNER | LT_FRUSTA_CR, LT_FRUSTA_CORNER | LT_FRUSTA_CR | LT_FRUSTA_BACKFACE};
+    LT_FRUSTA_CORNER | LT_FRUSTA_CR, LT_FRUSTA_CORNER | LT_FRUSTA_CR | LT_FRUSTA_BACKFACE,
+    LT_FRUSTA_LEAFRAY | LT_FRUSTA_SPLIT,
+    LT_FRUSTA_CORNER | LT_FRUSTA_CR | LT_FRUSTA_BACKFACE | LT_FRUSTA_LEAFRAY | LT_FRUSTA_SPLIT};
 
 /* The scene: blockers in y [-60, 60] over origins at y ~ -100, a light at y = 120. */
 static void ltft_scene(void)
@@ -108,7 +111,7 @@ static uint32_t ltft_prim_q16(uint32_t h, const lt_bvh_t *bvh)
     lt_hit16_t hit;
     lt_mask16_t k;
     unsigned fl, b, f, j;
-    for (fl = 0; fl < 6; fl++) {
+    for (fl = 0; fl < LTFT_NFLAGS; fl++) {
         ltft_view_q16(&v, ltft_flags[fl]);
         if (lt_frusta_vtable_q16(&v, &vt) != LT_OK)
             return 0;
@@ -138,7 +141,7 @@ static uint32_t ltft_prim_q16(uint32_t h, const lt_bvh_t *bvh)
     return h;
 }
 
-/* Hash of the occlusion bits of every frustum of 4 tiles x 6 flag sets and of the primary
+/* Hash of the occlusion bits of every frustum of 4 tiles x 8 flag sets and of the primary
  * closest hits (ltft_prim_q16), s15.16. Returns 0 on a setup error (never for this fixed
  * input). */
 static uint32_t ltft_hash_q16(void)
@@ -162,7 +165,7 @@ static uint32_t ltft_hash_q16(void)
         lt_bvh_build_q16(&bvh, &d, ltft_tq, LTFT_TRIS, ltft_arena_q, sizeof ltft_arena_q) != LT_OK ||
         lt_qmc_interleave4x4(LT_QMC_LP, 0, &sets) != LT_OK)
         return 0;
-    for (fl = 0; fl < 6; fl++) {
+    for (fl = 0; fl < LTFT_NFLAGS; fl++) {
         ltft_light(&l, ltft_flags[fl]);
         if (lt_frusta_table_q16(&l, &sets, &tb) != LT_OK)
             return 0;
@@ -199,7 +202,7 @@ static uint32_t ltft_prim_f32(uint32_t h, const lt_bvh_t *bvh, const lt_tri_f32_
         float f;
         uint32_t u;
     } c;
-    for (fl = 0; fl < 6; fl++) {
+    for (fl = 0; fl < LTFT_NFLAGS; fl++) {
         ltft_view_q16(&vq, ltft_flags[fl]);
         for (a = 0; a < 3; a++) {
             v.o[a] = (float)vq.o[a] / 65536.0f;
@@ -272,7 +275,7 @@ static uint32_t ltft_hash_f32(void)
         lt_bvh_build_f32(&bvh, &d, ltft_tf, LTFT_TRIS, ltft_arena_f, sizeof ltft_arena_f) != LT_OK ||
         lt_qmc_interleave4x4(LT_QMC_LP, 0, &sets) != LT_OK)
         return 0;
-    for (fl = 0; fl < 6; fl++) {
+    for (fl = 0; fl < LTFT_NFLAGS; fl++) {
         ltft_light(&lq, ltft_flags[fl]);
         for (a = 0; a < 3; a++) {
             l.c[a] = (float)lq.c[a] / 65536.0f;
