@@ -653,12 +653,15 @@ static void shadows_simulated(const shadows_t *s)
         why_line("P", spf, sp);
     printf("stages    P-Packet %.2fM, P-Frusta %.2fM, shade %.2fM, filter %.2fM cycles (%.1f "
            "cycles/pixel); culled pairs: P-Packet back-face %.0fK; P-Frusta back-face %.0fK, "
-           "corner %.0fK; S-Packet back-face %.0fK; S-Frusta back-face %.0fK, corner %.0fK\n",
+           "corner %.0fK, leaf %.0fK, split %.0fK; S-Packet back-face %.0fK; S-Frusta back-face "
+           "%.0fK, corner %.0fK, leaf %.0fK, split %.0fK\n",
            (double)sp->cycles / 1e6, (double)spf->cycles / 1e6, (double)s->sshade.cycles / 1e6,
            (double)s->sfilt.cycles / 1e6, ratio(s->sfilt.cycles, cnt->pixels),
            k_(sp->ev[LT_EV_CULL_BACK]), k_(spf->ev[LT_EV_CULL_BACK]),
-           k_(spf->ev[LT_EV_CULL_CORNER]), k_(sshp->ev[LT_EV_CULL_BACK]),
-           k_(sshf->ev[LT_EV_CULL_BACK]), k_(sshf->ev[LT_EV_CULL_CORNER]));
+           k_(spf->ev[LT_EV_CULL_CORNER]), k_(spf->ev[LT_EV_LEAF_CULL]), k_(spf->ev[LT_EV_SPLIT]),
+           k_(sshp->ev[LT_EV_CULL_BACK]), k_(sshf->ev[LT_EV_CULL_BACK]),
+           k_(sshf->ev[LT_EV_CULL_CORNER]), k_(sshf->ev[LT_EV_LEAF_CULL]),
+           k_(sshf->ev[LT_EV_SPLIT]));
     if (s->run_pp || s->run_pf)
         printf("speed     primary rays per simulated %.0f MHz core: P-Packet %s "
                "(%s with shading), P-Frusta %s (%s with shading)\n", mhz,

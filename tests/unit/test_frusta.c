@@ -406,8 +406,13 @@ static void test_random_scenes(void **state)
                    (unsigned long long)ev[LT_EV_CULL_BACK],
                    (unsigned long long)ev[LT_EV_CULL_CORNER], (unsigned long long)ev[LT_EV_TRIS],
                    (unsigned long long)ev[LT_EV_HITS], (unsigned long long)ev[LT_EV_AABB]);
+        ltt_report("  sim events so far: LEAF_CULL %llu SPLIT %llu (the leaf culling and split walks "
+                   "of the LEAFRAY / SPLIT flag sets fired)\n",
+                   (unsigned long long)ev[LT_EV_LEAF_CULL], (unsigned long long)ev[LT_EV_SPLIT]);
         assert_true(ev[LT_EV_CULL_CORNER] > 1000u);
         assert_true(ev[LT_EV_CULL_BACK] > 1000u);
+        assert_true(ev[LT_EV_LEAF_CULL] > 100u);
+        assert_true(ev[LT_EV_SPLIT] > 100u);
     }
 #endif
     assert_true(t.partial > 50);
@@ -1446,8 +1451,13 @@ static void test_primary_random(void **state)
                    (unsigned long long)ev[LT_EV_TRI_FETCH], (unsigned long long)ev[LT_EV_TRI_KEPT],
                    (unsigned long long)ev[LT_EV_CULL_BACK],
                    (unsigned long long)ev[LT_EV_CULL_CORNER]);
+        ltt_report("  sim events so far: LEAF_CULL %llu SPLIT %llu (the leaf culling and split walks "
+                   "of the LEAFRAY / SPLIT flag sets fired)\n",
+                   (unsigned long long)ev[LT_EV_LEAF_CULL], (unsigned long long)ev[LT_EV_SPLIT]);
         assert_true(ev[LT_EV_CULL_CORNER] > 1000u);
         assert_true(ev[LT_EV_CULL_BACK] > 1000u);
+        assert_true(ev[LT_EV_LEAF_CULL] > 100u);
+        assert_true(ev[LT_EV_SPLIT] > 100u);
     }
 #endif
     assert_true(t.hits > 1000);
