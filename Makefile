@@ -187,7 +187,19 @@ pareto: deps
 	@$(MAKE) --no-print-directory all
 	@B=$(B) tools/pareto.sh
 
+# the multi-frusta reduction sweep and Table 2 -> docs/frusta.md, docs/results.md (tools/frusta_sweep.sh,
+# tools/frusta_table2.sh; about 20 minutes on one core, needs ../shared)
+frusta-doc: deps
+	@$(MAKE) --no-print-directory all
+	@mkdir -p $(B)/sweep
+	@B=$(B) tools/frusta_sweep.sh >$(B)/sweep/sweep.md
+	@B=$(B) tools/frusta_table2.sh 512 >$(B)/sweep/table2.md
+	@tools/doc_insert.sh frusta-sweep $(B)/sweep/sweep.md docs/frusta.md
+	@tools/doc_insert.sh frusta-table2 $(B)/sweep/table2.md docs/frusta.md
+	@tools/doc_insert.sh frusta-sweep $(B)/sweep/sweep.md docs/results.md
+
 clean:
 	rm -rf $(B)
 
-.PHONY: all sim deps run test test-build bench clean firmware plots layout index pareto
+.PHONY: all sim deps run test test-build bench clean firmware plots layout index pareto \
+    frusta-doc
