@@ -261,6 +261,57 @@ static void test_divfloor64(void **state)
     assert_int_equal(st.bad, 0);
 }
 
+/* lt__div_round64 (lt_fx.h): round(a / b) half up over the whole int64 range but INT64_MIN (the
+ * kernels' t divisions reach |b| ~ 2^62, where the old 2a + b / 2b form overflowed), against the
+ * exact floor((2a + b) / 2b) in 128-bit integers. */
+#ifdef __SIZEOF_INT128__
+__extension__ typedef __int128 ltt_i128_t;
+static void test_div_round64(void **state)
+{
+    ltt_rng_t r;
+    ltt_stat_t st;
+    static const int64_t edge[] = { 0, 1, -1, 2, -2, 3, -3, 7, -7, INT64_MAX, INT64_MIN + 1,
+                                    ((int64_t)1 << 62) + 1, -((int64_t)1 << 62) - 3,
+                                    ((int64_t)1 << 62) - 1, (int64_t)INT32_MIN, (int64_t)INT32_MAX };
+    unsigned i, ne = (unsigned)(sizeof edge / sizeof edge[0]), ties = 0;
+    (void)state;
+    ltt_rng_seed(&r, 7);
+    ltt_stat_init(&st, "lt__div_round64", "", 0);
+    for (i = 0; i < ne * ne + N_RANDOM; i++) {
+        int64_t a, b, got;
+        ltt_i128_t n, d, q;
+        if (i < ne * ne) {
+            a = edge[i / ne];
+            b = edge[i % ne];
+        } else {
+            a = ltt_rng_i64_shr(&r, 64);
+            b = ltt_rng_i64_shr(&r, 64);
+            if ((i & 7) == 0) {
+                /* an exact half: a = b k + b / 2 for an even b below 2^40 */
+                b = lt__asr64(ltt_rng_i64(&r), 24) * 2;
+                a = b * ((int64_t)(i % 17) - 8) + b / 2;
+            }
+        }
+        if (b == 0 || a == INT64_MIN || b == INT64_MIN)
+            continue; /* outside the contract */
+        n = 2 * (ltt_i128_t)a + b;
+        d = 2 * (ltt_i128_t)b;
+        if (d < 0) {
+            n = -n;
+            d = -d;
+        }
+        q = n / d - ((n % d != 0 && n < 0) ? 1 : 0);
+        ties += (2 * (ltt_i128_t)a) % b == 0 && (2 * (ltt_i128_t)a / b) % 2 != 0;
+        got = lt__div_round64(a, b);
+        if (!ltt_stat_add(&st, (double)((ltt_i128_t)got - q)))
+            ltt_stat_fail(&st, "%lld / %lld got %lld", (long long)a, (long long)b, (long long)got);
+    }
+    ltt_stat_print(&st);
+    ltt_report("lt__div_round64: %u exact halves among them (rounded up)\n", ties);
+    assert_int_equal(st.bad, 0);
+}
+#endif
+
 /* ---- lt__memset / lt__memcpy with guard bytes ------------------------------------------------ */
 
 #define MEM_BUF 96
@@ -327,6 +378,9 @@ int main(void)
         cmocka_unit_test(test_asr32),       cmocka_unit_test(test_asr64),
         cmocka_unit_test(test_bitcounts),   cmocka_unit_test(test_ssat_wrap),
         cmocka_unit_test(test_mul32x32_64), cmocka_unit_test(test_divfloor64),
+#ifdef __SIZEOF_INT128__
+        cmocka_unit_test(test_div_round64),
+#endif
         cmocka_unit_test(test_memset_memcpy),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -156,15 +156,24 @@ LT_INLINE lt_q16_t lt__q16_neg_sat(lt_q16_t a)
     return a == INT32_MIN ? INT32_MAX : -a;
 }
 
-/* round(a / b) for b != 0, half up; the caller handles b == 0. */
+/* round(a / b) for b != 0, half up; the caller handles b == 0. Any a, b with |a|, |b| < 2^63
+ * (no intermediate leaves int64: the remainder is compared with b - r instead of doubled, which
+ * overflowed for |b| near 2^62, e.g. the t division of a triangle with 8192-unit edges).
+ * floor(a/b + 1/2) = q + (r >= b - r) for q = floor(a/b), r = a - q b in [0, b). */
 LT_INLINE int64_t lt__div_round64(int64_t a, int64_t b)
 {
+    int64_t q, r;
     if (b < 0) {
         a = -a;
         b = -b;
     }
-    /* floor((2a + b) / 2b) = floor(a/b + 1/2); |a| < 2^62 keeps 2a in range. */
-    return lt__divfloor64(2 * a + b, 2 * b);
+    q = a / b;
+    r = a % b;
+    if (r < 0) {
+        q -= 1;
+        r += b;
+    }
+    return r >= b - r ? q + 1 : q;
 }
 
 /* a / b in s15.16. b == 0 saturates toward the sign of a (0 / 0 = 0), counted as a saturation. */
