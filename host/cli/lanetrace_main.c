@@ -806,13 +806,6 @@ static void print_json_line(cJSON *j)
 static const char *const exr_storage_name[] = {"scanline", "tiled", "deep scanline", "deep tiled"};
 static const char *const exr_type_name[] = {"?", "HALF", "FLOAT", "UINT"};
 
-static const char *exr_comp_name(int c)
-{
-    static const char *const names[] = {"none", "rle", "zips", "zip", "piz", "pxr24",
-                                        "b44",  "b44a", "dwaa", "dwab"};
-    return c >= 0 && c < 10 ? names[c] : "unknown";
-}
-
 /* Depth statistics over the pixels with a positive finite depth. */
 typedef struct exr_stats {
     size_t n, holes;
@@ -856,7 +849,7 @@ static cJSON *exr_part_json(const lt_exr_probe_t *pr)
     else
         cJSON_AddNullToObject(o, "view");
     cJSON_AddStringToObject(o, "storage", exr_storage_name[pr->storage & 3]);
-    cJSON_AddStringToObject(o, "compression", exr_comp_name(pr->compression));
+    cJSON_AddStringToObject(o, "compression", lt_exr_compression_name(pr->compression));
     cJSON_AddItemToObject(o, "data_window", cJSON_CreateIntArray(dw, 4));
     cJSON_AddItemToObject(o, "display_window", cJSON_CreateIntArray(vw, 4));
     cJSON_AddNumberToObject(o, "nchannels", pr->nchannels);
@@ -882,7 +875,7 @@ static void exr_part_text(const lt_exr_probe_t *pr)
         printf("view %s%s, ", pr->view,
                strcmp(pr->view, pr->default_view) == 0 ? " (default)" : "");
     printf("%s, %s, data window (%d,%d)-(%d,%d), display window (%d,%d)-(%d,%d)\n",
-           exr_storage_name[pr->storage & 3], exr_comp_name(pr->compression),
+           exr_storage_name[pr->storage & 3], lt_exr_compression_name(pr->compression),
            pr->data_window.x0, pr->data_window.y0, pr->data_window.x1, pr->data_window.y1,
            pr->display_window.x0, pr->display_window.y0, pr->display_window.x1,
            pr->display_window.y1);

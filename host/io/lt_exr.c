@@ -28,6 +28,7 @@
 /* Per-context I/O state, handed to the library as its user data. */
 typedef struct exr_io {
     int fd;        /* file read or written */
+    int64_t size;  /* size of the file read, bytes */
     int err_no;    /* errno of the first failed pread/pwrite, 0 if none */
     char msg[256]; /* first message the library reported for this context */
 } exr_io_t;
@@ -487,6 +488,7 @@ static int open_read(exr_context_t *ctx, exr_io_t *io, const char *path, lt_diag
         (void)close(io->fd);
         return -1;
     }
+    io->size = (int64_t)st.st_size;
     init = make_init(io);
     rv = exr_start_read(ctx, path, &init);
     if (rv != EXR_ERR_SUCCESS) {
@@ -1201,6 +1203,41 @@ static void fill_f(float *p, size_t n, float v)
         p[i] = v;
 }
 
+const char *lt_exr_compression_name(int c)
+{
+    static const char *const names[] = {"none", "rle", "zips", "zip", "piz", "pxr24",
+                                        "b44",  "b44a", "dwaa", "dwab"};
+    return c >= 0 && c < 10 ? names[c] : "unknown";
+}
+
+/* The most one byte of a chunk can unpack to, per compression (an upper bound, so that a header
+ * cannot make the reader allocate and fill rasters that the file cannot hold): none 1; RLE 64
+ * (a run of up to 128 bytes in 2); ZIP/ZIPS 1032 (deflate's own bound); PXR24 zlib over 24-bit
+ * floats, 1376; PIZ 512 (Huffman codes of >= 1 bit for 16-bit values, runs up to 255 in a code
+ * and 8 bits); B44/B44A 11 (a flat 4x4 block of halves in 3 bytes); DWAA/DWAB and anything else
+ * 65536. */
+static int64_t max_unpack_ratio(exr_compression_t c)
+{
+    switch (c) {
+    case EXR_COMPRESSION_NONE:
+        return 1;
+    case EXR_COMPRESSION_RLE:
+        return 64;
+    case EXR_COMPRESSION_ZIPS:
+    case EXR_COMPRESSION_ZIP:
+        return 1032;
+    case EXR_COMPRESSION_PXR24:
+        return 1376;
+    case EXR_COMPRESSION_PIZ:
+        return 512;
+    case EXR_COMPRESSION_B44:
+    case EXR_COMPRESSION_B44A:
+        return 11;
+    default:
+        return 65536;
+    }
+}
+
 /* The depth part's storage and windows, checked against what is read (rules in lt_exr.h).
  * 0, or -1 with the message in diag. */
 static int check_part(exr_context_t ctx, int part, const exr_attr_chlist_entry_t *ze,
@@ -1227,6 +1264,22 @@ static int check_part(exr_context_t ctx, int part, const exr_attr_chlist_entry_t
     if (ze->pixel_type != EXR_PIXEL_HALF && ze->pixel_type != EXR_PIXEL_FLOAT)
         return lt_diag_fail(diag, "%s: channel '%s' is UINT; a depth channel must be HALF or "
                             "FLOAT", path, ze->name.str);
+    {
+        /* the depth channel's bytes (a deep part's per-pixel sample counts: 4 bytes) must fit in
+         * what the file's chunks can unpack to, before any raster is allocated */
+        exr_compression_t comp = EXR_COMPRESSION_NONE;
+        int64_t bpp = ze->pixel_type == EXR_PIXEL_HALF && *st != EXR_STORAGE_DEEP_SCANLINE ? 2 : 4;
+        int64_t ratio;
+        (void)exr_get_compression(ctx, part, &comp);
+        ratio = max_unpack_ratio(comp);
+        if (W * H * bpp > io->size * ratio)
+            return lt_diag_fail(diag, "%s: part %d: the header's data window %lldx%lld asks for "
+                                "%lld bytes of channel '%s', but the file's %lld bytes of %s "
+                                "data can unpack to at most %lld: truncated, or a wrong header",
+                                path, part, (long long)W, (long long)H, (long long)(W * H * bpp),
+                                ze->name.str, (long long)io->size, lt_exr_compression_name((int)comp),
+                                (long long)(io->size * ratio));
+    }
     if (ze->x_sampling != 1 || ze->y_sampling != 1)
         return lt_diag_fail(diag, "%s: channel '%s' is subsampled %dx%d; only 1x1 sampling is "
                             "read", path, ze->name.str, (int)ze->x_sampling, (int)ze->y_sampling);

@@ -184,6 +184,10 @@ uint16_t lt_exr_half_from_float(float f);
 /* Format: binary16 bits -> float32. Range: any. Rounding: exact. Overflow: none. Cost: none. */
 float lt_exr_half_to_float(uint16_t h);
 
+/* The name of an OpenEXR compression value as `info` prints it ("none", "zip", "piz", ...;
+ * "unknown" outside 0..9). */
+const char *lt_exr_compression_name(int c);
+
 #ifdef __cplusplus
 }
 #endif

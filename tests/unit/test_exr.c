@@ -1020,6 +1020,53 @@ static void test_corrupt(void **state)
     free(z);
 }
 
+/* A header that asks for more than the file can hold: a valid 64x64 file (ZIP and uncompressed)
+ * whose dataWindow is patched to 16384 x 16384 (1 GiB of FLOAT depth) must fail before any raster
+ * is allocated, naming the window, the bytes asked and the file's bound (it used to allocate and
+ * fill 1 GiB per channel read before the first chunk proved the file wrong). */
+static void test_header_bomb(void **state)
+{
+    enum { W = 64, H = 64 };
+    static const char key[] = "dataWindow\0box2i";
+    float *z = malloc(sizeof(float) * W * H);
+    lt_exr_channel_t ch = {"Z", LT_EXR_FLOAT, z};
+    lt_exr_image_t img;
+    unsigned cases = 0, c;
+    (void)state;
+    pattern(z, W, H, 1, 5);
+    for (c = 0; c < 2; c++) {
+        const char *p = tpath(c ? "bomb-none.exr" : "bomb-zip.exr");
+        unsigned char buf[4096];
+        size_t n, i;
+        FILE *f;
+        memset(&img, 0, sizeof img);
+        img.width = W;
+        img.height = H;
+        img.nchannels = 1;
+        img.channels = &ch;
+        img.compression = c ? LT_EXR_COMP_NONE : LT_EXR_COMP_ZIP;
+        assert_int_equal(lt_exr_write(p, &img, NULL), 0);
+        f = fopen(p, "r+b");
+        assert_non_null(f);
+        n = fread(buf, 1, sizeof buf, f);
+        for (i = 0; i + sizeof key + 4 + 16 <= n; i++)
+            if (memcmp(buf + i, key, sizeof key) == 0)
+                break;
+        assert_true(i + sizeof key + 4 + 16 <= n);
+        i += sizeof key + 4; /* past the name, the type and the 4-byte size: xmin ymin xmax ymax */
+        buf[i + 8] = buf[i + 12] = 0xFF;
+        buf[i + 9] = buf[i + 13] = 0x3F;
+        buf[i + 10] = buf[i + 14] = buf[i + 11] = buf[i + 15] = 0;
+        (void)fseek(f, (long)(i + 8), SEEK_SET);
+        assert_int_equal(fwrite(buf + i + 8, 1, 8, f), 8);
+        (void)fclose(f);
+        expect_read_error(p, NULL, 0, "16384x16384 asks for 1073741824 bytes", &cases);
+    }
+    ltt_report("header bomb: a 64x64 file (ZIP, none) claiming a 16384x16384 FLOAT depth window: "
+               "%u refused before allocating, naming the window and the file's bound\n", cases);
+    free(z);
+}
+
 static void test_write_errors(void **state)
 {
     float z[4] = {1, 2, 3, 4};
@@ -1579,7 +1626,8 @@ int main(void)
         cmocka_unit_test(test_special_values),   cmocka_unit_test(test_tiled),
         cmocka_unit_test(test_deep_synthetic),   cmocka_unit_test(test_deep_bad_counts),
         cmocka_unit_test(test_zip_small_roundtrip), cmocka_unit_test(test_limits),
-        cmocka_unit_test(test_corrupt),          cmocka_unit_test(test_write_errors),
+        cmocka_unit_test(test_corrupt),          cmocka_unit_test(test_header_bomb),
+        cmocka_unit_test(test_write_errors),
         cmocka_unit_test(test_atomic_kill),      cmocka_unit_test(test_shared_beachball),
         cmocka_unit_test(test_shared_deep),      cmocka_unit_test(test_shared_cut),
         cmocka_unit_test(test_multipart_stereo), cmocka_unit_test(test_multipart_variants),
