@@ -10,6 +10,8 @@
 #                           libFuzzer in clang, the corpus replay instead
 #   make fuzz               every target for FUZZ_SECONDS, one after the other
 #   make fuzz-campaign SECONDS=N   every target for N s under ASan + UBSan: one table of executions,
+#                           (RUNS=N: N executions per target, SECONDS then a cap, 0 = none;
+#                           FUZZ_TARGETS="a b" for a subset)
 #                           exec/s, new inputs and crashes (also build/fuzz/campaign.md); exit 1 on
 #                           any crash, hang or out-of-memory
 #   make fuzz-doc           copy that table into docs/reliability.md (between its markers)
@@ -95,7 +97,7 @@ fuzz-campaign: $(FUZZ_HAVE)
 	    echo "fuzz-campaign: $(FUZZ_CLANG) has no -fsanitize=fuzzer (make deps installs clang and libclang-rt)"; \
 	    exit 1; fi
 	@$(MAKE) --no-print-directory $(FUZZ_TARGETS:%=$(B)/fuzz/fuzz-%)
-	@B=$(B) FUZZ_TIME=$(SECONDS) FUZZ_RUN_FLAGS="$(FUZZ_RUN_FLAGS)" \
+	@B=$(B) FUZZ_TIME=$(SECONDS) FUZZ_RUNS=$(RUNS) FUZZ_RUN_FLAGS="$(FUZZ_RUN_FLAGS)" \
 	    $(foreach t,$(FUZZ_TARGETS),FUZZ_MAXLEN_$(t)=$(or $(FUZZ_MAXLEN_$(t)),4096)) \
 	    tests/fuzz/campaign.sh $(FUZZ_TARGETS)
 .PHONY: fuzz fuzz-merge fuzz-campaign

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# campaign.sh - run each libFuzzer target for FUZZ_TIME seconds, one after the other, and print one
+# campaign.sh - run each libFuzzer target for FUZZ_TIME seconds (or, with FUZZ_RUNS=N, for N
+# executions, FUZZ_TIME then being a cap: 0 = none), one after the other, and print one
 # table (target, seconds, executions, exec/s, corpus, new inputs, peak RSS, crashes), also written
 # to $B/fuzz/campaign.md for docs/reliability.md. Called by `make fuzz-campaign SECONDS=N`, which
 # builds $B/fuzz/fuzz-<target> first. Exit 1 when any target crashed, hung, ran out of memory or
@@ -7,9 +8,17 @@
 set -uo pipefail
 B=${B:-build}
 T=${FUZZ_TIME:-60}
+R=${FUZZ_RUNS:-}
 FLAGS=${FUZZ_RUN_FLAGS:--timeout=10 -rss_limit_mb=2048 -print_final_stats=1 -close_fd_mask=3}
 [ $# -gt 0 ] || { echo "usage: $0 TARGET..." >&2; exit 2; }
 case $T in '' | *[!0-9]*) echo "fuzz-campaign: SECONDS=$T is not a whole number" >&2; exit 2 ;; esac
+case $R in *[!0-9]*) echo "fuzz-campaign: RUNS=$R is not a whole number" >&2; exit 2 ;; esac
+runs=()
+per="${T} s per target"
+if [ -n "$R" ]; then
+    runs=(-runs="$R")
+    per="$R executions per target$([ "$T" -gt 0 ] && echo " (at most $T s)")"
+fi
 out=$B/fuzz/campaign.md
 started=$(date -u +%Y-%m-%dT%H:%MZ)
 load0=$(cut -d' ' -f1 /proc/loadavg 2>/dev/null || echo '?')
@@ -27,11 +36,13 @@ for t in "$@"; do
     before=$(find "$art" -maxdepth 1 -type f | wc -l)
     dict=()
     [ -f "tests/fuzz/$t.dict" ] && dict=(-dict="tests/fuzz/$t.dict")
-    echo "fuzz-campaign: $t for ${T} s" >&2
+    echo "fuzz-campaign: $t, $per" >&2
     # shellcheck disable=SC2086
-    "$bin" $FLAGS -max_total_time="$T" -max_len="${!maxlen_var:-4096}" -artifact_prefix="$art/" \
-        "${dict[@]}" "$B/fuzz/corpus-$t" "tests/fuzz/corpus/$t" >"$log" 2>&1
+    t0=$(date +%s)
+    "$bin" $FLAGS -max_total_time="$T" "${runs[@]}" -max_len="${!maxlen_var:-4096}" \
+        -artifact_prefix="$art/" "${dict[@]}" "$B/fuzz/corpus-$t" "tests/fuzz/corpus/$t" >"$log" 2>&1
     rc=$?
+    secs=$(($(date +%s) - t0))
     after=$(find "$art" -maxdepth 1 -type f | wc -l)
     execs=$(final_stat number_of_executed_units "$log")
     eps=$(final_stat average_exec_per_sec "$log")
@@ -48,10 +59,10 @@ for t in "$@"; do
         note=" (no final statistics: see $log)"
         bad=1
     fi
-    rows+=("| $t | $T | ${execs:-?} | ${eps:-?} | $corpus | ${news:-?} | ${rss:-?} | $crashes$note |")
+    rows+=("| $t | $secs | ${execs:-?} | ${eps:-?} | $corpus | ${news:-?} | ${rss:-?} | $crashes$note |")
 done
 {
-    echo "Fuzz campaign: started $started, commit $commit, $(clang --version 2>/dev/null | head -n 1), ASan + UBSan, ${T} s per target, one process each on $(nproc) cores (load average $load0 at the start, $(cut -d' ' -f1 /proc/loadavg 2>/dev/null || echo '?') at the end: other work on the machine lowers exec/s)"
+    echo "Fuzz campaign: started $started, commit $commit, $(clang --version 2>/dev/null | head -n 1), ASan + UBSan, $per, one process each on $(nproc) cores (load average $load0 at the start, $(cut -d' ' -f1 /proc/loadavg 2>/dev/null || echo '?') at the end: other work on the machine lowers exec/s)"
     echo
     echo "| target | seconds | executions | exec/s | corpus | new inputs | peak RSS MB | crashes |"
     echo "|---|---:|---:|---:|---:|---:|---:|---:|"
