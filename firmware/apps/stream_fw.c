@@ -33,6 +33,7 @@ int main(void)
     static lt_sdev_result_t res;
     lt_sdev_cfg_t cfg;
     lt_sdev_port_t port;
+    lt_fw_ram_report(0); /* the UART carries frames only */
     lt_sdev_cfg_default(&cfg);
     port.ticks = fw_ticks;
     port.idle_until = fw_idle_until;

@@ -49,7 +49,25 @@ LT_NORETURN void lt_fw_exit(int code);
  * Cost: a few tens of instructions (Arm: includes a 64-bit multiply). */
 uint64_t lt_fw_ticks(void);
 
+/* Bytes of the main stack used so far (its high-water mark) and its size. The start-up code
+ * paints the stack below its own frame with a pattern before main; the high-water mark is the
+ * distance from the stack's top to the lowest word no longer holding it. lt_fw_exit prints
+ * "ram: stack USED of SIZE bytes, static N bytes (.data + .bss)" before it ends the run, so every
+ * firmware program reports the RAM it needed (tests/run.d/fwram.sh checks it against budgets).
+ * Cost: a scan of the stack (lt_fw_stack_used). */
+uint32_t lt_fw_stack_used(void);
+uint32_t lt_fw_stack_size(void);
+
+/* Turn the "ram:" line at exit off (on = 0) or on: a program whose UART carries a binary stream
+ * (firmware/apps/stream_fw.c) keeps it clean. */
+void lt_fw_ram_report(int on);
+
 /* ---- target-internal (lt__fw_*): shared between the files of one target, not for programs ---- */
+
+/* Paint the stack from its limit up to 256 bytes below the caller's frame (start-up, before
+ * main), and print the "ram:" line (lt_fw_exit). */
+void lt__fw_stack_paint(void);
+void lt__fw_report_ram(void);
 
 /* Called by the start-up code before main: UART set-up and tick counter start. */
 void lt__fw_uart_init(void);

@@ -92,3 +92,51 @@ void lt_fw_put_hex32(uint32_t v)
     for (shift = 28; shift >= 0; shift -= 4)
         lt_fw_putc(digits[(v >> shift) & 0xFu]);
 }
+
+/* ---- stack high-water mark -------------------------------------------------------------------- */
+
+extern uint32_t lt__fw_stack_limit[], lt__fw_stack_top[];
+extern uint32_t lt__fw_data_start[], lt__fw_data_end[], lt__fw_bss_start[], lt__fw_bss_end[];
+
+#define LT__FW_PAINT 0x5AA5C33Cu
+
+LT__RT_FN void lt__fw_stack_paint(void)
+{
+    volatile uint32_t *p = (volatile uint32_t *)lt__fw_stack_limit;
+    volatile char here = 0;
+    uintptr_t end = ((uintptr_t)&here - 256u) & ~(uintptr_t)3u;
+    while ((uintptr_t)p < end)
+        *p++ = LT__FW_PAINT;
+}
+
+uint32_t lt_fw_stack_used(void)
+{
+    const volatile uint32_t *p = (const volatile uint32_t *)lt__fw_stack_limit;
+    uintptr_t top = (uintptr_t)lt__fw_stack_top;
+    while ((uintptr_t)p < top && *p == LT__FW_PAINT)
+        p++;
+    return (uint32_t)(top - (uintptr_t)p);
+}
+
+uint32_t lt_fw_stack_size(void)
+{
+    return (uint32_t)((uintptr_t)lt__fw_stack_top - (uintptr_t)lt__fw_stack_limit);
+}
+
+static int lt__fw_ram_on = 1;
+
+void lt_fw_ram_report(int on) { lt__fw_ram_on = on; }
+
+void lt__fw_report_ram(void)
+{
+    if (!lt__fw_ram_on)
+        return;
+    lt_fw_puts("ram: stack ");
+    lt_fw_put_u32(lt_fw_stack_used());
+    lt_fw_puts(" of ");
+    lt_fw_put_u32(lt_fw_stack_size());
+    lt_fw_puts(" bytes, static ");
+    lt_fw_put_u32((uint32_t)((uintptr_t)lt__fw_data_end - (uintptr_t)lt__fw_data_start) +
+                  (uint32_t)((uintptr_t)lt__fw_bss_end - (uintptr_t)lt__fw_bss_start));
+    lt_fw_puts(" bytes (.data + .bss)\n");
+}

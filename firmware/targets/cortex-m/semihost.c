@@ -16,6 +16,7 @@ LT_NORETURN void lt_fw_exit(int code)
 
     block[0] = LT__SH_ADP_APP_EXIT;
     block[1] = (uint32_t)code & 0xFFu;
+    lt__fw_report_ram();
     lt__fw_uart_flush();
     /* r0 = operation, r1 = parameter block; "bkpt 0xAB" is the M-profile semihosting trap.
      * Registers named in the clobber list are never given to the input operands. */

@@ -110,6 +110,7 @@ void lt__fw_reset(void)
     lt__memset(lt__fw_bss_start, 0,
                (size_t)((uintptr_t)lt__fw_bss_end - (uintptr_t)lt__fw_bss_start));
     __asm__ __volatile__("dsb\n\tisb" ::: "memory");
+    lt__fw_stack_paint();
 
     lt__fw_uart_init();
     lt__fw_ticks_init();

@@ -50,6 +50,7 @@ LT_NORETURN void lt_fw_exit(int code)
 {
     uint32_t c = (uint32_t)code & 0xFFu;
 
+    lt__fw_report_ram();
     lt__fw_uart_flush();
     LT__TEST_REG = (c == 0) ? LT__TEST_PASS : ((c << 16) | LT__TEST_FAIL);
     for (;;) {

@@ -48,6 +48,7 @@ lt__fw_start:
     la      a2, lt__fw_bss_end
     sub     a2, a2, a0
     call    lt__memset
+    call    lt__fw_stack_paint
 
     call    lt__fw_uart_init
     call    lt__fw_ticks_init
