@@ -196,30 +196,38 @@ static void q_margins(lt_vq16_t tx, lt_vq16_t ty, lt_vq16_t tz, const lt_tri_q16
  * perturbation of the triangle's plane. Lanes where |tnum| <= 2^-10 P^2 + 2^-13 (|e1|_1 + 2^-14)
  * (|e2|_1 + 2^-14) + 2^-7 |e2|_1 (tnum's own qvec rounding), in tnum's 22 fractional bits, are
  * returned (not corner-culled). All in int64: |tvec|_1 <= 3 2^29 and |e|_1 <= 3 2^30 raw. */
+/* One origin's watertight margins (t1 = |tvec|_1, e1, e2 = |e1|_1, |e2|_1, raw) and whether its
+ * tnum clears the plane guard: the body shared by q_margins_wt (per lane) and q_pmarg1_wt. */
+static int q_wt1(int64_t t1, int64_t e1, int64_t e2, int64_t tnum, int64_t *mu, int64_t *mw)
+{
+    int64_t pm = t1 + (e1 > e2 ? e1 : e2), ph = (pm >> 8) + 1, g;
+    /* 2^-10 P^2 in 2^-22 units: P_raw^2 2^-32 2^-10 2^22 = P_raw^2 2^-20, rounded up; then
+     * 2^-13 (|e1|_1 + 4) (|e2|_1 + 4) + 2^-7 |e2|_1, rounded up */
+    g = ((ph * ph) >> 4) + 1 + ((((e1 + 4) >> 8) + 1) * (((e2 + 4) >> 8) + 1) >> 7) + 1 +
+        (e2 >> 1) + 1;
+    *mu = ((int64_t)3 << 29) + 256 * pm + 144;
+    *mw = ((int64_t)3 << 30) + 256 * pm + 160;
+    return tnum > g || tnum < -g;
+}
+
 static lt_mask16_t q_margins_wt(lt_vq16_t tx, lt_vq16_t ty, lt_vq16_t tz, const lt_tri_q16_t *tri,
                                 const lt_vql22_t *tnum, lt_vql36_t *mu, lt_vql36_t *mw,
                                 lt_vql36_t *mvp, lt_vql36_t *mvn)
 {
-    int64_t e1 = 0, e2 = 0, eg;
+    int64_t e1 = 0, e2 = 0;
     unsigned m = 0, a;
     int i;
     for (a = 0; a < 3; a++) {
         e1 += lt__q16_abs_sat(tri->e1[a]);
         e2 += lt__q16_abs_sat(tri->e2[a]);
     }
-    /* 2^-13 (|e1|_1 + 4) (|e2|_1 + 4) + 2^-7 |e2|_1 in 2^-22 units, rounded up */
-    eg = ((((e1 + 4) >> 8) + 1) * (((e2 + 4) >> 8) + 1) >> 7) + 1 + (e2 >> 1) + 1;
     LT_CHARGE(FR_Q_WTMARGINS);
     for (i = 0; i < LT_LANES; i++) {
         int64_t t1 = (int64_t)lt__q16_abs_sat(tx.l[i]) + lt__q16_abs_sat(ty.l[i]) +
                      lt__q16_abs_sat(tz.l[i]);
-        int64_t pm = t1 + (e1 > e2 ? e1 : e2), ph = (pm >> 8) + 1, g, tn = tnum->l[i];
-        /* 2^-10 P^2 in 2^-22 units: P_raw^2 2^-32 2^-10 2^22 = P_raw^2 2^-20, rounded up */
-        g = ((ph * ph) >> 4) + 1 + eg;
-        mu->l[i] = mvp->l[i] = mvn->l[i] = ((int64_t)3 << 29) + 256 * pm + 144;
-        mw->l[i] = ((int64_t)3 << 30) + 256 * pm + 160;
-        if (tn <= g && tn >= -g)
+        if (!q_wt1(t1, e1, e2, tnum->l[i], &mu->l[i], &mw->l[i]))
             m |= 1u << i;
+        mvp->l[i] = mvn->l[i] = mu->l[i];
     }
     return (lt_mask16_t)m;
 }
@@ -385,21 +393,18 @@ static void q_pmarg1(const int32_t t[3], const lt_tri_q16_t *tri, int64_t *mu, i
 static int q_pmarg1_wt(const int32_t t[3], int64_t tnum, const lt_tri_q16_t *tri, int64_t *mu,
                        int64_t *mw, int64_t *mvp, int64_t *mvn)
 {
-    int64_t t1 = 0, e1 = 0, e2 = 0, pm, ph, g;
+    int64_t t1 = 0, e1 = 0, e2 = 0;
     unsigned a;
+    int ok;
     for (a = 0; a < 3; a++) {
         t1 += t[a] < 0 ? -(int64_t)t[a] : (int64_t)t[a];
         e1 += lt__q16_abs_sat(tri->e1[a]);
         e2 += lt__q16_abs_sat(tri->e2[a]);
     }
-    pm = t1 + (e1 > e2 ? e1 : e2);
-    ph = (pm >> 8) + 1;
-    g = ((ph * ph) >> 4) + 1 + ((((e1 + 4) >> 8) + 1) * (((e2 + 4) >> 8) + 1) >> 7) + 1 +
-        (e2 >> 1) + 1;
-    *mu = *mvp = *mvn = ((int64_t)3 << 29) + 256 * pm + 144;
-    *mw = ((int64_t)3 << 30) + 256 * pm + 160;
+    ok = q_wt1(t1, e1, e2, tnum, mu, mw);
+    *mvp = *mvn = *mu;
     LT_CHARGE(FR_Q_PWTMARG);
-    return tnum > g || tnum < -g;
+    return ok;
 }
 
 /* Direction component of pixel (x, y): d0 + x dx + y dy, exact in int64 (in range by the view
@@ -937,24 +942,32 @@ static int f_pnrm1(const lt_tri_f32_t *tri, const float t[3], float n[3])
  * sheared coordinates' rounding times the edge's reach), and the lanes whose origin lies within
  * 2^-16 (P^3 + P |e1|_1 |e2|_1) of the triangle's plane in tnum (not corner-culled). Not a proof
  * (as f_margins): checked by the same tests. Cost: FR_F_WTMARGINS. */
+/* One origin's float32 watertight margins and plane guard (t1 = |tvec|_1), the body shared by
+ * f_margins_wt (per lane) and f_pmarg1_wt. */
+static int f_wt1(float t1, float e1, float e2, float tnum, float *mu, float *mw, float *mv)
+{
+    float pm = t1 + (e1 > e2 ? e1 : e2), w = pm * pm * 0x1p-14f;
+    float g = (pm * pm * pm + pm * e1 * e2) * 0x1p-16f;
+    *mu = t1 * (e2 * 0x1p-15f) + w;
+    *mv = t1 * (e1 * 0x1p-15f) + w;
+    *mw = (*mu + *mv) + e1 * e2 * 0x1p-15f + w;
+    return tnum > g || tnum < -g;
+}
+
 static lt_mask16_t f_margins_wt(lt_vf32_t tx, lt_vf32_t ty, lt_vf32_t tz, const lt_tri_f32_t *tri,
                                 const lt_vf32_t *tnum, lt_vf32_t *mu, lt_vf32_t *mw,
                                 lt_vf32_t *mvp, lt_vf32_t *mvn)
 {
     float e1 = lt__f32_abs(tri->e1[0]) + lt__f32_abs(tri->e1[1]) + lt__f32_abs(tri->e1[2]);
     float e2 = lt__f32_abs(tri->e2[0]) + lt__f32_abs(tri->e2[1]) + lt__f32_abs(tri->e2[2]);
-    float em = e1 > e2 ? e1 : e2;
     unsigned m = 0;
     int i;
     LT_CHARGE(FR_F_WTMARGINS);
     for (i = 0; i < LT_LANES; i++) {
         float t1 = lt__f32_abs(tx.l[i]) + lt__f32_abs(ty.l[i]) + lt__f32_abs(tz.l[i]);
-        float pm = t1 + em, w = pm * pm * 0x1p-14f, g = (pm * pm * pm + pm * e1 * e2) * 0x1p-16f;
-        mu->l[i] = t1 * (e2 * 0x1p-15f) + w;
-        mvp->l[i] = mvn->l[i] = t1 * (e1 * 0x1p-15f) + w;
-        mw->l[i] = mu->l[i] + mvp->l[i] + e1 * e2 * 0x1p-15f + w;
-        if (!(tnum->l[i] > g || tnum->l[i] < -g))
+        if (!f_wt1(t1, e1, e2, tnum->l[i], &mu->l[i], &mw->l[i], &mvp->l[i]))
             m |= 1u << i;
+        mvn->l[i] = mvp->l[i];
     }
     return (lt_mask16_t)m;
 }
@@ -966,13 +979,10 @@ static int f_pmarg1_wt(const float t[3], float tnum, const lt_tri_f32_t *tri, fl
     float t1 = lt__f32_abs(t[0]) + lt__f32_abs(t[1]) + lt__f32_abs(t[2]);
     float e1 = lt__f32_abs(tri->e1[0]) + lt__f32_abs(tri->e1[1]) + lt__f32_abs(tri->e1[2]);
     float e2 = lt__f32_abs(tri->e2[0]) + lt__f32_abs(tri->e2[1]) + lt__f32_abs(tri->e2[2]);
-    float pm = t1 + (e1 > e2 ? e1 : e2), w = pm * pm * 0x1p-14f;
-    float g = (pm * pm * pm + pm * e1 * e2) * 0x1p-16f;
+    int ok = f_wt1(t1, e1, e2, tnum, mu, mw, mvp);
     LT_CHARGE(FR_F_PWTMARG);
-    *mu = t1 * (e2 * 0x1p-15f) + w;
-    *mvp = *mvn = t1 * (e1 * 0x1p-15f) + w;
-    *mw = (*mu + *mvp) + e1 * e2 * 0x1p-15f + w;
-    return tnum > g || tnum < -g;
+    *mvn = *mvp;
+    return ok;
 }
 
 static void f_pmarg1(const float t[3], const lt_tri_f32_t *tri, float *mu, float *mw, float *mvp,
