@@ -4,7 +4,10 @@
 #     (LT_COST_SIM, lrb16 with caches); target: counted <= 3x native;
 #  2. the scalar MCU model vs measured instructions: mcu-m4's predicted cycles for the slab-test loop
 #     vs the instructions QEMU's lt_icount plugin counts inside lt_slab16_q16 on Cortex-M4;
-#  3. the race against Embree 3 (native, single thread, same rays; all shared scenes);
+#  3. the race against Embree 3 at its best on this machine (native, single thread, same rays; all
+#     shared scenes): rtcIntersect1/4/8/16 and rtcOccluded1/4/8/16, both context flags, a warm-up,
+#     the median; the CPU, its ISA and Embree's native packet widths printed first (make race-doc
+#     writes the table of docs/results.md);
 #  4. structures: grid vs kd-tree vs BVH in the simulator (tests/bench/structures.sh);
 #  5. the cycle report of the bundled scene on lrb16;
 #  6. screen-space baselines: quadtree vs DDA vs Hi-Z on the same rays (build/sim/ssbench);
@@ -49,7 +52,7 @@ awk '/^icount sym/{printf "   %-16s %d\n", $3, $4}' "$out"
 rm -f "$out"
 awk -v p="$pred" -v c="$cnt" 'BEGIN{printf "lt_tri16_q16 (+helpers): predicted %d cycles, counted %d instructions, predicted/counted %.3f\n", p, c, p/c}'
 
-echo "== 3. race against Embree 3 (native build, single thread, same rays, 1024x1024)"
+echo "== 3. race against Embree 3 at its best on this machine (native build, single thread, same rays, 1024x1024; every packet width and context flag, warm-up, median)"
 STRUCT=${BENCH_STRUCTURE:-bvh}
 "$B/host/embree-race" --mesh "$SCENE" --res 1024 --runs 5 --structure "$STRUCT"
 for m in bunny.obj dragon_res3.obj sponza.obj sibenik.obj conference.obj.gz CornellBox-Original.obj; do
