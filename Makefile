@@ -23,7 +23,7 @@ FPFLAGS := -ffp-contract=off -fno-fast-math
 DEPFLAGS := -MMD -MP
 # -Wno-format-truncation: host messages are built with snprintf, whose truncation is the intent
 HOST_CFLAGS := $(WARN) -Wdouble-promotion -Wno-format-truncation $(FPFLAGS) -O2 -g \
-    -fno-var-tracking-assignments -D_POSIX_C_SOURCE=200809L $(DEPFLAGS)
+    -fno-var-tracking-assignments -D_POSIX_C_SOURCE=200809L -pthread $(DEPFLAGS)
 NATIVE_ARCH ?= -march=native
 
 # ---- rooms and their include paths (docs/architecture.md) ----------------------------------------
@@ -76,12 +76,18 @@ LDFLAGS_asan := -fsanitize=address,undefined
 # simulator programs (build/asan/lanetrace, build/asan/lt-stream-dev; host/host.mk)
 CFLAGS_asansim := $(subst LT_COST_OFF,LT_COST_SIM,$(CFLAGS_asan))
 LDFLAGS_asansim := $(LDFLAGS_asan)
+# ThreadSanitizer (native, LT_COST_OFF): the threaded tile loops (host/render/lt_par.h) raced by
+# build/tsan/test_par and build/tsan/lanetrace-native (tests/run.d/threads.sh)
+CFLAGS_tsan := $(HOST_CFLAGS) -O1 -fsanitize=thread -fno-omit-frame-pointer \
+    -DLT_COST_MODE=LT_COST_OFF
+LDFLAGS_tsan := -fsanitize=thread
 # host-side libraries (Debian): assimp, cJSON, OpenEXR's C API (OpenEXRCore), libpng, zlib
-HOST_LIBS = -lassimp -lcjson -lOpenEXRCore-3_1 -lpng16 -lz -lm
+HOST_LIBS = -pthread -lassimp -lcjson -lOpenEXRCore-3_1 -lpng16 -lz -lm
 LIBS_host = $(HOST_LIBS)
 LIBS_sim = $(HOST_LIBS)
 LIBS_asan = $(HOST_LIBS)
 LIBS_asansim = $(HOST_LIBS)
+LIBS_tsan = $(HOST_LIBS)
 VARIANTS := host sim asan
 SIM_VARIANTS := sim asansim
 
@@ -114,7 +120,7 @@ $(B)/$(1)/lt-vectors: $(B)/$(1)/obj/tests/vectors/vec_host.o $(B)/$(1)/obj/$(VEC
 	@echo "LD $$@"
 	@$(CC) $(LDFLAGS_$(1)) -o $$@ $$^ $(LIBS_$(1))
 endef
-$(foreach v,$(VARIANTS) asansim,$(eval $(call variant_rules,$(v))))
+$(foreach v,$(VARIANTS) asansim tsan,$(eval $(call variant_rules,$(v))))
 
 $(B)/sim/test_cache: $(B)/sim/obj/tests/unit/test_cache.o $(B)/sim/obj/sim/lt_cache.o \
     $(SIM_HOST_DEPS:%.c=$(B)/sim/obj/%.o)
@@ -155,7 +161,8 @@ run: deps
 	    --heat-cycles $(B)/run/teapot-reproj-cycles.png --report $(B)/run/reproj-report.json --truth
 
 TEST_BINS := $(foreach v,$(VARIANTS),$(UNIT_TESTS:%=$(B)/$(v)/test_%) $(B)/$(v)/lt-vectors) \
-    $(B)/sim/test_cache $(B)/host/lanetrace-native $(B)/sim/lanetrace $(EXTRA_TEST_BINS)
+    $(B)/sim/test_cache $(B)/host/lanetrace-native $(B)/sim/lanetrace $(EXTRA_TEST_BINS) \
+    $(B)/tsan/test_par $(B)/tsan/lanetrace-native
 
 test: deps
 	@$(MAKE) --no-print-directory test-build

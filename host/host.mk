@@ -69,6 +69,11 @@ $(B)/asan/obj/host/stream/usb/lt_rx_hid.o: host/stream/usb/lt_rx_hid.c host/host
 	@$(CC) $(CFLAGS_asan) $(HOST_INC) $(STREAM_HID_CFLAGS) -c $< -o $@
 asan-products: $(ASAN_PRODUCTS)
 
+# ThreadSanitizer build of the native CLI (the threaded tile loops; tests/run.d/threads.sh)
+$(B)/tsan/lanetrace-native: $(subst $(B)/host/,$(B)/tsan/,$(PROD_lanetrace_native))
+	@echo "LD $@"
+	@$(CC) $(LDFLAGS_tsan) -o $@ $^ $(LIBS_tsan)
+
 products: $(PRODUCTS)
 # the link inputs of every shipped program, one program per line (`make layout` reads them)
 print-product-deps:

@@ -13,6 +13,7 @@
 #include "io/lt_mesh.h"
 #include "lt_meter.h"
 #include "io/lt_png.h"
+#include "render/lt_par.h"
 #include "render/lt_paths.h"
 #include "tune/lt_recommend.h"
 #include "render/lt_render.h"
@@ -40,6 +41,7 @@
 #define EXIT_USAGE 2
 
 static int quiet;
+static int threads_opt; /* --threads (0: every core) */
 static const char *prog = "lanetrace";
 
 /* ---- progress bar (stderr, only on a TTY, only after the first second) ------------------------ */
@@ -279,6 +281,7 @@ static int run_parse(run_t *r, int argc, char **argv)
         LT_OPT_SET_("--no-ref", &r->do_ref, 0, "skip the reference and the accuracy figures"),
         LT_OPT_FLAG_("--native", &r->native, "run the native build (no cycle model; wall-clock speed)"),
         LT_OPT_FLAG_("--json", &r->json, "machine-readable JSON on stdout"),
+        LT_OPT_THREADS_(&threads_opt),
         LT_OPT_FLAG_("-q", &quiet, "quiet: summary lines only"),
         LT_OPT_END_};
     lt_opt_cmd_t cmd = {who, "[SCENE.json] [options]",
@@ -292,6 +295,7 @@ static int run_parse(run_t *r, int argc, char **argv)
     snprintf(machine_help, sizeof machine_help, "machine model: %s (lanetrace machines)",
              lt_meter_machine_names());
     rc = lt_opt_parse(&cmd, argc, argv, 2);
+    lt_par_set_threads((unsigned)threads_opt);
     if (r->json)
         quiet = 1;
     return rc;
@@ -487,6 +491,7 @@ static void run_facts(const run_t *r, const char *pname, double ms, size_t acc_b
     cJSON_AddNumberToObject(x, "width", sf->width);
     cJSON_AddNumberToObject(x, "height", sf->height);
     cJSON_AddNumberToObject(x, "host_ms", ms);
+    cJSON_AddNumberToObject(x, "host_threads", lt_par_workers(UINT32_MAX, 1));
     cJSON_AddNumberToObject(x, "frame_hash", lt_frame_hash(&r->fr));
     cJSON_AddNumberToObject(x, "structure_bytes", (double)acc_bytes);
     if (r->dropped != NULL) {
@@ -648,8 +653,10 @@ static int run_path(run_t *r, const lt_path_info_t *p)
         lt_frame_compare(&r->fr, &r->ref, 1e-4 * r->sc.radius, &ac);
     if (!r->json) {
         char rt[LT_RATE_TEXT];
-        printf("time      %-4s %.3f ms for %d frame(s) of %u rays (%s, %s host)\n", pname, ms,
-               r->repeat, sf->width * sf->height, lt_meter_available() ? "counted" : "native",
+        unsigned nth = lt_par_workers(UINT32_MAX, 1);
+        printf("time      %-4s %.3f ms for %d frame(s) of %u rays (%s, %u thread%s, %s host)\n",
+               pname, ms, r->repeat, sf->width * sf->height,
+               lt_meter_available() ? "counted" : "native", nth, nth == 1 ? "" : "s",
                lt_rate_text(ms > 0.0 ? (double)rays / (ms * 1e-3) : -1.0, rt));
         printf("result    %-4s hash 0x%08x\n", pname, lt_frame_hash(&r->fr));
         if (r->do_ref)
@@ -1414,6 +1421,7 @@ static int render_parse(render_t *r, int argc, char **argv)
          .help = "point light in mesh file units (default: the scene's first light,\n"
                  "else centre + 2 radius normalize(-0.5, 1.5, 0.8))"},
         LT_OPT_FLAG_("--json", &r->json, "print what was written as JSON on stdout"),
+        LT_OPT_THREADS_(&threads_opt),
         LT_OPT_FLAG_("-q", &quiet, "quiet"),
         LT_OPT_END_};
     lt_opt_cmd_t cmd = {
@@ -1432,6 +1440,7 @@ static int render_parse(render_t *r, int argc, char **argv)
                       "(f32 when s15.16 cannot represent the scene and q16 was not asked for)",
             sizeof num_help - strlen(num_help) - 1);
     rc = lt_opt_parse(&cmd, argc, argv, 2);
+    lt_par_set_threads((unsigned)threads_opt);
     if (r->json)
         quiet = 1;
     r->path = lt_paths_find(r->num_names[r->num], LT_PATHS_OBJECT);

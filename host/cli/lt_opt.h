@@ -102,6 +102,13 @@ typedef struct lt_opt {
 #define LT_OPT_ENUM_(nm, d, nms, h)                                                                \
     {.name = (nm), .kind = LT_OPT_ENUM, .dest = (d), .help = (h), .names = (nms)}
 #define LT_OPT_SECTION_(h) {.kind = LT_OPT_SECTION, .help = (h)}
+/* --threads N of the commands that trace on every core (lt_par.h), into an int (the command
+ * passes it to lt_par_set_threads; 0 = every online core, the commands' default) */
+#define LT_OPT_THREADS_(d)                                                                         \
+    LT_OPT_INT("--threads", "N", (d), 0, 256,                                                      \
+               "threads for the tile loops, {range} (default 0: every online core);\n"              \
+               "results are bit-identical for any count; the simulator's charged\n"                 \
+               "kernels run on one")
 #define LT_OPT_END_ {.kind = LT_OPT_END}
 
 /* A subcommand: its options and where positional arguments go. */

@@ -15,6 +15,7 @@
 #include "io/lt_tmpfiles.h"
 #include "lt_meter.h"
 #include "io/lt_png.h"
+#include "render/lt_par.h"
 #include "render/lt_paths.h"
 #include "render/lt_render.h"
 #include "render/lt_reproject.h"
@@ -75,6 +76,8 @@ static const char *const tracer_name[] = {"quadtree", "dda", "hiz", NULL};
 static const char *const sample_name[] = {"bilinear", "nearest", NULL};
 
 /* --src-cam, --dst-cam: FX,FY,CX,CY in pixels, FX and FY > 0 */
+static int rp_threads; /* --threads (0: every core) */
+
 static int parse_cam(const char *text, void *dest, const void *ctx)
 {
     double k[4];
@@ -193,6 +196,7 @@ static int rp_options(rp_t *r, int *quiet, const char *prog, int argc, char **ar
         LT_OPT_OUT("--report", "FILE.json", &r->report, "json",
                    "(simulator build) the cycle report as JSON"),
         LT_OPT_FLAG_("--json", &r->json, "the summary as JSON on stdout"),
+        LT_OPT_THREADS_(&rp_threads),
         LT_OPT_FLAG_("-q", quiet, "quiet: no summary, no report text"),
         LT_OPT_END_};
     lt_opt_cmd_t cmd = {who, "[SCENE.json] --depth FILE.exr [options]",
@@ -227,7 +231,9 @@ static int rp_options(rp_t *r, int *quiet, const char *prog, int argc, char **ar
         lt_opt_help(&cmd, help);
         return LT_OPT_HELP;
     }
-    return lt_opt_parse(&cmd, argc, argv, 2);
+    k = lt_opt_parse(&cmd, argc, argv, 2);
+    lt_par_set_threads((unsigned)rp_threads);
+    return k;
 }
 
 void lt_rp_cli_usage(const char *prog, FILE *f)
@@ -1124,6 +1130,7 @@ int lt_rp_cli(int argc, char **argv, const char *prog, const lt_rp_cli_hooks_t *
     rp_figs_t f;
     int rc;
     memset(&r, 0, sizeof r);
+    memset(&f, 0, sizeof f);
     lt_sf_defaults(&r.sf);
     r.dist = -1;
     r.inpaint = 1;

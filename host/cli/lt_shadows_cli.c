@@ -15,6 +15,7 @@
 #include "cli/lt_opt.h"
 #include "cli/lt_shadows_cli.h"
 #include "lt_meter.h"
+#include "render/lt_par.h"
 #include "render/lt_paths.h"
 #include "io/lt_scenefile.h"
 
@@ -29,6 +30,7 @@
 
 /* "PROG shadows", the name messages start with */
 static char who[256];
+static int ss_threads; /* --threads (0: every core) */
 
 /* Counters of one stage (sim builds; zeros natively). */
 typedef struct stage {
@@ -212,6 +214,7 @@ static int shadows_parse(shadows_t *s, int argc, char **argv)
         LT_OPT_STR("--machine", "NAME", &s->machine, machine_help),
         LT_OPT_FLAG_("--report", &s->report,
                      "sim builds: the full cycle report of each shadow stage and the filter"),
+        LT_OPT_THREADS_(&ss_threads),
         LT_OPT_FLAG_("-q", &s->quiet, "only the result lines"),
         LT_OPT_END_};
     lt_opt_cmd_t cmd = {who, "[SCENE.json] [--mesh PATH] [options]",
@@ -226,7 +229,9 @@ static int shadows_parse(shadows_t *s, int argc, char **argv)
     snprintf(num_help, sizeof num_help, "numeric path, %s (default q16)", paths);
     snprintf(machine_help, sizeof machine_help, "sim builds: machine model (%s; default lrb16)",
              lt_meter_machine_names());
-    return lt_opt_parse(&cmd, argc, argv, 2);
+    int rc = lt_opt_parse(&cmd, argc, argv, 2);
+    lt_par_set_threads((unsigned)ss_threads);
+    return rc;
 }
 
 /* SCENE.json under the flags: mesh, resolution, numeric path, machine and the "shadows" object.
@@ -698,7 +703,8 @@ static void shadows_native(const shadows_t *s)
     if (s->run_fr)
         printf(", S-Frusta shadows %.3f s (%s)", sshf->seconds,
                lt_rate_text(rate(cnt->shadow_rays, sshf->seconds), r1));
-    printf(", shade %.3f s, filter %.3f s (one thread)\n", s->sshade.seconds, s->sfilt.seconds);
+    printf(", shade %.3f s, filter %.3f s (one thread); traces on %u thread%s\n",
+           s->sshade.seconds, s->sfilt.seconds, lt_par_threads(), lt_par_threads() == 1 ? "" : "s");
     if (s->run_pk && s->run_fr)
         printf("native    S-Frusta / S-Packet shadow speed-up %.2fx\n",
                sshp->seconds / sshf->seconds);

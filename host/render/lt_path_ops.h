@@ -109,19 +109,23 @@ struct lt_softshadow;
  * a single ray (lt_ray1_<p>_t, ray1_bytes). */
 typedef struct lt_ss_ops {
     size_t table_bytes, vtable_bytes; /* lt_frusta_table_<p>_t, lt_frusta_vtable_<p>_t */
+    /* one worker's packets and frusta (scr below: the stages' scratch, 64-byte aligned; each
+       worker of lt_par.h has its own, so the stages run on every core) */
+    size_t scratch_bytes;
     /* the path's data from the scene's and the light's doubles: triangle normals, the light's
        centre m and emitting normal nl, its sample table, the primary view table; 0, or -1 with a
        message */
     int (*init)(struct lt_softshadow *ss, const double m[3], const double nl[3],
                 lt_diag_t *diag);
     /* P-Packet of the 4x4 tile at (tx, ty) / P-Frusta of the 16x16 block at (bx, by), each with
-       its shading and its answer kept per pixel */
-    void (*primary_tile)(struct lt_softshadow *ss, uint32_t tx, uint32_t ty);
-    void (*primary_block)(struct lt_softshadow *ss, uint32_t bx, uint32_t by);
+       its shading and its answer kept per pixel (only the tile's / block's pixels are written);
+       both return the primary rays traced */
+    uint32_t (*primary_tile)(struct lt_softshadow *ss, void *scr, uint32_t tx, uint32_t ty);
+    uint32_t (*primary_block)(struct lt_softshadow *ss, void *scr, uint32_t bx, uint32_t by);
     /* S-Frusta of the 4x4 tile at (tx, ty); S-Packet of pixel q's 16 samples of set `set`
        (returns the occluded samples) */
-    void (*shadows_tile)(struct lt_softshadow *ss, uint32_t tx, uint32_t ty);
-    uint16_t (*packet)(struct lt_softshadow *ss, size_t q, unsigned set);
+    void (*shadows_tile)(struct lt_softshadow *ss, void *scr, uint32_t tx, uint32_t ty);
+    uint16_t (*packet)(const struct lt_softshadow *ss, void *scr, size_t q, unsigned set);
     /* E = G x visible fraction of the tile's pixels from stage `which`'s occlusion (the lanes;
        the caller charges the loads and stores and enters SHADE) */
     void (*shade_tile)(struct lt_softshadow *ss, uint32_t tx, uint32_t ty, int which);

@@ -5,6 +5,7 @@
  */
 #include "render/lt_render.h"
 #include "lt_meter.h"
+#include "render/lt_par.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -291,85 +292,152 @@ static uint64_t cycles_now(void) { return lt_meter_cycles(); }
 
 static uint64_t nodes_now(void) { return lt_meter_event(LT_EV_NODES); }
 
-/* Closest hit of one packet (the accel's scratch packet) through the structure. */
-static void trace16(const lt_accel_t *a, lt_mask16_t k, lt_hit16_t *hit)
+/* Closest hit of one packet (ray: the accel's scratch packet or a worker's) through the
+ * structure. */
+static void trace16(const lt_accel_t *a, void *ray, lt_mask16_t k, lt_hit16_t *hit)
 {
     const lt_render_ops_t *ops = a->ops;
     if (a->kind == ACC_CHUNKS)
-        ops->chunks_trace16(a->tris, a->n, a->boxes, a->isect, a->ray, k, hit);
+        ops->chunks_trace16(a->tris, a->n, a->boxes, a->isect, ray, k, hit);
     else if (a->kind == ACC_KD)
-        ops->kd_trace16(a->hdr, a->ray, k, hit);
+        ops->kd_trace16(a->hdr, ray, k, hit);
     else if (a->kind == ACC_GRID)
-        ops->grid_trace16(a->hdr, a->ray, k, hit);
+        ops->grid_trace16(a->hdr, ray, k, hit);
     else if (a->kind == ACC_BVHQ)
-        ops->bvhq_trace16(&a->bvhq, a->tris, a->ray, k, hit);
+        ops->bvhq_trace16(&a->bvhq, a->tris, ray, k, hit);
     else
-        ops->bvh_trace16(&a->bvh, a->tris, a->ray, k, hit);
+        ops->bvh_trace16(&a->bvh, a->tris, ray, k, hit);
 }
 
-/* Any hit of the scratch packet: the occluded lanes of k (hierarchies only). */
-static lt_mask16_t occluded16(const lt_accel_t *a, lt_mask16_t k)
+/* Any hit of a packet: the occluded lanes of k (hierarchies only). */
+static lt_mask16_t occluded16(const lt_accel_t *a, void *ray, lt_mask16_t k)
 {
     const lt_render_ops_t *ops = a->ops;
     if (a->kind == ACC_KD)
-        return ops->kd_occluded16(a->hdr, a->ray, k);
+        return ops->kd_occluded16(a->hdr, ray, k);
     if (a->kind == ACC_GRID)
-        return ops->grid_occluded16(a->hdr, a->ray, k);
+        return ops->grid_occluded16(a->hdr, ray, k);
     if (a->kind == ACC_BVHQ)
-        return ops->bvhq_occluded16(&a->bvhq, a->tris, a->ray, k);
-    return ops->bvh_occluded16(&a->bvh, a->tris, a->ray, k);
+        return ops->bvhq_occluded16(&a->bvhq, a->tris, ray, k);
+    return ops->bvh_occluded16(&a->bvh, a->tris, ray, k);
+}
+
+/* ---- the loops on every core (lt_par.h) ------------------------------------------------------
+ * A task is one row of 4x4 tiles (or of pixels); each writes only its own pixels. Worker 0 uses
+ * the accel's scratch packet (the one the cycle model knows), the others their own. */
+
+typedef struct rd_job {
+    const lt_accel_t *a;
+    const lt_camera_t *c;
+    lt_frame_t *f;             /* primary, primary1: the frame written; peel: the next layer */
+    const lt_frame_t *prev;    /* shadows: the primary hits; peel: the previous layer */
+    const double *light;       /* shadows */
+    double eps;                /* shadows */
+    uint8_t *occluded;         /* shadows (may be NULL) */
+    void *ray[LT_PAR_MAX_THREADS];
+    uint32_t n[LT_PAR_MAX_THREADS], occ[LT_PAR_MAX_THREADS]; /* shadows: per-worker counts */
+} rd_job_t;
+
+/* The job's scratch packets for up to lt_par_workers(ntasks, 1) workers; returns how many are
+ * ready (at least 1: worker 0 has the accel's). */
+static unsigned rd_open(rd_job_t *j, const lt_accel_t *a, uint32_t ntasks)
+{
+    unsigned w = lt_par_workers(ntasks, 1), i;
+    memset(j, 0, sizeof *j);
+    j->a = a;
+    j->ray[0] = a->ray;
+    for (i = 1; i < w; i++) {
+        if ((j->ray[i] = alloc64(a->ops->ray16_bytes)) == NULL)
+            break;
+        memset(j->ray[i], 0, a->ops->ray16_bytes);
+    }
+    return i;
+}
+
+static void rd_close(rd_job_t *j)
+{
+    unsigned i;
+    for (i = 1; i < LT_PAR_MAX_THREADS; i++)
+        free(j->ray[i]);
+}
+
+static uint32_t tile_rows(const lt_camera_t *c) { return (c->height + 3u) / 4u; }
+
+static void primary_row(void *ctx, unsigned w, uint32_t row)
+{
+    const rd_job_t *j = ctx;
+    const lt_accel_t *a = j->a;
+    const lt_camera_t *c = j->c;
+    lt_frame_t *f = j->f;
+    void *ray = j->ray[w];
+    uint32_t tx, ty = 4u * row;
+    for (tx = 0; tx < c->width; tx += 4) {
+        lt_hit16_t hit;
+        lt_mask16_t k;
+        uint64_t c0 = cycles_now(), n0 = nodes_now();
+        float per, steps;
+        int i;
+        lt_phase_t prev = LT_PHASE_ENTER(SETUP);
+        k = a->ops->camera_packet(c, tx, ty, ray);
+        LT_EVENT(RAYS, lt__popcount32(k));
+        LT_PHASE_LEAVE(prev);
+        trace16(a, ray, k, &hit);
+        per = (float)(cycles_now() - c0) / (float)lt__popcount32(k);
+        steps = (float)(nodes_now() - n0);
+        for (i = 0; i < LT_LANES; i++) {
+            uint32_t x = tx + (uint32_t)(i % 4), y = ty + (uint32_t)(i / 4);
+            size_t p = (size_t)y * c->width + x;
+            if ((((unsigned)k >> i) & 1u) == 0)
+                continue;
+            f->id[p] = hit.id.l[i];
+            f->t[p] = a->ops->ray16_t(ray, i);
+            f->cost[p] = per;
+            f->steps[p] = steps;
+        }
+    }
 }
 
 void lt_render_primary(const lt_scene_t *s, const lt_accel_t *a, const lt_camera_t *c,
                        lt_frame_t *f, void (*progress)(double done))
 {
-    uint32_t tx, ty;
+    rd_job_t j;
+    unsigned w = rd_open(&j, a, tile_rows(c));
     (void)s;
-    for (ty = 0; ty < c->height; ty += 4) {
-        for (tx = 0; tx < c->width; tx += 4) {
-            lt_hit16_t hit;
-            lt_mask16_t k;
-            uint64_t c0 = cycles_now(), n0 = nodes_now();
-            float per, steps;
-            int i;
-            lt_phase_t prev = LT_PHASE_ENTER(SETUP);
-            k = a->ops->camera_packet(c, tx, ty, a->ray);
-            LT_EVENT(RAYS, lt__popcount32(k));
-            LT_PHASE_LEAVE(prev);
-            trace16(a, k, &hit);
-            per = (float)(cycles_now() - c0) / (float)lt__popcount32(k);
-            steps = (float)(nodes_now() - n0);
-            for (i = 0; i < LT_LANES; i++) {
-                uint32_t x = tx + (uint32_t)(i % 4), y = ty + (uint32_t)(i / 4);
-                size_t p = (size_t)y * c->width + x;
-                if ((((unsigned)k >> i) & 1u) == 0)
-                    continue;
-                f->id[p] = hit.id.l[i];
-                f->t[p] = a->ops->ray16_t(a->ray, i);
-                f->cost[p] = per;
-                f->steps[p] = steps;
-            }
-        }
-        if (progress != NULL)
-            progress((double)(ty + 4) / (double)c->height);
+    j.c = c;
+    j.f = f;
+    (void)lt_par_run(tile_rows(c), w, primary_row, &j, progress);
+    rd_close(&j);
+}
+
+typedef struct ref_job {
+    const lt_scene_t *s;
+    const lt_camera_t *c;
+    lt_frame_t *f;
+} ref_job_t;
+
+static void reference_row(void *ctx, unsigned w, uint32_t y)
+{
+    const ref_job_t *j = ctx;
+    uint32_t x;
+    (void)w;
+    for (x = 0; x < j->c->width; x++) {
+        double d[3];
+        size_t p = (size_t)y * j->c->width + x;
+        lt_camera_dir(j->c, x, y, d);
+        j->f->id[p] = lt_ref_trace(j->s, j->c->eye, d, &j->f->t[p]);
+        j->f->cost[p] = 0.0f;
     }
 }
 
+/* The reference charges nothing (double-precision host code): every core, in every build. */
 void lt_render_reference(const lt_scene_t *s, const lt_camera_t *c, lt_frame_t *f,
                          void (*progress)(double done))
 {
-    uint32_t x, y;
-    for (y = 0; y < c->height; y++) {
-        for (x = 0; x < c->width; x++) {
-            double d[3];
-            size_t p = (size_t)y * c->width + x;
-            lt_camera_dir(c, x, y, d);
-            f->id[p] = lt_ref_trace(s, c->eye, d, &f->t[p]);
-            f->cost[p] = 0.0f;
-        }
-        if (progress != NULL && (y & 7) == 7)
-            progress((double)(y + 1) / (double)c->height);
-    }
+    ref_job_t j;
+    j.s = s;
+    j.c = c;
+    j.f = f;
+    (void)lt_par_run(c->height, lt_par_workers(c->height, 0), reference_row, &j, progress);
 }
 
 void lt_frame_compare(const lt_frame_t *a, const lt_frame_t *ref, double tol, lt_accuracy_t *acc)
@@ -412,45 +480,116 @@ uint32_t lt_frame_hash(const lt_frame_t *f)
     return h;
 }
 
+/* kd-tree, grid, chunks: no scalar traversal; each ray runs alone through the packet kernel with
+   a one-lane mask (what a 16-lane machine does with an incoherent ray: 1/16 lane utilisation).
+   The tile's packet is set up once, its lanes traced one by one. */
+static void primary1_lanes_row(void *ctx, unsigned w, uint32_t row)
+{
+    const rd_job_t *j = ctx;
+    const lt_accel_t *a = j->a;
+    const lt_camera_t *c = j->c;
+    void *ray = j->ray[w];
+    uint32_t tx, ty = 4u * row;
+    for (tx = 0; tx < c->width; tx += 4) {
+        lt_mask16_t k = a->ops->camera_packet(c, tx, ty, ray);
+        int i;
+        LT_EVENT(RAYS, lt__popcount32(k));
+        for (i = 0; i < LT_LANES; i++) {
+            lt_hit16_t hit;
+            size_t p = (size_t)(ty + (uint32_t)(i / 4)) * c->width + tx + (uint32_t)(i % 4);
+            if ((((unsigned)k >> i) & 1u) == 0)
+                continue;
+            trace16(a, ray, (lt_mask16_t)(1u << i), &hit);
+            j->f->id[p] = hit.id.l[i];
+            j->f->t[p] = a->ops->ray16_t(ray, i);
+        }
+    }
+}
+
+static void primary1_row(void *ctx, unsigned w, uint32_t y)
+{
+    const rd_job_t *j = ctx;
+    const lt_accel_t *a = j->a;
+    const lt_camera_t *c = j->c;
+    uint32_t x;
+    (void)w;
+    for (x = 0; x < c->width; x++) {
+        double d[3];
+        size_t p = (size_t)y * c->width + x;
+        lt_camera_dir(c, x, y, d);
+        j->f->id[p] = a->kind == ACC_BVHQ
+                          ? a->ops->bvhq_trace1(&a->bvhq, a->tris, c->eye, d, &j->f->t[p])
+                          : a->ops->bvh_trace1(&a->bvh, a->tris, c->eye, d, &j->f->t[p]);
+    }
+}
+
 /* One primary ray per pixel (single-ray traversal, BVH structures only). */
 int lt_render_primary1(const lt_scene_t *s, const lt_accel_t *a, const lt_camera_t *c,
                        lt_frame_t *f, lt_diag_t *diag)
 {
-    uint32_t x, y;
+    rd_job_t j;
+    int lanes = a->kind != ACC_BVH && a->kind != ACC_BVHQ;
+    uint32_t nt = lanes ? tile_rows(c) : c->height;
+    unsigned w = rd_open(&j, a, nt);
     (void)diag;
     (void)s;
-    if (a->kind != ACC_BVH && a->kind != ACC_BVHQ) {
-        /* kd-tree, grid, chunks: no scalar traversal; each ray runs alone through the packet
-           kernel with a one-lane mask (what a 16-lane machine does with an incoherent ray:
-           1/16 lane utilisation). The tile's packet is set up once, its lanes traced one by one. */
-        uint32_t tx, ty;
-        for (ty = 0; ty < c->height; ty += 4)
-            for (tx = 0; tx < c->width; tx += 4) {
-                lt_mask16_t k = a->ops->camera_packet(c, tx, ty, a->ray);
-                int i;
-                LT_EVENT(RAYS, lt__popcount32(k));
-                for (i = 0; i < LT_LANES; i++) {
-                    lt_hit16_t hit;
-                    size_t p = (size_t)(ty + (uint32_t)(i / 4)) * c->width + tx + (uint32_t)(i % 4);
-                    if ((((unsigned)k >> i) & 1u) == 0)
-                        continue;
-                    trace16(a, (lt_mask16_t)(1u << i), &hit);
-                    f->id[p] = hit.id.l[i];
-                    f->t[p] = a->ops->ray16_t(a->ray, i);
-                }
-            }
-        return 0;
-    }
-    for (y = 0; y < c->height; y++)
-        for (x = 0; x < c->width; x++) {
-            double d[3];
-            size_t p = (size_t)y * c->width + x;
-            lt_camera_dir(c, x, y, d);
-            f->id[p] = a->kind == ACC_BVHQ
-                           ? a->ops->bvhq_trace1(&a->bvhq, a->tris, c->eye, d, &f->t[p])
-                           : a->ops->bvh_trace1(&a->bvh, a->tris, c->eye, d, &f->t[p]);
-        }
+    j.c = c;
+    j.f = f;
+    (void)lt_par_run(nt, w, lanes ? primary1_lanes_row : primary1_row, &j, NULL);
+    rd_close(&j);
     return 0;
+}
+
+static void shadows_row(void *ctx, unsigned w, uint32_t row)
+{
+    rd_job_t *j = ctx;
+    const lt_accel_t *a = j->a;
+    const lt_camera_t *c = j->c;
+    const lt_frame_t *f = j->prev;
+    void *ray = j->ray[w];
+    uint32_t tx, ty = 4u * row;
+    for (tx = 0; tx < c->width; tx += 4) {
+        unsigned k = 0;
+        lt_mask16_t o = 0;
+        int i;
+        for (i = 0; i < LT_LANES; i++) {
+            uint32_t x = tx + (uint32_t)(i % 4), y = ty + (uint32_t)(i / 4);
+            double d[3], p[3], l2 = 0.0, len;
+            size_t q = (size_t)y * c->width + x;
+            int m;
+            if (x < c->width && y < c->height && f->id[q] >= 0) {
+                lt_camera_dir(c, x, y, d);
+                for (m = 0; m < 3; m++) {
+                    p[m] = c->eye[m] + f->t[q] * d[m];
+                    d[m] = j->light[m] - p[m];
+                    l2 += d[m] * d[m];
+                }
+                len = sqrt(l2);
+                for (m = 0; m < 3; m++)
+                    d[m] /= len;
+                k |= 1u << i;
+            } else {
+                p[0] = p[1] = p[2] = 0.0;
+                d[0] = 1.0;
+                d[1] = d[2] = 0.0;
+                len = 1.0;
+            }
+            a->ops->ray16_lane(ray, i, p, d, j->eps, len - j->eps);
+        }
+        if (k == 0)
+            continue;
+        a->ops->ray16_setup(ray);
+        o = occluded16(a, ray, (lt_mask16_t)k);
+        j->n[w] += lt__popcount32(k);
+        j->occ[w] += lt__popcount32(o);
+        if (j->occluded != NULL)
+            for (i = 0; i < LT_LANES; i++) {
+                uint32_t x = tx + (uint32_t)(i % 4), y = ty + (uint32_t)(i / 4);
+                if (x < c->width && y < c->height)
+                    j->occluded[(size_t)y * c->width + x] =
+                        (uint8_t)(((unsigned)o >> i) & 1u);
+            }
+    }
 }
 
 /* Shadow rays from each primary hit of f towards the light (scaled units), 16-ray packets over
@@ -459,94 +598,80 @@ int lt_render_shadows(const lt_scene_t *s, const lt_accel_t *a, const lt_camera_
                       const lt_frame_t *f, const double light[3], uint32_t *nrays,
                       uint32_t *noccluded, uint8_t *occluded, lt_diag_t *diag)
 {
-    uint32_t tx, ty, n = 0, occ = 0;
-    double eps = 1e-4 * s->radius;
+    rd_job_t j;
+    unsigned w, i;
+    uint32_t n = 0, occ = 0;
     if (a->kind == ACC_CHUNKS) {
         lt_diag_fail(diag, "shadow rays need a hierarchy (bvh, bvhq, kd, grid)");
         return -1;
     }
-    for (ty = 0; ty < c->height; ty += 4)
-        for (tx = 0; tx < c->width; tx += 4) {
-            unsigned k = 0;
-            lt_mask16_t o = 0;
-            int i;
-            for (i = 0; i < LT_LANES; i++) {
-                uint32_t x = tx + (uint32_t)(i % 4), y = ty + (uint32_t)(i / 4);
-                double d[3], p[3], l2 = 0.0, len;
-                size_t q = (size_t)y * c->width + x;
-                int j;
-                if (x < c->width && y < c->height && f->id[q] >= 0) {
-                    lt_camera_dir(c, x, y, d);
-                    for (j = 0; j < 3; j++) {
-                        p[j] = c->eye[j] + f->t[q] * d[j];
-                        d[j] = light[j] - p[j];
-                        l2 += d[j] * d[j];
-                    }
-                    len = sqrt(l2);
-                    for (j = 0; j < 3; j++)
-                        d[j] /= len;
-                    k |= 1u << i;
-                } else {
-                    p[0] = p[1] = p[2] = 0.0;
-                    d[0] = 1.0;
-                    d[1] = d[2] = 0.0;
-                    len = 1.0;
-                }
-                a->ops->ray16_lane(a->ray, i, p, d, eps, len - eps);
-            }
-            if (k == 0)
-                continue;
-            a->ops->ray16_setup(a->ray);
-            o = occluded16(a, (lt_mask16_t)k);
-            n += lt__popcount32(k);
-            occ += lt__popcount32(o);
-            if (occluded != NULL)
-                for (i = 0; i < LT_LANES; i++) {
-                    uint32_t x = tx + (uint32_t)(i % 4), y = ty + (uint32_t)(i / 4);
-                    if (x < c->width && y < c->height)
-                        occluded[(size_t)y * c->width + x] = (uint8_t)(((unsigned)o >> i) & 1u);
-                }
-        }
+    w = rd_open(&j, a, tile_rows(c));
+    j.c = c;
+    j.prev = f;
+    j.light = light;
+    j.eps = 1e-4 * s->radius;
+    j.occluded = occluded;
+    (void)lt_par_run(tile_rows(c), w, shadows_row, &j, NULL);
+    for (i = 0; i < w; i++) {
+        n += j.n[i];
+        occ += j.occ[i];
+    }
+    rd_close(&j);
     *nrays = n;
     *noccluded = occ;
     return 0;
 }
 
+static void peel_row(void *ctx, unsigned w, uint32_t row)
+{
+    const rd_job_t *j = ctx;
+    const lt_accel_t *a = j->a;
+    const lt_camera_t *c = j->c;
+    void *ray = j->ray[w];
+    uint32_t tx, ty = 4u * row;
+    for (tx = 0; tx < c->width; tx += 4) {
+        lt_hit16_t hit;
+        lt_mask16_t k, live = 0;
+        int i;
+        k = a->ops->camera_packet(c, tx, ty, ray);
+        /* the next surface lies strictly beyond the previous hit: tmin = previous t */
+        for (i = 0; i < LT_LANES; i++) {
+            uint32_t x = tx + (uint32_t)(i % 4), y = ty + (uint32_t)(i / 4);
+            size_t p = (size_t)y * c->width + x;
+            if (((unsigned)k >> i & 1u) == 0 || j->prev->id[p] < 0)
+                continue;
+            live = (lt_mask16_t)(live | (1u << i));
+            a->ops->ray16_tmin(ray, i, j->prev->t[p]);
+        }
+        hit.id = lt_vi32_set1(-1);
+        if (live != 0)
+            trace16(a, ray, live, &hit);
+        for (i = 0; i < LT_LANES; i++) {
+            uint32_t x = tx + (uint32_t)(i % 4), y = ty + (uint32_t)(i / 4);
+            size_t p = (size_t)y * c->width + x;
+            if (((unsigned)k >> i & 1u) == 0)
+                continue;
+            j->f->id[p] = ((unsigned)live >> i & 1u) ? hit.id.l[i] : -1;
+            j->f->t[p] = a->ops->ray16_t(ray, i);
+        }
+    }
+}
+
 int lt_render_peel(const lt_scene_t *s, const lt_accel_t *a, const lt_camera_t *c,
                    const lt_frame_t *prev, lt_frame_t *next, lt_diag_t *diag)
 {
-    uint32_t tx, ty;
+    rd_job_t j;
+    unsigned w;
     (void)s;
     if (a->kind == ACC_CHUNKS) {
         lt_diag_fail(diag, "depth peeling needs a hierarchy (bvh, bvhq, kd, grid)");
         return -1;
     }
-    for (ty = 0; ty < c->height; ty += 4)
-        for (tx = 0; tx < c->width; tx += 4) {
-            lt_hit16_t hit;
-            lt_mask16_t k, live = 0;
-            int i;
-            k = a->ops->camera_packet(c, tx, ty, a->ray);
-            /* the next surface lies strictly beyond the previous hit: tmin = previous t */
-            for (i = 0; i < LT_LANES; i++) {
-                uint32_t x = tx + (uint32_t)(i % 4), y = ty + (uint32_t)(i / 4);
-                size_t p = (size_t)y * c->width + x;
-                if (((unsigned)k >> i & 1u) == 0 || prev->id[p] < 0)
-                    continue;
-                live = (lt_mask16_t)(live | (1u << i));
-                a->ops->ray16_tmin(a->ray, i, prev->t[p]);
-            }
-            hit.id = lt_vi32_set1(-1);
-            if (live != 0)
-                trace16(a, live, &hit);
-            for (i = 0; i < LT_LANES; i++) {
-                uint32_t x = tx + (uint32_t)(i % 4), y = ty + (uint32_t)(i / 4);
-                size_t p = (size_t)y * c->width + x;
-                if (((unsigned)k >> i & 1u) == 0)
-                    continue;
-                next->id[p] = ((unsigned)live >> i & 1u) ? hit.id.l[i] : -1;
-                next->t[p] = a->ops->ray16_t(a->ray, i);
-            }
-        }
+    w = rd_open(&j, a, tile_rows(c));
+    j.c = c;
+    j.prev = prev;
+    j.f = next;
+    (void)lt_par_run(tile_rows(c), w, peel_row, &j, NULL);
+    rd_close(&j);
     return 0;
 }

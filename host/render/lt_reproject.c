@@ -7,6 +7,7 @@
 #include "render/lt_reproject.h"
 #include "cli/lt_cliutil.h"
 #include "lt_meter.h"
+#include "render/lt_par.h"
 #include "render/lt_paths.h"
 #include "render/lt_qt_ref.h"
 
@@ -430,22 +431,22 @@ static void fetch(const fetch_ctx_t *f, uint32_t layer, double x, double y, doub
 /* ---- the run ------------------------------------------------------------------------------- */
 
 /* The class, colour, depth and source position of target pixel p from its traced lane. */
-static void classify(lt_rp_result_t *res, const fetch_ctx_t *fc, const lt_reproj_cam_t *dst,
-                     size_t p, const lt_rp_lane_t *ln)
+static void classify(lt_rp_result_t *res, lt_rp_stats_t *st, const fetch_ctx_t *fc,
+                     const lt_reproj_cam_t *dst, size_t p, const lt_rp_lane_t *ln)
 {
     const lt_rp_source_t *src = fc->src;
     uint32_t W = src->width, H = src->height;
     double t = ln->t, w = ln->w, rx = ln->x, ry = ln->y, rdx = ln->dx, rdy = ln->dy;
-    res->st.rays++;
-    res->st.nodes += ln->nodes;
-    res->st.aabb += ln->aabb;
-    res->st.planes += ln->planes;
-    if (ln->nodes > res->st.nodes_max)
-        res->st.nodes_max = ln->nodes;
-    if (ln->aabb > res->st.aabb_max)
-        res->st.aabb_max = ln->aabb;
-    if (ln->planes > res->st.planes_max)
-        res->st.planes_max = ln->planes;
+    st->rays++;
+    st->nodes += ln->nodes;
+    st->aabb += ln->aabb;
+    st->planes += ln->planes;
+    if (ln->nodes > st->nodes_max)
+        st->nodes_max = ln->nodes;
+    if (ln->aabb > st->aabb_max)
+        st->aabb_max = ln->aabb;
+    if (ln->planes > st->planes_max)
+        st->planes_max = ln->planes;
     res->steps[p] = (float)ln->nodes;
     if (ln->status == LT_QT_HIT && w > 0.0) {
         double sx = rx + t * rdx, sy = ry + t * rdy;
@@ -505,42 +506,101 @@ typedef struct rp_run {
     rp_tracer_t *tr;
 } rp_run_t;
 
-/* Every 4x4 target tile: its segments, the trace, each lane's class; cycles per stage. */
-static void trace_tiles(const rp_run_t *rr, const fetch_ctx_t *fc, const lt_reproj_cam_t *dst,
-                        const lt_rp_opts_t *o, lt_rp_result_t *res)
+/* The tile loop on every core (lt_par.h): a task is a row of 4x4 tiles, each worker has its own
+ * packet, results and counts (summed after; worker 0 has the run's own packet). The charged
+ * trace runs on one thread in the sim build. */
+typedef struct rp_job {
+    const rp_run_t *rr;
+    const fetch_ctx_t *fc;
+    const lt_reproj_cam_t *dst;
+    const lt_rp_opts_t *o;
+    lt_rp_result_t *res;
+    void *ray[LT_PAR_MAX_THREADS], *hit[LT_PAR_MAX_THREADS];
+    lt_rp_stats_t *st; /* one per worker */
+} rp_job_t;
+
+static void trace_row(void *ctx, unsigned wk, uint32_t row)
 {
-    uint32_t tx, ty;
-    for (ty = 0; ty < dst->height; ty += 4) {
-        for (tx = 0; tx < dst->width; tx += 4) {
-            lt_mask16_t k = 0xFFFF, kon = 0;
-            uint64_t p0 = cycles_now();
-            float per;
-            int l;
-            for (l = 0; l < LT_LANES; l++)
-                if (tx + (uint32_t)(l & 3) < dst->width && ty + (uint32_t)(l >> 2) < dst->height)
-                    kon = (lt_mask16_t)(kon | (1u << l));
-            k = kon;
-            rr->ops->rays16(rr->map, tx, ty, rr->ray, &k);
-            if (k != 0)
-                trace16(rr->tr, rr->ops, rr->ray, k, o->max_steps, rr->hit);
-            res->st.packets += k != 0;
-            per = (float)(cycles_now() - p0) / (float)lt__popcount32(kon);
-            for (l = 0; l < LT_LANES; l++) {
-                uint32_t x = tx + (uint32_t)(l & 3), y = ty + (uint32_t)(l >> 2);
-                size_t p = (size_t)y * dst->width + x;
-                lt_rp_lane_t ln;
-                if (!LT__ON(kon, l))
-                    continue;
-                res->cycles[p] = per;
-                if (!LT__ON(k, l))
-                    continue; /* empty segment: outside the source view */
-                rr->ops->lane(rr->ray, rr->hit, l, &ln);
-                classify(res, fc, dst, p, &ln);
-            }
+    const rp_job_t *j = ctx;
+    const rp_run_t *rr = j->rr;
+    const lt_reproj_cam_t *dst = j->dst;
+    lt_rp_result_t *res = j->res;
+    lt_rp_stats_t *st = &j->st[wk];
+    void *ray = j->ray[wk], *hit = j->hit[wk];
+    uint32_t tx, ty = 4u * row;
+    for (tx = 0; tx < dst->width; tx += 4) {
+        lt_mask16_t k = 0xFFFF, kon = 0;
+        uint64_t p0 = cycles_now();
+        float per;
+        int l;
+        for (l = 0; l < LT_LANES; l++)
+            if (tx + (uint32_t)(l & 3) < dst->width && ty + (uint32_t)(l >> 2) < dst->height)
+                kon = (lt_mask16_t)(kon | (1u << l));
+        k = kon;
+        rr->ops->rays16(rr->map, tx, ty, ray, &k);
+        if (k != 0)
+            trace16(rr->tr, rr->ops, ray, k, j->o->max_steps, hit);
+        st->packets += k != 0;
+        per = (float)(cycles_now() - p0) / (float)lt__popcount32(kon);
+        for (l = 0; l < LT_LANES; l++) {
+            uint32_t x = tx + (uint32_t)(l & 3), y = ty + (uint32_t)(l >> 2);
+            size_t p = (size_t)y * dst->width + x;
+            lt_rp_lane_t ln;
+            if (!LT__ON(kon, l))
+                continue;
+            res->cycles[p] = per;
+            if (!LT__ON(k, l))
+                continue; /* empty segment: outside the source view */
+            rr->ops->lane(ray, hit, l, &ln);
+            classify(res, st, j->fc, dst, p, &ln);
         }
-        if (o->progress != NULL)
-            o->progress((double)(ty + 4) / (double)dst->height);
     }
+}
+
+/* Every 4x4 target tile: its segments, the trace, each lane's class; cycles per stage. 0, or -1
+ * when out of memory (nothing traced). */
+static int trace_tiles(const rp_run_t *rr, const fetch_ctx_t *fc, const lt_reproj_cam_t *dst,
+                       const lt_rp_opts_t *o, lt_rp_result_t *res)
+{
+    rp_job_t j;
+    uint32_t rows = (dst->height + 3u) / 4u;
+    unsigned w = lt_par_workers(rows, 1), i;
+    memset(&j, 0, sizeof j);
+    j.rr = rr;
+    j.fc = fc;
+    j.dst = dst;
+    j.o = o;
+    j.res = res;
+    j.ray[0] = rr->ray;
+    j.hit[0] = rr->hit;
+    if ((j.st = calloc(w, sizeof *j.st)) == NULL)
+        return -1;
+    for (i = 1; i < w; i++)
+        if ((j.ray[i] = alloc64z(rr->ops->ray_bytes)) == NULL ||
+            (j.hit[i] = alloc64z(rr->ops->hit_bytes)) == NULL)
+            break;
+    w = i;
+    (void)lt_par_run(rows, w, trace_row, &j, o->progress);
+    for (i = 0; i < w; i++) {
+        const lt_rp_stats_t *t = &j.st[i];
+        res->st.rays += t->rays;
+        res->st.nodes += t->nodes;
+        res->st.aabb += t->aabb;
+        res->st.planes += t->planes;
+        res->st.packets += t->packets;
+        if (t->nodes_max > res->st.nodes_max)
+            res->st.nodes_max = t->nodes_max;
+        if (t->aabb_max > res->st.aabb_max)
+            res->st.aabb_max = t->aabb_max;
+        if (t->planes_max > res->st.planes_max)
+            res->st.planes_max = t->planes_max;
+    }
+    for (i = 1; i < LT_PAR_MAX_THREADS; i++) {
+        free(j.ray[i]);
+        free(j.hit[i]);
+    }
+    free(j.st);
+    return 0;
 }
 
 /* The result's buffers for a w x h target, every pixel outside with no depth; 0 or -1. */
@@ -686,7 +746,10 @@ int lt_rp_run(const lt_rp_source_t *src, const lt_reproj_cam_t *dst, const lt_rp
     fc.bilinear = o->bilinear;
 
     t0 = lt_now_s();
-    trace_tiles(&rr, &fc, dst, o, res);
+    if (trace_tiles(&rr, &fc, dst, o, res) != 0) {
+        lt_diag_fail(diag, "reproject: out of memory for the tile loop's counts");
+        goto done;
+    }
     res->st.t_trace = lt_now_s() - t0;
     /* one source of truth with the cycle report: the model's phase totals over the call */
     lt_meter_totals(&m1);

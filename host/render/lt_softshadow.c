@@ -10,6 +10,7 @@
 #include "render/lt_softshadow_int.h"
 #include "io/lt_fx_float.h"
 #include "lt_meter.h"
+#include "render/lt_par.h"
 #include "io/lt_png.h"
 
 #include <math.h>
@@ -272,6 +273,7 @@ void lt_ss_free(lt_softshadow_t *ss)
     free(ss->v);
     free(ss->vr);
     free(ss->ray1);
+    free(ss->scr0);
     free(ss->id);
     free(ss->valid);
     free(ss->lit);
@@ -308,6 +310,7 @@ static int alloc_buffers(lt_softshadow_t *ss)
     ss->lm = alloc64(3 * LT_SS_ELEM), ss->ln = alloc64(3 * LT_SS_ELEM);
     ss->tn = malloc((size_t)ss->s->ntris * 3 * LT_SS_ELEM + 4);
     ss->ray1 = alloc64(ops->ray1_bytes);
+    ss->scr0 = alloc64(ops->scratch_bytes);
     ss->id = malloc(n * sizeof *ss->id);
     ss->valid = alloc64(n), ss->lit = alloc64(n);
     ss->occ[0] = alloc64(n * 2), ss->occ[1] = alloc64(n * 2);
@@ -319,7 +322,7 @@ static int alloc_buffers(lt_softshadow_t *ss)
     }
     fail |= ss->v == NULL || ss->vr == NULL || ss->tb == NULL || ss->vt == NULL ||
             ss->lm == NULL || ss->ln == NULL || ss->tn == NULL || ss->ray1 == NULL ||
-            ss->id == NULL || ss->valid == NULL || ss->lit == NULL || ss->occ[0] == NULL ||
+            ss->scr0 == NULL || ss->id == NULL || ss->valid == NULL || ss->lit == NULL || ss->occ[0] == NULL ||
             ss->occ[1] == NULL || ss->vref == NULL;
     return fail ? -1 : 0;
 }
@@ -405,6 +408,7 @@ lt_softshadow_t *lt_ss_create(const lt_scene_t *s, const lt_camera_t *cam, const
     region(ss->ashal, ss->shal.bytes, 2);
     region(ss->valid, n, 11);
     region(ss->vt, ss->ops->vtable_bytes, 12);
+    region(ss->scr0, ss->ops->scratch_bytes, 13);
     return ss;
 }
 
@@ -426,25 +430,76 @@ static void primary_counts(lt_softshadow_t *ss, int which)
     }
 }
 
+/* ---- the stages on every core (lt_par.h) ------------------------------------------------------
+ * A task is a row of tiles, of 16x16 blocks or of pixels; each writes only its own pixels, and
+ * counts go per worker, summed after. Worker 0 uses ss->scr0 (at a fixed simulated address); the
+ * others their own scratch. The charged stages run on one thread in the sim build. */
+
+typedef struct ss_job {
+    lt_softshadow_t *ss;
+    void *scr[LT_PAR_MAX_THREADS];
+    uint32_t rays[LT_PAR_MAX_THREADS];
+    void (*progress)(double done);
+} ss_job_t;
+
+/* Scratch for the workers of ntasks tasks: returns how many are ready (at least 1). */
+static unsigned ss_open(ss_job_t *j, lt_softshadow_t *ss, uint32_t ntasks, int counted)
+{
+    unsigned w = lt_par_workers(ntasks, counted), i;
+    memset(j, 0, sizeof *j);
+    j->ss = ss;
+    j->scr[0] = ss->scr0;
+    for (i = 1; i < w; i++)
+        if ((j->scr[i] = alloc64(ss->ops->scratch_bytes)) == NULL)
+            break;
+    return i;
+}
+
+static uint32_t ss_close(ss_job_t *j)
+{
+    uint32_t i, rays = 0;
+    for (i = 1; i < LT_PAR_MAX_THREADS; i++)
+        free(j->scr[i]);
+    for (i = 0; i < LT_PAR_MAX_THREADS; i++)
+        rays += j->rays[i];
+    return rays;
+}
+
+static void ss_primary_row(void *ctx, unsigned w, uint32_t row)
+{
+    ss_job_t *j = ctx;
+    uint32_t tx;
+    for (tx = 0; tx < j->ss->w; tx += 4)
+        j->rays[w] += j->ss->ops->primary_tile(j->ss, j->scr[w], tx, 4u * row);
+}
+
 void lt_ss_primary(lt_softshadow_t *ss)
 {
-    uint32_t tx, ty;
-    ss->cnt.primary_rays = 0;
-    for (ty = 0; ty < ss->h; ty += 4)
-        for (tx = 0; tx < ss->w; tx += 4)
-            ss->ops->primary_tile(ss, tx, ty);
+    ss_job_t j;
+    uint32_t rows = (ss->h + 3u) / 4u;
+    unsigned w = ss_open(&j, ss, rows, 1);
+    (void)lt_par_run(rows, w, ss_primary_row, &j, NULL);
+    ss->cnt.primary_rays = ss_close(&j);
     primary_counts(ss, 0);
+}
+
+static void ss_block_row(void *ctx, unsigned w, uint32_t row)
+{
+    ss_job_t *j = ctx;
+    uint32_t bx;
+    for (bx = 0; bx < j->ss->w; bx += 16)
+        j->rays[w] += j->ss->ops->primary_block(j->ss, j->scr[w], bx, 16u * row);
 }
 
 /* P-Frusta: 16 frusta (the 4x4 tiles of a 16x16 block) through the shallow tree, then each tile
  * shaded from its frustum's hits. */
 void lt_ss_primary_frusta(lt_softshadow_t *ss)
 {
-    uint32_t bx, by;
-    ss->cnt.primary_rays = 0;
-    for (by = 0; by < ss->h; by += 16)
-        for (bx = 0; bx < ss->w; bx += 16)
-            ss->ops->primary_block(ss, bx, by);
+    ss_job_t j;
+    uint32_t rows = (ss->h + 15u) / 16u;
+    unsigned w = ss_open(&j, ss, rows, 1);
+    (void)lt_par_run(rows, w, ss_block_row, &j, NULL);
+    ss->cnt.primary_rays = ss_close(&j);
     primary_counts(ss, 1);
 }
 
@@ -503,23 +558,42 @@ static void count_occ(lt_softshadow_t *ss, int which)
     }
 }
 
+static void ss_shadows_row(void *ctx, unsigned w, uint32_t row)
+{
+    ss_job_t *j = ctx;
+    uint32_t tx;
+    for (tx = 0; tx < j->ss->w; tx += 4)
+        j->ss->ops->shadows_tile(j->ss, j->scr[w], tx, 4u * row);
+}
+
 void lt_ss_shadows_frusta(lt_softshadow_t *ss)
 {
-    uint32_t tx, ty;
-    for (ty = 0; ty < ss->h; ty += 4)
-        for (tx = 0; tx < ss->w; tx += 4)
-            ss->ops->shadows_tile(ss, tx, ty);
+    ss_job_t j;
+    uint32_t rows = (ss->h + 3u) / 4u;
+    unsigned w = ss_open(&j, ss, rows, 1);
+    (void)lt_par_run(rows, w, ss_shadows_row, &j, NULL);
+    (void)ss_close(&j);
     count_occ(ss, 0);
+}
+
+static void ss_packet_row(void *ctx, unsigned w, uint32_t y)
+{
+    ss_job_t *j = ctx;
+    lt_softshadow_t *ss = j->ss;
+    uint32_t x;
+    for (x = 0; x < ss->w; x++) {
+        size_t q = (size_t)y * ss->w + x;
+        ss->occ[1][q] =
+            ss->lit[q] ? ss->ops->packet(ss, j->scr[w], q, (x & 3u) + 4u * (y & 3u)) : 0;
+    }
 }
 
 void lt_ss_shadows_packet(lt_softshadow_t *ss)
 {
-    uint32_t x, y;
-    for (y = 0; y < ss->h; y++)
-        for (x = 0; x < ss->w; x++) {
-            size_t q = (size_t)y * ss->w + x;
-            ss->occ[1][q] = ss->lit[q] ? ss->ops->packet(ss, q, (x & 3u) + 4u * (y & 3u)) : 0;
-        }
+    ss_job_t j;
+    unsigned w = ss_open(&j, ss, ss->h, 1);
+    (void)lt_par_run(ss->h, w, ss_packet_row, &j, NULL);
+    (void)ss_close(&j);
     count_occ(ss, 1);
 }
 
@@ -540,23 +614,29 @@ void lt_ss_shade(lt_softshadow_t *ss, int which)
 
 void lt_ss_filter(lt_softshadow_t *ss) { ss->ops->filter(ss, 0); }
 
+static void ss_reference_row(void *ctx, unsigned w, uint32_t y)
+{
+    ss_job_t *j = ctx;
+    lt_softshadow_t *ss = j->ss;
+    uint32_t x;
+    for (x = 0; x < ss->w; x++) {
+        size_t q = (size_t)y * ss->w + x;
+        unsigned s, occ = 0;
+        if (ss->lit[q])
+            for (s = 0; s < LT_FRUSTA_SETS; s++)
+                occ += lt__popcount32(ss->ops->packet(ss, j->scr[w], q, s));
+        ss->vref[q] = ss->lit[q] ? 1.0 - (double)occ / 256.0 : 0.0;
+        store_at(ss, ss->er, q, value_at(ss, ss->g, q) * ss->vref[q]);
+        store_at(ss, ss->vr, q, ss->vref[q]);
+    }
+}
+
 void lt_ss_reference(lt_softshadow_t *ss, void (*progress)(double done))
 {
-    uint32_t x, y;
-    for (y = 0; y < ss->h; y++) {
-        for (x = 0; x < ss->w; x++) {
-            size_t q = (size_t)y * ss->w + x;
-            unsigned s, occ = 0;
-            if (ss->lit[q])
-                for (s = 0; s < LT_FRUSTA_SETS; s++)
-                    occ += lt__popcount32(ss->ops->packet(ss, q, s));
-            ss->vref[q] = ss->lit[q] ? 1.0 - (double)occ / 256.0 : 0.0;
-            store_at(ss, ss->er, q, value_at(ss, ss->g, q) * ss->vref[q]);
-            store_at(ss, ss->vr, q, ss->vref[q]);
-        }
-        if (progress != NULL && (y & 15u) == 15u)
-            progress((double)(y + 1) / (double)ss->h);
-    }
+    ss_job_t j;
+    unsigned w = ss_open(&j, ss, ss->h, 1);
+    (void)lt_par_run(ss->h, w, ss_reference_row, &j, progress);
+    (void)ss_close(&j);
     ss->ops->filter(ss, 1);
 }
 

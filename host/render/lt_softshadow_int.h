@@ -39,6 +39,7 @@ struct lt_softshadow {
     void *org[3], *z, *g, *e, *ef, *er, *efr, *v, *vr;
     void *nrm[3];
     void *ray1;                /* the audits' single ray (ops->ray1_bytes) */
+    void *scr0;                /* worker 0's scratch (ops->scratch_bytes; lt_par.h) */
     int32_t *id;
     uint8_t *valid, *lit;
     uint16_t *occ[2];
