@@ -44,42 +44,13 @@ static int quiet;
 static int threads_opt; /* --threads (0: every core) */
 static const char *prog = "lanetrace";
 
-/* ---- progress bar (stderr, only on a TTY, only after the first second) ------------------------ */
+/* ---- progress bar (lt_cliutil.h: stderr, a TTY only, after the first second) ----------------- */
 
-static double t_start;
+static void progress(double done) { lt_progress(done); }
 
-static const char *progress_label = "";
-static int progress_shown;
+static void progress_begin(const char *label) { lt_progress_begin(label, quiet); }
 
-static void progress(double done)
-{
-    double el = lt_now_s() - t_start;
-    int i, w = 30, fill;
-    if (quiet || !isatty(2) || el < 1.0)
-        return;
-    if (done > 1.0)
-        done = 1.0;
-    fill = (int)(done * w);
-    fprintf(stderr, "\r%-10s [", progress_label);
-    for (i = 0; i < w; i++)
-        fputc(i < fill ? '#' : ' ', stderr);
-    fprintf(stderr, "] %3.0f%% ETA %.1fs ", 100.0 * done, done > 0 ? el * (1.0 - done) / done : 0.0);
-    progress_shown = 1;
-}
-
-static void progress_begin(const char *label)
-{
-    progress_label = label;
-    t_start = lt_now_s();
-    progress_shown = 0;
-}
-
-static void progress_end(void)
-{
-    if (progress_shown)
-        fprintf(stderr, "\r%60s\r", "");
-    progress_shown = 0;
-}
+static void progress_end(void) { lt_progress_end(); }
 
 /* ---- atomic outputs: a temporary name renamed into place; Ctrl-C removes the temporary ---------- */
 

@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include <unistd.h>
 
 double lt_now_s(void)
 {
@@ -48,4 +49,41 @@ int lt_path_tagged(char *out, size_t n, const char *path, const char *tag)
     else
         k = snprintf(out, n, "%.*s.%s%s", (int)(dot - path), path, tag, dot);
     return k >= 0 && (size_t)k < n ? 0 : -1;
+}
+
+static struct {
+    const char *label;
+    double t0;
+    int quiet, shown;
+} bar;
+
+void lt_progress_begin(const char *label, int quiet)
+{
+    bar.label = label;
+    bar.t0 = lt_now_s();
+    bar.quiet = quiet;
+    bar.shown = 0;
+}
+
+void lt_progress(double done)
+{
+    double el = lt_now_s() - bar.t0;
+    int i, w = 30, fill;
+    if (bar.quiet || !isatty(2) || el < 1.0)
+        return;
+    if (done > 1.0)
+        done = 1.0;
+    fill = (int)(done * w);
+    fprintf(stderr, "\r%-10s [", bar.label != NULL ? bar.label : "");
+    for (i = 0; i < w; i++)
+        fputc(i < fill ? '#' : ' ', stderr);
+    fprintf(stderr, "] %3.0f%% ETA %.1fs ", 100.0 * done, done > 0 ? el * (1.0 - done) / done : 0.0);
+    bar.shown = 1;
+}
+
+void lt_progress_end(void)
+{
+    if (bar.shown)
+        fprintf(stderr, "\r%60s\r", "");
+    bar.shown = 0;
 }

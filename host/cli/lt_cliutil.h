@@ -21,4 +21,11 @@ int lt_path_tagged(char *out, size_t n, const char *path, const char *tag);
 /* A linear value clamped to [0, 1] (NaN -> 0) encoded with gamma 2.2 to 0..255, rounded. */
 uint8_t lt_gamma8(double v);
 
+/* A progress bar on stderr ("label [#####     ]  40% ETA 1.5s"): drawn only when stderr is a
+ * TTY, the run has taken more than a second and quiet is 0; lt_progress_end erases it. One bar
+ * at a time; lt_progress is called from one thread (lt_par.h calls it on the caller's). */
+void lt_progress_begin(const char *label, int quiet);
+void lt_progress(double done);
+void lt_progress_end(void);
+
 #endif /* LT_CLIUTIL_H */

@@ -720,7 +720,9 @@ static void shadows_outputs(shadows_t *s)
     if (!s->no_ref) {
         lt_ss_quality_t q;
         double t0 = lt_now_s();
-        lt_ss_reference(s->ss, NULL);
+        lt_progress_begin("reference", s->quiet);
+        lt_ss_reference(s->ss, lt_progress);
+        lt_progress_end();
         lt_ss_quality(s->ss, s->tol, &q);
         printf("quality   vs 256 samples/pixel (%.1f s): PSNR filtered %.2f dB, unfiltered 16 spp "
                "%.2f dB, reference through the same filter %.2f dB, filtered vs filtered reference "
