@@ -64,7 +64,7 @@ awk -v res="$RES" -v runs="$RUNS" -v commit="$commit" -v when="$when" '
 function rest(n,   s, i) { s = $n; for (i = n + 1; i <= NF; i++) s = s " " $i; return s }
 function kv(   i) { delete v; for (i = 3; i < NF; i += 2) v[$i] = $(i + 1) }
 function mr(x) { return x >= 100 ? sprintf("%.0f", x) : x >= 10 ? sprintf("%.1f", x) : sprintf("%.2f", x) }
-function rt(x) { return x < 0.1 ? sprintf("%.3fx", x) : sprintf("%.2fx", x) }
+function rt(x) { return x < 0.0995 ? sprintf("%.3fx", x) : sprintf("%.2fx", x) }
 function yn(x) { return x ? "yes" : "no" }
 function pretty(f) {
     if (f == "teapot.obj") return "teapot"
