@@ -33,6 +33,7 @@
  */
 #include "io/lt_mesh.h"
 #include "cli/lt_cliutil.h"
+#include "render/lt_par.h"
 #include "render/lt_render.h"
 #include "render/lt_scene.h"
 
@@ -643,6 +644,8 @@ int main(int argc, char **argv)
     /* MXCSR bits 15 (FTZ) and 6 (DAZ), set directly: the header macros trip -Wsign-conversion */
     _mm_setcsr(_mm_getcsr() | 0x8040u);
 #endif
+    /* one thread on both sides: lanetrace's tile loops (lt_par.h) and Embree's device */
+    lt_par_set_threads(1u);
     if (lt_mesh_load(mesh_path, &m, &diag) != 0 ||
         lt_scene_prepare(&m, &sc, &diag) != 0) {
         fprintf(stderr, "%s\n", diag.msg);
