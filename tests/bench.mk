@@ -5,6 +5,9 @@
 #   make race-doc           the race on the bundled teapot and the shared scenes (1024x1024, median
 #                           of 3; about a minute, needs ../shared) into docs/results.md between its
 #                           race markers, the machine and ISA in the caption (tests/bench/race_doc.sh)
+#   make speed-doc          the cost of counting (tests/bench/counting.sh) and the all-core scaling
+#                           (tests/bench/scaling.sh; the shared dragon, about a minute) into
+#                           docs/results.md between their counting and scaling markers
 $(B)/host/embree-race: $(B)/host/obj/tests/bench/embree_race.o $(host_CORE_OBJS) $(host_HOST_OBJS)
 	@echo "LD $@"
 	@$(CC) -o $@ $^ $(LIBS_host) -lembree3
@@ -14,3 +17,11 @@ race-doc: deps
 	@$(MAKE) --no-print-directory $(B)/host/embree-race
 	@B=$(B) tests/bench/race_doc.sh
 .PHONY: race-doc
+
+speed-doc: deps
+	@$(MAKE) --no-print-directory all
+	@B=$(B) tests/bench/counting.sh --md $(B)/counting.md
+	@B=$(B) tests/bench/scaling.sh --md $(B)/scaling.md
+	@tools/doc_insert.sh counting $(B)/counting.md docs/results.md
+	@tools/doc_insert.sh scaling $(B)/scaling.md docs/results.md
+.PHONY: speed-doc

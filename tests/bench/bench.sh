@@ -1,13 +1,16 @@
 #!/usr/bin/env bash
 # bench.sh - benchmarks printed as ratios against a peer measured in the same run (make bench):
 #  1. the cost of counting: the same kernels on the same frames, native (LT_COST_OFF) vs counted
-#     (LT_COST_SIM, lrb16 with caches); target: counted <= 3x native;
+#     (LT_COST_SIM, lrb16 with caches), one thread each; target: counted <= 3x native
+#     (tests/bench/counting.sh);
 #  2. the scalar MCU model vs measured instructions: mcu-m4's predicted cycles for the slab-test loop
 #     vs the instructions QEMU's lt_icount plugin counts inside lt_slab16_q16 on Cortex-M4;
 #  3. the race against Embree 3 at its best on this machine (native, single thread, same rays; all
 #     shared scenes): rtcIntersect1/4/8/16 and rtcOccluded1/4/8/16, both context flags, a warm-up,
 #     the median; the CPU, its ISA and Embree's native packet widths printed first (make race-doc
 #     writes the table of docs/results.md);
+# 3b. every core: render/run, shadows and reproject on one thread vs every online core
+#     (tests/bench/scaling.sh; target >= 1.8x on 2 cores);
 #  4. structures: grid vs kd-tree vs BVH in the simulator (tests/bench/structures.sh);
 #  5. the cycle report of the bundled scene on lrb16;
 #  6. screen-space baselines: quadtree vs DDA vs Hi-Z on the same rays (build/sim/ssbench);
@@ -24,15 +27,8 @@ SCENE=${BENCH_SCENE:-scenes/teapot.obj}
 RES=${BENCH_RES:-128}
 REP=${BENCH_REPEAT:-10}
 
-echo "== 1. cost of counting: $SCENE ${RES}x${RES}, $REP frames, median of 3 runs"
-median() { sort -g | sed -n 2p; }
-for p in q16 f32; do
-    nat=$(for i in 1 2 3; do "$B/host/lanetrace-native" run --mesh "$SCENE" --res "$RES" --repeat "$REP" --num $p --no-ref -q |
-        awk '/^time/{print $3}'; done | median)
-    cnt=$(for i in 1 2 3; do "$B/sim/lanetrace" run --mesh "$SCENE" --res "$RES" --repeat "$REP" --num $p --no-ref -q |
-        awk '/^time/{print $3}'; done | median)
-    awk -v p=$p -v n="$nat" -v c="$cnt" 'BEGIN{r=c/n; printf "%-4s native %8.2f ms  counted %8.2f ms  ratio %.2fx (target <= 3x: %s)\n", p, n, c, r, (r<=3)?"met":"NOT met"}'
-done
+echo "== 1. cost of counting: native vs counted, one thread each (tests/bench/counting.sh)"
+B=$B BENCH_SCENE="$SCENE" BENCH_RES="$RES" BENCH_REPEAT="$REP" tests/bench/counting.sh
 
 echo "== 2. mcu-m4 model vs QEMU instruction counts (Cortex-M4, mps2-an386, lt_icount plugin)"
 source <(make -s --no-print-directory -f tools/print_qemu.mk)
@@ -60,6 +56,9 @@ for m in bunny.obj dragon_res3.obj sponza.obj sibenik.obj conference.obj.gz Corn
         "$B/host/embree-race" --mesh "../shared/scenes/$m" --res 1024 --runs 3 --structure "$STRUCT"
     fi
 done
+
+echo "== 3b. every core: the native build on --threads 1 vs every online core (tests/bench/scaling.sh; target >= 1.8x on 2 cores)"
+B=$B tests/bench/scaling.sh
 
 echo "== 4. structures: grid vs kd-tree vs BVH (lrb16, simulator, ${STRUCT_RES:-128}x${STRUCT_RES:-128})"
 B=$B tests/bench/structures.sh
