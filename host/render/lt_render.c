@@ -506,20 +506,31 @@ static void primary1_lanes_row(void *ctx, unsigned w, uint32_t row)
     }
 }
 
-static void primary1_row(void *ctx, unsigned w, uint32_t y)
+/* bvh, bvhq: each ray of a row of 4x4 tiles alone through the single-ray traversal (tile order:
+ * the directions come 16 at a time, lt_camera_tile_dirs). */
+static void primary1_row(void *ctx, unsigned w, uint32_t row)
 {
     const rd_job_t *j = ctx;
     const lt_accel_t *a = j->a;
     const lt_camera_t *c = j->c;
-    uint32_t x;
+    uint32_t tx, ty = 4u * row;
     (void)w;
-    for (x = 0; x < c->width; x++) {
-        double d[3];
-        size_t p = (size_t)y * c->width + x;
-        lt_camera_dir(c, x, y, d);
-        j->f->id[p] = a->kind == ACC_BVHQ
-                          ? a->ops->bvhq_trace1(&a->bvhq, a->tris, c->eye, d, &j->f->t[p])
-                          : a->ops->bvh_trace1(&a->bvh, a->tris, c->eye, d, &j->f->t[p]);
+    for (tx = 0; tx < c->width; tx += 4) {
+        double dx[LT_LANES], dy[LT_LANES], dz[LT_LANES];
+        unsigned k = lt_camera_tile_dirs(c, tx, ty, dx, dy, dz);
+        int i;
+        for (i = 0; i < LT_LANES; i++) {
+            double d[3];
+            size_t p = (size_t)(ty + (uint32_t)(i / 4)) * c->width + tx + (uint32_t)(i % 4);
+            if (((k >> i) & 1u) == 0)
+                continue;
+            d[0] = dx[i];
+            d[1] = dy[i];
+            d[2] = dz[i];
+            j->f->id[p] = a->kind == ACC_BVHQ
+                              ? a->ops->bvhq_trace1(&a->bvhq, a->tris, c->eye, d, &j->f->t[p])
+                              : a->ops->bvh_trace1(&a->bvh, a->tris, c->eye, d, &j->f->t[p]);
+        }
     }
 }
 
@@ -529,7 +540,7 @@ int lt_render_primary1(const lt_scene_t *s, const lt_accel_t *a, const lt_camera
 {
     rd_job_t j;
     int lanes = a->kind != ACC_BVH && a->kind != ACC_BVHQ;
-    uint32_t nt = lanes ? tile_rows(c) : c->height;
+    uint32_t nt = tile_rows(c);
     unsigned w = rd_open(&j, a, nt);
     (void)diag;
     (void)s;
@@ -551,14 +562,18 @@ static void shadows_row(void *ctx, unsigned w, uint32_t row)
     for (tx = 0; tx < c->width; tx += 4) {
         unsigned k = 0;
         lt_mask16_t o = 0;
+        double cx[LT_LANES], cy[LT_LANES], cz[LT_LANES];
         int i;
+        (void)lt_camera_tile_dirs(c, tx, ty, cx, cy, cz);
         for (i = 0; i < LT_LANES; i++) {
             uint32_t x = tx + (uint32_t)(i % 4), y = ty + (uint32_t)(i / 4);
             double d[3], p[3], l2 = 0.0, len;
             size_t q = (size_t)y * c->width + x;
             int m;
             if (x < c->width && y < c->height && f->id[q] >= 0) {
-                lt_camera_dir(c, x, y, d);
+                d[0] = cx[i];
+                d[1] = cy[i];
+                d[2] = cz[i];
                 for (m = 0; m < 3; m++) {
                     p[m] = c->eye[m] + f->t[q] * d[m];
                     d[m] = j->light[m] - p[m];

@@ -212,23 +212,61 @@ void lt_camera_dir(const lt_camera_t *c, uint32_t x, uint32_t y, double d[3])
     normalize(d);
 }
 
-lt_mask16_t lt_camera_packet_q16(const lt_camera_t *c, uint32_t tx, uint32_t ty, lt_ray16_q16_t *r)
+/* Written as lane loops over doubles that the compiler vectorises (IEEE +, x, / and sqrt are
+ * correctly rounded in any width; the build keeps contraction off), so bit-identical to
+ * lt_camera_dir. */
+unsigned lt_camera_tile_dirs(const lt_camera_t *c, uint32_t tx, uint32_t ty, double dx[LT_LANES],
+                             double dy[LT_LANES], double dz[LT_LANES])
 {
+    double aspect = (double)c->width / (double)c->height;
+    double w = (double)c->width, h = (double)c->height, t = c->tan_half_fov;
+    double u[LT_LANES], v[LT_LANES], l[LT_LANES];
     unsigned k = 0;
     int i;
     for (i = 0; i < LT_LANES; i++) {
+        double x = (double)(tx + (uint32_t)(i % 4)), y = (double)(ty + (uint32_t)(i / 4));
+        u[i] = (2.0 * (x + 0.5) / w - 1.0) * t * aspect;
+        v[i] = (1.0 - 2.0 * (y + 0.5) / h) * t;
+    }
+    for (i = 0; i < LT_LANES; i++) {
+        dx[i] = c->fwd[0] + u[i] * c->right[0] + v[i] * c->up[0];
+        dy[i] = c->fwd[1] + u[i] * c->right[1] + v[i] * c->up[1];
+        dz[i] = c->fwd[2] + u[i] * c->right[2] + v[i] * c->up[2];
+    }
+    for (i = 0; i < LT_LANES; i++)
+        l[i] = sqrt(dx[i] * dx[i] + dy[i] * dy[i] + dz[i] * dz[i]);
+    for (i = 0; i < LT_LANES; i++) {
+        dx[i] /= l[i];
+        dy[i] /= l[i];
+        dz[i] /= l[i];
+    }
+    for (i = 0; i < LT_LANES; i++) {
         uint32_t x = tx + (uint32_t)(i % 4), y = ty + (uint32_t)(i / 4);
-        double d[3] = {0.0, 0.0, 1.0};
         if (x < c->width && y < c->height) {
-            lt_camera_dir(c, x, y, d);
             k |= 1u << i;
+        } else {
+            dx[i] = dy[i] = 0.0;
+            dz[i] = 1.0;
         }
-        r->ox.l[i] = lt_q16_from_double_sat(c->eye[0]);
-        r->oy.l[i] = lt_q16_from_double_sat(c->eye[1]);
-        r->oz.l[i] = lt_q16_from_double_sat(c->eye[2]);
-        r->dx.l[i] = lt_q30_from_double_sat(d[0]);
-        r->dy.l[i] = lt_q30_from_double_sat(d[1]);
-        r->dz.l[i] = lt_q30_from_double_sat(d[2]);
+    }
+    return k;
+}
+
+lt_mask16_t lt_camera_packet_q16(const lt_camera_t *c, uint32_t tx, uint32_t ty, lt_ray16_q16_t *r)
+{
+    double dx[LT_LANES], dy[LT_LANES], dz[LT_LANES];
+    unsigned k = lt_camera_tile_dirs(c, tx, ty, dx, dy, dz);
+    lt_q16_t o[3];
+    int i;
+    for (i = 0; i < 3; i++)
+        o[i] = lt_q16_from_double_sat(c->eye[i]);
+    for (i = 0; i < LT_LANES; i++) {
+        r->ox.l[i] = o[0];
+        r->oy.l[i] = o[1];
+        r->oz.l[i] = o[2];
+        r->dx.l[i] = lt_q30_from_double_sat(dx[i]);
+        r->dy.l[i] = lt_q30_from_double_sat(dy[i]);
+        r->dz.l[i] = lt_q30_from_double_sat(dz[i]);
         r->tmin.l[i] = 0;
         r->tmax.l[i] = LT_Q16_MAX - 1;
     }
@@ -238,21 +276,16 @@ lt_mask16_t lt_camera_packet_q16(const lt_camera_t *c, uint32_t tx, uint32_t ty,
 
 lt_mask16_t lt_camera_packet_f32(const lt_camera_t *c, uint32_t tx, uint32_t ty, lt_ray16_f32_t *r)
 {
-    unsigned k = 0;
+    double dx[LT_LANES], dy[LT_LANES], dz[LT_LANES];
+    unsigned k = lt_camera_tile_dirs(c, tx, ty, dx, dy, dz);
     int i;
     for (i = 0; i < LT_LANES; i++) {
-        uint32_t x = tx + (uint32_t)(i % 4), y = ty + (uint32_t)(i / 4);
-        double d[3] = {0.0, 0.0, 1.0};
-        if (x < c->width && y < c->height) {
-            lt_camera_dir(c, x, y, d);
-            k |= 1u << i;
-        }
         r->ox.l[i] = (float)c->eye[0];
         r->oy.l[i] = (float)c->eye[1];
         r->oz.l[i] = (float)c->eye[2];
-        r->dx.l[i] = (float)d[0];
-        r->dy.l[i] = (float)d[1];
-        r->dz.l[i] = (float)d[2];
+        r->dx.l[i] = (float)dx[i];
+        r->dy.l[i] = (float)dy[i];
+        r->dz.l[i] = (float)dz[i];
         r->tmin.l[i] = 0.0f;
         r->tmax.l[i] = 3.0e38f;
     }

@@ -71,6 +71,12 @@ void lt_camera_basis(lt_camera_t *c, const double dir[3], const double up[3]);
 /* Unit direction of the ray through the centre of pixel (x, y) (y down). */
 void lt_camera_dir(const lt_camera_t *c, uint32_t x, uint32_t y, double d[3]);
 
+/* The directions of the 16 pixels of the 4x4 tile at (tx, ty) (lane i = pixel (tx + i % 4,
+ * ty + i / 4)), each bit-identical to lt_camera_dir's, computed 16 at a time; lanes off the image
+ * get (0, 0, 1). Returns the on-image lanes. */
+unsigned lt_camera_tile_dirs(const lt_camera_t *c, uint32_t tx, uint32_t ty, double dx[16],
+                             double dy[16], double dz[16]);
+
 /* Packets of the 4x4 tile whose top-left pixel is (tx, ty); pixels outside the image are masked
  * off. Returns the active mask. Lane i = pixel (tx + i % 4, ty + i / 4). */
 lt_mask16_t lt_camera_packet_q16(const lt_camera_t *c, uint32_t tx, uint32_t ty, lt_ray16_q16_t *r);
