@@ -83,6 +83,11 @@ LDFLAGS_asansim := $(LDFLAGS_asan)
 CFLAGS_tsan := $(HOST_CFLAGS) -O1 -fsanitize=thread -fno-omit-frame-pointer \
     -DLT_COST_MODE=LT_COST_OFF
 LDFLAGS_tsan := -fsanitize=thread
+# The AVX2 lane backend (firmware/include/lt/lt_v16_x86.h) on any x86 host that runs AVX2: the
+# kernels for x86-64-v3 (AVX2, FMA, no AVX-512), native LT_COST_OFF; make test compares its
+# vectors with the golden file and runs test_v16 and test_isect on it (the native build takes the
+# widest backend its -march allows, asan the portable loops)
+CFLAGS_avx2 := $(HOST_CFLAGS) -march=x86-64-v3 -DLT_COST_MODE=LT_COST_OFF
 # host-side libraries (Debian): assimp, cJSON, OpenEXR's C API (OpenEXRCore), libpng, zlib
 HOST_LIBS = -pthread -lassimp -lcjson -lOpenEXRCore-3_1 -lpng16 -lz -lm
 LIBS_host = $(HOST_LIBS)
@@ -90,6 +95,7 @@ LIBS_sim = $(HOST_LIBS)
 LIBS_asan = $(HOST_LIBS)
 LIBS_asansim = $(HOST_LIBS)
 LIBS_tsan = $(HOST_LIBS)
+LIBS_avx2 = $(HOST_LIBS)
 VARIANTS := host sim asan
 SIM_VARIANTS := sim asansim
 
@@ -122,7 +128,7 @@ $(B)/$(1)/lt-vectors: $(B)/$(1)/obj/tests/vectors/vec_host.o $(B)/$(1)/obj/$(VEC
 	@echo "LD $$@"
 	@$(CC) $(LDFLAGS_$(1)) -o $$@ $$^ $(LIBS_$(1))
 endef
-$(foreach v,$(VARIANTS) asansim tsan,$(eval $(call variant_rules,$(v))))
+$(foreach v,$(VARIANTS) asansim tsan avx2,$(eval $(call variant_rules,$(v))))
 
 $(B)/sim/test_cache: $(B)/sim/obj/tests/unit/test_cache.o $(B)/sim/obj/sim/lt_cache.o \
     $(SIM_HOST_DEPS:%.c=$(B)/sim/obj/%.o)
@@ -164,7 +170,8 @@ run: deps
 
 TEST_BINS := $(foreach v,$(VARIANTS),$(UNIT_TESTS:%=$(B)/$(v)/test_%) $(B)/$(v)/lt-vectors) \
     $(B)/sim/test_cache $(B)/host/lanetrace-native $(B)/sim/lanetrace $(EXTRA_TEST_BINS) \
-    $(B)/tsan/test_par $(B)/tsan/lanetrace-native
+    $(B)/tsan/test_par $(B)/tsan/lanetrace-native $(B)/avx2/test_v16 $(B)/avx2/test_isect \
+    $(B)/avx2/lt-vectors
 
 test: deps
 	@$(MAKE) --no-print-directory test-build

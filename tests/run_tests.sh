@@ -37,6 +37,26 @@ for v in host sim asan; do
     "$B/$v/lt-vectors" >"$tmp/$v.txt" 2>"$tmp/$v.err"
     check "vectors/$v = golden" diff -u "$golden" "$tmp/$v.txt"
 done
+# the lane backends (firmware/include/lt/lt_v16_x86.h): host and sim take the widest x86 backend
+# their -march allows, asan the portable loops; build/avx2 the AVX2 one, run where the CPU has AVX2
+echo "   lane backends: host $("$B/host/lt-vectors" --backend 2>/dev/null), asan $("$B/asan/lt-vectors" --backend 2>/dev/null)"
+if grep -qw avx2 /proc/cpuinfo 2>/dev/null; then
+    "$B/avx2/lt-vectors" >"$tmp/avx2.txt" 2>"$tmp/avx2.err"
+    check "vectors/avx2 ($("$B/avx2/lt-vectors" --backend 2>/dev/null) lanes) = golden" diff -u "$golden" "$tmp/avx2.txt"
+    check "unit/avx2/test_v16 (every lane op against its scalar reference, AVX2 backend)" "$B/avx2/test_v16"
+    check "unit/avx2/test_isect (packet kernels, AVX2 backend)" "$B/avx2/test_isect"
+else
+    echo "SKIP lane backend avx2: this CPU has no AVX2"
+fi
+# the counted build on the backend charges what the portable loops charge: the cycle report of
+# the sim build (backend) = the ASan sim build's (portable), saturation events included
+for b in sim asan; do
+    "$B/$b/lanetrace" run scenes/teapot.json --res 48 --num q16 --no-ref --json 2>/dev/null |
+        python3 -c 'import json, sys; d = json.load(sys.stdin)[0]; print(d["total_cycles"], d["events"])' \
+            >"$tmp/bk.$b" 2>&1
+done
+check "cycle report on the $("$B/host/lt-vectors" --backend 2>/dev/null) backend = portable (cycles, events: $(cut -c1-60 "$tmp/bk.sim"))" \
+    bash -c "[ -s '$tmp/bk.sim' ] && cmp -s '$tmp/bk.sim' '$tmp/bk.asan'"
 source <(make -s --no-print-directory -f tools/print_qemu.mk)
 for t in cm4 cm55 rv32; do
     qvar="QEMU_$t"

@@ -120,9 +120,18 @@ static wt_v128_t q_tsum(lt_mask16_t k, lt_vql32_t u, lt_vql32_t v, lt_vql32_t w,
 }
 
 /* floor(n / d) and n mod d for an unsigned 128-bit n = (nh, nl) < d 2^31 and d > 0: restoring
- * division, one quotient bit per step (31 steps; the quotient is < 2^31). */
+ * division, one quotient bit per step (31 steps; the quotient is < 2^31), on the targets; the
+ * hardware divide on x86-64 hosts (the same exact result; -DLT_LANES_PORTABLE keeps the loop). */
 static uint32_t q_udiv128(uint64_t nh, uint64_t nl, uint64_t d, uint64_t *rem)
 {
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(LT_LANES_PORTABLE)
+    /* x86-64 hosts: the hardware's 128/64-bit divide, the same exact floor quotient and remainder
+       (nh < d, so the quotient fits and divq cannot fault) */
+    uint64_t q, r;
+    __asm__("divq %4" : "=a"(q), "=d"(r) : "a"(nl), "d"(nh), "rm"(d) : "cc");
+    *rem = r;
+    return (uint32_t)q;
+#else
     uint32_t q = 0;
     int b;
     for (b = 30; b >= 0; b--) {
@@ -135,6 +144,7 @@ static uint32_t q_udiv128(uint64_t nh, uint64_t nl, uint64_t d, uint64_t *rem)
     }
     *rem = nl;
     return q;
+#endif
 }
 
 /* One lane of q_tdiv_m: t = round(T 2^sh / det) as s15.16 (48 - 32 fractional bits), half up

@@ -35,6 +35,9 @@ typedef struct { float l[LT_LANES]; } lt_vf32_t;    /* 16 x IEEE binary32, 64 by
 
 #define LT__ON(k, i) ((((unsigned)(k)) >> (i)) & 1u)
 
+/* the x86 sequences of a few hot ops, or nothing (the portable loops below) */
+#include "lt_v16_x86.h"
+
 /* ---- masks --------------------------------------------------------------------------------- */
 
 /* Mask queries. Format: 16-bit mask. Cost: MASK x1 each. */
@@ -283,7 +286,41 @@ LT__V16_BIN(lt_vq16_t, lt_vq16_add_wrap, VALU, lt__q16_add_wrap)
 LT__V16_BIN(lt_vq16_t, lt_vq16_sub_wrap, VALU, lt__q16_sub_wrap)
 LT__V16_BIN(lt_vq16_t, lt_vq16_min, VALU, lt__q16_min)
 LT__V16_BIN(lt_vq16_t, lt_vq16_max, VALU, lt__q16_max)
+#if LT__X86_LANES
+/* The s15.16 product on the x86 backend (lt_v16_x86.h): the same three variants, bit-identical to
+ * the loop below; a masked variant computes every lane and keeps the active ones. */
+LT_INLINE lt_vq16_t lt_vq16_mul_sat(lt_vq16_t a, lt_vq16_t b) /* VMUL x1 */
+{
+    lt_vq16_t r;
+    LT_COST(VMUL, 1);
+    lt__x86_mul_round_sat(a.l, b.l, r.l, 16, LT_MASK_ALL);
+    return r;
+}
+LT_INLINE lt_vq16_t lt_vq16_mul_sat_m(lt_vq16_t src, lt_mask16_t k, lt_vq16_t a, lt_vq16_t b)
+{
+    lt_vq16_t r;
+    int i;
+    LT_COST(VMUL, 1);
+    LT_UTIL(k);
+    lt__x86_mul_round_sat(a.l, b.l, r.l, 16, k);
+    for (i = 0; i < LT_LANES; i++)
+        src.l[i] = LT__ON(k, i) ? r.l[i] : src.l[i];
+    return src;
+}
+LT_INLINE lt_vq16_t lt_vq16_mul_sat_z(lt_mask16_t k, lt_vq16_t a, lt_vq16_t b)
+{
+    lt_vq16_t r;
+    int i;
+    LT_COST(VMUL, 1);
+    LT_UTIL(k);
+    lt__x86_mul_round_sat(a.l, b.l, r.l, 16, k);
+    for (i = 0; i < LT_LANES; i++)
+        r.l[i] = LT__ON(k, i) ? r.l[i] : 0;
+    return r;
+}
+#else
 LT__V16_BIN(lt_vq16_t, lt_vq16_mul_sat, VMUL, lt__q16_mul_sat)
+#endif
 LT__V16_BIN(lt_vq16_t, lt_vq16_mul_sat_rd, VMUL, lt__q16_mul_sat_rd)
 LT__V16_BIN(lt_vq16_t, lt_vq16_div_sat, VDIV, lt__q16_div_sat)
 LT__V16_UN(lt_vq16_t, lt_vq16_abs_sat, VALU, lt__q16_abs_sat)
@@ -303,11 +340,18 @@ LT__V16_UN(lt_vq16_t, lt_vq16_recip_sat, VDIV, lt__q16_recip_sat)
  * Overflow: saturates. Cost: VMUL x1. */
 LT_INLINE lt_vq16_t lt_vq16_mul_q30_sat(lt_vq16_t a, lt_vq30_t b) /* VMUL x1 */
 {
+#if LT__X86_LANES
+    lt_vq16_t r;
+    LT_COST(VMUL, 1);
+    lt__x86_mul_round_sat(a.l, b.l, r.l, 30, LT_MASK_ALL);
+    return r;
+#else
     int i;
     LT_COST(VMUL, 1);
     for (i = 0; i < LT_LANES; i++)
         a.l[i] = lt__q16_mul_q30_sat(a.l[i], b.l[i]);
     return a;
+#endif
 }
 
 /* 1 / d per lane for an s1.30 d (a ray direction): 2^46 / d_raw. Format: s1.30 -> s15.16.

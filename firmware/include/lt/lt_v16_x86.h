@@ -1,0 +1,106 @@
+/* lt_v16_x86.h - x86 SIMD sequences for the lane ops whose portable loops the compiler turns into
+ * long code: the s15.16 products with rounding and saturation (32x32 -> 64-bit product, + half,
+ * arithmetic shift, clamp to int32), the slab test's and the watertight test's hot op. Chosen at
+ * build time from the compiler's target flags: AVX-512F (one 512-bit register per 16 lanes:
+ * vpmuldq on the even and odd lanes, vpsraq, vpminsq/vpmaxsq, a masked blend) or AVX2 (two 8-lane
+ * halves: vpmuldq pairs, the 64-bit arithmetic shift and clamp built from compares and blends);
+ * anything else, -DLT_LANES_PORTABLE, and every firmware target use the portable loops of
+ * lt_v16.h, which stay the reference. Bit-identical to the portable lanes (tests/golden/vectors.txt
+ * is compared across the native (backend), asan (portable) and x86-64-v3 (AVX2) builds; test_v16
+ * checks every op against references on the backend it was built with). In sim builds the SAT
+ * events are counted per lane as the portable loop counts them. Builds: host x86 only.
+ */
+#ifndef LT_V16_X86_H
+#define LT_V16_X86_H
+
+#if !defined(LT_LANES_PORTABLE) && defined(__AVX512F__)
+#define LT_LANES_BACKEND "avx512"
+#define LT__X86_LANES 512
+#elif !defined(LT_LANES_PORTABLE) && defined(__AVX2__)
+#define LT_LANES_BACKEND "avx2"
+#define LT__X86_LANES 256
+#else
+#define LT_LANES_BACKEND "portable"
+#define LT__X86_LANES 0
+#endif
+
+#if LT__X86_LANES
+#include <immintrin.h>
+
+/* r[i] = sat32((a[i] * b[i] + 2^(f-1)) >> f) for the 16 lanes (1 <= f <= 31); in sim builds the
+ * lanes of ev whose result saturated are counted as SAT events. */
+#if LT__X86_LANES == 512
+LT_INLINE void lt__x86_mul_round_sat(const int32_t *a, const int32_t *b, int32_t *r, unsigned f,
+                                     lt_mask16_t ev)
+{
+    __m512i va = _mm512_loadu_si512((const void *)a), vb = _mm512_loadu_si512((const void *)b);
+    __m512i rnd = _mm512_set1_epi64((long long)1 << (f - 1u));
+    __m128i sh = _mm_cvtsi32_si128((int)f);
+    __m512i hi = _mm512_set1_epi64(INT32_MAX), lo = _mm512_set1_epi64(INT32_MIN);
+    /* even lanes: the low halves of each 64-bit pair; odd lanes: shifted down into them */
+    __m512i pe = _mm512_mul_epi32(va, vb);
+    __m512i po = _mm512_mul_epi32(_mm512_srli_epi64(va, 32), _mm512_srli_epi64(vb, 32));
+    pe = _mm512_sra_epi64(_mm512_add_epi64(pe, rnd), sh);
+    po = _mm512_sra_epi64(_mm512_add_epi64(po, rnd), sh);
+#if LT_COST_MODE == LT_COST_SIM
+    {
+        unsigned se = (unsigned)(_mm512_cmpgt_epi64_mask(pe, hi) | _mm512_cmplt_epi64_mask(pe, lo));
+        unsigned so = (unsigned)(_mm512_cmpgt_epi64_mask(po, hi) | _mm512_cmplt_epi64_mask(po, lo));
+        unsigned m = 0, i;
+        for (i = 0; i < 8; i++)
+            m |= ((se >> i) & 1u) << (2 * i) | ((so >> i) & 1u) << (2 * i + 1);
+        LT_EVENT(SAT, lt__popcount32(m & ev));
+    }
+#else
+    (void)ev;
+#endif
+    pe = _mm512_max_epi64(_mm512_min_epi64(pe, hi), lo);
+    po = _mm512_max_epi64(_mm512_min_epi64(po, hi), lo);
+    /* lane 2i = low dword of pe's qword i, lane 2i+1 = low dword of po's qword i */
+    _mm512_storeu_si512((void *)r, _mm512_mask_blend_epi32((__mmask16)0xAAAA, pe,
+                                                           _mm512_slli_epi64(po, 32)));
+}
+#else
+/* 64-bit arithmetic shift right by sh and clamp to the int32 range, 4 lanes (AVX2). */
+LT_INLINE __m256i lt__x86_sra_sat64(__m256i x, __m128i sh, __m128i shl, __m256i hi, __m256i lo,
+                                    unsigned *sat)
+{
+    __m256i neg = _mm256_cmpgt_epi64(_mm256_setzero_si256(), x);
+    __m256i gt, lt;
+    x = _mm256_or_si256(_mm256_srl_epi64(x, sh), _mm256_sll_epi64(neg, shl));
+    gt = _mm256_cmpgt_epi64(x, hi);
+    lt = _mm256_cmpgt_epi64(lo, x);
+    *sat = (unsigned)_mm256_movemask_pd(_mm256_castsi256_pd(_mm256_or_si256(gt, lt)));
+    x = _mm256_blendv_epi8(x, hi, gt);
+    return _mm256_blendv_epi8(x, lo, lt);
+}
+
+LT_INLINE void lt__x86_mul_round_sat(const int32_t *a, const int32_t *b, int32_t *r, unsigned f,
+                                     lt_mask16_t ev)
+{
+    __m256i rnd = _mm256_set1_epi64x((long long)1 << (f - 1u));
+    __m128i sh = _mm_cvtsi32_si128((int)f), shl = _mm_cvtsi32_si128(64 - (int)f);
+    __m256i hi = _mm256_set1_epi64x(INT32_MAX), lo = _mm256_set1_epi64x(INT32_MIN);
+    unsigned m = 0;
+    int h;
+    for (h = 0; h < 2; h++) {
+        __m256i va = _mm256_loadu_si256((const __m256i *)(const void *)(a + 8 * h));
+        __m256i vb = _mm256_loadu_si256((const __m256i *)(const void *)(b + 8 * h));
+        __m256i pe = _mm256_mul_epi32(va, vb);
+        __m256i po = _mm256_mul_epi32(_mm256_srli_epi64(va, 32), _mm256_srli_epi64(vb, 32));
+        unsigned se, so, i;
+        pe = lt__x86_sra_sat64(_mm256_add_epi64(pe, rnd), sh, shl, hi, lo, &se);
+        po = lt__x86_sra_sat64(_mm256_add_epi64(po, rnd), sh, shl, hi, lo, &so);
+        for (i = 0; i < 4; i++)
+            m |= (((se >> i) & 1u) << (2 * i) | ((so >> i) & 1u) << (2 * i + 1)) << (8 * h);
+        _mm256_storeu_si256((__m256i *)(void *)(r + 8 * h),
+                            _mm256_blend_epi32(pe, _mm256_slli_epi64(po, 32), 0xAA));
+    }
+    LT_EVENT(SAT, lt__popcount32(m & ev));
+    (void)m;
+    (void)ev;
+}
+#endif
+#endif /* LT__X86_LANES */
+
+#endif /* LT_V16_X86_H */
