@@ -62,7 +62,7 @@ check_includes() {
 }
 
 mapfile -t core < <(git ls-files 'firmware/core/*' 'firmware/include/*' | grep -E '\.(c|h|inc|def)$')
-check_includes "the core" '^firmware/(core|include)/' '^(stdint|stddef|stdbool|limits|arm_mve|arm_acle)\.h$' \
+check_includes "the core" '^firmware/(core|include)/' '^(stdint|stddef|stdbool|limits|arm_mve|arm_acle|immintrin)\.h$' \
     firmware/include firmware/core -- "${core[@]}"
 
 mapfile -t apps < <(git ls-files 'firmware/apps/*' | grep -E '\.(c|h)$')
