@@ -29,6 +29,8 @@ struct lt_accel {
     void *mem;               /* kd, grid: their arena */
     void *hdr;               /* kd, grid: the path's tree or grid header */
     void *ray;               /* one packet in the path's format, the traces' scratch */
+    void *wmem;              /* bvh: the wide tree's nodes for single rays (built on first use) */
+    lt_bvh8_t wide;
     size_t bytes;            /* structure memory */
     uint32_t leaf;           /* lt_accel_params_t.leaf (0: default) */
     uint32_t isect;          /* the intersector of every walk (LT_ISECT_WT unless set) */
@@ -285,6 +287,7 @@ void lt_accel_free(lt_accel_t *a)
     free(a->mem);
     free(a->hdr);
     free(a->ray);
+    free(a->wmem);
     free(a);
 }
 
@@ -506,8 +509,33 @@ static void primary1_lanes_row(void *ctx, unsigned w, uint32_t row)
     }
 }
 
-/* bvh, bvhq: each ray of a row of 4x4 tiles alone through the single-ray traversal (tile order:
- * the directions come 16 at a time, lt_camera_tile_dirs). */
+/* bvh: the wide tree (lt_bvh8.h) its single rays walk, collapsed from the binary tree on the first
+ * single-ray call (the packets and lt_accel_bytes keep to the binary tree); 0, or -1 with a
+ * message. */
+static int wide_tree(const lt_accel_t *ac, lt_diag_t *diag)
+{
+    lt_accel_t *a = (lt_accel_t *)(uintptr_t)ac; /* a cache of the accel's own tree */
+    size_t bytes = 0;
+    lt_status_t st;
+    if (a->kind != ACC_BVH || a->wide.num != 0)
+        return 0;
+    st = lt_bvh8_size(&a->bvh, &bytes);
+    if (st == LT_OK && bytes > 0 && (a->wmem = alloc64(bytes)) == NULL)
+        st = LT_E_SPACE;
+    if (st == LT_OK) {
+        lt_meter_region(a->wmem, bytes, 0x38000000u);
+        st = a->ops->bvh8_build(&a->wide, &a->bvh, a->wmem, bytes);
+    }
+    if (st != LT_OK) {
+        lt_diag_fail(diag, "collapsing the BVH into 8-wide nodes (%zu bytes): %s", bytes,
+                     lt_status_str(st));
+        return -1;
+    }
+    return 0;
+}
+
+/* bvh, bvhq: each ray of a row of 4x4 tiles alone through the single-ray traversal (the wide tree
+ * for bvh; tile order: the directions come 16 at a time, lt_camera_tile_dirs). */
 static void primary1_row(void *ctx, unsigned w, uint32_t row)
 {
     const rd_job_t *j = ctx;
@@ -529,7 +557,7 @@ static void primary1_row(void *ctx, unsigned w, uint32_t row)
             d[2] = dz[i];
             j->f->id[p] = a->kind == ACC_BVHQ
                               ? a->ops->bvhq_trace1(&a->bvhq, a->tris, c->eye, d, &j->f->t[p])
-                              : a->ops->bvh_trace1(&a->bvh, a->tris, c->eye, d, &j->f->t[p]);
+                              : a->ops->bvh8_trace1(&a->wide, a->tris, c->eye, d, &j->f->t[p]);
         }
     }
 }
@@ -541,9 +569,11 @@ int lt_render_primary1(const lt_scene_t *s, const lt_accel_t *a, const lt_camera
     rd_job_t j;
     int lanes = a->kind != ACC_BVH && a->kind != ACC_BVHQ;
     uint32_t nt = tile_rows(c);
-    unsigned w = rd_open(&j, a, nt);
-    (void)diag;
+    unsigned w;
     (void)s;
+    if (wide_tree(a, diag) != 0)
+        return -1;
+    w = rd_open(&j, a, nt);
     j.c = c;
     j.f = f;
     (void)lt_par_run(nt, w, lanes ? primary1_lanes_row : primary1_row, &j, NULL);

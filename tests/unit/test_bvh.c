@@ -1712,6 +1712,230 @@ static void test_quantised(void **state)
 
 /* ---- real meshes ------------------------------------------------------------------------------------ */
 
+/* ---- the wide BVH for single rays (lt_bvh8.h) --------------------------------------------------- */
+
+typedef struct wcheck {
+    unsigned long nodes, children, leaves, tris, rays, same, ties, occl, occl_bad, bad, errs;
+} wcheck_t;
+
+/* Structure: every node has 1..8 children in its first slots, empty slots inverted, every binary
+ * leaf is one wide leaf child (its slot range once), every interior child a later node. */
+static void w_structure(const lt_bvh8_t *w, const lt_bvh_t *b, int fmt, wcheck_t *c)
+{
+    unsigned char *seen = calloc(b->ntris + 1u, 1);
+    uint32_t i, slot;
+    unsigned k;
+    assert_non_null(seen);
+    for (i = 0; i < w->nnodes; i++) {
+        const uint32_t *child;
+        const uint16_t *cnt;
+        unsigned used = 0;
+#if LT_CFG_FLOAT32
+        if (fmt == FMT_F32) {
+            child = ((const lt_bvh8_node_f32_t *)w->nodes)[i].child;
+            cnt = ((const lt_bvh8_node_f32_t *)w->nodes)[i].cnt;
+        } else
+#endif
+        {
+            child = ((const lt_bvh8_node_q16_t *)w->nodes)[i].child;
+            cnt = ((const lt_bvh8_node_q16_t *)w->nodes)[i].cnt;
+        }
+        (void)fmt;
+        c->nodes++;
+        for (k = 0; k < LT_BVH8_WIDTH; k++) {
+            if (cnt[k] == LT_BVH8_EMPTY)
+                continue;
+            assert_int_equal(k, used); /* slots in use first */
+            used++;
+            c->children++;
+            if (cnt[k] == 0) {
+                assert_true(child[k] > i && child[k] < w->nnodes);
+                continue;
+            }
+            c->leaves++;
+            for (slot = child[k]; slot < child[k] + cnt[k]; slot++) {
+                assert_true(slot < b->ntris);
+                assert_int_equal(seen[slot], 0);
+                seen[slot] = 1;
+                c->tris++;
+            }
+        }
+        assert_true(used >= 1 && used <= LT_BVH8_WIDTH);
+        assert_true(used >= 2 || w->nnodes == 1);
+    }
+    assert_int_equal(c->leaves, b->leaves);
+    assert_int_equal(c->tris, b->ntris);
+    assert_int_equal(w->children, c->children);
+    free(seen);
+}
+
+/* One ray through both trees: closest t bits equal, the same triangle or an exact tie (both hit at
+ * that t); any hit equal. */
+static void w_ray(const lt_bvh8_t *w, const lt_bvh_t *b, const lt_scene_t *s, int fmt,
+                  const lt_ray16_q16_t *pq, const void *pf, int lane, wcheck_t *c)
+{
+    int32_t iw = -1, ib = -1;
+    int ow = 0, ob = 0, same_t;
+    c->rays++;
+#if LT_CFG_FLOAT32
+    if (fmt == FMT_F32) {
+        lt_ray1_f32_t r0, rw, rb;
+        f32_single((const lt_ray16_f32_t *)pf, lane, &r0);
+        rw = r0;
+        rb = r0;
+        c->errs += lt_bvh8_trace1_f32(w, s->tf, &rw, &iw) != LT_OK;
+        c->errs += lt_bvh_trace1_f32(b, s->tf, &rb, &ib) != LT_OK;
+        same_t = memcmp(&rw.tmax, &rb.tmax, sizeof rw.tmax) == 0;
+        rw = r0;
+        rb = r0;
+        c->errs += lt_bvh8_occluded1_f32(w, s->tf, &rw, &ow) != LT_OK;
+        c->errs += lt_bvh_occluded1_f32(b, s->tf, &rb, &ob) != LT_OK;
+    } else
+#endif
+    {
+        lt_ray1_q16_t r0, rw, rb;
+        (void)pf;
+        q16_single(pq, lane, &r0);
+        rw = r0;
+        rb = r0;
+        c->errs += lt_bvh8_trace1_q16(w, s->tq, &rw, &iw) != LT_OK;
+        c->errs += lt_bvh_trace1_q16(b, s->tq, &rb, &ib) != LT_OK;
+        same_t = rw.tmax == rb.tmax;
+        rw = r0;
+        rb = r0;
+        c->errs += lt_bvh8_occluded1_q16(w, s->tq, &rw, &ow) != LT_OK;
+        c->errs += lt_bvh_occluded1_q16(b, s->tq, &rb, &ob) != LT_OK;
+    }
+    if (iw == ib && (iw < 0 || same_t))
+        c->same++;
+    else if (iw >= 0 && ib >= 0 && same_t)
+        c->ties++;
+    else if (c->bad++ < 5)
+        print_message("  wide %d vs binary %d (t %s)\n", iw, ib, same_t ? "equal" : "differs");
+    c->occl++;
+    if (ow != ob && c->occl_bad++ < 5)
+        print_message("  wide any-hit %d vs binary %d\n", ow, ob);
+}
+
+static void test_wide(void **state)
+{
+    static const int kinds[] = {MESH_CLUSTERS, MESH_GRID, MESH_SAME_CENTROID};
+    static const char *names[] = {"clustered", "grid", "same-centroid"};
+    unsigned ki;
+    int fmt;
+    (void)state;
+    for (ki = 0; ki < 3; ki++)
+        for (fmt = FMT_Q16; fmt <= (LT_CFG_FLOAT32 ? FMT_F32 : FMT_Q16); fmt++) {
+            static const uint32_t leaves[] = {0, 1, 16};
+            unsigned li;
+            for (li = 0; li < 3; li++) {
+                lt_scene_t s;
+                built_t bb;
+                lt_bvh_desc_t d;
+                lt_bvh8_t w, w2;
+                wcheck_t c;
+                ltt_rng_t r;
+                size_t bytes = 0;
+                unsigned char *mem;
+                double ext = kinds[ki] == MESH_CLUSTERS ? 420.0 : (kinds[ki] == MESH_GRID ? 13.0 : 35.0);
+                unsigned pk;
+                lt_status_t st;
+                memset(&c, 0, sizeof c);
+                memset(&d, 0, sizeof d);
+                d.max_leaf = leaves[li];
+                d.min_leaf = leaves[li] / 2u;
+                mesh_random(&s, kinds[ki] == MESH_CLUSTERS ? 1500u : (kinds[ki] == MESH_GRID ? 1200u : 600u),
+                            kinds[ki], 91 + ki);
+                assert_int_equal(build(&bb, &s, fmt, &d), LT_OK);
+                assert_int_equal(lt_bvh8_size(&bb.bvh, &bytes), LT_OK);
+                mem = malloc(bytes + TAIL);
+                assert_non_null(mem);
+                ltt_poison(mem, bytes + TAIL);
+                /* too small: LT_E_SPACE naming the size, nothing written */
+#if LT_CFG_FLOAT32
+                st = fmt == FMT_F32 ? lt_bvh8_build_f32(&w2, &bb.bvh, mem, bytes - 8u)
+                                    : lt_bvh8_build_q16(&w2, &bb.bvh, mem, bytes - 8u);
+#else
+                st = lt_bvh8_build_q16(&w2, &bb.bvh, mem, bytes - 8u);
+#endif
+                assert_int_equal(st, LT_E_SPACE);
+                assert_int_equal(w2.bytes, bytes);
+                assert_int_equal(ltt_touched(mem, 0, bytes + TAIL), 0);
+#if LT_CFG_FLOAT32
+                st = fmt == FMT_F32 ? lt_bvh8_build_f32(&w, &bb.bvh, mem, bytes)
+                                    : lt_bvh8_build_q16(&w, &bb.bvh, mem, bytes);
+                /* the other path's tree is refused */
+                assert_int_equal(fmt == FMT_F32 ? lt_bvh8_build_q16(&w2, &bb.bvh, mem, bytes)
+                                                : lt_bvh8_build_f32(&w2, &bb.bvh, mem, bytes),
+                                 LT_E_ARG);
+#else
+                st = lt_bvh8_build_q16(&w, &bb.bvh, mem, bytes);
+#endif
+                assert_int_equal(st, LT_OK);
+                assert_int_equal(w.bytes, bytes);
+                assert_int_equal(ltt_touched(mem, bytes, bytes + TAIL), 0);
+                w_structure(&w, &bb.bvh, fmt, &c);
+                ltt_rng_seed(&r, 777 + ki * 3 + li);
+                for (pk = 0; pk < 400u / WORK; pk++) {
+                    dray_t rs[LT_LANES];
+                    lt_ray16_q16_t pq;
+                    int lane;
+#if LT_CFG_FLOAT32
+                    lt_ray16_f32_t pf;
+#else
+                    int pf = 0;
+#endif
+                    rand_rays(&r, (int)(pk % RAY_KINDS), ext, &s, rs, LT_LANES);
+                    q16_packet(rs, &pq);
+#if LT_CFG_FLOAT32
+                    f32_packet(rs, &pf);
+#endif
+                    for (lane = 0; lane < LT_LANES; lane++)
+                        w_ray(&w, &bb.bvh, &s, fmt, &pq, &pf, lane, &c);
+                }
+                print_message("wide %s %s leaf %u: %lu nodes from %u binary (%.2f children per "
+                              "node), %lu rays: closest hit equal on %lu, exact ties %lu, differ "
+                              "%lu; any hit equal on %lu of %lu\n",
+                              fmt == FMT_Q16 ? "q16" : "f32", names[ki], leaves[li], c.nodes,
+                              bb.bvh.nnodes, (double)c.children / (double)c.nodes, c.rays, c.same,
+                              c.ties, c.bad, c.occl - c.occl_bad, c.occl);
+                assert_int_equal(c.bad, 0);
+                assert_int_equal(c.occl_bad, 0);
+                assert_int_equal(c.errs, 0);
+                assert_true(c.same > c.rays * 9 / 10);
+                free(mem);
+                unbuild(&bb);
+                lt_scene_free(&s);
+            }
+        }
+    {
+        /* arguments and the empty tree */
+        lt_bvh8_t w;
+        lt_bvh_t e;
+        lt_ray1_q16_t r;
+        int32_t id = 5;
+        int o = 1;
+        size_t bytes = 1;
+        memset(&e, 0, sizeof e);
+        e.num = LT_BVH_NUM_Q16;
+        assert_int_equal(lt_bvh8_size(NULL, &bytes), LT_E_ARG);
+        assert_int_equal(lt_bvh8_size(&e, &bytes), LT_OK);
+        assert_int_equal(bytes, 0);
+        assert_int_equal(lt_bvh8_build_q16(NULL, &e, NULL, 0), LT_E_ARG);
+        assert_int_equal(lt_bvh8_build_q16(&w, &e, NULL, 0), LT_OK);
+        memset(&r, 0, sizeof r);
+        r.d[2] = 1 << 30;
+        r.tmax = 1000 << 16;
+        lt_ray1_q16_setup(&r);
+        assert_int_equal(lt_bvh8_trace1_q16(&w, NULL, &r, &id), LT_OK);
+        assert_int_equal(id, -1);
+        assert_int_equal(lt_bvh8_occluded1_q16(&w, NULL, &r, &o), LT_OK);
+        assert_int_equal(o, 0);
+        assert_int_equal(lt_bvh8_trace1_q16(NULL, NULL, &r, &id), LT_E_ARG);
+        print_message("wide: NULL arguments LT_E_ARG, empty tree: 0 bytes, no hit\n");
+    }
+}
+
 static int shared_missing(const char *path)
 {
     const char *ci = getenv("CI");
@@ -2072,6 +2296,7 @@ int main(void)
         cmocka_unit_test(test_depth_adversarial),
         cmocka_unit_test(test_stack_overflow),
         cmocka_unit_test(test_quantised),
+        cmocka_unit_test(test_wide),
         cmocka_unit_test(test_real_meshes),
         cmocka_unit_test(test_sim_cycles),
     };

@@ -4,6 +4,7 @@
  * 16-byte node variant (s15.16 only). Builds: all; float32 only with LT_CFG_FLOAT32.
  */
 #include "lt/lt_bvh.h"
+#include "lt/lt_bvh8.h"
 #include "lt_tri.h"
 #include "lt_isel.h"
 
@@ -209,6 +210,13 @@ static lt_q16_t s_tdiv(int64_t n, int64_t d)
 #define LTS_TRI_CAND lt__tri_q16_cand1
 #define LTS_TDIV s_tdiv
 #include "lt_bvh.inc"
+#define LTW_NODE lt_bvh8_node_q16_t
+#define LTW_NODE_RECIPE BVH8_NODE_Q16
+#define LTW_MUL16 lt__v16_q16_mul_sat_raw
+#include "lt_bvh8.inc"
+#undef LTW_NODE
+#undef LTW_NODE_RECIPE
+#undef LTW_MUL16
 /* named compile-time checks (LT_STATIC_ASSERT names its typedef by __LINE__, which could meet a
  * header's line in this translation unit) */
 typedef char bvh_check_bin_q16[sizeof(lt__bvh_bin_t_q16) == BVH_BIN_BYTES ? 1 : -1];
@@ -299,6 +307,14 @@ void lt_ray1_f32_setup(lt_ray1_f32_t *r)
     r->pad_[0] = r->pad_[1] = 0;
 }
 
+/* r = a * b on arrays of 16 floats (the wide node test's products; its recipe prices them). */
+static void w_mul16_f32(const float *a, const float *b, float *r)
+{
+    int i;
+    for (i = 0; i < LT_LANES; i++)
+        r[i] = a[i] * b[i];
+}
+
 static void slab_fix1_f32(unsigned par, float o, float d, float lo, float hi, float *t0, float *t1)
 {
     (void)par; /* only parallel axes are flagged in float32 */
@@ -331,6 +347,13 @@ static void slab_fix1_f32(unsigned par, float o, float d, float lo, float hi, fl
 #define LTS_TRI_CAND lt__tri_f32_cand1
 #define LTS_TDIV(n, d) ((n) / (d))
 #include "lt_bvh.inc"
+#define LTW_NODE lt_bvh8_node_f32_t
+#define LTW_NODE_RECIPE BVH8_NODE_F32
+#define LTW_MUL16 w_mul16_f32
+#include "lt_bvh8.inc"
+#undef LTW_NODE
+#undef LTW_NODE_RECIPE
+#undef LTW_MUL16
 typedef char bvh_check_bin_f32[sizeof(lt__bvh_bin_t_f32) == BVH_BIN_BYTES ? 1 : -1];
 
 #endif /* LT_CFG_FLOAT32 */
@@ -760,4 +783,29 @@ lt_status_t lt_bvhq_trace1_q16(const lt_bvhq_t *bvh, const lt_tri_q16_t *tris, l
         stats->max_stack = maxsp;
     LT_PHASE_LEAVE(prev);
     return rc;
+}
+
+/* ---- wide nodes for single rays (lt_bvh8.h) ------------------------------------------------------ */
+
+/* Wide nodes of a binary tree of either path (each path's collapse counts its own tree). */
+lt_status_t lt_bvh8_size(const lt_bvh_t *bvh, size_t *bytes)
+{
+    if (bvh == NULL || bytes == NULL)
+        return LT_E_ARG;
+    if (bvh->nnodes == 0) {
+        *bytes = 0;
+        return LT_OK;
+    }
+#if LT_CFG_FLOAT32
+    if (bvh->num == LT_BVH_NUM_F32) {
+        *bytes = (size_t)w_count_f32((const lt_bvh_node_f32_t *)bvh->nodes, 0) *
+                 sizeof(lt_bvh8_node_f32_t);
+        return LT_OK;
+    }
+#endif
+    if (bvh->num != LT_BVH_NUM_Q16)
+        return LT_E_ARG;
+    *bytes = (size_t)w_count_q16((const lt_bvh_node_q16_t *)bvh->nodes, 0) *
+             sizeof(lt_bvh8_node_q16_t);
+    return LT_OK;
 }

@@ -12,6 +12,7 @@
 #include "lt_v16.h"
 #include "lt_isect.h"
 #include "lt_bvh.h"
+#include "lt_bvh8.h"
 #include "lt_wt.h"
 #include "lt_kd.h"
 #include "lt_grid.h"
