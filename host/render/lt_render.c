@@ -337,6 +337,7 @@ typedef struct rd_job {
     const double *light;       /* shadows */
     double eps;                /* shadows */
     uint8_t *occluded;         /* shadows (may be NULL) */
+    int single;                /* shadows: single rays through the wide tree, not packets */
     void *ray[LT_PAR_MAX_THREADS];
     uint32_t n[LT_PAR_MAX_THREADS], occ[LT_PAR_MAX_THREADS]; /* shadows: per-worker counts */
 } rd_job_t;
@@ -619,12 +620,22 @@ static void shadows_row(void *ctx, unsigned w, uint32_t row)
                 d[1] = d[2] = 0.0;
                 len = 1.0;
             }
+            if (j->single) {
+                /* one ray alone through the wide tree: the packet lane's conversions and setup */
+                if ((k >> i) & 1u)
+                    o = (lt_mask16_t)(o | (unsigned)a->ops->bvh8_occluded1(&a->wide, a->tris, p, d,
+                                                                          j->eps, len - j->eps)
+                                              << i);
+                continue;
+            }
             a->ops->ray16_lane(ray, i, p, d, j->eps, len - j->eps);
         }
         if (k == 0)
             continue;
-        a->ops->ray16_setup(ray);
-        o = occluded16(a, ray, (lt_mask16_t)k);
+        if (!j->single) {
+            a->ops->ray16_setup(ray);
+            o = occluded16(a, ray, (lt_mask16_t)k);
+        }
         j->n[w] += lt__popcount32(k);
         j->occ[w] += lt__popcount32(o);
         if (j->occluded != NULL)
@@ -638,10 +649,11 @@ static void shadows_row(void *ctx, unsigned w, uint32_t row)
 }
 
 /* Shadow rays from each primary hit of f towards the light (scaled units), 16-ray packets over
- * the same 4x4 tiles; origins offset by eps along the way to the light. */
-int lt_render_shadows(const lt_scene_t *s, const lt_accel_t *a, const lt_camera_t *c,
-                      const lt_frame_t *f, const double light[3], uint32_t *nrays,
-                      uint32_t *noccluded, uint8_t *occluded, lt_diag_t *diag)
+ * the same 4x4 tiles (single: each ray alone through the wide tree); origins offset by eps along
+ * the way to the light. */
+static int shadows(const lt_scene_t *s, const lt_accel_t *a, const lt_camera_t *c,
+                   const lt_frame_t *f, const double light[3], uint32_t *nrays,
+                   uint32_t *noccluded, uint8_t *occluded, int single, lt_diag_t *diag)
 {
     rd_job_t j;
     unsigned w, i;
@@ -650,7 +662,14 @@ int lt_render_shadows(const lt_scene_t *s, const lt_accel_t *a, const lt_camera_
         lt_diag_fail(diag, "shadow rays need a hierarchy (bvh, bvhq, kd, grid)");
         return -1;
     }
+    if (single && a->kind != ACC_BVH) {
+        lt_diag_fail(diag, "single shadow rays walk the wide BVH: structure bvh only");
+        return -1;
+    }
+    if (single && wide_tree(a, diag) != 0)
+        return -1;
     w = rd_open(&j, a, tile_rows(c));
+    j.single = single;
     j.c = c;
     j.prev = f;
     j.light = light;
@@ -665,6 +684,20 @@ int lt_render_shadows(const lt_scene_t *s, const lt_accel_t *a, const lt_camera_
     *nrays = n;
     *noccluded = occ;
     return 0;
+}
+
+int lt_render_shadows(const lt_scene_t *s, const lt_accel_t *a, const lt_camera_t *c,
+                      const lt_frame_t *f, const double light[3], uint32_t *nrays,
+                      uint32_t *noccluded, uint8_t *occluded, lt_diag_t *diag)
+{
+    return shadows(s, a, c, f, light, nrays, noccluded, occluded, 0, diag);
+}
+
+int lt_render_shadows1(const lt_scene_t *s, const lt_accel_t *a, const lt_camera_t *c,
+                       const lt_frame_t *f, const double light[3], uint32_t *nrays,
+                       uint32_t *noccluded, uint8_t *occluded, lt_diag_t *diag)
+{
+    return shadows(s, a, c, f, light, nrays, noccluded, occluded, 1, diag);
 }
 
 static void peel_row(void *ctx, unsigned w, uint32_t row)

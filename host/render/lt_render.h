@@ -64,9 +64,11 @@ void lt_accel_set_isect(lt_accel_t *a, uint32_t isect);
 void lt_render_primary(const lt_scene_t *s, const lt_accel_t *a, const lt_camera_t *c,
                        lt_frame_t *f, void (*progress)(double done));
 
-/* The same with one ray per pixel: the scalar single-ray traversal for bvh and bvhq; the kd-tree,
+/* The same with one ray per pixel: the scalar single-ray traversal for bvh (through its wide
+ * 8-child tree, lt_bvh8.h, collapsed on the first call; the closest distance is the packets', an
+ * exact tie between coplanar faces may name the other face) and bvhq; the kd-tree,
  * grid and chunks have no scalar kernel and trace each ray alone through their packet kernel
- * with a one-lane mask. Returns 0 (diag is kept for future structures). */
+ * with a one-lane mask. Returns 0, or -1 with a message (no memory for the wide tree). */
 int lt_render_primary1(const lt_scene_t *s, const lt_accel_t *a, const lt_camera_t *c,
                        lt_frame_t *f, lt_diag_t *diag);
 
@@ -76,6 +78,13 @@ int lt_render_primary1(const lt_scene_t *s, const lt_accel_t *a, const lt_camera
 int lt_render_shadows(const lt_scene_t *s, const lt_accel_t *a, const lt_camera_t *c,
                       const lt_frame_t *f, const double light[3], uint32_t *nrays,
                       uint32_t *noccluded, uint8_t *occluded, lt_diag_t *diag);
+
+/* The same shadow rays, each alone through the wide BVH (lt_bvh8.h; structure bvh only, collapsed
+ * on first use), any hit with an early exit per ray: the same occlusion bits as the packets.
+ * Returns 0, or -1 with a message. */
+int lt_render_shadows1(const lt_scene_t *s, const lt_accel_t *a, const lt_camera_t *c,
+                       const lt_frame_t *f, const double light[3], uint32_t *nrays,
+                       uint32_t *noccluded, uint8_t *occluded, lt_diag_t *diag);
 
 /* The next depth layer: for every pixel that hit in prev, the first surface strictly beyond it
  * (tmin = the previous distance); pixels without a previous hit get id -1. Coplanar duplicates

@@ -812,7 +812,7 @@ int main(int argc, char **argv)
     for (a = 0; a < 2; a++) {
         lt_accel_t *acc;
         uint32_t same = 0, sn = 0, so = 0;
-        double lp, l1 = 0.0, ls = 0.0, lb;
+        double lp, l1 = 0.0, ls = 0.0, ls1 = 0.0, lb;
         double light[3] = {r.light[0], r.light[1], r.light[2]};
         const char *name = a == 0 ? "s15.16 " : "float32";
         int chunks = strcmp(structure, "chunks") == 0;
@@ -855,6 +855,22 @@ int main(int argc, char **argv)
                     times[k] = lt_now_s() - t0;
             }
             ls = (double)sn / median(times, runs) / 1e6;
+            if (strcmp(structure, "bvh") == 0) {
+                /* the same shadow rays one at a time through the wide tree (lt_bvh8.h) */
+                uint32_t sn1 = 0, so1 = 0;
+                for (k = -1; k < runs; k++) {
+                    t0 = lt_now_s();
+                    lt_render_shadows1(&sc, acc, &r.cam, &fr, light, &sn1, &so1, NULL, &diag);
+                    if (k >= 0)
+                        times[k] = lt_now_s() - t0;
+                }
+                ls1 = (double)sn1 / median(times, runs) / 1e6;
+                if (sn1 != sn || so1 != so) {
+                    fprintf(stderr, "embree-race: lanetrace single shadow rays %u/%u occluded, "
+                                    "packets %u/%u\n", so1, sn1, so, sn);
+                    status = 1;
+                }
+            }
             printf("lanetrace %s single rays     %8.2f Mrays/s", name, l1);
             print_ratios(l1, &modes[0], "single-ray", 0, 0);
             printf("\n");
@@ -866,10 +882,16 @@ int main(int argc, char **argv)
             printf("lanetrace %s shadow packets  %8.2f Mrays/s", name, ls);
             print_ratios(ls, bests, "shadow", 4, 7);
             printf(" (%u rays, %u occluded)\n", sn, so);
+            if (ls1 > 0.0) {
+                printf("lanetrace %s single shadow rays (wide BVH) %8.2f Mrays/s", name, ls1);
+                print_ratios(ls1, bests, "shadow", 4, 7);
+                printf(" (the same %u occluded)\n", so);
+            }
         }
         if (kv)
-            printf("race: lanetrace path %s single %.3f packet %.3f shadow %.3f same %.3f\n",
-                   a ? "f32" : "q16", l1, lp, ls, 100.0 * same / (res * res));
+            printf("race: lanetrace path %s single %.3f packet %.3f shadow %.3f shadow1 %.3f "
+                   "same %.3f\n",
+                   a ? "f32" : "q16", l1, lp, ls, ls1, 100.0 * same / (res * res));
         lt_accel_free(acc);
     }
     if (status != 0)

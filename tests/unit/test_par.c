@@ -2,7 +2,8 @@
  * on it: every task runs exactly once on workers 0..n-1 for any thread count; the charged loops
  * take one worker in the sim build; progress rises to 1; and frames traced through every
  * structure and numeric path (primary rays, single rays, shadow rays, depth peels) are
- * bit-identical for 1, 2, 3 and 7 threads. Builds: host, sim, asan.
+ * bit-identical for 1, 2, 3 and 7 threads, and bvh's single shadow rays (its wide tree) give the
+ * packets' occlusion bits. Builds: host, sim, asan.
  */
 #include <stdarg.h>
 #include <stddef.h>
@@ -131,6 +132,18 @@ static uint32_t frames_hash(const lt_scene_t *s, const lt_accel_t *acc, const lt
     h = lt_frame_hash(&f);
     assert_int_equal(lt_render_primary1(s, acc, cam, &one, &diag), 0);
     h = h * 16777619u ^ lt_frame_hash(&one);
+    if (shadows == 2) {
+        /* bvh: the single shadow rays through the wide tree give the packets' occlusion bits */
+        uint8_t *occ1 = calloc(n, 1);
+        uint32_t nr1 = 0, no1 = 0;
+        assert_non_null(occ1);
+        assert_int_equal(lt_render_shadows1(s, acc, cam, &f, light, &nr1, &no1, occ1, &diag), 0);
+        assert_int_equal(lt_render_shadows(s, acc, cam, &f, light, &nr, &no, occ, &diag), 0);
+        assert_int_equal(nr1, nr);
+        assert_int_equal(no1, no);
+        assert_memory_equal(occ1, occ, n);
+        free(occ1);
+    }
     if (shadows) {
         assert_int_equal(lt_render_shadows(s, acc, cam, &f, light, &nr, &no, occ, &diag), 0);
         assert_int_equal(lt_render_peel(s, acc, cam, &f, &peel, &diag), 0);
@@ -176,14 +189,16 @@ static void test_frames_any_thread_count(void **state)
                 /* the loops really run on that many workers (one where the model counts) */
                 assert_int_equal(lt_par_workers((cam.height + 3) / 4, 1),
                                  lt_meter_available() ? 1u : threads[k]);
-                h = frames_hash(&s, acc, &cam, strcmp(name, "chunks") != 0);
+                h = frames_hash(&s, acc, &cam,
+                                strcmp(name, "chunks") == 0 ? 0 : (strcmp(name, "bvh") == 0 ? 2 : 1));
                 if (k == 0)
                     h1 = h;
                 assert_int_equal(h, h1);
             }
             printf("%s %-6s 70x38: primary, single-ray%s frames equal on 1, 2, 3 and 7 threads "
-                   "(0x%08x)\n", paths[p], name,
-                   strcmp(name, "chunks") != 0 ? ", shadow and peel" : "", h1);
+                   "(0x%08x)%s\n", paths[p], name,
+                   strcmp(name, "chunks") != 0 ? ", shadow and peel" : "", h1,
+                   strcmp(name, "bvh") == 0 ? "; single shadow rays (wide tree) = packets" : "");
             lt_accel_free(acc);
             cases++;
         }
