@@ -147,3 +147,7 @@ END {
 
 echo "race-doc: $OUT/race.md" >&2
 tools/doc_insert.sh race "$OUT/race.md" "$DOC"
+# where lanetrace's time goes (perf; skipped with a line where perf cannot sample)
+if B=$B tests/bench/profile.sh --md "$OUT/profile.md" && [ -s "$OUT/profile.md" ]; then
+    tools/doc_insert.sh race-profile "$OUT/profile.md" "$DOC"
+fi
