@@ -375,6 +375,14 @@ LT_INLINE lt_vq16_t lt_vq16_recip_q30_sat(lt_vq30_t d, lt_q16_t zero) /* VDIV x1
     lt_vq16_t r;
     int i;
     LT_COST(VDIV, 1);
+#if LT__X86_LANES
+    /* x86 backend: the same quotient from a double estimate and one remainder test */
+    for (i = 0; i < LT_LANES; i++) {
+        int64_t q = lt__x86_recip46(d.l[i] == 0 ? 1 : d.l[i]);
+        LT_EVENT(SAT, d.l[i] != 0 && q != (int64_t)lt__ssat32(q));
+        r.l[i] = d.l[i] == 0 ? zero : lt__ssat32(q);
+    }
+#else
     for (i = 0; i < LT_LANES; i++) {
         if (d.l[i] == 0) {
             r.l[i] = zero;
@@ -384,6 +392,7 @@ LT_INLINE lt_vq16_t lt_vq16_recip_q30_sat(lt_vq30_t d, lt_q16_t zero) /* VDIV x1
             r.l[i] = lt__ssat32(q);
         }
     }
+#endif
     return r;
 }
 

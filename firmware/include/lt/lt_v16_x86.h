@@ -101,6 +101,22 @@ LT_INLINE void lt__x86_mul_round_sat(const int32_t *a, const int32_t *b, int32_t
     (void)ev;
 }
 #endif
+
+/* round(2^46 / d) half up for d != 0 (lt__div_round64(2^46, d)), exactly, without a 64-bit integer
+ * divide: for d > 0 it is floor((2^47 + b) / 2b), for d < 0 -floor((2^47 + b - 1) / 2b) (b = |d|);
+ * numerator < 2^48 and denominator <= 2^32 are exact doubles, the double quotient is within 2^-6
+ * of the true one and never below the integer under it, so its truncation is the floor or one
+ * more, which the remainder test takes back. Plain C: 16 lanes of it vectorise (vcvtqq2pd,
+ * vdivpd, vcvttpd2qq, vpmullq). */
+LT_INLINE int64_t lt__x86_recip46(int32_t d)
+{
+    int64_t b = d < 0 ? -(int64_t)d : (int64_t)d;
+    int64_t p = ((int64_t)1 << 47) + b - (int64_t)(d < 0), m = 2 * b;
+    int64_t q = (int64_t)((double)p / (double)m);
+    int64_t r = p - q * m;
+    q += (int64_t)(r >= m) - (int64_t)(r < 0);
+    return d < 0 ? -q : q;
+}
 #endif /* LT__X86_LANES */
 
 #endif /* LT_V16_X86_H */
