@@ -212,11 +212,9 @@ static lt_q16_t s_tdiv(int64_t n, int64_t d)
 #include "lt_bvh.inc"
 #define LTW_NODE lt_bvh8_node_q16_t
 #define LTW_NODE_RECIPE BVH8_NODE_Q16
-#define LTW_MUL16 lt__v16_q16_mul_sat_raw
 #include "lt_bvh8.inc"
 #undef LTW_NODE
 #undef LTW_NODE_RECIPE
-#undef LTW_MUL16
 /* named compile-time checks (LT_STATIC_ASSERT names its typedef by __LINE__, which could meet a
  * header's line in this translation unit) */
 typedef char bvh_check_bin_q16[sizeof(lt__bvh_bin_t_q16) == BVH_BIN_BYTES ? 1 : -1];
@@ -307,14 +305,6 @@ void lt_ray1_f32_setup(lt_ray1_f32_t *r)
     r->pad_[0] = r->pad_[1] = 0;
 }
 
-/* r = a * b on arrays of 16 floats (the wide node test's products; its recipe prices them). */
-static void w_mul16_f32(const float *a, const float *b, float *r)
-{
-    int i;
-    for (i = 0; i < LT_LANES; i++)
-        r[i] = a[i] * b[i];
-}
-
 static void slab_fix1_f32(unsigned par, float o, float d, float lo, float hi, float *t0, float *t1)
 {
     (void)par; /* only parallel axes are flagged in float32 */
@@ -349,11 +339,9 @@ static void slab_fix1_f32(unsigned par, float o, float d, float lo, float hi, fl
 #include "lt_bvh.inc"
 #define LTW_NODE lt_bvh8_node_f32_t
 #define LTW_NODE_RECIPE BVH8_NODE_F32
-#define LTW_MUL16 w_mul16_f32
 #include "lt_bvh8.inc"
 #undef LTW_NODE
 #undef LTW_NODE_RECIPE
-#undef LTW_MUL16
 typedef char bvh_check_bin_f32[sizeof(lt__bvh_bin_t_f32) == BVH_BIN_BYTES ? 1 : -1];
 
 #endif /* LT_CFG_FLOAT32 */

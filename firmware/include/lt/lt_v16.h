@@ -286,19 +286,6 @@ LT__V16_BIN(lt_vq16_t, lt_vq16_add_wrap, VALU, lt__q16_add_wrap)
 LT__V16_BIN(lt_vq16_t, lt_vq16_sub_wrap, VALU, lt__q16_sub_wrap)
 LT__V16_BIN(lt_vq16_t, lt_vq16_min, VALU, lt__q16_min)
 LT__V16_BIN(lt_vq16_t, lt_vq16_max, VALU, lt__q16_max)
-/* r = a * b per lane, s15.16 (lt__q16_mul_sat), on arrays of 16, charging nothing but the SAT
- * events (a kernel whose recipe already prices the products: the wide BVH's node test). */
-LT_INLINE void lt__v16_q16_mul_sat_raw(const int32_t *a, const int32_t *b, int32_t *r)
-{
-#if LT__X86_LANES
-    lt__x86_mul_round_sat(a, b, r, 16, LT_MASK_ALL);
-#else
-    int i;
-    for (i = 0; i < LT_LANES; i++)
-        r[i] = lt__q16_mul_sat(a[i], b[i]);
-#endif
-}
-
 #if LT__X86_LANES
 /* The s15.16 product on the x86 backend (lt_v16_x86.h): the same three variants, bit-identical to
  * the loop below; a masked variant computes every lane and keeps the active ones. */
