@@ -161,12 +161,20 @@ RUN_ARGS ?=
 run: deps
 	@$(MAKE) --no-print-directory all
 	@mkdir -p $(B)/run
-	$(B)/sim/lanetrace run scenes/teapot.json --report $(B)/run/report.json $(RUN_ARGS)
+	@# --auto: lanetrace info's recommendation for what the scene file leaves open (its leaf size)
+	$(B)/sim/lanetrace run scenes/teapot.json --auto --report $(B)/run/report.json $(RUN_ARGS)
 	@# view synthesis (docs/reproject.md): a 2-layer depth render of the teapot, reprojected
 	$(B)/host/lanetrace-native render scenes/teapot.json --res 96 --layers 2 --out $(B)/run/teapot -q
 	$(B)/sim/lanetrace reproject scenes/teapot.json --depth $(B)/run/teapot.exr --layers 2 --color \
 	    --move-rel 0.08,0,0 --rot -3,0,0 --out $(B)/run/teapot-reproj.exr --png $(B)/run/teapot-reproj.png \
 	    --heat-cycles $(B)/run/teapot-reproj-cycles.png --report $(B)/run/reproj-report.json --truth
+
+# the "Cycle report of the bundled scene" table of docs/results.md, measured now
+run-doc: deps
+	@$(MAKE) --no-print-directory all
+	@B=$(B) tools/run_table.sh >$(B)/run-table.md
+	@tools/doc_insert.sh run-table $(B)/run-table.md docs/results.md
+.PHONY: run-doc
 
 TEST_BINS := $(foreach v,$(VARIANTS),$(UNIT_TESTS:%=$(B)/$(v)/test_%) $(B)/$(v)/lt-vectors) \
     $(B)/sim/test_cache $(B)/host/lanetrace-native $(B)/sim/lanetrace $(EXTRA_TEST_BINS) \

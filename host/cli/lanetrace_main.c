@@ -143,6 +143,23 @@ static int num_choices(unsigned families, int with_both, const char **names, uns
     return n;
 }
 
+/* lt_recommend_mesh's facts of a loaded mesh and its prepared scene, and its picks into r. */
+static void mesh_recommend(const lt_mesh_t *m, const lt_scene_t *sc, lt_rec_t *r)
+{
+    lt_rec_mesh_facts_t f;
+    int a;
+    memset(&f, 0, sizeof f);
+    f.ntris = m->ntris;
+    f.nonzero = sc->nonzero;
+    f.collapsed_q16 = sc->collapsed_q16;
+    for (a = 0; a < 3; a++)
+        if (m->hi[a] - m->lo[a] > f.extent)
+            f.extent = m->hi[a] - m->lo[a];
+    f.scale = sc->scale;
+    f.min_edge = sc->scale > 0.0 ? sc->min_edge / sc->scale : 0.0;
+    lt_recommend_mesh(&f, r);
+}
+
 /* 1 for the structures with a leaf size (the scene file's "leaf": bvh, bvhq, kd). */
 static int structure_has_leaf(const char *structure)
 {
@@ -163,6 +180,8 @@ typedef struct run {
     uint32_t wh[2];
     int num, structure, isect, json, repeat, do_ref, native;
     int seen_res, seen_num, seen_structure, seen_isect, seen_machine, seen_l1, seen_l2;
+    int autop;              /* --auto: info's recommendation for the knobs nobody set */
+    char auto_json[2048];   /* what --auto did, a JSON object for the report ("" = nothing) */
     const char *num_names[8];
     unsigned num_sets[8];
     /* inputs */
@@ -250,6 +269,10 @@ static int run_parse(run_t *r, int argc, char **argv)
                    "PREFIX.<path>.steps.png / .steps.exr"),
         LT_OPT_INT("--repeat", "N", &r->repeat, 1, 100000, "trace the frame N times (timing), {range}"),
         LT_OPT_SET_("--no-ref", &r->do_ref, 0, "skip the reference and the accuracy figures"),
+        LT_OPT_FLAG_("--auto", &r->autop,
+                     "take lanetrace info's recommendation (numeric path, structure,\n"
+                     "leaf size) for every one of them that neither a flag nor the scene\n"
+                     "file sets; each pick and its reason is printed"),
         LT_OPT_FLAG_("--native", &r->native, "run the native build (no cycle model; wall-clock speed)"),
         LT_OPT_FLAG_("--json", &r->json, "machine-readable JSON on stdout"),
         LT_OPT_THREADS_(&threads_opt),
@@ -320,6 +343,52 @@ static int run_settle(run_t *r)
     return 0;
 }
 
+/* --auto: lanetrace info's picks (lt_recommend_mesh) for the knobs that neither a flag nor the
+ * scene file set; each printed with its reason (or why it was kept) and kept for the report. */
+static void run_auto(run_t *r)
+{
+    lt_scenefile_t *sf = &r->sf;
+    lt_rec_t rec;
+    cJSON *o = cJSON_CreateObject();
+    char *txt;
+    int i;
+    mesh_recommend(&r->mesh, &r->sc, &rec);
+    for (i = 0; i < rec.n; i++) {
+        const lt_rec_pick_t *k = &rec.k[i];
+        const char *by = NULL;
+        cJSON *x = cJSON_AddObjectToObject(o, k->knob);
+        if (strcmp(k->knob, "numeric") == 0) {
+            by = r->seen_num ? "--num" : (sf->given & LT_SF_GIVEN_NUMERIC) ? "the scene file" : NULL;
+            if (by == NULL)
+                sf->numeric = strcmp(k->pick, "q16") == 0 ? LT_SF_NUM_Q16
+                              : strcmp(k->pick, "f32") == 0 ? LT_SF_NUM_F32 : LT_SF_NUM_BOTH;
+        } else if (strcmp(k->knob, "structure") == 0) {
+            by = r->seen_structure ? "--structure"
+                 : (sf->given & LT_SF_GIVEN_STRUCTURE) ? "the scene file" : NULL;
+            if (by == NULL)
+                snprintf(sf->structure, sizeof sf->structure, "%s", k->pick);
+        } else if (strcmp(k->knob, "leaf") == 0) {
+            by = (sf->given & LT_SF_GIVEN_LEAF) ? "the scene file" : NULL;
+            if (by == NULL)
+                sf->leaf = strcmp(k->pick, "-") == 0 ? 0u : (uint32_t)strtoul(k->pick, NULL, 10);
+        } else {
+            continue;
+        }
+        cJSON_AddStringToObject(x, "pick", k->pick);
+        cJSON_AddBoolToObject(x, "applied", by == NULL);
+        cJSON_AddStringToObject(x, by == NULL ? "reason" : "set_by", by == NULL ? k->reason : by);
+        if (!r->json && by == NULL)
+            printf("auto      %-9s %-6s %s\n", k->knob, k->pick, k->reason);
+        else if (!r->json)
+            printf("auto      %-9s kept   set by %s (the recommendation: %s)\n", k->knob, by,
+                   k->pick);
+    }
+    txt = cJSON_PrintUnformatted(o);
+    snprintf(r->auto_json, sizeof r->auto_json, "%s", txt != NULL ? txt : "");
+    cJSON_free(txt);
+    cJSON_Delete(o);
+}
+
 /* The mesh, the prepared scene and the camera. Returns 0 or an exit code. */
 static int run_load(run_t *r)
 {
@@ -334,6 +403,8 @@ static int run_load(run_t *r)
         fprintf(stderr, "%s: %s\n", sf->mesh, diag.msg);
         return EXIT_INPUT;
     }
+    if (r->autop)
+        run_auto(r);
     /* a selected path that cannot represent the scene is dropped while another selected path
        remains (--num both, the default); asked for alone (--num q16), it is refused */
     for (p = lt_paths; p->name != NULL; p++)
@@ -463,6 +534,9 @@ static void run_facts(const run_t *r, const char *pname, double ms, size_t acc_b
     cJSON_AddNumberToObject(x, "height", sf->height);
     cJSON_AddNumberToObject(x, "host_ms", ms);
     cJSON_AddNumberToObject(x, "host_threads", lt_par_workers(UINT32_MAX, 1));
+    cJSON_AddNumberToObject(x, "leaf", sf->leaf);
+    if (r->auto_json[0] != '\0')
+        cJSON_AddItemToObject(x, "auto", cJSON_Parse(r->auto_json));
     cJSON_AddNumberToObject(x, "frame_hash", lt_frame_hash(&r->fr));
     cJSON_AddNumberToObject(x, "structure_bytes", (double)acc_bytes);
     if (r->dropped != NULL) {
@@ -1013,19 +1087,9 @@ static int info_exr(const char *path, const lt_sniff_t *sn, int json, int part, 
  * object of j. */
 static void info_recommend(const lt_mesh_t *m, const lt_scene_t *sc, cJSON *j)
 {
-    lt_rec_mesh_facts_t f;
     lt_rec_t r;
-    int a, i;
-    memset(&f, 0, sizeof f);
-    f.ntris = m->ntris;
-    f.nonzero = sc->nonzero;
-    f.collapsed_q16 = sc->collapsed_q16;
-    for (a = 0; a < 3; a++)
-        if (m->hi[a] - m->lo[a] > f.extent)
-            f.extent = m->hi[a] - m->lo[a];
-    f.scale = sc->scale;
-    f.min_edge = sc->scale > 0.0 ? sc->min_edge / sc->scale : 0.0;
-    lt_recommend_mesh(&f, &r);
+    int i;
+    mesh_recommend(m, sc, &r);
     if (j != NULL) {
         cJSON *o = cJSON_AddObjectToObject(j, "recommend");
         cJSON_AddBoolToObject(o, "q16_representable", r.q16_ok);

@@ -396,9 +396,12 @@ static int parse_root(ctx_t *c, const cJSON *root, lt_scenefile_t *sf)
         sf->width = (uint32_t)w;
         sf->height = (uint32_t)h;
     }
-    if ((it = cJSON_GetObjectItemCaseSensitive(root, "structure")) != NULL &&
-        get_choice(c, it, "structure", lt_sf_structures, sf->structure, sizeof sf->structure) != 0)
-        return -1;
+    if ((it = cJSON_GetObjectItemCaseSensitive(root, "structure")) != NULL) {
+        if (get_choice(c, it, "structure", lt_sf_structures, sf->structure,
+                       sizeof sf->structure) != 0)
+            return -1;
+        sf->given |= LT_SF_GIVEN_STRUCTURE;
+    }
     if ((it = cJSON_GetObjectItemCaseSensitive(root, "isect")) != NULL &&
         get_choice(c, it, "isect", lt_sf_isects, sf->isect, sizeof sf->isect) != 0)
         return -1;
@@ -407,6 +410,7 @@ static int parse_root(ctx_t *c, const cJSON *root, lt_scenefile_t *sf)
             return -1;
         sf->numeric = strcmp(tmp, "q16") == 0 ? LT_SF_NUM_Q16
                       : strcmp(tmp, "f32") == 0 ? LT_SF_NUM_F32 : LT_SF_NUM_BOTH;
+        sf->given |= LT_SF_GIVEN_NUMERIC;
     }
     if ((it = cJSON_GetObjectItemCaseSensitive(root, "machine")) != NULL &&
         get_choice(c, it, "machine", lt_sf_machines, sf->machine, sizeof sf->machine) != 0)
@@ -471,6 +475,7 @@ static int parse_root(ctx_t *c, const cJSON *root, lt_scenefile_t *sf)
         if (v != floor(v))
             return fail(c, "'leaf' must be a whole number");
         sf->leaf = (uint32_t)v;
+        sf->given |= LT_SF_GIVEN_LEAF;
     }
     if ((it = cJSON_GetObjectItemCaseSensitive(root, "outputs")) != NULL) {
         const cJSON *x;

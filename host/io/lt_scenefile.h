@@ -17,6 +17,11 @@
 
 typedef enum lt_sf_num { LT_SF_NUM_Q16 = 1, LT_SF_NUM_F32 = 2, LT_SF_NUM_BOTH = 3 } lt_sf_num_t;
 
+/* lt_scenefile_t.given: the knobs a file set (run --auto leaves those alone) */
+#define LT_SF_GIVEN_STRUCTURE 1u
+#define LT_SF_GIVEN_NUMERIC 2u
+#define LT_SF_GIVEN_LEAF 4u
+
 typedef struct lt_sf_light {
     double position[3]; /* mesh file units */
     double intensity;   /* >= 0 */
@@ -55,6 +60,7 @@ typedef struct lt_scenefile {
     double rp_gamma_norm, rp_gamma_dist; /* quadtree thresholds, fractions (< 0 = default) */
     /* object space */
     uint32_t leaf;                   /* "leaf": bvh/bvhq max_leaf or kd leaf_tris (0 = default) */
+    unsigned given;                  /* LT_SF_GIVEN_* bits: object knobs the file set itself */
     /* "shadows": soft shadows (lanetrace shadows SCENE.json, docs/frusta.md) */
     int has_shadows;                 /* 1 when the object is present */
     char sh_primary[8];              /* "packet", "frusta", "both" ("" = both) */
