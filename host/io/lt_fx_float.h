@@ -20,7 +20,9 @@ extern "C" {
  * range), and so is the + 1/2, because the clamp is tested first and |x * 2^frac| < 2^52. */
 static inline int64_t lt__fxf_from_double(double x, int frac, int64_t lo, int64_t hi, int *sat)
 {
-    double v = ldexp(x, frac);
+    /* x * 2^frac by a product with the exact power of two (0 <= frac <= 62): the same double as
+       ldexp (both exact, or both inf), without a library call per conversion */
+    double v = x * (double)((int64_t)1 << frac);
     int s = 0;
     int64_t r;
     if (v != v) {
