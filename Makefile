@@ -85,8 +85,8 @@ CFLAGS_tsan := $(HOST_CFLAGS) -O1 -fsanitize=thread -fno-omit-frame-pointer \
 LDFLAGS_tsan := -fsanitize=thread
 # The AVX2 lane backend (firmware/include/lt/lt_v16_x86.h) on any x86 host that runs AVX2: the
 # kernels for x86-64-v3 (AVX2, FMA, no AVX-512), native LT_COST_OFF; make test compares its
-# vectors with the golden file and runs test_v16 and test_isect on it (the native build takes the
-# widest backend its -march allows, asan the portable loops)
+# vectors with the golden file and runs test_v16, test_isect and test_bvh on it (the native
+# build takes the widest backend its -march allows, asan the portable loops)
 CFLAGS_avx2 := $(HOST_CFLAGS) -march=x86-64-v3 -DLT_COST_MODE=LT_COST_OFF
 # host-side libraries (Debian): assimp, cJSON, OpenEXR's C API (OpenEXRCore), libpng, zlib
 HOST_LIBS = -pthread -lassimp -lcjson -lOpenEXRCore-3_1 -lpng16 -lz -lm
@@ -179,7 +179,7 @@ run-doc: deps
 TEST_BINS := $(foreach v,$(VARIANTS),$(UNIT_TESTS:%=$(B)/$(v)/test_%) $(B)/$(v)/lt-vectors) \
     $(B)/sim/test_cache $(B)/host/lanetrace-native $(B)/sim/lanetrace $(EXTRA_TEST_BINS) \
     $(B)/tsan/test_par $(B)/tsan/lanetrace-native $(B)/avx2/test_v16 $(B)/avx2/test_isect \
-    $(B)/avx2/lt-vectors
+    $(B)/avx2/test_bvh $(B)/avx2/lt-vectors
 
 test: deps
 	@$(MAKE) --no-print-directory test-build

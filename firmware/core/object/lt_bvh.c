@@ -186,6 +186,19 @@ static lt_q16_t s_tdiv(int64_t n, int64_t d)
     return lt__tri_q16_tdiv1(n, d);
 }
 
+/* One plane of the wide node test: t[c] = (p[c] - o) x rd for the 8 children, lt_slab1's
+ * operations (the x86 lane backend's sequence on x86 hosts, lt_v16_x86.h). */
+static void w_plane8_q16(const lt_q16_t *p, lt_q16_t o, lt_q16_t rd, lt_q16_t *t)
+{
+#if LT__X86_LANES
+    lt__x86_plane8_q16(p, o, rd, t);
+#else
+    unsigned c;
+    for (c = 0; c < LT_BVH8_WIDTH; c++)
+        t[c] = lt__q16_mul_sat(lt__q16_sub_sat(p[c], o), rd);
+#endif
+}
+
 #include "numerics/lt_traits_q16.h"
 #define LTB_NUM LT_BVH_NUM_Q16
 #define LTB_NODE lt_bvh_node_q16_t
@@ -212,9 +225,11 @@ static lt_q16_t s_tdiv(int64_t n, int64_t d)
 #include "lt_bvh.inc"
 #define LTW_NODE lt_bvh8_node_q16_t
 #define LTW_NODE_RECIPE BVH8_NODE_Q16
+#define LTW_PLANE8 w_plane8_q16
 #include "lt_bvh8.inc"
 #undef LTW_NODE
 #undef LTW_NODE_RECIPE
+#undef LTW_PLANE8
 /* named compile-time checks (LT_STATIC_ASSERT names its typedef by __LINE__, which could meet a
  * header's line in this translation unit) */
 typedef char bvh_check_bin_q16[sizeof(lt__bvh_bin_t_q16) == BVH_BIN_BYTES ? 1 : -1];
@@ -305,6 +320,13 @@ void lt_ray1_f32_setup(lt_ray1_f32_t *r)
     r->pad_[0] = r->pad_[1] = 0;
 }
 
+static void w_plane8_f32(const float *p, float o, float rd, float *t)
+{
+    unsigned c;
+    for (c = 0; c < LT_BVH8_WIDTH; c++)
+        t[c] = (p[c] - o) * rd;
+}
+
 static void slab_fix1_f32(unsigned par, float o, float d, float lo, float hi, float *t0, float *t1)
 {
     (void)par; /* only parallel axes are flagged in float32 */
@@ -339,9 +361,11 @@ static void slab_fix1_f32(unsigned par, float o, float d, float lo, float hi, fl
 #include "lt_bvh.inc"
 #define LTW_NODE lt_bvh8_node_f32_t
 #define LTW_NODE_RECIPE BVH8_NODE_F32
+#define LTW_PLANE8 w_plane8_f32
 #include "lt_bvh8.inc"
 #undef LTW_NODE
 #undef LTW_NODE_RECIPE
+#undef LTW_PLANE8
 typedef char bvh_check_bin_f32[sizeof(lt__bvh_bin_t_f32) == BVH_BIN_BYTES ? 1 : -1];
 
 #endif /* LT_CFG_FLOAT32 */
