@@ -37,6 +37,11 @@ typedef struct { float l[LT_LANES]; } lt_vf32_t;    /* 16 x IEEE binary32, 64 by
 
 /* the x86 sequences of a few hot ops, or nothing (the portable loops below) */
 #include "lt_v16_x86.h"
+#if LT__X86_LANES
+#define LT__X86_BLEND32(k, a, b, r) lt__x86_blend32((k), (a), (b), (r))
+#else
+#define LT__X86_BLEND32(k, a, b, r) ((void)(k), (void)(a), (void)(b), (void)(r))
+#endif
 
 /* ---- masks --------------------------------------------------------------------------------- */
 
@@ -208,6 +213,11 @@ LT_INLINE lt_mask16_t lt_mask16_clear_first(lt_mask16_t k) /* MASK x1 */
         int i;                                                                                     \
         LT_COST(valu, 1);                                                                          \
         LT_UTIL(k);                                                                                 \
+        if (LT__X86_LANES && sizeof(ET) == 4) {                                                    \
+            VT r;                                                                                  \
+            LT__X86_BLEND32(k, a.l, b.l, r.l);                                                     \
+            return r;                                                                              \
+        }                                                                                          \
         for (i = 0; i < LT_LANES; i++)                                                             \
             if (LT__ON(k, i))                                                                      \
                 a.l[i] = b.l[i];                                                                   \

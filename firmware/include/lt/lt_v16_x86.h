@@ -102,6 +102,27 @@ LT_INLINE void lt__x86_mul_round_sat(const int32_t *a, const int32_t *b, int32_t
 }
 #endif
 
+/* r = b in the lanes of k, a elsewhere, for 16 lanes of 32 bits (the lane model's blend): one
+ * masked blend with the mask in a mask register (AVX-512), or the mask expanded by one compare per
+ * half (AVX2), instead of a loop over the mask's bits. */
+LT_INLINE void lt__x86_blend32(lt_mask16_t k, const void *a, const void *b, void *r)
+{
+#if LT__X86_LANES == 512
+    _mm512_storeu_si512(r, _mm512_mask_blend_epi32((__mmask16)k, _mm512_loadu_si512(a),
+                                                   _mm512_loadu_si512(b)));
+#else
+    const __m256i bits = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
+    int h;
+    for (h = 0; h < 2; h++) {
+        __m256i m = _mm256_and_si256(_mm256_set1_epi32((int)((unsigned)k >> (8 * h))), bits);
+        m = _mm256_cmpeq_epi32(m, bits);
+        _mm256_storeu_si256((__m256i *)r + h,
+                            _mm256_blendv_epi8(_mm256_loadu_si256((const __m256i *)a + h),
+                                               _mm256_loadu_si256((const __m256i *)b + h), m));
+    }
+#endif
+}
+
 /* One plane of the wide BVH's node test in s15.16, 8 lanes: t[c] = sat32(round((sat32(p[c] - o)
  * x rd) / 2^16)), half up, as lt__q16_mul_sat(lt__q16_sub_sat(p[c], o), rd) per lane; in sim
  * builds both saturations counted per lane as there. */
