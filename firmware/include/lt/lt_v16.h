@@ -372,7 +372,17 @@ LT_INLINE lt_vq16_t lt_vq16_recip_q30_sat(lt_vq30_t d, lt_q16_t zero) /* VDIV x1
     lt_vq16_t r;
     int i;
     LT_COST(VDIV, 1);
-#if LT__X86_LANES
+#if defined(LT__X86_RECIP46_16)
+    /* x86 backend, AVX-512DQ: the same quotient from a double estimate, 16 lanes at once */
+    {
+        unsigned sat;
+        lt__x86_recip46_16(d.l, zero, r.l, &sat);
+        LT_EVENT(SAT, lt__popcount32(sat));
+        (void)sat;
+        (void)i;
+        return r;
+    }
+#elif LT__X86_LANES
     /* x86 backend: the same quotient from a double estimate and one remainder test */
     for (i = 0; i < LT_LANES; i++) {
         int64_t q = lt__x86_recip46(d.l[i] == 0 ? 1 : d.l[i]);

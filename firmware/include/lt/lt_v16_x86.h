@@ -190,6 +190,39 @@ LT_INLINE int64_t lt__x86_recip46(int32_t d)
     q += (int64_t)(r >= m) - (int64_t)(r < 0);
     return d < 0 ? -q : q;
 }
+
+#if LT__X86_LANES == 512 && defined(__AVX512DQ__)
+/* lt__x86_recip46 on 16 lanes at once (AVX-512DQ: int64 <-> double conversions, 64-bit
+ * products): the same formula lane for lane, so the same results; r = zero where d == 0. *sat
+ * gets the lanes whose quotient saturated (d != 0). */
+#define LT__X86_RECIP46_16 1
+LT_INLINE void lt__x86_recip46_16(const int32_t *d, int32_t zero, int32_t *r, unsigned *sat)
+{
+    const __m512i one = _mm512_set1_epi64(1), p47 = _mm512_set1_epi64((long long)1 << 47);
+    const __m512i hi = _mm512_set1_epi64(INT32_MAX), lo = _mm512_set1_epi64(INT32_MIN);
+    unsigned s = 0;
+    int h;
+    for (h = 0; h < 2; h++) {
+        __m512i dv = _mm512_cvtepi32_epi64(_mm256_loadu_si256((const __m256i *)(const void *)(d + 8 * h)));
+        __mmask8 neg = _mm512_cmplt_epi64_mask(dv, _mm512_setzero_si512());
+        __mmask8 nz = _mm512_cmpneq_epi64_mask(dv, _mm512_setzero_si512());
+        __m512i b = _mm512_abs_epi64(_mm512_mask_mov_epi64(dv, (__mmask8)~nz, one));
+        __m512i p = _mm512_mask_sub_epi64(_mm512_add_epi64(p47, b), neg,
+                                          _mm512_add_epi64(p47, b), one);
+        __m512i m = _mm512_add_epi64(b, b);
+        __m512i q = _mm512_cvttpd_epi64(_mm512_div_pd(_mm512_cvtepi64_pd(p), _mm512_cvtepi64_pd(m)));
+        __m512i rem = _mm512_sub_epi64(p, _mm512_mullo_epi64(q, m));
+        q = _mm512_mask_add_epi64(q, _mm512_cmpge_epi64_mask(rem, m), q, one);
+        q = _mm512_mask_sub_epi64(q, _mm512_cmplt_epi64_mask(rem, _mm512_setzero_si512()), q, one);
+        q = _mm512_mask_sub_epi64(q, neg, _mm512_setzero_si512(), q);
+        s |= (unsigned)((_mm512_cmpgt_epi64_mask(q, hi) | _mm512_cmplt_epi64_mask(q, lo)) & nz) << (8 * h);
+        q = _mm512_max_epi64(_mm512_min_epi64(q, hi), lo);
+        q = _mm512_mask_mov_epi64(q, (__mmask8)~nz, _mm512_set1_epi64(zero));
+        _mm256_storeu_si256((__m256i *)(void *)(r + 8 * h), _mm512_cvtepi64_epi32(q));
+    }
+    *sat = s;
+}
+#endif
 #endif /* LT__X86_LANES */
 
 #endif /* LT_V16_X86_H */
