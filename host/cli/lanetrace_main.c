@@ -144,7 +144,8 @@ static int num_choices(unsigned families, int with_both, const char **names, uns
 }
 
 /* lt_recommend_mesh's facts of a loaded mesh and its prepared scene, and its picks into r. */
-static void mesh_recommend(const lt_mesh_t *m, const lt_scene_t *sc, lt_rec_t *r)
+static void mesh_recommend(const lt_mesh_t *m, const lt_scene_t *sc, const char *machine,
+                           lt_rec_t *r)
 {
     lt_rec_mesh_facts_t f;
     int a;
@@ -157,6 +158,7 @@ static void mesh_recommend(const lt_mesh_t *m, const lt_scene_t *sc, lt_rec_t *r
             f.extent = m->hi[a] - m->lo[a];
     f.scale = sc->scale;
     f.min_edge = sc->scale > 0.0 ? sc->min_edge / sc->scale : 0.0;
+    f.machine = machine;
     lt_recommend_mesh(&f, r);
 }
 
@@ -269,10 +271,12 @@ static int run_parse(run_t *r, int argc, char **argv)
                    "PREFIX.<path>.steps.png / .steps.exr"),
         LT_OPT_INT("--repeat", "N", &r->repeat, 1, 100000, "trace the frame N times (timing), {range}"),
         LT_OPT_SET_("--no-ref", &r->do_ref, 0, "skip the reference and the accuracy figures"),
-        LT_OPT_FLAG_("--auto", &r->autop,
-                     "take lanetrace info's recommendation (numeric path, structure,\n"
-                     "leaf size) for every one of them that neither a flag nor the scene\n"
-                     "file sets; each pick and its reason is printed"),
+        LT_OPT_SET_("--no-auto", &r->autop, 0,
+                    "do not take lanetrace info's recommendation (by default its numeric\n"
+                    "path, structure and leaf size for the machine are taken for every\n"
+                    "knob that neither a flag nor the scene file sets; each pick and\n"
+                    "its reason is printed and written to the report)"),
+        LT_OPT_SET_("--auto", &r->autop, 1, "the default (kept for scripts): the recommendation"),
         LT_OPT_FLAG_("--native", &r->native, "run the native build (no cycle model; wall-clock speed)"),
         LT_OPT_FLAG_("--json", &r->json, "machine-readable JSON on stdout"),
         LT_OPT_THREADS_(&threads_opt),
@@ -343,50 +347,78 @@ static int run_settle(run_t *r)
     return 0;
 }
 
-/* --auto: lanetrace info's picks (lt_recommend_mesh) for the knobs that neither a flag nor the
- * scene file set; each printed with its reason (or why it was kept) and kept for the report. */
-static void run_auto(run_t *r)
+/* Who set each object knob before the recommendation: a flag's name, "the scene file", or NULL. */
+typedef struct auto_by {
+    const char *numeric, *structure, *leaf;
+} auto_by_t;
+
+/* lanetrace info's picks (lt_recommend_mesh, for sf's machine) applied to the knobs nobody set
+ * (by); each printed with its reason, or with what set the knob instead, unless silent, and kept
+ * as a JSON object in json. hierarchy: the command needs a structure with a hierarchy (render:
+ * shadow rays and peels), so a "chunks" pick (and its leaf) is not applied. */
+static void auto_apply(lt_scenefile_t *sf, const lt_mesh_t *m, const lt_scene_t *sc,
+                       const auto_by_t *by0, int hierarchy, int silent, char *json, size_t len)
 {
-    lt_scenefile_t *sf = &r->sf;
     lt_rec_t rec;
+    auto_by_t by = *by0;
     cJSON *o = cJSON_CreateObject();
     char *txt;
     int i;
-    mesh_recommend(&r->mesh, &r->sc, &rec);
+    mesh_recommend(m, sc, sf->machine, &rec);
+    for (i = 0; i < rec.n; i++)
+        if (hierarchy && strcmp(rec.k[i].knob, "structure") == 0 &&
+            strcmp(rec.k[i].pick, "chunks") == 0 && by.structure == NULL)
+            by.structure = by.leaf = "render (shadow rays and peels need a hierarchy)";
     for (i = 0; i < rec.n; i++) {
         const lt_rec_pick_t *k = &rec.k[i];
-        const char *by = NULL;
+        const char *who;
         cJSON *x = cJSON_AddObjectToObject(o, k->knob);
         if (strcmp(k->knob, "numeric") == 0) {
-            by = r->seen_num ? "--num" : (sf->given & LT_SF_GIVEN_NUMERIC) ? "the scene file" : NULL;
-            if (by == NULL)
+            who = by.numeric;
+            if (who == NULL)
                 sf->numeric = strcmp(k->pick, "q16") == 0 ? LT_SF_NUM_Q16
                               : strcmp(k->pick, "f32") == 0 ? LT_SF_NUM_F32 : LT_SF_NUM_BOTH;
         } else if (strcmp(k->knob, "structure") == 0) {
-            by = r->seen_structure ? "--structure"
-                 : (sf->given & LT_SF_GIVEN_STRUCTURE) ? "the scene file" : NULL;
-            if (by == NULL)
+            who = by.structure;
+            if (who == NULL)
                 snprintf(sf->structure, sizeof sf->structure, "%s", k->pick);
         } else if (strcmp(k->knob, "leaf") == 0) {
-            by = (sf->given & LT_SF_GIVEN_LEAF) ? "the scene file" : NULL;
-            if (by == NULL)
+            who = by.leaf;
+            if (who == NULL && strcmp(sf->structure, "bvhq") == 0 &&
+                strtoul(k->pick, NULL, 10) > LT_BVHQ_MAX_LEAF)
+                who = "the structure bvhq (leaves of at most 15 triangles)";
+            if (who == NULL)
                 sf->leaf = strcmp(k->pick, "-") == 0 ? 0u : (uint32_t)strtoul(k->pick, NULL, 10);
         } else {
             continue;
         }
         cJSON_AddStringToObject(x, "pick", k->pick);
-        cJSON_AddBoolToObject(x, "applied", by == NULL);
-        cJSON_AddStringToObject(x, by == NULL ? "reason" : "set_by", by == NULL ? k->reason : by);
-        if (!r->json && by == NULL)
+        cJSON_AddBoolToObject(x, "applied", who == NULL);
+        cJSON_AddStringToObject(x, who == NULL ? "reason" : "set_by", who == NULL ? k->reason : who);
+        if (!silent && who == NULL)
             printf("auto      %-9s %-6s %s\n", k->knob, k->pick, k->reason);
-        else if (!r->json)
-            printf("auto      %-9s kept   set by %s (the recommendation: %s)\n", k->knob, by,
+        else if (!silent)
+            printf("auto      %-9s kept   set by %s (the recommendation: %s)\n", k->knob, who,
                    k->pick);
     }
+    cJSON_AddStringToObject(o, "machine", rec.machine);
     txt = cJSON_PrintUnformatted(o);
-    snprintf(r->auto_json, sizeof r->auto_json, "%s", txt != NULL ? txt : "");
+    snprintf(json, len, "%s", txt != NULL ? txt : "");
     cJSON_free(txt);
     cJSON_Delete(o);
+}
+
+/* run: the recommendation for the knobs that neither a flag nor the scene file set. */
+static void run_auto(run_t *r)
+{
+    const lt_scenefile_t *sf = &r->sf;
+    const char *file = "the scene file";
+    auto_by_t by;
+    by.numeric = r->seen_num ? "--num" : (sf->given & LT_SF_GIVEN_NUMERIC) ? file : NULL;
+    by.structure = r->seen_structure ? "--structure"
+                   : (sf->given & LT_SF_GIVEN_STRUCTURE) ? file : NULL;
+    by.leaf = (sf->given & LT_SF_GIVEN_LEAF) ? file : NULL;
+    auto_apply(&r->sf, &r->mesh, &r->sc, &by, 0, r->json, r->auto_json, sizeof r->auto_json);
 }
 
 /* The mesh, the prepared scene and the camera. Returns 0 or an exit code. */
@@ -816,6 +848,7 @@ static int cmd_run(int argc, char **argv)
     lt_sf_defaults(&r.sf);
     r.repeat = 1;
     r.do_ref = 1;
+    r.autop = 1;
     rc = run_parse(&r, argc, argv);
     if (rc != LT_OPT_OK)
         return rc == LT_OPT_HELP ? 0 : EXIT_USAGE;
@@ -1085,13 +1118,15 @@ static int info_exr(const char *path, const lt_sniff_t *sn, int json, int part, 
 
 /* The recommendation block of `info MESH` (lt_recommend_mesh): text lines, or the "recommend"
  * object of j. */
-static void info_recommend(const lt_mesh_t *m, const lt_scene_t *sc, cJSON *j)
+static void info_recommend(const lt_mesh_t *m, const lt_scene_t *sc, const char *machine,
+                           cJSON *j)
 {
     lt_rec_t r;
     int i;
-    mesh_recommend(m, sc, &r);
+    mesh_recommend(m, sc, machine, &r);
     if (j != NULL) {
         cJSON *o = cJSON_AddObjectToObject(j, "recommend");
+        cJSON_AddStringToObject(o, "machine", r.machine);
         cJSON_AddBoolToObject(o, "q16_representable", r.q16_ok);
         cJSON_AddNumberToObject(o, "dynamic_range_log2", r.range_log2);
         cJSON_AddNumberToObject(o, "shortest_edge_q16_steps", r.edge_steps);
@@ -1102,7 +1137,7 @@ static void info_recommend(const lt_mesh_t *m, const lt_scene_t *sc, cJSON *j)
         }
         return;
     }
-    printf("recommend (no sweep; lanetrace tune measures it)\n");
+    printf("recommend for %s (no sweep; lanetrace tune measures it)\n", r.machine);
     for (i = 0; i < r.n; i++)
         printf("  %-10s %-7s %s\n", r.k[i].knob, r.k[i].pick, r.k[i].reason);
 }
@@ -1116,9 +1151,11 @@ static int cmd_info(int argc, char **argv)
     lt_sniff_t sn;
     uint32_t i, zero = 0;
     int json = 0, rc, part = -1;
-    const char *path = NULL, *view = NULL;
+    const char *path = NULL, *view = NULL, *machine = "lrb16";
+    char machine_help[256];
     const lt_opt_t opts[] = {
         LT_OPT_FLAG_("--json", &json, "one JSON object on stdout"),
+        LT_OPT_STR("--machine", "NAME", &machine, machine_help),
         LT_OPT_STR("--view", "NAME", &view,
                    "EXR: the depth statistics of view NAME (default: the file's\n"
                    "default view, multiView's first)"),
@@ -1131,9 +1168,17 @@ static int cmd_info(int argc, char **argv)
                         "windows, channels; the\nviews; depth statistics of one view or part).\n",
                         NULL, opts, &path, 1, NULL};
     snprintf(who, sizeof who, "%s info", prog);
+    snprintf(machine_help, sizeof machine_help,
+             "the machine model the recommendation is for: %s (default lrb16)",
+             lt_meter_machine_names());
     rc = lt_opt_parse(&cmd, argc, argv, 2);
     if (rc != LT_OPT_OK)
         return rc == LT_OPT_HELP ? 0 : EXIT_USAGE;
+    if (!lt_meter_machine_known(machine)) {
+        fprintf(stderr, "%s info: --machine '%s': unknown machine (known: %s)\n", prog, machine,
+                lt_meter_machine_names());
+        return EXIT_USAGE;
+    }
     if (path == NULL) {
         fprintf(stderr, "%s info: a FILE is required\n", prog);
         return EXIT_USAGE;
@@ -1185,7 +1230,7 @@ static int cmd_info(int argc, char **argv)
         cJSON_AddNumberToObject(j, "collapsed_q16", sc.collapsed_q16);
         cJSON_AddNumberToObject(j, "nonzero", sc.nonzero);
         cJSON_AddBoolToObject(j, "q16_representable", lt_scene_check_q16(&sc, path, &diag) == 0);
-        info_recommend(&m, &sc, j);
+        info_recommend(&m, &sc, machine, j);
         print_json_line(j);
     } else {
         printf("detected  %s by its content%s\n", sn.what,
@@ -1202,7 +1247,7 @@ static int cmd_info(int argc, char **argv)
                lt_scene_check_q16(&sc, path, &diag) == 0 ? "representable"
                                                                  : "NOT representable, float32 only",
                sc.min_edge);
-        info_recommend(&m, &sc, NULL);
+        info_recommend(&m, &sc, machine, NULL);
     }
     lt_scene_free(&sc);
     lt_mesh_free(&m);
@@ -1385,6 +1430,8 @@ typedef struct render {
     uint32_t wh[2];
     double lf[3];
     int seen_res, seen_light, seen_num, num, structure, isect, seen_isect, layers, json;
+    int seen_structure, autop;
+    char auto_json[2048]; /* what the recommendation did, a JSON object ("" = nothing) */
     const char *num_names[8];
     unsigned num_sets[8];
     const lt_path_info_t *path;
@@ -1441,8 +1488,9 @@ static int render_parse(render_t *r, int argc, char **argv)
         {.name = "--num", .kind = LT_OPT_ENUM, .dest = &r->num, .seen = &r->seen_num,
          .names = r->num_names, .help = num_help},
         {.name = "--structure", .kind = LT_OPT_ENUM, .dest = &r->structure, .meta = "NAME",
-         .names = lt_render_structures,
-         .help = "acceleration structure: {choices}\n(default bvh; chunks: no shadows, no peels)"},
+         .seen = &r->seen_structure, .names = lt_render_structures,
+         .help = "acceleration structure: {choices}\n(default: the scene's, else the "
+                 "recommendation; chunks: no shadows, no peels)"},
         {.name = "--isect", .kind = LT_OPT_ENUM, .dest = &r->isect, .seen = &r->seen_isect,
          .meta = "NAME", .names = lt_sf_isects,
          .help = "ray/triangle test: {choices} (default: the scene's, else wt:\n"
@@ -1455,6 +1503,12 @@ static int render_parse(render_t *r, int argc, char **argv)
          .meta = "X,Y,Z", .lo = -HUGE_VAL, .hi = HUGE_VAL, .n = 3,
          .help = "point light in mesh file units (default: the scene's first light,\n"
                  "else centre + 2 radius normalize(-0.5, 1.5, 0.8))"},
+        LT_OPT_SET_("--no-auto", &r->autop, 0,
+                    "do not take lanetrace info's recommendation (by default its\n"
+                    "numeric path, structure and leaf size for the scene's machine\n"
+                    "are taken for every knob that neither a flag nor the scene file\n"
+                    "sets; each pick and its reason is printed)"),
+        LT_OPT_SET_("--auto", &r->autop, 1, "the default (kept for scripts): the recommendation"),
         LT_OPT_FLAG_("--json", &r->json, "print what was written as JSON on stdout"),
         LT_OPT_THREADS_(&threads_opt),
         LT_OPT_FLAG_("-q", &quiet, "quiet"),
@@ -1471,8 +1525,9 @@ static int render_parse(render_t *r, int argc, char **argv)
     int rc;
     snprintf(who, sizeof who, "%s render", prog);
     num_choices(LT_PATHS_OBJECT, 0, r->num_names, r->num_sets, num_help, sizeof num_help);
-    strncat(num_help, "; default the scene file's \"numeric\" when it names one path, else q16\n"
-                      "(f32 when s15.16 cannot represent the scene and q16 was not asked for)",
+    strncat(num_help, "; default the scene file's \"numeric\" when it names one path, else\n"
+                      "the recommendation (--no-auto: q16; f32 when s15.16 cannot represent\n"
+                      "the scene and q16 was not asked for)",
             sizeof num_help - strlen(num_help) - 1);
     rc = lt_opt_parse(&cmd, argc, argv, 2);
     lt_par_set_threads((unsigned)threads_opt);
@@ -1551,6 +1606,20 @@ static int render_load(render_t *r)
     if (lt_scene_prepare(&r->mesh, &r->sc, &diag) != 0) {
         fprintf(stderr, "%s: %s\n", sf->mesh, diag.msg);
         return EXIT_INPUT;
+    }
+    if (r->autop) {
+        const char *file = "the scene file";
+        auto_by_t by;
+        by.numeric = r->seen_num ? "--num" : (sf->given & LT_SF_GIVEN_NUMERIC) ? file : NULL;
+        by.structure = r->seen_structure ? "--structure"
+                       : (sf->given & LT_SF_GIVEN_STRUCTURE) ? file : NULL;
+        by.leaf = (sf->given & LT_SF_GIVEN_LEAF) ? file : NULL;
+        auto_apply(sf, &r->mesh, &r->sc, &by, 1, quiet, r->auto_json, sizeof r->auto_json);
+    }
+    if (!r->seen_structure) {
+        for (a = 0; lt_render_structures[a] != NULL; a++)
+            if (strcmp(lt_render_structures[a], sf->structure) == 0)
+                r->structure = a;
     }
     if (render_pick_path(r) != 0)
         return EXIT_INPUT;
@@ -1804,6 +1873,8 @@ static int render_write_exr(render_t *r)
 static void render_pick_json(const render_t *r, cJSON *o)
 {
     cJSON *y;
+    if (r->auto_json[0] != '\0')
+        cJSON_AddItemToObject(o, "auto", cJSON_Parse(r->auto_json));
     if (r->dropped == NULL)
         return;
     y = cJSON_AddObjectToObject(o, "numeric_pick");
@@ -1965,6 +2036,7 @@ static int cmd_render(int argc, char **argv)
     memset(&r, 0, sizeof r);
     lt_sf_defaults(&r.sf);
     r.layers = 1;
+    r.autop = 1;
     for (r.structure = 0; strcmp(lt_render_structures[r.structure], "bvh") != 0; r.structure++)
         ;
     rc = render_parse(&r, argc, argv);

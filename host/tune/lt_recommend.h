@@ -19,6 +19,8 @@ extern "C" {
 #define LT_REC_MIN_EDGE_STEPS 64.0
 /* leaf size of the BVH: lanetrace tune's cheapest on lrb16 (16 lanes) for the teapot */
 #define LT_REC_BVH_LEAF 16u
+/* leaf size on a machine of fewer than 16 lanes: tune's cheapest BVH leaf on the 1-lane mcu-m4 */
+#define LT_REC_BVH_LEAF_NARROW 4u
 
 typedef struct lt_rec_mesh_facts {
     uint32_t ntris;         /* triangles of the file */
@@ -27,7 +29,28 @@ typedef struct lt_rec_mesh_facts {
     double extent;          /* largest side of the bounding box, file units */
     double min_edge;        /* shortest non-zero edge of a non-degenerate triangle, file units */
     double scale;           /* file units -> s15.16 units (lt_scene_t.scale) */
+    const char *machine;    /* the machine model the picks are for; NULL: lrb16 */
 } lt_rec_mesh_facts_t;
+
+/* The numeric pick weighs, on the machine, what one call of each path's watertight triangle test
+ * costs for 16 rays that miss (most tests miss): lt_tri16_wt_q16 against lt_tri16_wt_f32, each
+ * op class of the call (lt_rec_tri_q16/f32, terminated by n == 0) at the machine's issue cycles.
+ * The lists are the ops the simulator charges for those calls; test_costs checks them. */
+typedef struct lt_rec_op {
+    int op;     /* LT_OP_* */
+    unsigned n; /* times per call */
+} lt_rec_op_t;
+extern const lt_rec_op_t lt_rec_tri_q16[], lt_rec_tri_f32[];
+
+typedef struct lt_rec_costs {
+    uint32_t f32;   /* issue cycles of lt_tri16_wt_f32, 16 missing rays */
+    uint32_t q16;   /* issue cycles of lt_tri16_wt_q16, 16 missing rays */
+    uint32_t lanes; /* the machine's lanes */
+} lt_rec_costs_t;
+
+/* The costs of the machine called name (every build: the machine files are data); 0, or -1 for
+ * an unknown name (then *c is zeroed). */
+int lt_rec_machine_costs(const char *name, lt_rec_costs_t *c);
 
 #define LT_REC_MAX_KNOBS 4
 
@@ -43,6 +66,8 @@ typedef struct lt_rec {
     int q16_ok;        /* s15.16 represents the scene (lt_scene_check_q16's rule) */
     double range_log2; /* log2(extent / shortest edge); 0 when there is no edge */
     double edge_steps; /* the shortest edge in s15.16 steps */
+    const char *machine;  /* the machine the picks are for */
+    lt_rec_costs_t costs; /* its costs (lt_rec_machine_costs) */
 } lt_rec_t;
 
 /* The recommendation for a mesh's facts into r (always succeeds). */

@@ -73,7 +73,7 @@ mkdir -p "$tmp/plots"
 B=$B SWEEP_RES=8 tools/plots/sweep.sh "$tmp/plots/sweep.csv" >/dev/null 2>&1 &&
     tools/plots/plots.sh "$tmp/plots/sweep.csv" "$tmp/plots" >/dev/null 2>&1
 check "make plots pipeline: sweep CSV -> 4 PNG plots" bash -c "[ \$(ls '$tmp'/plots/*.png | wc -l) -eq 4 ]"
-expect "run --depth writes an EXR with Z and id per path" 0 "" "$LT" run --res 16 --depth "$tmp/d.exr" -q
+expect "run --depth writes an EXR with Z and id per path" 0 "" "$LT" run --res 16 --num both --depth "$tmp/d.exr" -q
 expect "info on the depth EXR lists its channels" 0 "q16.Z(FLOAT)" "$LT" info "$tmp/d.exr"
 expect "run --heatmap writes PNG and EXR per path" 0 "" "$LT" run --res 16 --num q16 --heatmap "$tmp/h" -q
 check "heatmap files exist (cycles and steps)" test -s "$tmp/h.q16.png" -a -s "$tmp/h.q16.exr" -a -s "$tmp/h.q16.steps.png"
@@ -134,7 +134,7 @@ sys.exit(0 if j['parts'] == 2 and j['views'] == ['right', 'left'] and j['default
          and [c['name'] for c in pl[1]['channels']] == ['A', 'B', 'G', 'R', 'Z']
          and d['part'] == 1 and d['view'] == 'right' and d['min'] == 4 else 1)" "$tmp/infost.json"
 # every structure traces the same image: compared with the chunks (brute force over boxes)
-"$HOSTBIN/lanetrace-native" run --structure chunks --res 32 -q >"$tmp/chunks.txt" 2>&1
+"$HOSTBIN/lanetrace-native" run --structure chunks --num both --res 32 -q >"$tmp/chunks.txt" 2>&1
 for st in bvh bvhq; do
     nm=both; [ $st = bvhq ] && nm=q16
     "$HOSTBIN/lanetrace-native" run --structure $st --num $nm --res 32 -q >"$tmp/n_$st.txt" 2>&1
@@ -150,7 +150,7 @@ expect "render --layers with chunks: usage error" 2 "hierarchy" "$LT" render --r
 expect "render without --out: usage" 2 "--out" "$LT" render --res 8
 expect "render --help" 0 "usage: lanetrace render" "$LT" render --help
 for st in kd grid; do
-    "$LT" run --structure $st --res 32 -q >"$tmp/s_$st.txt" 2>&1
+    "$LT" run --structure $st --num both --res 32 -q >"$tmp/s_$st.txt" 2>&1
     a=$(grep "result    q16" "$tmp/s_$st.txt"); c=$(grep "result    q16" "$tmp/chunks.txt")
     check "structure $st (sim) = chunks result ($a)" test -n "$a" -a "$a" = "$c"
 done
@@ -169,20 +169,24 @@ expect "render --report in the native build: usage error" 2 "simulator build" "$
     echo "f 1 2 3"
     for i in 0 1 2 3 4 5 6 7 8 9; do b=$((4 + 3 * i)); echo "f $b $((b + 1)) $((b + 2))"; done
 } >"$tmp/wide.obj"
-# not asked for s15.16 (run's default --num both, render's and shadows' default q16): s15.16 is
+# by default the recommendation picks float32 with the reason (s15.16 cannot represent it);
+# not asked for s15.16 otherwise (--num both, --no-auto: render's and shadows' q16): s15.16 is
 # dropped with the reason on one line and float32 runs; asked for (--num q16, the scene file's
 # "numeric": "q16"): refused naming the file and the limit
-expect "run: a scene s15.16 cannot represent runs on f32, the reason on one line" 0 "run: numeric path q16 (s15.16) dropped, running f32: .*wide.obj: cannot be represented in s15.16: 10 of 11 triangles.*limit 0.1%" "$LT" run --mesh "$tmp/wide.obj" --res 8 -q
-check "run: the fallback traced f32 only" grep -q "result    f32" "$tmp/o.txt"
-check "run: ... and not q16" test "$(grep -c 'result    q16' "$tmp/o.txt")" -eq 0
-"$LT" run --mesh "$tmp/wide.obj" --res 8 --no-ref --json >"$tmp/wide.json" 2>/dev/null
+expect "run: a scene s15.16 cannot represent: the recommendation runs f32 and says why" 0 "auto      numeric   f32    not representable in s15.16: 10 of 11 triangles collapse .*limit 0.1%" "$LT" run --mesh "$tmp/wide.obj" --res 8
+check "run: the pick traced f32 only" bash -c "grep -q 'result    f32' '$tmp/o.txt' && ! grep -q 'result    q16' '$tmp/o.txt'"
+expect "run --num both: a scene s15.16 cannot represent runs on f32, the reason on one line" 0 "run: numeric path q16 (s15.16) dropped, running f32: .*wide.obj: cannot be represented in s15.16: 10 of 11 triangles.*limit 0.1%" "$LT" run --mesh "$tmp/wide.obj" --res 8 -q --num both
+check "run --num both: the fallback traced f32 only" grep -q "result    f32" "$tmp/o.txt"
+check "run --num both: ... and not q16" test "$(grep -c 'result    q16' "$tmp/o.txt")" -eq 0
+expect "render: a scene s15.16 cannot represent: the recommendation renders f32 and says why" 0 "auto      numeric   f32    not representable in s15.16" "$LT" render --mesh "$tmp/wide.obj" --res 8 --out "$tmp/widea"
+"$LT" run --mesh "$tmp/wide.obj" --res 8 --no-ref --num both --json >"$tmp/wide.json" 2>/dev/null
 check "run --json records the pick and the reason (numeric_pick)" python3 -c "
 import json,sys; r=json.load(open('$tmp/wide.json')); x=r[0].get('extra', r[0]); p=x['numeric_pick']
 sys.exit(0 if len(r)==1 and p['path']=='f32' and p['dropped']=='q16' and 'cannot be represented in s15.16' in p['reason'] else 1)"
 expect "run --num q16: a scene s15.16 cannot represent is refused naming the file and the limit" 1 "wide.obj: cannot be represented in s15.16: 10 of 11 triangles.*limit 0.1%" "$LT" run --mesh "$tmp/wide.obj" --res 8 -q --num q16
 printf '{"mesh": "%s", "numeric": "q16", "resolution": [8, 8]}\n' "$tmp/wide.obj" >"$tmp/wideq.json"
 expect "run: the scene file's \"numeric\": \"q16\" is asked for too: refused" 1 "cannot be represented in s15.16" "$LT" run "$tmp/wideq.json" -q
-expect "render: the same fallback to f32" 0 "render: numeric path q16 (s15.16) dropped, running f32 (float32): .*cannot be represented in s15.16" "$LT" render --mesh "$tmp/wide.obj" --res 8 --out "$tmp/wide" --json
+expect "render --no-auto: the same fallback to f32" 0 "render: numeric path q16 (s15.16) dropped, running f32 (float32): .*cannot be represented in s15.16" "$LT" render --mesh "$tmp/wide.obj" --res 8 --out "$tmp/wide" --json --no-auto
 check "render --json records the pick" grep -q '"dropped":.*"q16"' "$tmp/o.txt"
 check "render: the fallback wrote its images" test -s "$tmp/wide.exr"
 expect "render --num q16: refused" 1 "cannot be represented in s15.16" "$LT" render --mesh "$tmp/wide.obj" --res 8 --out "$tmp/wideq" --num q16
@@ -229,7 +233,7 @@ expect "a directory as the scene file" 1 "adir: not a regular file (a directory)
 sc '{"mesh": "'"$PWD"'/scenes/teapot.obj", "camera": {"eye": [1e300, 0, 0], "target": [0, 0, 0]}}'
 expect "scene: an eye 1e300 away is named as out of range, not 'up is parallel'" 1 "camera eye is .* scene radii from the centre" "$LT" run "$tmp/s.json" --res 8 -q
 sc '{"mesh": "'"$PWD"'/scenes/teapot.obj", "camera": {"eye": [0, 0, 50], "target": [0, 0, 0], "up": [0, 1e-300, 0]}}'
-expect "scene: a tiny but valid up vector works" 0 "result    q16" "$LT" run "$tmp/s.json" --res 8 -q --no-ref
+expect "scene: a tiny but valid up vector works" 0 "result    f32" "$LT" run "$tmp/s.json" --res 8 -q --no-ref
 sc '{"mesh": "'"$PWD"'/scenes/teapot.obj", "camera": {"eye": [1e308, 0, 0], "target": [-1e308, 0, 0]}}'
 expect "scene: an eye-target distance that overflows is named" 1 "overflows a double" "$LT" run "$tmp/s.json" --res 8 -q
 sc '{"mesh": "'"$PWD"'/scenes/teapot.obj", "camera": {"eye": [0, 0, 50], "target": [0, 0, 0], "up": [0, 0, 3]}}'

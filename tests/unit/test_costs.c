@@ -40,6 +40,7 @@
 #include "lt/lt_kd.h"
 #include "lt/lt_grid.h"
 #include "lt_test_util.h"
+#include "tune/lt_recommend.h"
 #if LT_COST_MODE == LT_COST_SIM
 #include "lt_sim.h"
 #endif
@@ -374,6 +375,65 @@ static void test_kernel_costs_f32(void **state)
         bad += h.id.l[0] != 0;
     }
     (void)tn;
+    assert_int_equal(bad, 0);
+}
+
+/* lanetrace info's numeric pick (host/tune/lt_recommend) prices each path by the ops one call of
+ * its watertight triangle test charges for 16 missing rays: those lists are what the kernels charge. */
+static int verify_mix(const char *name, const uint64_t b[LT_OP__COUNT], const lt_rec_op_t *mix)
+{
+    want_t w[LT_OP__COUNT];
+    size_t n = 0;
+    for (; mix->n != 0 && n < LT_OP__COUNT; mix++, n++) {
+        w[n].op = mix->op;
+        w[n].n = mix->n;
+    }
+    return verify(name, b, w, n);
+}
+
+static void test_recommend_mix(void **state)
+{
+    lt_ray16_q16_t rq;
+    lt_ray1_q16_t r1[LT_LANES];
+    lt_tri_q16_t th, tm;
+    lt_wt16_q16_t wq;
+    lt_ray16_f32_t rf;
+    lt_wt16_f32_t wf;
+    lt_tri_f32_t tf;
+    lt_hit16_t h;
+    uint64_t b[LT_OP__COUNT];
+    int i, bad = 0;
+    lt_mask16_t k;
+    (void)state;
+    sim_start();
+    make_q16(&rq, r1);
+    make_tris(&th, &tm);
+    memset(&rf, 0, sizeof rf);
+    for (i = 0; i < LT_LANES; i++) {
+        rf.ox.l[i] = (float)rq.ox.l[i] / 65536.0f;
+        rf.oy.l[i] = (float)rq.oy.l[i] / 65536.0f;
+        rf.oz.l[i] = -8.0f;
+        rf.dx.l[i] = (float)rq.dx.l[i] / 1073741824.0f;
+        rf.dy.l[i] = (float)rq.dy.l[i] / 1073741824.0f;
+        rf.dz.l[i] = (float)rq.dz.l[i] / 1073741824.0f;
+        rf.tmax.l[i] = 100.0f;
+    }
+    memset(&tf, 0, sizeof tf);
+    tf.v0[0] = 50.0f;
+    tf.v0[1] = -2.0f;
+    tf.e1[0] = 6.0f;
+    tf.e2[1] = 6.0f;
+    (void)lt_ray16_wt_setup_q16(&rq, &wq);
+    (void)lt_ray16_wt_setup_f32(&rf, &wf);
+    h.id = lt_vi32_set1(-1);
+    snap(b);
+    k = lt_tri16_wt_q16(&rq, &wq, 0xFFFFu, &tm, 0, &h);
+    bad += verify_mix("lt_rec_tri_q16 = lt_tri16_wt_q16 on 16 missing rays", b, lt_rec_tri_q16);
+    bad += k != 0;
+    snap(b);
+    k = lt_tri16_wt_f32(&rf, &wf, 0xFFFFu, &tf, 0, &h);
+    bad += verify_mix("lt_rec_tri_f32 = lt_tri16_wt_f32 on 16 missing rays", b, lt_rec_tri_f32);
+    bad += k != 0;
     assert_int_equal(bad, 0);
 }
 #endif
@@ -2428,6 +2488,11 @@ static void test_object_costs(void **state)
     skip_costs("object-space kernels (one-triangle scene)");
 }
 #if LT_CFG_FLOAT32
+static void test_recommend_mix(void **state)
+{
+    (void)state;
+    skip_costs("lanetrace info's triangle-test op lists");
+}
 static void test_kernel_costs_f32(void **state)
 {
     (void)state;
@@ -2450,6 +2515,7 @@ int main(void)
         cmocka_unit_test(test_object_costs),
 #if LT_CFG_FLOAT32
         cmocka_unit_test(test_kernel_costs_f32),
+        cmocka_unit_test(test_recommend_mix),
 #endif
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

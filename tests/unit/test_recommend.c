@@ -9,6 +9,7 @@
 #include <setjmp.h>
 #include <cmocka.h>
 
+#include <stdio.h>
 #include <string.h>
 
 #include "tune/lt_recommend.h"
@@ -26,7 +27,7 @@ static const lt_rec_pick_t *knob(const lt_rec_t *r, const char *name)
 /* the teapot's facts (lanetrace info): 992 triangles, none collapse, a wide margin */
 static void test_teapot(void **state)
 {
-    lt_rec_mesh_facts_t f = {992, 992, 0, 6.4, 0.0211, 0.16};
+    lt_rec_mesh_facts_t f = {992, 992, 0, 6.4, 0.0211, 0.16, "lrb16"};
     lt_rec_t r;
     (void)state;
     lt_recommend_mesh(&f, &r);
@@ -34,6 +35,7 @@ static void test_teapot(void **state)
     assert_true(r.q16_ok);
     assert_string_equal(knob(&r, "numeric")->pick, "f32");
     assert_non_null(strstr(knob(&r, "numeric")->reason, "q16 holds it too (0 of 992"));
+    assert_non_null(strstr(knob(&r, "numeric")->reason, "cheaper on lrb16"));
     assert_string_equal(knob(&r, "structure")->pick, "bvh");
     assert_non_null(strstr(knob(&r, "structure")->reason, "992 triangles (> 256)"));
     assert_string_equal(knob(&r, "leaf")->pick, "16");
@@ -43,7 +45,7 @@ static void test_teapot(void **state)
 /* cli.sh's wide.obj: 10 of 11 collapse -> f32 with the counts; 11 triangles -> chunks */
 static void test_unrepresentable_small(void **state)
 {
-    lt_rec_mesh_facts_t f = {11, 11, 10, 2e6, 1e-3, 0.000488281};
+    lt_rec_mesh_facts_t f = {11, 11, 10, 2e6, 1e-3, 0.000488281, NULL};
     lt_rec_t r;
     (void)state;
     lt_recommend_mesh(&f, &r);
@@ -60,7 +62,7 @@ static void test_unrepresentable_small(void **state)
  * the structure threshold is exclusive (256 chunks, 257 bvh) */
 static void test_limits(void **state)
 {
-    lt_rec_mesh_facts_t f = {256, 1000, 1, 100.0, 1.0, 10.0};
+    lt_rec_mesh_facts_t f = {256, 1000, 1, 100.0, 1.0, 10.0, NULL};
     lt_rec_t r;
     (void)state;
     lt_recommend_mesh(&f, &r);
@@ -76,7 +78,7 @@ static void test_limits(void **state)
 /* representable, but the shortest edge spans fewer than LT_REC_MIN_EDGE_STEPS steps */
 static void test_few_steps(void **state)
 {
-    lt_rec_mesh_facts_t f = {500, 500, 0, 1000.0, 1e-4, 1.0}; /* 1e-4 * 65536 = 6.6 steps */
+    lt_rec_mesh_facts_t f = {500, 500, 0, 1000.0, 1e-4, 1.0, NULL}; /* 1e-4 * 65536 = 6.6 steps */
     lt_rec_t r;
     (void)state;
     lt_recommend_mesh(&f, &r);
@@ -86,6 +88,33 @@ static void test_few_steps(void **state)
     assert_non_null(strstr(knob(&r, "numeric")->reason, "shortest edge spans 6.55 steps"));
 }
 
+/* The machine decides the leaf (16 lanes: 16, one lane: 4) and prices the paths: each path's cost
+ * is its triangle test's op list at the machine's issue cycles (lt_rec_machine_costs), and the
+ * numeric reason quotes both figures. An unknown machine has no costs. */
+static void test_machines(void **state)
+{
+    lt_rec_mesh_facts_t f = {992, 992, 0, 6.4, 0.0211, 0.16, "mcu-m4"};
+    lt_rec_costs_t c;
+    lt_rec_t r;
+    char want[96];
+    (void)state;
+    assert_int_equal(lt_rec_machine_costs("mcu-m4", &c), 0);
+    assert_int_equal(c.lanes, 1);
+    assert_true(c.f32 > 0 && c.q16 > 0);
+    lt_recommend_mesh(&f, &r);
+    assert_string_equal(r.machine, "mcu-m4");
+    assert_string_equal(knob(&r, "leaf")->pick, "4");
+    assert_non_null(strstr(knob(&r, "leaf")->reason, "about 248 leaves"));
+    snprintf(want, sizeof want, "%u", c.q16 < c.f32 ? c.q16 : c.f32);
+    assert_non_null(strstr(knob(&r, "numeric")->reason, want));
+    assert_string_equal(knob(&r, "numeric")->pick, c.q16 < c.f32 ? "q16" : "f32");
+    assert_int_equal(lt_rec_machine_costs("lrb16", &c), 0);
+    assert_int_equal(c.lanes, 16);
+    assert_int_equal(lt_rec_machine_costs("z80", &c), -1);
+    assert_int_equal(c.f32 + c.q16 + c.lanes, 0);
+    print_message("recommend: mcu-m4 picks leaf 4 and prices the paths from its machine file\n");
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -93,6 +122,7 @@ int main(void)
         cmocka_unit_test(test_unrepresentable_small),
         cmocka_unit_test(test_limits),
         cmocka_unit_test(test_few_steps),
+        cmocka_unit_test(test_machines),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
