@@ -161,8 +161,8 @@ RUN_ARGS ?=
 run: deps
 	@$(MAKE) --no-print-directory all
 	@mkdir -p $(B)/run
-	@# --auto: lanetrace info's recommendation for what the scene file leaves open (its leaf size)
-	$(B)/sim/lanetrace run scenes/teapot.json --auto --report $(B)/run/report.json $(RUN_ARGS)
+	@# lanetrace info's recommendation is taken for what the scene file leaves open (its leaf size)
+	$(B)/sim/lanetrace run scenes/teapot.json --report $(B)/run/report.json $(RUN_ARGS)
 	@# view synthesis (docs/reproject.md): a 2-layer depth render of the teapot, reprojected
 	$(B)/host/lanetrace-native render scenes/teapot.json --res 96 --layers 2 --out $(B)/run/teapot -q
 	$(B)/sim/lanetrace reproject scenes/teapot.json --depth $(B)/run/teapot.exr --layers 2 --color \

@@ -9,10 +9,14 @@
  *   LT_MACHINE_CACHE(L2, "sets:ways:line" or NULL, hit_cycles) optional; NULL: no L2
  *   LT_MACHINE_MEM(cycles)                                     a memory access
  *   LT_OP_COST(op, latency, issue)                             every LT_OP of lt/lt_ops.def
+ *   LT_MACHINE_QT(enc, build, rest)                            n64, n32 and f32: simulated cycles
+ *       per pixel of a quadtree reprojection, build per source pixel and the rest (ray set-up,
+ *       traversal) per target pixel, measured by tests/bench/qtcal.sh; lanetrace info and
+ *       reproject weigh the node formats with them (host/tune/lt_recommend.c)
  * and the generated list closes each file with LT_MACHINE_END.
  *
  * Use: define the macros a pass needs (the others expand to nothing), include this file; it
- * undefines all five afterwards, so it can be included once per pass (no include guard).
+ * undefines all six afterwards, so it can be included once per pass (no include guard).
  * Builds: host, sim, asan (data only; the names need no simulator).
  */
 #ifndef LT_MACHINE
@@ -27,6 +31,9 @@
 #ifndef LT_OP_COST
 #define LT_OP_COST(op, latency, issue)
 #endif
+#ifndef LT_MACHINE_QT
+#define LT_MACHINE_QT(enc, build, rest)
+#endif
 #ifndef LT_MACHINE_END
 #define LT_MACHINE_END
 #endif
@@ -37,4 +44,5 @@
 #undef LT_MACHINE_CACHE
 #undef LT_MACHINE_MEM
 #undef LT_OP_COST
+#undef LT_MACHINE_QT
 #undef LT_MACHINE_END

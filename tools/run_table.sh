@@ -1,13 +1,13 @@
 #!/usr/bin/env bash
 # run_table.sh - the "Cycle report of the bundled scene" table of docs/results.md, measured now:
-# runs build/sim/lanetrace run scenes/teapot.json --auto (as `make run` does) with a report per path
+# runs build/sim/lanetrace run scenes/teapot.json (as `make run` does: the recommendation is the default) with a report per path
 # and prints the Markdown table from the reports. Usage: tools/run_table.sh [extra run flags]
 # (make run-doc writes it into docs/results.md between its run-table markers)
 set -euo pipefail
 B=${B:-build}
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-"$B/sim/lanetrace" run scenes/teapot.json --auto --report "$tmp/r.json" -q "$@" >/dev/null
+"$B/sim/lanetrace" run scenes/teapot.json --report "$tmp/r.json" -q "$@" >/dev/null
 python3 - "$tmp" <<'PY'
 import json, sys, os
 d = sys.argv[1]

@@ -1001,7 +1001,8 @@ static int exr_probe_next(const char *path, int p, lt_exr_probe_t *pr)
 /* info --json: the file, its views, part 0's header at the top level (as before parts were
  * listed), "part_list" with every part, "depth" (d NULL: "depth_error", why none). */
 static int info_exr_json(const char *path, const lt_sniff_t *sn, lt_exr_probe_t *pr,
-                         const lt_exr_depth_t *d, const exr_stats_t *s, const char *why)
+                         const lt_exr_depth_t *d, const exr_stats_t *s, const char *why,
+                         const lt_rec_depth_facts_t *df, const lt_rec_t *rec)
 {
     cJSON *j = cJSON_CreateObject(), *a;
     const int dw[4] = {pr->data_window.x0, pr->data_window.y0, pr->data_window.x1,
@@ -1043,6 +1044,17 @@ static int info_exr_json(const char *path, const lt_sniff_t *sn, lt_exr_probe_t 
         cJSON_AddNumberToObject(a, "min", s->mn);
         cJSON_AddNumberToObject(a, "max", s->mx);
         cJSON_AddNumberToObject(a, "mean", s->n ? s->sum / (double)s->n : 0.0);
+        cJSON_AddNumberToObject(a, "jump_share", df->pairs ? (double)df->jumps / (double)df->pairs : 0.0);
+        cJSON_AddNumberToObject(a, "planar_share",
+                                df->inner ? (double)df->planar / (double)df->inner : 0.0);
+        a = cJSON_AddObjectToObject(j, "recommend");
+        cJSON_AddStringToObject(a, "machine", rec->machine);
+        cJSON_AddNumberToObject(a, "depth_range_log2", rec->range_log2);
+        for (p = 0; p < rec->n; p++) {
+            cJSON *k = cJSON_AddObjectToObject(a, rec->k[p].knob);
+            cJSON_AddStringToObject(k, "pick", rec->k[p].pick);
+            cJSON_AddStringToObject(k, "reason", rec->k[p].reason);
+        }
     } else {
         cJSON_AddStringToObject(j, "depth_error", why);
     }
@@ -1056,7 +1068,8 @@ static int info_exr_json(const char *path, const lt_sniff_t *sn, lt_exr_probe_t 
 
 /* info: the file and its views, every part, the depth statistics (d NULL: why none). */
 static int info_exr_text(const char *path, const lt_sniff_t *sn, lt_exr_probe_t *pr,
-                         const lt_exr_depth_t *d, const exr_stats_t *s, const char *why)
+                         const lt_exr_depth_t *d, const exr_stats_t *s, const char *why,
+                         const lt_rec_depth_facts_t *df, const lt_rec_t *rec)
 {
     char views[1024];
     int p;
@@ -1077,13 +1090,25 @@ static int info_exr_text(const char *path, const lt_sniff_t *sn, lt_exr_probe_t 
                d->part, d->view[0] != '\0' ? ", view " : "", d->view, d->channel,
                d->deep ? " (deep: front-most sample)" : "", s->n, s->holes, s->mn, s->mx,
                s->n ? s->sum / (double)s->n : 0.0);
-    else
+    if (d != NULL) {
+        printf("shape     jumps %.2f%% of neighbour pairs (depths > %g%% apart), planar %.2f%% of "
+               "inner pixels (second differences of 1/z <= %g of it)\n",
+               df->pairs ? 100.0 * (double)df->jumps / (double)df->pairs : 0.0,
+               100.0 * LT_REC_JUMP_REL,
+               df->inner ? 100.0 * (double)df->planar / (double)df->inner : 0.0, LT_REC_PLANAR_REL);
+        printf("recommend for %s, reproject (no sweep; lanetrace tune measures it)\n", rec->machine);
+        for (p = 0; p < rec->n; p++)
+            printf("  %-10s %-7s %s\n", rec->k[p].knob, rec->k[p].pick, rec->k[p].reason);
+    } else
         printf("depth     none readable: %s\n", why);
     return 0;
 }
 
-static int info_exr(const char *path, const lt_sniff_t *sn, int json, int part, const char *view)
+static int info_exr(const char *path, const lt_sniff_t *sn, int json, int part, const char *view,
+                    const char *machine)
 {
+    lt_rec_depth_facts_t df;
+    lt_rec_t rec;
     lt_exr_probe_t *pr = malloc(sizeof *pr);
     lt_exr_depth_t d;
     lt_exr_read_opts_t ro = LT_EXR_READ_OPTS_DEFAULT;
@@ -1104,12 +1129,18 @@ static int info_exr(const char *path, const lt_sniff_t *sn, int json, int part, 
         free(pr);
         return EXIT_INPUT;
     }
-    if (have_depth)
+    memset(&df, 0, sizeof df);
+    memset(&rec, 0, sizeof rec);
+    if (have_depth) {
         exr_depth_stats(&d, &s);
+        lt_rec_depth_scan(d.z, (uint32_t)d.width, (uint32_t)d.height, &df);
+        df.machine = machine;
+        lt_recommend_depth(&df, &rec);
+    }
     if (json)
-        rc = info_exr_json(path, sn, pr, have_depth ? &d : NULL, &s, diag.msg);
+        rc = info_exr_json(path, sn, pr, have_depth ? &d : NULL, &s, diag.msg, &df, &rec);
     else
-        rc = info_exr_text(path, sn, pr, have_depth ? &d : NULL, &s, diag.msg);
+        rc = info_exr_text(path, sn, pr, have_depth ? &d : NULL, &s, diag.msg, &df, &rec);
     if (have_depth)
         lt_exr_depth_free(&d);
     free(pr);
@@ -1188,7 +1219,7 @@ static int cmd_info(int argc, char **argv)
         return EXIT_INPUT;
     }
     if (sn.kind == LT_SNIFF_EXR)
-        return info_exr(path, &sn, json, part, view);
+        return info_exr(path, &sn, json, part, view, machine);
     if (part >= 0 || view != NULL) {
         fprintf(stderr, "%s info: %s: --view and --part select in an EXR file, this is %s\n", prog,
                 path, sn.what);

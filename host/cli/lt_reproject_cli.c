@@ -21,6 +21,7 @@
 #include "render/lt_reproject.h"
 #include "render/lt_scene.h"
 #include "io/lt_scenefile.h"
+#include "tune/lt_recommend.h"
 
 #include <cjson/cJSON.h>
 #include <math.h>
@@ -53,6 +54,9 @@ typedef struct rp {
     const char *enc_names[8];
     const lt_path_info_t *path; /* the screen-space numeric path (--num) */
     int move_rel;
+    int autop;            /* the recommendation for the knobs nobody set (default on) */
+    int enc_given;        /* the scene file names the encoding */
+    char auto_json[1024]; /* what it did, a JSON object ("" = nothing) */
     /* the source: depth layers, colour, camera */
     lt_exr_depth_t dl[LT_RP_MAX_LAYERS], dc;
     lt_mesh_t mesh;
@@ -173,6 +177,12 @@ static int rp_options(rp_t *r, int *quiet, const char *prog, int argc, char **ar
                    "depth of its children (2^-17); w units, each in {range}\n"
                    "(docs/quadtree.md section 6)"),
         LT_OPT_STR("--machine", "NAME", &r->machine, machine_help),
+        LT_OPT_SET_("--no-auto", &r->autop, 0,
+                    "do not take lanetrace info's recommendation (by default its node\n"
+                    "format for the depth image and the machine is taken when neither\n"
+                    "--num nor the scene file sets one; the pick and its reason are\n"
+                    "printed and written to the report)"),
+        LT_OPT_SET_("--auto", &r->autop, 1, "the default (kept for scripts): the recommendation"),
         LT_OPT_SECTION_("ground truth (a mesh scene only; the target camera must keep the source's "
                         "centred\nsquare-pixel intrinsics):"),
         LT_OPT_FLAG_("--truth", &r->truth,
@@ -434,6 +444,7 @@ static int rp_settle(rp_t *r, const char *prog)
         scene_enc = lt_paths_find(sf->rp_encoding, LT_PATHS_SCREEN);
         if (!r->seen_enc && scene_enc != NULL)
             r->path = scene_enc;
+        r->enc_given = scene_enc != NULL;
         if (r->layers == 0 && sf->rp_layers > 0)
             r->layers = (int)sf->rp_layers;
         if (r->channel == NULL && sf->rp_channel[0] != '\0')
@@ -637,6 +648,50 @@ static int rp_source_camera(rp_t *r)
 
 /* The target camera: the source moved (--move-rel in median depths) and rotated, resized
  * (--res), with --dst-cam intrinsics. */
+/* The recommendation (lt_recommend_depth) for the node format, from layer 0's depths along the
+ * axis and the machine, applied unless --num or the scene file set it or the tracer is not the
+ * quadtree (the pick prices quadtree node visits); printed unless quiet. */
+static void rp_auto(rp_t *r, int quiet)
+{
+    lt_rec_depth_facts_t df;
+    lt_rec_t rec;
+    const char *by = NULL;
+    cJSON *o, *x;
+    char *txt;
+    if (!r->autop)
+        return;
+    lt_rec_depth_scan(r->zall, r->W, r->H, &df);
+    df.machine = r->machine;
+    df.target_px = (uint64_t)r->dcam.width * r->dcam.height;
+    lt_recommend_depth(&df, &rec);
+    if (rec.n < 1)
+        return;
+    if (r->seen_enc)
+        by = "--num";
+    else if (r->enc_given)
+        by = "the scene file";
+    else if (r->tracer != LT_RP_QUADTREE)
+        by = r->tracer == LT_RP_DDA ? "--tracer dda (the pick prices quadtree nodes)"
+                                    : "--tracer hiz (the pick prices quadtree nodes)";
+    if (by == NULL)
+        r->path = lt_paths_find(rec.k[0].pick, LT_PATHS_SCREEN);
+    if (!quiet && by == NULL)
+        printf("auto      %-9s %-6s %s\n", rec.k[0].knob, rec.k[0].pick, rec.k[0].reason);
+    else if (!quiet)
+        printf("auto      %-9s kept   set by %s (the recommendation: %s)\n", rec.k[0].knob, by,
+               rec.k[0].pick);
+    o = cJSON_CreateObject();
+    x = cJSON_AddObjectToObject(o, rec.k[0].knob);
+    cJSON_AddStringToObject(x, "pick", rec.k[0].pick);
+    cJSON_AddBoolToObject(x, "applied", by == NULL);
+    cJSON_AddStringToObject(x, by == NULL ? "reason" : "set_by", by == NULL ? rec.k[0].reason : by);
+    cJSON_AddStringToObject(o, "machine", rec.machine);
+    txt = cJSON_PrintUnformatted(o);
+    snprintf(r->auto_json, sizeof r->auto_json, "%s", txt != NULL ? txt : "");
+    cJSON_free(txt);
+    cJSON_Delete(o);
+}
+
 static void rp_target_camera(rp_t *r)
 {
     lt_reproj_cam_t *dcam = &r->dcam;
@@ -1003,7 +1058,10 @@ static int rp_report(const rp_t *r, const rp_figs_t *f, const lt_rp_cli_hooks_t 
             snprintf(extra + len - 1, sizeof extra - (size_t)len + 1, ", \"truth\": %s}", ts);
         free(ts);
         cJSON_Delete(tj);
+        len = (int)strlen(extra);
     }
+    if (r->auto_json[0] != '\0' && len > 0 && (size_t)len + strlen(r->auto_json) + 12 < sizeof extra)
+        snprintf(extra + len - 1, sizeof extra - (size_t)len + 1, ", \"auto\": %s}", r->auto_json);
     if (!*hk->quiet)
         lt_meter_report_text(stdout, title, st->pixels);
     if (r->report != NULL) {
@@ -1063,6 +1121,8 @@ static void rp_print_json(const rp_t *r, const rp_figs_t *f)
     cJSON_AddNumberToObject(o, "layers", r->layers);
     cJSON_AddStringToObject(o, "encoding", r->path->name);
     cJSON_AddStringToObject(o, "tracer", tracer_name[r->tracer]);
+    if (r->auto_json[0] != '\0')
+        cJSON_AddItemToObject(o, "auto", cJSON_Parse(r->auto_json));
     cJSON_AddNumberToObject(o, "source_width", r->W);
     cJSON_AddNumberToObject(o, "source_height", r->H);
     cJSON_AddNumberToObject(o, "width", r->res.width);
@@ -1140,6 +1200,7 @@ int lt_rp_cli(int argc, char **argv, const char *prog, const lt_rp_cli_hooks_t *
     r.fov = RP_DEFAULT_FOV;
     r.cam_desc = "default";
     r.part = -1;
+    r.autop = 1;
     rc = rp_options(&r, hk->quiet, prog, argc, argv, NULL);
     if (rc != LT_OPT_OK)
         return rc == LT_OPT_HELP ? 0 : EXIT_USAGE;
@@ -1158,6 +1219,7 @@ int lt_rp_cli(int argc, char **argv, const char *prog, const lt_rp_cli_hooks_t *
         rc = rp_source_camera(&r);
     if (rc == 0) {
         rp_target_camera(&r);
+        rp_auto(&r, *hk->quiet);
         if (r.truth)
             rc = rp_ground_truth(&r, prog, hk);
     }

@@ -73,6 +73,39 @@ typedef struct lt_rec {
 /* The recommendation for a mesh's facts into r (always succeeds). */
 void lt_recommend_mesh(const lt_rec_mesh_facts_t *f, lt_rec_t *r);
 
+/* ---- depth images (the screen family: lanetrace reproject) ---- */
+
+/* A neighbour pair whose depths differ by more than this fraction of the nearer is a jump */
+#define LT_REC_JUMP_REL 0.05
+/* A pixel is planar when the second differences of w = 1/z along x and y sum to at most this
+ * fraction of its w (a plane in the camera is linear in w: second differences 0) */
+#define LT_REC_PLANAR_REL 1e-3
+
+typedef struct lt_rec_depth_facts {
+    uint32_t width, height;
+    uint64_t valid;          /* finite depths > 0 */
+    uint64_t holes;          /* the others (0, negative, NaN, inf): background */
+    double zmin, zmax;       /* over the valid depths */
+    uint64_t pairs, jumps;   /* 4-neighbour pairs of valid pixels; of those, jumps */
+    uint64_t inner, planar;  /* valid pixels with 4 valid neighbours; of those, planar */
+    uint64_t target_px;      /* pixels of the reprojected view; 0: the source's size */
+    const char *machine;     /* the machine model the picks are for; NULL: lrb16 */
+} lt_rec_depth_facts_t;
+
+/* The facts of a width x height depth image (row-major z, any units) into f; machine NULL. */
+void lt_rec_depth_scan(const float *z, uint32_t width, uint32_t height, lt_rec_depth_facts_t *f);
+
+/* Simulated cycles of a quadtree reprojection from src_px source to dst_px target pixels in node
+ * format enc ("n64", "n32", "f32") on the machine, from its LT_MACHINE_QT rows (measured by
+ * tests/bench/qtcal.sh); 0 for an unknown machine or format. */
+double lt_rec_qt_cost(const char *machine, const char *enc, double src_px, double dst_px);
+
+/* The recommendation for a depth image into r: knob "num", the quadtree node format: float32 when
+ * s1.30's step at the farthest depth is coarser than float32's 2^-24, else the cheaper of n64
+ * and f32 on the machine (lt_rec_qt_cost; n32 is never picked: it keeps 12-bit planes and loses
+ * hits); r->range_log2 = log2(zmax / zmin). */
+void lt_recommend_depth(const lt_rec_depth_facts_t *f, lt_rec_t *r);
+
 #ifdef __cplusplus
 }
 #endif

@@ -19,7 +19,9 @@
 #  8. view synthesis against ray-traced ground truth (tests/bench/rptruth.sh): depth error of the
 #     quadtree reprojection per numeric configuration on the teapot and the shared meshes (~15 s);
 #  9. lanetrace tune: how long each family's sweep takes and how many points it measures
-#     (tests/bench/tune_bench.sh; teapot and bunny, 128 px, --jobs 2, ~1 min).
+#     (tests/bench/tune_bench.sh; teapot and bunny, 128 px, --jobs 2, ~1 min);
+# 10. the machine files' quadtree rows (LT_MACHINE_QT): cycles per pixel of a reprojection in each
+#     node format on every machine, Beachball and Trunks (tests/bench/qtcal.sh, ~10 s).
 # Run from the repository root after make all firmware build/sim/slab-model build/plugin/lt_icount.so.
 set -euo pipefail
 B=build
@@ -74,7 +76,7 @@ done
 echo "   larger sweeps: build/host/lt-leak MESH --res 1024 --isect both [--subdiv 1] (leak counts per structure)"
 
 echo "== 5. cycle report: bundled scene on lrb16"
-"$B/sim/lanetrace" run --mesh "$SCENE" --res "$RES" --structure "$STRUCT" --report "$B/bench-report.json"
+"$B/sim/lanetrace" run --mesh "$SCENE" --res "$RES" --structure "$STRUCT" --num both --report "$B/bench-report.json"
 echo "== 6. screen-space baselines: quadtree vs DDA vs Hi-Z, same rays (lrb16, simulator; docs/ss-baselines.md)"; "$B/sim/ssbench"
 
 echo "== 7. multi-frusta Table 1: primary and soft-shadow frusta vs 16-ray packets (lrb16 simulator)"
@@ -90,3 +92,6 @@ B=$B tests/bench/rptruth.sh
 
 echo "== 9. lanetrace tune: each family's sweep, its points and wall time (--jobs 2, docs/tune.md)"
 B=$B tests/bench/tune_bench.sh
+
+echo "== 10. the machines' quadtree rows: reprojection cycles per pixel per node format (tests/bench/qtcal.sh)"
+tests/bench/qtcal.sh "$B/sim/lanetrace"

@@ -55,3 +55,44 @@ a = d['auto']
 ok = d['structure'] == 'bvh' and a['structure']['applied'] is False \
      and 'hierarchy' in a['structure']['set_by'] and a['numeric']['applied'] is True and d['path'] == 'f32'
 sys.exit(0 if ok else 1)"
+# reproject: the node format from the depth image and the machine (lanetrace info's depth
+# recommendation), on a depth image the quadtree rows were not measured on (the teapot, 96x96)
+"$AU_SIM" render --mesh scenes/teapot.obj --res 96 --out "$tmp/au_d" -q >/dev/null 2>&1
+au_rp() { "$AU_SIM" reproject --mesh scenes/teapot.obj --depth "$tmp/au_d.exr" --move-rel 0.05,0,0 \
+    --out "$tmp/au_rp" "$@"; }
+au_rp >"$tmp/au9.txt" 2>&1
+rc=$?
+check "reproject: the node format is picked with its reason by default (rc $rc)" \
+    bash -c "[ $rc -eq 0 ] && grep -q '^auto      num       \(n64\|f32\)  *depths .* cheaper on lrb16: 96x96 to 9216 target pixels' '$tmp/au9.txt'"
+au_rp --num n32 -q --json >"$tmp/au10.json" 2>&1
+au_rp --tracer hiz -q --json >"$tmp/au11.json" 2>&1
+au_rp --no-auto -q --json >"$tmp/au12.json" 2>&1
+check "reproject: --num and --tracer keep their choice (said in the JSON); --no-auto keeps n64" \
+    python3 -c "
+import json, sys
+a = json.load(open('$tmp/au10.json')); b = json.load(open('$tmp/au11.json')); c = json.load(open('$tmp/au12.json'))
+ok = a['encoding'] == 'n32' and a['auto']['num'] == {'pick': a['auto']['num']['pick'], 'applied': False, 'set_by': '--num'} \
+     and b['auto']['num']['applied'] is False and b['auto']['num']['set_by'].startswith('--tracer hiz') \
+     and c['encoding'] == 'n64' and 'auto' not in c
+sys.exit(0 if ok else 1)"
+# out of sample: on every machine the pick costs at most 10% more than the cheaper of n64 and f32
+for m in $("$AU_SIM" machines | awk 'NR > 1 && /MHz/ { print $1 }'); do
+    for e in n64 f32 auto; do
+        if [ $e = auto ]; then a=(); else a=(--num $e); fi
+        au_rp --machine "$m" "${a[@]}" -q --report "$tmp/au_$m.$e.json" >/dev/null 2>&1
+    done
+    check "reproject on $m: the picked format costs at most 1.10x the cheaper of n64 and f32 here" \
+        python3 -c "
+import json, sys
+c = {e: json.load(open('$tmp/au_$m.%s.json' % e)) for e in ('n64', 'f32', 'auto')}
+best = min(c['n64']['total_cycles'], c['f32']['total_cycles'])
+pick = c['auto']['total_cycles']
+print('  $m: pick %s %d cycles, n64 %d, f32 %d (%.3fx the cheaper)' % (c['auto']['encoding'], pick,
+      c['n64']['total_cycles'], c['f32']['total_cycles'], pick / best))
+sys.exit(0 if c['auto']['auto']['num']['applied'] and pick <= 1.10 * best else 1)"
+done
+"$AU_NAT" info "$tmp/au_d.exr" --machine mcu-m4 >"$tmp/au13.txt" 2>&1
+check "info DEPTH.exr --machine mcu-m4: shape facts and the node-format recommendation" \
+    bash -c "grep -q '^shape     jumps [0-9.]*% of neighbour pairs' '$tmp/au13.txt' &&
+             grep -q '^recommend for mcu-m4, reproject' '$tmp/au13.txt' &&
+             grep -q '^  num  *\(n64\|f32\)  *depths' '$tmp/au13.txt'"

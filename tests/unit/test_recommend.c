@@ -115,6 +115,109 @@ static void test_machines(void **state)
     print_message("recommend: mcu-m4 picks leaf 4 and prices the paths from its machine file\n");
 }
 
+/* Depth facts: a tilted plane (linear in 1/z) is planar everywhere with no jumps; a step of 2x is a
+ * jump on its border; NaN, 0 and inf are holes and never neighbours. */
+static void test_depth_scan(void **state)
+{
+    float z[8 * 8];
+    lt_rec_depth_facts_t f;
+    int x, y;
+    (void)state;
+    for (y = 0; y < 8; y++)
+        for (x = 0; x < 8; x++)
+            z[y * 8 + x] = (float)(1.0 / (0.5 + 0.01 * x + 0.02 * y));
+    lt_rec_depth_scan(z, 8, 8, &f);
+    assert_int_equal(f.valid, 64);
+    assert_int_equal(f.holes, 0);
+    assert_int_equal(f.pairs, 2 * 8 * 7);
+    assert_int_equal(f.jumps, 0);
+    assert_int_equal(f.inner, 36);
+    assert_int_equal(f.planar, 36);
+    for (y = 0; y < 8; y++)
+        for (x = 0; x < 8; x++)
+            z[y * 8 + x] = x < 4 ? 2.0f : 4.0f;
+    z[0] = 0.0f / 0.0f;
+    z[1] = 0.0f;
+    z[2] = 1.0f / 0.0f;
+    lt_rec_depth_scan(z, 8, 8, &f);
+    assert_int_equal(f.holes, 3);
+    assert_int_equal(f.valid, 61);
+    assert_int_equal(f.jumps, 8);               /* the x = 3 | 4 border, one pair per row */
+    assert_true(f.zmin == 2.0 && f.zmax == 4.0);
+    assert_int_equal(f.pairs, 2 * 8 * 7 - 6);  /* pairs touching the 3 holes: 3 across, 3 down */
+    print_message("depth scan: plane 36 of 36 inner pixels planar, step 8 jumps, 3 holes\n");
+}
+
+/* The node format: the range gate first (s1.30 coarser than float32 at the far end: f32 whatever
+ * it costs), then the machine's quadtree rows weighed at the real source and target sizes. */
+static void test_depth_pick(void **state)
+{
+    lt_rec_depth_facts_t f;
+    lt_rec_t r;
+    double b64, bf;
+    (void)state;
+    memset(&f, 0, sizeof f);
+    f.width = 911;
+    f.height = 876;
+    f.valid = 600000;
+    f.zmin = 9.0;
+    f.zmax = 10.92;
+    f.machine = "lrb16";
+    /* a small target: the build dominates, n64's build is cheaper on lrb16 */
+    f.target_px = 256 * 256;
+    lt_recommend_depth(&f, &r);
+    b64 = lt_rec_qt_cost("lrb16", "n64", 911.0 * 876, 65536.0);
+    bf = lt_rec_qt_cost("lrb16", "f32", 911.0 * 876, 65536.0);
+    assert_true(b64 > 0.0 && bf > 0.0);
+    assert_string_equal(knob(&r, "num")->pick, b64 <= bf ? "n64" : "f32");
+    assert_non_null(strstr(knob(&r, "num")->reason, "911x876 to 65536 target pixels"));
+    /* mcu-m4 (float32 is cheaper per pixel in both parts there) */
+    f.machine = "mcu-m4";
+    lt_recommend_depth(&f, &r);
+    assert_string_equal(knob(&r, "num")->pick,
+                        lt_rec_qt_cost("mcu-m4", "n64", 911.0 * 876, 65536.0) <=
+                                lt_rec_qt_cost("mcu-m4", "f32", 911.0 * 876, 65536.0) ? "n64" : "f32");
+    assert_non_null(strstr(knob(&r, "num")->reason, "on mcu-m4"));
+    /* depths 1e-3 .. 1e4: z_ref = 2^-10, the far step 2^-31 1e4 / 2^-10 = 4.8e-3 > 2^-24 */
+    f.machine = "lrb16";
+    f.zmin = 1e-3;
+    f.zmax = 1e4;
+    lt_recommend_depth(&f, &r);
+    assert_string_equal(knob(&r, "num")->pick, "f32");
+    assert_non_null(strstr(knob(&r, "num")->reason, "coarser than float32"));
+    /* the gate's edge: z_ref = 8 for zmin 9, so zmax up to 8 2^7 = 1024 passes, 1100 does not */
+    f.zmin = 9.0;
+    f.zmax = 1000.0;
+    lt_recommend_depth(&f, &r);
+    assert_null(strstr(knob(&r, "num")->reason, "coarser"));
+    f.zmax = 1100.0;
+    lt_recommend_depth(&f, &r);
+    assert_non_null(strstr(knob(&r, "num")->reason, "coarser than float32"));
+    /* no valid depth: the default */
+    f.valid = 0;
+    lt_recommend_depth(&f, &r);
+    assert_string_equal(knob(&r, "num")->pick, "n64");
+    assert_true(lt_rec_qt_cost("z80", "n64", 1.0, 1.0) == 0.0);
+    {
+        /* every machine file has its quadtree rows (docs/cost-model.md, "Adding a machine") */
+        static const char *const names[] = {
+#define LT_MACHINE(id, name, desc, clock_mhz, lanes) name,
+#include "lt_machines.h"
+            NULL};
+        int i;
+        for (i = 0; names[i] != NULL; i++) {
+            if (!(lt_rec_qt_cost(names[i], "n64", 1.0, 0.0) > 0.0 &&
+                  lt_rec_qt_cost(names[i], "n32", 0.0, 1.0) > 0.0 &&
+                  lt_rec_qt_cost(names[i], "f32", 1.0, 1.0) > 0.0))
+                fail_msg("machine %s: no LT_MACHINE_QT rows (tests/bench/qtcal.sh prints them)",
+                         names[i]);
+        }
+        print_message("every machine file (%d) has its quadtree rows\n", i);
+    }
+    assert_true(lt_rec_qt_cost("lrb16", "n16", 1.0, 1.0) == 0.0);
+    print_message("depth pick: range gate at 2^-24, costs from the machine rows\n");
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -123,6 +226,8 @@ int main(void)
         cmocka_unit_test(test_limits),
         cmocka_unit_test(test_few_steps),
         cmocka_unit_test(test_machines),
+        cmocka_unit_test(test_depth_scan),
+        cmocka_unit_test(test_depth_pick),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
