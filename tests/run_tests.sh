@@ -137,7 +137,7 @@ fi
 echo "== shared scenes"
 shared=../shared/scenes
 if [ -f "$shared/bunny.obj" ]; then
-    "$HOSTBIN/lanetrace-native" run --mesh "$shared/bunny.obj" --res 32 -q >"$tmp/bunny.txt" 2>&1
+    "$HOSTBIN/lanetrace-native" run --mesh "$shared/bunny.obj" --res 32 --num q16 -q >"$tmp/bunny.txt" 2>&1
     acc=$(grep "accuracy  q16" "$tmp/bunny.txt" | sed -E 's/.*same triangle ([0-9.]+)%.*/\1/')
     check "bunny.obj q16 same triangle as double ($acc%)" awk -v a="$acc" 'BEGIN{exit !(a >= 99.0)}'
 elif [ "${CI:-}" = "true" ]; then

@@ -111,7 +111,8 @@ static const lt_qmc_kind_t qmc_kinds[] = {LT_QMC_LP, LT_QMC_HAMMERSLEY};
 static const char *const filter_names[] = {"irradiance", "visibility", NULL};
 
 /* --cull, --pcull: any of the letters b (back-face), c (corner rays), r (CR), l (ray-AABB leaf
- * culling), s (wide frusta split into packets), or "none" */
+ * culling), s (wide frusta split into packets), or "none"; --cull (ctx non-NULL) also f (FS:
+ * shrink the shadow frusta's direction intervals with their corner rays; implies r) */
 static int parse_cull(const char *text, void *dest, const void *ctx)
 {
     uint32_t f = 0;
@@ -129,6 +130,8 @@ static int parse_cull(const char *text, void *dest, const void *ctx)
                 f |= LT_FRUSTA_LEAFRAY;
             else if (*c == 's')
                 f |= LT_FRUSTA_SPLIT;
+            else if (*c == 'f' && ctx != NULL)
+                f |= LT_FRUSTA_FS | LT_FRUSTA_CR;
             else
                 return -1;
         }
@@ -165,10 +168,11 @@ static int shadows_parse(shadows_t *s, int argc, char **argv)
          .help = "frusta BVH leaf size, {range} (max_leaf N, min_leaf N/2; default 8)"},
         {.name = "--cull", .kind = LT_OPT_CUSTOM, .dest = &s->flags, .seen = &s->seen_cull,
          .meta = "LIST",
-         .parse = parse_cull, .expect = "letters b, c, r, l, s or none",
+         .parse = parse_cull, .ctx = "shadow", .expect = "letters b, c, r, f, l, s or none",
          .help = "shadow culling: any of b (back-face), c (corner rays), r (CR),\n"
+                 "f (FS: CR that also shrinks the traversal's direction intervals),\n"
                  "l (ray-AABB leaf culling), s (wide frusta go on as packets),\n"
-                 "or none (default bcrls)"},
+                 "or none (default bcrfls)"},
         {.name = "--prim", .kind = LT_OPT_ENUM, .dest = &s->prim, .seen = &s->seen_prim,
          .names = prim_names,
          .help = "primary method(s) (default both: P-Packet feeds S-Packet and\n"
@@ -258,7 +262,7 @@ static int shadows_scene(shadows_t *s)
         if (!s->seen_leaf && sf->sh_leaf > 0)
             s->leaf = (int)sf->sh_leaf;
         if (!s->seen_cull && sf->sh_cull[0] != '\0')
-            (void)parse_cull(sf->sh_cull, &s->flags, NULL);
+            (void)parse_cull(sf->sh_cull, &s->flags, "shadow");
         for (i = 0; !s->seen_prim && sf->sh_primary[0] != '\0' && prim_names[i] != NULL; i++)
             if (strcmp(prim_names[i], sf->sh_primary) == 0)
                 s->prim = i;
@@ -382,13 +386,14 @@ static void shadows_print_scene(const shadows_t *s)
     const lt_ss_light_t *light = &s->light;
     uint32_t flags = s->flags, pflags = s->pflags;
     printf("scene     %s: %u triangles%s, radius %.1f units (scale %g), %ux%u, %s, light "
-           "%.3g x %.3g units at (%.1f, %.1f, %.1f), frusta leaf %u, culling %s%s%s%s%s%s, "
+           "%.3g x %.3g units at (%.1f, %.1f, %.1f), frusta leaf %u, culling %s%s%s%s%s%s%s, "
            "primary culling %s%s%s%s%s%s, %s samples, isect %s\n",
            s->mesh_path, s->sc.ntris, s->ground ? " (with ground quad)" : "", s->sc.radius,
            s->sc.scale, s->res, s->res, s->path->format, light->eu[0], light->ev[2],
            light->c[0] + 0.5 * light->eu[0], light->c[1], light->c[2] + 0.5 * light->ev[2],
            s->leaf, flags == 0 ? "none" : "", flags & LT_FRUSTA_BACKFACE ? "b" : "",
            flags & LT_FRUSTA_CORNER ? "c" : "", flags & LT_FRUSTA_CR ? "r" : "",
+           flags & LT_FRUSTA_FS ? "f" : "",
            flags & LT_FRUSTA_LEAFRAY ? "l" : "", flags & LT_FRUSTA_SPLIT ? "s" : "",
            pflags == 0 ? "none" : "", pflags & LT_FRUSTA_BACKFACE ? "b" : "",
            pflags & LT_FRUSTA_CORNER ? "c" : "", pflags & LT_FRUSTA_CR ? "r" : "",
@@ -762,8 +767,9 @@ int lt_shadows_cli(int argc, char **argv, const char *prog)
     s.tol = 0.05;
     s.depth_rel = 0.05;
     s.cos_min = 0.9;
-    s.flags = s.pflags = LT_FRUSTA_BACKFACE | LT_FRUSTA_CORNER | LT_FRUSTA_CR | LT_FRUSTA_LEAFRAY |
-                                LT_FRUSTA_SPLIT;
+    s.pflags = LT_FRUSTA_BACKFACE | LT_FRUSTA_CORNER | LT_FRUSTA_CR | LT_FRUSTA_LEAFRAY |
+               LT_FRUSTA_SPLIT;
+    s.flags = s.pflags | LT_FRUSTA_FS;
     snprintf(who, sizeof who, "%s shadows", prog);
     rc = shadows_parse(&s, argc, argv);
     if (rc != LT_OPT_OK)

@@ -77,7 +77,7 @@ fr_expect "shadows: unknown option" 2 "unknown option" "$SH_NAT" shadows --mesh 
 fr_expect "shadows: --leaf 0 names the limit" 2 "LT_BVH_MAX_LEAF" "$SH_NAT" shadows --mesh scenes/teapot.obj --leaf 0
 fr_expect "shadows: --leaf 65 names the limit" 2 "1..64" "$SH_NAT" shadows --mesh scenes/teapot.obj --leaf 65
 fr_expect "shadows: --res 3" 2 "4..8192" "$SH_NAT" shadows --mesh scenes/teapot.obj --res 3
-fr_expect "shadows: --cull letters" 2 "letters b, c, r, l, s" "$SH_NAT" shadows --mesh scenes/teapot.obj --cull x
+fr_expect "shadows: --cull letters" 2 "letters b, c, r, f, l, s" "$SH_NAT" shadows --mesh scenes/teapot.obj --cull x
 fr_expect "shadows: --pcull letters" 2 "pcull x: expected letters b, c, r, l, s" "$SH_NAT" shadows --mesh scenes/teapot.obj --pcull x
 fr_expect "shadows: --prim values" 2 "expected packet, frusta or both" "$SH_NAT" shadows --mesh scenes/teapot.obj --prim rays
 fr_expect "shadows: --light needs 4 numbers" 2 "X,Y,Z,SIZE" "$SH_NAT" shadows --mesh scenes/teapot.obj --light 1,2
@@ -98,3 +98,13 @@ elif [ "${CI:-}" = "true" ]; then
 else
     echo "SKIP frusta bunny: $shared_bunny not found (a fresh clone has no ../shared)"
 fi
+# FS (the shadow frusta's intervals shrink with CR; the default): the scene line says bcrfls, the
+# primary frusta refuse f, and with it or without it the frusta equal the packets on every pixel
+"$SH_SIM" shadows --mesh scenes/teapot.obj --res 48 --no-ref >"$tmp/fs1.txt" 2>&1
+"$SH_SIM" shadows --mesh scenes/teapot.obj --res 48 --no-ref --cull bcrls >"$tmp/fs2.txt" 2>&1
+check "shadows: FS is on by default (culling bcrfls), frusta = packets with and without it" \
+    bash -c "grep -q 'culling bcrfls, primary culling bcrls' '$tmp/fs1.txt' &&
+             grep -q 'culling bcrls, primary' '$tmp/fs2.txt' &&
+             grep -q 'frusta = packet visibility on 2304 of 2304 pixels (0 differ)' '$tmp/fs1.txt' &&
+             grep -q 'frusta = packet visibility on 2304 of 2304 pixels (0 differ)' '$tmp/fs2.txt'"
+fr_expect "shadows: --pcull f is refused (FS is the shadow frusta's)" 2 "pcull f: expected letters b, c, r, l, s" "$SH_NAT" shadows --mesh scenes/teapot.obj --pcull f

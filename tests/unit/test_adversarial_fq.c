@@ -389,11 +389,13 @@ static void run_shadow(int f32, scene_t *sc, tally_t *T)
                 lt_frusta_light_f32_t lf;
                 static lt_frusta_table_q16_t tq;
                 static lt_frusta_table_f32_t tf;
+                /* FS on every other light of the flag sets with CR */
+                uint32_t flg = fl | ((fl & LT_FRUSTA_CR) != 0 && (l & 1u) != 0 ? LT_FRUSTA_FS : 0u);
                 if (f32) {
-                    sh_light_f32(l, fl, &lf);
+                    sh_light_f32(l, flg, &lf);
                     assert_int_equal(lt_frusta_table_f32(&lf, &g_sets, &tf), LT_OK);
                 } else {
-                    sh_light_q16(l, fl, &lq);
+                    sh_light_q16(l, flg, &lq);
                     assert_int_equal(lt_frusta_table_q16(&lq, &g_sets, &tq), LT_OK);
                 }
                 for (b = 0; b < SH_BATCHES; b++) {
@@ -553,7 +555,7 @@ static unsigned shadow_args(void)
     lq.eu[0] = 1; /* off the grid */
     assert_int_equal(lt_frusta_table_q16(&lq, &g_sets, &tq), LT_E_ARG), n++;
     sh_light_q16(0, 0, &lq);
-    lq.flags = 32u;
+    lq.flags = 128u;
     assert_int_equal(lt_frusta_table_q16(&lq, &g_sets, &tq), LT_E_ARG), n++;
     lq.flags = 0xFFFFFFFFu;
     assert_int_equal(lt_frusta_table_q16(&lq, &g_sets, &tq), LT_E_ARG), n++;
@@ -569,7 +571,7 @@ static unsigned shadow_args(void)
                 (w == 0 ? lf.c : (w == 1 ? lf.eu : lf.ev))[a] = bad[i];
                 assert_int_equal(lt_frusta_table_f32(&lf, &g_sets, &tf), LT_E_ARG), n++;
             }
-    sh_light_f32(0, 32u, &lf);
+    sh_light_f32(0, 128u, &lf);
     assert_int_equal(lt_frusta_table_f32(&lf, &g_sets, &tf), LT_E_ARG), n++;
     sh_light_f32(0, 0, &lf);
     lf.c[0] = FLT_MAX; /* finite: accepted (float lights have no geometry bound) */
@@ -597,7 +599,7 @@ static void test_shadow_frusta(void **state)
                na);
     for (p = 0; p < 2; p++) {
         run_shadow(p, sc, &T[p]);
-        fail |= tally_report("shadow frusta (8 lights x 32 flag sets x WT/MT, full and partial "
+        fail |= tally_report("shadow frusta (8 lights x 32 flag sets (with CR: FS on odd lights) x WT/MT, full and partial "
                              "masks)",
                              p ? "f32" : "q16", &T[p], sh_cls, S_NCLS, "occluded samples",
                              "frusta occl != packet baseline");

@@ -2,7 +2,8 @@
  * asan) and the firmware image tests/fw/fw_frusta.c (cm4, cm55, rv32 under QEMU), so that one
  * hash proves every build traces the same shadow tiles bit for bit: 300 triangles from an integer
  * PRNG, BVH leaf 8, a 48 x 48 unit light on the 2^-7 grid, LP sample sets, 4 tiles of 16 frusta
- * per flag set (none, b, c, bc, cr, bcr, ls, bcrls); plus primary frusta (P-Frusta) and their packet
+ * per flag set (none, b, c, bc, cr, bcr, ls, bcrls; the shadow tiles bcrfls for the last); plus
+ * primary frusta (P-Frusta) and their packet
  * baseline (P-Packet) on a 22 x 18 view of the same scene (4 blocks, partial tiles) per flag set,
  * closest-hit t and id of every pixel. Header only (static functions); freestanding.
  */
@@ -166,7 +167,7 @@ static uint32_t ltft_hash_q16(void)
         lt_qmc_interleave4x4(LT_QMC_LP, 0, &sets) != LT_OK)
         return 0;
     for (fl = 0; fl < LTFT_NFLAGS; fl++) {
-        ltft_light(&l, ltft_flags[fl]);
+        ltft_light(&l, ltft_flags[fl] | (fl + 1u == LTFT_NFLAGS ? LT_FRUSTA_FS : 0u));
         if (lt_frusta_table_q16(&l, &sets, &tb) != LT_OK)
             return 0;
         for (t = 0; t < 4; t++) {
@@ -276,7 +277,7 @@ static uint32_t ltft_hash_f32(void)
         lt_qmc_interleave4x4(LT_QMC_LP, 0, &sets) != LT_OK)
         return 0;
     for (fl = 0; fl < LTFT_NFLAGS; fl++) {
-        ltft_light(&lq, ltft_flags[fl]);
+        ltft_light(&lq, ltft_flags[fl] | (fl + 1u == LTFT_NFLAGS ? LT_FRUSTA_FS : 0u));
         for (a = 0; a < 3; a++) {
             l.c[a] = (float)lq.c[a] / 65536.0f;
             l.eu[a] = (float)lq.eu[a] / 65536.0f;

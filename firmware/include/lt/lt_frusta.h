@@ -39,6 +39,10 @@ extern "C" {
                                  leaf in which one of their rays terminated (the paper's "CR") */
 #define LT_FRUSTA_SPLIT 16u   /* a subtree entered by at most LT_FRUSTA_SPLIT_MAX frusta is walked
                                  by each of them as its own 16-ray packet (slab tests, any hit) */
+#define LT_FRUSTA_FS 64u      /* shadow frusta: with the corner rays recomputed (the paper's "FS",
+                                 frustum interval shrinking; implies CR), also shrink the
+                                 direction intervals the traversal's box test uses to the new
+                                 corner rays */
 #define LT_FRUSTA_LEAFRAY 8u  /* ray-AABB leaf culling ([Benthin09] Table 2 "Ray-AABB"): at a
                                  leaf, a frustum whose own live rays (a 16-ray packet with
                                  reciprocals, made once per call) miss the leaf's box skips it;
@@ -160,7 +164,9 @@ lt_status_t lt_frusta_setup16_q16(const lt_frusta_table_q16_t *tb, lt_mask16_t k
  * (fr_gen: FR_GEN, VBCAST x3, VALU x3, FR_Q_TOD x3), the test (fr_tri: FR_TRI, VBCAST x16, 3
  * rounded cross products, 2 dot products, d . qvec, VCMP x4, VMULW x1; tnum < 0: VMULW x4,
  * VBCAST x4; candidates: TRI_Q_TDIV16, VBCAST x3, VCMP x2), FR_LEAF_OCCLUDED when rays were newly
- * occluded; with CR FR_RECORNER per such frustum after the leaf. With LEAFRAY, before the leaf's
+ * occluded; with CR FR_RECORNER per such frustum after the leaf, and with FS then once fr_shrink
+ * (FR_SHRINK; per axis VALU x6 for the minima and maxima, the two reciprocals of the box test's
+ * setup, VCMP x4 and the saturation compares). With LEAFRAY, before the leaf's
  * triangles (with SPLIT too: fr_wide of the leaf's box, FR_WIDE, and only its wide frusta), per
  * frustum in the leaf's mask: FR_LEAF_RAYBOX, VBCAST x2 and lt_slab16_q16 on the
  * leaf's box with its live rays over [tmin, tmax] (dropped from the leaf when none meets it), and
@@ -169,7 +175,7 @@ lt_status_t lt_frusta_setup16_q16(const lt_frusta_table_q16_t *tb, lt_mask16_t k
  * LT_FRUSTA_SPLIT_MAX frusta, fr_wide (FR_WIDE); per frustum going on as a packet FR_SPLIT,
  * VBCAST x2, on first use its packet (as LEAFRAY's), then the packet baseline's walk from that
  * node (its costs below, from one lt_slab16_q16 of the node's box), FR_LEAF_OCCLUDED (+ CR's
- * FR_RECORNER) when rays were newly occluded, and FR_ACTIVE_EXIT.
+ * FR_RECORNER, FS's fr_shrink) when rays were newly occluded, and FR_ACTIVE_EXIT.
  * Format: as lt_slab16 / lt_tri16. Rounding: conservative (docs/frusta.md). Overflow: none.
  * Returns: LT_OK, LT_E_ARG (NULL, a tree of the other path), LT_E_DEPTH (foreign tree too deep). */
 lt_status_t lt_frusta_occluded16_q16(const lt_bvh_t *bvh, const lt_tri_q16_t *tris,
