@@ -157,8 +157,8 @@ int qemu_plugin_install(qemu_plugin_id_t id, const struct qemu_info_t *info, int
         } else if (strncmp(a, "out=", 4) == 0 && a[4] != '\0') {
             out_path = a + 4;
         } else {
-            fprintf(stderr, "lt_icount: unknown argument '%s' (want sym=NAME, at=ADDR or out=PATH)\n",
-                    a);
+            fprintf(stderr,
+                    "lt_icount: unknown argument '%s' (want sym=NAME, at=ADDR or out=PATH)\n", a);
             return 1;
         }
     }
