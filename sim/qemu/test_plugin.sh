@@ -89,6 +89,12 @@ check_target()
     syms=$(readelf -sW "$elf" | awk '$4 == "FUNC" && $3 > 0 { print $8 }' | sort -u)
     args=""
     for s in $syms; do args="$args,sym=$s"; done
+    # at=: executions of the entry instructions of count_me (called once) and lt_test_putc
+    # (three times); the Thumb bit cleared
+    for s in count_me lt_test_putc; do
+        a=$(readelf -sW "$elf" | awk -v n="$s" '$4 == "FUNC" && $8 == n { print $2 }')
+        args="$args,at=$(printf '%x' $(( (0x$a) & ~1 )))"
+    done
     set -- "$@" -kernel "$elf"
 
     # run 1: out= file, -icount; run 2: same, through qemu_plugin_outs into a -D log;
@@ -114,6 +120,10 @@ check_target()
     got=$(get "$B/$tag.run1" "sym main")
     if [ "$got" = "$exp" ]; then ok "$tag: main $got (straight-line)"
     else bad "$tag: main $got, expected $exp"; fi
+
+    calls=$(awk '/^icount at / { printf "%s%s", sep, $4; sep = " " }' "$B/$tag.run1")
+    if [ "$calls" = "1 3" ]; then ok "$tag: at= entry counts: count_me 1 call, lt_test_putc 3"
+    else bad "$tag: at= entry counts '$calls', expected '1 3'"; fi
 
     sum=0
     for s in $syms; do sum=$((sum + $(get "$B/$tag.run1" "sym $s"))); done
@@ -141,6 +151,9 @@ if need arm-none-eabi-gcc && need qemu-system-arm; then
         if timeout 20 $QARM -plugin "$SO,bogus=1" -kernel $B/cm4.elf >/dev/null 2>&1; then
             bad "cm4: unknown plugin argument accepted"
         else ok "cm4: unknown argument rejected"; fi
+        if timeout 20 $QARM -plugin "$SO,at=12zz" -kernel $B/cm4.elf >/dev/null 2>&1; then
+            bad "cm4: at= with a non-hexadecimal address accepted"
+        else ok "cm4: at= with a non-hexadecimal address rejected"; fi
     else
         bad "cm4: build"
     fi

@@ -5,6 +5,8 @@
 #     (tests/bench/counting.sh);
 #  2. the scalar MCU model vs measured instructions: mcu-m4's predicted cycles for the slab-test loop
 #     vs the instructions QEMU's lt_icount plugin counts inside lt_slab16_q16 on Cortex-M4;
+# 2b. the integer-only rv32imac model vs measured instructions: the s15.16 and soft-float float32
+#     slab and triangle kernels on RV32IMAC (tests/bench/opcal.sh rv32, its kernel lines);
 #  3. the race against Embree 3 at its best on this machine (native, single thread, same rays; all
 #     shared scenes): rtcIntersect1/4/8/16 and rtcOccluded1/4/8/16, both context flags, a warm-up,
 #     the median; the CPU, its ISA and Embree's native packet widths printed first (make race-doc
@@ -49,6 +51,9 @@ cnt=$(awk '/^icount sym/{s += $4} END{print s}' "$out")
 awk '/^icount sym/{printf "   %-16s %d\n", $3, $4}' "$out"
 rm -f "$out"
 awk -v p="$pred" -v c="$cnt" 'BEGIN{printf "lt_tri16_q16 (+helpers): predicted %d cycles, counted %d instructions, predicted/counted %.3f\n", p, c, p/c}'
+
+echo "== 2b. rv32imac model vs QEMU instruction counts (RV32IMAC, virt, soft float; tests/bench/opcal.sh rv32)"
+tests/bench/opcal.sh rv32 | grep -E '^lt_(slab|tri)16_(q16|f32) '
 
 echo "== 3. race against Embree 3 at its best on this machine (native build, single thread, same rays, 1024x1024; every packet width and context flag, warm-up, median)"
 STRUCT=${BENCH_STRUCTURE:-bvh}

@@ -1,9 +1,12 @@
-/* fw_opcal.c - op-class microbenchmarks for calibrating sim/machines/mcu_m4.def (cm4, QEMU).
+/* fw_opcal.c - op-class microbenchmarks for calibrating the scalar machine models from QEMU
+ * instruction counts: sim/machines/mcu_m4.def (cm4) and sim/machines/rv32imac.def (rv32).
  * One noinline wrapper per lane op; each calls exactly ONE lane op of lt_v16.h. main() runs every
  * wrapper OPCAL_K times on fresh pseudo-random inputs (mixed magnitudes with some saturating lanes,
  * random masks with ~half the lanes on), then prints the numbers the counts are divided by.
  * tests/bench/opcal.sh counts the instructions inside each wrapper symbol (and the libgcc helpers
- * the divide calls) with the lt_icount QEMU plugin and subtracts the matching empty wrapper.
+ * it calls: the 64-bit divide; on rv32, soft float, every float op) with the lt_icount QEMU plugin
+ * and subtracts the matching empty wrapper. On a soft-float target the float inputs are made with
+ * integer operations only (lt_f32_bits.h), so main calls no float helper a wrapper also calls.
  *
  * Wrappers take pointers (operands in memory, result stored to memory): in the kernels a 16-lane
  * vector does not fit in the M4's registers, so each lane op there also loads its operands and
@@ -13,6 +16,14 @@
  */
 #include "lt_fw.h"
 #include "lt/lt.h"
+#include "lt_f32_bits.h"
+
+/* Soft float: float arithmetic is a libgcc call (rv32 -mabi=ilp32; Arm -mfloat-abi=soft). */
+#if defined(__SOFTFP__) || (defined(__riscv) && !defined(__riscv_flen))
+#define OPCAL_SOFT_FLOAT 1
+#else
+#define OPCAL_SOFT_FLOAT 0
+#endif
 
 #ifndef OPCAL_K
 #define OPCAL_K 64
@@ -100,6 +111,34 @@ W void w_vmulw_sub_m(lt_vql_t *r, lt_mask16_t k, const lt_vql_t *a, const lt_vql
 {
     *r = lt_vql_sub_wrap_m(*r, k, *a, *b);
 }
+
+#if OPCAL_SOFT_FLOAT
+/* Soft float only, where the float ops differ in price (on an FPU they are one instruction each):
+ * the rest of the FADD class the float kernels use (sub, max, the blend and lt_tri16_f32's
+ * merge-masked negate, the two-sided flip) and the merge-masked divide, lt_tri16_f32's
+ * t = tnum / det on the candidate lanes (a libgcc call per active lane). */
+WBIN(w_fadd_sub, lt_vf32_t, lt_vf32_sub)
+WBIN(w_fadd_max, lt_vf32_t, lt_vf32_max)
+
+void w_fadd_blend(lt_vf32_t *r, lt_mask16_t k, const lt_vf32_t *a, const lt_vf32_t *b);
+W void w_fadd_blend(lt_vf32_t *r, lt_mask16_t k, const lt_vf32_t *a, const lt_vf32_t *b)
+{
+    *r = lt_vf32_blend(k, *a, *b);
+}
+
+void w_fadd_neg_m(lt_vf32_t *r, lt_mask16_t k, const lt_vf32_t *a, const lt_vf32_t *b);
+W void w_fadd_neg_m(lt_vf32_t *r, lt_mask16_t k, const lt_vf32_t *a, const lt_vf32_t *b)
+{
+    (void)b;
+    *r = lt_vf32_neg_m(*r, k, *a);
+}
+
+void w_fdiv_m(lt_vf32_t *r, lt_mask16_t k, const lt_vf32_t *a, const lt_vf32_t *b);
+W void w_fdiv_m(lt_vf32_t *r, lt_mask16_t k, const lt_vf32_t *a, const lt_vf32_t *b)
+{
+    *r = lt_vf32_div_m(*r, k, *a, *b);
+}
+#endif
 
 void w_vshift_round(lt_vi32_t *r, const lt_vql_t *a);
 W void w_vshift_round(lt_vi32_t *r, const lt_vql_t *a) { *r = lt_vql_round_sat(*a, 30u); }
@@ -255,8 +294,14 @@ int main(void)
             ib.l[i] = (int32_t)rnd() >> (rnd() & 15u);
             la.l[i] = (int64_t)ia.l[i] * ib.l[i];
             lb.l[i] = (int64_t)(int32_t)rnd() * (int32_t)rnd() >> (rnd() & 31u);
+#if OPCAL_SOFT_FLOAT
+            /* the same values without a float helper (fb: one rounding instead of two) */
+            fa.l[i] = lt_loop_f32_from_fx(qa.l[i], 16u);
+            fb.l[i] = lt_loop_f32_from_fx((int64_t)qb.l[i] + 32768, 16u);
+#else
             fa.l[i] = (float)qa.l[i] * (1.0f / 65536.0f);
             fb.l[i] = (float)qb.l[i] * (1.0f / 65536.0f) + 0.5f;
+#endif
             mem[i] = (int32_t)rnd();
             gidx.l[i] = (int32_t)(rnd() >> 26);
         }
@@ -326,6 +371,18 @@ int main(void)
             w_fdiv(&fr, &fa, &fb);
         if (RUN(w_fcmp))
             sink += w_fcmp(k, &fa, &fb);
+#if OPCAL_SOFT_FLOAT
+        if (RUN(w_fadd_sub))
+            w_fadd_sub(&fr, &fa, &fb);
+        if (RUN(w_fadd_max))
+            w_fadd_max(&fr, &fa, &fb);
+        if (RUN(w_fadd_blend))
+            w_fadd_blend(&fr, k, &fa, &fb);
+        if (RUN(w_fadd_neg_m))
+            w_fadd_neg_m(&fr, k, &fa, &fb);
+        if (RUN(w_fdiv_m))
+            w_fdiv_m(&fr, kh, &fa, &fb);
+#endif
         if (RUN(w_vload))
             w_vload(pr, mem);
         if (RUN(w_vstore))

@@ -2,7 +2,8 @@
  * machine, listed by the Makefile in $(B)/gen/lt_machines.inc). An independent reading of the
  * files through sim/lt_machines.h checks every machine: name, description, clock > 0, lanes > 0,
  * an L1 spec, cache specs of the form sets:ways:line, every op of lt_ops.def priced exactly once;
- * spot values of lrb16 and mcu-m4 as they were before the machines became data files; the machine
+ * spot values of lrb16 and mcu-m4 as they were before the machines became data files, and of
+ * rv32imac (the integer-only machine: float32 in soft float dearer than s15.16); the machine
  * names every build knows (scene-file validator, lt_meter.h); and, in the sim build, that the
  * simulator's table equals the files field by field, that its cache specs parse and that every
  * machine initialises. Builds: host, sim, asan (the sim-only part is under LT_COST_SIM).
@@ -153,7 +154,8 @@ static void test_every_machine_complete(void **state)
     printf("machines: %d files, each with %d op prices\n", ntm, (int)LT_OP__COUNT);
 }
 
-/* The values of lrb16 and mcu-m4 before they became data files (sim/lt_sim.c machines_fill). */
+/* The values of lrb16 and mcu-m4 before they became data files (sim/lt_sim.c machines_fill), and
+ * rv32imac's. */
 static void test_known_values(void **state)
 {
     const tm_machine_t *m;
@@ -208,6 +210,34 @@ static void test_known_values(void **state)
     assert_int_equal(m->issue[LT_OP_VBCAST], 73);
     assert_int_equal(m->issue[LT_OP_VGATHER], 26);
     assert_int_equal(m->issue[LT_OP_VSCATTER], 26);
+
+    /* rv32imac (sim/machines/rv32imac.def, tests/bench/opcal.sh rv32): scalar, SRAM, and the
+     * trade's other side: every float op class dearer than the s15.16 op it replaces */
+    m = tm_find("rv32imac");
+    assert_non_null(m);
+    assert_string_equal(m->id, "rv32imac");
+    assert_non_null(strstr(m->desc, "soft float"));
+    assert_int_equal(m->clock_mhz, 320);
+    assert_int_equal(m->lanes, 1);
+    assert_string_equal(m->l1, "1:1:4");
+    assert_null(m->l2);
+    assert_int_equal(m->l1_hit, 1);
+    assert_int_equal(m->mem, 1);
+    assert_int_equal(m->latency[LT_OP_SMUL], 5);
+    assert_int_equal(m->issue[LT_OP_SDIV], 60);
+    assert_int_equal(m->latency[LT_OP_SLOAD], 2);
+    assert_int_equal(m->issue[LT_OP_VALU], 391);
+    assert_int_equal(m->issue[LT_OP_VMUL], 473);
+    assert_int_equal(m->issue[LT_OP_VDIV], 1662);
+    assert_int_equal(m->issue[LT_OP_FADD], 1062);
+    assert_int_equal(m->issue[LT_OP_FMUL], 2055);
+    assert_int_equal(m->issue[LT_OP_FDIV], 1233);
+    assert_int_equal(m->issue[LT_OP_FCMP], 594);
+    assert_true(m->issue[LT_OP_FADD] > m->issue[LT_OP_VALU]);
+    assert_true(m->issue[LT_OP_FMUL] > m->issue[LT_OP_VMUL]);
+    assert_true(m->issue[LT_OP_FCMP] > m->issue[LT_OP_VCMP]);
+    m = tm_find("mcu-m4");
+    assert_true(m->issue[LT_OP_FMUL] < m->issue[LT_OP_VMUL]); /* there the FPU side is cheap */
 }
 
 /* ---- the names every build knows ---------------------------------------------------------------- */

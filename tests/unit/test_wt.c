@@ -2133,17 +2133,17 @@ static void test_cost(void **state)
 {
     static const char *names[6] = { "lt_tri16_wt_q16", "lt_tri16_q16", "lt_tri16_wt_f32",
                                     "lt_tri16_f32", "lt_ray16_wt_setup_q16", "lt_ray16_q16_setup" };
-    static const char *machines[2] = { "lrb16", "mcu-m4" };
+    static const char *machines[3] = { "lrb16", "mcu-m4", "rv32imac" };
     int mi, co, k;
     (void)state;
-    for (mi = 0; mi < 2; mi++)
+    for (mi = 0; mi < 3; mi++)
         for (co = 0; co < 2; co++) {
             double out[6][2];
             memset(out, 0, sizeof out);
             cost_run(machines[mi], co, out);
             for (k = 0; k < 6; k++)
                 if (LT_CFG_FLOAT32 || (k != 2 && k != 3))
-                    ltt_report("cost %-7s %-9s %-21s %6.1f ops/call %8.1f cycles/call (%.2fx "
+                    ltt_report("cost %-8s %-9s %-21s %6.1f ops/call %8.1f cycles/call (%.2fx "
                                "%s)\n", machines[mi], co ? "coherent" : "mixed", names[k],
                                out[k][0], out[k][1], out[k][1] / out[k | 1][1], names[k | 1]);
             assert_true(out[0][1] > 0);
