@@ -43,17 +43,21 @@ for m in $machines; do
         read -r bt bb br <<<"$(cost "$BB" "$m" "$e")"
         read -r tt tb trr <<<"$(cost "$TR" "$m" "$e" --deep-front)"
         printf '%-8s %-4s %12s (%s+%s) %12s (%s+%s)\n' "$m" "$e" "$bt" "$bb" "$br" "$tt" "$tb" "$trr"
-        echo "$m $e $bt $tt" >>"$tmp/rows"
+        echo "$m $e $bb $br $bt $tt" >>"$tmp/rows"
     done
 done
 echo
-echo "rows (cycles per source pixel on the Beachball; paste into sim/machines/<machine>.def):"
-awk '{ v[$1, $2] = $3; t[$1, $2] = $4; if (!($1 in seen)) { seen[$1] = 1; order[++n] = $1 } }
+echo "rows (the Beachball; paste into sim/machines/<machine>.def):"
+awk '{ b[$1, $2] = $3; r[$1, $2] = $4; v[$1, $2] = $5; t[$1, $2] = $6
+       if (!($1 in seen)) { seen[$1] = 1; order[++n] = $1 } }
      END {
          for (i = 1; i <= n; i++) {
              m = order[i]
-             printf "%-8s LT_MACHINE_QT(%s, %s, %s)", m, v[m, "n64"], v[m, "n32"], v[m, "f32"]
+             for (j = 1; j <= 3; j++) {
+                 e = j == 1 ? "n64" : j == 2 ? "n32" : "f32"
+                 printf "%-8s LT_MACHINE_QT(%s, %s, %s)\n", m, e, b[m, e], r[m, e]
+             }
              same = (v[m, "n64"] < v[m, "f32"]) == (t[m, "n64"] < t[m, "f32"])
-             printf "   n64 vs f32 on the Trunks: %s\n", same ? "same order" : "ORDER DIFFERS"
+             printf "%-8s n64 vs f32 on the Trunks: %s\n", m, same ? "same order" : "ORDER DIFFERS"
          }
      }' "$tmp/rows"

@@ -96,3 +96,8 @@ check "info DEPTH.exr --machine mcu-m4: shape facts and the node-format recommen
     bash -c "grep -q '^shape     jumps [0-9.]*% of neighbour pairs' '$tmp/au13.txt' &&
              grep -q '^recommend for mcu-m4, reproject' '$tmp/au13.txt' &&
              grep -q '^  num  *\(n64\|f32\)  *depths' '$tmp/au13.txt'"
+# the integer-only RV32IMAC (float32 in soft float): the recommendation is s15.16 there
+"$AU_SIM" run --mesh scenes/teapot.obj --res 16 --machine rv32imac --no-ref >"$tmp/au14.txt" 2>&1
+check "run --machine rv32imac: the recommendation traces s15.16 only (float32 is soft float there)" \
+    bash -c "grep -q '^auto      numeric   q16 .*cheaper on rv32imac' '$tmp/au14.txt' &&
+             grep -q '^result    q16' '$tmp/au14.txt' && ! grep -q '^result    f32' '$tmp/au14.txt'"

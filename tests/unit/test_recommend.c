@@ -95,6 +95,7 @@ static void test_machines(void **state)
 {
     lt_rec_mesh_facts_t f = {992, 992, 0, 6.4, 0.0211, 0.16, "mcu-m4"};
     lt_rec_costs_t c;
+    uint32_t rq, rf;
     lt_rec_t r;
     char want[96];
     (void)state;
@@ -110,9 +111,19 @@ static void test_machines(void **state)
     assert_string_equal(knob(&r, "numeric")->pick, c.q16 < c.f32 ? "q16" : "f32");
     assert_int_equal(lt_rec_machine_costs("lrb16", &c), 0);
     assert_int_equal(c.lanes, 16);
+    /* the integer-only RV32IMAC: float32 in soft float, s15.16 is the cheap side */
+    f.machine = "rv32imac";
+    lt_recommend_mesh(&f, &r);
+    assert_int_equal(lt_rec_machine_costs("rv32imac", &c), 0);
+    assert_true(c.q16 < c.f32);
+    assert_string_equal(knob(&r, "numeric")->pick, "q16");
+    assert_non_null(strstr(knob(&r, "numeric")->reason, "cheaper on rv32imac"));
+    rq = c.q16;
+    rf = c.f32;
     assert_int_equal(lt_rec_machine_costs("z80", &c), -1);
     assert_int_equal(c.f32 + c.q16 + c.lanes, 0);
-    print_message("recommend: mcu-m4 picks leaf 4 and prices the paths from its machine file\n");
+    print_message("recommend: mcu-m4 picks leaf 4 and prices the paths from its machine file; "
+                  "rv32imac picks s15.16 (%u against %u cycles)\n", rq, rf);
 }
 
 /* Depth facts: a tilted plane (linear in 1/z) is planar everywhere with no jumps; a step of 2x is a
