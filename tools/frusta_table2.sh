@@ -6,9 +6,10 @@
 # TRIS = #isec tests) and cycles. Rows: the paper's "No Shrink." (b c: back-face and corner-ray
 # culling), "Ray-AABB" (+ l: each frustum's own rays against the leaf's box), "CR" (+ r: corner
 # rays recomputed after a leaf that occluded rays), "FS" (+ f: CR that also shrinks the direction
-# intervals the traversal tests boxes with), and "+ split" (+ s: wide frusta go on as packets), the
-# default (b c r l s) and the default with FS; percentages against No Shrink., as the paper prints
-# them.
+# intervals the traversal tests boxes with), and "+ split" (+ s: wide frusta go on as packets),
+# "256-ray packets" (+ p: the walk's box tests done by the 16 frusta's rays as 16 packets, the
+# paper's section 5.3 comparison), the defaults without FS (b c r l s) and with it (b c r f l s);
+# percentages against No Shrink., as the paper prints them.
 # Usage: tools/frusta_table2.sh [RES] [MESH ...]   (default 512; the shared Sibenik, Sponza,
 # Conference and dragon; SHARED=../shared, B=build)
 set -euo pipefail
@@ -22,7 +23,8 @@ meshes=("$@")
                                    "$SHARED/scenes/conference.obj.gz" "$SHARED/scenes/dragon_res3.obj")
 [ -x "$LT" ] || { echo "frusta_table2: $LT missing (run make)" >&2; exit 1; }
 variants=("bc:No Shrink. (b c)" "bcl:Ray-AABB (b c l)" "bcr:CR (b c r)" "bcrf:FS (b c r f)"
-          "bcs:split (b c s)" "bcrls:without FS (b c r l s)" "bcrfls:default (b c r f l s)")
+          "bcs:split (b c s)" "bcp:256-ray packets (b c p)"
+          "bcrls:without FS (b c r l s)" "bcrfls:default (b c r f l s)")
 pct() { awk -v a="$1" -v b="$2" 'BEGIN { if (b == 0) print "-"; else printf "%+.1f%%", 100 * (a - b) / b }'; }
 echo "| scene | variant | #tris accessed / +culling | #AABB tests | #isec tests | cycles | vs No Shrink. (#tris / +culling, #AABB, #isec, cycles) |"
 echo "|---|---|---|---|---|---|---|"

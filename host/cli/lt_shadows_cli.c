@@ -112,7 +112,8 @@ static const char *const filter_names[] = {"irradiance", "visibility", NULL};
 
 /* --cull, --pcull: any of the letters b (back-face), c (corner rays), r (CR), l (ray-AABB leaf
  * culling), s (wide frusta split into packets), or "none"; --cull (ctx non-NULL) also f (FS:
- * shrink the shadow frusta's direction intervals with their corner rays; implies r) */
+ * shrink the shadow frusta's direction intervals with their corner rays; implies r) and p (the
+ * paper's 256-ray packet walk) */
 static int parse_cull(const char *text, void *dest, const void *ctx)
 {
     uint32_t f = 0;
@@ -132,11 +133,19 @@ static int parse_cull(const char *text, void *dest, const void *ctx)
                 f |= LT_FRUSTA_SPLIT;
             else if (*c == 'f' && ctx != NULL)
                 f |= LT_FRUSTA_FS | LT_FRUSTA_CR;
+            else if (*c == 'p' && ctx != NULL)
+                f |= LT_FRUSTA_P256;
             else
                 return -1;
         }
     *(uint32_t *)dest = f;
     return 0;
+}
+
+/* --pcull: as --cull without p (the 256-ray packet walk is for shadow frusta) */
+static int parse_pcull(const char *text, void *dest, const void *ctx)
+{
+    return strchr(text, 'p') != NULL ? -1 : parse_cull(text, dest, ctx);
 }
 
 /* --light X,Y,Z,SIZE: four finite numbers, SIZE >= 0 */
@@ -168,17 +177,18 @@ static int shadows_parse(shadows_t *s, int argc, char **argv)
          .help = "frusta BVH leaf size, {range} (max_leaf N, min_leaf N/2; default 8)"},
         {.name = "--cull", .kind = LT_OPT_CUSTOM, .dest = &s->flags, .seen = &s->seen_cull,
          .meta = "LIST",
-         .parse = parse_cull, .ctx = "shadow", .expect = "letters b, c, r, f, l, s or none",
+         .parse = parse_cull, .ctx = "shadow", .expect = "letters b, c, r, f, l, s, p or none",
          .help = "shadow culling: any of b (back-face), c (corner rays), r (CR),\n"
                  "f (FS: CR that also shrinks the traversal's direction intervals),\n"
                  "l (ray-AABB leaf culling), s (wide frusta go on as packets),\n"
-                 "or none (default bcrfls)"},
+                 "p (walk as 16 packets of 16 rays: the paper's 256-ray packet\n"
+                 "comparison), or none (default bcrfls)"},
         {.name = "--prim", .kind = LT_OPT_ENUM, .dest = &s->prim, .seen = &s->seen_prim,
          .names = prim_names,
          .help = "primary method(s) (default both: P-Packet feeds S-Packet and\n"
                  "P-Frusta S-Frusta; with one, both S rows use it)"},
         {.name = "--pcull", .kind = LT_OPT_CUSTOM, .dest = &s->pflags, .meta = "LIST",
-         .parse = parse_cull, .expect = "letters b, c, r, l, s or none",
+         .parse = parse_pcull, .expect = "letters b, c, r, l, s or none",
          .help = "primary culling: b (back faces, both methods), c (corner rays),\n"
                  "r (corner rays through the on-image pixels), l (ray-AABB leaf\n"
                  "culling), s (wide frusta go on as packets), or none (default bcrls)"},

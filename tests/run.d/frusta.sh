@@ -77,7 +77,7 @@ fr_expect "shadows: unknown option" 2 "unknown option" "$SH_NAT" shadows --mesh 
 fr_expect "shadows: --leaf 0 names the limit" 2 "LT_BVH_MAX_LEAF" "$SH_NAT" shadows --mesh scenes/teapot.obj --leaf 0
 fr_expect "shadows: --leaf 65 names the limit" 2 "1..64" "$SH_NAT" shadows --mesh scenes/teapot.obj --leaf 65
 fr_expect "shadows: --res 3" 2 "4..8192" "$SH_NAT" shadows --mesh scenes/teapot.obj --res 3
-fr_expect "shadows: --cull letters" 2 "letters b, c, r, f, l, s" "$SH_NAT" shadows --mesh scenes/teapot.obj --cull x
+fr_expect "shadows: --cull letters" 2 "letters b, c, r, f, l, s, p" "$SH_NAT" shadows --mesh scenes/teapot.obj --cull x
 fr_expect "shadows: --pcull letters" 2 "pcull x: expected letters b, c, r, l, s" "$SH_NAT" shadows --mesh scenes/teapot.obj --pcull x
 fr_expect "shadows: --prim values" 2 "expected packet, frusta or both" "$SH_NAT" shadows --mesh scenes/teapot.obj --prim rays
 fr_expect "shadows: --light needs 4 numbers" 2 "X,Y,Z,SIZE" "$SH_NAT" shadows --mesh scenes/teapot.obj --light 1,2
@@ -108,3 +108,8 @@ check "shadows: FS is on by default (culling bcrfls), frusta = packets with and 
              grep -q 'frusta = packet visibility on 2304 of 2304 pixels (0 differ)' '$tmp/fs1.txt' &&
              grep -q 'frusta = packet visibility on 2304 of 2304 pixels (0 differ)' '$tmp/fs2.txt'"
 fr_expect "shadows: --pcull f is refused (FS is the shadow frusta's)" 2 "pcull f: expected letters b, c, r, l, s" "$SH_NAT" shadows --mesh scenes/teapot.obj --pcull f
+# the paper's 256-ray packet comparison (--cull p, shadow frusta only): same image as the packets
+"$SH_SIM" shadows --mesh scenes/teapot.obj --res 48 --no-ref --cull bcp >"$tmp/p256.txt" 2>&1
+check "shadows --cull bcp (256-ray packets): frusta = packets on every pixel" \
+    grep -q 'frusta = packet visibility on 2304 of 2304 pixels (0 differ)' "$tmp/p256.txt"
+fr_expect "shadows: --pcull p is refused (the 256-ray walk is the shadow frusta's)" 2 "pcull p: expected letters b, c, r, l, s" "$SH_NAT" shadows --mesh scenes/teapot.obj --pcull p

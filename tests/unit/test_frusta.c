@@ -190,6 +190,7 @@ static const uint32_t g_flagsets[] = {
     LT_FRUSTA_CORNER | LT_FRUSTA_CR | LT_FRUSTA_FS | LT_FRUSTA_BACKFACE,
     LT_FRUSTA_CORNER | LT_FRUSTA_CR | LT_FRUSTA_FS | LT_FRUSTA_BACKFACE | LT_FRUSTA_LEAFRAY |
         LT_FRUSTA_SPLIT,
+    LT_FRUSTA_CORNER | LT_FRUSTA_BACKFACE | LT_FRUSTA_P256, /* primary frusta: without P256 */
 };
 #define NFLAGS (sizeof g_flagsets / sizeof g_flagsets[0])
 
@@ -391,7 +392,7 @@ static void test_random_scenes(void **state)
         unbuild(&deep);
     }
     ltt_isect = LT_ISECT_WT;
-    tally_print("random scenes (6 scenes, 12 flag sets, 3 light sizes, coherent and scattered "
+    tally_print("random scenes (6 scenes, 13 flag sets, 3 light sizes, coherent and scattered "
                 "origins, random masks; odd scenes Moller-Trumbore)", &t);
 #if LT_COST_MODE == LT_COST_SIM
     {
@@ -638,7 +639,7 @@ static void test_generator_and_args(void **state)
     l.end_shift = 31;
     assert_int_equal(lt_frusta_table_q16(&l, &g_sets, &tb), LT_E_ARG);
     l.end_shift = 0;
-    l.flags = 32;
+    l.flags = 128;
     assert_int_equal(lt_frusta_table_q16(&l, &g_sets, &tb), LT_E_ARG);
     l.flags = 0;
     l.c[1] = 4097 * U;
@@ -976,7 +977,7 @@ static void test_bunny(void **state)
             l.c[2] = -300 * U;
             l.eu[0] = (int32_t)(100 + 60 * rep) * U;
             l.ev[2] = (int32_t)(100 + 60 * rep) * U;
-            l.flags = g_flagsets[fl + (rep & 1u)];
+            l.flags = g_flagsets[(fl + (rep & 1u)) % NFLAGS];
             for (f = 0; f < 16; f++) {
                 /* a point inside a random triangle, lifted 2^-4 units along its normal */
                 const lt_tri_f32_t *tr = &s.tf[ltt_rng_below(&r, s.n)];
@@ -1377,7 +1378,7 @@ static void pcompare_all(const tscene_t *s, const tbvh_t *shal, const tbvh_t *de
     pref_fill(s, &vt, &vtf, &R);
     *ties += R.ties;
     for (fl = 0; fl < NFLAGS; fl++) {
-        vq->flags = vf->flags = g_flagsets[fl] & ~LT_FRUSTA_FS; /* shadow frusta only */
+        vq->flags = vf->flags = g_flagsets[fl] & ~(LT_FRUSTA_FS | LT_FRUSTA_P256); /* shadow only */
         pcompare(s, shal, deep, vq, vf, &R, T, what);
     }
 }
@@ -1438,7 +1439,7 @@ static void test_primary_random(void **state)
         unbuild(&deep);
     }
     ltt_isect = LT_ISECT_WT;
-    ptally_print("primary random scenes (6 scenes, 2 cameras each, 12 flag sets (FS is the shadow frusta's), leaf 8 and 16; "
+    ptally_print("primary random scenes (6 scenes, 2 cameras each, 13 flag sets (FS and P256 are the shadow frusta's), leaf 8 and 16; "
                  "odd scenes Moller-Trumbore)",
                  &t, ties);
 #if LT_COST_MODE == LT_COST_SIM
@@ -1633,7 +1634,7 @@ static void test_primary_args(void **state)
     assert_int_equal(lt_frusta_vtable_q16(&v, &vt), LT_OK);
     assert_int_equal(lt_frusta_vtable_f32(&vf, &vtf), LT_OK);
     assert_int_equal(lt_frusta_vtable_q16(NULL, &vt), LT_E_ARG), n++;
-    v.flags = 32u;
+    v.flags = 32u; /* P256: shadow frusta only */
     assert_int_equal(lt_frusta_vtable_q16(&v, &vt), LT_E_ARG), n++;
     v.flags = 0u;
     v.width = 0;
@@ -1711,7 +1712,7 @@ static void test_primary_bunny(void **state)
     lt_scene_free(&sc);
     lt_mesh_free(&m);
     ptally_print("primary bunny + ground (3678 triangles, default camera zoomed 2x, 64 x 48, "
-                 "10 flag sets)",
+                 "11 flag sets)",
                  &t, ties);
     assert_true(t.hits > 5000);
     ptally_assert(&t);

@@ -43,6 +43,9 @@ extern "C" {
                                  frustum interval shrinking; implies CR), also shrink the
                                  direction intervals the traversal's box test uses to the new
                                  corner rays */
+#define LT_FRUSTA_P256 32u    /* shadow frusta only: the walk's box tests are the 16 frusta's rays
+                                 as 16 packets of 16 rays (a 256-ray packet, [Benthin09] 5.3's
+                                 comparison) instead of the interval test; leaves unchanged */
 #define LT_FRUSTA_LEAFRAY 8u  /* ray-AABB leaf culling ([Benthin09] Table 2 "Ray-AABB"): at a
                                  leaf, a frustum whose own live rays (a 16-ray packet with
                                  reciprocals, made once per call) miss the leaf's box skips it;
@@ -175,7 +178,9 @@ lt_status_t lt_frusta_setup16_q16(const lt_frusta_table_q16_t *tb, lt_mask16_t k
  * LT_FRUSTA_SPLIT_MAX frusta, fr_wide (FR_WIDE); per frustum going on as a packet FR_SPLIT,
  * VBCAST x2, on first use its packet (as LEAFRAY's), then the packet baseline's walk from that
  * node (its costs below, from one lt_slab16_q16 of the node's box), FR_LEAF_OCCLUDED (+ CR's
- * FR_RECORNER, FS's fr_shrink) when rays were newly occluded, and FR_ACTIVE_EXIT.
+ * FR_RECORNER, FS's fr_shrink) when rays were newly occluded, and FR_ACTIVE_EXIT. With P256 every
+ * box test (fr_box above) is instead, per frustum of the mask, FR_P256_BOX, VRED x1, VBCAST x2 and
+ * lt_slab16_q16 of its packet (on first use fr_gen, VBCAST x5, lt_ray16_q16_setup).
  * Format: as lt_slab16 / lt_tri16. Rounding: conservative (docs/frusta.md). Overflow: none.
  * Returns: LT_OK, LT_E_ARG (NULL, a tree of the other path), LT_E_DEPTH (foreign tree too deep). */
 lt_status_t lt_frusta_occluded16_q16(const lt_bvh_t *bvh, const lt_tri_q16_t *tris,
