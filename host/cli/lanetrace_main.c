@@ -271,12 +271,7 @@ static int run_parse(run_t *r, int argc, char **argv)
                    "PREFIX.<path>.steps.png / .steps.exr"),
         LT_OPT_INT("--repeat", "N", &r->repeat, 1, 100000, "trace the frame N times (timing), {range}"),
         LT_OPT_SET_("--no-ref", &r->do_ref, 0, "skip the reference and the accuracy figures"),
-        LT_OPT_SET_("--no-auto", &r->autop, 0,
-                    "do not take lanetrace info's recommendation (by default its numeric\n"
-                    "path, structure and leaf size for the machine are taken for every\n"
-                    "knob that neither a flag nor the scene file sets; each pick and\n"
-                    "its reason is printed and written to the report)"),
-        LT_OPT_SET_("--auto", &r->autop, 1, "the default (kept for scripts): the recommendation"),
+        LT_OPT_AUTO_(&r->autop, "the numeric path, structure and leaf size"),
         LT_OPT_FLAG_("--native", &r->native, "run the native build (no cycle model; wall-clock speed)"),
         LT_OPT_FLAG_("--json", &r->json, "machine-readable JSON on stdout"),
         LT_OPT_THREADS_(&threads_opt),
@@ -408,16 +403,21 @@ static void auto_apply(lt_scenefile_t *sf, const lt_mesh_t *m, const lt_scene_t 
     cJSON_Delete(o);
 }
 
+/* Who set the object knobs: --num / --structure when seen, else the scene file when it has them. */
+static auto_by_t auto_by(const lt_scenefile_t *sf, int seen_num, int seen_structure)
+{
+    const char *file = "the scene file";
+    auto_by_t by;
+    by.numeric = seen_num ? "--num" : (sf->given & LT_SF_GIVEN_NUMERIC) ? file : NULL;
+    by.structure = seen_structure ? "--structure" : (sf->given & LT_SF_GIVEN_STRUCTURE) ? file : NULL;
+    by.leaf = (sf->given & LT_SF_GIVEN_LEAF) ? file : NULL;
+    return by;
+}
+
 /* run: the recommendation for the knobs that neither a flag nor the scene file set. */
 static void run_auto(run_t *r)
 {
-    const lt_scenefile_t *sf = &r->sf;
-    const char *file = "the scene file";
-    auto_by_t by;
-    by.numeric = r->seen_num ? "--num" : (sf->given & LT_SF_GIVEN_NUMERIC) ? file : NULL;
-    by.structure = r->seen_structure ? "--structure"
-                   : (sf->given & LT_SF_GIVEN_STRUCTURE) ? file : NULL;
-    by.leaf = (sf->given & LT_SF_GIVEN_LEAF) ? file : NULL;
+    auto_by_t by = auto_by(&r->sf, r->seen_num, r->seen_structure);
     auto_apply(&r->sf, &r->mesh, &r->sc, &by, 0, r->json, r->auto_json, sizeof r->auto_json);
 }
 
@@ -1534,12 +1534,7 @@ static int render_parse(render_t *r, int argc, char **argv)
          .meta = "X,Y,Z", .lo = -HUGE_VAL, .hi = HUGE_VAL, .n = 3,
          .help = "point light in mesh file units (default: the scene's first light,\n"
                  "else centre + 2 radius normalize(-0.5, 1.5, 0.8))"},
-        LT_OPT_SET_("--no-auto", &r->autop, 0,
-                    "do not take lanetrace info's recommendation (by default its\n"
-                    "numeric path, structure and leaf size for the scene's machine\n"
-                    "are taken for every knob that neither a flag nor the scene file\n"
-                    "sets; each pick and its reason is printed)"),
-        LT_OPT_SET_("--auto", &r->autop, 1, "the default (kept for scripts): the recommendation"),
+        LT_OPT_AUTO_(&r->autop, "the numeric path, structure and leaf size"),
         LT_OPT_FLAG_("--json", &r->json, "print what was written as JSON on stdout"),
         LT_OPT_THREADS_(&threads_opt),
         LT_OPT_FLAG_("-q", &quiet, "quiet"),
@@ -1639,12 +1634,7 @@ static int render_load(render_t *r)
         return EXIT_INPUT;
     }
     if (r->autop) {
-        const char *file = "the scene file";
-        auto_by_t by;
-        by.numeric = r->seen_num ? "--num" : (sf->given & LT_SF_GIVEN_NUMERIC) ? file : NULL;
-        by.structure = r->seen_structure ? "--structure"
-                       : (sf->given & LT_SF_GIVEN_STRUCTURE) ? file : NULL;
-        by.leaf = (sf->given & LT_SF_GIVEN_LEAF) ? file : NULL;
+        auto_by_t by = auto_by(sf, r->seen_num, r->seen_structure);
         auto_apply(sf, &r->mesh, &r->sc, &by, 1, quiet, r->auto_json, sizeof r->auto_json);
     }
     if (!r->seen_structure) {

@@ -109,6 +109,15 @@ typedef struct lt_opt {
                "threads for the tile loops, {range} (default 0: every online core);\n"              \
                "results are bit-identical for any count; the simulator's charged\n"                 \
                "kernels run on one")
+/* --no-auto and --auto (the default) of run, render and reproject: what lanetrace info recommends
+ * (KNOBS, a phrase) is taken for every knob that neither a flag nor the scene file sets */
+#define LT_OPT_AUTO_(d, knobs)                                                                     \
+    LT_OPT_SET_("--no-auto", (d), 0,                                                               \
+                "do not take lanetrace info's recommendation for the machine; by\n"                \
+                "default it sets " knobs "\n"                                                      \
+                "wherever neither a flag nor the scene file does, and each pick\n"                 \
+                "and its reason is printed and written to the report"),                            \
+        LT_OPT_SET_("--auto", (d), 1, "the default (kept for scripts): the recommendation")
 #define LT_OPT_END_ {.kind = LT_OPT_END}
 
 /* A subcommand: its options and where positional arguments go. */

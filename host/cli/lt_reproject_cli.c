@@ -177,12 +177,7 @@ static int rp_options(rp_t *r, int *quiet, const char *prog, int argc, char **ar
                    "depth of its children (2^-17); w units, each in {range}\n"
                    "(docs/quadtree.md section 6)"),
         LT_OPT_STR("--machine", "NAME", &r->machine, machine_help),
-        LT_OPT_SET_("--no-auto", &r->autop, 0,
-                    "do not take lanetrace info's recommendation (by default its node\n"
-                    "format for the depth image and the machine is taken when neither\n"
-                    "--num nor the scene file sets one; the pick and its reason are\n"
-                    "printed and written to the report)"),
-        LT_OPT_SET_("--auto", &r->autop, 1, "the default (kept for scripts): the recommendation"),
+        LT_OPT_AUTO_(&r->autop, "the node format for the depth image"),
         LT_OPT_SECTION_("ground truth (a mesh scene only; the target camera must keep the source's "
                         "centred\nsquare-pixel intrinsics):"),
         LT_OPT_FLAG_("--truth", &r->truth,
