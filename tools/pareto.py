@@ -22,7 +22,7 @@ PRIMARY = {"object": ("rmse", "depth RMSE (scene units)", False),
            "shadows": ("psnr", "PSNR (dB)", True)}
 KNOBS = {"object": ("path", "structure", "leaf"),
          "screen": ("path", "tracer", "layers", "gamma"),
-         "shadows": ("path", "leaf", "cull", "primary", "shadow", "filter")}
+         "shadows": ("path", "leaf", "cull", "spp", "primary", "shadow", "filter")}
 
 
 def fmt(v, digits=3):

@@ -79,7 +79,7 @@ static double k_(uint64_t v) { return (double)v / 1000.0; }
 typedef struct shadows {
     /* options */
     const char *mesh_path, *png, *raw_png, *ref_png, *machine, *scene_path;
-    int res, leaf, num, prim, only, qmc, filter, report, no_ref, ground, quiet, isect;
+    int res, leaf, num, prim, only, qmc, filter, report, no_ref, ground, quiet, isect, spp, seen_spp;
     int npos, seen_res, seen_num, seen_leaf, seen_cull, seen_prim, seen_only, png_which;
     lt_scenefile_t sf;
     int seen_light, seen_eye, seen_target, seen_fov;
@@ -171,6 +171,10 @@ static int shadows_parse(shadows_t *s, int argc, char **argv)
          .help = "image N x N, {range} (default 128; multiples of 4 keep tiles full)"},
         {.name = "--num", .kind = LT_OPT_ENUM, .dest = &s->num, .seen = &s->seen_num,
          .names = s->num_names, .help = num_help},
+        {.name = "--spp", .kind = LT_OPT_INT, .dest = &s->spp, .seen = &s->seen_spp, .meta = "N",
+         .lo = 4, .hi = 32,
+         .help = "shadow samples per pixel: 4, 8, 16 (default) or 32 (the first N of\n"
+                 "each pixel's interleaved set; 32: a second set per pixel)"},
         {.name = "--leaf", .kind = LT_OPT_INT, .dest = &s->leaf, .seen = &s->seen_leaf, .meta = "N",
          .lo = 1,
          .hi = LT_BVH_MAX_LEAF, .limit = "LT_BVH_MAX_LEAF",
@@ -245,6 +249,11 @@ static int shadows_parse(shadows_t *s, int argc, char **argv)
              lt_meter_machine_names());
     int rc = lt_opt_parse(&cmd, argc, argv, 2);
     lt_par_set_threads((unsigned)ss_threads);
+    if (rc == LT_OPT_OK && lt_ss_spp_log2((uint32_t)s->spp) < 0) {
+        fprintf(stderr, "lanetrace shadows: --spp %d: expected %s samples per pixel\n", s->spp,
+                LT_SS_SPP_LIST);
+        return LT_OPT_USAGE;
+    }
     return rc;
 }
 
@@ -271,6 +280,8 @@ static int shadows_scene(shadows_t *s)
             s->machine = sf->machine;
         if (!s->seen_leaf && sf->sh_leaf > 0)
             s->leaf = (int)sf->sh_leaf;
+        if (!s->seen_spp && sf->sh_spp > 0)
+            s->spp = (int)sf->sh_spp;
         if (!s->seen_cull && sf->sh_cull[0] != '\0')
             (void)parse_cull(sf->sh_cull, &s->flags, "shadow");
         for (i = 0; !s->seen_prim && sf->sh_primary[0] != '\0' && prim_names[i] != NULL; i++)
@@ -382,6 +393,7 @@ static int shadows_load(shadows_t *s)
     o.filter_vis = s->filter == 1;
     o.pflags = s->pflags;
     o.isect = s->isect == 1 ? LT_ISECT_MT : LT_ISECT_WT;
+    o.spp = (uint32_t)s->spp;
     s->ss = lt_ss_create(&s->sc, &s->cam, &s->light, &o, &diag);
     if (s->ss == NULL) {
         fprintf(stderr, "%s: %s\n", who, diag.msg);
@@ -397,7 +409,7 @@ static void shadows_print_scene(const shadows_t *s)
     uint32_t flags = s->flags, pflags = s->pflags;
     printf("scene     %s: %u triangles%s, radius %.1f units (scale %g), %ux%u, %s, light "
            "%.3g x %.3g units at (%.1f, %.1f, %.1f), frusta leaf %u, culling %s%s%s%s%s%s%s, "
-           "primary culling %s%s%s%s%s%s, %s samples, isect %s\n",
+           "primary culling %s%s%s%s%s%s, %d shadow samples per pixel (%s), isect %s\n",
            s->mesh_path, s->sc.ntris, s->ground ? " (with ground quad)" : "", s->sc.radius,
            s->sc.scale, s->res, s->res, s->path->format, light->eu[0], light->ev[2],
            light->c[0] + 0.5 * light->eu[0], light->c[1], light->c[2] + 0.5 * light->ev[2],
@@ -407,7 +419,7 @@ static void shadows_print_scene(const shadows_t *s)
            flags & LT_FRUSTA_LEAFRAY ? "l" : "", flags & LT_FRUSTA_SPLIT ? "s" : "",
            pflags == 0 ? "none" : "", pflags & LT_FRUSTA_BACKFACE ? "b" : "",
            pflags & LT_FRUSTA_CORNER ? "c" : "", pflags & LT_FRUSTA_CR ? "r" : "",
-           pflags & LT_FRUSTA_LEAFRAY ? "l" : "", pflags & LT_FRUSTA_SPLIT ? "s" : "",
+           pflags & LT_FRUSTA_LEAFRAY ? "l" : "", pflags & LT_FRUSTA_SPLIT ? "s" : "", s->spp,
            qmc_kinds[s->qmc] == LT_QMC_LP ? "Larcher-Pillichshammer" : "Hammersley",
            lt_sf_isects[s->isect]);
 }
@@ -739,11 +751,11 @@ static void shadows_outputs(shadows_t *s)
         lt_ss_reference(s->ss, lt_progress);
         lt_progress_end();
         lt_ss_quality(s->ss, s->tol, &q);
-        printf("quality   vs 256 samples/pixel (%.1f s): PSNR filtered %.2f dB, unfiltered 16 spp "
+        printf("quality   vs 256 samples/pixel (%.1f s): PSNR filtered %.2f dB, unfiltered %d spp "
                "%.2f dB, reference through the same filter %.2f dB, filtered vs filtered reference "
                "%.2f dB; penumbra pixels %llu, within %.3g: %.1f%% filtered (%llu), %.1f%% "
                "unfiltered (%llu)\n",
-               lt_now_s() - t0, q.psnr_filtered, q.psnr_raw, q.psnr_filtered_ref,
+               lt_now_s() - t0, q.psnr_filtered, s->spp, q.psnr_raw, q.psnr_filtered_ref,
                q.psnr_vs_filtered_ref,
                (unsigned long long)q.penumbra, q.tol, 100.0 * ratio(q.penumbra_ok, q.penumbra),
                (unsigned long long)q.penumbra_ok, 100.0 * ratio(q.penumbra_raw_ok, q.penumbra),
@@ -770,6 +782,7 @@ int lt_shadows_cli(int argc, char **argv, const char *prog)
     memset(&s, 0, sizeof s);
     s.res = 128;
     s.leaf = 8;
+    s.spp = 16;
     s.ground = -1;
     s.prim = 2;  /* both */
     s.only = -1; /* both */

@@ -302,10 +302,11 @@ static int parse_reproject(ctx_t *c, const cJSON *rp, lt_scenefile_t *sf)
 }
 
 /* "shadows": { "primary": "packet"|"frusta"|"both", "method": "frusta"|"packet"|"both",
- * "filter": bool, "leaf": N, "cull": "bcrfls" (letters b c r f l s p) } (lanetrace shadows; written by lanetrace tune) */
+ * "filter": bool, "leaf": N, "cull": "bcrfls" (letters b c r f l s p), "spp": 4|8|16|32 }
+ * (lanetrace shadows; written by lanetrace tune) */
 static int parse_shadows(ctx_t *c, const cJSON *sh, lt_scenefile_t *sf)
 {
-    static const char *const keys[] = {"primary", "method", "filter", "leaf", "cull", NULL};
+    static const char *const keys[] = {"primary", "method", "filter", "leaf", "cull", "spp", NULL};
     static const char *const both[] = {"packet", "frusta", "both", NULL};
     const cJSON *it;
     double v;
@@ -330,6 +331,13 @@ static int parse_shadows(ctx_t *c, const cJSON *sh, lt_scenefile_t *sf)
         if (v != floor(v))
             return fail(c, "'shadows.leaf' must be a whole number");
         sf->sh_leaf = (uint32_t)v;
+    }
+    if ((it = cJSON_GetObjectItemCaseSensitive(sh, "spp")) != NULL) {
+        if (get_number(c, it, "shadows.spp", 4, 32, &v) != 0)
+            return -1;
+        if (v != 4 && v != 8 && v != 16 && v != 32)
+            return fail(c, "'shadows.spp' = %g: expected 4, 8, 16 or 32 samples per pixel", v);
+        sf->sh_spp = (uint32_t)v;
     }
     if ((it = cJSON_GetObjectItemCaseSensitive(sh, "cull")) != NULL) {
         const char *p;

@@ -68,7 +68,9 @@ typedef struct lt_scenefile {
     int sh_filter;                   /* 1: the filtered image is the result (default), 0: the
                                         16-spp image unfiltered */
     uint32_t sh_leaf;                /* frusta BVH leaf size (0 = 8) */
-    char sh_cull[8];                 /* shadow-ray culling letters b, c, r or "none" ("" = bcr) */
+    char sh_cull[8];                 /* shadow-ray culling letters b c r f l s p or "none" ("" =
+                                        the default, bcrfls) */
+    uint32_t sh_spp;                 /* shadow samples per pixel: 4, 8, 16, 32 (0 = 16) */
 } lt_scenefile_t;
 
 /* Defaults: no mesh, default camera, 128x128, "chunks", both paths, lrb16, no lights, no outputs. */

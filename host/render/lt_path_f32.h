@@ -62,6 +62,7 @@ static inline uint32_t lth_f32_bits(float f)
 #define LTH_AWAY(hm, n, r) lth_f32_away((hm), (n), (r))
 #define LTH_PRAY_DIR(c, g) lt_vf32_add(lt_vf32_set1(c), (g))
 #define LTH_VIS16(c) ((float)(c) * 0.0625f)
+#define LTH_VISN(c, lg) ((float)(c) / (float)(1u << (lg))) /* exact for lg <= 24 */
 #define LTH_NORMAL_WORD(n0, n1, n2) lth_f32_bits(n0)
 #define LTH_FRONT(r, t) lth_f32_front((r), (t))
 #define LTH_VERT_D(v0, e) ((double)(v0) + (double)(e))

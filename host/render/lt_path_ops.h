@@ -129,10 +129,13 @@ typedef struct lt_ss_ops {
        both return the primary rays traced */
     uint32_t (*primary_tile)(struct lt_softshadow *ss, void *scr, uint32_t tx, uint32_t ty);
     uint32_t (*primary_block)(struct lt_softshadow *ss, void *scr, uint32_t bx, uint32_t by);
-    /* S-Frusta of the 4x4 tile at (tx, ty); S-Packet of pixel q's 16 samples of set `set`
-       (returns the occluded samples) */
-    void (*shadows_tile)(struct lt_softshadow *ss, void *scr, uint32_t tx, uint32_t ty);
-    uint16_t (*packet)(const struct lt_softshadow *ss, void *scr, size_t q, unsigned set);
+    /* S-Frusta of the 4x4 tile at (tx, ty), pass 0 (pixel lane i: set i) or 1 (spp 32: set
+       i ^ 8); S-Packet of pixel q's samples of set `set` that are in `samples` (bit j: sample j;
+       returns the occluded ones) */
+    void (*shadows_tile)(struct lt_softshadow *ss, void *scr, uint32_t tx, uint32_t ty,
+                         unsigned pass);
+    uint16_t (*packet)(const struct lt_softshadow *ss, void *scr, size_t q, unsigned set,
+                       uint16_t samples);
     /* E = G x visible fraction of the tile's pixels from stage `which`'s occlusion (the lanes;
        the caller charges the loads and stores and enters SHADE) */
     void (*shade_tile)(struct lt_softshadow *ss, uint32_t tx, uint32_t ty, int which);

@@ -88,6 +88,7 @@ static inline int lth_q16_front(const lt_ray1_q16_t *r, const lt_tri_q16_t *t)
 #define LTH_AWAY(hm, n, r) lth_q16_away((hm), (n), (r))
 #define LTH_PRAY_DIR(c, g) lth_q16_pray_dir((c), (g))
 #define LTH_VIS16(c) ((lt_q16_t)((c) << 12)) /* c of 16 samples visible, as a fraction */
+#define LTH_VISN(c, lg) ((lt_q16_t)((c) << (16 - (lg)))) /* c of 2^lg (<= 2^16) samples visible */
 #define LTH_NORMAL_WORD(n0, n1, n2) ((uint32_t)(n0) ^ ((uint32_t)(n1) << 1) ^ ((uint32_t)(n2) << 2))
 #define LTH_FRONT(r, t) lth_q16_front((r), (t))
 #define LTH_VERT_D(v0, e) ((double)((int64_t)(v0) + (e)) / 65536.0) /* vertex v0 + e as double */

@@ -31,6 +31,7 @@
 #undef LTH_AWAY
 #undef LTH_PRAY_DIR
 #undef LTH_VIS16
+#undef LTH_VISN
 #undef LTH_NORMAL_WORD
 #undef LTH_FRONT
 #undef LTH_VERT_D

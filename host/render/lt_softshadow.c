@@ -47,6 +47,11 @@ int lt_ss_view_for(const char *mesh_path, lt_ss_view_t *v)
     return 0;
 }
 
+int lt_ss_spp_log2(uint32_t spp)
+{
+    return spp == 4u ? 2 : spp == 8u ? 3 : spp == 16u ? 4 : spp == 32u ? 5 : -1;
+}
+
 void lt_ss_opts_default(const lt_scene_t *s, lt_ss_opts_t *o)
 {
     int e;
@@ -58,6 +63,7 @@ void lt_ss_opts_default(const lt_scene_t *s, lt_ss_opts_t *o)
     o->pflags = LT_FRUSTA_BACKFACE | LT_FRUSTA_CORNER | LT_FRUSTA_CR | LT_FRUSTA_LEAFRAY |
                 LT_FRUSTA_SPLIT;
     o->qmc = LT_QMC_LP;
+    o->spp = 16;
     o->depth_rel = 0.05;
     o->cos_min = 0.9;
     frexp(s->radius, &e);
@@ -279,6 +285,8 @@ void lt_ss_free(lt_softshadow_t *ss)
     free(ss->lit);
     free(ss->occ[0]);
     free(ss->occ[1]);
+    free(ss->occ2[0]);
+    free(ss->occ2[1]);
     free(ss->vref);
     for (a = 0; a < 2; a++) {
         free(ss->pid[a]);
@@ -314,6 +322,10 @@ static int alloc_buffers(lt_softshadow_t *ss)
     ss->id = malloc(n * sizeof *ss->id);
     ss->valid = alloc64(n), ss->lit = alloc64(n);
     ss->occ[0] = alloc64(n * 2), ss->occ[1] = alloc64(n * 2);
+    if (ss->o.spp == 32u) {
+        ss->occ2[0] = alloc64(n * 2), ss->occ2[1] = alloc64(n * 2);
+        fail |= ss->occ2[0] == NULL || ss->occ2[1] == NULL;
+    }
     ss->vref = calloc(n + 1, sizeof(double));
     for (a = 0; a < 2; a++) {
         ss->pid[a] = calloc(n + 1, sizeof(int32_t));
@@ -363,6 +375,11 @@ lt_softshadow_t *lt_ss_create(const lt_scene_t *s, const lt_camera_t *cam, const
     if (o->path == NULL || o->path->frusta == NULL || o->path->render == NULL) {
         lt_diag_fail(diag, "numeric path '%s' has no soft-shadow operations",
                      o->path != NULL ? o->path->name : "(none)");
+        free(ss);
+        return NULL;
+    }
+    if (lt_ss_spp_log2(o->spp) < 0) {
+        lt_diag_fail(diag, "%u shadow samples per pixel: expected %s", o->spp, LT_SS_SPP_LIST);
         free(ss);
         return NULL;
     }
@@ -421,7 +438,7 @@ static void primary_counts(lt_softshadow_t *ss, int which)
         ss->cnt.hits += ss->valid[i];
         ss->cnt.lit += ss->lit[i];
     }
-    ss->cnt.shadow_rays = 16u * ss->cnt.lit;
+    ss->cnt.shadow_rays = (uint64_t)ss->o.spp * ss->cnt.lit;
     ss->have_prim[which] = 1;
     if (ss->have_prim[0] && ss->have_prim[1]) {
         ss->cnt.prim_mismatch = 0;
@@ -536,14 +553,21 @@ static int prim_differs(const lt_softshadow_t *ss, size_t q)
            (ss->pid[0][q] != ss->pid[1][q] || ss->pt[0][q] != ss->pt[1][q]);
 }
 
+/* Occluded samples of pixel q in stage `which`, both passes. */
+static unsigned occ_count(const lt_softshadow_t *ss, int which, size_t q)
+{
+    unsigned c = (unsigned)lt__popcount32(ss->occ[which][q]);
+    return ss->occ2[which] != NULL ? c + (unsigned)lt__popcount32(ss->occ2[which][q]) : c;
+}
+
 static void count_occ(lt_softshadow_t *ss, int which)
 {
     size_t i;
     ss->cnt.occluded = ss->cnt.partial = 0;
     for (i = 0; i < ss->n; i++) {
-        unsigned c = lt__popcount32(ss->occ[which][i]);
+        unsigned c = occ_count(ss, which, i);
         ss->cnt.occluded += c;
-        ss->cnt.partial += ss->lit[i] && c != 0 && c != 16;
+        ss->cnt.partial += ss->lit[i] && c != 0 && c != ss->o.spp;
     }
     ss->have[which] = 1;
     ss->last = which;
@@ -553,7 +577,8 @@ static void count_occ(lt_softshadow_t *ss, int which)
             if (prim_differs(ss, i))
                 ss->cnt.shadow_skipped++;
             else
-                ss->cnt.mismatch += ss->occ[0][i] != ss->occ[1][i];
+                ss->cnt.mismatch += ss->occ[0][i] != ss->occ[1][i] ||
+                                    (ss->occ2[0] != NULL && ss->occ2[0][i] != ss->occ2[1][i]);
         }
     }
 }
@@ -562,8 +587,11 @@ static void ss_shadows_row(void *ctx, unsigned w, uint32_t row)
 {
     ss_job_t *j = ctx;
     uint32_t tx;
-    for (tx = 0; tx < j->ss->w; tx += 4)
-        j->ss->ops->shadows_tile(j->ss, j->scr[w], tx, 4u * row);
+    for (tx = 0; tx < j->ss->w; tx += 4) {
+        j->ss->ops->shadows_tile(j->ss, j->scr[w], tx, 4u * row, 0);
+        if (j->ss->occ2[0] != NULL)
+            j->ss->ops->shadows_tile(j->ss, j->scr[w], tx, 4u * row, 1);
+    }
 }
 
 void lt_ss_shadows_frusta(lt_softshadow_t *ss)
@@ -583,8 +611,11 @@ static void ss_packet_row(void *ctx, unsigned w, uint32_t y)
     uint32_t x;
     for (x = 0; x < ss->w; x++) {
         size_t q = (size_t)y * ss->w + x;
-        ss->occ[1][q] =
-            ss->lit[q] ? ss->ops->packet(ss, j->scr[w], q, (x & 3u) + 4u * (y & 3u)) : 0;
+        unsigned set = (x & 3u) + 4u * (y & 3u);
+        uint16_t sm = (uint16_t)(ss->o.spp < 16u ? (1u << ss->o.spp) - 1u : 0xFFFFu);
+        ss->occ[1][q] = ss->lit[q] ? ss->ops->packet(ss, j->scr[w], q, set, sm) : 0;
+        if (ss->occ2[1] != NULL)
+            ss->occ2[1][q] = ss->lit[q] ? ss->ops->packet(ss, j->scr[w], q, set ^ 8u, sm) : 0;
     }
 }
 
@@ -624,7 +655,7 @@ static void ss_reference_row(void *ctx, unsigned w, uint32_t y)
         unsigned s, occ = 0;
         if (ss->lit[q])
             for (s = 0; s < LT_FRUSTA_SETS; s++)
-                occ += lt__popcount32(ss->ops->packet(ss, j->scr[w], q, s));
+                occ += lt__popcount32(ss->ops->packet(ss, j->scr[w], q, s, 0xFFFFu));
         ss->vref[q] = ss->lit[q] ? 1.0 - (double)occ / 256.0 : 0.0;
         store_at(ss, ss->er, q, value_at(ss, ss->g, q) * ss->vref[q]);
         store_at(ss, ss->vr, q, ss->vref[q]);
@@ -720,6 +751,8 @@ uint32_t lt_ss_hash(const lt_softshadow_t *ss)
         unsigned char b[8];
         int j;
         v[0] = ss->last >= 0 ? ss->occ[ss->last][q] : 0u;
+        if (ss->last >= 0 && ss->occ2[ss->last] != NULL)
+            v[0] |= (uint32_t)ss->occ2[ss->last][q] << 16;
         v[1] = bits_at(ss->ef, q);
         memcpy(b, v, 8);
         for (j = 0; j < 8; j++) {
@@ -904,23 +937,27 @@ void lt_ss_audit(const lt_softshadow_t *ss, lt_ss_audit_t *au)
     for (y = 0; y < ss->h; y++)
         for (x = 0; x < ss->w; x++) {
             size_t q = (size_t)y * ss->w + x;
-            unsigned diff = (unsigned)(ss->occ[0][q] ^ ss->occ[1][q]), j;
+            unsigned pass, j;
             if (prim_differs(ss, q))
                 continue; /* different shadow origins: not comparable */
-            for (j = 0; j < 16; j++) {
-                int any, gen, m, ok = 1;
-                if (((diff >> j) & 1u) == 0)
-                    continue;
-                au->samples++;
-                brute1(ss, q, (x & 3u) + 4u * (y & 3u), j, &any, &gen);
-                for (m = 0; m < 2; m++) {
-                    int occ = (int)(((unsigned)ss->occ[m][q] >> j) & 1u);
-                    ok &= (!gen || occ) && (!occ || any);
+            for (pass = 0; pass < (ss->occ2[0] != NULL ? 2u : 1u); pass++) {
+                uint16_t *const *oc = pass ? ss->occ2 : ss->occ;
+                unsigned diff = (unsigned)(oc[0][q] ^ oc[1][q]);
+                for (j = 0; j < 16; j++) {
+                    int any, gen, m, ok = 1;
+                    if (((diff >> j) & 1u) == 0)
+                        continue;
+                    au->samples++;
+                    brute1(ss, q, ((x & 3u) + 4u * (y & 3u)) ^ (pass ? 8u : 0u), j, &any, &gen);
+                    for (m = 0; m < 2; m++) {
+                        int occ = (int)(((unsigned)oc[m][q] >> j) & 1u);
+                        ok &= (!gen || occ) && (!occ || any);
+                    }
+                    if (ok)
+                        au->spurious++;
+                    else
+                        au->errors++;
                 }
-                if (ok)
-                    au->spurious++;
-                else
-                    au->errors++;
             }
         }
 }

@@ -38,7 +38,15 @@ typedef struct lt_ss_opts {
                             (P-Frusta only) */
     uint32_t isect;      /* ray/triangle test of every stage and of the reference: LT_ISECT_WT
                             (watertight, the default: 0) or LT_ISECT_MT (Moller-Trumbore) */
+    uint32_t spp;        /* shadow samples per pixel: 4, 8, 16 (the default) or 32. Pixel lane i
+                            of a 4x4 tile takes set i of the interleaved sets; 4 and 8 take the
+                            first samples of it (the frusta bound only those:
+                            lt_frusta_restrict16), 32 adds a second pass with set i ^ 8 */
 } lt_ss_opts_t;
+
+/* The accepted values of lt_ss_opts_t.spp, and log2 of one (-1: not accepted). */
+#define LT_SS_SPP_LIST "4, 8, 16 or 32"
+int lt_ss_spp_log2(uint32_t spp);
 
 /* Defaults: q16, leaf 8, all three culling flags for shadows and for primary rays (the paper's
  * setting; pflags = LT_FRUSTA_CORNER | LT_FRUSTA_CR keeps primary rays two-sided, as

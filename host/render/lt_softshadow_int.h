@@ -43,6 +43,7 @@ struct lt_softshadow {
     int32_t *id;
     uint8_t *valid, *lit;
     uint16_t *occ[2];
+    uint16_t *occ2[2];         /* spp 32: the second pass's occlusion (set ^ 8), else NULL */
     int have[2], last;
     int32_t *pid[2];           /* per pixel: closest-hit id of P-Packet (0) / P-Frusta (1) */
     uint32_t *pt[2];           /* ... and the bits of its t */

@@ -139,30 +139,36 @@ static int enum_screen(grow_t *g, int mach)
 
 static int enum_shadows(grow_t *g, int mach, int skip_q16)
 {
-    static const int leaves[] = {4, 8, 16};
-    int pi, j, cu, b;
+    static const int leaves[] = {4, 8, 16}, spps[] = {16, 4, 8, 32};
+    int pi, j, cu, b, sp;
     for (pi = 0; lt_paths[pi].name != NULL; pi++) {
         if (!(lt_paths[pi].families & LT_PATHS_FRUSTA) ||
             (skip_q16 && needs_q16_check(&lt_paths[pi])))
             continue;
+        /* every leaf and culling set at 16 samples per pixel; the other sample counts at the
+           default leaf (8) and culling set */
         for (j = 0; j < 3; j++)
-            for (cu = 0; cu < LT_TUNE_NCULL; cu++) {
-                for (b = 0; b < 8; b++) {
-                    lt_tune_knobs_t k;
-                    memset(&k, 0, sizeof k);
-                    k.family = 2;
-                    k.machine = mach;
-                    k.path = pi;
-                    k.leaf = leaves[j];
-                    k.cull = cu;
-                    k.prim = b & 1;
-                    k.shadow = (b >> 1) & 1;
-                    k.filter = (b >> 2) & 1;
-                    if (add(g, &k) != 0)
-                        return -1;
+            for (cu = 0; cu < LT_TUNE_NCULL; cu++)
+                for (sp = 0; sp < 4; sp++) {
+                    if (sp > 0 && (leaves[j] != 8 || cu != 0))
+                        continue;
+                    for (b = 0; b < 8; b++) {
+                        lt_tune_knobs_t k;
+                        memset(&k, 0, sizeof k);
+                        k.family = 2;
+                        k.machine = mach;
+                        k.path = pi;
+                        k.leaf = leaves[j];
+                        k.cull = cu;
+                        k.spp = sp > 0 ? spps[sp] : 0;
+                        k.prim = b & 1;
+                        k.shadow = (b >> 1) & 1;
+                        k.filter = (b >> 2) & 1;
+                        if (add(g, &k) != 0)
+                            return -1;
+                    }
+                    g->run++;
                 }
-                g->run++;
-            }
     }
     return 0;
 }
@@ -206,9 +212,9 @@ void lt_tune_knobs_text(const lt_tune_knobs_t *k, char *buf, size_t n)
             snprintf(buf, n, "%s %s %d layer%s", strcmp(pn, "f32") == 0 ? "f32" : "s1.30",
                      tracer_names[k->structure], k->layers, k->layers > 1 ? "s" : "");
     } else {
-        snprintf(buf, n, "%s %s/%s leaf %d cull %s filter %s", pn, k->prim ? "P-Frusta" : "P-Packet",
-                 k->shadow ? "S-Packet" : "S-Frusta", k->leaf, lt_tune_cull_names[k->cull],
-                 k->filter ? "on" : "off");
+        snprintf(buf, n, "%s %s/%s leaf %d cull %s filter %s spp %d", pn,
+                 k->prim ? "P-Frusta" : "P-Packet", k->shadow ? "S-Packet" : "S-Frusta", k->leaf,
+                 lt_tune_cull_names[k->cull], k->filter ? "on" : "off", k->spp ? k->spp : 16);
     }
 }
 

@@ -66,6 +66,7 @@ typedef struct lt_tune_knobs {
     int shadow;    /* shadows: 0 S-Frusta, 1 S-Packet */
     int filter;    /* shadows: 1 the 4x4 discontinuity filter */
     int cull;      /* shadows: lt_tune_cull_names index */
+    int spp;       /* shadows: shadow samples per pixel (4, 8, 32); 0 = 16, the default */
 } lt_tune_knobs_t;
 
 /* What one measurement gives. */

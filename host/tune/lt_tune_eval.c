@@ -580,6 +580,8 @@ static void eval_shadows(lt_tune_ctx_t *c, lt_tune_point_t *pts, size_t np, int 
     if (k->leaf > 0)
         o.leaf = (uint32_t)k->leaf;
     o.flags = lt_tune_cull_flags[k->cull];
+    if (k->spp > 0)
+        o.spp = (uint32_t)k->spp;
     snprintf(dir, sizeof dir, "/tmp/lt-tune-XXXXXX");
     if (mkdtemp(dir) == NULL) {
         snprintf(m0->msg, sizeof m0->msg, "cannot create a temporary folder under /tmp");

@@ -107,7 +107,7 @@ static int write_csv(const char *path, const lt_tune_report_t *rep, lt_diag_t *d
     int m, ph;
     if (f == NULL)
         return lt_diag_fail(diag, "%s: cannot create (%s)", path, strerror(errno));
-    fprintf(f, "id,family,machine,path,structure,leaf,layers,gamma,primary,shadow,filter,cull,"
+    fprintf(f, "id,family,machine,path,structure,leaf,layers,gamma,primary,shadow,filter,cull,spp,"
                "knobs,status,res,");
     for (m = 0; m < LT_M__COUNT; m++)
         fprintf(f, "%s,", lt_metric_names[m]);
@@ -122,7 +122,7 @@ static int write_csv(const char *path, const lt_tune_report_t *rep, lt_diag_t *d
         char kt[160];
         lt_tune_knobs_text(&p->k, kt, sizeof kt);
         (void)lt_tune_objectives(p->k.family, &p->probe, po);
-        fprintf(f, "%zu,%s,%s,%s,%s,%d,%d,%s,%s,%s,%s,%s,\"%s\",%s,%u,", i,
+        fprintf(f, "%zu,%s,%s,%s,%s,%d,%d,%s,%s,%s,%s,%s,%s,\"%s\",%s,%u,", i,
                 lt_tune_family_names[p->k.family], lt_meter_machine_name(p->k.machine),
                 lt_paths[p->k.path].name,
                 p->k.family == 0   ? lt_render_structures[p->k.structure]
@@ -131,7 +131,9 @@ static int write_csv(const char *path, const lt_tune_report_t *rep, lt_diag_t *d
                 p->k.family == 2 ? (p->k.prim ? "frusta" : "packet") : "",
                 p->k.family == 2 ? (p->k.shadow ? "packet" : "frusta") : "",
                 p->k.family == 2 ? (p->k.filter ? "on" : "off") : "",
-                p->k.family == 2 ? lt_tune_cull_names[p->k.cull] : "", kt,
+                p->k.family == 2 ? lt_tune_cull_names[p->k.cull] : "",
+                p->k.family == 2 ? (p->k.spp == 4 ? "4" : p->k.spp == 8 ? "8" : p->k.spp == 32 ? "32" : "16") : "",
+                kt,
                 p->full.ok ? "full" : (p->pruned && p->probe.ok ? "pruned" : "failed"), x->res);
         for (m = 0; m < LT_M__COUNT; m++)
             num(f, x->m[m], ",");
@@ -247,6 +249,7 @@ static cJSON *knobs_json(const lt_tune_knobs_t *k)
         cJSON_AddStringToObject(o, "shadow", k->shadow ? "packet" : "frusta");
         cJSON_AddBoolToObject(o, "filter", k->filter);
         cJSON_AddStringToObject(o, "cull", lt_tune_cull_names[k->cull]);
+        cJSON_AddNumberToObject(o, "spp", k->spp ? k->spp : 16);
     }
     return o;
 }
@@ -825,6 +828,7 @@ int lt_tune_write_scene(const char *path, const lt_tune_input_t *in, const lt_tu
         cJSON_AddBoolToObject(x, "filter", k->filter);
         cJSON_AddNumberToObject(x, "leaf", k->leaf);
         cJSON_AddStringToObject(x, "cull", lt_tune_cull_names[k->cull]);
+        cJSON_AddNumberToObject(x, "spp", k->spp ? k->spp : 16);
     }
     s = cJSON_Print(o);
     cJSON_Delete(o);

@@ -113,3 +113,20 @@ fr_expect "shadows: --pcull f is refused (FS is the shadow frusta's)" 2 "pcull f
 check "shadows --cull bcp (256-ray packets): frusta = packets on every pixel" \
     grep -q 'frusta = packet visibility on 2304 of 2304 pixels (0 differ)' "$tmp/p256.txt"
 fr_expect "shadows: --pcull p is refused (the 256-ray walk is the shadow frusta's)" 2 "pcull p: expected letters b, c, r, l, s" "$SH_NAT" shadows --mesh scenes/teapot.obj --pcull p
+# samples per pixel (--spp 4, 8, 16, 32; scene key shadows.spp): frusta = packets, the quality line
+# names the count, and fewer samples cost more PSNR against the 256-sample reference
+for n in 4 8 32; do
+    "$SH_SIM" shadows --mesh scenes/teapot.obj --res 48 --spp $n >"$tmp/spp$n.txt" 2>&1
+    check "shadows --spp $n: frusta = packets on every pixel, $n spp traced" \
+        bash -c "grep -q 'frusta = packet visibility on 2304 of 2304 pixels (0 differ)' '$tmp/spp$n.txt' &&
+                 grep -q '$n shadow samples per pixel' '$tmp/spp$n.txt' && grep -q 'unfiltered $n spp' '$tmp/spp$n.txt'"
+done
+"$SH_SIM" shadows --mesh scenes/teapot.obj --res 48 >"$tmp/spp16.txt" 2>&1
+check "shadows: unfiltered PSNR grows with the samples (4 < 8 < 16 < 32 spp)" python3 -c "
+import re, sys
+p = [float(re.search(r'unfiltered %d spp ([0-9.]+) dB' % n, open('$tmp/spp%d.txt' % n).read()).group(1)) for n in (4, 8, 16, 32)]
+print('  PSNR unfiltered 4/8/16/32 spp: %s dB' % ' / '.join('%.2f' % v for v in p))
+sys.exit(0 if p[0] < p[1] < p[2] < p[3] else 1)"
+fr_expect "shadows --spp 12: refused naming the counts" 2 "spp 12: expected 4, 8, 16 or 32" "$SH_NAT" shadows --mesh scenes/teapot.obj --spp 12
+printf '{"mesh": "%s/scenes/teapot.obj", "shadows": {"spp": 12}}\n' "$PWD" >"$tmp/spp.json"
+fr_expect "scene: shadows.spp 12 refused naming the key" 1 "'shadows.spp' = 12: expected 4, 8, 16 or 32" "$SH_NAT" shadows "$tmp/spp.json"

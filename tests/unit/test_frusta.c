@@ -194,8 +194,12 @@ static const uint32_t g_flagsets[] = {
 };
 #define NFLAGS (sizeof g_flagsets / sizeof g_flagsets[0])
 
+/* The samples traced per frustum (lt_frusta_restrict16 when not all: lanetrace shadows --spp). */
+static uint16_t g_samples = 0xFFFFu;
+
 /* Run all three q16 paths (frusta, packet baseline, lt_bvh_occluded16 when no culling) and the
- * f32 frusta on one set of origins and compare every sample with brute force. */
+ * f32 frusta on one set of origins and compare every sample with brute force; only the samples
+ * of g_samples are traced (the frusta restricted after setup, the packets masked). */
 static void compare(const tscene_t *s, const tbvh_t *b, const lt_frusta_light_q16_t *lq,
                     int32_t org[16][3], lt_mask16_t k, tally_t *t, const char *what)
 {
@@ -226,9 +230,13 @@ static void compare(const tscene_t *s, const tbvh_t *b, const lt_frusta_light_q1
     }
     st = lt_frusta_setup16_q16(&tb, k, &F);
     assert_true(st == LT_OK || st == LT_E_RANGE);
+    if (g_samples != 0xFFFFu)
+        assert_int_equal(lt_frusta_restrict16_q16(&tb, g_samples, &F), LT_OK);
     assert_int_equal(lt_frusta_occluded16_q16(&b->q, s->tq, &tb, &F), LT_OK);
     st = lt_frusta_setup16_f32(&tbf, k, &Ff);
     assert_true(st == LT_OK || st == LT_E_RANGE);
+    if (g_samples != 0xFFFFu)
+        assert_int_equal(lt_frusta_restrict16_f32(&tbf, g_samples, &Ff), LT_OK);
     assert_int_equal(lt_frusta_occluded16_f32(&b->f, s->tf, &tbf, &Ff), LT_OK);
     for (f = 0; f < 16; f++) {
         uint16_t ref = 0, reff = 0;
@@ -249,11 +257,13 @@ static void compare(const tscene_t *s, const tbvh_t *b, const lt_frusta_light_q1
             if (ref_f32(s, &r1f, lq->flags))
                 reff = (uint16_t)(reff | (1u << j));
         }
+        ref = (uint16_t)(ref & g_samples);
+        reff = (uint16_t)(reff & g_samples);
         t->frusta++;
-        t->samples += 16;
-        t->f32_samples += 16;
+        t->samples += (unsigned long)lt__popcount32(g_samples);
+        t->f32_samples += (unsigned long)lt__popcount32(g_samples);
         t->occluded += lt__popcount32(ref);
-        t->partial += ref != 0 && ref != 0xFFFFu;
+        t->partial += ref != 0 && ref != g_samples;
         if (F.occl[f] != ref) {
             if (t->bad_frusta++ < 6)
                 printf("  FAIL %s: frustum %u flags %u occl %04x, per-ray %04x\n", what, f,
@@ -266,6 +276,7 @@ static void compare(const tscene_t *s, const tbvh_t *b, const lt_frusta_light_q1
         }
         /* the packet baseline on the deep tree-independent BVH given, same rays */
         if (lt_frusta_rays16_q16(&tb, org[f], f, &pr, &pk) == LT_OK) {
+            pk = (lt_mask16_t)(pk & g_samples);
             assert_int_equal(lt_frusta_packet_occluded16_q16(&b->q, s->tq, lq->flags, org[f], &pr,
                                                              pk, &po),
                              LT_OK);
@@ -275,6 +286,7 @@ static void compare(const tscene_t *s, const tbvh_t *b, const lt_frusta_light_q1
             if ((lq->flags & LT_FRUSTA_BACKFACE) == 0) {
                 lt_mask16_t bo = 0;
                 assert_int_equal(lt_frusta_rays16_q16(&tb, org[f], f, &pr, &pk), LT_OK);
+                pk = (lt_mask16_t)(pk & g_samples);
                 assert_int_equal(lt_bvh_occluded16_q16(&b->q, s->tq, &pr, pk, &bo), LT_OK);
                 if (bo != ref && t->bad_bvh++ < 6)
                     printf("  FAIL %s lt_bvh_occluded16: frustum %u %04x vs %04x\n", what, f, bo,
@@ -282,6 +294,7 @@ static void compare(const tscene_t *s, const tbvh_t *b, const lt_frusta_light_q1
             }
         }
         assert_int_equal(lt_frusta_rays16_f32(&tbf, of, f, &prf, &pk), LT_OK);
+        pk = (lt_mask16_t)(pk & g_samples);
         po = 0;
         assert_int_equal(lt_frusta_packet_occluded16_f32(&b->f, s->tf, lq->flags, of, &prf, pk,
                                                          &po),
@@ -386,14 +399,18 @@ static void test_random_scenes(void **state)
                 random_light(&r, &l, rep == 0 ? 4.0 : (rep == 1 ? 40.0 : 120.0), g_flagsets[fl]);
                 random_origins(&r, org, rep == 2 ? 100.0 : 3.0);
                 compare(&s, rep == 1 ? &deep : &shallow, &l, org, LT_MASK_ALL, &t, "random");
+                /* random frustum masks, with 4, 8 or all 16 samples per frustum traced */
+                g_samples = rep == 0 ? 0x000Fu : (rep == 1 ? 0x00FFu : 0xFFFFu);
                 compare(&s, &shallow, &l, org, (lt_mask16_t)ltt_rng_u32(&r), &t, "random mask");
+                g_samples = 0xFFFFu;
             }
         unbuild(&shallow);
         unbuild(&deep);
     }
     ltt_isect = LT_ISECT_WT;
     tally_print("random scenes (6 scenes, 13 flag sets, 3 light sizes, coherent and scattered "
-                "origins, random masks; odd scenes Moller-Trumbore)", &t);
+                "origins, random masks with 4, 8 and 16 samples traced (lt_frusta_restrict16); "
+                "odd scenes Moller-Trumbore)", &t);
 #if LT_COST_MODE == LT_COST_SIM
     {
         /* the equality above is only worth something if the culling actually removed pairs */

@@ -146,6 +146,17 @@ lt_status_t lt_frusta_table_q16(const lt_frusta_light_q16_t *light, const lt_qmc
 lt_status_t lt_frusta_setup16_q16(const lt_frusta_table_q16_t *tb, lt_mask16_t k,
                                   lt_frusta16_q16_t *F);
 
+/* Fewer samples per pixel: after lt_frusta_setup16, keep only the samples in `samples` (bit j:
+ * sample j of each frustum's set) live; a frustum left with none becomes inactive (unoccluded).
+ * With CR (or FS) in the table's flags the corner rays of the remaining frusta are recomputed
+ * through their live samples, and with FS their direction intervals too, so the walk bounds only
+ * the rays it answers. occl is untouched (0 after setup).
+ * Format, Rounding, Overflow: as CR / FS. Cost: SETUP phase, FR_RECORNER per active frustum (with
+ * CR or FS), then fr_shrink once (with FS; lt_frusta_occluded16's Cost line).
+ * Returns: LT_OK, LT_E_ARG (NULL). */
+lt_status_t lt_frusta_restrict16_q16(const lt_frusta_table_q16_t *tb, uint16_t samples,
+                                     lt_frusta16_q16_t *F);
+
 /* Multi-frusta traversal: any hit of every live sample of every active frustum; sets occl[f].
  * Interval slab test of the 16 frusta per box (TRAVERSE, one AABB event per box), (node, mask)
  * stack, near child first (hmin of entry distances). Leaves (INTERSECT): per triangle the sign of
@@ -449,6 +460,8 @@ lt_status_t lt_frusta_table_f32(const lt_frusta_light_f32_t *light, const lt_qmc
                                 lt_frusta_table_f32_t *tb);
 lt_status_t lt_frusta_setup16_f32(const lt_frusta_table_f32_t *tb, lt_mask16_t k,
                                   lt_frusta16_f32_t *F);
+lt_status_t lt_frusta_restrict16_f32(const lt_frusta_table_f32_t *tb, uint16_t samples,
+                                     lt_frusta16_f32_t *F);
 lt_status_t lt_frusta_occluded16_f32(const lt_bvh_t *bvh, const lt_tri_f32_t *tris,
                                      const lt_frusta_table_f32_t *tb, lt_frusta16_f32_t *F);
 lt_status_t lt_frusta_rays16_f32(const lt_frusta_table_f32_t *tb, const float o[3], unsigned set,
