@@ -4,8 +4,9 @@
 # runs' front.json with tools/pareto.py: the fronts, the picks for a tight, a medium and a loose
 # budget, what each knob buys, and quadtree reprojection against BVH tracing per pixel. Every
 # figure in the document comes from these runs; nothing is typed.
-#   PARETO_SCENES  meshes to tune (default: the teapot, then ../shared's Cornell boxes, bunny,
-#                  dragon; sibenik, sponza and the conference room take much longer: add them here)
+#   PARETO_SCENES  meshes to tune (default: the teapot, then every mesh of ../shared: the Cornell
+#                  boxes, bunny, dragon, Sibenik, Sponza and the Conference room; about 10 minutes
+#                  on 2 cores at 128 px)
 #   PARETO_RES     image side (default 128); PARETO_JOBS worker processes (default 2)
 #   PARETO_PROBE_RES  probe size (default 0: every configuration at full size, exact fronts)
 # Run from the repository root after make all.
@@ -18,14 +19,16 @@ OUT=$B/pareto
 shared=../shared/scenes
 if [ -z "${PARETO_SCENES:-}" ]; then
     PARETO_SCENES="scenes/teapot.obj"
-    for s in cornell_box CornellBox-Original bunny dragon_res3; do
-        [ -f "$shared/$s.obj" ] && PARETO_SCENES="$PARETO_SCENES $shared/$s.obj"
+    for s in cornell_box.obj CornellBox-Original.obj bunny.obj dragon_res3.obj sibenik.obj \
+        sponza.obj conference.obj.gz; do
+        [ -f "$shared/$s" ] && PARETO_SCENES="$PARETO_SCENES $shared/$s"
     done
 fi
 mkdir -p "$OUT" docs/tradeoffs
 runs=()
 for s in $PARETO_SCENES; do
-    name=$(basename "$s" .obj)
+    name=$(basename "$s" .gz)
+    name=${name%.obj}
     echo "pareto: tune $s (${RES} px, --jobs $JOBS)"
     t0=$(date +%s)
     "$B/sim/lanetrace" tune "$s" --res "$RES" --probe-res "$PROBE" --jobs "$JOBS" --out "$OUT/$name" -q >"$OUT/$name.txt" 2>&1 || {
