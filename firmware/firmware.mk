@@ -64,11 +64,23 @@ endef
 
 fw_objs = $(patsubst %.S,$(B)/fw/$(1)/$(2)/%.o,$(3:%.c=$(B)/fw/$(1)/$(2)/%.o))
 
+# An image may link one data blob as read-only data (firmware/targets/common/lt_fw_blob.S):
+# FW_BLOB_<image> := the file, which its own rule makes with the host tools.
+fw_blob_obj = $(if $(FW_BLOB_$(2)),$(B)/fw/$(1)/$(3)/blob_$(2).o)
+define fw_blob_rule
+$(B)/fw/$(1)/$(3)/blob_$(2).o: $(FW_TGT_DIR)/common/lt_fw_blob.S $(FW_BLOB_$(2))
+	@mkdir -p $$(@D)
+	@echo "AS [$(1)] $(FW_BLOB_$(2))"
+	@$(CC_$(1)) $(CFLAGS_$(1)) -DLT_FW_BLOB_FILE='"$(FW_BLOB_$(2))"' -c $$< -o $$@
+endef
+
 # The one image template: $(1) target, $(2) image name, $(3) object directory, $(4) file suffix.
 define fw_image
-$(B)/fw/$(1)/$(2)$(4).elf: $(call fw_objs,$(1),$(3),$(FW_IMG_$(2)) $(FW_CORE_SRCS) $(FW_RT_SRCS_$(1)))
+$(B)/fw/$(1)/$(2)$(4).elf: $(call fw_objs,$(1),$(3),$(FW_IMG_$(2)) $(FW_CORE_SRCS) $(FW_RT_SRCS_$(1))) \
+    $(call fw_blob_obj,$(1),$(2),$(3))
 	@echo "LD $$@"
 	@$(CC_$(1)) $(LDFLAGS_$(1)) -Wl,-Map=$$@.map -o $$@ $$^ $(LDLIBS_$(1))
+$(if $(FW_BLOB_$(2)),$(eval $(call fw_blob_rule,$(1),$(2),$(3))))
 endef
 
 $(foreach t,$(FW_TARGETS),$(eval $(call fw_obj_rules,$(t),obj,)) \
