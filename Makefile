@@ -46,6 +46,8 @@ CORE_SRCS := $(wildcard firmware/core/*/*.c)
 # host library: every host/<room>/*.c except program mains (*_main.c) and the USB backend
 # (host/stream/usb, compiled with hidapi's flags in host/host.mk)
 HOSTLIB_SRCS := $(filter-out %_main.c,$(wildcard host/*/*.c))
+# firmware applications the host programs also run (lanetrace pack traces scene blobs)
+HOSTAPP_SRCS := firmware/apps/lt_sblob.c
 SIM_SRCS := sim/lt_sim.c sim/lt_meter_sim.c
 # the cache geometry parser and model: in every variant (scene files and --l1/--l2 are checked the
 # same way in the native build, which has no cycle model to use them)
@@ -116,7 +118,7 @@ $(B)/$(1)/obj/%.o: %.c Makefile | $(B)/gen/lt_machines.inc
 $(1)_CORE_OBJS := $(CORE_SRCS:%.c=$(B)/$(1)/obj/%.o)
 # the sim build meters through sim/lt_meter_sim.c (SIM_SRCS), the others through lt_meter_null.c
 $(1)_HOST_OBJS := $(filter-out $(if $(filter $(SIM_VARIANTS),$(1)),%/lt_meter_null.o),$(HOSTLIB_SRCS:%.c=$(B)/$(1)/obj/%.o)) \
-    $(CACHE_SRCS:%.c=$(B)/$(1)/obj/%.o)
+    $(CACHE_SRCS:%.c=$(B)/$(1)/obj/%.o) $(HOSTAPP_SRCS:%.c=$(B)/$(1)/obj/%.o)
 $(1)_EXTRA_OBJS := $(if $(filter $(SIM_VARIANTS),$(1)),$(SIM_SRCS:%.c=$(B)/$(1)/obj/%.o) \
     $(CACHE_SRCS:%.c=$(B)/$(1)/obj/%.o) $(SIM_HOST_DEPS:%.c=$(B)/$(1)/obj/%.o))
 $(B)/$(1)/test_%: $(B)/$(1)/obj/tests/unit/test_%.o $$($(1)_CORE_OBJS) $$($(1)_HOST_OBJS) \

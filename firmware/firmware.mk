@@ -4,6 +4,8 @@
 #   build/fw/<T>/slab.elf      the slab-test kernel loop measured by the QEMU plugin (tests/fw/fw_slab.c)
 #   build/fw/<T>/frusta.elf    the shared shadow-tile workload (tests/fw/fw_frusta.c)
 #   build/fw/<T>/reproj.elf    the shared 64 x 64 reprojection workload (tests/fw/fw_reproj.c)
+#   build/fw/<T>/scene-<S>.elf a real mesh (bunny, teapot) as a scene blob in read-only data,
+#                              traced tile by tile (firmware/apps/scene_fw.c, docs/firmware.md)
 #   build/fw/<T>/stream.elf    the streaming firmware (firmware/apps/stream_fw.c; docs/stream.md)
 #   build/fw/<T>/stream-count.elf  the same over a core counting on the target (LT_COST_HANDLER,
 #                              firmware/apps/lt_fw_count.h): its reports carry modelled cycles of
@@ -40,6 +42,20 @@ $(B)/gen/fwc_%.c: sim/machines/%.def firmware/include/lt/lt_ops.def Makefile
 	  echo '#define LT_OP_COST(op, lat, iss) [LT_OP_##op] = iss,'; \
 	  echo 'const uint16_t lt_fwc_issue[LT_OP__COUNT] = {'; echo '#include "$*.def"'; \
 	  echo '};'; } >$@
+# Scene-blob images (firmware/apps/scene_fw.c): a real mesh traced on the target, its blob made
+# by `lanetrace pack` (host build) and linked as read-only data. 64x64 primary rays + hard shadows.
+FW_SCENES := bunny teapot
+FW_SCENE_MESH_bunny := scenes/bunny.obj
+FW_SCENE_MESH_teapot := scenes/teapot.obj
+define fw_scene
+FW_IMG_scene-$(1) := firmware/apps/scene_fw.c firmware/apps/lt_sblob.c
+FW_BLOB_scene-$(1) := $(B)/gen/$(1)64.ltsb
+$(B)/gen/$(1)64.ltsb: $(B)/host/lanetrace-native $(FW_SCENE_MESH_$(1))
+	@mkdir -p $$(@D)
+	@echo "PACK $$@"
+	@$(B)/host/lanetrace-native pack --mesh $(FW_SCENE_MESH_$(1)) --res 64 --out $$@ >/dev/null
+endef
+$(foreach s,$(FW_SCENES),$(eval $(call fw_scene,$(s))))
 FW_IMG_opcal := tests/fw/fw_opcal.c
 FW_IMG_tri := tests/fw/fw_tri.c tests/vectors/lt_tri_loop.c
 
@@ -97,7 +113,7 @@ $(B)/fw/$(1)/objc/fwc_table.o: $(B)/gen/fwc_$(FWC_MACHINE_$(1)).c
 $(B)/fw/$(1)/stream-count.elf: $(B)/fw/$(1)/objc/fwc_table.o
 endef
 $(foreach t,$(FW_TARGETS),$(eval $(call fwc_table,$(t))))
-FW_ALL_IMAGES := vectors slab frusta reproj stream
+FW_ALL_IMAGES := vectors slab frusta reproj stream $(FW_SCENES:%=scene-%)
 $(foreach t,$(FW_TARGETS),$(foreach i,$(FW_ALL_IMAGES),$(eval $(call fw_image,$(t),$(i),obj,))))
 $(foreach t,$(FW_TARGETS),$(eval $(call fw_image,$(t),stream-count,objc,)))
 $(eval $(call fw_image,rv32,vectors,objx,-fixed))

@@ -18,6 +18,7 @@
 #include "tune/lt_recommend.h"
 #include "render/lt_render.h"
 #include "cli/lt_reproject_cli.h"
+#include "cli/lt_pack_cli.h"
 #include "cli/lt_shadows_cli.h"
 #include "cli/lt_tune_cli.h"
 #include "render/lt_scene.h"
@@ -1653,14 +1654,7 @@ static int render_load(render_t *r)
     } else {
         lt_camera_default(&r->sc, sf->width, sf->height, &r->cam);
     }
-    if (r->seen_light) {
-        for (a = 0; a < 3; a++)
-            r->light[a] = (r->lf[a] - r->sc.center[a]) * r->sc.scale;
-    } else {
-        double d[3] = {-0.5, 1.5, 0.8}, ln = sqrt(0.25 + 2.25 + 0.64);
-        for (a = 0; a < 3; a++)
-            r->light[a] = 2.0 * r->sc.radius * d[a] / ln;
-    }
+    lt_scene_light(&r->sc, r->seen_light ? r->lf : NULL, r->light);
     for (a = 0; a < 3; a++) {
         if (fabs(r->light[a]) > ldexp(1.0, LT_CFG_GEOM_MAX_LOG2)) {
             fprintf(stderr, "%s render: the light lies outside the fixed-point range (|x| <= %g "
@@ -2340,6 +2334,7 @@ static void usage(FILE *f)
             "  tune SCENE|MESH    Pareto fronts of cycles vs error per family and machine;\n"
             "                     --budget picks the cheapest configuration (docs/tune.md)\n"
             "  info FILE          describe a mesh or EXR file\n"
+            "  pack SCENE|MESH    a scene blob for a firmware target, and its trace here\n"
             "  stream [SOURCE]    receive a device's report frames (see lt-stream --help)\n"
             "  diff A.json B.json compare two JSON reports\n"
             "  machines [--ops]   the machine models: clock, lanes, caches, op prices (--json)\n"
@@ -2374,6 +2369,8 @@ int main(int argc, char **argv)
         return cmd_machines(argc, argv);
     if (strcmp(argv[1], "tune") == 0)
         return lt_tune_cli(argc, argv, prog);
+    if (strcmp(argv[1], "pack") == 0)
+        return lt_pack_cli(argc, argv, prog);
     fprintf(stderr, "%s: unknown command '%s'\n", prog, argv[1]);
     usage(stderr);
     return EXIT_USAGE;

@@ -201,6 +201,15 @@ int lt_camera_look(const lt_scene_t *s, const double eye[3], const double target
     return 0;
 }
 
+void lt_scene_light(const lt_scene_t *s, const double *pos, double out[3])
+{
+    const double d[3] = {-0.5, 1.5, 0.8};
+    double ln = sqrt(0.25 + 2.25 + 0.64);
+    int a;
+    for (a = 0; a < 3; a++)
+        out[a] = pos != NULL ? (pos[a] - s->center[a]) * s->scale : 2.0 * s->radius * d[a] / ln;
+}
+
 void lt_camera_dir(const lt_camera_t *c, uint32_t x, uint32_t y, double d[3])
 {
     double aspect = (double)c->width / (double)c->height;

@@ -68,6 +68,10 @@ int lt_camera_look(const lt_scene_t *s, const double eye[3], const double target
  * c->fwd, c->right, c->up (the rest of c untouched). dir and up must not be parallel. */
 void lt_camera_basis(lt_camera_t *c, const double dir[3], const double up[3]);
 
+/* The point light in scaled units: pos (mesh file units) placed like the mesh, or with pos NULL
+ * the default, centre + 2 radius normalize(-0.5, 1.5, 0.8) (render, pack). */
+void lt_scene_light(const lt_scene_t *s, const double *pos, double out[3]);
+
 /* Unit direction of the ray through the centre of pixel (x, y) (y down). */
 void lt_camera_dir(const lt_camera_t *c, uint32_t x, uint32_t y, double d[3]);
 

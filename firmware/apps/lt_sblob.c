@@ -1,0 +1,535 @@
+/* lt_sblob.c - open (check) and trace a scene blob; see lt_sblob.h. Builds: firmware
+ * (freestanding), host, sim.
+ */
+#include "lt_sblob.h"
+
+uint32_t lt_sblob_fnv(uint32_t h, const void *p, size_t n)
+{
+    const uint8_t *b = (const uint8_t *)p;
+    size_t i;
+    for (i = 0; i < n; i++) {
+        h ^= b[i];
+        h *= 16777619u;
+    }
+    return h;
+}
+
+static uint32_t fnv_word(uint32_t h, uint32_t w)
+{
+    unsigned i;
+    for (i = 0; i < 4u; i++) {
+        h ^= (w >> (8u * i)) & 0xFFu;
+        h *= 16777619u;
+    }
+    return h;
+}
+
+const char *lt_sblob_err_str(lt_sblob_err_t e)
+{
+    switch (e) {
+    case LT_SBLOB_OK: return "ok";
+    case LT_SBLOB_E_SHORT: return "shorter than its header or its byte count";
+    case LT_SBLOB_E_MAGIC: return "not a scene blob (magic LTSB missing)";
+    case LT_SBLOB_E_VERSION: return "another format version";
+    case LT_SBLOB_E_LAYOUT: return "a section lies outside the blob or is misaligned";
+    case LT_SBLOB_E_SUM: return "checksum differs: the blob was damaged";
+    case LT_SBLOB_E_IMAGE: return "image size, eps or flags out of range";
+    case LT_SBLOB_E_CAMERA: return "a corner pixel's direction overflows or is zero";
+    case LT_SBLOB_E_GEOMETRY: return "a vertex, the eye or the light outside the geometry bound";
+    case LT_SBLOB_E_TREE: return "a BVH node or index out of range";
+    }
+    return "unknown error";
+}
+
+static void put32(uint8_t *p, uint32_t w)
+{
+    p[0] = (uint8_t)w;
+    p[1] = (uint8_t)(w >> 8);
+    p[2] = (uint8_t)(w >> 16);
+    p[3] = (uint8_t)(w >> 24);
+}
+
+static size_t align64(size_t n)
+{
+    return (n + 63u) & ~(size_t)63u;
+}
+
+/* section offsets: triangles right after the header, nodes and indices 64-byte aligned */
+static size_t off_nodes(uint32_t nt)
+{
+    return align64(LT_SBLOB_HEADER_BYTES + (size_t)nt * sizeof(lt_tri_q16_t));
+}
+
+static size_t off_idx(uint32_t nt, uint32_t nn)
+{
+    return align64(off_nodes(nt) + (size_t)nn * sizeof(lt_bvh_node_q16_t));
+}
+
+size_t lt_sblob_size(uint32_t ntris, uint32_t nnodes)
+{
+    return align64(off_idx(ntris, nnodes) + (size_t)ntris * 4u);
+}
+
+lt_status_t lt_sblob_write(const lt_tri_q16_t *tris, const lt_bvh_t *bvh, uint32_t max_leaf,
+                           const lt_sblob_view_t *v, void *out, size_t bytes)
+{
+    uint8_t *b = (uint8_t *)out;
+    uint32_t n, k, h[32];
+    size_t total, i;
+    unsigned a;
+    if (tris == (const lt_tri_q16_t *)0 || bvh == (const lt_bvh_t *)0 || v == (const lt_sblob_view_t *)0 ||
+        b == (uint8_t *)0 || bvh->num != LT_BVH_NUM_Q16 || bvh->ntris == 0 || bvh->nnodes == 0)
+        return LT_E_ARG;
+    n = bvh->ntris;
+    total = lt_sblob_size(n, bvh->nnodes);
+    if (bytes < total)
+        return LT_E_SPACE;
+    for (i = 0; i < total; i++)
+        b[i] = 0;
+    for (i = 0; i < n; i++) {
+        const lt_tri_q16_t *t = &tris[i];
+        uint8_t *q = b + LT_SBLOB_HEADER_BYTES + i * sizeof *t;
+        for (a = 0; a < 3u; a++) {
+            put32(q + 4u * a, (uint32_t)t->v0[a]);
+            put32(q + 12u + 4u * a, (uint32_t)t->e1[a]);
+            put32(q + 24u + 4u * a, (uint32_t)t->e2[a]);
+        }
+        put32(b + off_idx(n, bvh->nnodes) + 4u * i, bvh->idx[i]);
+    }
+    for (k = 0; k < bvh->nnodes; k++) {
+        const lt_bvh_node_q16_t *nd = (const lt_bvh_node_q16_t *)bvh->nodes + k;
+        uint8_t *q = b + off_nodes(n) + (size_t)k * sizeof *nd;
+        for (a = 0; a < 3u; a++) {
+            put32(q + 4u * a, (uint32_t)nd->b.lo[a]);
+            put32(q + 12u + 4u * a, (uint32_t)nd->b.hi[a]);
+        }
+        put32(q + 24, nd->left_first);
+        put32(q + 28, nd->count);
+    }
+    for (k = 0; k < 32u; k++)
+        h[k] = 0;
+    h[LT_SB_MAGIC] = LT_SBLOB_MAGIC;
+    h[LT_SB_VERSION] = LT_SBLOB_VERSION;
+    h[LT_SB_HEADER] = LT_SBLOB_HEADER_BYTES;
+    h[LT_SB_BYTES] = (uint32_t)total;
+    h[LT_SB_NTRIS] = n;
+    h[LT_SB_NNODES] = bvh->nnodes;
+    h[LT_SB_OFF_TRIS] = LT_SBLOB_HEADER_BYTES;
+    h[LT_SB_OFF_NODES] = (uint32_t)off_nodes(n);
+    h[LT_SB_OFF_IDX] = (uint32_t)off_idx(n, bvh->nnodes);
+    h[LT_SB_WIDTH] = v->width;
+    h[LT_SB_HEIGHT] = v->height;
+    h[LT_SB_FLAGS] = v->flags;
+    h[LT_SB_EPS] = (uint32_t)v->eps;
+    for (a = 0; a < 3u; a++) {
+        h[LT_SB_EYE + a] = (uint32_t)v->eye[a];
+        h[LT_SB_D00 + a] = (uint32_t)v->d00[a];
+        h[LT_SB_DX + a] = (uint32_t)v->dx[a];
+        h[LT_SB_DY + a] = (uint32_t)v->dy[a];
+        h[LT_SB_LIGHT + a] = (uint32_t)v->light[a];
+    }
+    h[LT_SB_DEPTH] = bvh->depth;
+    h[LT_SB_LEAF] = max_leaf;
+    h[LT_SB_SCALE] = v->scale;
+    for (k = 0; k < 32u; k++)
+        put32(b + 4u * k, h[k]);
+    put32(b + 4u * LT_SB_SUM, lt_sblob_sum(b, total));
+    return LT_OK;
+}
+
+uint32_t lt_sblob_sum(const void *p, size_t bytes)
+{
+    const uint8_t *b = (const uint8_t *)p;
+    static const uint8_t zero[4] = {0, 0, 0, 0};
+    uint32_t h = lt_sblob_fnv(LT_SBLOB_FNV0, b, 4u * LT_SB_SUM);
+    h = lt_sblob_fnv(h, zero, 4);
+    return lt_sblob_fnv(h, b + 4u * (LT_SB_SUM + 1u), bytes - 4u * (LT_SB_SUM + 1u));
+}
+
+/* |x| <= 2^LT_CFG_GEOM_MAX_LOG2 units, in s15.16 raw */
+#define GEOM_RAW ((int64_t)1 << (LT_CFG_GEOM_MAX_LOG2 + 16))
+#define DIR_PART ((int64_t)1 << 29)
+
+static int in_geom(int64_t x)
+{
+    return x >= -GEOM_RAW && x <= GEOM_RAW;
+}
+
+static int64_t abs64(int64_t x)
+{
+    return x < 0 ? -x : x;
+}
+
+/* A section of n items of `size` bytes at word w's offset: inside the blob, after the header,
+ * 4-byte aligned. */
+static int section_ok(const uint32_t *h, unsigned w, uint32_t n, uint32_t size)
+{
+    uint64_t off = h[w], end = off + (uint64_t)n * size;
+    return off >= LT_SBLOB_HEADER_BYTES && (off & 3u) == 0 && end <= h[LT_SB_BYTES];
+}
+
+static lt_sblob_err_t fail(lt_sblob_t *s, lt_sblob_err_t e, uint32_t where)
+{
+    s->bad = where;
+    return e;
+}
+
+lt_sblob_err_t lt_sblob_open(const void *p, size_t bytes, lt_sblob_t *s)
+{
+    const uint32_t *h = (const uint32_t *)p;
+    const uint8_t *b = (const uint8_t *)p;
+    const lt_bvh_node_q16_t *nodes;
+    const uint32_t *idx;
+    uint32_t nt, nn, i, a;
+    s->bad = 0;
+    if (bytes < LT_SBLOB_HEADER_BYTES)
+        return fail(s, LT_SBLOB_E_SHORT, (uint32_t)bytes);
+    if (h[LT_SB_MAGIC] != LT_SBLOB_MAGIC)
+        return fail(s, LT_SBLOB_E_MAGIC, h[LT_SB_MAGIC]);
+    if (h[LT_SB_VERSION] != LT_SBLOB_VERSION)
+        return fail(s, LT_SBLOB_E_VERSION, h[LT_SB_VERSION]);
+    if (h[LT_SB_HEADER] != LT_SBLOB_HEADER_BYTES)
+        return fail(s, LT_SBLOB_E_LAYOUT, LT_SB_HEADER);
+    if (h[LT_SB_BYTES] > bytes || h[LT_SB_BYTES] < LT_SBLOB_HEADER_BYTES)
+        return fail(s, LT_SBLOB_E_SHORT, h[LT_SB_BYTES]);
+    if (lt_sblob_sum(p, h[LT_SB_BYTES]) != h[LT_SB_SUM])
+        return fail(s, LT_SBLOB_E_SUM, h[LT_SB_SUM]);
+    nt = h[LT_SB_NTRIS];
+    nn = h[LT_SB_NNODES];
+    if (nt == 0 || nt > LT_BVH_MAX_TRIS || nn == 0 || nn > 2u * nt)
+        return fail(s, LT_SBLOB_E_TREE, nt == 0 || nt > LT_BVH_MAX_TRIS ? LT_SB_NTRIS : LT_SB_NNODES);
+    if (!section_ok(h, LT_SB_OFF_TRIS, nt, (uint32_t)sizeof(lt_tri_q16_t)))
+        return fail(s, LT_SBLOB_E_LAYOUT, LT_SB_OFF_TRIS);
+    if (!section_ok(h, LT_SB_OFF_NODES, nn, (uint32_t)sizeof(lt_bvh_node_q16_t)))
+        return fail(s, LT_SBLOB_E_LAYOUT, LT_SB_OFF_NODES);
+    if (!section_ok(h, LT_SB_OFF_IDX, nt, 4u))
+        return fail(s, LT_SBLOB_E_LAYOUT, LT_SB_OFF_IDX);
+
+    s->width = h[LT_SB_WIDTH];
+    s->height = h[LT_SB_HEIGHT];
+    s->flags = h[LT_SB_FLAGS];
+    s->eps = (lt_q16_t)h[LT_SB_EPS];
+    if (s->width == 0 || s->width > LT_SBLOB_MAX_RES || s->height == 0 ||
+        s->height > LT_SBLOB_MAX_RES || (s->flags & ~LT_SBLOB_F_SHADOWS) != 0 || s->eps <= 0 ||
+        s->eps > (lt_q16_t)LT_Q16_ONE * 256)
+        return fail(s, LT_SBLOB_E_IMAGE, 0);
+    s->tiles_x = (s->width + LT_SBLOB_TILE - 1u) / LT_SBLOB_TILE;
+    s->tiles_y = (s->height + LT_SBLOB_TILE - 1u) / LT_SBLOB_TILE;
+    for (a = 0; a < 3u; a++) {
+        s->eye[a] = (lt_q16_t)h[LT_SB_EYE + a];
+        s->light[a] = (lt_q16_t)h[LT_SB_LIGHT + a];
+        s->d00[a] = (int32_t)h[LT_SB_D00 + a];
+        s->dx[a] = (int32_t)h[LT_SB_DX + a];
+        s->dy[a] = (int32_t)h[LT_SB_DY + a];
+        if (!in_geom(s->eye[a]) || !in_geom(s->light[a]))
+            return fail(s, LT_SBLOB_E_GEOMETRY, LT_SB_EYE);
+        /* each part of d00 + x dx + y dy within 2^29: the sum stays inside int32 */
+        if (abs64(s->d00[a]) > DIR_PART || abs64(s->dx[a]) * (s->width - 1u) > DIR_PART ||
+            abs64(s->dy[a]) * (s->height - 1u) > DIR_PART)
+            return fail(s, LT_SBLOB_E_CAMERA, LT_SB_D00 + a);
+    }
+    {
+        /* no pixel direction is zero: at the four corners, the direction's component along d00
+           keeps one sign (a plane through the origin cannot separate the corners of a convex
+           pixel rectangle from its interior), checked in 64 bits */
+        int64_t dot[4];
+        unsigned c;
+        for (c = 0; c < 4u; c++) {
+            int64_t x = (c & 1u) ? (int64_t)s->width - 1 : 0, y = (c & 2u) ? (int64_t)s->height - 1 : 0;
+            dot[c] = 0;
+            for (a = 0; a < 3u; a++)
+                dot[c] += ((int64_t)s->d00[a] + x * s->dx[a] + y * s->dy[a]) * (s->d00[a] / 256);
+        }
+        for (c = 0; c < 4u; c++)
+            if (dot[c] <= 0)
+                return fail(s, LT_SBLOB_E_CAMERA, c);
+    }
+
+    s->tris = (const lt_tri_q16_t *)(const void *)(b + h[LT_SB_OFF_TRIS]);
+    nodes = (const lt_bvh_node_q16_t *)(const void *)(b + h[LT_SB_OFF_NODES]);
+    idx = (const uint32_t *)(const void *)(b + h[LT_SB_OFF_IDX]);
+    for (i = 0; i < nt; i++) {
+        const lt_tri_q16_t *t = &s->tris[i];
+        for (a = 0; a < 3u; a++)
+            if (!in_geom(t->v0[a]) || !in_geom((int64_t)t->v0[a] + t->e1[a]) ||
+                !in_geom((int64_t)t->v0[a] + t->e2[a]))
+                return fail(s, LT_SBLOB_E_GEOMETRY, i);
+        if (idx[i] >= nt)
+            return fail(s, LT_SBLOB_E_TREE, i);
+    }
+    if (h[LT_SB_DEPTH] > LT_BVH_MAX_DEPTH || h[LT_SB_LEAF] == 0 || h[LT_SB_LEAF] > LT_BVH_MAX_LEAF)
+        return fail(s, LT_SBLOB_E_TREE, LT_SB_DEPTH);
+    /* every node slot but the unused 1: a leaf's triangles inside idx[], an interior node's
+       children after it (no cycle) and inside the node array */
+    for (i = 0; i < nn; i++) {
+        const lt_bvh_node_q16_t *n = &nodes[i];
+        if (i == 1u)
+            continue;
+        if (n->count != 0u) {
+            if (n->count > h[LT_SB_LEAF] || n->left_first > nt || n->count > nt - n->left_first)
+                return fail(s, LT_SBLOB_E_TREE, i);
+        } else if (n->left_first <= i || n->left_first >= nn - 1u || n->left_first == 1u) {
+            return fail(s, LT_SBLOB_E_TREE, i);
+        }
+    }
+    s->bvh.nodes = nodes;
+    s->bvh.idx = idx;
+    s->bvh.nnodes = nn;
+    s->bvh.ntris = nt;
+    s->bvh.depth = h[LT_SB_DEPTH];
+    s->bvh.leaves = 0;
+    s->bvh.num = LT_BVH_NUM_Q16;
+    s->bvh.bad_tri = 0;
+    s->bvh.isect = LT_ISECT_WT;
+    s->bvh.bytes = (size_t)nn * sizeof(lt_bvh_node_q16_t) + (size_t)nt * 4u;
+    s->bvh.stats = (lt_bvh_stats_t *)0;
+    return LT_SBLOB_OK;
+}
+
+/* The unit direction through pixel (x, y) inside the image (never zero: lt_sblob_open checked). */
+static void pixel_dir(const lt_sblob_t *s, uint32_t x, uint32_t y, lt_q30_t n[3])
+{
+    lt_q16_t d[3];
+    unsigned a;
+    for (a = 0; a < 3u; a++)
+        d[a] = (lt_q16_t)(s->d00[a] + (int32_t)x * s->dx[a] + (int32_t)y * s->dy[a]);
+    if (lt_q16_normalize3(d, n) != LT_OK) {
+        n[0] = LT_Q30_ONE;
+        n[1] = n[2] = 0;
+    }
+}
+
+/* The shadow ray of a hit at distance t along the unit direction d from the eye: origin p, unit
+ * direction n to the light, interval [eps, distance - eps]. Returns 1, or 0 when the light is
+ * within 2 eps of the hit point (no ray). */
+static int shadow_ray(const lt_sblob_t *s, const lt_q30_t d[3], lt_q16_t t, lt_q16_t p[3],
+                      lt_q30_t n[3], lt_q16_t *tmax)
+{
+    lt_q16_t v[3], len = 0;
+    unsigned a;
+    for (a = 0; a < 3u; a++) {
+        p[a] = lt_q16_add_sat(s->eye[a], lt_q16_mul_q30_sat(t, d[a]));
+        v[a] = lt_q16_sub_sat(s->light[a], p[a]);
+    }
+    n[0] = LT_Q30_ONE;
+    n[1] = n[2] = 0;
+    *tmax = s->eps;
+    if (lt_q16_normalize3(v, n) != LT_OK)
+        return 0;
+    for (a = 0; a < 3u; a++)
+        len = lt_q16_add_sat(len, lt_q16_mul_q30_sat(v[a], n[a]));
+    if (len <= 2 * s->eps)
+        return 0;
+    *tmax = len - s->eps;
+    return 1;
+}
+
+/* The primary packet of the 4x4 pixels at (px, py): lanes outside the image are left out of the
+ * returned mask (and given a harmless ray). */
+static lt_mask16_t primary_packet(const lt_sblob_t *s, uint32_t px, uint32_t py,
+                                  lt_ray16_q16_t *r)
+{
+    lt_mask16_t k = 0;
+    int i;
+    for (i = 0; i < LT_LANES; i++) {
+        uint32_t x = px + (uint32_t)(i % 4), y = py + (uint32_t)(i / 4);
+        lt_q30_t n[3] = {LT_Q30_ONE, 0, 0};
+        if (x < s->width && y < s->height) {
+            pixel_dir(s, x, y, n);
+            k = (lt_mask16_t)(k | (1u << i));
+        }
+        r->ox.l[i] = s->eye[0];
+        r->oy.l[i] = s->eye[1];
+        r->oz.l[i] = s->eye[2];
+        r->dx.l[i] = n[0];
+        r->dy.l[i] = n[1];
+        r->dz.l[i] = n[2];
+        r->tmin.l[i] = 0;
+        r->tmax.l[i] = LT_Q16_MAX - 1;
+    }
+    lt_ray16_q16_setup(r);
+    return k;
+}
+
+/* Shadow rays from the hits of pr (lanes of k with an id) towards the light. Returns the lanes
+ * that have one. */
+static lt_mask16_t shadow_packet(const lt_sblob_t *s, const lt_ray16_q16_t *pr,
+                                 const lt_hit16_t *hit, lt_mask16_t k, lt_ray16_q16_t *r)
+{
+    lt_mask16_t m = 0;
+    int i;
+    for (i = 0; i < LT_LANES; i++) {
+        lt_q16_t p[3], tmax;
+        lt_q30_t n[3];
+        const lt_q30_t d[3] = {pr->dx.l[i], pr->dy.l[i], pr->dz.l[i]};
+        if (shadow_ray(s, d, pr->tmax.l[i], p, n, &tmax) && (((unsigned)k >> i) & 1u) &&
+            hit->id.l[i] >= 0)
+            m = (lt_mask16_t)(m | (1u << i));
+        r->ox.l[i] = p[0];
+        r->oy.l[i] = p[1];
+        r->oz.l[i] = p[2];
+        r->dx.l[i] = n[0];
+        r->dy.l[i] = n[1];
+        r->dz.l[i] = n[2];
+        r->tmin.l[i] = s->eps;
+        r->tmax.l[i] = ((unsigned)m >> i) & 1u ? tmax : s->eps;
+    }
+    lt_ray16_q16_setup(r);
+    return m;
+}
+
+/* One 4x4 group of pixels as 16-ray packets: the results of the lanes of the returned mask into
+ * id/dist/occ (indexed by lane). */
+static lt_status_t group_packets(const lt_sblob_t *s, uint32_t px, uint32_t py,
+                                 uint64_t (*ticks)(void), lt_sblob_tile_t *out, lt_mask16_t *km,
+                                 int32_t id[16], lt_q16_t dist[16], uint8_t occ[16])
+{
+    lt_ray16_q16_t r, sr;
+    lt_hit16_t hit;
+    lt_mask16_t k, m, o = 0;
+    uint64_t t0 = 0, t1 = 0;
+    lt_status_t st;
+    int i;
+    if (ticks != (uint64_t (*)(void))0)
+        t0 = ticks();
+    *km = k = primary_packet(s, px, py, &r);
+    if (k == 0)
+        return LT_OK;
+    st = lt_bvh_trace16_q16(&s->bvh, s->tris, &r, k, &hit);
+    if (st != LT_OK)
+        return st;
+    if (ticks != (uint64_t (*)(void))0) {
+        t1 = ticks();
+        out->t_primary += t1 - t0;
+    }
+    if (s->flags & LT_SBLOB_F_SHADOWS) {
+        m = shadow_packet(s, &r, &hit, k, &sr);
+        if (m != 0) {
+            out->srays += lt__popcount32(m);
+            st = lt_bvh_occluded16_q16(&s->bvh, s->tris, &sr, m, &o);
+            if (st != LT_OK)
+                return st;
+        }
+        if (ticks != (uint64_t (*)(void))0)
+            out->t_shadow += ticks() - t1;
+    }
+    for (i = 0; i < LT_LANES; i++) {
+        id[i] = hit.id.l[i];
+        dist[i] = hit.id.l[i] >= 0 ? r.tmax.l[i] : 0;
+        occ[i] = (uint8_t)(((unsigned)o >> i) & 1u);
+    }
+    return LT_OK;
+}
+
+/* The same 4x4 group ray by ray (lt_bvh_trace1_q16 / lt_bvh_occluded1_q16: bit-identical to a
+ * packet lane, so the results equal group_packets'). */
+static lt_status_t group_single(const lt_sblob_t *s, uint32_t px, uint32_t py,
+                                uint64_t (*ticks)(void), lt_sblob_tile_t *out, lt_mask16_t *km,
+                                int32_t id[16], lt_q16_t dist[16], uint8_t occ[16])
+{
+    int i;
+    *km = 0;
+    for (i = 0; i < LT_LANES; i++) {
+        uint32_t x = px + (uint32_t)(i % 4), y = py + (uint32_t)(i / 4);
+        lt_ray1_q16_t r;
+        uint64_t t0 = 0, t1 = 0;
+        int32_t hid = -1;
+        int o = 0;
+        lt_status_t st;
+        if (x >= s->width || y >= s->height)
+            continue;
+        *km = (lt_mask16_t)(*km | (1u << i));
+        if (ticks != (uint64_t (*)(void))0)
+            t0 = ticks();
+        r.o[0] = s->eye[0];
+        r.o[1] = s->eye[1];
+        r.o[2] = s->eye[2];
+        pixel_dir(s, x, y, r.d);
+        r.tmin = 0;
+        r.tmax = LT_Q16_MAX - 1;
+        lt_ray1_q16_setup(&r);
+        st = lt_bvh_trace1_q16(&s->bvh, s->tris, &r, &hid);
+        if (st != LT_OK)
+            return st;
+        if (ticks != (uint64_t (*)(void))0) {
+            t1 = ticks();
+            out->t_primary += t1 - t0;
+        }
+        id[i] = hid;
+        dist[i] = hid >= 0 ? r.tmax : 0;
+        if ((s->flags & LT_SBLOB_F_SHADOWS) && hid >= 0) {
+            lt_ray1_q16_t sr;
+            lt_q30_t d[3];
+            d[0] = r.d[0];
+            d[1] = r.d[1];
+            d[2] = r.d[2];
+            if (shadow_ray(s, d, r.tmax, sr.o, sr.d, &sr.tmax)) {
+                out->srays++;
+                sr.tmin = s->eps;
+                lt_ray1_q16_setup(&sr);
+                st = lt_bvh_occluded1_q16(&s->bvh, s->tris, &sr, &o);
+                if (st != LT_OK)
+                    return st;
+            }
+            if (ticks != (uint64_t (*)(void))0)
+                out->t_shadow += ticks() - t1;
+        }
+        occ[i] = (uint8_t)o;
+    }
+    return LT_OK;
+}
+
+lt_status_t lt_sblob_trace_tile(const lt_sblob_t *s, uint32_t t, int single,
+                                uint64_t (*ticks)(void), lt_sblob_tile_t *out)
+{
+    uint32_t tx, ty;
+    uint32_t h = LT_SBLOB_FNV0;
+    unsigned p, q, i;
+    /* the tile's results in raster order: id, distance and shadow bit of each pixel */
+    int32_t id[LT_SBLOB_TILE * LT_SBLOB_TILE];
+    lt_q16_t dist[LT_SBLOB_TILE * LT_SBLOB_TILE];
+    uint8_t occ[LT_SBLOB_TILE * LT_SBLOB_TILE];
+    out->hash = 0;
+    out->rays = out->hits = out->srays = out->occluded = 0;
+    out->t_primary = out->t_shadow = 0;
+    if (t >= s->tiles_x * s->tiles_y)
+        return LT_E_ARG;
+    tx = (t % s->tiles_x) * LT_SBLOB_TILE;
+    ty = (t / s->tiles_x) * LT_SBLOB_TILE;
+    for (p = 0; p < 16u; p++) {
+        int32_t gid[16];
+        lt_q16_t gdist[16];
+        uint8_t gocc[16];
+        lt_mask16_t k;
+        uint32_t px = tx + 4u * (p % 4u), py = ty + 4u * (p / 4u);
+        lt_status_t st = single ? group_single(s, px, py, ticks, out, &k, gid, gdist, gocc)
+                                : group_packets(s, px, py, ticks, out, &k, gid, gdist, gocc);
+        if (st != LT_OK)
+            return st;
+        for (i = 0; i < (unsigned)LT_LANES; i++) {
+            unsigned at = (4u * (p / 4u) + i / 4u) * LT_SBLOB_TILE + 4u * (p % 4u) + i % 4u;
+            if (!(((unsigned)k >> i) & 1u))
+                continue;
+            out->rays++;
+            id[at] = gid[i];
+            dist[at] = gdist[i];
+            occ[at] = gocc[i];
+            out->hits += gid[i] >= 0;
+            out->occluded += gocc[i];
+        }
+    }
+    /* hash the pixels inside the image in raster order */
+    for (q = 0; q < LT_SBLOB_TILE; q++)
+        for (p = 0; p < LT_SBLOB_TILE; p++) {
+            unsigned at = q * LT_SBLOB_TILE + p;
+            if (tx + p >= s->width || ty + q >= s->height)
+                continue;
+            h = fnv_word(h, (uint32_t)id[at]);
+            h = fnv_word(h, (uint32_t)dist[at]);
+            h = fnv_word(h, occ[at]);
+            if (out->ids != (int32_t *)0)
+                out->ids[at] = id[at];
+        }
+    out->hash = h;
+    return LT_OK;
+}

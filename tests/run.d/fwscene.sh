@@ -1,0 +1,79 @@
+# fwscene.sh - real meshes on the firmware targets (docs/firmware.md, "Scene blobs"). Sourced by
+# tests/run_tests.sh ($B, $tmp, check/ok/ko). For the bundled bunny and teapot: `lanetrace pack`
+# makes the same blob twice (byte for byte) and its trace agrees with the double-precision
+# reference tracer; build/fw/<T>/scene-<S>.elf under QEMU on cm4, cm55 and rv32 prints every tile
+# line and the image lines exactly as `lanetrace pack --in` does on the host, single rays equal
+# packets; the instructions per ray each target counted are printed. Bad blobs (truncated, damaged,
+# not a blob) and bad flags get a message naming the file or limit. The shared dragon at 256x256
+# when ../shared exists (SKIP otherwise, FAIL under CI=true).
+FS_NAT="$HOSTBIN/lanetrace-native"
+fs_expect() { # name, expected rc, pattern ("" = any), command...
+    local name=$1 want=$2 pat=$3
+    shift 3
+    "$@" >"$tmp/fs.txt" 2>&1
+    local rc=$?
+    if [ "$rc" -eq "$want" ] && { [ -z "$pat" ] || grep -q -- "$pat" "$tmp/fs.txt"; }; then
+        ok "$name (rc $rc)"
+    else
+        ko "$name (rc $rc, want $want; output: $(head -c 300 "$tmp/fs.txt"))"
+    fi
+}
+# "same triangle P%" of a pack --trace output at least MIN percent
+fs_acc_ok() { # file, min
+    awk -v m="$2" '/^accuracy/ { for (i = 1; i < NF; i++) if ($i == "triangle") { p = $(i + 1); sub("%", "", p); ok = (p + 0 >= m) } } END { exit !ok }' "$1"
+}
+for s in bunny teapot; do
+    blob="$B/gen/${s}64.ltsb"
+    "$FS_NAT" pack --mesh "scenes/$s.obj" --res 64 --out "$tmp/fs-$s.ltsb" --trace >"$tmp/fs-$s.pack" 2>&1
+    check "pack $s: the blob is made the same byte for byte as the firmware build's ($(stat -c %s "$blob" 2>/dev/null) bytes)" \
+        cmp -s "$tmp/fs-$s.ltsb" "$blob"
+    check "pack $s 64x64 s15.16: $(grep '^accuracy' "$tmp/fs-$s.pack" | sed 's/accuracy against the //') (bound >= 99.9%)" \
+        fs_acc_ok "$tmp/fs-$s.pack" 99.9
+    "$FS_NAT" pack --in "$blob" >"$tmp/fs-$s.host" 2>&1
+    grep -E '^(tile|image)' "$tmp/fs-$s.host" >"$tmp/fs-$s.want"
+    hp=$(sed -n 's/^image hash \(0x[0-9a-f]*\).*/\1/p' "$tmp/fs-$s.want")
+    hs=$(sed -n 's/^image single rays hash \(0x[0-9a-f]*\).*/\1/p' "$tmp/fs-$s.want")
+    check "pack --in $s (host): 16 tile lines, single rays = packets ($hp = $hs)" \
+        bash -c "[ \$(grep -c '^tile' '$tmp/fs-$s.want') -eq 16 ] && [ -n '$hp' ] && [ '$hp' = '$hs' ]"
+    for t in cm4 cm55 rv32; do
+        qvar="QEMU_$t"
+        timeout 300 ${!qvar} "$B/fw/$t/scene-$s.elf" </dev/null >"$tmp/fs-$s.$t" 2>&1
+        rc=$?
+        grep -E '^(tile|image)' "$tmp/fs-$s.$t" >"$tmp/fs-$s.$t.got"
+        check "scene-$s.elf on $t under QEMU: exit 0, its 16 tile lines and 2 image lines = the host's (image $hp) (rc $rc)" \
+            bash -c "[ $rc -eq 0 ] && [ -s '$tmp/fs-$s.want' ] && cmp -s '$tmp/fs-$s.want' '$tmp/fs-$s.$t.got'"
+        grep -E '^instr' "$tmp/fs-$s.$t" | sed "s/^/     $s: /"
+    done
+done
+
+# ---- bad blobs and flags ----
+head -c 1000 "$B/gen/teapot64.ltsb" >"$tmp/fs-short.ltsb"
+cp "$B/gen/teapot64.ltsb" "$tmp/fs-dmg.ltsb"
+printf '\x55' | dd of="$tmp/fs-dmg.ltsb" bs=1 seek=5000 conv=notrunc status=none
+fs_expect "pack --in a truncated blob: refused, names the file" 1 "fs-short.ltsb: not a usable scene blob: shorter" \
+    "$FS_NAT" pack --in "$tmp/fs-short.ltsb"
+fs_expect "pack --in a damaged blob: checksum differs" 1 "checksum differs" "$FS_NAT" pack --in "$tmp/fs-dmg.ltsb"
+fs_expect "pack --in an OBJ: not a scene blob" 1 "magic LTSB missing" "$FS_NAT" pack --in scenes/teapot.obj
+fs_expect "pack --in a missing file" 1 "/nonexistent.ltsb: cannot read" "$FS_NAT" pack --in /nonexistent.ltsb
+fs_expect "pack: --in and --out together is a usage error" 2 "give one of --out" \
+    "$FS_NAT" pack --in a.ltsb --out b.ltsb
+fs_expect "pack: --res above 4096 names the limit" 2 "1..4096" "$FS_NAT" pack --res 5000 --out "$tmp/x.ltsb"
+fs_expect "pack: --leaf 0 names the range" 2 "1..64" "$FS_NAT" pack --leaf 0 --out "$tmp/x.ltsb"
+fs_expect "pack: an unwritable --out is refused, naming the directory" 1 "/nonexistent/dir. does not exist" \
+    "$FS_NAT" pack --out /nonexistent/dir/x.ltsb
+fs_expect "lanetrace --help lists pack" 0 "pack SCENE|MESH" "$FS_NAT" --help
+
+# ---- a denser shared mesh at another size ----
+dragon=../shared/scenes/dragon_res3.obj
+if [ -f "$dragon" ]; then
+    "$FS_NAT" pack --mesh "$dragon" --res 256 --out "$tmp/fs-dragon.ltsb" --trace >"$tmp/fs-dragon.pack" 2>&1
+    hp=$(sed -n 's/^image hash \(0x[0-9a-f]*\).*/\1/p' "$tmp/fs-dragon.pack")
+    hs=$(sed -n 's/^image single rays hash \(0x[0-9a-f]*\).*/\1/p' "$tmp/fs-dragon.pack")
+    check "pack dragon_res3 256x256: single rays = packets ($hp), $(grep '^accuracy' "$tmp/fs-dragon.pack" | sed 's/accuracy against the //') (bound >= 99.8%)" \
+        bash -c "[ -n '$hp' ] && [ '$hp' = '$hs' ] && $(declare -f fs_acc_ok); fs_acc_ok '$tmp/fs-dragon.pack' 99.8"
+    rm -f "$tmp/fs-dragon.ltsb"
+elif [ "${CI:-}" = "true" ]; then
+    ko "fwscene: shared mesh missing under CI: $dragon"
+else
+    echo "SKIP fwscene dragon: $dragon not found (a fresh clone has no ../shared)"
+fi
