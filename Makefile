@@ -224,8 +224,16 @@ frusta-doc: deps
 	@tools/doc_insert.sh frusta-table2 $(B)/sweep/table2.md docs/frusta.md
 	@tools/doc_insert.sh frusta-sweep $(B)/sweep/sweep.md docs/results.md
 
+# instructions per ray of the scene-blob images on cm4, cm55 and rv32 -> docs/firmware.md
+# (tools/fw_rays.sh, QEMU with the lt_icount plugin; seconds)
+fw-doc: deps
+	@$(MAKE) --no-print-directory firmware $(PLUGIN_SO)
+	@mkdir -p $(B)/fwdoc
+	@B=$(B) tools/fw_rays.sh >$(B)/fwdoc/rays.md
+	@tools/doc_insert.sh fw-rays $(B)/fwdoc/rays.md docs/firmware.md
+
 clean:
 	rm -rf $(B)
 
 .PHONY: all sim deps run test test-build bench clean firmware plots layout index pareto \
-    frusta-doc
+    frusta-doc fw-doc

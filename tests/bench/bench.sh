@@ -100,3 +100,6 @@ B=$B tests/bench/tune_bench.sh
 
 echo "== 10. the machines' quadtree rows: reprojection cycles per pixel per node format (tests/bench/qtcal.sh)"
 tests/bench/qtcal.sh "$B/sim/lanetrace"
+
+echo "== 11. firmware: instructions per ray of real meshes on cm4, cm55 and rv32 (scene blobs under QEMU, lt_icount plugin; tools/fw_rays.sh, docs/firmware.md)"
+B=$B tools/fw_rays.sh

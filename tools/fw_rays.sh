@@ -1,0 +1,37 @@
+#!/usr/bin/env bash
+# fw_rays.sh - instructions per ray on the firmware targets (issue #13 item 3; docs/firmware.md,
+# "Scene blobs"): runs build/fw/<T>/scene-<S>.elf under QEMU (-icount shift=0) on cm4, cm55 and
+# rv32 with the lt_icount plugin and prints a Markdown table: the image's own per-ray counts of
+# each stage (lt_fw_ticks: exact on rv32, SysTick-scaled on Arm) and the plugin's exact total of
+# the whole run against the sum of the stages the image timed. Needs `make firmware plugin`.
+# Usage: tools/fw_rays.sh [scene...] (default: bunny teapot). `make fw-doc` puts the table into
+# docs/firmware.md; `make bench` prints it.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+B=${B:-build}
+eval "$(make -s --no-print-directory -f tools/print_qemu.mk)"
+scenes=("$@")
+[ ${#scenes[@]} -gt 0 ] || scenes=(bunny teapot)
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+echo "| scene | target | packets: primary | packets: shadow | single rays: primary | single rays: shadow | blob checks | whole run (plugin) | timed stages / plugin |"
+echo "|---|---|---|---|---|---|---|---|---|"
+for s in "${scenes[@]}"; do
+    for t in cm4 cm55 rv32; do
+        q="QEMU_$t"
+        timeout 300 ${!q} "$B/fw/$t/scene-$s.elf" -plugin "$B/plugin/lt_icount.so,out=$tmp/cnt" \
+            </dev/null >"$tmp/out"
+        awk -v s="$s" -v t="$t" -v cnt="$tmp/cnt" '
+            /^sblob/ { ntri = $2 }
+            /^image hash/ { rays = $5; srays = $9 }
+            /^instr .* open/ { open = $4 }
+            /^instr .* packets/ { pp = $5; ps = $7 }
+            /^instr .* single/ { sp = $5; ss = $7 }
+            END {
+                while ((getline l < cnt) > 0) if (l ~ /^icount total/) { split(l, f, " "); tot = f[3] }
+                timed = open + (pp + sp) * rays + (ps + ss) * srays
+                printf "| %s (%d triangles, 64x64) | %s | %s | %s | %s | %s | %s | %s | %.3f |\n",
+                    s, ntri, t, pp, ps, sp, ss, open, tot, timed / tot
+            }' "$tmp/out"
+    done
+done
