@@ -187,7 +187,7 @@ test: deps
 	@$(MAKE) --no-print-directory test-build
 	@B=$(B) UNIT_TESTS="$(UNIT_TESTS)" tests/run_tests.sh
 
-test-build: $(TEST_BINS) firmware $(PLUGIN_SO)
+test-build: $(TEST_BINS) firmware $(PLUGIN_SO) $(FW_SHARED_IMAGES)
 
 bench: deps
 	@$(MAKE) --no-print-directory all firmware opcal $(B)/host/embree-race $(B)/sim/ssbench

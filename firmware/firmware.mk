@@ -6,6 +6,8 @@
 #   build/fw/<T>/reproj.elf    the shared 64 x 64 reprojection workload (tests/fw/fw_reproj.c)
 #   build/fw/<T>/scene-<S>.elf a real mesh (bunny, teapot) as a scene blob in read-only data,
 #                              traced tile by tile (firmware/apps/scene_fw.c, docs/firmware.md)
+#   build/fw/<T>/scene-sibenik.elf  a multi-frusta block of the shared Sibenik as a frusta blob
+#                              (only where ../shared is; make test-build builds it)
 #   build/fw/<T>/stream.elf    the streaming firmware (firmware/apps/stream_fw.c; docs/stream.md)
 #   build/fw/<T>/stream-count.elf  the same over a core counting on the target (LT_COST_HANDLER,
 #                              firmware/apps/lt_fw_count.h): its reports carry modelled cycles of
@@ -56,6 +58,19 @@ $(B)/gen/$(1)64.ltsb: $(B)/host/lanetrace-native $(FW_SCENE_MESH_$(1))
 	@$(B)/host/lanetrace-native pack --mesh $(FW_SCENE_MESH_$(1)) --res 64 --out $$@ >/dev/null
 endef
 $(foreach s,$(FW_SCENES),$(eval $(call fw_scene,$(s))))
+# One multi-frusta block of a shared interior (a frusta blob: `lanetrace shadows --pack-block`,
+# the 16x16 block with the most penumbra pixels at 128x128, 16 spp, the crop of the triangles that
+# can shadow it). Built by make test-build only where ../shared is (a fresh clone has none).
+FW_SHARED_DIR ?= ../shared
+FW_FRUSTA_MESH := $(wildcard $(FW_SHARED_DIR)/scenes/sibenik.obj)
+FW_IMG_scene-sibenik := firmware/apps/scene_fw.c firmware/apps/lt_sblob.c
+FW_BLOB_scene-sibenik := $(B)/gen/sibenik-block.ltfb
+$(B)/gen/sibenik-block.ltfb: $(B)/host/lanetrace-native $(FW_FRUSTA_MESH)
+	@mkdir -p $(@D)
+	@echo "PACK $@"
+	@$(B)/host/lanetrace-native shadows --mesh $(FW_SHARED_DIR)/scenes/sibenik.obj --res 128 \
+	    --num q16 --only frusta --no-ref -q --pack-block auto --blob $@ >/dev/null
+FW_SHARED_IMAGES := $(if $(FW_FRUSTA_MESH),$(foreach t,$(FW_TARGETS),$(B)/fw/$(t)/scene-sibenik.elf))
 FW_IMG_opcal := tests/fw/fw_opcal.c
 FW_IMG_tri := tests/fw/fw_tri.c tests/vectors/lt_tri_loop.c
 
@@ -116,6 +131,7 @@ $(foreach t,$(FW_TARGETS),$(eval $(call fwc_table,$(t))))
 FW_ALL_IMAGES := vectors slab frusta reproj stream $(FW_SCENES:%=scene-%)
 $(foreach t,$(FW_TARGETS),$(foreach i,$(FW_ALL_IMAGES),$(eval $(call fw_image,$(t),$(i),obj,))))
 $(foreach t,$(FW_TARGETS),$(eval $(call fw_image,$(t),stream-count,objc,)))
+$(foreach t,$(FW_TARGETS),$(eval $(call fw_image,$(t),scene-sibenik,obj,)))
 $(eval $(call fw_image,rv32,vectors,objx,-fixed))
 $(foreach i,opcal tri,$(eval $(call fw_image,cm4,$(i),obj,)))
 # kept for the fragments that link their own images against the core and runtime objects
@@ -123,7 +139,7 @@ $(foreach t,$(FW_TARGETS),$(eval fw_$(t)_CORE := $(call fw_objs,$(t),obj,$(FW_CO
     $(eval fw_$(t)_RT := $(call fw_objs,$(t),obj,$(FW_RT_SRCS_$(t)))))
 
 FW_IMAGES := $(foreach t,$(FW_TARGETS),$(foreach i,$(FW_ALL_IMAGES) stream-count,$(B)/fw/$(t)/$(i).elf)) \
-    $(B)/fw/rv32/vectors-fixed.elf
+    $(B)/fw/rv32/vectors-fixed.elf $(FW_SHARED_IMAGES)
 
 firmware: $(FW_IMAGES)
 	@tools/check_fw.sh $(FW_IMAGES)

@@ -4,6 +4,8 @@
 # rv32 with the lt_icount plugin and prints a Markdown table: the image's own per-ray counts of
 # each stage (lt_fw_ticks: exact on rv32, SysTick-scaled on Arm) and the plugin's exact total of
 # the whole run against the sum of the stages the image timed. Needs `make firmware plugin`.
+# With the frusta block image (build/fw/<T>/scene-sibenik.elf, made where ../shared is) a second
+# table gives its instructions per shadow sample.
 # Usage: tools/fw_rays.sh [scene...] (default: bunny teapot). `make fw-doc` puts the table into
 # docs/firmware.md; `make bench` prints it.
 set -euo pipefail
@@ -35,3 +37,25 @@ for s in "${scenes[@]}"; do
             }' "$tmp/out"
     done
 done
+
+# the multi-frusta block (a frusta blob of the shared Sibenik; only where ../shared is)
+if [ -f "$B/fw/cm4/scene-sibenik.elf" ]; then
+    echo
+    echo "| frusta block | target | per shadow sample | per lit pixel | blob checks and sample table | whole run (plugin) | timed stages / plugin |"
+    echo "|---|---|---|---|---|---|---|"
+    for t in cm4 cm55 rv32; do
+        q="QEMU_$t"
+        timeout 300 ${!q} "$B/fw/$t/scene-sibenik.elf" -plugin "$B/plugin/lt_icount.so,out=$tmp/cnt" \
+            </dev/null >"$tmp/out"
+        awk -v t="$t" -v cnt="$tmp/cnt" '
+            /^fblob/ { d = $0; sub(/^fblob /, "", d); sub(/, [0-9]+ bytes$/, "", d) }
+            /^block hash/ { lit = $5 }
+            /^instr .* open/ { open = $4 }
+            /^instr .* per shadow sample/ { ps = $7; sub(/,$/, "", ps); pp = $11 }
+            END {
+                while ((getline l < cnt) > 0) if (l ~ /^icount total/) { split(l, f, " "); tot = f[3] }
+                printf "| Sibenik, %s | %s | %s | %s | %s | %s | %.3f |\n", d, t, ps, pp, open, tot,
+                    (open + pp * lit) / tot
+            }' "$tmp/out"
+    done
+fi

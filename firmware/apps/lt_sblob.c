@@ -70,6 +70,34 @@ size_t lt_sblob_size(uint32_t ntris, uint32_t nnodes)
     return align64(off_idx(ntris, nnodes) + (size_t)ntris * 4u);
 }
 
+/* The triangle, node and index sections at their offsets, little-endian. */
+static void write_scene(uint8_t *b, const lt_tri_q16_t *tris, const lt_bvh_t *bvh, size_t ot,
+                        size_t on, size_t oi)
+{
+    uint32_t i, k;
+    unsigned a;
+    for (i = 0; i < bvh->ntris; i++) {
+        const lt_tri_q16_t *t = &tris[i];
+        uint8_t *q = b + ot + (size_t)i * sizeof *t;
+        for (a = 0; a < 3u; a++) {
+            put32(q + 4u * a, (uint32_t)t->v0[a]);
+            put32(q + 12u + 4u * a, (uint32_t)t->e1[a]);
+            put32(q + 24u + 4u * a, (uint32_t)t->e2[a]);
+        }
+        put32(b + oi + 4u * i, bvh->idx[i]);
+    }
+    for (k = 0; k < bvh->nnodes; k++) {
+        const lt_bvh_node_q16_t *nd = (const lt_bvh_node_q16_t *)bvh->nodes + k;
+        uint8_t *q = b + on + (size_t)k * sizeof *nd;
+        for (a = 0; a < 3u; a++) {
+            put32(q + 4u * a, (uint32_t)nd->b.lo[a]);
+            put32(q + 12u + 4u * a, (uint32_t)nd->b.hi[a]);
+        }
+        put32(q + 24, nd->left_first);
+        put32(q + 28, nd->count);
+    }
+}
+
 lt_status_t lt_sblob_write(const lt_tri_q16_t *tris, const lt_bvh_t *bvh, uint32_t max_leaf,
                            const lt_sblob_view_t *v, void *out, size_t bytes)
 {
@@ -86,26 +114,7 @@ lt_status_t lt_sblob_write(const lt_tri_q16_t *tris, const lt_bvh_t *bvh, uint32
         return LT_E_SPACE;
     for (i = 0; i < total; i++)
         b[i] = 0;
-    for (i = 0; i < n; i++) {
-        const lt_tri_q16_t *t = &tris[i];
-        uint8_t *q = b + LT_SBLOB_HEADER_BYTES + i * sizeof *t;
-        for (a = 0; a < 3u; a++) {
-            put32(q + 4u * a, (uint32_t)t->v0[a]);
-            put32(q + 12u + 4u * a, (uint32_t)t->e1[a]);
-            put32(q + 24u + 4u * a, (uint32_t)t->e2[a]);
-        }
-        put32(b + off_idx(n, bvh->nnodes) + 4u * i, bvh->idx[i]);
-    }
-    for (k = 0; k < bvh->nnodes; k++) {
-        const lt_bvh_node_q16_t *nd = (const lt_bvh_node_q16_t *)bvh->nodes + k;
-        uint8_t *q = b + off_nodes(n) + (size_t)k * sizeof *nd;
-        for (a = 0; a < 3u; a++) {
-            put32(q + 4u * a, (uint32_t)nd->b.lo[a]);
-            put32(q + 12u + 4u * a, (uint32_t)nd->b.hi[a]);
-        }
-        put32(q + 24, nd->left_first);
-        put32(q + 28, nd->count);
-    }
+    write_scene(b, tris, bvh, LT_SBLOB_HEADER_BYTES, off_nodes(n), off_idx(n, bvh->nnodes));
     for (k = 0; k < 32u; k++)
         h[k] = 0;
     h[LT_SB_MAGIC] = LT_SBLOB_MAGIC;
@@ -137,13 +146,19 @@ lt_status_t lt_sblob_write(const lt_tri_q16_t *tris, const lt_bvh_t *bvh, uint32
     return LT_OK;
 }
 
-uint32_t lt_sblob_sum(const void *p, size_t bytes)
+/* FNV-1a of bytes with word w taken as zero. */
+static uint32_t sum_without(const void *p, size_t bytes, unsigned w)
 {
     const uint8_t *b = (const uint8_t *)p;
     static const uint8_t zero[4] = {0, 0, 0, 0};
-    uint32_t h = lt_sblob_fnv(LT_SBLOB_FNV0, b, 4u * LT_SB_SUM);
+    uint32_t h = lt_sblob_fnv(LT_SBLOB_FNV0, b, 4u * w);
     h = lt_sblob_fnv(h, zero, 4);
-    return lt_sblob_fnv(h, b + 4u * (LT_SB_SUM + 1u), bytes - 4u * (LT_SB_SUM + 1u));
+    return lt_sblob_fnv(h, b + 4u * (w + 1u), bytes - 4u * (w + 1u));
+}
+
+uint32_t lt_sblob_sum(const void *p, size_t bytes)
+{
+    return sum_without(p, bytes, LT_SB_SUM);
 }
 
 /* |x| <= 2^LT_CFG_GEOM_MAX_LOG2 units, in s15.16 raw */
@@ -174,13 +189,65 @@ static lt_sblob_err_t fail(lt_sblob_t *s, lt_sblob_err_t e, uint32_t where)
     return e;
 }
 
+/* The triangle, node and index sections (their layout already checked): every vertex inside the
+ * geometry bound, every index below nt, every node slot but the unused 1 a leaf whose triangles
+ * lie inside idx[] or an interior node whose children come after it (no cycle) inside the node
+ * array; then the tree handle. */
+static lt_sblob_err_t check_scene(const uint8_t *b, uint32_t nt, uint32_t nn, uint32_t off_tris,
+                                  uint32_t off_nodes, uint32_t off_idx, uint32_t depth,
+                                  uint32_t leaf, lt_bvh_t *bvh, const lt_tri_q16_t **tris,
+                                  uint32_t *bad)
+{
+    const lt_tri_q16_t *t0 = (const lt_tri_q16_t *)(const void *)(b + off_tris);
+    const lt_bvh_node_q16_t *nodes = (const lt_bvh_node_q16_t *)(const void *)(b + off_nodes);
+    const uint32_t *idx = (const uint32_t *)(const void *)(b + off_idx);
+    uint32_t i, a;
+    for (i = 0; i < nt; i++) {
+        const lt_tri_q16_t *t = &t0[i];
+        *bad = i;
+        for (a = 0; a < 3u; a++)
+            if (!in_geom(t->v0[a]) || !in_geom((int64_t)t->v0[a] + t->e1[a]) ||
+                !in_geom((int64_t)t->v0[a] + t->e2[a]))
+                return LT_SBLOB_E_GEOMETRY;
+        if (idx[i] >= nt)
+            return LT_SBLOB_E_TREE;
+    }
+    *bad = 0;
+    if (depth > LT_BVH_MAX_DEPTH || leaf == 0 || leaf > LT_BVH_MAX_LEAF)
+        return LT_SBLOB_E_TREE;
+    for (i = 0; i < nn; i++) {
+        const lt_bvh_node_q16_t *n = &nodes[i];
+        if (i == 1u)
+            continue;
+        *bad = i;
+        if (n->count != 0u) {
+            if (n->count > leaf || n->left_first > nt || n->count > nt - n->left_first)
+                return LT_SBLOB_E_TREE;
+        } else if (n->left_first <= i || n->left_first >= nn - 1u || n->left_first == 1u) {
+            return LT_SBLOB_E_TREE;
+        }
+    }
+    *bad = 0;
+    *tris = t0;
+    bvh->nodes = nodes;
+    bvh->idx = idx;
+    bvh->nnodes = nn;
+    bvh->ntris = nt;
+    bvh->depth = depth;
+    bvh->leaves = 0;
+    bvh->num = LT_BVH_NUM_Q16;
+    bvh->bad_tri = 0;
+    bvh->isect = LT_ISECT_WT;
+    bvh->bytes = (size_t)nn * sizeof(lt_bvh_node_q16_t) + (size_t)nt * 4u;
+    bvh->stats = (lt_bvh_stats_t *)0;
+    return LT_SBLOB_OK;
+}
+
 lt_sblob_err_t lt_sblob_open(const void *p, size_t bytes, lt_sblob_t *s)
 {
     const uint32_t *h = (const uint32_t *)p;
     const uint8_t *b = (const uint8_t *)p;
-    const lt_bvh_node_q16_t *nodes;
-    const uint32_t *idx;
-    uint32_t nt, nn, i, a;
+    uint32_t nt, nn, a;
     s->bad = 0;
     if (bytes < LT_SBLOB_HEADER_BYTES)
         return fail(s, LT_SBLOB_E_SHORT, (uint32_t)bytes);
@@ -245,45 +312,8 @@ lt_sblob_err_t lt_sblob_open(const void *p, size_t bytes, lt_sblob_t *s)
                 return fail(s, LT_SBLOB_E_CAMERA, c);
     }
 
-    s->tris = (const lt_tri_q16_t *)(const void *)(b + h[LT_SB_OFF_TRIS]);
-    nodes = (const lt_bvh_node_q16_t *)(const void *)(b + h[LT_SB_OFF_NODES]);
-    idx = (const uint32_t *)(const void *)(b + h[LT_SB_OFF_IDX]);
-    for (i = 0; i < nt; i++) {
-        const lt_tri_q16_t *t = &s->tris[i];
-        for (a = 0; a < 3u; a++)
-            if (!in_geom(t->v0[a]) || !in_geom((int64_t)t->v0[a] + t->e1[a]) ||
-                !in_geom((int64_t)t->v0[a] + t->e2[a]))
-                return fail(s, LT_SBLOB_E_GEOMETRY, i);
-        if (idx[i] >= nt)
-            return fail(s, LT_SBLOB_E_TREE, i);
-    }
-    if (h[LT_SB_DEPTH] > LT_BVH_MAX_DEPTH || h[LT_SB_LEAF] == 0 || h[LT_SB_LEAF] > LT_BVH_MAX_LEAF)
-        return fail(s, LT_SBLOB_E_TREE, LT_SB_DEPTH);
-    /* every node slot but the unused 1: a leaf's triangles inside idx[], an interior node's
-       children after it (no cycle) and inside the node array */
-    for (i = 0; i < nn; i++) {
-        const lt_bvh_node_q16_t *n = &nodes[i];
-        if (i == 1u)
-            continue;
-        if (n->count != 0u) {
-            if (n->count > h[LT_SB_LEAF] || n->left_first > nt || n->count > nt - n->left_first)
-                return fail(s, LT_SBLOB_E_TREE, i);
-        } else if (n->left_first <= i || n->left_first >= nn - 1u || n->left_first == 1u) {
-            return fail(s, LT_SBLOB_E_TREE, i);
-        }
-    }
-    s->bvh.nodes = nodes;
-    s->bvh.idx = idx;
-    s->bvh.nnodes = nn;
-    s->bvh.ntris = nt;
-    s->bvh.depth = h[LT_SB_DEPTH];
-    s->bvh.leaves = 0;
-    s->bvh.num = LT_BVH_NUM_Q16;
-    s->bvh.bad_tri = 0;
-    s->bvh.isect = LT_ISECT_WT;
-    s->bvh.bytes = (size_t)nn * sizeof(lt_bvh_node_q16_t) + (size_t)nt * 4u;
-    s->bvh.stats = (lt_bvh_stats_t *)0;
-    return LT_SBLOB_OK;
+    return check_scene(b, nt, nn, h[LT_SB_OFF_TRIS], h[LT_SB_OFF_NODES], h[LT_SB_OFF_IDX],
+                       h[LT_SB_DEPTH], h[LT_SB_LEAF], &s->bvh, &s->tris, &s->bad);
 }
 
 /* The unit direction through pixel (x, y) inside the image (never zero: lt_sblob_open checked). */
@@ -531,5 +561,190 @@ lt_status_t lt_sblob_trace_tile(const lt_sblob_t *s, uint32_t t, int single,
                 out->ids[at] = id[at];
         }
     out->hash = h;
+    return LT_OK;
+}
+
+/* ---- frusta blobs ------------------------------------------------------------------------- */
+
+static size_t fb_off_nodes(uint32_t nt)
+{
+    return align64(LT_FBLOB_HEADER_BYTES + (size_t)nt * sizeof(lt_tri_q16_t));
+}
+
+static size_t fb_off_idx(uint32_t nt, uint32_t nn)
+{
+    return align64(fb_off_nodes(nt) + (size_t)nn * sizeof(lt_bvh_node_q16_t));
+}
+
+static size_t fb_off_org(uint32_t nt, uint32_t nn)
+{
+    return align64(fb_off_idx(nt, nn) + (size_t)nt * 4u);
+}
+
+size_t lt_fblob_size(uint32_t ntris, uint32_t nnodes)
+{
+    return align64(fb_off_org(ntris, nnodes) + 256u * 12u);
+}
+
+lt_status_t lt_fblob_write(const lt_tri_q16_t *tris, const lt_bvh_t *bvh, const lt_q16_t org[768],
+                           uint32_t h[64], void *out, size_t bytes)
+{
+    uint8_t *b = (uint8_t *)out;
+    size_t total, i;
+    uint32_t n, k;
+    if (tris == (const lt_tri_q16_t *)0 || bvh == (const lt_bvh_t *)0 || org == (const lt_q16_t *)0 ||
+        h == (uint32_t *)0 || b == (uint8_t *)0 || bvh->num != LT_BVH_NUM_Q16 || bvh->ntris == 0 ||
+        bvh->nnodes == 0)
+        return LT_E_ARG;
+    n = bvh->ntris;
+    total = lt_fblob_size(n, bvh->nnodes);
+    if (bytes < total)
+        return LT_E_SPACE;
+    for (i = 0; i < total; i++)
+        b[i] = 0;
+    write_scene(b, tris, bvh, LT_FBLOB_HEADER_BYTES, fb_off_nodes(n), fb_off_idx(n, bvh->nnodes));
+    for (i = 0; i < 768u; i++)
+        put32(b + fb_off_org(n, bvh->nnodes) + 4u * i, (uint32_t)org[i]);
+    h[LT_FB_MAGIC] = LT_FBLOB_MAGIC;
+    h[LT_FB_VERSION] = LT_FBLOB_VERSION;
+    h[LT_FB_HEADER] = LT_FBLOB_HEADER_BYTES;
+    h[LT_FB_BYTES] = (uint32_t)total;
+    h[LT_FB_NTRIS] = n;
+    h[LT_FB_NNODES] = bvh->nnodes;
+    h[LT_FB_OFF_TRIS] = LT_FBLOB_HEADER_BYTES;
+    h[LT_FB_OFF_NODES] = (uint32_t)fb_off_nodes(n);
+    h[LT_FB_OFF_IDX] = (uint32_t)fb_off_idx(n, bvh->nnodes);
+    h[LT_FB_OFF_ORG] = (uint32_t)fb_off_org(n, bvh->nnodes);
+    h[LT_FB_DEPTH] = bvh->depth;
+    h[LT_FB_SUM] = 0;
+    for (k = 0; k < 64u; k++)
+        put32(b + 4u * k, h[k]);
+    put32(b + 4u * LT_FB_SUM, sum_without(b, total, LT_FB_SUM));
+    return LT_OK;
+}
+
+lt_sblob_err_t lt_fblob_open(const void *p, size_t bytes, lt_fblob_t *f)
+{
+    const uint32_t *h = (const uint32_t *)p;
+    const uint8_t *b = (const uint8_t *)p;
+    lt_frusta_light_q16_t l;
+    lt_qmc_sets_t sets;
+    lt_sblob_err_t e;
+    uint32_t nt, nn, i;
+    f->bad = 0;
+    if (bytes < LT_FBLOB_HEADER_BYTES)
+        return LT_SBLOB_E_SHORT;
+    if (h[LT_FB_MAGIC] != LT_FBLOB_MAGIC)
+        return LT_SBLOB_E_MAGIC;
+    if (h[LT_FB_VERSION] != LT_FBLOB_VERSION)
+        return LT_SBLOB_E_VERSION;
+    if (h[LT_FB_HEADER] != LT_FBLOB_HEADER_BYTES)
+        return LT_SBLOB_E_LAYOUT;
+    if (h[LT_FB_BYTES] > bytes || h[LT_FB_BYTES] < LT_FBLOB_HEADER_BYTES)
+        return LT_SBLOB_E_SHORT;
+    if (sum_without(p, h[LT_FB_BYTES], LT_FB_SUM) != h[LT_FB_SUM])
+        return LT_SBLOB_E_SUM;
+    nt = h[LT_FB_NTRIS];
+    nn = h[LT_FB_NNODES];
+    if (nt == 0 || nt > LT_BVH_MAX_TRIS || nn == 0 || nn > 2u * nt)
+        return LT_SBLOB_E_TREE;
+    if (h[LT_FB_OFF_TRIS] < LT_FBLOB_HEADER_BYTES || h[LT_FB_OFF_NODES] < LT_FBLOB_HEADER_BYTES ||
+        h[LT_FB_OFF_IDX] < LT_FBLOB_HEADER_BYTES || h[LT_FB_OFF_ORG] < LT_FBLOB_HEADER_BYTES ||
+        !section_ok(h, LT_FB_OFF_TRIS, nt, (uint32_t)sizeof(lt_tri_q16_t)) ||
+        !section_ok(h, LT_FB_OFF_NODES, nn, (uint32_t)sizeof(lt_bvh_node_q16_t)) ||
+        !section_ok(h, LT_FB_OFF_IDX, nt, 4u) || !section_ok(h, LT_FB_OFF_ORG, 768u, 4u))
+        return LT_SBLOB_E_LAYOUT;
+    f->spp = h[LT_FB_SPP];
+    if ((f->spp != 4u && f->spp != 8u && f->spp != 16u) || h[LT_FB_QMC] > (uint32_t)LT_QMC_LP)
+        return LT_SBLOB_E_IMAGE;
+    f->org = (const lt_q16_t *)(const void *)(b + h[LT_FB_OFF_ORG]);
+    for (i = 0; i < 768u; i++)
+        if (!in_geom(f->org[i])) {
+            f->bad = i / 3u;
+            return LT_SBLOB_E_GEOMETRY;
+        }
+    for (i = 0; i < 8u; i++)
+        f->lit[i] = h[LT_FB_LIT + i];
+    for (i = 0; i < 3u; i++) {
+        l.c[i] = (lt_q16_t)h[LT_FB_LIGHT + i];
+        l.eu[i] = (lt_q16_t)h[LT_FB_LIGHT + 3u + i];
+        l.ev[i] = (lt_q16_t)h[LT_FB_LIGHT + 6u + i];
+    }
+    l.flags = h[LT_FB_LFLAGS];
+    l.end_shift = h[LT_FB_END_SHIFT];
+    if (lt_qmc_interleave4x4((lt_qmc_kind_t)h[LT_FB_QMC], h[LT_FB_SCRAMBLE], &sets) != LT_OK ||
+        lt_frusta_table_q16(&l, &sets, &f->tb) != LT_OK)
+        return LT_SBLOB_E_IMAGE;
+    f->ref = h[LT_FB_REF];
+    f->scene_tris = h[LT_FB_SCENE_TRIS];
+    f->bx = h[LT_FB_BX];
+    f->by = h[LT_FB_BY];
+    e = check_scene(b, nt, nn, h[LT_FB_OFF_TRIS], h[LT_FB_OFF_NODES], h[LT_FB_OFF_IDX],
+                    h[LT_FB_DEPTH], h[LT_FB_LEAF], &f->bvh, &f->tris, &f->bad);
+    if (e == LT_SBLOB_OK)
+        f->bvh.isect = LT_ISECT_WT;
+    return e;
+}
+
+uint32_t lt_fblob_tile_hash(const uint8_t lit[16], const uint16_t occl[16])
+{
+    uint32_t h = LT_SBLOB_FNV0;
+    unsigned i;
+    for (i = 0; i < 16u; i++) {
+        h = fnv_word(h, lit[i]);
+        h = fnv_word(h, lit[i] ? occl[i] : 0u);
+    }
+    return h;
+}
+
+uint32_t lt_fblob_block_hash(const uint32_t tile_hash[16])
+{
+    uint32_t h = LT_SBLOB_FNV0;
+    unsigned t;
+    for (t = 0; t < 16u; t++)
+        h = fnv_word(h, tile_hash[t]);
+    return h;
+}
+
+lt_status_t lt_fblob_trace_tile(const lt_fblob_t *f, uint32_t t, uint64_t (*ticks)(void),
+                                lt_fblob_tile_t *out)
+{
+    lt_frusta16_q16_t F;
+    uint8_t lit[16];
+    uint16_t occl[16];
+    lt_mask16_t k = 0;
+    uint64_t t0 = 0;
+    lt_status_t st;
+    unsigned i;
+    out->hash = 0;
+    out->lit = out->occluded = 0;
+    out->ticks = 0;
+    if (t >= 16u)
+        return LT_E_ARG;
+    if (ticks != (uint64_t (*)(void))0)
+        t0 = ticks();
+    for (i = 0; i < 16u; i++) {
+        unsigned x = 4u * (t % 4u) + i % 4u, y = 4u * (t / 4u) + i / 4u, q = y * 16u + x;
+        lit[i] = (uint8_t)((f->lit[q / 32u] >> (q % 32u)) & 1u);
+        if (lit[i])
+            k = (lt_mask16_t)(k | (1u << i));
+        F.ox.l[i] = lit[i] ? f->org[3u * q] : 0;
+        F.oy.l[i] = lit[i] ? f->org[3u * q + 1u] : 0;
+        F.oz.l[i] = lit[i] ? f->org[3u * q + 2u] : 0;
+    }
+    (void)lt_frusta_setup16_q16(&f->tb, k, &F);
+    if (f->spp < 16u)
+        (void)lt_frusta_restrict16_q16(&f->tb, (uint16_t)((1u << f->spp) - 1u), &F);
+    st = lt_frusta_occluded16_q16(&f->bvh, f->tris, &f->tb, &F);
+    if (st != LT_OK)
+        return st;
+    if (ticks != (uint64_t (*)(void))0)
+        out->ticks = ticks() - t0;
+    for (i = 0; i < 16u; i++) {
+        occl[i] = lit[i] ? F.occl[i] : 0u;
+        out->lit += lit[i];
+        out->occluded += lt__popcount32(occl[i]);
+    }
+    out->hash = lt_fblob_tile_hash(lit, occl);
     return LT_OK;
 }

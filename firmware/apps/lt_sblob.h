@@ -13,6 +13,8 @@
 #include <stddef.h>
 #include <stdint.h>
 #include "lt/lt.h"
+#include "lt/lt_frusta.h"
+#include "lt/lt_qmc.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -129,6 +131,80 @@ const char *lt_sblob_err_str(lt_sblob_err_t e);
  * two stages. Returns LT_OK or the traversal's error (LT_E_ARG for t out of range). */
 lt_status_t lt_sblob_trace_tile(const lt_sblob_t *s, uint32_t t, int single,
                                 uint64_t (*ticks)(void), lt_sblob_tile_t *out);
+
+/* ---- frusta blobs: one 16x16 block of multi-frusta soft shadows ----------------------------- */
+
+/* A frusta blob carries the soft-shadow work of one 16x16 pixel block: the block's shadow origins
+ * (the primary hits, offset along the normal, as the host's renderer made them) and which pixels
+ * are lit, the quad light and its sample sets, and the triangles that can stand between them and
+ * the light (a crop of the scene the host proved conservative) with their shallow BVH. The target
+ * runs the block's 16 4x4 tiles as S-Frusta (lt_frusta_setup16_q16, lt_frusta_occluded16_q16; one
+ * frustum per pixel, spp samples each). `lanetrace shadows --pack-block` writes them. */
+#define LT_FBLOB_MAGIC 0x4246544Cu /* "LTFB" */
+#define LT_FBLOB_VERSION 1u
+#define LT_FBLOB_HEADER_BYTES 256u /* 64 words */
+#define LT_FBLOB_BLOCK 16u         /* block side, pixels: 16 tiles of 4x4 frusta */
+
+enum lt_fblob_word {
+    LT_FB_MAGIC = 0, LT_FB_VERSION = 1, LT_FB_HEADER = 2, LT_FB_BYTES = 3,
+    LT_FB_NTRIS = 4,      /* triangles of the crop, 1..LT_BVH_MAX_TRIS */
+    LT_FB_NNODES = 5,     /* its BVH's node slots */
+    LT_FB_OFF_TRIS = 6, LT_FB_OFF_NODES = 7, LT_FB_OFF_IDX = 8,
+    LT_FB_OFF_ORG = 9,    /* lt_q16_t[256][3]: pixel p = y * 16 + x of the block, its origin */
+    LT_FB_LIT = 10,       /* 8 words: bit p % 32 of word p / 32 = pixel p gets shadow frusta */
+    LT_FB_LIGHT = 18,     /* 9 words: the light's c, eu, ev (lt_frusta_light_q16_t) */
+    LT_FB_LFLAGS = 27,    /* its flags (LT_FRUSTA_*) */
+    LT_FB_END_SHIFT = 28, /* its end_shift */
+    LT_FB_QMC = 29,       /* lt_qmc_kind_t of the sample sets */
+    LT_FB_SCRAMBLE = 30,  /* their digital shift */
+    LT_FB_SPP = 31,       /* samples per pixel: 4, 8 or 16 */
+    LT_FB_DEPTH = 32, LT_FB_LEAF = 33,
+    LT_FB_SUM = 34,       /* FNV-1a of the blob with this word taken as 0 */
+    LT_FB_BX = 35, LT_FB_BY = 36, /* informational: the block's top-left pixel in its image */
+    LT_FB_REF = 37,       /* informational: the block's hash over the whole scene (host) */
+    LT_FB_SCENE_TRIS = 38 /* informational: triangles of the whole scene */
+};
+
+typedef struct lt_fblob {
+    lt_bvh_t bvh;
+    const lt_tri_q16_t *tris;
+    const lt_q16_t *org;         /* [256][3] */
+    uint32_t lit[8];
+    uint32_t spp, ref, scene_tris, bx, by;
+    lt_frusta_table_q16_t tb;    /* built by lt_fblob_open (6388 bytes) */
+    uint32_t bad;
+} lt_fblob_t;
+
+/* One 4x4 tile's S-Frusta result. */
+typedef struct lt_fblob_tile {
+    uint32_t hash;     /* FNV-1a over the tile's pixels in raster order: lit, occluded samples */
+    uint32_t lit;      /* lit pixels (frusta traced) */
+    uint32_t occluded; /* occluded samples */
+    uint64_t ticks;    /* spent in setup and walk (0 without clock) */
+} lt_fblob_tile_t;
+
+/* Check a frusta blob (as lt_sblob_open: every word, the checksum, the scene, the light, the
+ * origins against the geometry bound) and build its sample table. Returns LT_SBLOB_OK or why not. */
+lt_sblob_err_t lt_fblob_open(const void *p, size_t bytes, lt_fblob_t *f);
+
+/* S-Frusta of 4x4 tile t (0..15, raster order in the block). ticks may be NULL. Returns LT_OK or
+ * the walk's error (LT_E_ARG for t > 15). */
+lt_status_t lt_fblob_trace_tile(const lt_fblob_t *f, uint32_t t, uint64_t (*ticks)(void),
+                                lt_fblob_tile_t *out);
+
+/* The block hash: FNV-1a over the 16 tile hashes in order (also how the host hashes the whole
+ * scene's answer for LT_FB_REF). */
+uint32_t lt_fblob_block_hash(const uint32_t tile_hash[16]);
+
+/* The tile hash of 16 pixels (lit flag, occluded samples), lane order i = y * 4 + x. */
+uint32_t lt_fblob_tile_hash(const uint8_t lit[16], const uint16_t occl[16]);
+
+/* Blob writer for the host: sections 64-byte aligned after the 256-byte header. h[64] holds every
+ * header word but the layout and checksum words, which this fills. Returns LT_OK, LT_E_ARG,
+ * LT_E_SPACE (bytes < lt_fblob_size). */
+size_t lt_fblob_size(uint32_t ntris, uint32_t nnodes);
+lt_status_t lt_fblob_write(const lt_tri_q16_t *tris, const lt_bvh_t *bvh, const lt_q16_t org[768],
+                           uint32_t h[64], void *out, size_t bytes);
 
 /* FNV-1a over bytes, continuing from h (start with LT_SBLOB_FNV0). */
 #define LT_SBLOB_FNV0 2166136261u

@@ -1,10 +1,12 @@
-/* scene_fw.c - the scene-blob firmware: traces the scene blob linked into the image
- * (lt_fw_blob.S; made by `lanetrace pack`) tile by tile, primary rays and hard shadows in s15.16,
- * and prints the lines `lanetrace pack --trace` prints on the host for the same blob (tests compare
- * them bit for bit), then the instructions it spent per ray. The scene stays in read-only memory:
- * the RAM it needs is the stack of one tile (docs/firmware.md, "Scene blobs").
- * Exit 0; 1 when the blob is refused (the line names why); 2 when a traversal fails.
- * Builds: firmware only.
+/* scene_fw.c - the scene-blob firmware: runs the blob linked into the image (lt_fw_blob.S) and
+ * prints the lines the host prints for the same blob (tests compare them bit for bit), then the
+ * instructions it spent per ray. A scene blob (`lanetrace pack`): its image tile by tile, primary
+ * rays and hard shadows in s15.16, as packets and as single rays. A frusta blob (`lanetrace
+ * shadows --pack-block`): its 16x16 block's soft shadows by S-Frusta, 4x4 tile by tile, and
+ * whether the block equals the whole scene's answer the host stored. The blob stays in read-only
+ * memory: the RAM it needs is the stack of one tile (docs/firmware.md, "Scene blobs").
+ * Exit 0; 1 when the blob is refused (the line names why); 2 when a traversal fails; 3 when a
+ * frusta block differs from the whole scene's. Builds: firmware only.
  */
 #include "lt_fw.h"
 #include "lt_fw_blob.h"
@@ -81,13 +83,87 @@ static void put_instr(const char *mode, uint64_t tp, uint64_t ts, uint32_t rays,
     lt_fw_puts(" per ray\n");
 }
 
+/* A frusta blob: the 16 tiles of its block, the block line, instructions per shadow sample. */
+static int run_frusta(void)
+{
+    lt_fblob_t f; /* with its 6.4 KB sample table, on the stack (scene blobs do not need it) */
+    uint64_t t0 = lt_fw_ticks(), ticks = 0;
+    lt_sblob_err_t e = lt_fblob_open(lt_fw_blob, lt_fw_blob_size(), &f);
+    uint32_t t1 = (uint32_t)(lt_fw_ticks() - t0), th[16], t, lit = 0, occ = 0, h;
+    if (e != LT_SBLOB_OK) {
+        lt_fw_puts("fblob refused: ");
+        lt_fw_puts(lt_sblob_err_str(e));
+        lt_fw_puts("\n");
+        return 1;
+    }
+    lt_fw_puts("fblob ");
+    lt_fw_put_u32(f.bvh.ntris);
+    lt_fw_puts(" triangles (of ");
+    lt_fw_put_u32(f.scene_tris);
+    lt_fw_puts("), block ");
+    lt_fw_put_u32(f.bx);
+    lt_fw_putc(',');
+    lt_fw_put_u32(f.by);
+    lt_fw_puts(", spp ");
+    lt_fw_put_u32(f.spp);
+    lt_fw_puts(", ");
+    lt_fw_put_u32((uint32_t)lt_fw_blob_size());
+    lt_fw_puts(" bytes\n");
+    for (t = 0; t < 16u; t++) {
+        lt_fblob_tile_t r;
+        if (lt_fblob_trace_tile(&f, t, lt_fw_ticks, &r) != LT_OK) {
+            lt_fw_puts("ftile failed\n");
+            return 2;
+        }
+        lt_fw_puts("ftile ");
+        lt_fw_put_u32(t);
+        lt_fw_puts(" hash ");
+        lt_fw_put_hex32(r.hash);
+        lt_fw_puts(" lit ");
+        lt_fw_put_u32(r.lit);
+        lt_fw_puts(" occluded ");
+        lt_fw_put_u32(r.occluded);
+        lt_fw_puts("\n");
+        th[t] = r.hash;
+        lit += r.lit;
+        occ += r.occluded;
+        ticks += r.ticks;
+    }
+    h = lt_fblob_block_hash(th);
+    lt_fw_puts("block hash ");
+    lt_fw_put_hex32(h);
+    lt_fw_puts(" lit ");
+    lt_fw_put_u32(lit);
+    lt_fw_puts(" occluded ");
+    lt_fw_put_u32(occ);
+    lt_fw_puts(" (whole scene ");
+    lt_fw_put_hex32(f.ref);
+    lt_fw_puts(h == f.ref ? ": equal)\n" : ": differs)\n");
+    lt_fw_puts("instr " LT_FW_TARGET_NAME " open ");
+    lt_fw_put_u32(t1);
+    lt_fw_puts(" (checks, checksum, sample table)\n");
+    lt_fw_puts("instr " LT_FW_TARGET_NAME " frusta per shadow sample ");
+    put_ratio(ticks, (uint64_t)lit * f.spp);
+    lt_fw_puts(", per lit pixel ");
+    put_ratio(ticks, lit);
+    lt_fw_puts("\n");
+    return h == f.ref ? 0 : 3;
+}
+
 int main(void)
 {
     lt_sblob_t s;
-    uint64_t t0 = lt_fw_ticks(), tp[2], ts[2];
-    lt_sblob_err_t e = lt_sblob_open(lt_fw_blob, lt_fw_blob_size(), &s);
-    uint32_t t1 = (uint32_t)(lt_fw_ticks() - t0), rays[2], srays[2];
+    uint64_t t0, tp[2], ts[2];
+    lt_sblob_err_t e;
+    uint32_t t1, rays[2], srays[2];
     int m;
+    if (lt_fw_blob_size() >= 4u &&
+        ((uint32_t)lt_fw_blob[0] | (uint32_t)lt_fw_blob[1] << 8 | (uint32_t)lt_fw_blob[2] << 16 |
+         (uint32_t)lt_fw_blob[3] << 24) == LT_FBLOB_MAGIC)
+        return run_frusta();
+    t0 = lt_fw_ticks();
+    e = lt_sblob_open(lt_fw_blob, lt_fw_blob_size(), &s);
+    t1 = (uint32_t)(lt_fw_ticks() - t0);
     if (e != LT_SBLOB_OK) {
         lt_fw_puts("sblob refused: ");
         lt_fw_puts(lt_sblob_err_str(e));

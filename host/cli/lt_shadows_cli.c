@@ -14,6 +14,8 @@
 #include "lt_rate.h"
 #include "cli/lt_opt.h"
 #include "cli/lt_shadows_cli.h"
+#include "lt_sblob.h"
+#include "io/lt_tmpfiles.h"
 #include "lt_meter.h"
 #include "render/lt_par.h"
 #include "render/lt_paths.h"
@@ -78,7 +80,7 @@ static double k_(uint64_t v) { return (double)v / 1000.0; }
 /* lanetrace shadows: the options, the scene and light, the stages, the report and the images. */
 typedef struct shadows {
     /* options */
-    const char *mesh_path, *png, *raw_png, *ref_png, *machine, *scene_path;
+    const char *mesh_path, *png, *raw_png, *ref_png, *machine, *scene_path, *pack_block, *blob;
     int res, leaf, num, prim, only, qmc, filter, report, no_ref, ground, quiet, isect, spp, seen_spp;
     int npos, seen_res, seen_num, seen_leaf, seen_cull, seen_prim, seen_only, png_which;
     lt_scenefile_t sf;
@@ -230,6 +232,11 @@ static int shadows_parse(shadows_t *s, int argc, char **argv)
         {.name = "--only", .kind = LT_OPT_ENUM, .dest = &s->only, .seen = &s->seen_only,
          .names = only_names, .help = "run one shadow method (default both, compared)"},
         LT_OPT_STR("--machine", "NAME", &s->machine, machine_help),
+        LT_OPT_STR("--pack-block", "X,Y|auto", &s->pack_block,
+                   "with --blob: the S-Frusta work of the 16x16 block at pixel X,Y\n"
+                   "(multiples of 4; auto: the one with the most penumbra pixels) as a\n"
+                   "frusta blob for a firmware target, traced here too (docs/firmware.md)"),
+        LT_OPT_OUT("--blob", "PATH.ltfb", &s->blob, "ltfb", "where --pack-block writes the blob"),
         LT_OPT_FLAG_("--report", &s->report,
                      "sim builds: the full cycle report of each shadow stage and the filter"),
         LT_OPT_THREADS_(&ss_threads),
@@ -775,6 +782,77 @@ static void shadows_outputs(shadows_t *s)
     }
 }
 
+/* --pack-block: the block's frusta blob, written all or nothing, then traced here as a target
+ * would (firmware/apps/scene_fw.c prints the same lines); the crop must give the whole scene's
+ * answer. Returns 0 or an exit code. */
+static int shadows_pack(shadows_t *s)
+{
+    uint32_t bx = UINT32_MAX, by = UINT32_MAX, th[16], t, lit = 0, occ = 0;
+    lt_outset_t *set;
+    const char *tmp;
+    uint8_t *blob = NULL;
+    size_t bytes = 0;
+    lt_fblob_t *f;
+    lt_diag_t diag;
+    lt_sblob_err_t e;
+    FILE *fp;
+    int ok, rc = EXIT_INPUT;
+    if (strcmp(s->pack_block, "auto") != 0) {
+        char end;
+        if (sscanf(s->pack_block, "%u,%u%c", &bx, &by, &end) != 2) {
+            fprintf(stderr, "%s: --pack-block %s: expected X,Y or auto\n", who, s->pack_block);
+            return EXIT_USAGE;
+        }
+    }
+    if (lt_ss_pack_block(s->ss, bx, by, &blob, &bytes, &diag) != 0) {
+        fprintf(stderr, "%s: --pack-block: %s\n", who, diag.msg);
+        return EXIT_INPUT;
+    }
+    set = calloc(1, sizeof *set);
+    f = malloc(sizeof *f);
+    if (set == NULL || f == NULL || lt_outset_add(set, s->blob, &tmp, &diag) != 0) {
+        fprintf(stderr, "%s: --blob: %s\n", who, set == NULL || f == NULL ? "out of memory" : diag.msg);
+        goto done;
+    }
+    fp = fopen(tmp, "wb");
+    ok = fp != NULL && fwrite(blob, 1, bytes, fp) == bytes;
+    if (fp != NULL && fclose(fp) != 0)
+        ok = 0;
+    if (!ok || lt_outset_commit(set, &diag) != 0) {
+        fprintf(stderr, "%s: --blob %s: %s (nothing written)\n", who, s->blob,
+                ok ? diag.msg : "cannot write");
+        lt_outset_abort(set);
+        goto done;
+    }
+    e = lt_fblob_open(blob, bytes, f);
+    if (e != LT_SBLOB_OK) {
+        fprintf(stderr, "%s: %s: %s\n", who, s->blob, lt_sblob_err_str(e));
+        goto done;
+    }
+    printf("fblob %u triangles (of %u), block %u,%u, spp %u, %zu bytes -> %s\n", f->bvh.ntris,
+           f->scene_tris, f->bx, f->by, f->spp, bytes, s->blob);
+    for (t = 0; t < 16u; t++) {
+        lt_fblob_tile_t r;
+        if (lt_fblob_trace_tile(f, t, NULL, &r) != LT_OK) {
+            fprintf(stderr, "%s: %s: tile %u failed\n", who, s->blob, t);
+            goto done;
+        }
+        printf("ftile %u hash 0x%08x lit %u occluded %u\n", t, r.hash, r.lit, r.occluded);
+        th[t] = r.hash;
+        lit += r.lit;
+        occ += r.occluded;
+    }
+    t = lt_fblob_block_hash(th);
+    printf("block hash 0x%08x lit %u occluded %u (whole scene 0x%08x: %s)\n", t, lit, occ, f->ref,
+           t == f->ref ? "equal" : "differs");
+    rc = t == f->ref ? 0 : EXIT_INPUT;
+done:
+    free(f);
+    free(set);
+    free(blob);
+    return rc;
+}
+
 int lt_shadows_cli(int argc, char **argv, const char *prog)
 {
     shadows_t s;
@@ -797,6 +875,10 @@ int lt_shadows_cli(int argc, char **argv, const char *prog)
     rc = shadows_parse(&s, argc, argv);
     if (rc != LT_OPT_OK)
         return rc == LT_OPT_HELP ? 0 : EXIT_USAGE;
+    if ((s.pack_block == NULL) != (s.blob == NULL)) {
+        fprintf(stderr, "%s: --pack-block and --blob go together\n", who);
+        return EXIT_USAGE;
+    }
     rc = shadows_scene(&s);
     if (rc != 0)
         return rc;
@@ -818,6 +900,8 @@ int lt_shadows_cli(int argc, char **argv, const char *prog)
             shadows_native(&s);
         shadows_outputs(&s);
         rc = s.rc;
+        if (rc == 0 && s.pack_block != NULL)
+            rc = shadows_pack(&s);
     }
     lt_ss_free(s.ss);
     lt_scene_free(&s.sc);

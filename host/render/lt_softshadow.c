@@ -8,6 +8,7 @@
  * registry's conversions (lt_softshadow_int.h). Host only.
  */
 #include "render/lt_softshadow_int.h"
+#include "lt_sblob.h"
 #include "io/lt_fx_float.h"
 #include "lt_meter.h"
 #include "render/lt_par.h"
@@ -739,6 +740,209 @@ int lt_ss_write_png(const lt_softshadow_t *ss, const char *path, int which, lt_d
     }
     rc = lt_png_write(path, rgb, (int32_t)ss->w, (int32_t)ss->h, 3, 0, diag);
     free(rgb);
+    return rc;
+}
+
+/* Penumbra pixels (lit, some but not all samples occluded) of the block at (bx, by). */
+static uint32_t block_penumbra(const lt_softshadow_t *ss, uint32_t bx, uint32_t by)
+{
+    uint32_t x, y, n = 0;
+    for (y = by; y < by + LT_FBLOB_BLOCK; y++)
+        for (x = bx; x < bx + LT_FBLOB_BLOCK; x++) {
+            size_t q = (size_t)y * ss->w + x;
+            unsigned c = lt__popcount32(ss->occ[LT_SS_FRUSTA][q]);
+            n += ss->lit[q] && c > 0u && c < ss->o.spp;
+        }
+    return n;
+}
+
+int lt_ss_pack_block(const lt_softshadow_t *ss, uint32_t bx, uint32_t by, uint8_t **blob,
+                     size_t *bytes, lt_diag_t *diag)
+{
+    const lt_frusta_table_q16_t *tb = ss->tb;
+    const lt_tri_q16_t *tq = ss->tris;
+    static const double dir13[13][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 0}, {1, -1, 0},
+                                        {1, 0, 1}, {1, 0, -1}, {0, 1, 1}, {0, 1, -1}, {1, 1, 1},
+                                        {1, 1, -1}, {1, -1, 1}, {-1, 1, 1}};
+    double dir[22][3], lo[22], hi[22], cen[3] = {0, 0, 0}, m[3], u[3], w[3], ln;
+    lt_q16_t org[768];
+    uint32_t h[64], th[16], x, y, t, i, nlit = 0, nk = 0, *keep = NULL;
+    lt_tri_q16_t *ct = NULL;
+    lt_bvh_desc_t d;
+    lt_bvh_t bvh;
+    void *arena = NULL;
+    size_t ab = 0;
+    int a, k, rc = -1;
+    *blob = NULL;
+    *bytes = 0;
+    if (strcmp(ss->p->name, "q16") != 0 || !ss->have[LT_SS_FRUSTA] || ss->o.spp > 16u) {
+        lt_diag_fail(diag, "a frusta blob needs the s15.16 path (--num q16), at most 16 samples "
+                           "per pixel and the frusta shadow stage");
+        return -1;
+    }
+    if (ss->w < LT_FBLOB_BLOCK || ss->h < LT_FBLOB_BLOCK) {
+        lt_diag_fail(diag, "the image (%ux%u) is smaller than a %u x %u block", ss->w, ss->h,
+                     LT_FBLOB_BLOCK, LT_FBLOB_BLOCK);
+        return -1;
+    }
+    if (bx == UINT32_MAX) {
+        uint32_t best = 0;
+        bx = by = 0;
+        for (y = 0; y + LT_FBLOB_BLOCK <= ss->h; y += LT_FBLOB_BLOCK)
+            for (x = 0; x + LT_FBLOB_BLOCK <= ss->w; x += LT_FBLOB_BLOCK) {
+                uint32_t n = block_penumbra(ss, x, y);
+                if (n > best)
+                    best = n, bx = x, by = y;
+            }
+    }
+    if (bx % 4u || by % 4u || bx + LT_FBLOB_BLOCK > ss->w || by + LT_FBLOB_BLOCK > ss->h) {
+        lt_diag_fail(diag, "block %u,%u: it must start on a multiple of 4 and lie inside the "
+                           "%ux%u image", bx, by, ss->w, ss->h);
+        return -1;
+    }
+    memset(h, 0, sizeof h);
+    for (t = 0; t < 16u; t++) {
+        uint8_t lit[16];
+        uint16_t occl[16];
+        for (i = 0; i < 16u; i++) {
+            uint32_t px = 4u * (t % 4u) + i % 4u, py = 4u * (t / 4u) + i / 4u, p = py * 16u + px;
+            size_t q = (size_t)(by + py) * ss->w + bx + px;
+            lit[i] = ss->lit[q] ? 1u : 0u;
+            occl[i] = lit[i] ? ss->occ[LT_SS_FRUSTA][q] : 0u;
+            for (a = 0; a < 3; a++)
+                org[3u * p + (unsigned)a] = lit[i] ? (lt_q16_t)bits_at(ss->org[a], q) : 0;
+            if (lit[i]) {
+                h[LT_FB_LIT + p / 32u] |= 1u << (p % 32u);
+                nlit++;
+                for (a = 0; a < 3; a++)
+                    cen[a] += org[3u * p + (unsigned)a] / 65536.0;
+            }
+        }
+        th[t] = lt_fblob_tile_hash(lit, occl);
+    }
+    if (nlit == 0) {
+        lt_diag_fail(diag, "block %u,%u has no lit pixel: nothing to trace", bx, by);
+        return -1;
+    }
+    /* the crop: 13 fixed directions and 9 around the axis from the origins to the light */
+    for (a = 0; a < 3; a++) {
+        cen[a] /= nlit;
+        m[a] = (tb->c[a] + 0.5 * (tb->eu[a] + tb->ev[a])) / 65536.0 - cen[a];
+    }
+    ln = sqrt(m[0] * m[0] + m[1] * m[1] + m[2] * m[2]);
+    for (a = 0; a < 3; a++)
+        m[a] = ln > 0 ? m[a] / ln : (a == 1);
+    u[0] = fabs(m[0]) < 0.9 ? 0.0 : -m[1];
+    u[1] = fabs(m[0]) < 0.9 ? -m[2] : m[0];
+    u[2] = fabs(m[0]) < 0.9 ? m[1] : 0.0;
+    ln = sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+    for (a = 0; a < 3; a++)
+        u[a] /= ln;
+    w[0] = m[1] * u[2] - m[2] * u[1];
+    w[1] = m[2] * u[0] - m[0] * u[2];
+    w[2] = m[0] * u[1] - m[1] * u[0];
+    for (k = 0; k < 13; k++)
+        memcpy(dir[k], dir13[k], sizeof dir[k]);
+    for (k = 0; k < 8; k++) {
+        double c = cos(k * 3.14159265358979323846 / 8.0), sn = sin(k * 3.14159265358979323846 / 8.0);
+        for (a = 0; a < 3; a++)
+            dir[13 + k][a] = c * u[a] + sn * w[a];
+    }
+    memcpy(dir[21], m, sizeof dir[21]);
+    for (k = 0; k < 22; k++) {
+        lo[k] = HUGE_VAL;
+        hi[k] = -HUGE_VAL;
+        for (i = 0; i < 256u + 4u; i++) {
+            double pt[3], v;
+            if (i < 256u) {
+                if (!((h[LT_FB_LIT + i / 32u] >> (i % 32u)) & 1u))
+                    continue;
+                for (a = 0; a < 3; a++)
+                    pt[a] = org[3u * i + (unsigned)a] / 65536.0;
+            } else {
+                for (a = 0; a < 3; a++)
+                    pt[a] = (tb->c[a] + ((i - 256u) & 1u ? tb->eu[a] : 0) +
+                             ((i - 256u) & 2u ? tb->ev[a] : 0)) / 65536.0;
+            }
+            v = dir[k][0] * pt[0] + dir[k][1] * pt[1] + dir[k][2] * pt[2];
+            lo[k] = fmin(lo[k], v);
+            hi[k] = fmax(hi[k], v);
+        }
+    }
+    keep = malloc(ss->s->ntris * sizeof *keep);
+    if (keep == NULL)
+        goto oom;
+    for (i = 0; i < ss->s->ntris; i++) {
+        double v[3][3];
+        int out = 0;
+        for (a = 0; a < 3; a++) {
+            v[0][a] = tq[i].v0[a] / 65536.0;
+            v[1][a] = (tq[i].v0[a] + tq[i].e1[a]) / 65536.0;
+            v[2][a] = (tq[i].v0[a] + tq[i].e2[a]) / 65536.0;
+        }
+        for (k = 0; k < 22 && !out; k++) {
+            double p0 = dir[k][0] * v[0][0] + dir[k][1] * v[0][1] + dir[k][2] * v[0][2];
+            double p1 = dir[k][0] * v[1][0] + dir[k][1] * v[1][1] + dir[k][2] * v[1][2];
+            double p2 = dir[k][0] * v[2][0] + dir[k][1] * v[2][1] + dir[k][2] * v[2][2];
+            /* a margin of 2^-8 units over rounding (the kernels' hits lie on the triangle within
+               far less) */
+            double margin = 1.0 / 256.0;
+            out = fmin(p0, fmin(p1, p2)) > hi[k] + margin || fmax(p0, fmax(p1, p2)) < lo[k] - margin;
+        }
+        if (!out)
+            keep[nk++] = i;
+    }
+    if (nk == 0) {
+        /* nothing can occlude: one far-away degenerate triangle keeps the tree non-empty */
+        keep[nk++] = 0;
+    }
+    ct = malloc(nk * sizeof *ct);
+    if (ct == NULL)
+        goto oom;
+    for (i = 0; i < nk; i++)
+        ct[i] = tq[keep[i]];
+    memset(&d, 0, sizeof d);
+    d.max_leaf = ss->o.leaf;
+    d.min_leaf = ss->o.leaf > 1 ? ss->o.leaf / 2 : 1;
+    if (lt_bvh_size(nk, &d, &ab) != LT_OK || (arena = alloc64(ab)) == NULL)
+        goto oom;
+    if (lt_bvh_build_q16(&bvh, &d, ct, nk, arena, ab) != LT_OK) {
+        lt_diag_fail(diag, "building the crop's BVH over %u triangles failed", nk);
+        goto done;
+    }
+    for (a = 0; a < 3; a++) {
+        h[LT_FB_LIGHT + a] = (uint32_t)tb->c[a];
+        h[LT_FB_LIGHT + 3 + a] = (uint32_t)tb->eu[a];
+        h[LT_FB_LIGHT + 6 + a] = (uint32_t)tb->ev[a];
+    }
+    h[LT_FB_LFLAGS] = tb->flags;
+    h[LT_FB_END_SHIFT] = tb->end_shift;
+    h[LT_FB_QMC] = (uint32_t)ss->o.qmc;
+    h[LT_FB_SCRAMBLE] = ss->o.scramble;
+    h[LT_FB_SPP] = ss->o.spp;
+    h[LT_FB_LEAF] = d.max_leaf;
+    h[LT_FB_BX] = bx;
+    h[LT_FB_BY] = by;
+    h[LT_FB_REF] = lt_fblob_block_hash(th);
+    h[LT_FB_SCENE_TRIS] = ss->s->ntris;
+    *bytes = lt_fblob_size(nk, bvh.nnodes);
+    *blob = malloc(*bytes);
+    if (*blob == NULL)
+        goto oom;
+    if (lt_fblob_write(ct, &bvh, org, h, *blob, *bytes) != LT_OK) {
+        lt_diag_fail(diag, "writing the frusta blob failed");
+        free(*blob);
+        *blob = NULL;
+        goto done;
+    }
+    rc = 0;
+    goto done;
+oom:
+    lt_diag_fail(diag, "out of memory for the frusta blob (%u triangles kept)", nk);
+done:
+    free(keep);
+    free(ct);
+    free(arena);
     return rc;
 }
 

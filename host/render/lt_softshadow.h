@@ -154,6 +154,17 @@ void lt_ss_quality(const lt_softshadow_t *ss, double tol, lt_ss_quality_t *q);
  * (which = 0), the unfiltered E (1) or E_ref (2) to an RGB PNG. Returns 0 or -1 with a message. */
 int lt_ss_write_png(const lt_softshadow_t *ss, const char *path, int which, lt_diag_t *diag);
 
+/* The S-Frusta work of the 16x16 block at (bx, by) (multiples of 4, inside the image; both
+ * UINT32_MAX: the block with the most penumbra pixels) as a frusta blob for a firmware target
+ * (firmware/apps/lt_sblob.h): its origins, lit pixels, light, sample sets, and the triangles that
+ * can stand between them and the light (a crop: every triangle whose projection on one of 22
+ * directions misses the projection of the origins and light corners is left out, which cannot
+ * change an answer) under a shallow BVH of the renderer's leaf size. Needs the s15.16 path, spp
+ * <= 16 and lt_ss_shadows_frusta to have run; LT_FB_REF holds the whole scene's block hash.
+ * *blob is malloc'ed. Returns 0, or -1 with a message. */
+int lt_ss_pack_block(const lt_softshadow_t *ss, uint32_t bx, uint32_t by, uint8_t **blob,
+                     size_t *bytes, lt_diag_t *diag);
+
 /* FNV-1a over the per-pixel occlusion bits of the last shadow stage and the filtered E: equal
  * across the host and sim builds. */
 uint32_t lt_ss_hash(const lt_softshadow_t *ss);
