@@ -18,7 +18,7 @@
 #   make fuzz-merge         minimise build/fuzz/corpus-<t> + tests/fuzz/corpus/<t> into the latter
 #                           (libFuzzer -merge=1, tests/fuzz/merge.sh; regress-* inputs kept by
 #                           name): the step before committing a corpus
-FUZZ_TARGETS := scene frame exr mesh meshcheck cache opt
+FUZZ_TARGETS := scene frame exr mesh meshcheck cache opt blob
 
 FUZZ_SRCS_scene := host/io/lt_scenefile.c sim/lt_cache.c host/io/lt_diag.c tests/fuzz/fuzz_util.c
 FUZZ_LIBS_scene := -lcjson -lm
@@ -32,11 +32,13 @@ FUZZ_LIBS_mesh := -lassimp -lz -lm
 FUZZ_SRCS_meshcheck := host/io/lt_meshcheck.c host/io/lt_diag.c tests/fuzz/fuzz_util.c
 FUZZ_SRCS_cache := sim/lt_cache.c host/io/lt_diag.c tests/fuzz/fuzz_util.c
 FUZZ_SRCS_opt := host/cli/lt_opt.c host/io/lt_diag.c
+FUZZ_SRCS_blob := firmware/apps/lt_sblob.c $(CORE_SRCS)
 FUZZ_LIBS_opt := -lm
 # largest input libFuzzer makes, per target (default 4096)
 FUZZ_MAXLEN_exr := 16384
 FUZZ_MAXLEN_mesh := 8192
 FUZZ_MAXLEN_meshcheck := 8192
+FUZZ_MAXLEN_blob := 8192
 # the libFuzzer build of the EXR reader caps windows at 512 pixels a side (instead of 16384), so
 # that a header asking for the largest window costs 5 MB, not 5 GB, per execution
 FUZZ_CFLAGS_exr := -DLT_EXR_MAX_DIM=512

@@ -353,12 +353,182 @@ static void test_mutations(void **state)
     free(b);
 }
 
+/* ---- frusta blobs ---- */
+
+/* A frusta blob of the fixture's floor: 16 x 16 origins on the floor under and around the blocker
+ * (every other one lit), a 4 x 4 unit light at y = 30, the default culling, 16 or 4 samples. */
+static void make_fblob(const fixture_t *fx, uint32_t spp, uint8_t **blob, size_t *bytes,
+                       lt_bvh_t *bvh, void **arena)
+{
+    lt_bvh_desc_t desc = {0, 8, 4, 0, 0};
+    lt_q16_t org[768];
+    uint32_t h[64], i;
+    size_t ab;
+    memset(h, 0, sizeof h);
+    for (i = 0; i < 256u; i++) {
+        double x = -12.0 + 1.5 * (i % 16u), z = -12.0 + 1.5 * (i / 16u);
+        org[3 * i] = q(x);
+        org[3 * i + 1] = q(0.3 * sin(x) + 0.01); /* the floor's height there (a sin in x only) */
+        org[3 * i + 2] = q(z);
+        if (i % 3u != 1u)
+            h[LT_FB_LIT + i / 32u] |= 1u << (i % 32u);
+    }
+    h[LT_FB_LIGHT + 0] = (uint32_t)q(-2);
+    h[LT_FB_LIGHT + 1] = (uint32_t)q(30);
+    h[LT_FB_LIGHT + 2] = (uint32_t)q(-2);
+    h[LT_FB_LIGHT + 3] = (uint32_t)q(4); /* eu = (4, 0, 0), ev = (0, 0, 4): multiples of 512 raw */
+    h[LT_FB_LIGHT + 8] = (uint32_t)q(4);
+    h[LT_FB_LFLAGS] = LT_FRUSTA_BACKFACE | LT_FRUSTA_CORNER | LT_FRUSTA_CR | LT_FRUSTA_LEAFRAY |
+                      LT_FRUSTA_SPLIT | LT_FRUSTA_FS;
+    h[LT_FB_QMC] = LT_QMC_LP;
+    h[LT_FB_SPP] = spp;
+    h[LT_FB_LEAF] = 8;
+    assert_int_equal(lt_bvh_size(NT, &desc, &ab), LT_OK);
+    assert_int_equal(posix_memalign(arena, 64, ab), 0);
+    assert_int_equal(lt_bvh_build_q16(bvh, &desc, fx->tris, NT, *arena, ab), LT_OK);
+    *bytes = lt_fblob_size(NT, bvh->nnodes);
+    assert_int_equal(posix_memalign((void **)blob, 64, *bytes), 0);
+    assert_int_equal(lt_fblob_write(fx->tris, bvh, org, h, *blob, *bytes - 4), LT_E_SPACE);
+    assert_int_equal(lt_fblob_write(fx->tris, bvh, org, h, *blob, *bytes), LT_OK);
+}
+
+/* S-Frusta of the blob against the per-pixel packet baseline (lt_frusta_packet_occluded16_q16 with
+ * the same culling flags) over the same tree: equal sample masks on every lit pixel. */
+static void test_fblob_trace(void **state)
+{
+    fixture_t *fx = *state;
+    uint32_t spps[2] = {16, 4}, k, agree = 0, lit = 0, occ = 0;
+    for (k = 0; k < 2u; k++) {
+        lt_fblob_t *f = malloc(sizeof *f);
+        uint8_t *blob;
+        size_t bytes;
+        lt_bvh_t bvh;
+        void *arena;
+        uint32_t t, i;
+        make_fblob(fx, spps[k], &blob, &bytes, &bvh, &arena);
+        assert_int_equal(lt_fblob_open(blob, bytes, f), LT_SBLOB_OK);
+        for (t = 0; t < 16u; t++) {
+            lt_fblob_tile_t r;
+            uint32_t tocc = 0;
+            assert_int_equal(lt_fblob_trace_tile(f, t, NULL, &r), LT_OK);
+            for (i = 0; i < 16u; i++) {
+                uint32_t x = 4u * (t % 4u) + i % 4u, y = 4u * (t / 4u) + i / 4u, p = y * 16u + x;
+                lt_ray16_q16_t ray;
+                lt_mask16_t pk = 0, o = 0;
+                if (!((f->lit[p / 32u] >> (p % 32u)) & 1u))
+                    continue;
+                lit++;
+                assert_int_equal(lt_frusta_rays16_q16(&f->tb, &f->org[3u * p], i, &ray, &pk), LT_OK);
+                pk = (lt_mask16_t)(pk & ((1u << f->spp) - 1u));
+                assert_int_equal(lt_frusta_packet_occluded16_q16(&f->bvh, f->tris, f->tb.flags,
+                                                                 &f->org[3u * p], &ray, pk, &o),
+                                 LT_OK);
+                tocc += lt__popcount32(o);
+            }
+            agree += tocc == r.occluded;
+            occ += r.occluded;
+        }
+        assert_int_equal(lt_fblob_trace_tile(f, 16, NULL, &(lt_fblob_tile_t){0, 0, 0, 0}), LT_E_ARG);
+        free(blob);
+        free(arena);
+        free(f);
+    }
+    ltt_report("fblob: S-Frusta of a 16x16 block (16 and 4 spp, every culling flag) = the packet "
+               "baseline's occluded samples on %u of 32 tiles; %u lit pixels, %u occluded samples\n",
+               agree, lit, occ);
+    assert_int_equal(agree, 32u);
+    assert_true(occ > 0 && occ < lit * 16u);
+}
+
+static void test_fblob_refusals(void **state)
+{
+    fixture_t *fx = *state;
+    uint8_t *blob, *b;
+    size_t bytes;
+    lt_bvh_t bvh;
+    void *arena;
+    lt_fblob_t *f = malloc(sizeof *f);
+    ltt_rng_t r;
+    unsigned i, n = 0, refused = 0, traced = 0;
+    struct {
+        unsigned word;
+        uint32_t v;
+        lt_sblob_err_t want;
+    } c[] = {
+        {LT_FB_SPP, 5u, LT_SBLOB_E_IMAGE},
+        {LT_FB_QMC, 7u, LT_SBLOB_E_IMAGE},
+        {LT_FB_LIGHT + 3, 100u, LT_SBLOB_E_IMAGE},       /* eu off the 512-raw grid */
+        {LT_FB_OFF_ORG, 0u, LT_SBLOB_E_LAYOUT},
+        {LT_FB_NNODES, 0u, LT_SBLOB_E_TREE},
+        {LT_FB_VERSION, 9u, LT_SBLOB_E_VERSION},
+        {LT_FB_LIT, 5u, LT_SBLOB_E_SUM},                /* not resealed: damaged */
+    };
+    make_fblob(fx, 16, &blob, &bytes, &bvh, &arena);
+    b = malloc(bytes);
+    for (i = 0; i < sizeof c / sizeof c[0]; i++) {
+        uint32_t z = 0, w;
+        memcpy(b, blob, bytes);
+        memcpy(b + 4u * c[i].word, &c[i].v, 4);
+        if (c[i].want != LT_SBLOB_E_SUM && c[i].want != LT_SBLOB_E_VERSION) {
+            memcpy(b + 4u * LT_FB_SUM, &z, 4);
+            w = lt_sblob_fnv(LT_SBLOB_FNV0, b, bytes);
+            memcpy(b + 4u * LT_FB_SUM, &w, 4);
+        }
+        {
+            lt_sblob_err_t e = lt_fblob_open(b, bytes, f);
+            if (e != c[i].want)
+                printf("  word %u = %u: got %d (%s), want %d\n", c[i].word, c[i].v, (int)e,
+                       lt_sblob_err_str(e), (int)c[i].want);
+            n += e == c[i].want;
+        }
+    }
+    {
+        uint32_t z = 0, w, bad = 0x7FFFFFFFu, off;
+        memcpy(b, blob, bytes);
+        memcpy(&off, b + 4u * LT_FB_OFF_ORG, 4);
+        memcpy(b + off + 40u, &bad, 4);
+        memcpy(b + 4u * LT_FB_SUM, &z, 4);
+        w = lt_sblob_fnv(LT_SBLOB_FNV0, b, bytes);
+        memcpy(b + 4u * LT_FB_SUM, &w, 4);
+        n += lt_fblob_open(b, bytes, f) == LT_SBLOB_E_GEOMETRY;
+        n += lt_fblob_open(blob, 200, f) == LT_SBLOB_E_SHORT;
+    }
+    ltt_rng_seed(&r, 11);
+    for (i = 0; i < 1000u; i++) {
+        size_t w = ltt_rng_below(&r, (uint32_t)(bytes / 4u));
+        uint32_t v = ltt_rng_below(&r, 2) ? ltt_rng_u32(&r) : ltt_rng_below(&r, 64), z = 0, s;
+        memcpy(b, blob, bytes);
+        memcpy(b + 4u * w, &v, 4);
+        memcpy(b + 4u * LT_FB_SUM, &z, 4);
+        s = lt_sblob_fnv(LT_SBLOB_FNV0, b, bytes);
+        memcpy(b + 4u * LT_FB_SUM, &s, 4);
+        if (lt_fblob_open(b, bytes, f) != LT_SBLOB_OK) {
+            refused++;
+        } else {
+            lt_fblob_tile_t o;
+            lt_status_t st = lt_fblob_trace_tile(f, (uint32_t)(i % 16u), NULL, &o);
+            traced += st == LT_OK || st == LT_E_DEPTH;
+        }
+    }
+    ltt_report("fblob: %u of %u crafted blobs refused with the expected reason; 1000 resealed "
+               "one-word mutations: %u refused, %u traced a tile without a fault\n", n,
+               (unsigned)(sizeof c / sizeof c[0]) + 2u, refused, traced);
+    assert_int_equal(n, sizeof c / sizeof c[0] + 2u);
+    assert_int_equal(refused + traced, 1000u);
+    free(b);
+    free(blob);
+    free(arena);
+    free(f);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test_setup_teardown(test_trace, setup, teardown),
         cmocka_unit_test_setup_teardown(test_refusals, setup, teardown),
         cmocka_unit_test_setup_teardown(test_mutations, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_fblob_trace, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_fblob_refusals, setup, teardown),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
