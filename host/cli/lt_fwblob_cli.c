@@ -111,7 +111,7 @@ int lt_fwblob_cli(int argc, char **argv, const char *prog)
     lt_opt_cmd_t cmd = {who, "--depth FILE.exr --out FILE [options]",
                         "Writes the reprojection blob of the firmware app (firmware/apps/\n"
                         "reproj_app.h; docs/firmware.md): a crop of the depth EXR, its layers as\n"
-                        "s1.30 w = z_ref / z, and the s1.30 mapping to the moved camera.",
+                        "s1.30 w = z_ref / z, and the s1.30 mapping to the moved camera.\n",
                         NULL, opts, NULL, 0, NULL};
     snprintf(who, sizeof who, "%s fwblob", prog);
     if ((a = lt_opt_parse(&cmd, argc, argv, 2)) != LT_OPT_OK)

@@ -5,10 +5,27 @@
 # the ASan build the same; under QEMU each target exits 0 and prints the host's lines exactly
 # (header with the blob's checksum, one line per 16x16 tile, the total), within the RAM budget of
 # tests/fw/ram_budget.txt; no float or double helper is linked; damaged blobs and short memory
-# give their error codes without a crash (ASan). Without ../shared: SKIP (FAIL under CI=true).
+# give their error codes without a crash (ASan); lanetrace fwblob's usage and input errors.
+# Without ../shared: SKIP (FAIL under CI=true).
 # Sourced by tests/run_tests.sh ($B, $tmp, check/ok/ko, QEMU_<T>).
 rb_exr=../shared/depth/beachball_singlepart.0001.exr
 rb_blob=$B/gen/reproj_bb.blob
+rb_expect() { # name, expected rc, pattern, command...
+    local name=$1 want=$2 pat=$3
+    shift 3
+    "$@" >"$tmp/rbx.txt" 2>&1
+    local rc=$?
+    if [ "$rc" -eq "$want" ] && grep -q -- "$pat" "$tmp/rbx.txt"; then
+        ok "$name (rc $rc)"
+    else
+        ko "$name (rc $rc, want $want; output: $(head -c 300 "$tmp/rbx.txt"))"
+    fi
+}
+rb_lt=$HOSTBIN/lanetrace-native
+rb_expect "fwblob: no --depth / --out is a usage error" 2 "are required" "$rb_lt" fwblob --out "$tmp/x.blob"
+rb_expect "fwblob: missing EXR names the file" 1 "/nonexistent.exr" "$rb_lt" fwblob --depth /nonexistent.exr --out "$tmp/x.blob"
+rb_expect "fwblob: --tile 6 is not a multiple of 4" 2 "a multiple of 4" "$rb_lt" fwblob --depth x.exr --out "$tmp/x.blob" --tile 6
+rb_expect "fwblob: --crop in fractions of a pixel refused" 2 "whole pixels" "$rb_lt" fwblob --depth x.exr --out "$tmp/x.blob" --crop 1.5,0,8,8
 if [ ! -f "$rb_exr" ]; then
     if [ "${CI:-}" = "true" ]; then
         ko "reproj-blob: shared depth file missing under CI: $rb_exr"
@@ -31,6 +48,12 @@ else
     echo "   host $rb_total"
     "$B/asan/reproj-blob-host" "$rb_blob" >"$tmp/rb.asan" 2>&1
     check "reproj-blob asan (ASan + UBSan, poisoned memory, guard after it) = host" cmp -s "$tmp/rb.host" "$tmp/rb.asan"
+    rb_expect "fwblob: a crop outside the data window names the window" 1 "outside the 911x876 data window" \
+        "$rb_lt" fwblob --depth "$rb_exr" --crop 900,0,128,128 --out "$tmp/x.blob"
+    rb_expect "fwblob: a crop without valid depth is refused" 1 "has no valid depth" \
+        "$rb_lt" fwblob --depth "$rb_exr" --crop 0,0,8,8 --out "$tmp/x.blob"
+    rb_expect "fwblob: unwritable --out names the path" 1 "/nonexistent-dir" \
+        "$rb_lt" fwblob --depth "$rb_exr" --out /nonexistent-dir/x.blob
     rb_budget=$(awk '$1 == "reproj-bb" {print $2}' tests/fw/ram_budget.txt)
     for t in cm4 cm55 rv32; do
         qvar="QEMU_$t"
