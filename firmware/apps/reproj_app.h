@@ -25,7 +25,7 @@ extern "C" {
 #define LT_RPB_MAGIC 0x4252504Cu   /* the bytes "LPRB" */
 #define LT_RPB_MAGIC_SWAPPED 0x4C505242u /* the magic read with the other byte order */
 #define LT_RPB_VERSION 1u
-#define LT_RPB_DEPTH_W_Q30 1u      /* depth format: w = z_ref / z, s1.30 (lt_qt_build_q30), 0 = hole */
+#define LT_RPB_DEPTH_W_Q30 1u      /* depth format: w = z_ref / z, s1.30, 0 = hole */
 #define LT_RPB_HDR_BYTES 224u
 #define LT_RPB_ALIGN 64u           /* blob start and depth_off alignment */
 #define LT_RPB_SUM_FROM 20u        /* the checksum covers bytes [20, blob_bytes) */
@@ -47,7 +47,7 @@ typedef struct lt_rpb_hdr {
     int32_t zref_exp;      /*  48: z_ref = 2^zref_exp world units (w = z_ref / z); informative */
     uint32_t tile;         /*  52: side of an output tile, pixels, a multiple of 4 in 4..256 */
     uint32_t max_steps;    /*  56: traversal step bound per lane and layer, 0 = the default */
-    uint32_t crop_x;       /*  60: the crop's origin in the EXR's data window, pixels; informative */
+    uint32_t crop_x;       /*  60: crop origin in the EXR's data window, pixels; informative */
     uint32_t crop_y;       /*  64: informative */
     uint32_t src_exr_w;    /*  68: the EXR's data window size, pixels; informative */
     uint32_t src_exr_h;    /*  72: informative */

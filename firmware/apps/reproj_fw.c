@@ -1,9 +1,9 @@
-/* reproj_fw.c - the reprojection app (reproj_app.h) as a firmware image, build/fw/<T>/reproj-bb.elf:
- * the blob that `lanetrace fwblob` made from the Beachball EXR (firmware.mk, FW_BLOB_reproj-bb) is
- * linked as read-only data (lt_fw_blob.S), the quadtree arena and the two packets are one static
- * buffer (counted in the "ram:" line's .bss), the lines go to the UART and the instruction clock is
- * lt_fw_ticks. Exit status: lt_rpapp_run's (0 ok, LT_RPAPP_E_* otherwise).
- * Builds: firmware (cm4, cm55, rv32).
+/* reproj_fw.c - the reprojection app (reproj_app.h) as a firmware image,
+ * build/fw/<T>/reproj-bb.elf: the blob that `lanetrace fwblob` made from the Beachball EXR
+ * (firmware.mk, FW_BLOB_reproj-bb) is linked as read-only data (lt_fw_blob.S); the quadtree arena
+ * and the packet are one static buffer (counted in the "ram:" line's .bss); the lines go to the
+ * UART; the instruction clock is lt_fw_ticks. Exit status: lt_rpapp_run's (0 ok, LT_RPAPP_E_*
+ * otherwise). Builds: firmware (cm4, cm55, rv32).
  */
 #include "lt_fw.h"
 #include "lt_fw_blob.h"

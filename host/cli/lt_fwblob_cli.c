@@ -80,7 +80,7 @@ int lt_fwblob_cli(int argc, char **argv, const char *prog)
     lt_reproj_cam_t src, dst;
     lt_reproj_opts_t ro;
     lt_rpb_hdr_t h;
-    uint32_t cx, cy, cw, ch, x, y;
+    uint32_t cx, cy, cw, ch, x, y, doff;
     size_t n, i, total;
     float *z = NULL, zmax = 0.0f;
     uint8_t *blob = NULL;
@@ -149,8 +149,9 @@ int lt_fwblob_cli(int argc, char **argv, const char *prog)
             zmax = d.z[i];
     n = (size_t)cw * ch;
     z = malloc(n * (size_t)layers * sizeof *z);
-    total = LT_RPB_HDR_BYTES + (size_t)(LT_RPB_ALIGN - LT_RPB_HDR_BYTES % LT_RPB_ALIGN) % LT_RPB_ALIGN +
-            n * (size_t)layers * sizeof(lt_q30_t);
+    /* the depth array starts at the first multiple of LT_RPB_ALIGN after the header */
+    doff = (LT_RPB_HDR_BYTES + LT_RPB_ALIGN - 1u) / LT_RPB_ALIGN * LT_RPB_ALIGN;
+    total = doff + n * (size_t)layers * sizeof(lt_q30_t);
     blob = calloc(1, total);
     if (z == NULL || blob == NULL) {
         fprintf(stderr, "%s: out of memory for a %ux%u crop\n", who, cw, ch);
@@ -172,8 +173,8 @@ int lt_fwblob_cli(int argc, char **argv, const char *prog)
         goto done;
     }
     memset(&h, 0, sizeof h);
-    h.depth_off = LT_RPB_HDR_BYTES + (LT_RPB_ALIGN - LT_RPB_HDR_BYTES % LT_RPB_ALIGN) % LT_RPB_ALIGN;
-    (void)lt_qt_w_from_depth_q30(z, n * (size_t)layers, e, (lt_q30_t *)(void *)(blob + h.depth_off));
+    h.depth_off = doff;
+    (void)lt_qt_w_from_depth_q30(z, n * (size_t)layers, e, (lt_q30_t *)(void *)(blob + doff));
 
     /* the cameras: the whole EXR's default camera, cropped; the target moved and rotated */
     lt_rp_cam_default((uint32_t)d.width, (uint32_t)d.height,

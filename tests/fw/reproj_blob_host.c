@@ -1,5 +1,5 @@
-/* reproj_blob_host.c - the host runner of the reprojection app (firmware/apps/reproj_app.h): reads a
- * blob file into 64-byte aligned memory and runs the app over it with exactly the memory
+/* reproj_blob_host.c - the host runner of the reprojection app (firmware/apps/reproj_app.h):
+ * reads a blob file into 64-byte aligned memory and runs the app over it with exactly the memory
  * lt_rpapp_mem_bytes asks for (or --mem BYTES), so its lines can be compared with the firmware
  * images' (tests/run.d/reproj_blob.sh). The memory is poisoned with 0xA5 and followed by a 64-byte
  * guard that must stay untouched. Exit status: the app's (0 ok, LT_RPAPP_E_* otherwise), 1 when
@@ -35,7 +35,8 @@ int main(int argc, char **argv)
         return 2;
     }
     f = fopen(argv[1], "rb");
-    if (f == NULL || fseek(f, 0, SEEK_END) != 0 || (sz = ftell(f)) < 0 || fseek(f, 0, SEEK_SET) != 0) {
+    if (f == NULL || fseek(f, 0, SEEK_END) != 0 || (sz = ftell(f)) < 0 ||
+        fseek(f, 0, SEEK_SET) != 0) {
         fprintf(stderr, "%s: cannot read\n", argv[1]);
         if (f != NULL)
             fclose(f);
