@@ -8,6 +8,9 @@
 #                              traced tile by tile (firmware/apps/scene_fw.c, docs/firmware.md)
 #   build/fw/<T>/scene-sibenik.elf  a multi-frusta block of the shared Sibenik as a frusta blob
 #                              (only where ../shared is; make test-build builds it)
+#   build/fw/<T>/reproj-bb.elf the reprojection app over a 128 x 128, 2-layer crop of the Beachball
+#                              EXR (firmware/apps/reproj_fw.c, reproj_app.c; the blob linked as
+#                              read-only data); built only when ../shared has the EXR
 #   build/fw/<T>/stream.elf    the streaming firmware (firmware/apps/stream_fw.c; docs/stream.md)
 #   build/fw/<T>/stream-count.elf  the same over a core counting on the target (LT_COST_HANDLER,
 #                              firmware/apps/lt_fw_count.h): its reports carry modelled cycles of
@@ -26,6 +29,16 @@ FW_IMG_frusta := tests/fw/fw_frusta.c
 FW_IMG_reproj := tests/fw/fw_reproj.c
 FW_IMG_stream := firmware/apps/stream_fw.c firmware/apps/stream_dev.c
 FW_IMG_stream-count := $(FW_IMG_stream) firmware/apps/lt_fw_count.c
+# The reprojection app over a real depth image: `lanetrace fwblob` (host/cli/lt_fwblob_cli.c) writes
+# the blob from the shared Beachball EXR; the image links it (FW_BLOB_reproj-bb, lt_fw_blob.S).
+FW_IMG_reproj-bb := firmware/apps/reproj_fw.c firmware/apps/reproj_app.c
+FW_RPBB_EXR := ../shared/depth/beachball_singlepart.0001.exr
+FW_RPBB_ARGS := --crop 40,120,128,128 --layers 2 --move-rel 0.05,0,0 --rot -2,0,0 --num n64 --tile 16
+FW_BLOB_reproj-bb := $(B)/gen/reproj_bb.blob
+$(B)/gen/reproj_bb.blob: $(B)/host/lanetrace-native $(FW_RPBB_EXR) firmware/firmware.mk
+	@mkdir -p $(@D)
+	@echo "GEN $@"
+	@$(B)/host/lanetrace-native fwblob --depth $(FW_RPBB_EXR) $(FW_RPBB_ARGS) --out $@ -q
 
 # The counting image's machine per target, and its issue-cycle table generated from the machine
 # file (data: the firmware sources never include sim/).
@@ -128,7 +141,8 @@ $(B)/fw/$(1)/objc/fwc_table.o: $(B)/gen/fwc_$(FWC_MACHINE_$(1)).c
 $(B)/fw/$(1)/stream-count.elf: $(B)/fw/$(1)/objc/fwc_table.o
 endef
 $(foreach t,$(FW_TARGETS),$(eval $(call fwc_table,$(t))))
-FW_ALL_IMAGES := vectors slab frusta reproj stream $(FW_SCENES:%=scene-%)
+FW_ALL_IMAGES := vectors slab frusta reproj stream $(FW_SCENES:%=scene-%) \
+    $(if $(wildcard $(FW_RPBB_EXR)),reproj-bb)
 $(foreach t,$(FW_TARGETS),$(foreach i,$(FW_ALL_IMAGES),$(eval $(call fw_image,$(t),$(i),obj,))))
 $(foreach t,$(FW_TARGETS),$(eval $(call fw_image,$(t),stream-count,objc,)))
 $(foreach t,$(FW_TARGETS),$(eval $(call fw_image,$(t),scene-sibenik,obj,)))

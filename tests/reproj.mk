@@ -9,3 +9,16 @@ REPROJ_FW_IMAGES := $(foreach t,$(FW_TARGETS),$(B)/fw/$(t)/reproj.elf)
 EXTRA_TEST_BINS += $(REPROJ_FW_IMAGES)
 reproj-fw: $(REPROJ_FW_IMAGES)
 .PHONY: reproj-fw
+
+# The reprojection app over a real depth image (firmware/apps/reproj_app.[ch], docs/firmware.md,
+# "Reprojection of a real depth image"): its host runner, in the host and ASan builds, over the
+# blob firmware.mk makes from the Beachball EXR with `lanetrace fwblob`; tests/run.d/reproj_blob.sh
+# compares its lines with build/fw/<T>/reproj-bb.elf's (built when ../shared has the EXR).
+define rpblob_host
+$(B)/$(1)/reproj-blob-host: $(B)/$(1)/obj/tests/fw/reproj_blob_host.o \
+    $(B)/$(1)/obj/firmware/apps/reproj_app.o $$($(1)_CORE_OBJS)
+	@echo "LD $$@"
+	@$$(CC) $$(LDFLAGS_$(1)) -o $$@ $$^
+endef
+$(foreach v,host asan,$(eval $(call rpblob_host,$(v))))
+EXTRA_TEST_BINS += $(B)/host/reproj-blob-host $(B)/asan/reproj-blob-host

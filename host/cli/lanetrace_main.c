@@ -19,6 +19,7 @@
 #include "render/lt_render.h"
 #include "cli/lt_reproject_cli.h"
 #include "cli/lt_pack_cli.h"
+#include "cli/lt_fwblob_cli.h"
 #include "cli/lt_shadows_cli.h"
 #include "cli/lt_tune_cli.h"
 #include "render/lt_scene.h"
@@ -2333,6 +2334,8 @@ static void usage(FILE *f)
             "                     report (sim build: cycles per stage), images, reference\n"
             "  tune SCENE|MESH    Pareto fronts of cycles vs error per family and machine;\n"
             "                     --budget picks the cheapest configuration (docs/tune.md)\n"
+            "  fwblob --depth FILE.exr --out FILE  the firmware reprojection blob of a depth\n"
+            "                     EXR crop (firmware/apps/reproj_app.h, docs/firmware.md)\n"
             "  info FILE          describe a mesh or EXR file\n"
             "  pack SCENE|MESH    a scene blob for a firmware target, and its trace here\n"
             "  stream [SOURCE]    receive a device's report frames (see lt-stream --help)\n"
@@ -2371,6 +2374,8 @@ int main(int argc, char **argv)
         return lt_tune_cli(argc, argv, prog);
     if (strcmp(argv[1], "pack") == 0)
         return lt_pack_cli(argc, argv, prog);
+    if (strcmp(argv[1], "fwblob") == 0)
+        return lt_fwblob_cli(argc, argv, prog);
     fprintf(stderr, "%s: unknown command '%s'\n", prog, argv[1]);
     usage(stderr);
     return EXIT_USAGE;
