@@ -59,3 +59,22 @@ if [ -f "$B/fw/cm4/scene-sibenik.elf" ]; then
             }' "$tmp/out"
     done
 fi
+
+# the reprojection of the Beachball crop (reproj-bb.elf; only where ../shared is)
+if [ -f "$B/fw/cm4/reproj-bb.elf" ]; then
+    echo
+    echo "| reprojection | target | per traced ray | quadtree build | whole run (plugin) | timed stages / plugin |"
+    echo "|---|---|---|---|---|---|"
+    for t in cm4 cm55 rv32; do
+        q="QEMU_$t"
+        timeout 300 ${!q} "$B/fw/$t/reproj-bb.elf" -plugin "$B/plugin/lt_icount.so,out=$tmp/cnt" \
+            </dev/null >"$tmp/out"
+        awk -v t="$t" -v cnt="$tmp/cnt" '
+            /^reproj-blob:/ { d = "Beachball crop 128x128 x 2 layers, n64" }
+            /^ticks/ { b = $4; sub(/,$/, "", b); r = $6; sub(/,$/, "", r); pr = $10; sub(/,$/, "", pr) }
+            END {
+                while ((getline l < cnt) > 0) if (l ~ /^icount total/) { split(l, f, " "); tot = f[3] }
+                printf "| %s | %s | %s | %s | %s | %.3f |\n", d, t, pr, b, tot, (b + r) / tot
+            }' "$tmp/out"
+    done
+fi
