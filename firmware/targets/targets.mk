@@ -16,9 +16,13 @@ FW_TGT_DIR := firmware/targets
 FW_INC := -Ifirmware/include -I$(FW_TGT_DIR)/common
 
 # Warning and code-generation flags shared by all firmware (the project's strict C99 set).
+# optimisation of every firmware image: -O2 (the default; the machine models are calibrated on it)
+# or, for example, make firmware FW_OPT=-O3 (measured in docs/firmware.md: fewer instructions per
+# packet ray, ~110 KB more code)
+FW_OPT ?= -O2
 FW_CFLAGS_COMMON ?= -std=c99 -Wall -Wextra -Wpedantic -Werror -Wshadow -Wundef -Wstrict-prototypes \
     -Wmissing-prototypes -Wcast-align -Wconversion -ffreestanding -fno-builtin \
-    -ffunction-sections -fdata-sections -O2 -g
+    -ffunction-sections -fdata-sections $(FW_OPT) -g
 
 FW_LDFLAGS_COMMON := -nostdlib -nostartfiles -Wl,--gc-sections
 
