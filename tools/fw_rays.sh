@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # fw_rays.sh - instructions per ray on the firmware targets (issue #13 item 3; docs/firmware.md,
-# "Scene blobs"): runs build/fw/<T>/scene-<S>.elf under QEMU (-icount shift=0) on cm4, cm55 and
-# rv32 with the lt_icount plugin and prints a Markdown table: the image's own per-ray counts of
+# "Scene blobs"): runs build/fw/<T>/scene-<S>.elf under QEMU (-icount shift=0) on cm4, cm55 (its
+# portable lane loops and its Helium backend) and rv32 with the lt_icount plugin and prints a Markdown table: the image's own per-ray counts of
 # each stage (lt_fw_ticks: exact on rv32, SysTick-scaled on Arm) and the plugin's exact total of
 # the whole run against the sum of the stages the image timed. Needs `make firmware plugin`.
 # With the frusta block image (build/fw/<T>/scene-sibenik.elf, made where ../shared is) a second
@@ -16,14 +16,26 @@ scenes=("$@")
 [ ${#scenes[@]} -gt 0 ] || scenes=(bunny teapot)
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
+# run IMAGE TARGET: the image under QEMU with the plugin into $tmp/out and $tmp/cnt; the target
+# cm55p is cm55 with the portable lane loops (IMAGE-portable.elf), cm55 its Helium backend
+run() {
+    local img=$1 t=$2 q elf
+    case $t in
+    cm55p) q=QEMU_cm55 elf="$B/fw/cm55/$img-portable.elf" ;;
+    *) q="QEMU_$t" elf="$B/fw/$t/$img.elf" ;;
+    esac
+    rm -f "$tmp/cnt"
+    timeout 300 ${!q} "$elf" -plugin "$B/plugin/lt_icount.so,out=$tmp/cnt" </dev/null >"$tmp/out"
+}
+label() { case $1 in cm55p) echo "cm55 portable" ;; cm55) echo "cm55 Helium" ;; *) echo "$1" ;; esac; }
+TARGETS="cm4 cm55p cm55 rv32"
 echo "| scene | target | packets: primary | packets: shadow | single rays: primary | single rays: shadow | blob checks | whole run (plugin) | timed stages / plugin |"
 echo "|---|---|---|---|---|---|---|---|---|"
 for s in "${scenes[@]}"; do
-    for t in cm4 cm55 rv32; do
-        q="QEMU_$t"
-        timeout 300 ${!q} "$B/fw/$t/scene-$s.elf" -plugin "$B/plugin/lt_icount.so,out=$tmp/cnt" \
-            </dev/null >"$tmp/out"
-        awk -v s="$s" -v t="$t" -v cnt="$tmp/cnt" '
+    for t in $TARGETS; do
+        [ "$t" != cm55p ] || [ -f "$B/fw/cm55/scene-$s-portable.elf" ] || continue
+        run "scene-$s" "$t"
+        awk -v s="$s" -v t="$(label "$t")" -v cnt="$tmp/cnt" '
             /^sblob/ { ntri = $2 }
             /^image hash/ { rays = $5; srays = $9 }
             /^instr .* open/ { open = $4 }
@@ -43,11 +55,9 @@ if [ -f "$B/fw/cm4/scene-sibenik.elf" ]; then
     echo
     echo "| frusta block | target | per shadow sample | per lit pixel | blob checks and sample table | whole run (plugin) | timed stages / plugin |"
     echo "|---|---|---|---|---|---|---|"
-    for t in cm4 cm55 rv32; do
-        q="QEMU_$t"
-        timeout 300 ${!q} "$B/fw/$t/scene-sibenik.elf" -plugin "$B/plugin/lt_icount.so,out=$tmp/cnt" \
-            </dev/null >"$tmp/out"
-        awk -v t="$t" -v cnt="$tmp/cnt" '
+    for t in $TARGETS; do
+        run scene-sibenik "$t"
+        awk -v t="$(label "$t")" -v cnt="$tmp/cnt" '
             /^fblob/ { d = $0; sub(/^fblob /, "", d); sub(/, [0-9]+ bytes$/, "", d) }
             /^block hash/ { lit = $5 }
             /^instr .* open/ { open = $4 }
@@ -65,11 +75,9 @@ if [ -f "$B/fw/cm4/reproj-bb.elf" ]; then
     echo
     echo "| reprojection | target | per traced ray | quadtree build | whole run (plugin) | timed stages / plugin |"
     echo "|---|---|---|---|---|---|"
-    for t in cm4 cm55 rv32; do
-        q="QEMU_$t"
-        timeout 300 ${!q} "$B/fw/$t/reproj-bb.elf" -plugin "$B/plugin/lt_icount.so,out=$tmp/cnt" \
-            </dev/null >"$tmp/out"
-        awk -v t="$t" -v cnt="$tmp/cnt" '
+    for t in $TARGETS; do
+        run reproj-bb "$t"
+        awk -v t="$(label "$t")" -v cnt="$tmp/cnt" '
             /^reproj-blob:/ { d = "Beachball crop 128x128 x 2 layers, n64" }
             /^ticks/ { b = $4; sub(/,$/, "", b); r = $6; sub(/,$/, "", r); pr = $10; sub(/,$/, "", pr) }
             END {
