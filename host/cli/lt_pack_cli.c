@@ -9,6 +9,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "cli/lt_opt.h"
 #include "io/lt_diag.h"
@@ -264,8 +265,14 @@ static int pack_write(const pack_t *p)
 /* Read PATH into p->blob (64-byte aligned). Returns 0 or an exit code. */
 static int pack_read(pack_t *p)
 {
-    FILE *f = fopen(p->in, "rb");
+    struct stat st;
+    FILE *f;
     long n;
+    if (stat(p->in, &st) == 0 && !S_ISREG(st.st_mode)) {
+        fprintf(stderr, "%s: --in %s: not a regular file\n", who_g, p->in);
+        return EXIT_INPUT;
+    }
+    f = fopen(p->in, "rb");
     if (f == NULL || fseek(f, 0, SEEK_END) != 0 || (n = ftell(f)) < 0 || fseek(f, 0, SEEK_SET) != 0) {
         fprintf(stderr, "%s: --in %s: cannot read\n", who_g, p->in);
         if (f != NULL)

@@ -285,7 +285,7 @@ expect "shadows --light with trailing text refused" 2 "shadows: --light 0,5,0,1x
 expect "shadows --fov 60abc: trailing text refused" 2 "shadows: --fov 60abc: not a finite number" \
     "$LT" shadows --mesh scenes/teapot.obj --res 8 --no-ref --fov 60abc
 # the same messages from every subcommand
-for c in run render reproject shadows info diff machines fwblob; do
+for c in run render reproject shadows info diff machines fwblob pack; do
     expect "$c --help is printed from the option table" 0 "usage: lanetrace $c" "$LT" $c --help
     expect "$c: unknown option, uniform message" 2 "lanetrace $c: unknown option '--frobnicate' (see 'lanetrace $c --help')" \
         "$LT" $c --frobnicate

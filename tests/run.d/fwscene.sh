@@ -54,6 +54,7 @@ fs_expect "pack --in a truncated blob: refused, names the file" 1 "fs-short.ltsb
     "$FS_NAT" pack --in "$tmp/fs-short.ltsb"
 fs_expect "pack --in a damaged blob: checksum differs" 1 "checksum differs" "$FS_NAT" pack --in "$tmp/fs-dmg.ltsb"
 fs_expect "pack --in an OBJ: not a scene blob" 1 "magic LTSB missing" "$FS_NAT" pack --in scenes/teapot.obj
+fs_expect "pack --in a directory: not a regular file" 1 "not a regular file" "$FS_NAT" pack --in "$tmp"
 fs_expect "pack --in a missing file" 1 "/nonexistent.ltsb: cannot read" "$FS_NAT" pack --in /nonexistent.ltsb
 fs_expect "pack: --in and --out together is a usage error" 2 "give one of --out" \
     "$FS_NAT" pack --in a.ltsb --out b.ltsb
