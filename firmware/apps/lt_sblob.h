@@ -50,7 +50,7 @@ enum lt_sblob_word {
     LT_SB_DEPTH = 28,    /* deepest leaf of the BVH (root 0), <= LT_BVH_MAX_DEPTH */
     LT_SB_LEAF = 29,     /* the build's largest leaf, 1..LT_BVH_MAX_LEAF */
     LT_SB_SUM = 30,      /* FNV-1a of the blob's bytes with this word taken as 0 (lt_sblob_sum) */
-    LT_SB_SCALE = 31     /* informational: s15.16 units per mesh file unit, x 2^16 (0: unknown) */
+    LT_SB_SCALE = 31     /* informational: s15.16 units per mesh unit x 2^16 (saturates) */
 };
 
 #define LT_SBLOB_F_SHADOWS 1u /* trace a shadow ray from every primary hit to the light */

@@ -220,7 +220,7 @@ static int pack_build(pack_t *p)
     v.height = p->cam.height;
     v.flags = p->no_shadows ? 0u : LT_SBLOB_F_SHADOWS;
     v.eps = eps;
-    v.scale = (uint32_t)fmin(4294967295.0, floor(p->sc.scale * 65536.0 * 65536.0 + 0.5));
+    v.scale = (uint32_t)fmin(4294967295.0, floor(p->sc.scale * 65536.0 + 0.5));
     total = lt_sblob_size(n, bvh.nnodes);
     b = malloc(total);
     if (b == NULL || lt_sblob_write(p->sc.tq, &bvh, desc.max_leaf, &v, b, total) != LT_OK) {
