@@ -71,9 +71,10 @@ done
 # portable loops; both must give the golden lines
 timeout 120 $QEMU_cm55 "$B/fw/cm55/vectors-portable.elf" >"$tmp/cm55p.out" 2>/dev/null
 grep -v '^ram: ' "$tmp/cm55p.out" >"$tmp/cm55p.txt"
-nmve=$(arm-none-eabi-objdump -d -marmv8.1-m.main "$B/fw/cm55/vectors.elf" | grep -cE '\s(vqadd|vqsub|vmulh|vpsel)')
-nport=$(arm-none-eabi-objdump -d -marmv8.1-m.main "$B/fw/cm55/vectors-portable.elf" | grep -cE '\s(vqadd|vqsub|vmulh|vpsel)')
-check "vectors/cm55 portable lanes (LT_LANES_PORTABLE) = golden; the Helium image has $nmve VQADD/VQSUB/VMULH/VPSEL, the portable one $nport" \
+# (VPSEL also comes from GCC's own vectorising of the portable loops; these three do not)
+nmve=$(arm-none-eabi-objdump -d -marmv8.1-m.main "$B/fw/cm55/vectors.elf" | grep -cE '\s(vqadd|vqsub|vmulh)\.s32')
+nport=$(arm-none-eabi-objdump -d -marmv8.1-m.main "$B/fw/cm55/vectors-portable.elf" | grep -cE '\s(vqadd|vqsub|vmulh)\.s32')
+check "vectors/cm55 portable lanes (LT_LANES_PORTABLE) = golden; the Helium image has $nmve VQADD/VQSUB/VMULH.S32, the portable one $nport" \
     bash -c "diff -u '$golden' '$tmp/cm55p.txt' && [ $nmve -gt 0 ] && [ $nport -eq 0 ]"
 timeout 120 $QEMU_rv32 "$B/fw/rv32/vectors-fixed.elf" >"$tmp/rv32x.txt" 2>/dev/null
 grep -v -e '_f32 ' -e '^groups' "$golden" >"$tmp/golden-fixed.txt"
