@@ -225,12 +225,19 @@ frusta-doc: deps
 	@tools/doc_insert.sh frusta-sweep $(B)/sweep/sweep.md docs/results.md
 
 # instructions per ray of the scene-blob images on cm4, cm55 and rv32 -> docs/firmware.md
-# (tools/fw_rays.sh, QEMU with the lt_icount plugin; seconds)
+# (tools/fw_rays.sh, QEMU with the lt_icount plugin; seconds), and every image's sizes and
+# measured RAM -> docs/results.md
 fw-doc: deps
 	@$(MAKE) --no-print-directory firmware $(PLUGIN_SO)
 	@mkdir -p $(B)/fwdoc
 	@B=$(B) tools/fw_rays.sh >$(B)/fwdoc/rays.md
 	@tools/doc_insert.sh fw-rays $(B)/fwdoc/rays.md docs/firmware.md
+	@{ echo "| image | .text | .data | .bss (incl. stack) | RAM measured (stack + static) |"; \
+	  echo "|---|---:|---:|---:|---:|"; \
+	  tools/check_fw.sh $(FW_IMAGES) | awk '/^size / { r = $$10 ~ /^[0-9]+$$/ ? $$10 : "not reported"; \
+	    sub(/^$(B)\/fw\//, "", $$2); printf "| %s | %s | %s | %s | %s |\n", $$2, $$4, $$6, $$8, r }'; } \
+	    >$(B)/fwdoc/sizes.md
+	@tools/doc_insert.sh fw-sizes $(B)/fwdoc/sizes.md docs/results.md
 
 clean:
 	rm -rf $(B)
