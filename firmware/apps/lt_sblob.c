@@ -243,28 +243,47 @@ static lt_sblob_err_t check_scene(const uint8_t *b, uint32_t nt, uint32_t nn, ui
     return LT_SBLOB_OK;
 }
 
+/* The checks every blob kind shares, in this order: the header's length, magic, version and size,
+ * the byte count against the buffer, the checksum (word w_sum taken as 0), and the triangle and
+ * node counts (words 4 and 5 of both kinds). *bad names the word or value concerned. */
+static lt_sblob_err_t check_head(const void *p, size_t bytes, uint32_t magic, uint32_t version,
+                                 uint32_t hdr, unsigned w_sum, uint32_t *bad)
+{
+    const uint32_t *h = (const uint32_t *)p;
+    uint32_t nt, nn;
+    *bad = 0;
+    if (bytes < hdr)
+        return *bad = (uint32_t)bytes, LT_SBLOB_E_SHORT;
+    if (h[0] != magic)
+        return *bad = h[0], LT_SBLOB_E_MAGIC;
+    if (h[1] != version)
+        return *bad = h[1], LT_SBLOB_E_VERSION;
+    if (h[2] != hdr)
+        return *bad = 2, LT_SBLOB_E_LAYOUT;
+    if (h[3] > bytes || h[3] < hdr)
+        return *bad = h[3], LT_SBLOB_E_SHORT;
+    if (sum_without(p, h[3], w_sum) != h[w_sum])
+        return *bad = h[w_sum], LT_SBLOB_E_SUM;
+    nt = h[4];
+    nn = h[5];
+    if (nt == 0 || nt > LT_BVH_MAX_TRIS || nn == 0 || nn > 2u * nt)
+        return *bad = nt == 0 || nt > LT_BVH_MAX_TRIS ? 4u : 5u, LT_SBLOB_E_TREE;
+    return LT_SBLOB_OK;
+}
+
 lt_sblob_err_t lt_sblob_open(const void *p, size_t bytes, lt_sblob_t *s)
 {
     const uint32_t *h = (const uint32_t *)p;
     const uint8_t *b = (const uint8_t *)p;
+    lt_sblob_err_t e;
     uint32_t nt, nn, a;
     s->bad = 0;
-    if (bytes < LT_SBLOB_HEADER_BYTES)
-        return fail(s, LT_SBLOB_E_SHORT, (uint32_t)bytes);
-    if (h[LT_SB_MAGIC] != LT_SBLOB_MAGIC)
-        return fail(s, LT_SBLOB_E_MAGIC, h[LT_SB_MAGIC]);
-    if (h[LT_SB_VERSION] != LT_SBLOB_VERSION)
-        return fail(s, LT_SBLOB_E_VERSION, h[LT_SB_VERSION]);
-    if (h[LT_SB_HEADER] != LT_SBLOB_HEADER_BYTES)
-        return fail(s, LT_SBLOB_E_LAYOUT, LT_SB_HEADER);
-    if (h[LT_SB_BYTES] > bytes || h[LT_SB_BYTES] < LT_SBLOB_HEADER_BYTES)
-        return fail(s, LT_SBLOB_E_SHORT, h[LT_SB_BYTES]);
-    if (lt_sblob_sum(p, h[LT_SB_BYTES]) != h[LT_SB_SUM])
-        return fail(s, LT_SBLOB_E_SUM, h[LT_SB_SUM]);
+    e = check_head(p, bytes, LT_SBLOB_MAGIC, LT_SBLOB_VERSION, LT_SBLOB_HEADER_BYTES, LT_SB_SUM,
+                   &s->bad);
+    if (e != LT_SBLOB_OK)
+        return e;
     nt = h[LT_SB_NTRIS];
     nn = h[LT_SB_NNODES];
-    if (nt == 0 || nt > LT_BVH_MAX_TRIS || nn == 0 || nn > 2u * nt)
-        return fail(s, LT_SBLOB_E_TREE, nt == 0 || nt > LT_BVH_MAX_TRIS ? LT_SB_NTRIS : LT_SB_NNODES);
     if (!section_ok(h, LT_SB_OFF_TRIS, nt, (uint32_t)sizeof(lt_tri_q16_t)))
         return fail(s, LT_SBLOB_E_LAYOUT, LT_SB_OFF_TRIS);
     if (!section_ok(h, LT_SB_OFF_NODES, nn, (uint32_t)sizeof(lt_bvh_node_q16_t)))
@@ -631,23 +650,12 @@ lt_sblob_err_t lt_fblob_open(const void *p, size_t bytes, lt_fblob_t *f)
     lt_qmc_sets_t sets;
     lt_sblob_err_t e;
     uint32_t nt, nn, i;
-    f->bad = 0;
-    if (bytes < LT_FBLOB_HEADER_BYTES)
-        return LT_SBLOB_E_SHORT;
-    if (h[LT_FB_MAGIC] != LT_FBLOB_MAGIC)
-        return LT_SBLOB_E_MAGIC;
-    if (h[LT_FB_VERSION] != LT_FBLOB_VERSION)
-        return LT_SBLOB_E_VERSION;
-    if (h[LT_FB_HEADER] != LT_FBLOB_HEADER_BYTES)
-        return LT_SBLOB_E_LAYOUT;
-    if (h[LT_FB_BYTES] > bytes || h[LT_FB_BYTES] < LT_FBLOB_HEADER_BYTES)
-        return LT_SBLOB_E_SHORT;
-    if (sum_without(p, h[LT_FB_BYTES], LT_FB_SUM) != h[LT_FB_SUM])
-        return LT_SBLOB_E_SUM;
+    e = check_head(p, bytes, LT_FBLOB_MAGIC, LT_FBLOB_VERSION, LT_FBLOB_HEADER_BYTES, LT_FB_SUM,
+                   &f->bad);
+    if (e != LT_SBLOB_OK)
+        return e;
     nt = h[LT_FB_NTRIS];
     nn = h[LT_FB_NNODES];
-    if (nt == 0 || nt > LT_BVH_MAX_TRIS || nn == 0 || nn > 2u * nt)
-        return LT_SBLOB_E_TREE;
     if (h[LT_FB_OFF_TRIS] < LT_FBLOB_HEADER_BYTES || h[LT_FB_OFF_NODES] < LT_FBLOB_HEADER_BYTES ||
         h[LT_FB_OFF_IDX] < LT_FBLOB_HEADER_BYTES || h[LT_FB_OFF_ORG] < LT_FBLOB_HEADER_BYTES ||
         !section_ok(h, LT_FB_OFF_TRIS, nt, (uint32_t)sizeof(lt_tri_q16_t)) ||

@@ -83,6 +83,16 @@ static void put_instr(const char *mode, uint64_t tp, uint64_t ts, uint32_t rays,
     lt_fw_puts(" per ray\n");
 }
 
+/* The line of a refused blob ("sblob refused: checksum differs..."); returns the exit code 1. */
+static int refused(const char *kind, lt_sblob_err_t e)
+{
+    lt_fw_puts(kind);
+    lt_fw_puts(" refused: ");
+    lt_fw_puts(lt_sblob_err_str(e));
+    lt_fw_puts("\n");
+    return 1;
+}
+
 /* A frusta blob: the 16 tiles of its block, the block line, instructions per shadow sample. */
 static int run_frusta(void)
 {
@@ -90,12 +100,8 @@ static int run_frusta(void)
     uint64_t t0 = lt_fw_ticks(), ticks = 0;
     lt_sblob_err_t e = lt_fblob_open(lt_fw_blob, lt_fw_blob_size(), &f);
     uint32_t t1 = (uint32_t)(lt_fw_ticks() - t0), th[16], t, lit = 0, occ = 0, h;
-    if (e != LT_SBLOB_OK) {
-        lt_fw_puts("fblob refused: ");
-        lt_fw_puts(lt_sblob_err_str(e));
-        lt_fw_puts("\n");
-        return 1;
-    }
+    if (e != LT_SBLOB_OK)
+        return refused("fblob", e);
     lt_fw_puts("fblob ");
     lt_fw_put_u32(f.bvh.ntris);
     lt_fw_puts(" triangles (of ");
@@ -164,12 +170,8 @@ int main(void)
     t0 = lt_fw_ticks();
     e = lt_sblob_open(lt_fw_blob, lt_fw_blob_size(), &s);
     t1 = (uint32_t)(lt_fw_ticks() - t0);
-    if (e != LT_SBLOB_OK) {
-        lt_fw_puts("sblob refused: ");
-        lt_fw_puts(lt_sblob_err_str(e));
-        lt_fw_puts("\n");
-        return 1;
-    }
+    if (e != LT_SBLOB_OK)
+        return refused("sblob", e);
     lt_fw_puts("sblob ");
     lt_fw_put_u32(s.bvh.ntris);
     lt_fw_puts(" triangles, ");

@@ -22,51 +22,6 @@
 #define EXIT_INPUT 1
 #define EXIT_USAGE 2
 
-static int cmp_float(const void *a, const void *b)
-{
-    float x = *(const float *)a, y = *(const float *)b;
-    return x < y ? -1 : (x > y ? 1 : 0);
-}
-
-/* the median of the valid (finite, > 0) depths; 0 when there is none */
-static double median_valid(const float *z, size_t n)
-{
-    float *v = malloc((n > 0 ? n : 1) * sizeof *v);
-    size_t i, m = 0;
-    double r = 0.0;
-    if (v == NULL)
-        return 0.0;
-    for (i = 0; i < n; i++)
-        if (isfinite(z[i]) && z[i] > 0.0f)
-            v[m++] = z[i];
-    if (m > 0) {
-        qsort(v, m, sizeof *v, cmp_float);
-        r = (double)v[m / 2];
-    }
-    free(v);
-    return r;
-}
-
-/* Write n bytes to path through a temporary (renamed into place when complete). 0 or -1. */
-static int write_file(const char *path, const void *p, size_t n, lt_diag_t *diag)
-{
-    lt_outset_t set;
-    const char *tmp;
-    FILE *f;
-    memset(&set, 0, sizeof set);
-    if (lt_outset_add(&set, path, &tmp, diag) != 0)
-        return -1;
-    f = fopen(tmp, "wb");
-    if (f == NULL || fwrite(p, 1, n, f) != n || fclose(f) != 0) {
-        if (f != NULL)
-            (void)fclose(f);
-        lt_outset_abort(&set);
-        lt_diag_fail(diag, "%s: cannot write the blob", path);
-        return -1;
-    }
-    return lt_outset_commit(&set, diag);
-}
-
 int lt_fwblob_cli(int argc, char **argv, const char *prog)
 {
     static const char *const nums[] = {"n64", "n32", NULL};
@@ -185,7 +140,7 @@ int lt_fwblob_cli(int argc, char **argv, const char *prog)
     src.cy -= (double)cy;
     src.width = cw;
     src.height = ch;
-    med = median_valid(z, n);
+    med = lt_rp_median_depth(z, n);
     for (a = 0; a < 3; a++)
         mv[a] = move[a] * med;
     lt_rp_cam_move(&src, mv, rot, &dst);
@@ -217,7 +172,7 @@ int lt_fwblob_cli(int argc, char **argv, const char *prog)
     memcpy(blob, &h, sizeof h);
     h.checksum = lt_rpb_fnv(2166136261u, blob + LT_RPB_SUM_FROM, total - LT_RPB_SUM_FROM);
     memcpy(blob, &h, sizeof h);
-    if (write_file(out, blob, total, &diag) != 0) {
+    if (lt_write_file_atomic(out, blob, total, &diag) != 0) {
         fprintf(stderr, "%s\n", diag.msg);
         goto done;
     }

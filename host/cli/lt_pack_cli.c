@@ -237,28 +237,11 @@ static int pack_build(pack_t *p)
 
 static int pack_write(const pack_t *p)
 {
-    lt_outset_t *set = calloc(1, sizeof *set);
     lt_diag_t diag;
-    const char *tmp;
-    FILE *f;
-    int ok;
-    if (set == NULL || lt_outset_add(set, p->out, &tmp, &diag) != 0) {
-        fprintf(stderr, "%s: %s\n", who_g, set == NULL ? "out of memory" : diag.msg);
-        free(set);
+    if (lt_write_file_atomic(p->out, p->blob, p->bytes, &diag) != 0) {
+        fprintf(stderr, "%s: --out: %s\n", who_g, diag.msg);
         return EXIT_INPUT;
     }
-    f = fopen(tmp, "wb");
-    ok = f != NULL && fwrite(p->blob, 1, p->bytes, f) == p->bytes;
-    if (f != NULL && fclose(f) != 0)
-        ok = 0;
-    if (!ok || lt_outset_commit(set, &diag) != 0) {
-        fprintf(stderr, "%s: --out %s: %s (nothing written)\n", who_g, p->out,
-                ok ? diag.msg : "cannot write");
-        lt_outset_abort(set);
-        free(set);
-        return EXIT_INPUT;
-    }
-    free(set);
     return 0;
 }
 

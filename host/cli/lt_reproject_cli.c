@@ -251,31 +251,6 @@ void lt_rp_cli_usage(const char *prog, FILE *f)
 
 /* ---- small helpers ------------------------------------------------------------------------- */
 
-static int cmp_float(const void *a, const void *b)
-{
-    float x = *(const float *)a, y = *(const float *)b;
-    return x < y ? -1 : (x > y ? 1 : 0);
-}
-
-/* Median of the valid (finite, > 0) depths of layer 0, or 0 when none. */
-static double median_depth(const float *z, size_t n)
-{
-    float *v = malloc(n * sizeof *v);
-    size_t i, m = 0;
-    double r = 0.0;
-    if (v == NULL)
-        return 0.0;
-    for (i = 0; i < n; i++)
-        if (isfinite(z[i]) && z[i] > 0.0f)
-            v[m++] = z[i];
-    if (m > 0) {
-        qsort(v, m, sizeof *v, cmp_float);
-        r = (double)v[m / 2];
-    }
-    free(v);
-    return r;
-}
-
 /* lanetrace render's camera (lt_camera_t: eye, fwd, right, up, fov_y over the image height) as
  * the reprojection's pinhole: rows right, -up, fwd; fx = fy = H / (2 tan(fov_y / 2)), centred. */
 void lt_rp_cam_from_camera(const lt_camera_t *cam, uint32_t w, uint32_t h, lt_reproj_cam_t *c)
@@ -637,7 +612,7 @@ static int rp_source_camera(rp_t *r)
     src->z = r->zall;
     for (l = 0; l < r->layers; l++)
         src->rgb[l] = r->rgb[l];
-    r->median = median_depth(r->zall, n);
+    r->median = lt_rp_median_depth(r->zall, n);
     return 0;
 }
 

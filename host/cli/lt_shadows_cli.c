@@ -788,15 +788,12 @@ static void shadows_outputs(shadows_t *s)
 static int shadows_pack(shadows_t *s)
 {
     uint32_t bx = UINT32_MAX, by = UINT32_MAX, th[16], t, lit = 0, occ = 0;
-    lt_outset_t *set;
-    const char *tmp;
     uint8_t *blob = NULL;
     size_t bytes = 0;
     lt_fblob_t *f;
     lt_diag_t diag;
     lt_sblob_err_t e;
-    FILE *fp;
-    int ok, rc = EXIT_INPUT;
+    int rc = EXIT_INPUT;
     if (strcmp(s->pack_block, "auto") != 0) {
         char end;
         if (sscanf(s->pack_block, "%u,%u%c", &bx, &by, &end) != 2) {
@@ -808,20 +805,13 @@ static int shadows_pack(shadows_t *s)
         fprintf(stderr, "%s: --pack-block: %s\n", who, diag.msg);
         return EXIT_INPUT;
     }
-    set = calloc(1, sizeof *set);
     f = malloc(sizeof *f);
-    if (set == NULL || f == NULL || lt_outset_add(set, s->blob, &tmp, &diag) != 0) {
-        fprintf(stderr, "%s: --blob: %s\n", who, set == NULL || f == NULL ? "out of memory" : diag.msg);
+    if (f == NULL) {
+        fprintf(stderr, "%s: --blob: out of memory\n", who);
         goto done;
     }
-    fp = fopen(tmp, "wb");
-    ok = fp != NULL && fwrite(blob, 1, bytes, fp) == bytes;
-    if (fp != NULL && fclose(fp) != 0)
-        ok = 0;
-    if (!ok || lt_outset_commit(set, &diag) != 0) {
-        fprintf(stderr, "%s: --blob %s: %s (nothing written)\n", who, s->blob,
-                ok ? diag.msg : "cannot write");
-        lt_outset_abort(set);
+    if (lt_write_file_atomic(s->blob, blob, bytes, &diag) != 0) {
+        fprintf(stderr, "%s: --blob: %s\n", who, diag.msg);
         goto done;
     }
     e = lt_fblob_open(blob, bytes, f);
@@ -848,7 +838,6 @@ static int shadows_pack(shadows_t *s)
     rc = t == f->ref ? 0 : EXIT_INPUT;
 done:
     free(f);
-    free(set);
     free(blob);
     return rc;
 }

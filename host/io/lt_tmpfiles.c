@@ -5,6 +5,7 @@
 #include <errno.h>
 #include <signal.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -147,4 +148,33 @@ void lt_outset_abort(lt_outset_t *s)
     for (i = 0; i < s->n; i++)
         lt_tmp_discard(s->tmp[i]);
     s->n = 0;
+}
+
+int lt_write_file_atomic(const char *path, const void *p, size_t n, lt_diag_t *diag)
+{
+    lt_outset_t *set = calloc(1, sizeof *set); /* 128 KB of names: not on the stack */
+    const char *tmp;
+    FILE *f;
+    if (set == NULL) {
+        lt_diag_fail(diag, "%s: out of memory", path);
+        return -1;
+    }
+    if (lt_outset_add(set, path, &tmp, diag) != 0) {
+        free(set);
+        return -1;
+    }
+    f = fopen(tmp, "wb");
+    if (f == NULL || fwrite(p, 1, n, f) != n || fclose(f) != 0) {
+        if (f != NULL)
+            (void)fclose(f);
+        lt_outset_abort(set);
+        free(set);
+        lt_diag_fail(diag, "%s: cannot write the file (nothing written)", path);
+        return -1;
+    }
+    {
+        int rc = lt_outset_commit(set, diag);
+        free(set);
+        return rc;
+    }
 }

@@ -54,6 +54,10 @@ int lt_outset_commit(lt_outset_t *s, lt_diag_t *diag);
 /* Remove every member's temporary (the previous files stay as they were). */
 void lt_outset_abort(lt_outset_t *s);
 
+/* Write the n bytes at p as the file path, all or nothing (a one-member output set). Returns 0,
+ * or -1 with a message naming path (the previous file is unchanged). */
+int lt_write_file_atomic(const char *path, const void *p, size_t n, lt_diag_t *diag);
+
 #ifdef __cplusplus
 }
 #endif

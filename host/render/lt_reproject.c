@@ -859,3 +859,27 @@ int lt_rp_truth_compare(const lt_rp_result_t *res, const float *ztrue, double to
     free(rels);
     return 0;
 }
+
+static int cmp_float(const void *a, const void *b)
+{
+    float x = *(const float *)a, y = *(const float *)b;
+    return x < y ? -1 : (x > y ? 1 : 0);
+}
+
+double lt_rp_median_depth(const float *z, size_t n)
+{
+    float *v = malloc((n > 0 ? n : 1) * sizeof *v);
+    size_t i, m = 0;
+    double r = 0.0;
+    if (v == NULL)
+        return 0.0;
+    for (i = 0; i < n; i++)
+        if (isfinite(z[i]) && z[i] > 0.0f)
+            v[m++] = z[i];
+    if (m > 0) {
+        qsort(v, m, sizeof *v, cmp_float);
+        r = (double)v[m / 2];
+    }
+    free(v);
+    return r;
+}

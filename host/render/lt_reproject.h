@@ -163,6 +163,10 @@ typedef struct lt_rp_truth {
 int lt_rp_truth_compare(const lt_rp_result_t *res, const float *ztrue, double tol,
                         lt_rp_truth_t *t, float *relerr);
 
+/* The median (element m / 2 of the sorted values) of the valid (finite, > 0) depths z[0..n), or 0
+ * when there is none or memory runs out (reproject's --move-rel unit, fwblob's). */
+double lt_rp_median_depth(const float *z, size_t n);
+
 #ifdef __cplusplus
 }
 #endif
