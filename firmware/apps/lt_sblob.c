@@ -430,7 +430,7 @@ static lt_mask16_t shadow_packet(const lt_sblob_t *s, const lt_ray16_q16_t *pr,
 /* One 4x4 group of pixels as 16-ray packets: the results of the lanes of the returned mask into
  * id/dist/occ (indexed by lane). */
 static lt_status_t group_packets(const lt_sblob_t *s, uint32_t px, uint32_t py,
-                                 uint64_t (*ticks)(void), lt_sblob_tile_t *out, lt_mask16_t *km,
+                                 lt_sblob_clock_fn ticks, lt_sblob_tile_t *out, lt_mask16_t *km,
                                  int32_t id[16], lt_q16_t dist[16], uint8_t occ[16])
 {
     lt_ray16_q16_t r, sr;
@@ -439,16 +439,19 @@ static lt_status_t group_packets(const lt_sblob_t *s, uint32_t px, uint32_t py,
     uint64_t t0 = 0, t1 = 0;
     lt_status_t st;
     int i;
-    if (ticks != (uint64_t (*)(void))0)
-        t0 = ticks();
+    if (ticks != (lt_sblob_clock_fn)0)
+        t0 = ticks(LT_STAGE_PRIMARY);
     *km = k = primary_packet(s, px, py, &r);
-    if (k == 0)
+    if (k == 0) {
+        if (ticks != (lt_sblob_clock_fn)0)
+            (void)ticks(LT_STAGE_UNTIMED);
         return LT_OK;
+    }
     st = lt_bvh_trace16_q16(&s->bvh, s->tris, &r, k, &hit);
     if (st != LT_OK)
         return st;
-    if (ticks != (uint64_t (*)(void))0) {
-        t1 = ticks();
+    if (ticks != (lt_sblob_clock_fn)0) {
+        t1 = ticks((s->flags & LT_SBLOB_F_SHADOWS) ? LT_STAGE_SHADOW : LT_STAGE_UNTIMED);
         out->t_primary += t1 - t0;
     }
     if (s->flags & LT_SBLOB_F_SHADOWS) {
@@ -459,8 +462,8 @@ static lt_status_t group_packets(const lt_sblob_t *s, uint32_t px, uint32_t py,
             if (st != LT_OK)
                 return st;
         }
-        if (ticks != (uint64_t (*)(void))0)
-            out->t_shadow += ticks() - t1;
+        if (ticks != (lt_sblob_clock_fn)0)
+            out->t_shadow += ticks(LT_STAGE_UNTIMED) - t1;
     }
     for (i = 0; i < LT_LANES; i++) {
         id[i] = hit.id.l[i];
@@ -473,7 +476,7 @@ static lt_status_t group_packets(const lt_sblob_t *s, uint32_t px, uint32_t py,
 /* The same 4x4 group ray by ray (lt_bvh_trace1_q16 / lt_bvh_occluded1_q16: bit-identical to a
  * packet lane, so the results equal group_packets'). */
 static lt_status_t group_single(const lt_sblob_t *s, uint32_t px, uint32_t py,
-                                uint64_t (*ticks)(void), lt_sblob_tile_t *out, lt_mask16_t *km,
+                                lt_sblob_clock_fn ticks, lt_sblob_tile_t *out, lt_mask16_t *km,
                                 int32_t id[16], lt_q16_t dist[16], uint8_t occ[16])
 {
     int i;
@@ -488,8 +491,8 @@ static lt_status_t group_single(const lt_sblob_t *s, uint32_t px, uint32_t py,
         if (x >= s->width || y >= s->height)
             continue;
         *km = (lt_mask16_t)(*km | (1u << i));
-        if (ticks != (uint64_t (*)(void))0)
-            t0 = ticks();
+        if (ticks != (lt_sblob_clock_fn)0)
+            t0 = ticks(LT_STAGE_PRIMARY1);
         r.o[0] = s->eye[0];
         r.o[1] = s->eye[1];
         r.o[2] = s->eye[2];
@@ -500,8 +503,8 @@ static lt_status_t group_single(const lt_sblob_t *s, uint32_t px, uint32_t py,
         st = lt_bvh_trace1_q16(&s->bvh, s->tris, &r, &hid);
         if (st != LT_OK)
             return st;
-        if (ticks != (uint64_t (*)(void))0) {
-            t1 = ticks();
+        if (ticks != (lt_sblob_clock_fn)0) {
+            t1 = ticks((s->flags & LT_SBLOB_F_SHADOWS) && hid >= 0 ? LT_STAGE_SHADOW1 : LT_STAGE_UNTIMED);
             out->t_primary += t1 - t0;
         }
         id[i] = hid;
@@ -520,8 +523,8 @@ static lt_status_t group_single(const lt_sblob_t *s, uint32_t px, uint32_t py,
                 if (st != LT_OK)
                     return st;
             }
-            if (ticks != (uint64_t (*)(void))0)
-                out->t_shadow += ticks() - t1;
+            if (ticks != (lt_sblob_clock_fn)0)
+                out->t_shadow += ticks(LT_STAGE_UNTIMED) - t1;
         }
         occ[i] = (uint8_t)o;
     }
@@ -529,7 +532,7 @@ static lt_status_t group_single(const lt_sblob_t *s, uint32_t px, uint32_t py,
 }
 
 lt_status_t lt_sblob_trace_tile(const lt_sblob_t *s, uint32_t t, int single,
-                                uint64_t (*ticks)(void), lt_sblob_tile_t *out)
+                                lt_sblob_clock_fn ticks, lt_sblob_tile_t *out)
 {
     uint32_t tx, ty;
     uint32_t h = LT_SBLOB_FNV0;
@@ -714,7 +717,7 @@ uint32_t lt_fblob_block_hash(const uint32_t tile_hash[16])
     return h;
 }
 
-lt_status_t lt_fblob_trace_tile(const lt_fblob_t *f, uint32_t t, uint64_t (*ticks)(void),
+lt_status_t lt_fblob_trace_tile(const lt_fblob_t *f, uint32_t t, lt_sblob_clock_fn ticks,
                                 lt_fblob_tile_t *out)
 {
     lt_frusta16_q16_t F;
@@ -729,8 +732,8 @@ lt_status_t lt_fblob_trace_tile(const lt_fblob_t *f, uint32_t t, uint64_t (*tick
     out->ticks = 0;
     if (t >= 16u)
         return LT_E_ARG;
-    if (ticks != (uint64_t (*)(void))0)
-        t0 = ticks();
+    if (ticks != (lt_sblob_clock_fn)0)
+        t0 = ticks(LT_STAGE_FRUSTA);
     for (i = 0; i < 16u; i++) {
         unsigned x = 4u * (t % 4u) + i % 4u, y = 4u * (t / 4u) + i / 4u, q = y * 16u + x;
         lit[i] = (uint8_t)((f->lit[q / 32u] >> (q % 32u)) & 1u);
@@ -746,8 +749,8 @@ lt_status_t lt_fblob_trace_tile(const lt_fblob_t *f, uint32_t t, uint64_t (*tick
     st = lt_frusta_occluded16_q16(&f->bvh, f->tris, &f->tb, &F);
     if (st != LT_OK)
         return st;
-    if (ticks != (uint64_t (*)(void))0)
-        out->ticks = ticks() - t0;
+    if (ticks != (lt_sblob_clock_fn)0)
+        out->ticks = ticks(LT_STAGE_UNTIMED) - t0;
     for (i = 0; i < 16u; i++) {
         occl[i] = lit[i] ? F.occl[i] : 0u;
         out->lit += lit[i];

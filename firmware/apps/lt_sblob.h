@@ -12,6 +12,7 @@
 
 #include <stddef.h>
 #include <stdint.h>
+#include "lt_stage.h"
 #include "lt/lt.h"
 #include "lt/lt_frusta.h"
 #include "lt/lt_qmc.h"
@@ -128,9 +129,9 @@ const char *lt_sblob_err_str(lt_sblob_err_t e);
  * LT_SBLOB_F_SHADOWS a shadow ray per hit; single = 0: 16-ray packets of 4x4 pixels
  * (lt_bvh_trace16_q16, lt_bvh_occluded16_q16), 1: one ray at a time (lt_bvh_trace1_q16,
  * lt_bvh_occluded1_q16), which gives the same results bit for bit. ticks (may be NULL) times the
- * two stages. Returns LT_OK or the traversal's error (LT_E_ARG for t out of range). */
+ * two stages (LT_STAGE_PRIMARY and _SHADOW, or _PRIMARY1 and _SHADOW1 ray by ray). Returns LT_OK or the traversal's error (LT_E_ARG for t out of range). */
 lt_status_t lt_sblob_trace_tile(const lt_sblob_t *s, uint32_t t, int single,
-                                uint64_t (*ticks)(void), lt_sblob_tile_t *out);
+                                lt_sblob_clock_fn ticks, lt_sblob_tile_t *out);
 
 /* ---- frusta blobs: one 16x16 block of multi-frusta soft shadows ----------------------------- */
 
@@ -189,7 +190,7 @@ lt_sblob_err_t lt_fblob_open(const void *p, size_t bytes, lt_fblob_t *f);
 
 /* S-Frusta of 4x4 tile t (0..15, raster order in the block). ticks may be NULL. Returns LT_OK or
  * the walk's error (LT_E_ARG for t > 15). */
-lt_status_t lt_fblob_trace_tile(const lt_fblob_t *f, uint32_t t, uint64_t (*ticks)(void),
+lt_status_t lt_fblob_trace_tile(const lt_fblob_t *f, uint32_t t, lt_sblob_clock_fn ticks,
                                 lt_fblob_tile_t *out);
 
 /* The block hash: FNV-1a over the 16 tile hashes in order (also how the host hashes the whole

@@ -244,13 +244,13 @@ static int run_tile(const lt_rpb_hdr_t *h, const lt_qt_t *qt, lt_qray16_q30_t *r
                     kon = (lt_mask16_t)(kon | (1u << i));
             k = kon;
             if (port->ticks != 0)
-                t0 = port->ticks(port->ctx);
+                t0 = port->ticks(port->ctx, LT_STAGE_REPROJ);
             if (lt_reproj_rays16_q30(m, px, py, r, &k) != LT_OK)
                 return LT_RPAPP_E_MAP;
             if (k != 0u && lt_qt_trace16_q30(qt, r, k, h->max_steps, hit) != LT_OK)
                 return LT_RPAPP_E_TRACE;
             if (port->ticks != 0)
-                *tk += port->ticks(port->ctx) - t0;
+                *tk += port->ticks(port->ctx, LT_STAGE_UNTIMED) - t0;
             hh = fnv_u32(hh, k);
             c->rays += (uint32_t)lt__popcount32(kon);
             c->kept += (uint32_t)lt__popcount32(k);
@@ -351,11 +351,11 @@ int lt_rpapp_run(const lt_rpapp_port_t *port, const void *blob, size_t blob_len,
     d.enc = h->enc;
     prm = h->params;
     if (port->ticks != 0)
-        t_build = port->ticks(port->ctx);
+        t_build = port->ticks(port->ctx, LT_STAGE_QT_BUILD);
     if (lt_qt_build_q30(&qt, &d, &prm, w, arena, &qb) != LT_OK)
         return fail(port, LT_RPAPP_E_BUILD, err_text(LT_RPAPP_E_BUILD));
     if (port->ticks != 0)
-        t_build = port->ticks(port->ctx) - t_build;
+        t_build = port->ticks(port->ctx, LT_STAGE_UNTIMED) - t_build;
 
     tot.rays = tot.kept = tot.hit_back = 0;
     tot.nodes = 0;

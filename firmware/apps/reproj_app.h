@@ -13,6 +13,7 @@
 #include <stddef.h>
 #include <stdint.h>
 #include "lt/lt_reproj.h"
+#include "lt_stage.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -91,7 +92,9 @@ static inline uint32_t lt_rpb_fnv(uint32_t h, const uint8_t *p, size_t n)
 /* What the app runs on. */
 typedef struct lt_rpapp_port {
     void (*puts)(void *ctx, const char *s); /* one output line (with its '\n') */
-    uint64_t (*ticks)(void *ctx);           /* instruction clock, or NULL (no "ticks:" line) */
+    /* instruction clock, or NULL (no "ticks:" line): the ticks so far; stage (LT_STAGE_QT_BUILD,
+       LT_STAGE_REPROJ or LT_STAGE_UNTIMED, lt_stage.h) begins now */
+    uint64_t (*ticks)(void *ctx, uint32_t stage);
     void *ctx;
     const char *name;                       /* printed in the first line ("cm4", "host") */
 } lt_rpapp_port_t;

@@ -24,9 +24,11 @@ static void fw_puts(void *ctx, const char *s)
     lt_fw_puts(s);
 }
 
-static uint64_t fw_ticks(void *ctx)
+/* Marks the stage for the QEMU plugin's cycle model (lt_fw_stage), then reads the clock. */
+static uint64_t fw_ticks(void *ctx, uint32_t stage)
 {
     (void)ctx;
+    lt_fw_stage(stage);
     return lt_fw_ticks();
 }
 

@@ -49,6 +49,14 @@ LT_NORETURN void lt_fw_exit(int code);
  * Cost: a few tens of instructions (Arm: includes a 64-bit multiply). */
 uint64_t lt_fw_ticks(void);
 
+/* Mark the start of stage k (0..15) of a program for the lt_icount QEMU plugin's cycle model
+ * (docs/qemu-plugin.md, "Stages"): one store of k to lt_fw_stage_slots[k]. Run with the plugin's
+ * stage=ADDR (the address of lt_fw_stage_slots, from nm), it credits every instruction from this
+ * call to the next mark to stage k; without the plugin it is a store and nothing else. Stage 0 is
+ * "untimed" and is where every program starts. Cost: a call and a store. */
+void lt_fw_stage(uint32_t k);
+extern volatile uint32_t lt_fw_stage_slots[16];
+
 /* Bytes of the main stack used so far (its high-water mark) and its size. The start-up code
  * paints the stack below its own frame with a pattern before main; the high-water mark is the
  * distance from the stack's top to the lowest word no longer holding it. lt_fw_exit prints
