@@ -87,6 +87,42 @@ $(B)/gen/sibenik-block.ltfb: $(B)/host/lanetrace-native $(FW_FRUSTA_MESH)
 	@$(B)/host/lanetrace-native shadows --mesh $(FW_SHARED_DIR)/scenes/sibenik.obj --res 128 \
 	    --num q16 --only frusta --no-ref -q --pack-block auto --blob $@ >/dev/null
 FW_SHARED_IMAGES := $(if $(FW_FRUSTA_MESH),$(foreach t,$(FW_TARGETS),$(B)/fw/$(t)/scene-sibenik.elf))
+# Calibration images of the firmware cycle models (docs/firmware.md, "Cycle models"): the same
+# apps over blobs of two small synthetic scenes (tools/cal_scene.py a|b), disjoint from the scenes
+# the models are checked on: cal-<s> a 32x32 scene blob, calf-<s> a frusta block at 64x64, calr-<s>
+# the reprojection of the scene's own 64x64 depth render. Built by `make fw-cal`.
+FW_CAL_SCENES := a b
+define fw_cal
+$(B)/gen/cal-$(1).obj: tools/cal_scene.py
+	@mkdir -p $$(@D)
+	@echo "GEN $$@"
+	@python3 tools/cal_scene.py $(1) $$@
+FW_IMG_cal-$(1) := firmware/apps/scene_fw.c firmware/apps/lt_sblob.c
+FW_BLOB_cal-$(1) := $(B)/gen/cal-$(1).ltsb
+$(B)/gen/cal-$(1).ltsb: $(B)/host/lanetrace-native $(B)/gen/cal-$(1).obj
+	@echo "PACK $$@"
+	@$(B)/host/lanetrace-native pack --mesh $(B)/gen/cal-$(1).obj --res 32 --out $$@ >/dev/null
+FW_IMG_calf-$(1) := firmware/apps/scene_fw.c firmware/apps/lt_sblob.c
+FW_BLOB_calf-$(1) := $(B)/gen/cal-$(1).ltfb
+$(B)/gen/cal-$(1).ltfb: $(B)/host/lanetrace-native $(B)/gen/cal-$(1).obj
+	@echo "PACK $$@"
+	@$(B)/host/lanetrace-native shadows --mesh $(B)/gen/cal-$(1).obj --res 64 --num q16 \
+	    --only frusta --no-ref -q --pack-block auto --blob $$@ >/dev/null
+FW_IMG_calr-$(1) := $(FW_IMG_reproj-bb)
+FW_BLOB_calr-$(1) := $(B)/gen/cal-$(1).rpb
+$(B)/gen/cal-$(1).rpb: $(B)/host/lanetrace-native $(B)/gen/cal-$(1).obj
+	@echo "GEN $$@"
+	@$(B)/host/lanetrace-native render --mesh $(B)/gen/cal-$(1).obj --res 64 --num q16 -q \
+	    --out $(B)/gen/cal-$(1)-depth >/dev/null
+	@$(B)/host/lanetrace-native fwblob --depth $(B)/gen/cal-$(1)-depth.exr --crop 0,0,64,64 \
+	    --layers 2 --num n64 --tile 16 --out $$@ -q
+endef
+$(foreach s,$(FW_CAL_SCENES),$(eval $(call fw_cal,$(s))))
+FW_CAL_NAMES := $(foreach s,$(FW_CAL_SCENES),cal-$(s) calf-$(s) calr-$(s))
+FW_CAL_IMAGES := $(foreach t,$(FW_TARGETS),$(FW_CAL_NAMES:%=$(B)/fw/$(t)/%.elf)) \
+    $(FW_CAL_NAMES:%=$(B)/fw/cm55/%-portable.elf)
+fw-cal: $(FW_CAL_IMAGES) $(foreach s,$(FW_CAL_SCENES),$(B)/gen/cal-$(s).ltsb $(B)/gen/cal-$(s).ltfb $(B)/gen/cal-$(s).rpb)
+.PHONY: fw-cal
 FW_IMG_opcal := tests/fw/fw_opcal.c
 FW_IMG_tri := tests/fw/fw_tri.c tests/vectors/lt_tri_loop.c
 
@@ -156,6 +192,8 @@ FW_PORTABLE_IMAGES := vectors scene-bunny $(if $(FW_FRUSTA_MESH),scene-sibenik) 
     $(if $(wildcard $(FW_RPBB_EXR)),reproj-bb)
 $(foreach i,$(FW_PORTABLE_IMAGES),$(eval $(call fw_image,cm55,$(i),objp,-portable)))
 $(foreach i,opcal tri,$(eval $(call fw_image,cm4,$(i),obj,)))
+$(foreach t,$(FW_TARGETS),$(foreach i,$(FW_CAL_NAMES),$(eval $(call fw_image,$(t),$(i),obj,))))
+$(foreach i,$(FW_CAL_NAMES),$(eval $(call fw_image,cm55,$(i),objp,-portable)))
 # kept for the fragments that link their own images against the core and runtime objects
 $(foreach t,$(FW_TARGETS),$(eval fw_$(t)_CORE := $(call fw_objs,$(t),obj,$(FW_CORE_SRCS))) \
     $(eval fw_$(t)_RT := $(call fw_objs,$(t),obj,$(FW_RT_SRCS_$(t)))))
