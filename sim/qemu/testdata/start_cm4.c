@@ -1,11 +1,16 @@
 /* start_cm4.c: Cortex-M4 (QEMU mps2-an386) startup for the lt_icount plugin test: vector table,
  * reset, CMSDK UART0 output and exit through semihosting SYS_EXIT_EXTENDED (docs/firmware.md).
- * No .data or .bss initialisation: the test program has no initialised data.
+ * No .data or .bss initialisation: the test program has no initialised data. Also the Cortex-M55
+ * (mps3-an547) startup, with -DLT_TEST_UART0=0x49303000u -DLT_TEST_MVE (MVE enabled at reset).
  */
 #include <stdint.h>
 
-#define UART0_DATA (*(volatile uint32_t *)0x40004000u)
-#define UART0_CTRL (*(volatile uint32_t *)0x40004008u)
+#ifndef LT_TEST_UART0
+#define LT_TEST_UART0 0x40004000u /* mps2-an386 */
+#endif
+#define UART0_DATA (*(volatile uint32_t *)LT_TEST_UART0)
+#define UART0_CTRL (*(volatile uint32_t *)(LT_TEST_UART0 + 8u))
+#define CPACR      (*(volatile uint32_t *)0xE000ED88u)
 
 extern uint32_t __stack_top;     /* cm4.ld */
 int main(void);
@@ -21,6 +26,10 @@ __attribute__((section(".vectors"), used)) static const void *const vectors[4] =
 
 void Reset_Handler(void)
 {
+#ifdef LT_TEST_MVE
+    CPACR |= 0xFu << 20; /* CP10, CP11 full access: FP and MVE */
+    __asm__ volatile("dsb\n\tisb" ::: "memory");
+#endif
     UART0_CTRL = 1u; /* TX enable */
     lt_test_exit(main());
 }
