@@ -46,7 +46,7 @@ $(B)/gen/reproj_bb.blob: $(B)/host/lanetrace-native $(FW_RPBB_EXR) firmware/firm
 # The counting image's machine per target, and its issue-cycle table generated from the machine
 # file (data: the firmware sources never include sim/).
 FWC_MACHINE_cm4 := mcu_m4
-FWC_MACHINE_cm55 := mcu_m4
+FWC_MACHINE_cm55 := mcu_m55
 FWC_MACHINE_rv32 := rv32imac
 $(B)/gen/fwc_%.c: sim/machines/%.def firmware/include/lt/lt_ops.def Makefile
 	@mkdir -p $(@D)

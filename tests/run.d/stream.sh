@@ -88,12 +88,15 @@ check "fw/cm4 over QEMU -serial tcp (port $port) into lt-stream --tcp: exit $rc,
 echo "-- on-target counting (stream-count.elf: LT_COST_HANDLER, the target's machine model)"
 "$SIMBIN/lt-stream-dev" --machine rv32imac --out "$S/simrv.bin" 2>/dev/null
 "$HOSTBIN/lt-stream" --file "$S/simrv.bin" --tiles "$S/simrv.tiles" >/dev/null
+"$SIMBIN/lt-stream-dev" --machine mcu-m55 --out "$S/sim55.bin" 2>/dev/null
+"$HOSTBIN/lt-stream" --file "$S/sim55.bin" --tiles "$S/sim55.tiles" >/dev/null
 # frame, tile, cycles, aabb, aabb_rays, tris, tri_rays of every tile report
 cnt() { awk '$1 == "tile" { print $2, $3, $13, $15, $17, $19, $21 }' "$1" | sort; }
 for t in cm4 cm55 rv32; do
     qvar="QEMU_$t"
     ref="$S/sim.tiles"; m=mcu-m4
     [ $t = rv32 ] && ref="$S/simrv.tiles" && m=rv32imac
+    [ $t = cm55 ] && ref="$S/sim55.tiles" && m=mcu-m55
     timeout 120 ${!qvar} "$B/fw/$t/stream-count.elf" >"$S/$t.cnt.bin" 2>/dev/null </dev/null
     rc=$?
     "$HOSTBIN/lt-stream" --file "$S/$t.cnt.bin" --tiles "$S/$t.cnt.tiles" --json >"$S/$t.cnt.json"
