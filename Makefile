@@ -190,7 +190,8 @@ test: deps
 test-build: $(TEST_BINS) firmware $(PLUGIN_SO) $(FW_SHARED_IMAGES)
 
 bench: deps
-	@$(MAKE) --no-print-directory all firmware opcal $(B)/host/embree-race $(B)/sim/ssbench
+	@$(MAKE) --no-print-directory all firmware opcal fw-cal $(PLUGIN_SO) $(B)/sim/lt-fwmodel \
+	    $(B)/host/embree-race $(B)/sim/ssbench
 	@tests/bench/bench.sh
 
 # the rooms' rules: the core includes nothing of host, sim or tests; no shipped program from tests/

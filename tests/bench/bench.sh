@@ -103,3 +103,6 @@ tests/bench/qtcal.sh "$B/sim/lanetrace"
 
 echo "== 11. firmware: instructions per ray of real meshes on cm4, cm55 and rv32 (scene blobs under QEMU, lt_icount plugin; tools/fw_rays.sh, docs/firmware.md)"
 B=$B tools/fw_rays.sh
+
+echo "== 12. firmware cycle models: the plugin's modelled cycles per kernel family against the fitted machine files' prediction, out of sample (tools/fw_cycles.sh, docs/firmware.md, \"Cycle models\")"
+B=$B tools/fw_cycles.sh

@@ -1,7 +1,10 @@
 #!/usr/bin/env bash
-# opcal.sh - calibrate a scalar machine model from exact QEMU instruction counts:
-#   cm4  (default): sim/machines/mcu_m4.def, Cortex-M4F on mps2-an386 (hardware float);
-#   rv32: sim/machines/rv32imac.def, RV32IMAC on virt (-mabi=ilp32: float32 in libgcc soft float).
+# opcal.sh - per-op microbenchmarks of a scalar machine from exact QEMU instruction counts: they
+# gave the per-op costs the machine files had before their fit, now the fit's prior
+# (sim/qemu/cycles/<target>.prior, tools/fw_fit.py), and the float rows, which no firmware stage
+# fits (docs/firmware.md, "Cycle models"; docs/cost-model.md):
+#   cm4  (default): mcu-m4, Cortex-M4F on mps2-an386 (hardware float);
+#   rv32: rv32imac, RV32IMAC on virt (-mabi=ilp32: float32 in libgcc soft float).
 #  1. builds, with the Makefile's own rules and flags (firmware/opcal.mk, `make opcal-<target>`):
 #     build/fw/<target>/opcal.elf (tests/fw/fw_opcal.c), tri.elf, slab.elf (rv32 also tri_f32.elf,
 #     slab_f32.elf), build/sim/{slab,tri}-model and the lt_icount plugin;
@@ -284,6 +287,8 @@ awk -v fadd="$FADD_SPEC" -v fdiv="$FDIV_SPEC" '
     }' "$OUT/perop.txt"
 
 # Kernel checks: the model's prediction vs the count inside the kernel and every function it calls.
+# The machines' integer rows are fitted in modelled cycles (tools/fw_cycles.sh), so pred/count of
+# an s15.16 kernel includes the plugin's cycles per instruction (1.2-1.8 on these targets).
 # A helper the loop around the kernel also called would be counted for the kernel: refused, except
 # the start-up's copy of .data (lt__fw_reset calls lt__memcpy once, before main: on cm4 its few
 # instructions are in the memcpy count).
