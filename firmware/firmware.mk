@@ -14,12 +14,14 @@
 #   build/fw/<T>/stream.elf    the streaming firmware (firmware/apps/stream_fw.c; docs/stream.md)
 #   build/fw/<T>/stream-count.elf  the same over a core counting on the target (LT_COST_HANDLER,
 #                              firmware/apps/lt_fw_count.h): its reports carry modelled cycles of
-#                              the target's machine (mcu-m4 for cm4/cm55, rv32imac for rv32), priced
+#                              the target's machine (mcu-m4, mcu-m55, rv32imac), priced
 #                              by a table the build makes from sim/machines/<machine>.def
 #   build/fw/rv32/vectors-fixed.elf  LT_CFG_FLOAT32=0: must link no soft-float helper
 #   build/fw/cm55/<image>-portable.elf  cm55 images (vectors, the blob programs) built with
 #                              LT_LANES_PORTABLE: the portable lane loops instead of the Helium
 #                              backend (firmware/include/lt/lt_v16_mve.h), the reference
+#   build/fw/cm4/{vectors,scene-bunny}-portable.elf  cm4 with LT_LANES_PORTABLE: the portable
+#                              saturating adds instead of DSP QADD/QSUB (lt_fx.h)
 # `make firmware` builds them, then tools/check_fw.sh fails on any libc or lt_sim_ symbol, and
 # prints .text/.data/.bss per image.
 
@@ -166,8 +168,10 @@ $(B)/fw/$(1)/$(2)$(4).elf: $(call fw_objs,$(1),$(3),$(FW_IMG_$(2)) $(FW_CORE_SRC
 $(if $(FW_BLOB_$(2)),$(eval $(call fw_blob_rule,$(1),$(2),$(3))))
 endef
 
-# cm55 also builds the portable lane loops (LT_LANES_PORTABLE: no Helium backend, the reference)
+# cm55 also builds the portable lane loops (LT_LANES_PORTABLE: no Helium backend, the reference),
+# and cm4 the portable saturating adds (no DSP QADD/QSUB, lt_fx.h)
 $(eval $(call fw_obj_rules,cm55,objp,-DLT_LANES_PORTABLE))
+$(eval $(call fw_obj_rules,cm4,objp,-DLT_LANES_PORTABLE))
 $(foreach t,$(FW_TARGETS),$(eval $(call fw_obj_rules,$(t),obj,)) \
     $(eval $(call fw_obj_rules,$(t),objx,-DLT_CFG_FLOAT32=0)) \
     $(eval $(call fw_obj_rules,$(t),objc,-ULT_COST_MODE -DLT_COST_MODE=LT_COST_HANDLER \
@@ -191,6 +195,8 @@ $(eval $(call fw_image,rv32,vectors,objx,-fixed))
 FW_PORTABLE_IMAGES := vectors scene-bunny $(if $(FW_FRUSTA_MESH),scene-sibenik) \
     $(if $(wildcard $(FW_RPBB_EXR)),reproj-bb)
 $(foreach i,$(FW_PORTABLE_IMAGES),$(eval $(call fw_image,cm55,$(i),objp,-portable)))
+FW_PORTABLE_IMAGES_cm4 := vectors scene-bunny
+$(foreach i,$(FW_PORTABLE_IMAGES_cm4),$(eval $(call fw_image,cm4,$(i),objp,-portable)))
 $(foreach i,opcal tri,$(eval $(call fw_image,cm4,$(i),obj,)))
 $(foreach t,$(FW_TARGETS),$(foreach i,$(FW_CAL_NAMES),$(eval $(call fw_image,$(t),$(i),obj,))))
 $(foreach i,$(FW_CAL_NAMES),$(eval $(call fw_image,cm55,$(i),objp,-portable)))
@@ -200,7 +206,8 @@ $(foreach t,$(FW_TARGETS),$(eval fw_$(t)_CORE := $(call fw_objs,$(t),obj,$(FW_CO
 
 FW_IMAGES := $(foreach t,$(FW_TARGETS),$(foreach i,$(FW_ALL_IMAGES) stream-count,$(B)/fw/$(t)/$(i).elf)) \
     $(B)/fw/rv32/vectors-fixed.elf $(FW_SHARED_IMAGES) \
-    $(FW_PORTABLE_IMAGES:%=$(B)/fw/cm55/%-portable.elf)
+    $(FW_PORTABLE_IMAGES:%=$(B)/fw/cm55/%-portable.elf) \
+    $(FW_PORTABLE_IMAGES_cm4:%=$(B)/fw/cm4/%-portable.elf)
 
 firmware: $(FW_IMAGES)
 	@tools/check_fw.sh $(FW_IMAGES)

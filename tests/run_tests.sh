@@ -76,6 +76,14 @@ nmve=$(arm-none-eabi-objdump -d -marmv8.1-m.main "$B/fw/cm55/vectors.elf" | grep
 nport=$(arm-none-eabi-objdump -d -marmv8.1-m.main "$B/fw/cm55/vectors-portable.elf" | grep -cE '\s(vqadd|vqsub|vmulh)\.s32')
 check "vectors/cm55 portable lanes (LT_LANES_PORTABLE) = golden; the Helium image has $nmve VQADD/VQSUB/VMULH.S32, the portable one $nport" \
     bash -c "diff -u '$golden' '$tmp/cm55p.txt' && [ $nmve -gt 0 ] && [ $nport -eq 0 ]"
+# cm4: the default images take the DSP extension's QADD/QSUB for the saturating adds (lt_fx.h),
+# the -portable ones the portable 64-bit sums; both must give the golden lines
+timeout 120 $QEMU_cm4 "$B/fw/cm4/vectors-portable.elf" >"$tmp/cm4p.out" 2>/dev/null
+grep -v '^ram: ' "$tmp/cm4p.out" >"$tmp/cm4p.txt"
+ndsp=$(arm-none-eabi-objdump -d "$B/fw/cm4/vectors.elf" | grep -cE '\sq(add|sub)\s')
+ndspp=$(arm-none-eabi-objdump -d "$B/fw/cm4/vectors-portable.elf" | grep -cE '\sq(add|sub)\s')
+check "vectors/cm4 portable saturating adds (LT_LANES_PORTABLE) = golden; the DSP image has $ndsp QADD/QSUB, the portable one $ndspp" \
+    bash -c "diff -u '$golden' '$tmp/cm4p.txt' && [ $ndsp -gt 0 ] && [ $ndspp -eq 0 ]"
 timeout 120 $QEMU_rv32 "$B/fw/rv32/vectors-fixed.elf" >"$tmp/rv32x.txt" 2>/dev/null
 grep -v -e '_f32 ' -e '^groups' "$golden" >"$tmp/golden-fixed.txt"
 grep -v -e '^groups' -e '^ram: ' "$tmp/rv32x.txt" >"$tmp/rv32x-body.txt"

@@ -22,18 +22,20 @@ run() {
     local img=$1 t=$2 q elf
     case $t in
     cm55p) q=QEMU_cm55 elf="$B/fw/cm55/$img-portable.elf" ;;
+    cm4p) q=QEMU_cm4 elf="$B/fw/cm4/$img-portable.elf" ;;
     *) q="QEMU_$t" elf="$B/fw/$t/$img.elf" ;;
     esac
     rm -f "$tmp/cnt"
     timeout 300 ${!q} "$elf" -plugin "$B/plugin/lt_icount.so,out=$tmp/cnt" </dev/null >"$tmp/out"
 }
-label() { case $1 in cm55p) echo "cm55 portable" ;; cm55) echo "cm55 Helium" ;; *) echo "$1" ;; esac; }
-TARGETS="cm4 cm55p cm55 rv32"
+label() { case $1 in cm55p) echo "cm55 portable" ;; cm55) echo "cm55 Helium" ;; cm4p) echo "cm4 portable" ;; cm4) echo "cm4 DSP" ;; *) echo "$1" ;; esac; }
+TARGETS="cm4p cm4 cm55p cm55 rv32"
 echo "| scene | target | packets: primary | packets: shadow | single rays: primary | single rays: shadow | blob checks | whole run (plugin) | timed stages / plugin |"
 echo "|---|---|---|---|---|---|---|---|---|"
 for s in "${scenes[@]}"; do
     for t in $TARGETS; do
         [ "$t" != cm55p ] || [ -f "$B/fw/cm55/scene-$s-portable.elf" ] || continue
+        [ "$t" != cm4p ] || [ -f "$B/fw/cm4/scene-$s-portable.elf" ] || continue
         run "scene-$s" "$t"
         awk -v s="$s" -v t="$(label "$t")" -v cnt="$tmp/cnt" '
             /^sblob/ { ntri = $2 }
@@ -56,6 +58,7 @@ if [ -f "$B/fw/cm4/scene-sibenik.elf" ]; then
     echo "| frusta block | target | per shadow sample | per lit pixel | blob checks and sample table | whole run (plugin) | timed stages / plugin |"
     echo "|---|---|---|---|---|---|---|"
     for t in $TARGETS; do
+        [ "$t" != cm4p ] || continue # (no portable cm4 build of this image)
         run scene-sibenik "$t"
         awk -v t="$(label "$t")" -v cnt="$tmp/cnt" '
             /^fblob/ { d = $0; sub(/^fblob /, "", d); sub(/, [0-9]+ bytes$/, "", d) }
@@ -76,6 +79,7 @@ if [ -f "$B/fw/cm4/reproj-bb.elf" ]; then
     echo "| reprojection | target | per traced ray | quadtree build | whole run (plugin) | timed stages / plugin |"
     echo "|---|---|---|---|---|---|"
     for t in $TARGETS; do
+        [ "$t" != cm4p ] || continue
         run reproj-bb "$t"
         awk -v t="$(label "$t")" -v cnt="$tmp/cnt" '
             /^reproj-blob:/ { d = "Beachball crop 128x128 x 2 layers, n64" }

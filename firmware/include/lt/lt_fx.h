@@ -57,6 +57,24 @@ typedef int16_t lt_h14_t;  /* s1.14 */
 
 /* ---- uncharged bodies (shared with the lane ops) -------------------------------------------- */
 
+/* The saturating 32-bit add and subtract. On an Arm core with the DSP extension's saturating
+ * instructions (__ARM_FEATURE_QBIT: Cortex-M4, M7, M33, M55) in a build that counts nothing, one
+ * QADD / QSUB each (ACLE __qadd / __qsub; the Q flag they set is never read); -DLT_LANES_PORTABLE
+ * keeps the portable 64-bit sum, which stays the reference (the same result for every input:
+ * tests/golden/vectors.txt on cm4 in both builds; docs/firmware.md, "Lane backends"). */
+#if !defined(LT_LANES_PORTABLE) && defined(__ARM_FEATURE_QBIT) && LT_COST_MODE == LT_COST_OFF
+#define LT__DSP_SAT 1
+#include <arm_acle.h>
+LT_INLINE lt_q16_t lt__q16_add_sat(lt_q16_t a, lt_q16_t b)
+{
+    return (lt_q16_t)__qadd(a, b);
+}
+
+LT_INLINE lt_q16_t lt__q16_sub_sat(lt_q16_t a, lt_q16_t b)
+{
+    return (lt_q16_t)__qsub(a, b);
+}
+#else
 LT_INLINE lt_q16_t lt__q16_add_sat(lt_q16_t a, lt_q16_t b)
 {
     int64_t s = (int64_t)a + b;
@@ -70,6 +88,7 @@ LT_INLINE lt_q16_t lt__q16_sub_sat(lt_q16_t a, lt_q16_t b)
     LT_EVENT(SAT, s != (int64_t)lt__ssat32(s));
     return lt__ssat32(s);
 }
+#endif
 
 LT_INLINE lt_q16_t lt__q16_add_wrap(lt_q16_t a, lt_q16_t b)
 {
