@@ -78,18 +78,24 @@ model() {
     "$MODEL" --machine "${MACH[$2]}" "$(blob_of "$1")" >"$tmp/m.$1.$2"
 }
 
+# rows TARGET: the calibration stages of TARGET as tools/fw_fit.py rows into $tmp/rows.TARGET
+rows() {
+    local t=$1 img
+    : >"$tmp/rows.$t"
+    for img in cal-a cal-b calf-a calf-b calr-a calr-b; do
+        plugin "$img" "$t"
+        model "$img" "$t"
+        # row IMAGE STAGE CYCLES OPS...
+        awk -v img="$img" 'NR == FNR { cyc[$1] = $3; next }
+            $1 == "ops" && ($2 in cyc) { printf "row %s %s %s", img, $2, cyc[$2]
+                for (i = 3; i <= NF; i++) printf " %s", $i; printf "\n" }' \
+            "$tmp/p.$img.$t" "$tmp/m.$img.$t" >>"$tmp/rows.$t"
+    done
+}
+
 if [ "$MODE" = fit ]; then
     for t in cm4 cm55 rv32; do
-        : >"$tmp/rows.$t"
-        for img in cal-a cal-b calf-a calf-b calr-a calr-b; do
-            plugin "$img" "$t"
-            model "$img" "$t"
-            # row IMAGE STAGE CYCLES OPS...
-            awk -v img="$img" 'NR == FNR { cyc[$1] = $3; next }
-                $1 == "ops" && ($2 in cyc) { printf "row %s %s %s", img, $2, cyc[$2]
-                    for (i = 3; i <= NF; i++) printf " %s", $i; printf "\n" }' \
-                "$tmp/p.$img.$t" "$tmp/m.$img.$t" >>"$tmp/rows.$t"
-        done
+        rows "$t"
         echo "## $t (${MACH[$t]}): fit on $(wc -l <"$tmp/rows.$t") calibration stages"
         mkdir -p "$B/fwcycles"
         cp "$tmp/rows.$t" "$B/fwcycles/rows.$t"
@@ -124,6 +130,19 @@ for img in "${imgs[@]}"; do
 done
 echo
 echo "Largest residual: ${worst}% (units: rays, shadow samples, source pixels; CPI: the plugin's cycles per instruction)."
+echo
+echo "The fit (tools/fw_fit.py on the calibration stages; a refit here, the machine files untouched):"
+echo
+echo "| target (machine) | calibration stages | in-sample rms error | prior weight (cross-validation) | held-out rms error |"
+echo "|---|---:|---:|---:|---:|"
+for t in cm4 cm55 rv32; do
+    rows "$t"
+    python3 tools/fw_fit.py "$tmp/rows.$t" "sim/qemu/cycles/$t.prior" "sim/machines/${MDEF[$t]}.def" >"$tmp/fit.$t"
+    w=$(sed -n 's/^prior .* weight \([^;]*\);.*/\1/p' "$tmp/fit.$t")
+    cv=$(awk -v w="$w" '/^cross-validation: prior weight/ { x = $4; sub(/:$/, "", x); if (x + 0 == w + 0) print $NF }' "$tmp/fit.$t")
+    printf '| %s (%s) | %s | %s | %s | %s |\n' "$t" "${MACH[$t]}" "$(wc -l <"$tmp/rows.$t")" \
+        "$(sed -n 's/^fit over .*: rms relative error //p' "$tmp/fit.$t")" "$w" "$cv"
+done
 if [ -n "$LIMIT" ] && awk -v w="$worst" -v l="$LIMIT" 'BEGIN { exit !(w > l) }'; then
     echo "fw_cycles: a residual exceeds ${LIMIT}%" >&2
     exit 1
