@@ -272,21 +272,21 @@ static const char *const t_coproc[] = {
     "ldc", "ldc2", "ldcl", "ldc2l", "stc", "stc2", "stcl", "stc2l", "cdp", "cdp2", "mcr", "mcr2",
     "mrc", "mrc2", "mcrr", "mcrr2", "mrrc", "mrrc2", NULL};
 
+/* The Thumb tables and their classes, in lookup order. */
+static const struct {
+    const char *const *list;
+    int k;
+} t_tables[] = {{t_alu, K_ALU},   {t_mul, K_MUL},   {t_mla, K_MLA},       {t_mull, K_MULL},
+                {t_div, K_DIV},   {t_load, K_LOAD}, {t_store, K_STORE},   {t_ldm, K_LDM},
+                {t_stm, K_STM},   {t_jump, K_JUMP}, {t_system, K_SYSTEM}, {t_lob, K_LOB}};
+
 /* Base-form lookup over the Thumb tables; K_OTHER if none. */
 static int thumb_base_class(const char *b)
 {
-    if (in_list(b, t_alu)) return K_ALU;
-    if (in_list(b, t_mul)) return K_MUL;
-    if (in_list(b, t_mla)) return K_MLA;
-    if (in_list(b, t_mull)) return K_MULL;
-    if (in_list(b, t_div)) return K_DIV;
-    if (in_list(b, t_load)) return K_LOAD;
-    if (in_list(b, t_store)) return K_STORE;
-    if (in_list(b, t_ldm)) return K_LDM;
-    if (in_list(b, t_stm)) return K_STM;
-    if (in_list(b, t_jump)) return K_JUMP;
-    if (in_list(b, t_system)) return K_SYSTEM;
-    if (in_list(b, t_lob)) return K_LOB;
+    size_t i;
+    for (i = 0; i < sizeof t_tables / sizeof t_tables[0]; i++)
+        if (in_list(b, t_tables[i].list))
+            return t_tables[i].k;
     if (strcmp(b, "ldrd") == 0 || strcmp(b, "ldrexd") == 0 || strcmp(b, "ldaexd") == 0)
         return K_LDM;
     if (strcmp(b, "strd") == 0 || strcmp(b, "strexd") == 0 || strcmp(b, "stlexd") == 0)

@@ -23,6 +23,7 @@ fail=0
 ok()   { pass=$((pass + 1)); echo "ok   $*"; }
 bad()  { fail=$((fail + 1)); echo "FAIL $*"; }
 need() { command -v "$1" >/dev/null 2>&1; }
+eq()   { if [ "$1" = "$2" ]; then ok "$3"; else bad "$4"; fi; }   # GOT WANT PASS-TEXT FAIL-TEXT
 
 mkdir -p "$B" || exit 1
 if ! timeout 120 make -s -f sim/qemu/plugin.mk "$SO"; then
@@ -188,12 +189,11 @@ check_target()
     fi
     exp=$(fn_count "$od" "$elf" main line)
     got=$(get "$B/$tag.run1" "sym main")
-    if [ "$got" = "$exp" ]; then ok "$tag: main $got (straight-line)"
-    else bad "$tag: main $got, expected $exp"; fi
+    eq "$got" "$exp" "$tag: main $got (straight-line)" "$tag: main $got, expected $exp"
 
     calls=$(awk '/^icount at / { printf "%s%s", sep, $4; sep = " " }' "$B/$tag.run1")
-    if [ "$calls" = "1 3" ]; then ok "$tag: at= entry counts: count_me 1 call, lt_test_putc 3"
-    else bad "$tag: at= entry counts '$calls', expected '1 3'"; fi
+    eq "$calls" "1 3" "$tag: at= entry counts: count_me 1 call, lt_test_putc 3" \
+        "$tag: at= entry counts '$calls', expected '1 3'"
 
     sum=0
     for s in $syms; do sum=$((sum + $(get "$B/$tag.run1" "sym $s"))); done
@@ -213,11 +213,9 @@ check_target()
     r=$B/$tag.run1
     got=$(awk '$1 == "icount" && $2 == "class" { s += $4 } END { print s + 0 }' "$r")
     tot=$(get "$r" total)
-    if [ "$got" = "$tot" ]; then ok "$tag: class counts sum to the total $tot"
-    else bad "$tag: class counts sum to $got, total $tot"; fi
+    eq "$got" "$tot" "$tag: class counts sum to the total $tot" "$tag: class counts sum to $got, total $tot"
     got=$(awk '$1 == "icount" && $2 == "stage" { s += $5 } END { print s + 0 }' "$r")
-    if [ "$got" = "$tot" ]; then ok "$tag: stage counts sum to the total"
-    else bad "$tag: stage counts sum to $got, total $tot"; fi
+    eq "$got" "$tot" "$tag: stage counts sum to the total" "$tag: stage counts sum to $got, total $tot"
 
     # count_me's bottom-tested loop is the program's only conditional branch (checked in the
     # other functions' disassembly): N - 1 taken, 1 not taken
