@@ -92,7 +92,8 @@ FW_SHARED_IMAGES := $(if $(FW_FRUSTA_MESH),$(foreach t,$(FW_TARGETS),$(B)/fw/$(t
 # Calibration images of the firmware cycle models (docs/firmware.md, "Cycle models"): the same
 # apps over blobs of two small synthetic scenes (tools/cal_scene.py a|b), disjoint from the scenes
 # the models are checked on: cal-<s> a 32x32 scene blob, calf-<s> a frusta block at 64x64, calr-<s>
-# the reprojection of the scene's own 64x64 depth render. Built by `make fw-cal`.
+# the reprojection of the scene's own 64x64 depth render. Built by `make fw-cal` and `make
+# firmware` (which checks them as every image).
 FW_CAL_SCENES := a b
 define fw_cal
 $(B)/gen/cal-$(1).obj: tools/cal_scene.py
@@ -207,7 +208,7 @@ $(foreach t,$(FW_TARGETS),$(eval fw_$(t)_CORE := $(call fw_objs,$(t),obj,$(FW_CO
 FW_IMAGES := $(foreach t,$(FW_TARGETS),$(foreach i,$(FW_ALL_IMAGES) stream-count,$(B)/fw/$(t)/$(i).elf)) \
     $(B)/fw/rv32/vectors-fixed.elf $(FW_SHARED_IMAGES) \
     $(FW_PORTABLE_IMAGES:%=$(B)/fw/cm55/%-portable.elf) \
-    $(FW_PORTABLE_IMAGES_cm4:%=$(B)/fw/cm4/%-portable.elf)
+    $(FW_PORTABLE_IMAGES_cm4:%=$(B)/fw/cm4/%-portable.elf) $(FW_CAL_IMAGES)
 
 firmware: $(FW_IMAGES)
 	@tools/check_fw.sh $(FW_IMAGES)

@@ -6,7 +6,7 @@ PKGS=(gcc make pkg-config gcc-arm-none-eabi libnewlib-arm-none-eabi gcc-riscv64-
       qemu-system-arm qemu-system-misc libcmocka-dev libcjson-dev libassimp-dev
       libopenexr-dev libpng-dev zlib1g-dev libembree-dev libhidapi-dev gnuplot-nox clang
       libclang-rt-14-dev
-      assimp-testmodels chromium parallel)
+      assimp-testmodels chromium parallel python3)
 missing=()
 for p in "${PKGS[@]}"; do
     if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
