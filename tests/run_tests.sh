@@ -67,23 +67,23 @@ for t in cm4 cm55 rv32; do
     check "vectors/$t exit 0 under QEMU (rc=$rc)" test "$rc" -eq 0
     check "vectors/$t = golden (bit-exact)" diff -u "$golden" "$tmp/$t.txt"
 done
-# cm55: the default images take the Helium lane backend (lt_v16_mve.h), the -portable ones the
-# portable loops; both must give the golden lines
-timeout 120 $QEMU_cm55 "$B/fw/cm55/vectors-portable.elf" >"$tmp/cm55p.out" 2>/dev/null
-grep -v '^ram: ' "$tmp/cm55p.out" >"$tmp/cm55p.txt"
-# (VPSEL also comes from GCC's own vectorising of the portable loops; these three do not)
-nmve=$(arm-none-eabi-objdump -d -marmv8.1-m.main "$B/fw/cm55/vectors.elf" | grep -cE '\s(vqadd|vqsub|vmulh)\.s32')
-nport=$(arm-none-eabi-objdump -d -marmv8.1-m.main "$B/fw/cm55/vectors-portable.elf" | grep -cE '\s(vqadd|vqsub|vmulh)\.s32')
-check "vectors/cm55 portable lanes (LT_LANES_PORTABLE) = golden; the Helium image has $nmve VQADD/VQSUB/VMULH.S32, the portable one $nport" \
-    bash -c "diff -u '$golden' '$tmp/cm55p.txt' && [ $nmve -gt 0 ] && [ $nport -eq 0 ]"
-# cm4: the default images take the DSP extension's QADD/QSUB for the saturating adds (lt_fx.h),
-# the -portable ones the portable 64-bit sums; both must give the golden lines
-timeout 120 $QEMU_cm4 "$B/fw/cm4/vectors-portable.elf" >"$tmp/cm4p.out" 2>/dev/null
-grep -v '^ram: ' "$tmp/cm4p.out" >"$tmp/cm4p.txt"
-ndsp=$(arm-none-eabi-objdump -d "$B/fw/cm4/vectors.elf" | grep -cE '\sq(add|sub)\s')
-ndspp=$(arm-none-eabi-objdump -d "$B/fw/cm4/vectors-portable.elf" | grep -cE '\sq(add|sub)\s')
-check "vectors/cm4 portable saturating adds (LT_LANES_PORTABLE) = golden; the DSP image has $ndsp QADD/QSUB, the portable one $ndspp" \
-    bash -c "diff -u '$golden' '$tmp/cm4p.txt' && [ $ndsp -gt 0 ] && [ $ndspp -eq 0 ]"
+# portable_vs T OBJDUMP_ARGS REGEX NAMES WHAT BACKEND: the default image of target T takes its
+# backend, T's vectors-portable.elf (LT_LANES_PORTABLE) the portable code: both must give the
+# golden lines, and the backend's instructions (REGEX) must be in the one and not in the other
+portable_vs() {
+    local t=$1 od=$2 re=$3 names=$4 what=$5 backend=$6 qvar="QEMU_$1" nb np
+    timeout 120 ${!qvar} "$B/fw/$t/vectors-portable.elf" 2>/dev/null </dev/null |
+        grep -v '^ram: ' >"$tmp/${t}p.txt"
+    nb=$(arm-none-eabi-objdump -d $od "$B/fw/$t/vectors.elf" | grep -cE "$re")
+    np=$(arm-none-eabi-objdump -d $od "$B/fw/$t/vectors-portable.elf" | grep -cE "$re")
+    check "vectors/$t portable $what (LT_LANES_PORTABLE) = golden; the $backend image has $nb $names, the portable one $np" \
+        bash -c "diff -u '$golden' '$tmp/${t}p.txt' && [ $nb -gt 0 ] && [ $np -eq 0 ]"
+}
+# cm55: the Helium lane backend (lt_v16_mve.h) against the portable loops (VPSEL also comes from
+# GCC's own vectorising of the portable loops; these three do not)
+portable_vs cm55 -marmv8.1-m.main '\s(vqadd|vqsub|vmulh)\.s32' VQADD/VQSUB/VMULH.S32 lanes Helium
+# cm4: the DSP extension's QADD/QSUB for the saturating adds (lt_fx.h) against the 64-bit sums
+portable_vs cm4 "" '\sq(add|sub)\s' QADD/QSUB "saturating adds" DSP
 timeout 120 $QEMU_rv32 "$B/fw/rv32/vectors-fixed.elf" >"$tmp/rv32x.txt" 2>/dev/null
 grep -v -e '_f32 ' -e '^groups' "$golden" >"$tmp/golden-fixed.txt"
 grep -v -e '^groups' -e '^ram: ' "$tmp/rv32x.txt" >"$tmp/rv32x-body.txt"

@@ -37,22 +37,14 @@ done
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 
-# target -> QEMU variable, cost file, machine
-declare -A QV=([cm4]=QEMU_cm4 [cm55]=QEMU_cm55 [rv32]=QEMU_rv32)
+# target -> machine (its file: sim/machines/<machine, - as _>.def; QEMU: $QEMU_<target>)
 declare -A MACH=([cm4]=mcu-m4 [cm55]=mcu-m55 [rv32]=rv32imac)
-declare -A MDEF=([cm4]=mcu_m4 [cm55]=mcu_m55 [rv32]=rv32imac)
-# image -> blob
-blob_of() {
-    case $1 in
-    cal-*) echo "$B/gen/$1.ltsb" ;;
-    calf-*) echo "$B/gen/cal-${1#calf-}.ltfb" ;;
-    calr-*) echo "$B/gen/cal-${1#calr-}.rpb" ;;
-    scene-bunny) echo "$B/gen/bunny64.ltsb" ;;
-    scene-teapot) echo "$B/gen/teapot64.ltsb" ;;
-    scene-sibenik) echo "$B/gen/sibenik-block.ltfb" ;;
-    reproj-bb) echo "$B/gen/reproj_bb.blob" ;;
-    esac
-}
+# image -> the blob it links, as firmware.mk knows it (FW_BLOB_<image>)
+CAL="cal-a cal-b calf-a calf-b calr-a calr-b"   # the calibration images (make fw-cal)
+IMAGES="$CAL scene-bunny scene-teapot scene-sibenik reproj-bb"
+declare -A BLOB
+eval "BLOB=($(make -s --no-print-directory B="$B" IMAGES="$IMAGES" \
+    --eval 'fw-blobs: ; @echo $(foreach i,$(IMAGES),[$(i)]=$(FW_BLOB_$(i)))' fw-blobs))"
 # family of a stage
 declare -A FAM=([1]="BVH primary ray (packets)" [2]="BVH shadow ray (packets)" [3]="BVH primary ray (single)"
     [4]="BVH shadow ray (single)" [5]="frusta shadow sample" [6]="quadtree build (per source pixel)"
@@ -60,8 +52,7 @@ declare -A FAM=([1]="BVH primary ray (packets)" [2]="BVH shadow ray (packets)" [
 
 # plugin IMAGE TARGET: "K insns N cycles C" per stage into $tmp/p.IMAGE.TARGET
 plugin() {
-    local img=$1 t=$2 elf=$B/fw/$2/$1.elf q slots
-    q=${QV[$t]}
+    local img=$1 t=$2 elf=$B/fw/$2/$1.elf q=QEMU_$2 slots
     slots=$(nm "$elf" | awk '/ lt_fw_stage_slots$/ { print $1 }')
     [ -n "$slots" ] || { echo "fw_cycles: $elf has no lt_fw_stage_slots" >&2; exit 1; }
     timeout 600 ${!q} "$elf" -plugin "$PLUGIN,cyc=sim/qemu/cycles/$t.cyc,stage=0x$slots,out=$tmp/cnt" \
@@ -75,14 +66,14 @@ plugin() {
 
 # model IMAGE TARGET: lt-fwmodel's "stage K NAME cycles C count N UNIT" and "ops K ..." lines
 model() {
-    "$MODEL" --machine "${MACH[$2]}" "$(blob_of "$1")" >"$tmp/m.$1.$2"
+    "$MODEL" --machine "${MACH[$2]}" "${BLOB[$1]}" >"$tmp/m.$1.$2"
 }
 
 # rows TARGET: the calibration stages of TARGET as tools/fw_fit.py rows into $tmp/rows.TARGET
 rows() {
     local t=$1 img
     : >"$tmp/rows.$t"
-    for img in cal-a cal-b calf-a calf-b calr-a calr-b; do
+    for img in $CAL; do
         plugin "$img" "$t"
         model "$img" "$t"
         # row IMAGE STAGE CYCLES OPS...
@@ -99,7 +90,7 @@ if [ "$MODE" = fit ]; then
         echo "## $t (${MACH[$t]}): fit on $(wc -l <"$tmp/rows.$t") calibration stages"
         mkdir -p "$B/fwcycles"
         cp "$tmp/rows.$t" "$B/fwcycles/rows.$t"
-        python3 tools/fw_fit.py "$tmp/rows.$t" "sim/qemu/cycles/$t.prior" "$MACHDIR/${MDEF[$t]}.def" --write
+        python3 tools/fw_fit.py "$tmp/rows.$t" "sim/qemu/cycles/$t.prior" "$MACHDIR/${MACH[$t]//-/_}.def" --write
     done
     exit 0
 fi
@@ -137,7 +128,7 @@ echo "| target (machine) | calibration stages | in-sample rms error | prior weig
 echo "|---|---:|---:|---:|---:|"
 for t in cm4 cm55 rv32; do
     rows "$t"
-    python3 tools/fw_fit.py "$tmp/rows.$t" "sim/qemu/cycles/$t.prior" "sim/machines/${MDEF[$t]}.def" >"$tmp/fit.$t"
+    python3 tools/fw_fit.py "$tmp/rows.$t" "sim/qemu/cycles/$t.prior" "sim/machines/${MACH[$t]//-/_}.def" >"$tmp/fit.$t"
     w=$(sed -n 's/^prior .* weight \([^;]*\);.*/\1/p' "$tmp/fit.$t")
     cv=$(awk -v w="$w" '/^cross-validation: prior weight/ { x = $4; sub(/:$/, "", x); if (x + 0 == w + 0) print $NF }' "$tmp/fit.$t")
     printf '| %s (%s) | %s | %s | %s | %s |\n' "$t" "${MACH[$t]}" "$(wc -l <"$tmp/rows.$t")" \

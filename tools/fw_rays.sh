@@ -16,17 +16,22 @@ scenes=("$@")
 [ ${#scenes[@]} -gt 0 ] || scenes=(bunny teapot)
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-# run IMAGE TARGET: the image under QEMU with the plugin into $tmp/out and $tmp/cnt; the target
-# cm55p is cm55 with the portable lane loops (IMAGE-portable.elf), cm55 its Helium backend
+# elf_of IMAGE TARGET: the image's file; a target with a p (cm4p, cm55p) is that target's portable
+# build (IMAGE-portable.elf: no DSP, no Helium), which only a few images have: fails, printing
+# nothing, when there is none
+elf_of() {
+    local t=${2%p}
+    if [ "$t" = "$2" ]; then
+        echo "$B/fw/$t/$1.elf"
+    else
+        [ -f "$B/fw/$t/$1-portable.elf" ] && echo "$B/fw/$t/$1-portable.elf"
+    fi
+}
+# run ELF TARGET: the image under QEMU with the plugin into $tmp/out and $tmp/cnt
 run() {
-    local img=$1 t=$2 q elf
-    case $t in
-    cm55p) q=QEMU_cm55 elf="$B/fw/cm55/$img-portable.elf" ;;
-    cm4p) q=QEMU_cm4 elf="$B/fw/cm4/$img-portable.elf" ;;
-    *) q="QEMU_$t" elf="$B/fw/$t/$img.elf" ;;
-    esac
+    local q="QEMU_${2%p}"
     rm -f "$tmp/cnt"
-    timeout 300 ${!q} "$elf" -plugin "$B/plugin/lt_icount.so,out=$tmp/cnt" </dev/null >"$tmp/out"
+    timeout 300 ${!q} "$1" -plugin "$B/plugin/lt_icount.so,out=$tmp/cnt" </dev/null >"$tmp/out"
 }
 label() { case $1 in cm55p) echo "cm55 portable" ;; cm55) echo "cm55 Helium" ;; cm4p) echo "cm4 portable" ;; cm4) echo "cm4 DSP" ;; *) echo "$1" ;; esac; }
 TARGETS="cm4p cm4 cm55p cm55 rv32"
@@ -34,9 +39,8 @@ echo "| scene | target | packets: primary | packets: shadow | single rays: prima
 echo "|---|---|---|---|---|---|---|---|---|"
 for s in "${scenes[@]}"; do
     for t in $TARGETS; do
-        [ "$t" != cm55p ] || [ -f "$B/fw/cm55/scene-$s-portable.elf" ] || continue
-        [ "$t" != cm4p ] || [ -f "$B/fw/cm4/scene-$s-portable.elf" ] || continue
-        run "scene-$s" "$t"
+        elf=$(elf_of "scene-$s" "$t") || continue
+        run "$elf" "$t"
         awk -v s="$s" -v t="$(label "$t")" -v cnt="$tmp/cnt" '
             /^sblob/ { ntri = $2 }
             /^image hash/ { rays = $5; srays = $9 }
@@ -58,8 +62,8 @@ if [ -f "$B/fw/cm4/scene-sibenik.elf" ]; then
     echo "| frusta block | target | per shadow sample | per lit pixel | blob checks and sample table | whole run (plugin) | timed stages / plugin |"
     echo "|---|---|---|---|---|---|---|"
     for t in $TARGETS; do
-        [ "$t" != cm4p ] || continue # (no portable cm4 build of this image)
-        run scene-sibenik "$t"
+        elf=$(elf_of scene-sibenik "$t") || continue
+        run "$elf" "$t"
         awk -v t="$(label "$t")" -v cnt="$tmp/cnt" '
             /^fblob/ { d = $0; sub(/^fblob /, "", d); sub(/, [0-9]+ bytes$/, "", d) }
             /^block hash/ { lit = $5 }
@@ -79,8 +83,8 @@ if [ -f "$B/fw/cm4/reproj-bb.elf" ]; then
     echo "| reprojection | target | per traced ray | quadtree build | whole run (plugin) | timed stages / plugin |"
     echo "|---|---|---|---|---|---|"
     for t in $TARGETS; do
-        [ "$t" != cm4p ] || continue
-        run reproj-bb "$t"
+        elf=$(elf_of reproj-bb "$t") || continue
+        run "$elf" "$t"
         awk -v t="$(label "$t")" -v cnt="$tmp/cnt" '
             /^reproj-blob:/ { d = "Beachball crop 128x128 x 2 layers, n64" }
             /^ticks/ { b = $4; sub(/,$/, "", b); r = $6; sub(/,$/, "", r); pr = $10; sub(/,$/, "", pr) }

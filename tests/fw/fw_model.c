@@ -63,14 +63,13 @@ static uint64_t port_clock(void *ctx, uint32_t stage)
     return clock_fn(stage);
 }
 
-/* the reprojection app's lines that give the counts: its first (the source size) and "total:" */
+/* the reprojection app's "total:" line (the traced rays), or an error line */
 static char g_rp_lines[4096];
 static void port_puts(void *ctx, const char *s)
 {
-    size_t n = strlen(g_rp_lines);
     (void)ctx;
-    if ((n == 0 || strncmp(s, "total: ", 7) == 0) && n + strlen(s) < sizeof g_rp_lines)
-        memcpy(g_rp_lines + n, s, strlen(s) + 1);
+    if (strncmp(s, "total: ", 7) == 0 || strncmp(s, "error ", 6) == 0)
+        snprintf(g_rp_lines, sizeof g_rp_lines, "%s", s);
 }
 
 static const char *const stage_name[LT_STAGE__COUNT] = {
@@ -155,6 +154,7 @@ static int run_fblob(const char *path, const void *blob, size_t len)
 
 static int run_rpblob(const char *path, const void *blob, size_t len)
 {
+    const lt_rpb_hdr_t *h = (const lt_rpb_hdr_t *)blob; /* read once lt_rpapp_mem_bytes checked it */
     lt_rpapp_port_t port;
     size_t need = 0;
     void *mem = NULL;
@@ -175,13 +175,7 @@ static int run_rpblob(const char *path, const void *blob, size_t len)
         fprintf(stderr, "lt-fwmodel: %s: the app failed (code %d): %s", path, rc, g_rp_lines);
         return 1;
     }
-    {
-        const char *p = strstr(g_rp_lines, "source ");
-        unsigned w = 0, h = 0, layers = 0;
-        if (p != NULL && sscanf(p, "source %ux%u x %u", &w, &h, &layers) != 3)
-            w = h = layers = 0;
-        put_stage(LT_STAGE_QT_BUILD, (uint64_t)w * h * layers, "pixels");
-    }
+    put_stage(LT_STAGE_QT_BUILD, (uint64_t)h->width * h->height * h->layers, "pixels");
     put_stage(LT_STAGE_REPROJ, rp_field(" kept "), "rays");
     return 0;
 }
@@ -195,16 +189,12 @@ int main(int argc, char **argv)
     uint32_t magic;
     FILE *f;
     lt_diag_t diag;
-    int i, rc;
-    for (i = 1; i < argc; i++) {
-        if (strcmp(argv[i], "--machine") == 0 && i + 1 < argc)
-            machine = argv[++i];
-        else if (argv[i][0] != '-' && path == NULL)
-            path = argv[i];
-        else
-            path = NULL, i = argc + 1;
+    int rc;
+    if (argc == 4 && strcmp(argv[1], "--machine") == 0) {
+        machine = argv[2];
+        path = argv[3];
     }
-    if (machine == NULL || path == NULL || i != argc) {
+    if (machine == NULL || path[0] == '-') {
         fprintf(stderr, "usage: lt-fwmodel --machine NAME BLOB  (machines: %s)\n",
                 lt_meter_machine_names());
         return 2;
