@@ -11,6 +11,8 @@
 #   build/fw/<T>/reproj-bb.elf the reprojection app over a 128 x 128, 2-layer crop of the Beachball
 #                              EXR (firmware/apps/reproj_fw.c, reproj_app.c; the blob linked as
 #                              read-only data); built only when ../shared has the EXR
+#   build/fw/<T>/reproj-bb-packets.elf  the same tracing packets of 16 (LT_RPFW_SINGLE=0) instead
+#                              of single rays (lt_qt_trace1_q30)
 #   build/fw/<T>/stream.elf    the streaming firmware (firmware/apps/stream_fw.c; docs/stream.md)
 #   build/fw/<T>/stream-count.elf  the same over a core counting on the target (LT_COST_HANDLER,
 #                              firmware/apps/lt_fw_count.h): its reports carry modelled cycles of
@@ -40,6 +42,9 @@ FW_IMG_reproj-bb := firmware/apps/reproj_fw.c firmware/apps/reproj_app.c
 FW_RPBB_EXR := ../shared/depth/beachball_singlepart.0001.exr
 FW_RPBB_ARGS := --crop 40,120,128,128 --layers 2 --move-rel 0.05,0,0 --rot -2,0,0 --num n64 --tile 16
 FW_BLOB_reproj-bb := $(B)/gen/reproj_bb.blob
+# the same app and blob tracing packets of 16 through the lane model instead of single rays
+FW_IMG_reproj-bb-packets := firmware/apps/reproj_fw_packets.c firmware/apps/reproj_app.c
+FW_BLOB_reproj-bb-packets := $(FW_BLOB_reproj-bb)
 $(B)/gen/reproj_bb.blob: $(B)/host/lanetrace-native $(FW_RPBB_EXR) firmware/firmware.mk
 	@mkdir -p $(@D)
 	@echo "GEN $@"
@@ -188,7 +193,7 @@ $(B)/fw/$(1)/stream-count.elf: $(B)/fw/$(1)/objc/fwc_table.o
 endef
 $(foreach t,$(FW_TARGETS),$(eval $(call fwc_table,$(t))))
 FW_ALL_IMAGES := vectors slab frusta reproj stream $(FW_SCENES:%=scene-%) \
-    $(if $(wildcard $(FW_RPBB_EXR)),reproj-bb)
+    $(if $(wildcard $(FW_RPBB_EXR)),reproj-bb reproj-bb-packets)
 $(foreach t,$(FW_TARGETS),$(foreach i,$(FW_ALL_IMAGES),$(eval $(call fw_image,$(t),$(i),obj,))))
 $(foreach t,$(FW_TARGETS),$(eval $(call fw_image,$(t),stream-count,objc,)))
 $(foreach t,$(FW_TARGETS),$(eval $(call fw_image,$(t),scene-sibenik,obj,)))

@@ -247,7 +247,8 @@ static int run_tile(const lt_rpb_hdr_t *h, const lt_qt_t *qt, lt_qray16_q30_t *r
                 t0 = port->ticks(port->ctx, LT_STAGE_REPROJ);
             if (lt_reproj_rays16_q30(m, px, py, r, &k) != LT_OK)
                 return LT_RPAPP_E_MAP;
-            if (k != 0u && lt_qt_trace16_q30(qt, r, k, h->max_steps, hit) != LT_OK)
+            if (k != 0u && (port->single ? lt_qt_trace1_q30(qt, r, k, h->max_steps, hit)
+                                         : lt_qt_trace16_q30(qt, r, k, h->max_steps, hit)) != LT_OK)
                 return LT_RPAPP_E_TRACE;
             if (port->ticks != 0)
                 *tk += port->ticks(port->ctx, LT_STAGE_UNTIMED) - t0;
@@ -403,6 +404,7 @@ int lt_rpapp_run(const lt_rpapp_port_t *port, const void *blob, size_t blob_len,
         l_cent(&l, tot.kept != 0u ? t_rp * 100u / tot.kept : 0u);
         l_str(&l, ", per pixel ");
         l_cent(&l, tot.rays != 0u ? t_rp * 100u / tot.rays : 0u);
+        l_str(&l, port->single ? ", walk single" : ", walk packets");
         l_out(port, &l);
     }
     return LT_RPAPP_OK;

@@ -97,6 +97,8 @@ typedef struct lt_rpapp_port {
     uint64_t (*ticks)(void *ctx, uint32_t stage);
     void *ctx;
     const char *name;                       /* printed in the first line ("cm4", "host") */
+    int single; /* 1: trace each ray alone (lt_qt_trace1_q30: cores without wide SIMD); 0: packets
+                   of 16 (lt_qt_trace16_q30). The lines are the same but the ticks line's walk */
 } lt_rpapp_port_t;
 
 /* Validate the blob (blob_len bytes at blob) and say how much memory lt_rpapp_run needs.
@@ -111,7 +113,8 @@ int lt_rpapp_mem_bytes(const void *blob, size_t blob_len, size_t *bytes);
  *   tile TX TY: rays N kept N hit N miss N disoccluded N unknown N nodes N hash 0x........
  *   total: rays N kept N hit N (behind layer 0: N) miss N disoccluded N unknown N outside N
  *       nodes N hash 0x........
- *   ticks: build T, reproject T, per traced ray T.TT, per pixel T.TT   (only with port->ticks)
+ *   ticks (NAME): build T, reproject T, per traced ray T.TT, per pixel T.TT, walk single|packets
+ *       (only with port->ticks)
  * (a "badray N" field follows unknown when a lane was LT_QT_BADRAY, never for a valid blob)
  * kept = lanes with a non-empty segment; outside = rays - kept (the ray never enters the source
  * view); hit / miss / disoccluded / unknown = the kept lanes' LT_QT_HIT / MISS / OCCLUDED /

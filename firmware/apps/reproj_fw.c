@@ -16,6 +16,13 @@
 #define LT_RPFW_MEM_BYTES 350544u
 #endif
 
+/* The walk: one ray at a time (lt_qt_trace1_q30) by default; -DLT_RPFW_SINGLE=0 traces packets
+ * of 16 through the lane model (lt_qt_trace16_q30). Same hashes either way; docs/firmware.md has
+ * the instructions per ray of both on every target. */
+#ifndef LT_RPFW_SINGLE
+#define LT_RPFW_SINGLE 1
+#endif
+
 static uint64_t rp_mem[LT_RPFW_MEM_BYTES / 8u] LT_ALIGN(64);
 
 static void fw_puts(void *ctx, const char *s)
@@ -39,5 +46,6 @@ int main(void)
     port.ticks = fw_ticks;
     port.ctx = 0;
     port.name = LT_FW_TARGET_NAME;
+    port.single = LT_RPFW_SINGLE;
     return lt_rpapp_run(&port, lt_fw_blob, lt_fw_blob_size(), rp_mem, sizeof rp_mem);
 }

@@ -152,7 +152,7 @@ static int run_fblob(const char *path, const void *blob, size_t len)
     return 0;
 }
 
-static int run_rpblob(const char *path, const void *blob, size_t len)
+static int run_rpblob(const char *path, const void *blob, size_t len, int single)
 {
     const lt_rpb_hdr_t *h = (const lt_rpb_hdr_t *)blob; /* read once lt_rpapp_mem_bytes checked it */
     lt_rpapp_port_t port;
@@ -167,6 +167,7 @@ static int run_rpblob(const char *path, const void *blob, size_t len)
     port.ticks = port_clock;
     port.ctx = NULL;
     port.name = "model";
+    port.single = single;
     lt_meter_region(mem, need, 0x20000000u);
     rc = lt_rpapp_run(&port, blob, len, mem, need);
     (void)clock_fn(LT_STAGE_UNTIMED);
@@ -189,13 +190,22 @@ int main(int argc, char **argv)
     uint32_t magic;
     FILE *f;
     lt_diag_t diag;
-    int rc;
-    if (argc == 4 && strcmp(argv[1], "--machine") == 0) {
+    int rc, single = 0;
+    if ((argc == 4 || argc == 6) && strcmp(argv[1], "--machine") == 0) {
         machine = argv[2];
-        path = argv[3];
+        path = argv[argc - 1];
+        if (argc == 6) {
+            if (strcmp(argv[3], "--walk") != 0 ||
+                (strcmp(argv[4], "single") != 0 && strcmp(argv[4], "packets") != 0))
+                machine = NULL;
+            else
+                single = strcmp(argv[4], "single") == 0;
+        }
     }
     if (machine == NULL || path[0] == '-') {
-        fprintf(stderr, "usage: lt-fwmodel --machine NAME BLOB  (machines: %s)\n",
+        fprintf(stderr, "usage: lt-fwmodel --machine NAME [--walk single|packets] BLOB  (machines: "
+                        "%s; the walk of a reprojection blob, as the image's ticks line says: "
+                        "packets by default)\n",
                 lt_meter_machine_names());
         return 2;
     }
@@ -228,7 +238,7 @@ int main(int argc, char **argv)
     else if (magic == LT_FBLOB_MAGIC)
         rc = run_fblob(path, blob, len);
     else if (magic == LT_RPB_MAGIC)
-        rc = run_rpblob(path, blob, len);
+        rc = run_rpblob(path, blob, len, single);
     else {
         fprintf(stderr, "lt-fwmodel: %s: not a scene, frusta or reprojection blob (magic 0x%08x)\n",
                 path, magic);

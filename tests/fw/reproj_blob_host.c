@@ -1,7 +1,8 @@
 /* reproj_blob_host.c - the host runner of the reprojection app (firmware/apps/reproj_app.h):
  * reads a blob file into 64-byte aligned memory and runs the app over it with exactly the memory
  * lt_rpapp_mem_bytes asks for (or --mem BYTES), so its lines can be compared with the firmware
- * images' (tests/run.d/reproj_blob.sh). The memory is poisoned with 0xA5 and followed by a 64-byte
+ * images' (tests/run.d/reproj_blob.sh). It traces packets (lt_qt_trace16_q30), or single rays
+ * with --single (lt_qt_trace1_q30, the images' default walk). The memory is poisoned with 0xA5 and followed by a 64-byte
  * guard that must stay untouched. Exit status: the app's (0 ok, LT_RPAPP_E_* otherwise), 1 when
  * the file cannot be read, 2 usage, 3 when the guard was written. Builds: host, asan.
  */
@@ -26,12 +27,16 @@ int main(int argc, char **argv)
     size_t len = 0, need = 0, give = 0, i;
     long sz;
     FILE *f;
-    int rc, have_mem = 0;
+    int rc, have_mem = 0, single = 0;
+    if (argc >= 3 && strcmp(argv[argc - 1], "--single") == 0) {
+        single = 1;
+        argc--;
+    }
     if (argc == 4 && strcmp(argv[2], "--mem") == 0) {
         give = (size_t)strtoul(argv[3], NULL, 10);
         have_mem = 1;
     } else if (argc != 2) {
-        fprintf(stderr, "usage: %s BLOB [--mem BYTES]\n", argv[0]);
+        fprintf(stderr, "usage: %s BLOB [--mem BYTES] [--single]\n", argv[0]);
         return 2;
     }
     f = fopen(argv[1], "rb");
@@ -64,6 +69,7 @@ int main(int argc, char **argv)
     port.ticks = NULL;
     port.ctx = NULL;
     port.name = "host";
+    port.single = single;
     rc = lt_rpapp_run(&port, blob, len, mem, give);
     for (i = 0; i < GUARD; i++)
         if (((const unsigned char *)mem)[give + i] != 0xA5u) {

@@ -1,10 +1,11 @@
 # reproj_blob.sh - reprojection of a real depth image on every target (issue #13 item 1,
 # docs/firmware.md "Reprojection of a real depth image"): the blob `lanetrace fwblob` makes from
 # the shared Beachball EXR now equals the one linked into build/fw/<T>/reproj-bb.elf; the host
-# runner of the app (build/host/reproj-blob-host, the same source as the images) prints its lines,
-# the ASan build the same; under QEMU each target exits 0 and prints the host's lines exactly
-# (header with the blob's checksum, one line per 16x16 tile, the total), within the RAM budget of
-# tests/fw/ram_budget.txt; no float or double helper is linked; damaged blobs and short memory
+# runner of the app (build/host/reproj-blob-host, the same source as the images) prints its lines
+# tracing packets, the ASan build the same with packets and with single rays; under QEMU each
+# target exits 0 and prints the host's lines exactly (header with the blob's checksum, one line per
+# 16x16 tile, the total) from reproj-bb.elf (single rays) and reproj-bb-packets.elf (packets of
+# 16), within the RAM budget of tests/fw/ram_budget.txt; no float or double helper is linked; damaged blobs and short memory
 # give their error codes without a crash (ASan); lanetrace fwblob's usage and input errors.
 # Without ../shared: SKIP (FAIL under CI=true).
 # Sourced by tests/run_tests.sh ($B, $tmp, check/ok/ko, QEMU_<T>).
@@ -48,6 +49,9 @@ else
     echo "   host $rb_total"
     "$B/asan/reproj-blob-host" "$rb_blob" >"$tmp/rb.asan" 2>&1
     check "reproj-blob asan (ASan + UBSan, poisoned memory, guard after it) = host" cmp -s "$tmp/rb.host" "$tmp/rb.asan"
+    "$B/asan/reproj-blob-host" "$rb_blob" --single >"$tmp/rb.asan1" 2>&1
+    check "reproj-blob asan --single (lt_qt_trace1_q30, one ray at a time) = host's packets, all $(wc -l <"$tmp/rb.asan1") lines" \
+        cmp -s "$tmp/rb.host" "$tmp/rb.asan1"
     rb_expect "fwblob: a crop outside the data window names the window" 1 "outside the 911x876 data window" \
         "$rb_lt" fwblob --depth "$rb_exr" --crop 900,0,128,128 --out "$tmp/x.blob"
     rb_expect "fwblob: a crop without valid depth is refused" 1 "has no valid depth" \
@@ -55,18 +59,25 @@ else
     rb_expect "fwblob: unwritable --out names the path" 1 "/nonexistent-dir" \
         "$rb_lt" fwblob --depth "$rb_exr" --out /nonexistent-dir/x.blob
     rb_budget=$(awk '$1 == "reproj-bb" {print $2}' tests/fw/ram_budget.txt)
-    for t in cm4 cm55 rv32; do
-        qvar="QEMU_$t"
-        timeout 300 ${!qvar} "$B/fw/$t/reproj-bb.elf" </dev/null >"$tmp/rb.$t" 2>"$tmp/rb.$t.err"
+    for t in cm4 cm55 rv32 cm4:packets cm55:packets rv32:packets; do
+        qvar="QEMU_${t%:*}"
+        img=reproj-bb
+        walk=single
+        if [ "${t#*:}" = packets ]; then
+            img=reproj-bb-packets
+            walk=packets
+        fi
+        t=${t%:*}
+        timeout 300 ${!qvar} "$B/fw/$t/$img.elf" </dev/null >"$tmp/rb.$t" 2>"$tmp/rb.$t.err"
         rc=$?
         grep -v -e '^ram: ' -e '^ticks ' "$tmp/rb.$t" >"$tmp/rb.$t.lines"
         h=$(sed -n 's/^total: .* hash \(0x[0-9a-f]*\)$/\1/p' "$tmp/rb.$t")
-        check "reproj-blob $t under QEMU: exit 0 (rc $rc), all $(wc -l <"$tmp/rb.$t.lines") lines = host's (64 tile hashes, total hash ${h:-none})" \
-            bash -c "[ $rc -eq 0 ] && [ -s '$tmp/rb.host' ] && cmp -s '$tmp/rb.host' '$tmp/rb.$t.lines'"
+        check "reproj-blob $t $img.elf under QEMU: exit 0 (rc $rc), walk $walk, all $(wc -l <"$tmp/rb.$t.lines") lines = host's packets (64 tile hashes, total hash ${h:-none})" \
+            bash -c "[ $rc -eq 0 ] && [ -s '$tmp/rb.host' ] && cmp -s '$tmp/rb.host' '$tmp/rb.$t.lines' && grep -q '^ticks .*, walk $walk\$' '$tmp/rb.$t'"
         line=$(grep '^ram: ' "$tmp/rb.$t")
         used=$(sed -n 's/^ram: stack \([0-9]*\) of.*/\1/p' <<<"$line")
         stat=$(sed -n 's/.*static \([0-9]*\) bytes.*/\1/p' <<<"$line")
-        check "reproj-blob $t RAM: stack ${used:-?} + static ${stat:-?} = $(( ${used:-0} + ${stat:-0} )) bytes, budget ${rb_budget:-?} (limit 524288)" \
+        check "reproj-blob $t $img.elf RAM: stack ${used:-?} + static ${stat:-?} = $(( ${used:-0} + ${stat:-0} )) bytes, budget ${rb_budget:-?} (limit 524288)" \
             test -n "$used" -a -n "$stat" -a -n "$rb_budget" -a $(( ${used:-0} + ${stat:-0} )) -le "${rb_budget:-0}" \
             -a "${rb_budget:-524289}" -le 524288
         echo "   $t $(grep '^ticks ' "$tmp/rb.$t")"

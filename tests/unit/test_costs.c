@@ -682,6 +682,29 @@ static void qt_boxes(cost_t *c, int f)
     CL(VALU, 1);
 }
 
+/* lt_qt_trace1_q30, one lane of the fixed inputs below: s 0 a bad ray (set-up only), 1 the
+ * crossed plane, 2 the box, descent, passed plane, advance and crack */
+static void qt1_lane(cost_t *c, int s)
+{
+    int ph = LT_PH_SETUP;
+    CR(QT1_SETUP, 1);
+    ph = LT_PH_TRAVERSE;
+    CR(QT1_FINISH, 1);
+    if (s == 1) {
+        CR(QT1_LAYER, 1);
+        CR(QT1_STEP, 1);
+        CR(QT1_PLANE, 1);
+        CR(QT1_HIT_T, 1);
+    } else if (s == 2) {
+        CR(QT1_LAYER, 1);
+        CR(QT1_STEP, 3);
+        CR(QT1_BOX, 1);
+        CR(QT1_DESCEND, 1);
+        CR(QT1_PLANE, 2);
+        CR(QT1_ADVANCE, 1);
+    }
+}
+
 static void qt_descend(cost_t *c, int f, int xmove, int xpar, int ymove, int ypar)
 {
     int ph = LT_PH_TRAVERSE;
@@ -1060,6 +1083,20 @@ static void test_screen_walk_costs(void **state)
                 bad += swalk(nm, &hq, &hf, f, LT_QT_HIT, 1, 0, 1);
             else if (s == 2)
                 bad += swalk(nm, &hq, &hf, f, LT_QT_HIT, 3, 1, 2);
+            if (!f) { /* the single-ray walk over the same input: per lane, scalar recipes */
+                int i;
+                memset(&want, 0, sizeof want);
+                for (i = 0; i < 16; i++)
+                    qt1_lane(c, s);
+                snprintf(nm, sizeof nm, "lt_qt_trace1_q30 (%s, %s)", encn[e],
+                         s == 0 ? "bad rays" : (s == 1 ? "1x1, one plane crossed" :
+                                                         "2x1: box, descend, pass, advance, crack"));
+                CHECKC(nm, lt_qt_trace1_q30(&qt, &rq, LT_MASK_ALL, 0, &hq), &want);
+                if (s == 1)
+                    bad += swalk(nm, &hq, &hf, 0, LT_QT_HIT, 1, 0, 1);
+                else if (s == 2)
+                    bad += swalk(nm, &hq, &hf, 0, LT_QT_HIT, 3, 1, 2);
+            }
         }
     }
     /* the DDA: bad rays; 1x1, one step into the shell; 2x1, a step in front then behind */

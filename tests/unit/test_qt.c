@@ -151,6 +151,44 @@ static uint32_t count_planes(const built_t *b, int f)
 
 /* ---- tracing sets of rays ------------------------------------------------------------------ */
 
+/* Every fixed-point packet that trace_set traces is traced again one ray at a time
+ * (lt_qt_trace1_q30) and the two hit records compared whole (test_single_rays reports the
+ * totals); off while the simulator counts one walk (test_sim_counts). */
+static int g_single_check = 1;
+static size_t g_single_packets, g_single_lanes, g_single_nodes;
+
+static void check_single_q30(const lt_qt_t *qt, const lt_qray16_q30_t *r, lt_mask16_t k,
+                             uint32_t max_steps, const lt_qhit16_q30_t *want_poisoned)
+{
+    lt_qhit16_q30_t h1;
+    int i;
+    memset(&h1, 0x5A, sizeof h1);
+    assert_int_equal(lt_qt_trace1_q30(qt, r, k, max_steps, &h1), LT_OK);
+    if (memcmp(&h1, want_poisoned, sizeof h1) != 0) {
+        for (i = 0; i < 16; i++)
+            if (h1.status.l[i] != want_poisoned->status.l[i] || h1.t.l[i] != want_poisoned->t.l[i] ||
+                h1.w.l[i] != want_poisoned->w.l[i] || h1.nodes.l[i] != want_poisoned->nodes.l[i] ||
+                h1.layer.l[i] != want_poisoned->layer.l[i] ||
+                h1.aabb.l[i] != want_poisoned->aabb.l[i] ||
+                h1.planes.l[i] != want_poisoned->planes.l[i])
+                print_error("lane %d (k 0x%04x): single status %d t %d w %d layer %d nodes %d "
+                            "aabb %d planes %d, packet %d %d %d %d %d %d %d\n",
+                            i, (unsigned)k, h1.status.l[i], h1.t.l[i], h1.w.l[i],
+                            h1.layer.l[i], h1.nodes.l[i], h1.aabb.l[i], h1.planes.l[i],
+                            want_poisoned->status.l[i], want_poisoned->t.l[i],
+                            want_poisoned->w.l[i], want_poisoned->layer.l[i],
+                            want_poisoned->nodes.l[i], want_poisoned->aabb.l[i],
+                            want_poisoned->planes.l[i]);
+        fail_msg("lt_qt_trace1_q30 differs from lt_qt_trace16_q30");
+    }
+    g_single_packets++;
+    for (i = 0; i < 16; i++)
+        if (LTT_ON(k, i)) {
+            g_single_lanes++;
+            g_single_nodes += (size_t)h1.nodes.l[i];
+        }
+}
+
 /* Trace n rays (double segments) through format f in packets of 16 (lane = index % 16).
  * exact[] receives the segments as the format represents them (for the reference). Returns the
  * lane utilisation: useful lane-steps / (16 x the packets' longest lane). */
@@ -167,7 +205,10 @@ static double trace_set(const built_t *b, int f, const lt_qt_ref_ray_t *rays, si
             lt_qray16_q30_t r;
             lt_qhit16_q30_t h;
             k = ss_pack_q30(rays + p, cnt, &r, exact + p);
+            memset(&h, 0x5A, sizeof h);
             assert_int_equal(lt_qt_trace16_q30(&b->qt[f], &r, k, max_steps, &h), LT_OK);
+            if (g_single_check)
+                check_single_q30(&b->qt[f], &r, k, max_steps, &h);
             ss_res_q30(&h, cnt, out + p);
         } else {
 #if LT_CFG_FLOAT32
@@ -1186,6 +1227,7 @@ static void test_sim_counts(void **state)
     (void)state;
     assert_non_null(t);
     assert_int_equal(lt_sim_init(lt_sim_machine_find("lrb16"), NULL, NULL, &diag), 0);
+    g_single_check = 0;
     memset(&s, 0, sizeof s);
     s.name = "steps";
     s.W = 160;
@@ -1236,6 +1278,7 @@ static void test_sim_counts(void **state)
         built_free(&b);
     }
     lt_sim_shutdown();
+    g_single_check = 1;
     ss_scene_free(&s);
     free(rays);
     free(ex);
@@ -1243,6 +1286,88 @@ static void test_sim_counts(void **state)
     free(t);
 }
 #endif
+
+/* The single-ray walk (lt_qt_trace1_q30) against the packet walk: every fixed-point packet of the
+ * tests before this one (trace_set), then rays the generators do not make: invalid rays (end
+ * points past 2^14 px, w < 0, tmin > tmax, tmax > 1), point rays, axis-parallel rays inside and
+ * outside the image, rays leaving the image at once, a step bound of 1 to 3, and masks with
+ * inactive lanes (untouched, as in the packet walk). Whole hit records are compared. */
+static void test_single_rays(void **state)
+{
+    ss_scene_t s;
+    built_t b;
+    ltt_rng_t g;
+    size_t before = g_single_lanes;
+    int f, rep, i;
+    uint32_t steps;
+    (void)state;
+    memset(&s, 0, sizeof s);
+    s.name = "steps";
+    s.W = 37;
+    s.H = 29;
+    s.layers = 2;
+    s.fn = ss_w_steps;
+    assert_int_equal(ss_scene_sample(&s), 0);
+    build_all(&s, NULL, &b);
+    ltt_rng_seed(&g, 131);
+    for (f = 0; f < 2; f++) {
+        for (rep = 0; rep < 64; rep++) {
+            lt_qray16_q30_t r;
+            lt_qhit16_q30_t h;
+            lt_mask16_t k = rep % 4 == 3 ? (lt_mask16_t)ltt_rng_u32(&g) : 0xFFFF;
+            memset(&r, 0, sizeof r);
+            for (i = 0; i < 16; i++) {
+                int kind = (int)(ltt_rng_u32(&g) % 12u);
+                int32_t px = (int32_t)(ltt_rng_u32(&g) % (s.W * 65536u));
+                int32_t py = (int32_t)(ltt_rng_u32(&g) % (s.H * 65536u));
+                r.x.l[i] = px;
+                r.y.l[i] = py;
+                r.w.l[i] = (int32_t)(ltt_rng_u32(&g) >> 2);
+                r.dx.l[i] = (int32_t)(ltt_rng_u32(&g) % (80u * 65536u)) - 40 * 65536;
+                r.dy.l[i] = (int32_t)(ltt_rng_u32(&g) % (80u * 65536u)) - 40 * 65536;
+                r.dw.l[i] = (int32_t)ltt_rng_u32(&g) >> 3;
+                r.tmin.l[i] = 0;
+                r.tmax.l[i] = LT_Q30_ONE;
+                switch (kind) {
+                case 0: r.x.l[i] = (1 << 30) + 5; break;            /* past 2^14 px */
+                case 1: r.w.l[i] = -1; break;                        /* w < 0 */
+                case 2: r.tmin.l[i] = 1000; r.tmax.l[i] = 999; break; /* tmin > tmax */
+                case 3: r.tmax.l[i] = LT_Q30_ONE + 1; break;         /* tmax > 1 */
+                case 4: r.dx.l[i] = r.dy.l[i] = 0; break;            /* point ray */
+                case 5: r.dx.l[i] = 0; break;                        /* parallel to y */
+                case 6: r.dy.l[i] = 0; break;                        /* parallel to x */
+                case 7: r.dx.l[i] = 0; r.x.l[i] = -65536; break;     /* parallel, outside */
+                case 8: r.x.l[i] = -3 * 65536; r.dx.l[i] = -65536; break; /* leaves at once */
+                case 9: r.dw.l[i] = -(r.w.l[i] / 2) - 1; break;      /* reaches w = 0 */
+                default: break;
+                }
+            }
+            steps = rep % 8 == 5 ? 1u + (uint32_t)(rep % 3) : 0u;
+            memset(&h, 0x5A, sizeof h);
+            assert_int_equal(lt_qt_trace16_q30(&b.qt[f], &r, k, steps, &h), LT_OK);
+            check_single_q30(&b.qt[f], &r, k, steps, &h);
+        }
+    }
+    {
+        lt_qray16_q30_t r;
+        lt_qhit16_q30_t h;
+        memset(&r, 0, sizeof r);
+        assert_int_equal(lt_qt_trace1_q30(NULL, &r, 1, 0, &h), LT_E_ARG);
+        assert_int_equal(lt_qt_trace1_q30(&b.qt[0], NULL, 1, 0, &h), LT_E_ARG);
+        assert_int_equal(lt_qt_trace1_q30(&b.qt[0], &r, 1, 0, NULL), LT_E_ARG);
+#if LT_CFG_FLOAT32
+        assert_int_equal(lt_qt_trace1_q30(&b.qt[2], &r, 1, 0, &h), LT_E_ARG);
+#endif
+    }
+    ltt_report("single rays: lt_qt_trace1_q30 = lt_qt_trace16_q30 bit for bit (whole hit records, "
+               "inactive lanes untouched) on %zu packets, %zu lanes, %zu node visits (%zu lanes "
+               "from the tests above: steps, spheres, bands, holes, two layers, the Beachball EXR "
+               "when present; the rest crafted: invalid, point, parallel, leaving, w = 0, step "
+               "bounds 1-3, partial masks)\n",
+               g_single_packets, g_single_lanes, g_single_nodes, before);
+    built_free(&b);
+    ss_scene_free(&s);
+}
 
 /* Optional: the shared beachball depth buffer (skipped when absent, failed when CI=true). */
 static void test_exr_beachball(void **state)
@@ -1312,6 +1437,7 @@ int main(void)
         cmocka_unit_test(test_sim_counts),
 #endif
         cmocka_unit_test(test_exr_beachball),
+        cmocka_unit_test(test_single_rays),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

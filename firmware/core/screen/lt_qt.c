@@ -184,38 +184,69 @@ static void qdec_zero(qdec_t *d)
         d->c.l[i] = d->al.l[i] = d->be.l[i] = d->lo.l[i] = d->hi.l[i] = d->eps.l[i] = 0;
 }
 
-/* min / max of a decoded plane over its footprint: C -+ (|Al| + |Be|) / 2, outward. */
-static void qdec_bounds1(qdec_t *d, int i)
+/* One decoded node (the single-ray walk's, and each lane's of qdec_t); fields as qdec_t's. */
+typedef struct qnode1 {
+    int aabb, o;
+    int32_t c, al, be, lo, hi, eps;
+} qnode1_t;
+
+/* Lane i of d from one decoded node (absent fields stay zero, as qdec_zero left them). */
+LT_INLINE void qdec_set1(qdec_t *d, int i, const qnode1_t *q)
 {
-    int64_t c2 = 2 * (int64_t)d->c.l[i];
-    int64_t s = lt__l64_abs_wrap(d->al.l[i]) + lt__l64_abs_wrap(d->be.l[i]);
-    d->lo.l[i] = lt__ssat32(lt__asr64(c2 - s, 1));
-    d->hi.l[i] = lt__ssat32(lt__asr64(c2 + s + 1, 1));
+    if (q->aabb) {
+        d->aabb = (lt_mask16_t)(d->aabb | (1u << i));
+        d->lo.l[i] = q->lo;
+        d->hi.l[i] = q->hi;
+        return;
+    }
+    d->o = (lt_mask16_t)(d->o | ((unsigned)q->o << i));
+    d->c.l[i] = q->c;
+    d->al.l[i] = q->al;
+    d->be.l[i] = q->be;
+    d->eps.l[i] = q->eps;
+    d->lo.l[i] = q->lo;
+    d->hi.l[i] = q->hi;
+}
+
+/* min / max of a decoded plane over its footprint: C -+ (|Al| + |Be|) / 2, outward. */
+LT_INLINE void qnode1_bounds(qnode1_t *q)
+{
+    int64_t c2 = 2 * (int64_t)q->c;
+    int64_t s = lt__l64_abs_wrap(q->al) + lt__l64_abs_wrap(q->be);
+    q->lo = lt__ssat32(lt__asr64(c2 - s, 1));
+    q->hi = lt__ssat32(lt__asr64(c2 + s + 1, 1));
 }
 
 /* ---- 64-bit node codec --------------------------------------------------------------------- */
 
-static void n64_dec1(lt_qt_n64_t n, int bounds, qdec_t *d, int i)
+LT_INLINE void n64_node1(lt_qt_n64_t n, int bounds, qnode1_t *q)
 {
-    if ((n.hi >> 31) != 0u) {
-        d->aabb = (lt_mask16_t)(d->aabb | (1u << i));
-        d->lo.l[i] = (int32_t)(n.lo & 0x7FFFFFFFu);
-        d->hi.l[i] = (int32_t)(n.hi & 0x7FFFFFFFu);
+    q->lo = q->hi = 0;
+    q->aabb = (int)(n.hi >> 31);
+    if (q->aabb) {
+        q->lo = (int32_t)(n.lo & 0x7FFFFFFFu);
+        q->hi = (int32_t)(n.hi & 0x7FFFFFFFu);
     } else {
         unsigned ec = n.lo & 7u, s = (n.lo >> 3) & 31u;
         int64_t a = q_sext((n.hi >> 15) & 0x7FFFu, 15), b = q_sext(n.hi & 0x7FFFu, 15);
-        if (((n.hi >> 30) & 1u) != 0u)
-            d->o = (lt_mask16_t)(d->o | (1u << i));
-        d->c.l[i] = lt__ssat32((int64_t)(n.lo >> 8) * ((int64_t)1 << ec));
-        d->al.l[i] = lt__ssat32(a * ((int64_t)1 << s));
-        d->be.l[i] = lt__ssat32(b * ((int64_t)1 << s));
+        q->o = (int)((n.hi >> 30) & 1u);
+        q->c = lt__ssat32((int64_t)(n.lo >> 8) * ((int64_t)1 << ec));
+        q->al = lt__ssat32(a * ((int64_t)1 << s));
+        q->be = lt__ssat32(b * ((int64_t)1 << s));
         /* half a step of C, half a step of each slope at half weight at the node's edge,
          * + 1 for the rounding to raw units before encoding */
-        d->eps.l[i] = 1 + (ec != 0 ? (int32_t)(1u << (ec - 1u)) : 0) +
-                      (s != 0 ? (int32_t)(1u << (s - 1u)) : 0);
+        q->eps = 1 + (ec != 0 ? (int32_t)(1u << (ec - 1u)) : 0) +
+                 (s != 0 ? (int32_t)(1u << (s - 1u)) : 0);
         if (bounds)
-            qdec_bounds1(d, i);
+            qnode1_bounds(q);
     }
+}
+
+static void n64_dec1(lt_qt_n64_t n, int bounds, qdec_t *d, int i)
+{
+    qnode1_t q;
+    n64_node1(n, bounds, &q);
+    qdec_set1(d, i, &q);
 }
 
 /* Decode base[i0 + stride * lane] for the lanes in k (n64_decode_idx: base[idx]). Cost:
@@ -370,26 +401,33 @@ static uint32_t mf15_enc(int32_t x, int up)
     return (e << 10) | (m - 1024u);
 }
 
-static void n32_dec1(lt_qt_n32_t n, int bounds, qdec_t *d, int i)
+LT_INLINE void n32_node1(lt_qt_n32_t n, int bounds, qnode1_t *q)
 {
     uint32_t v = n.v;
-    if ((v >> 31) != 0u) {
-        d->aabb = (lt_mask16_t)(d->aabb | (1u << i));
-        d->lo.l[i] = mf15_dec(v & 0x7FFFu);
-        d->hi.l[i] = mf15_dec((v >> 16) & 0x7FFFu);
+    q->lo = q->hi = 0;
+    q->aabb = (int)(v >> 31);
+    if (q->aabb) {
+        q->lo = mf15_dec(v & 0x7FFFu);
+        q->hi = mf15_dec((v >> 16) & 0x7FFFu);
     } else {
         unsigned e = (v >> 25) & 31u, ks = e + 3u * ((v >> 12) & 1u);
-        if (((v >> 30) & 1u) != 0u)
-            d->o = (lt_mask16_t)(d->o | (1u << i));
-        d->c.l[i] = lt__ssat32((int64_t)((v >> 13) & 0xFFFu) * ((int64_t)1 << e));
-        d->al.l[i] = lt__ssat32((int64_t)q_sext((v >> 6) & 63u, 6) * ((int64_t)1 << ks));
-        d->be.l[i] = lt__ssat32((int64_t)q_sext(v & 63u, 6) * ((int64_t)1 << ks));
+        q->o = (int)((v >> 30) & 1u);
+        q->c = lt__ssat32((int64_t)((v >> 13) & 0xFFFu) * ((int64_t)1 << e));
+        q->al = lt__ssat32((int64_t)q_sext((v >> 6) & 63u, 6) * ((int64_t)1 << ks));
+        q->be = lt__ssat32((int64_t)q_sext(v & 63u, 6) * ((int64_t)1 << ks));
         /* half a step of C + half a step of each slope at half weight */
-        d->eps.l[i] = lt__ssat32(1 + (e != 0 ? ((int64_t)1 << (e - 1u)) : 0) +
-                                 (ks != 0 ? ((int64_t)1 << (ks - 1u)) : 0));
+        q->eps = lt__ssat32(1 + (e != 0 ? ((int64_t)1 << (e - 1u)) : 0) +
+                            (ks != 0 ? ((int64_t)1 << (ks - 1u)) : 0));
         if (bounds)
-            qdec_bounds1(d, i);
+            qnode1_bounds(q);
     }
+}
+
+static void n32_dec1(lt_qt_n32_t n, int bounds, qdec_t *d, int i)
+{
+    qnode1_t q;
+    n32_node1(n, bounds, &q);
+    qdec_set1(d, i, &q);
 }
 
 /* As n64_decode. Cost: LANE_GATHER per active lane, QT_N32_DECODE (VSHIFT x6, VALU x8), with
@@ -533,11 +571,43 @@ typedef struct qlayer_out {
 
 /* Offset of the ray at t from the node centre in units of the node size, s1.30:
  * (o 2^30 + d t - (2q + 1) 2^(L + 45)) / 2^(16 + L), half up (o, d in s15.16, so s.46 before). */
-LT_INLINE int64_t q_uoff(int32_t o, int32_t d, int32_t t, int32_t q, int32_t L)
+LT_INLINE int64_t q_uoff46(int64_t x46, int32_t q, int32_t L)
 {
-    int64_t x46 = (int64_t)o * ((int64_t)1 << 30) + lt__mul32x32_64(d, t);
     int64_t c46 = (2 * (int64_t)q + 1) * ((int64_t)1 << (45 + L));
     return q_rnd(x46 - c46, 16u + (unsigned)L);
+}
+
+/* The ray's point at t, what the plane function needs of t: x, y in s.46 (o 2^30 + d t) and w in
+ * s1.60. */
+typedef struct qpt {
+    int64_t x46, y46, w60;
+} qpt_t;
+
+LT_INLINE void q_point(int32_t ox, int32_t oy, int32_t dx, int32_t dy, int32_t w, int32_t dw,
+                       int32_t t, qpt_t *p)
+{
+    p->x46 = (int64_t)ox * ((int64_t)1 << 30) + lt__mul32x32_64(dx, t);
+    p->y46 = (int64_t)oy * ((int64_t)1 << 30) + lt__mul32x32_64(dy, t);
+    p->w60 = lt__ssb_wray_lane_q30(w, dw, t);
+}
+
+/* f at the point p for node (L, qx, qy) with plane c, al, be. */
+LT_INLINE int64_t q_plane_pt(const qpt_t *p, int32_t L, int32_t qx, int32_t qy, int32_t c,
+                             int32_t al, int32_t be)
+{
+    int64_t u = q_uoff46(p->x46, qx, L), v = q_uoff46(p->y46, qy, L);
+    return p->w60 - (int64_t)c * ((int64_t)1 << 30) - al * u - be * v;
+}
+
+/* f(t) of one ray (q_plane_f's lane body): o, d the ray's pixel origin and direction per axis,
+ * w, dw its w; (L, qx, qy) the node and c, al, be its plane. */
+LT_INLINE int64_t q_plane_lane(int32_t ox, int32_t oy, int32_t dx, int32_t dy, int32_t w,
+                               int32_t dw, int32_t t, int32_t L, int32_t qx, int32_t qy, int32_t c,
+                               int32_t al, int32_t be)
+{
+    qpt_t p;
+    q_point(ox, oy, dx, dy, w, dw, t, &p);
+    return q_plane_pt(&p, L, qx, qy, c, al, be);
 }
 
 /* f(t) = w_ray(t) - w_plane(x(t), y(t)) in s1.60, for the lanes in k (0 elsewhere). Exact given
@@ -551,15 +621,11 @@ static lt_vql60_t q_plane_f(const qsetup_t *S, lt_mask16_t k, lt_vq30_t t, lt_vi
     int i;
     LT_CHARGE(QT_Q_PLANE_F);
     LT_UTIL(k);
-    for (i = 0; i < LT_LANES; i++) {
-        f.l[i] = 0;
-        if (LT__ON(k, i)) {
-            int64_t u = q_uoff(r->x.l[i], r->dx.l[i], t.l[i], qx.l[i], lvl.l[i]);
-            int64_t v = q_uoff(r->y.l[i], r->dy.l[i], t.l[i], qy.l[i], lvl.l[i]);
-            f.l[i] = lt__ssb_wray1_q30(r, i, t.l[i]) - (int64_t)nd->c.l[i] * ((int64_t)1 << 30) -
-                     nd->al.l[i] * u - nd->be.l[i] * v;
-        }
-    }
+    for (i = 0; i < LT_LANES; i++)
+        f.l[i] = LT__ON(k, i) ? q_plane_lane(r->x.l[i], r->y.l[i], r->dx.l[i], r->dy.l[i],
+                                             r->w.l[i], r->dw.l[i], t.l[i], lvl.l[i], qx.l[i],
+                                             qy.l[i], nd->c.l[i], nd->al.l[i], nd->be.l[i])
+                              : 0;
     return f;
 }
 
@@ -709,6 +775,296 @@ lt_status_t lt_qt_trace16_q30(const lt_qt_t *qt, const lt_qray16_q30_t *r, lt_ma
     if (qt->enc == LT_QT_N32)
         return qt_trace_n32(qt, r, k, max_steps, hit);
     return LT_E_ARG;
+}
+
+/* ---- single rays: the walk of qt_layer / qt_trace one ray at a time ---------------------------- */
+
+/* One layer's outputs for one ray (qlayer_out_t's lane). */
+typedef struct qlayer1 {
+    int hit, occ, unk;
+    int32_t thit, tocc, tstop;
+    int32_t nodes, aabb, planes;
+} qlayer1_t;
+
+/* The node at idx of a layer, decoded (either fixed-point format). LT_MEM at its address. */
+LT_INLINE void qt1_node(const lt_qt_t *qt, const void *layer, uint32_t idx, qnode1_t *q)
+{
+    if (qt->enc == LT_QT_N64) {
+        const lt_qt_n64_t *p = (const lt_qt_n64_t *)layer + idx;
+        LT_MEM(p, sizeof *p, LT_MEM_READ);
+        n64_node1(*p, 0, q);
+    } else {
+        const lt_qt_n32_t *p = (const lt_qt_n32_t *)layer + idx;
+        LT_MEM(p, sizeof *p, LT_MEM_READ);
+        n32_node1(*p, 0, q);
+    }
+}
+
+/* The point of the ray R at t (q_point). */
+LT_INLINE void qt1_point(const lt__ssb_ray1_q30_t *R, int32_t t, qpt_t *p)
+{
+    q_point(R->o[0], R->o[1], R->d[0], R->d[1], R->w, R->dw, t, p);
+}
+
+/* The crossings a walk computed last, per axis: the two most recent (X, t) pairs. A node's exit
+ * edge on the axis it did not step along, and a child's edges after a descent (the parent's exit
+ * edge or the midline just computed), are among them, so most crossings are found here. The
+ * crossing is a function of X alone for a ray, so a found t is the computed one. */
+typedef struct qxcache {
+    int32_t X[2][2], t[2][2];
+} qxcache_t;
+
+LT_INLINE int32_t qt1_cross(const lt__ssb_ray1_q30_t *R, qxcache_t *c, int a, int32_t X)
+{
+    int32_t t;
+    if (c->X[a][0] == X)
+        return c->t[a][0];
+    if (c->X[a][1] == X)
+        return c->t[a][1];
+    t = lt__ssb_tcross1_q30(R, a, X);
+    c->X[a][1] = c->X[a][0];
+    c->t[a][1] = c->t[a][0];
+    c->X[a][0] = X;
+    c->t[a][0] = t;
+    return t;
+}
+
+/* lt__ssb_child_side_q30's test for one ray, the midline's crossing through the cache: the ray at
+ * t lies at coordinate >= xm on axis a. */
+LT_INLINE int qt1_side(const lt__ssb_ray1_q30_t *R, qxcache_t *c, int a, int32_t t, int32_t xm)
+{
+    if (R->par[a])
+        return (int64_t)R->o[a] >= (int64_t)xm * 65536;
+    return R->neg[a] ? t < qt1_cross(R, c, a, xm) : t >= qt1_cross(R, c, a, xm);
+}
+
+/* qt_layer (lt_qt.inc) for one ray over [t0, t1], front = 0 at t0: the same states, tests and
+ * steps with each lane mask a flag, so every output equals that lane's of the packet walk. */
+static void qt1_layer(const lt_qt_t *qt, const void *layer, const lt__ssb_ray1_q30_t *R,
+                      int32_t t0, int32_t t1, int last, uint32_t max_steps, qlayer1_t *res)
+{
+    const int32_t top = (int32_t)qt->levels - 1;
+    int32_t lvl = top, qx = 0, qy = 0, steps = 0, tcur = t0;
+    int32_t sgx = R->neg[0] ? -1 : 1, sgy = R->neg[1] ? -1 : 1;
+    uint32_t addx = (uint32_t)(!R->neg[0] && !R->par[0]);
+    uint32_t addy = (uint32_t)(!R->neg[1] && !R->par[1]);
+    int front = 0, behind = 0;
+    qxcache_t xc;
+
+    /* pixel coordinates are below 2^16: INT32_MIN is never an edge */
+    xc.X[0][0] = xc.X[0][1] = xc.X[1][0] = xc.X[1][1] = INT32_MIN;
+    xc.t[0][0] = xc.t[0][1] = xc.t[1][0] = xc.t[1][1] = 0;
+    res->hit = res->occ = res->unk = 0;
+    res->thit = res->tocc = res->tstop = t0;
+    for (;;) {
+        qnode1_t nd;
+        int32_t tx, ty, tf;
+        int hitx = 0, dsc = 0;
+        LT_EVENT(NODES, 1);
+        LT_CHARGE(QT1_STEP);
+        steps = lt__i32_add_wrap(steps, 1);
+        if (steps > (int32_t)max_steps) {
+            res->unk = 1;
+            res->tstop = tcur;
+            return;
+        }
+        res->nodes = lt__i32_add_wrap(res->nodes, 1);
+        LT_ASSERT((uint32_t)lvl < qt->levels && (uint32_t)qx < qt->nx[lvl] &&
+                  (uint32_t)qy < qt->ny[lvl]);
+        qt1_node(qt, layer, qt->off[lvl] + (uint32_t)qy * qt->nx[lvl] + (uint32_t)qx, &nd);
+
+        /* exit crossings; parallel axes never cross */
+        tx = R->par[0] ? LT_Q30_MAX
+                       : qt1_cross(R, &xc, 0, (int32_t)(((uint32_t)qx + addx) << lvl));
+        ty = R->par[1] ? LT_Q30_MAX
+                       : qt1_cross(R, &xc, 1, (int32_t)(((uint32_t)qy + addy) << lvl));
+        tf = tx < ty ? tx : ty;
+        tf = tf < t1 ? tf : t1;
+
+        if (!nd.aabb) {
+            /* plane node */
+            qpt_t p;
+            int64_t fn, ff;
+            qt1_point(R, tcur, &p);
+            fn = q_plane_pt(&p, lvl, qx, qy, nd.c, nd.al, nd.be);
+            qt1_point(R, tf, &p);
+            ff = q_plane_pt(&p, lvl, qx, qy, nd.c, nd.al, nd.be);
+            int nneg = fn < 0, fneg = ff < 0;
+            int crack = nneg && front && !nd.o;
+            int occ = nneg && !crack && !behind && !res->occ;
+            LT_CHARGE(QT1_PLANE);
+            res->planes = lt__i32_add_wrap(res->planes, 1);
+            if (!nneg && fneg) {
+                LT_CHARGE(QT1_HIT_T);
+                res->thit = lt__ssb_hit_t_lane_q30(tcur, tf, fn, ff);
+                hitx = 1;
+            }
+            if (crack) {
+                res->thit = tcur;
+                hitx = 1;
+            }
+            if (occ) {
+                res->occ = 1;
+                res->tocc = tcur;
+                if (last)
+                    return;
+            }
+            front = !fneg;
+            behind = fneg;
+        } else {
+            /* AABB node */
+            int64_t wn = lt__ssb_wray_lane_q30(R->w, R->dw, tcur);
+            int64_t wf = lt__ssb_wray_lane_q30(R->w, R->dw, tf);
+            int64_t wlo = lt__l64_min(wn, wf), whi = lt__l64_max(wn, wf);
+            int64_t bmin = (int64_t)nd.lo * ((int64_t)1 << 30);
+            int64_t bmax = (int64_t)nd.hi * ((int64_t)1 << 30);
+            int above = wlo > bmax, below = whi < bmin, ehi, elo;
+            LT_EVENT(AABB, 1);
+            LT_EVENT(AABB_RAYS, 1);
+            LT_CHARGE(QT1_BOX);
+            res->aabb = lt__i32_add_wrap(res->aabb, 1);
+            dsc = !above && !(below && behind);
+            front = front || above;
+            behind = behind && !above;
+            /* Alg. 3 line 32: enter where the ray enters the box (lt_qt.inc) */
+            ehi = dsc && wn > bmax && wf <= bmax;
+            elo = dsc && behind && wn < bmin && wf >= bmin;
+            if (ehi || elo) {
+                int64_t fa = elo ? lt__l64_sub_wrap(bmin, wn) : lt__l64_sub_wrap(wn, bmax);
+                int64_t fb = elo ? lt__l64_sub_wrap(bmin, wf) : lt__l64_sub_wrap(wf, bmax);
+                int32_t te = lt__q16_sub_sat(lt__ssb_hit_t_lane_q30(tcur, tf, fa, fb), 4);
+                LT_CHARGE(QT1_HIT_T);
+                tcur = te > tcur ? te : tcur;
+                front = front || ehi;
+            }
+        }
+        if (hitx) {
+            res->hit = 1;
+            return;
+        }
+
+        if (dsc && lvl > 0) {
+            /* descend to the child holding the ray at tcur */
+            int32_t lm = lvl - 1;
+            int32_t mx = (int32_t)((2u * (uint32_t)qx + 1u) << lm);
+            int32_t my = (int32_t)((2u * (uint32_t)qy + 1u) << lm);
+            int cx = qt1_side(R, &xc, 0, tcur, mx);
+            int cy = qt1_side(R, &xc, 1, tcur, my);
+            LT_CHARGE(QT1_DESCEND);
+            qx = lt__i32_add_wrap(lt__i32_add_wrap(qx, qx), cx);
+            qy = lt__i32_add_wrap(lt__i32_add_wrap(qy, qy), cy);
+            lvl = lm;
+            continue;
+        }
+
+        /* next node (Alg. 4) and level jump */
+        if (tf >= t1) {
+            res->tstop = tf;
+            return;
+        }
+        {
+            int sx = !R->par[0] && tx <= ty, sy = !R->par[1] && ty <= tx;
+            int32_t nqx = sx ? lt__i32_add_wrap(qx, sgx) : qx;
+            int32_t nqy = sy ? lt__i32_add_wrap(qy, sgy) : qy;
+            int32_t up;
+            LT_CHARGE(QT1_ADVANCE);
+            if (nqx < 0 || nqy < 0 || (uint32_t)nqx >= qt->nx[lvl] ||
+                (uint32_t)nqy >= qt->ny[lvl]) {
+                res->tstop = tf;
+                return;
+            }
+            up = 31 - (int32_t)lt__clz32((uint32_t)((qx ^ nqx) | (qy ^ nqy)));
+            up = up < top - lvl ? up : top - lvl;
+            qx = lt__asr32(nqx, (unsigned)up & 31u);
+            qy = lt__asr32(nqy, (unsigned)up & 31u);
+            lvl = lt__i32_add_wrap(lvl, up);
+            tcur = tf;
+        }
+    }
+}
+
+/* qt_trace for lane i of r alone: setup and clip, the layers, the hit record's lane i. */
+static void qt1_trace(const lt_qt_t *qt, const lt_qray16_q30_t *r, int i, uint32_t max_steps,
+                      lt_qhit16_q30_t *hit)
+{
+    lt__ssb_ray1_q30_t R;
+    qlayer1_t lo;
+    int32_t t0, t1, tc, lc = 0, st = LT_QT_MISS;
+    int ok, go = 0, cand = 0;
+    uint32_t layer;
+    lt_phase_t prev = LT_PHASE_ENTER(SETUP);
+
+    LT_EVENT(RAYS, 1);
+    LT_CHARGE(QT1_SETUP);
+    ok = lt__ssb_clip1_q30(qt->width, qt->height, r, i, &R, &t0, &t1);
+    (void)LT_PHASE_ENTER(TRAVERSE);
+    hit->t.l[i] = t0;
+    hit->layer.l[i] = -1;
+    lo.nodes = lo.aabb = lo.planes = 0;
+    if (!ok) {
+        hit->status.l[i] = LT_QT_BADRAY;
+    } else {
+        tc = t1;
+        go = t0 < t1;
+        for (layer = 0; layer < qt->layers && go; layer++) {
+            int last = layer + 1u == qt->layers;
+            LT_CHARGE(QT1_LAYER);
+            qt1_layer(qt, (const uint8_t *)qt->nodes + (size_t)layer * qt->layer_nodes *
+                                                          qt->node_bytes,
+                      &R, t0, t1, last, max_steps, &lo);
+            go = lo.occ && !lo.unk;
+            if (lo.unk) { /* step bound: unknown, whatever was found before */
+                st = LT_QT_UNKNOWN;
+                tc = lo.tstop;
+                lc = (int32_t)layer;
+            } else if (lo.hit && !lo.occ) { /* a hit with no occlusion before it is final */
+                st = LT_QT_HIT;
+                tc = lo.thit;
+                lc = (int32_t)layer;
+            } else if (!go) { /* no hit, no occlusion: the previous candidate, else a miss */
+                if (cand)
+                    st = LT_QT_HIT;
+            } else {
+                /* occluded: a later hit is the candidate; continue one layer deeper */
+                if (lo.hit) {
+                    cand = 1;
+                    tc = lo.thit;
+                    lc = (int32_t)layer;
+                    t1 = lo.thit;
+                }
+                t0 = lo.tocc;
+                if (last) { /* behind the deepest layer: unknown beyond */
+                    st = LT_QT_OCCLUDED;
+                    tc = lo.tocc;
+                    lc = (int32_t)layer;
+                }
+            }
+        }
+        hit->status.l[i] = st;
+        hit->layer.l[i] = lc;
+        hit->t.l[i] = tc;
+        hit->w.l[i] = lt__ssb_w_at_lane_q30(R.w, R.dw, tc);
+    }
+    hit->nodes.l[i] = lo.nodes;
+    hit->aabb.l[i] = lo.aabb;
+    hit->planes.l[i] = lo.planes;
+    LT_CHARGE(QT1_FINISH);
+    LT_PHASE_LEAVE(prev);
+}
+
+lt_status_t lt_qt_trace1_q30(const lt_qt_t *qt, const lt_qray16_q30_t *r, lt_mask16_t k,
+                             uint32_t max_steps, lt_qhit16_q30_t *hit)
+{
+    int i;
+    if (qt == NULL || r == NULL || hit == NULL || qt->nodes == NULL ||
+        (qt->enc != LT_QT_N64 && qt->enc != LT_QT_N32))
+        return LT_E_ARG;
+    if (max_steps == 0)
+        max_steps = lt_qt_default_steps(qt);
+    for (i = 0; i < LT_LANES; i++)
+        if (LT__ON(k, i))
+            qt1_trace(qt, r, i, max_steps, hit);
+    return LT_OK;
 }
 
 /* ==== float32 =================================================================================== */

@@ -14,12 +14,6 @@
 
 /* ==== s1.30 w and t, s15.16 pixels, int64 wide values ========================================= */
 
-/* Round a value with f >= 1 fractional bits to an integer, half up. */
-LT_INLINE int64_t lt__ssb_rnd_q30(int64_t v, unsigned f)
-{
-    return lt__asr64(v + ((int64_t)1 << (f - 1u)), f);
-}
-
 /* t = (X - o) / d on axis a for integer pixel coordinates X, lanes in k (0 elsewhere):
  * (X 2^16 - o) m >> sh, half up, negated for d < 0, saturated to int32. Monotonic in X, error
  * <= 1 ulp for |X - o| <= 2^15 px. Every crossing and every child choice of the three tracers
@@ -31,14 +25,10 @@ lt_vq30_t lt__ssb_tcross_q30(const lt__ssb_setup_q30_t *S, int a, lt_mask16_t k,
     int i;
     LT_CHARGE(SSB_Q_TCROSS);
     LT_UTIL(k);
-    for (i = 0; i < LT_LANES; i++) {
-        t.l[i] = 0;
-        if (LT__ON(k, i)) {
-            int64_t num = (int64_t)X.l[i] * 65536 - o->l[i];
-            int64_t q = lt__ssb_rnd_q30(num * S->m[a].l[i], (unsigned)S->sh[a].l[i]);
-            t.l[i] = lt__ssat32(LT__ON(S->neg[a], i) ? -q : q);
-        }
-    }
+    for (i = 0; i < LT_LANES; i++)
+        t.l[i] = LT__ON(k, i) ? lt__ssb_tcross_lane_q30(o->l[i], S->m[a].l[i], S->sh[a].l[i],
+                                                        (int)LT__ON(S->neg[a], i), X.l[i])
+                              : 0;
     return t;
 }
 
@@ -101,7 +91,7 @@ lt_vq30_t lt__ssb_w_at_q30(const lt__ssb_setup_q30_t *S, lt_mask16_t k, lt_vq30_
     LT_CHARGE(SSB_Q_W_AT);
     LT_UTIL(k);
     for (i = 0; i < LT_LANES; i++)
-        w.l[i] = LT__ON(k, i) ? lt__ssat32(lt__ssb_rnd_q30(lt__ssb_wray1_q30(S->r, i, t.l[i]), 30u)) : 0;
+        w.l[i] = LT__ON(k, i) ? lt__ssb_w_at_lane_q30(S->r->w.l[i], S->r->dw.l[i], t.l[i]) : 0;
     return w;
 }
 
@@ -116,17 +106,9 @@ lt_vq30_t lt__ssb_hit_t_q30(lt_mask16_t k, lt_vq30_t tn, lt_vq30_t tf, lt_vql60_
     int i;
     LT_CHARGE(SSB_Q_HIT_T);
     LT_UTIL(k);
-    for (i = 0; i < LT_LANES; i++) {
-        if (LT__ON(k, i)) {
-            uint64_t num = (uint64_t)fn.l[i], den = num + (uint64_t)(-ff.l[i]);
-            unsigned b = 64u - lt__clz64(den), s = b > 31u ? b - 31u : 0u;
-            int64_t n = (int64_t)(num >> s), dd = (int64_t)(den >> s);
-            int64_t span = (int64_t)tf.l[i] - tn.l[i];
-            if (dd == 0)
-                continue;
-            t.l[i] = lt__ssat32((int64_t)tn.l[i] + lt__div_round64(n * span, dd));
-        }
-    }
+    for (i = 0; i < LT_LANES; i++)
+        if (LT__ON(k, i))
+            t.l[i] = lt__ssb_hit_t_lane_q30(tn.l[i], tf.l[i], fn.l[i], ff.l[i]);
     return t;
 }
 
@@ -155,6 +137,85 @@ lt_mask16_t lt__ssb_child_side_q30(const lt__ssb_setup_q30_t *S, int a, lt_mask1
     return r;
 }
 
+/* The per-ray part of the clip: validity of lane i of r, the normalised reciprocals and signs
+ * per axis (m = 0, sh = 1 for a parallel axis) and [tmin, tmax] cut at w = 0 (rounded down).
+ * Returns 0 for an invalid ray (outputs at their defaults: t0 = t1 = 0). */
+static int ssb_ray_lane_q30(const lt_qray16_q30_t *r, int i, int32_t m[2], int32_t sh[2],
+                            int par[2], int neg[2], int32_t *t0, int32_t *t1)
+{
+    const int64_t lim = (int64_t)1 << (LT_QT_RAY_MAX_LOG2 + 16);
+    int64_t x = r->x.l[i], y = r->y.l[i], ex = x + r->dx.l[i], ey = y + r->dy.l[i];
+    int a;
+    *t0 = *t1 = 0;
+    for (a = 0; a < 2; a++) {
+        m[a] = 0;
+        sh[a] = 1;
+        par[a] = neg[a] = 0;
+    }
+    if (x < -lim || x > lim || y < -lim || y > lim || ex < -lim || ex > lim || ey < -lim ||
+        ey > lim || r->w.l[i] < 0 || r->tmin.l[i] < 0 || r->tmin.l[i] > r->tmax.l[i] ||
+        r->tmax.l[i] > LT_Q30_ONE)
+        return 0;
+    for (a = 0; a < 2; a++) {
+        int32_t dv = a ? r->dy.l[i] : r->dx.l[i];
+        if (dv == 0) {
+            par[a] = 1;
+        } else {
+            uint32_t dd = dv < 0 ? (uint32_t)0 - (uint32_t)dv : (uint32_t)dv;
+            unsigned n = lt__clz32(dd);
+            uint64_t D = (uint64_t)dd << n;
+            uint64_t mm = (((uint64_t)1 << 62) + D / 2u) / D;
+            if (mm > (uint64_t)INT32_MAX)
+                mm = (uint64_t)INT32_MAX;
+            m[a] = (int32_t)mm;
+            sh[a] = (int32_t)(32u - n);
+            neg[a] = dv < 0;
+        }
+    }
+    *t0 = r->tmin.l[i];
+    *t1 = r->tmax.l[i];
+    /* w >= 0: stop at the point at infinity (rounded down) */
+    if (r->dw.l[i] < 0) {
+        int64_t tw = lt__divfloor64((int64_t)r->w.l[i] * ((int64_t)1 << 30), -(int64_t)r->dw.l[i]);
+        if (tw < *t1)
+            *t1 = (int32_t)tw;
+    }
+    return 1;
+}
+
+/* A parallel ray's coordinate o lies outside [0, ext) pixels. */
+LT_INLINE int ssb_par_outside(int32_t o, int32_t ext)
+{
+    return o < 0 || (int64_t)o >= (int64_t)ext * 65536;
+}
+
+int lt__ssb_clip1_q30(uint32_t width, uint32_t height, const lt_qray16_q30_t *r, int i,
+                      lt__ssb_ray1_q30_t *R, int32_t *t0, int32_t *t1)
+{
+    int a;
+    R->o[0] = r->x.l[i];
+    R->o[1] = r->y.l[i];
+    R->d[0] = r->dx.l[i];
+    R->d[1] = r->dy.l[i];
+    R->w = r->w.l[i];
+    R->dw = r->dw.l[i];
+    if (!ssb_ray_lane_q30(r, i, R->m, R->sh, R->par, R->neg, t0, t1))
+        return 0;
+    for (a = 0; a < 2; a++) {
+        int32_t ext = (int32_t)(a ? height : width);
+        if (R->par[a]) {
+            if (ssb_par_outside(R->o[a], ext))
+                *t1 = -1;
+        } else {
+            int32_t te = lt__ssb_tcross1_q30(R, a, R->neg[a] ? ext : 0);
+            int32_t tx = lt__ssb_tcross1_q30(R, a, R->neg[a] ? 0 : ext);
+            *t0 = *t0 > te ? *t0 : te;
+            *t1 = *t1 < tx ? *t1 : tx;
+        }
+    }
+    return 1;
+}
+
 /* Ray setup and clip (the quadtree's setup; lt__ssb_setup_q30 adds the major axis): validity
  * (end points |x|, |y| <= 2^14 px, w >= 0, 0 <= tmin <= tmax <= 1), normalised reciprocals per
  * axis, and the clip of [tmin, tmax] to the image (x in [0, W], y in [0, H] through
@@ -165,7 +226,6 @@ lt_mask16_t lt__ssb_clip_q30(uint32_t width, uint32_t height, const lt_qray16_q3
                              lt_mask16_t k, lt__ssb_setup_q30_t *S, lt_vq30_t *t0,
                              lt_vq30_t *t1, lt_mask16_t *bad)
 {
-    const int64_t lim = (int64_t)1 << (LT_QT_RAY_MAX_LOG2 + 16);
     unsigned okm = 0;
     int i, a;
 
@@ -174,45 +234,21 @@ lt_mask16_t lt__ssb_clip_q30(uint32_t width, uint32_t height, const lt_qray16_q3
     S->ymaj = 0;
     LT_CHARGE(SSB_Q_CLIP);
     for (i = 0; i < LT_LANES; i++) {
-        int64_t x = r->x.l[i], y = r->y.l[i], ex = x + r->dx.l[i], ey = y + r->dy.l[i];
+        int32_t m[2] = {0, 0}, sh[2] = {1, 1};
+        int par[2], neg[2];
         t0->l[i] = 0;
         t1->l[i] = 0;
-        for (a = 0; a < 2; a++) {
-            S->m[a].l[i] = 0;
-            S->sh[a].l[i] = 1;
-        }
-        if (!LT__ON(k, i))
-            continue;
-        if (x < -lim || x > lim || y < -lim || y > lim || ex < -lim || ex > lim || ey < -lim ||
-            ey > lim || r->w.l[i] < 0 || r->tmin.l[i] < 0 || r->tmin.l[i] > r->tmax.l[i] ||
-            r->tmax.l[i] > LT_Q30_ONE)
-            continue;
-        okm |= 1u << i;
-        for (a = 0; a < 2; a++) {
-            int32_t dv = a ? r->dy.l[i] : r->dx.l[i];
-            if (dv == 0) {
-                S->par[a] = (lt_mask16_t)(S->par[a] | (1u << i));
-            } else {
-                uint32_t dd = dv < 0 ? (uint32_t)0 - (uint32_t)dv : (uint32_t)dv;
-                unsigned n = lt__clz32(dd);
-                uint64_t D = (uint64_t)dd << n;
-                uint64_t m = (((uint64_t)1 << 62) + D / 2u) / D;
-                if (m > (uint64_t)INT32_MAX)
-                    m = (uint64_t)INT32_MAX;
-                S->m[a].l[i] = (int32_t)m;
-                S->sh[a].l[i] = (int32_t)(32u - n);
-                if (dv < 0)
-                    S->neg[a] = (lt_mask16_t)(S->neg[a] | (1u << i));
+        if (LT__ON(k, i) &&
+            ssb_ray_lane_q30(r, i, m, sh, par, neg, &t0->l[i], &t1->l[i])) {
+            okm |= 1u << i;
+            for (a = 0; a < 2; a++) {
+                S->par[a] = (lt_mask16_t)(S->par[a] | ((unsigned)par[a] << i));
+                S->neg[a] = (lt_mask16_t)(S->neg[a] | ((unsigned)neg[a] << i));
             }
         }
-        t0->l[i] = r->tmin.l[i];
-        t1->l[i] = r->tmax.l[i];
-        /* w >= 0: stop at the point at infinity (rounded down) */
-        if (r->dw.l[i] < 0) {
-            int64_t tw = lt__divfloor64((int64_t)r->w.l[i] * ((int64_t)1 << 30),
-                                        -(int64_t)r->dw.l[i]);
-            if (tw < t1->l[i])
-                t1->l[i] = (int32_t)tw;
+        for (a = 0; a < 2; a++) {
+            S->m[a].l[i] = m[a];
+            S->sh[a].l[i] = sh[a];
         }
     }
     *bad = (lt_mask16_t)(k & ~okm);
@@ -227,11 +263,8 @@ lt_mask16_t lt__ssb_clip_q30(uint32_t width, uint32_t height, const lt_qray16_q3
         *t0 = lt_vq30_blend(kn, *t0, lt_vq30_max(*t0, te));
         *t1 = lt_vq30_blend(kn, *t1, lt_vq30_min(*t1, tx));
         for (i = 0; i < LT_LANES; i++) {
-            if (LT__ON(k & S->par[a], i)) {
-                int32_t o = a ? r->y.l[i] : r->x.l[i];
-                if (o < 0 || (int64_t)o >= (int64_t)ext * 65536)
-                    t1->l[i] = -1;
-            }
+            if (LT__ON(k & S->par[a], i) && ssb_par_outside(a ? r->y.l[i] : r->x.l[i], ext))
+                t1->l[i] = -1;
         }
     }
     return lt_vq30_cmplt_m(k, *t0, *t1);

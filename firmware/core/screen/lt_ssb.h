@@ -24,11 +24,68 @@ typedef struct lt__ssb_setup_q30 {
     lt_mask16_t ymaj;    /* |dy| > |dx|: y is the DDA's major axis (0 after lt__ssb_clip_q30) */
 } lt__ssb_setup_q30_t;
 
-/* w of the ray at t in s1.60 for lane i: w 2^30 + dw t (exact, |.| < 2^62); the lane body of
- * lt__ssb_wray_q30 and of the quadtree's plane function (no charge: its callers charge). */
+/* One ray after setup: lane i of a packet as scalars, the single-ray twin of
+ * lt__ssb_setup_q30_t (lt__ssb_clip1_q30 fills it; the quadtree's single-ray walk uses it). */
+typedef struct lt__ssb_ray1_q30 {
+    int32_t o[2], d[2]; /* x, y and dx, dy, s15.16 */
+    int32_t w, dw;      /* s1.30 */
+    int32_t m[2], sh[2]; /* as lt__ssb_setup_q30_t's, per axis */
+    int par[2], neg[2];  /* d == 0, d < 0 on that axis */
+} lt__ssb_ray1_q30_t;
+
+/* The lane bodies: one definition of each routine's per-lane arithmetic, which the 16-lane
+ * routines below loop over and the single-ray walk calls directly, so that both give the same
+ * bits (no charge: their callers charge). */
+
+/* Round a value with f >= 1 fractional bits to an integer, half up. */
+LT_INLINE int64_t lt__ssb_rnd_q30(int64_t v, unsigned f)
+{
+    return lt__asr64(v + ((int64_t)1 << (f - 1u)), f);
+}
+
+/* w of the ray at t in s1.60: w 2^30 + dw t (exact, |.| < 2^62). */
+LT_INLINE int64_t lt__ssb_wray_lane_q30(int32_t w, int32_t dw, int32_t t)
+{
+    return (int64_t)w * ((int64_t)1 << 30) + lt__mul32x32_64(dw, t);
+}
+
+/* As lt__ssb_wray_lane_q30 for lane i of a packet. */
 LT_INLINE int64_t lt__ssb_wray1_q30(const lt_qray16_q30_t *r, int i, int32_t t)
 {
-    return (int64_t)r->w.l[i] * ((int64_t)1 << 30) + lt__mul32x32_64(r->dw.l[i], t);
+    return lt__ssb_wray_lane_q30(r->w.l[i], r->dw.l[i], t);
+}
+
+/* t = (X - o) / d for an integer pixel coordinate X: (X 2^16 - o) m >> sh, half up, negated
+ * for d < 0, saturated (lt__ssb_tcross_q30's lane). */
+LT_INLINE int32_t lt__ssb_tcross_lane_q30(int32_t o, int32_t m, int32_t sh, int neg, int32_t X)
+{
+    int64_t num = (int64_t)X * 65536 - o;
+    int64_t q = lt__ssb_rnd_q30(num * m, (unsigned)sh);
+    return lt__ssat32(neg ? -q : q);
+}
+
+/* The zero of a linear function on [tn, tf] (lt__ssb_hit_t_q30's lane; fn - ff == 0 keeps tn). */
+LT_INLINE int32_t lt__ssb_hit_t_lane_q30(int32_t tn, int32_t tf, int64_t fn, int64_t ff)
+{
+    uint64_t num = (uint64_t)fn, den = num + (uint64_t)(-ff);
+    unsigned b = 64u - lt__clz64(den), s = b > 31u ? b - 31u : 0u;
+    int64_t n = (int64_t)(num >> s), dd = (int64_t)(den >> s);
+    int64_t span = (int64_t)tf - tn;
+    if (dd == 0)
+        return tn;
+    return lt__ssat32((int64_t)tn + lt__div_round64(n * span, dd));
+}
+
+/* w_ray(t) rounded half up to s1.30, saturated (lt__ssb_w_at_q30's lane). */
+LT_INLINE int32_t lt__ssb_w_at_lane_q30(int32_t w, int32_t dw, int32_t t)
+{
+    return lt__ssat32(lt__ssb_rnd_q30(lt__ssb_wray_lane_q30(w, dw, t), 30u));
+}
+
+/* Crossing of one ray after lt__ssb_clip1_q30 on axis a (0 x, 1 y). */
+LT_INLINE int32_t lt__ssb_tcross1_q30(const lt__ssb_ray1_q30_t *R, int a, int32_t X)
+{
+    return lt__ssb_tcross_lane_q30(R->o[a], R->m[a], R->sh[a], R->neg[a], X);
 }
 
 /* t = (X - o) / d on axis a for integer pixel coordinates X. Cost: SSB_Q_TCROSS (VALU x2, VMUL x1,
@@ -58,6 +115,12 @@ lt_mask16_t lt__ssb_child_side_q30(const lt__ssb_setup_q30_t *S, int a, lt_mask1
 lt_mask16_t lt__ssb_clip_q30(uint32_t width, uint32_t height, const lt_qray16_q30_t *r,
                              lt_mask16_t k, lt__ssb_setup_q30_t *S, lt_vq30_t *t0,
                              lt_vq30_t *t1, lt_mask16_t *bad);
+/* lt__ssb_clip_q30 for lane i of r alone, into the scalars of *R: the same validity, reciprocals
+ * and clip, so [*t0, *t1) equals that lane's. Returns 0 for an invalid ray (*t0 = *t1 = 0), else
+ * 1 (the interval may be empty: *t0 >= *t1). Cost: none; the caller charges (the single-ray walk:
+ * QT1_SETUP). */
+int lt__ssb_clip1_q30(uint32_t width, uint32_t height, const lt_qray16_q30_t *r, int i,
+                      lt__ssb_ray1_q30_t *R, int32_t *t0, int32_t *t1);
 /* lt__ssb_clip_q30 plus the major axis (S->ymaj) of the valid lanes (the DDA's and Hi-Z's setup).
  * Cost: lt__ssb_clip_q30 + SSB_Q_MAJOR (VCMP x1). */
 lt_mask16_t lt__ssb_setup_q30(uint32_t width, uint32_t height, const lt_qray16_q30_t *r,

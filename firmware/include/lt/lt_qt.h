@@ -220,6 +220,22 @@ typedef struct lt_qhit16_q30 {
 lt_status_t lt_qt_trace16_q30(const lt_qt_t *qt, const lt_qray16_q30_t *r, lt_mask16_t k,
                               uint32_t max_steps, lt_qhit16_q30_t *hit);
 
+/* The walk of lt_qt_trace16_q30 one ray at a time: each lane of k is traced alone in scalar C
+ * through the same lane bodies (crossings, plane functions, hit parameter, child side, clip) and
+ * the same states and steps, so every field of its hit record equals lt_qt_trace16_q30's bit for
+ * bit (tests/unit/test_qt.c checks this on real depth images). For cores without wide SIMD
+ * (Cortex-M4, RV32), where a packet step costs all 16 lanes' work however few are active and the
+ * 64-bit lane vectors are copied whole: the firmware reprojection uses it there
+ * (docs/firmware.md). Format, range, rounding, overflow: as lt_qt_trace16_q30.
+ * Cost (scalar recipes of lt_recipes.def, per lane of k): QT1_SETUP and QT1_FINISH (SETUP:
+ * QT1_SETUP; the rest TRAVERSE); per layer traced QT1_LAYER; per node visit QT1_STEP, plus
+ * QT1_PLANE at a plane node, QT1_BOX at an AABB node, QT1_HIT_T per crossing or box entry,
+ * QT1_DESCEND per descent and QT1_ADVANCE per step to a neighbour. Events: RAYS per lane, NODES
+ * per visit, AABB / AABB_RAYS per box. Returns: LT_OK, or LT_E_ARG (NULL or an unbuilt / float
+ * quadtree). */
+lt_status_t lt_qt_trace1_q30(const lt_qt_t *qt, const lt_qray16_q30_t *r, lt_mask16_t k,
+                             uint32_t max_steps, lt_qhit16_q30_t *hit);
+
 /* The default step bound per layer: 8 (width + height) + 4 levels + 16. Cost: none. */
 uint32_t lt_qt_default_steps(const lt_qt_t *qt);
 
