@@ -118,18 +118,32 @@ $(B)/gen/cal-$(1).ltfb: $(B)/host/lanetrace-native $(B)/gen/cal-$(1).obj
 	    --only frusta --no-ref -q --pack-block auto --blob $$@ >/dev/null
 FW_IMG_calr-$(1) := $(FW_IMG_reproj-bb)
 FW_BLOB_calr-$(1) := $(B)/gen/cal-$(1).rpb
-$(B)/gen/cal-$(1).rpb: $(B)/host/lanetrace-native $(B)/gen/cal-$(1).obj
+$(B)/gen/cal-$(1).rpb: $(B)/host/lanetrace-native $(B)/gen/cal-$(1).obj firmware/firmware.mk
 	@echo "GEN $$@"
 	@$(B)/host/lanetrace-native render --mesh $(B)/gen/cal-$(1).obj --res 64 --num q16 -q \
 	    --out $(B)/gen/cal-$(1)-depth >/dev/null
 	@$(B)/host/lanetrace-native fwblob --depth $(B)/gen/cal-$(1)-depth.exr --crop 0,0,64,64 \
-	    --layers 2 --num n64 --tile 16 --out $$@ -q
+	    --layers 2 --num n64 --tile 16 $(FW_CALR_MOVE_$(1)) --out $$@ -q
 endef
+# the two calibration reprojections walk differently deep: a the blob's default motion (5.8 nodes
+# per traced ray, mostly misses), b a larger one (11.3 nodes per ray, more rays behind layer 0 and
+# disoccluded), so the fit sees the per-ray and the per-node costs apart
+FW_CALR_MOVE_a :=
+FW_CALR_MOVE_b := --move-rel 0.3,0.1,0 --rot 8,3,0
 $(foreach s,$(FW_CAL_SCENES),$(eval $(call fw_cal,$(s))))
-FW_CAL_NAMES := $(foreach s,$(FW_CAL_SCENES),cal-$(s) calf-$(s) calr-$(s))
+# a third, deeper walk over scene a's depth (16.7 nodes per traced ray, a third of the rays
+# leaving the view)
+FW_IMG_calr-c := $(FW_IMG_reproj-bb)
+FW_BLOB_calr-c := $(B)/gen/cal-c.rpb
+$(B)/gen/cal-c.rpb: $(B)/host/lanetrace-native $(B)/gen/cal-a.rpb firmware/firmware.mk
+	@echo "GEN $@"
+	@$(B)/host/lanetrace-native fwblob --depth $(B)/gen/cal-a-depth.exr --crop 0,0,64,64 \
+	    --layers 2 --num n64 --tile 16 --move-rel 0.5,0.2,0.2 --rot 15,5,0 --out $@ -q
+FW_CAL_NAMES := $(foreach s,$(FW_CAL_SCENES),cal-$(s) calf-$(s) calr-$(s)) calr-c
 FW_CAL_IMAGES := $(foreach t,$(FW_TARGETS),$(FW_CAL_NAMES:%=$(B)/fw/$(t)/%.elf)) \
     $(FW_CAL_NAMES:%=$(B)/fw/cm55/%-portable.elf)
-fw-cal: $(FW_CAL_IMAGES) $(foreach s,$(FW_CAL_SCENES),$(B)/gen/cal-$(s).ltsb $(B)/gen/cal-$(s).ltfb $(B)/gen/cal-$(s).rpb)
+fw-cal: $(FW_CAL_IMAGES) $(foreach s,$(FW_CAL_SCENES),$(B)/gen/cal-$(s).ltsb $(B)/gen/cal-$(s).ltfb $(B)/gen/cal-$(s).rpb) \
+    $(B)/gen/cal-c.rpb
 .PHONY: fw-cal
 FW_IMG_opcal := tests/fw/fw_opcal.c
 FW_IMG_tri := tests/fw/fw_tri.c tests/vectors/lt_tri_loop.c

@@ -40,7 +40,7 @@ trap 'rm -rf "$tmp"' EXIT
 # target -> machine (its file: sim/machines/<machine, - as _>.def; QEMU: $QEMU_<target>)
 declare -A MACH=([cm4]=mcu-m4 [cm55]=mcu-m55 [rv32]=rv32imac)
 # image -> the blob it links, as firmware.mk knows it (FW_BLOB_<image>)
-CAL="cal-a cal-b calf-a calf-b calr-a calr-b"   # the calibration images (make fw-cal)
+CAL="cal-a cal-b calf-a calf-b calr-a calr-b calr-c"   # the calibration images (make fw-cal)
 IMAGES="$CAL scene-bunny scene-teapot scene-sibenik reproj-bb"
 declare -A BLOB
 eval "BLOB=($(make -s --no-print-directory B="$B" IMAGES="$IMAGES" \
@@ -64,9 +64,12 @@ plugin() {
     awk '$1 == "icount" && $2 == "stage" { print $3, $5, $7 }' "$tmp/cnt" >"$tmp/p.$img.$t"
 }
 
-# model IMAGE TARGET: lt-fwmodel's "stage K NAME cycles C count N UNIT" and "ops K ..." lines
+# model IMAGE TARGET: lt-fwmodel's "stage K NAME cycles C count N UNIT" and "ops K ..." lines;
+# a reprojection runs the walk the image ran (its ticks line, from the plugin run just before)
 model() {
-    "$MODEL" --machine "${MACH[$2]}" "${BLOB[$1]}" >"$tmp/m.$1.$2"
+    local walk
+    walk=$(sed -n 's/^ticks .*, walk \([a-z]*\)$/\1/p' "$tmp/uart")
+    "$MODEL" --machine "${MACH[$2]}" ${walk:+--walk "$walk"} "${BLOB[$1]}" >"$tmp/m.$1.$2"
 }
 
 # rows TARGET: the calibration stages of TARGET as tools/fw_fit.py rows into $tmp/rows.TARGET

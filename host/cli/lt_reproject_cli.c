@@ -47,6 +47,8 @@ typedef struct rp {
     int part;              /* --part: the EXR part, -1: chosen by the view */
     const char *report, *machine;
     int npos, truth, color, dist, json, layers, enc, tracer, sample, inpaint, max_steps;
+    int walk;             /* --walk: 0 auto, 1 packets, 2 single */
+    char walk_why[160];   /* why the walk was chosen (printed with it) */
     int seen_move, seen_move_rel, seen_rot, seen_enc, seen_srck, seen_dstk, seen_res, seen_tracer;
     double truth_tol, move[3], rot[3], srck[4], dstk[4], fov, thickness;
     double qtp[4]; /* lambda_h, lambda_d, gamma_norm, gamma_dist; -1: the default */
@@ -77,6 +79,7 @@ typedef struct rp {
 } rp_t;
 
 static const char *const tracer_name[] = {"quadtree", "dda", "hiz", NULL};
+static const char *const walk_name[] = {"auto", "packets", "single", NULL};
 static const char *const sample_name[] = {"bilinear", "nearest", NULL};
 
 /* --src-cam, --dst-cam: FX,FY,CX,CY in pixels, FX and FY > 0 */
@@ -158,6 +161,10 @@ static int rp_options(rp_t *r, int *quiet, const char *prog, int argc, char **ar
          .help = "the screen-space tracer (default quadtree); the DDA\n"
                  "(McGuire & Mara) and Hi-Z (Uludag) baselines run on the\n"
                  "same rays, s1.30 for n64/n32, float32 for f32"},
+        {.name = "--walk", .kind = LT_OPT_ENUM, .dest = &r->walk, .names = walk_name,
+         .help = "the quadtree on s1.30 (n64, n32): packets of 16 lanes or\n"
+                 "single rays, one at a time (same results); auto (default):\n"
+                 "single on a machine model narrower than 16 lanes (the MCUs)"},
         {.name = "--thickness", .kind = LT_OPT_DOUBLE, .dest = &r->thickness, .meta = "REL",
          .lo = 0.0, .hi = 2.0, .flags = LT_OPT_HI_OPEN,
          .help = "DDA and Hi-Z: relative depth thickness of a pixel, {range} (1/64)"},
@@ -722,6 +729,32 @@ static int rp_ground_truth(rp_t *r, const char *prog, const lt_rp_cli_hooks_t *h
     return 0;
 }
 
+/* The walk: --walk packets / single as given (lt_rp_run refuses single off the s1.30 quadtree);
+ * auto: single rays where the machine model is narrower than 16 lanes (a packet step there costs
+ * all 16 lanes' work however few are active, as on the firmware targets), on the quadtree of an
+ * s1.30 path; packets otherwise. */
+static void rp_walk(rp_t *r)
+{
+    lt_meter_machine_t m;
+    int narrow = r->machine != NULL && lt_meter_machine_info(r->machine, &m) == 0 && m.lanes < 16;
+    if (r->walk != 0) {
+        r->ro.single = r->walk == 2;
+        snprintf(r->walk_why, sizeof r->walk_why, "set by --walk");
+    } else if (r->tracer != LT_RP_QUADTREE || r->path->screen->qt_trace1 == NULL) {
+        r->ro.single = 0;
+        snprintf(r->walk_why, sizeof r->walk_why, "auto: the single-ray walk is the s1.30 quadtree's");
+    } else if (narrow) {
+        r->ro.single = 1;
+        snprintf(r->walk_why, sizeof r->walk_why,
+                 "auto: machine %s has %u lane%s, where a packet step costs all 16 lanes", m.name,
+                 m.lanes, m.lanes == 1 ? "" : "s");
+    } else {
+        r->ro.single = 0;
+        snprintf(r->walk_why, sizeof r->walk_why, "auto: %s", lt_meter_available() ?
+                 "a 16-lane machine model" : "no machine model in this build");
+    }
+}
+
 /* The reprojection (and the comparison with the ground truth). Returns 0 or an exit code. */
 static int rp_run(rp_t *r, const char *prog, const lt_rp_cli_hooks_t *hk)
 {
@@ -735,6 +768,7 @@ static int rp_run(rp_t *r, const char *prog, const lt_rp_cli_hooks_t *hk)
     ro->inpaint = r->inpaint;
     ro->max_steps = (uint32_t)r->max_steps;
     ro->tracer = (lt_rp_tracer_t)r->tracer;
+    rp_walk(r);
     if (r->thickness >= 0.0)
         ro->ssb.thickness = (lt_q30_t)floor(r->thickness * 1073741824.0 + 0.5);
     pp[0] = &ro->params.lambda_h;
@@ -970,10 +1004,11 @@ static void rp_print_summary(const rp_t *r, const rp_figs_t *f)
         printf("tracer    %s, %s: %zu bytes besides the w buffer, build %.3f s; "
                "thickness %.4g\n", r->tracer == LT_RP_DDA ? "DDA" : "Hi-Z", r->path->format,
                st->qt_bytes, st->t_build, (double)r->ro.ssb.thickness / 1073741824.0);
-    printf("rays      %llu of %llu pixels traced in %llu packets, %.3f s (%s)\n",
+    printf("rays      %llu of %llu pixels traced in %llu packets, %.3f s (%s); walk %s (%s)\n",
            (unsigned long long)st->rays, (unsigned long long)st->pixels,
            (unsigned long long)st->packets, st->t_trace,
-           lt_rate_text(st->t_trace > 0 ? (double)st->rays / st->t_trace : -1.0, rt));
+           lt_rate_text(st->t_trace > 0 ? (double)st->rays / st->t_trace : -1.0, rt),
+           r->ro.single ? "single rays" : "packets", r->walk_why);
     printf("per ray   nodes %.2f (max %u), AABB tests %.2f (max %u), plane tests %.2f "
            "(max %u)\n",
            (double)st->nodes / rays, st->nodes_max, (double)st->aabb / rays, st->aabb_max,
@@ -1011,13 +1046,15 @@ static int rp_report(const rp_t *r, const rp_figs_t *f, const lt_rp_cli_hooks_t 
              r->W, r->H, r->layers, r->res.width, r->res.height, r->path->name,
              r->tracer ? " " : "", r->tracer ? tracer_name[r->tracer] : "");
     len = snprintf(extra, sizeof extra,
-                   "{\"encoding\": \"%s\", \"tracer\": \"%s\", \"pixels\": %llu, \"traced_rays\": "
+                   "{\"encoding\": \"%s\", \"tracer\": \"%s\", \"walk\": \"%s\", \"pixels\": %llu, "
+                   "\"traced_rays\": "
                    "%llu, \"nodes_per_ray\": %.4f, \"aabb_per_ray\": %.4f, \"planes_per_ray\": "
                    "%.4f, \"nodes_max\": %u, \"hole_fraction\": %.6f, \"build_cycles\": %llu, "
                    "\"setup_cycles\": %llu, \"traverse_cycles\": %llu, "
                    "\"lane_utilisation\": %.4f}",
-                   r->path->name, tracer_name[r->tracer], (unsigned long long)st->pixels,
-                   (unsigned long long)st->rays, (double)st->nodes / f->rays,
+                   r->path->name, tracer_name[r->tracer], r->ro.single ? "single" : "packets",
+                   (unsigned long long)st->pixels, (unsigned long long)st->rays,
+                   (double)st->nodes / f->rays,
                    (double)st->aabb / f->rays, (double)st->planes / f->rays, st->nodes_max,
                    f->holes / f->px, (unsigned long long)st->cyc_build,
                    (unsigned long long)st->cyc_setup, (unsigned long long)st->cyc_trace, f->util);
@@ -1091,6 +1128,7 @@ static void rp_print_json(const rp_t *r, const rp_figs_t *f)
     cJSON_AddNumberToObject(o, "layers", r->layers);
     cJSON_AddStringToObject(o, "encoding", r->path->name);
     cJSON_AddStringToObject(o, "tracer", tracer_name[r->tracer]);
+    cJSON_AddStringToObject(o, "walk", r->ro.single ? "single" : "packets");
     if (r->auto_json[0] != '\0')
         cJSON_AddItemToObject(o, "auto", cJSON_Parse(r->auto_json));
     cJSON_AddNumberToObject(o, "source_width", r->W);

@@ -51,6 +51,9 @@ static inline uint32_t lth_f32_bits(float f)
 #define LTH_XY_D(x) ((double)(x))
 #define LTH_W_D(x) ((double)(x))
 #define LTH_REPROJ_SETUP(src, dst, o, map) lt_reproj_setup((src), (dst), (o), NULL, (map))
+/* no single-ray quadtree walk in float32 */
+#define LTH_IF_QT1(x) NULL
+#define LTH_HAS_QT1 0
 #define LTH_V lt_vf32_t
 #define LTH_VD lt_vf32_t
 #define LTH_VSET1 lt_vf32_set1

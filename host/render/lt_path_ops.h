@@ -195,6 +195,10 @@ typedef struct lt_rp_ops {
     void (*rays16)(const void *map, uint32_t tx, uint32_t ty, void *r, lt_mask16_t *k);
     void (*qt_trace16)(const lt_qt_t *qt, const void *r, lt_mask16_t k, uint32_t max_steps,
                        void *h);
+    /* the same lanes traced one ray at a time (lt_qt_trace1_q30), the same results; NULL where
+       the path has no single-ray walk (float32) */
+    void (*qt_trace1)(const lt_qt_t *qt, const void *r, lt_mask16_t k, uint32_t max_steps,
+                      void *h);
     void (*dda_trace16)(const lt_ssdda_t *dda, const void *r, lt_mask16_t k, uint32_t max_steps,
                         void *h);
     void (*hiz_trace16)(const lt_hiz_t *hz, const void *r, lt_mask16_t k, uint32_t max_steps,

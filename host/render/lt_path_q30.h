@@ -13,3 +13,6 @@
 #define LTH_XY_D(x) ((double)(x) / 65536.0)
 #define LTH_W_D(x) ((double)(x) / 1073741824.0)
 #define LTH_REPROJ_SETUP(src, dst, o, map) lt_reproj_setup((src), (dst), (o), (map), NULL)
+/* the quadtree's single-ray walk (lt_qt_trace1_q30) */
+#define LTH_IF_QT1(x) x
+#define LTH_HAS_QT1 1

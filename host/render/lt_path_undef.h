@@ -14,6 +14,8 @@
 #undef LTH_TMAX1
 #undef LTH_HAS_BVHQ
 #undef LTH_IF_BVHQ
+#undef LTH_HAS_QT1
+#undef LTH_IF_QT1
 #undef LTH_SCENE_CHECK
 #undef LTH_W
 #undef LTH_W_BYTES

@@ -31,6 +31,7 @@ void lt_rp_opts_default(lt_rp_opts_t *o)
     o->inpaint = 1;
     lt_qt_params_default(&o->params);
     o->tracer = LT_RP_QUADTREE;
+    o->single = 0;
     lt_ssb_params_default(&o->ssb);
 }
 
@@ -43,13 +44,15 @@ typedef struct rp_tracer {
 } rp_tracer_t;
 
 /* One packet of segments r through the tracer in the path's format, results into h. */
-static void trace16(const rp_tracer_t *t, const lt_rp_ops_t *ops, const void *r, lt_mask16_t k,
-                    uint32_t max_steps, void *h)
+static void trace16(const rp_tracer_t *t, const lt_rp_ops_t *ops, int single, const void *r,
+                    lt_mask16_t k, uint32_t max_steps, void *h)
 {
     if (t->kind == LT_RP_DDA)
         ops->dda_trace16(&t->dda, r, k, max_steps, h);
     else if (t->kind == LT_RP_HIZ)
         ops->hiz_trace16(&t->hiz, r, k, max_steps, h);
+    else if (single)
+        ops->qt_trace1(&t->qt, r, k, max_steps, h);
     else
         ops->qt_trace16(&t->qt, r, k, max_steps, h);
 }
@@ -539,7 +542,7 @@ static void trace_row(void *ctx, unsigned wk, uint32_t row)
         k = kon;
         rr->ops->rays16(rr->map, tx, ty, ray, &k);
         if (k != 0)
-            trace16(rr->tr, rr->ops, ray, k, j->o->max_steps, hit);
+            trace16(rr->tr, rr->ops, j->o->single, ray, k, j->o->max_steps, hit);
         st->packets += k != 0;
         per = (float)(cycles_now() - p0) / (float)lt__popcount32(kon);
         for (l = 0; l < LT_LANES; l++) {
@@ -650,6 +653,12 @@ static const lt_path_info_t *run_check(const lt_rp_source_t *src, const lt_repro
     if (p == NULL || p->screen == NULL || (unsigned)o->tracer > (unsigned)LT_RP_HIZ) {
         lt_diag_fail(diag, "reproject: unknown node encoding %d or tracer %d (0..2 each)",
                      (int)o->enc, (int)o->tracer);
+        return NULL;
+    }
+    if (o->single && (o->tracer != LT_RP_QUADTREE || p->screen->qt_trace1 == NULL)) {
+        lt_diag_fail(diag, "reproject: the single-ray walk is the quadtree's on an s1.30 path (n64, "
+                     "n32), not %s", o->tracer != LT_RP_QUADTREE ? "the DDA or Hi-Z tracer"
+                                                                : "float32 (f32)");
         return NULL;
     }
     return p;

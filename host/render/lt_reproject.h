@@ -59,6 +59,8 @@ typedef struct lt_rp_opts {
     double z_near_dst;    /* target near plane (0 = rays start at the target camera centre) */
     lt_qt_params_t params; /* quadtree build thresholds (lt_qt_params_default; docs/quadtree.md) */
     lt_rp_tracer_t tracer; /* LT_RP_QUADTREE (default), LT_RP_DDA or LT_RP_HIZ */
+    int single;           /* 1: the quadtree traced one ray at a time (lt_qt_trace1_q30, s1.30
+                             paths only: the same results, scalar costs); 0: packets (default) */
     lt_ssb_params_t ssb;  /* the DDA's and Hi-Z's surface thickness (lt_ssb_params_default) */
     void (*progress)(double done); /* may be NULL */
 } lt_rp_opts_t;

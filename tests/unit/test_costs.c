@@ -688,16 +688,26 @@ static void qt1_lane(cost_t *c, int s)
 {
     int ph = LT_PH_SETUP;
     CR(QT1_SETUP, 1);
+    if (s == 1) /* dw < 0, no axis */
+        CR(QT1_WLIM, 1);
+    if (s == 2) { /* along x: its reciprocal and its two image edges */
+        CR(QT1_RCP, 1);
+        CR(QT1_CROSS, 2);
+    }
     ph = LT_PH_TRAVERSE;
     CR(QT1_FINISH, 1);
     if (s == 1) {
         CR(QT1_LAYER, 1);
         CR(QT1_STEP, 1);
+        /* a ray along w only (dx = dy = 0): no crossing on either axis */
         CR(QT1_PLANE, 1);
         CR(QT1_HIT_T, 1);
     } else if (s == 2) {
         CR(QT1_LAYER, 1);
         CR(QT1_STEP, 3);
+        /* x's edges: the root's far edge 2, the midline 1 at the descent (the child's exit),
+           then the far edge again, cached */
+        CR(QT1_CROSS, 2);
         CR(QT1_BOX, 1);
         CR(QT1_DESCEND, 1);
         CR(QT1_PLANE, 2);

@@ -821,6 +821,7 @@ LT_INLINE int32_t qt1_cross(const lt__ssb_ray1_q30_t *R, qxcache_t *c, int a, in
         return c->t[a][0];
     if (c->X[a][1] == X)
         return c->t[a][1];
+    LT_CHARGE(QT1_CROSS);
     t = lt__ssb_tcross1_q30(R, a, X);
     c->X[a][1] = c->X[a][0];
     c->t[a][1] = c->t[a][0];

@@ -201,8 +201,11 @@ int lt__ssb_clip1_q30(uint32_t width, uint32_t height, const lt_qray16_q30_t *r,
     R->dw = r->dw.l[i];
     if (!ssb_ray_lane_q30(r, i, R->m, R->sh, R->par, R->neg, t0, t1))
         return 0;
+    LT_CHARGE_N(QT1_WLIM, R->dw < 0);
     for (a = 0; a < 2; a++) {
         int32_t ext = (int32_t)(a ? height : width);
+        LT_CHARGE_N(QT1_RCP, !R->par[a]);
+        LT_CHARGE_N(QT1_CROSS, R->par[a] ? 0 : 2);
         if (R->par[a]) {
             if (ssb_par_outside(R->o[a], ext))
                 *t1 = -1;

@@ -117,8 +117,8 @@ lt_mask16_t lt__ssb_clip_q30(uint32_t width, uint32_t height, const lt_qray16_q3
                              lt_vq30_t *t1, lt_mask16_t *bad);
 /* lt__ssb_clip_q30 for lane i of r alone, into the scalars of *R: the same validity, reciprocals
  * and clip, so [*t0, *t1) equals that lane's. Returns 0 for an invalid ray (*t0 = *t1 = 0), else
- * 1 (the interval may be empty: *t0 >= *t1). Cost: none; the caller charges (the single-ray walk:
- * QT1_SETUP). */
+ * 1 (the interval may be empty: *t0 >= *t1). Cost: for a valid ray QT1_WLIM when dw < 0 and per
+ * axis it moves along QT1_RCP and 2 QT1_CROSS (the rest is the caller's QT1_SETUP). */
 int lt__ssb_clip1_q30(uint32_t width, uint32_t height, const lt_qray16_q30_t *r, int i,
                       lt__ssb_ray1_q30_t *R, int32_t *t0, int32_t *t1);
 /* lt__ssb_clip_q30 plus the major axis (S->ymaj) of the valid lanes (the DDA's and Hi-Z's setup).

@@ -228,9 +228,11 @@ lt_status_t lt_qt_trace16_q30(const lt_qt_t *qt, const lt_qray16_q30_t *r, lt_ma
  * 64-bit lane vectors are copied whole: the firmware reprojection uses it there
  * (docs/firmware.md). Format, range, rounding, overflow: as lt_qt_trace16_q30.
  * Cost (scalar recipes of lt_recipes.def, per lane of k): QT1_SETUP and QT1_FINISH (SETUP:
- * QT1_SETUP; the rest TRAVERSE); per layer traced QT1_LAYER; per node visit QT1_STEP, plus
+ * QT1_SETUP, and for a valid ray QT1_WLIM when dw < 0 and per axis it moves along QT1_RCP and 2
+ * QT1_CROSS; the rest TRAVERSE); per layer traced QT1_LAYER; per node visit QT1_STEP, plus
  * QT1_PLANE at a plane node, QT1_BOX at an AABB node, QT1_HIT_T per crossing or box entry,
- * QT1_DESCEND per descent and QT1_ADVANCE per step to a neighbour. Events: RAYS per lane, NODES
+ * QT1_DESCEND per descent, QT1_ADVANCE per step to a neighbour and QT1_CROSS per node-edge or
+ * midline crossing not among the last two of its axis (a per-axis cache). Events: RAYS per lane, NODES
  * per visit, AABB / AABB_RAYS per box. Returns: LT_OK, or LT_E_ARG (NULL or an unbuilt / float
  * quadtree). */
 lt_status_t lt_qt_trace1_q30(const lt_qt_t *qt, const lt_qray16_q30_t *r, lt_mask16_t k,
