@@ -131,19 +131,19 @@ endef
 FW_CALR_MOVE_a :=
 FW_CALR_MOVE_b := --move-rel 0.3,0.1,0 --rot 8,3,0
 $(foreach s,$(FW_CAL_SCENES),$(eval $(call fw_cal,$(s))))
-# a third, deeper walk over scene a's depth (16.7 nodes per traced ray, a third of the rays
-# leaving the view)
-FW_IMG_calr-c := $(FW_IMG_reproj-bb)
-FW_BLOB_calr-c := $(B)/gen/cal-c.rpb
-$(B)/gen/cal-c.rpb: $(B)/host/lanetrace-native $(B)/gen/cal-a.rpb firmware/firmware.mk
+# a second, deeper walk over scene a's depth (16.7 nodes per traced ray, a third of the rays
+# leaving the view); named -a: the fit's cross-validation folds the images by scene
+FW_IMG_calr2-a := $(FW_IMG_reproj-bb)
+FW_BLOB_calr2-a := $(B)/gen/cal-a2.rpb
+$(B)/gen/cal-a2.rpb: $(B)/host/lanetrace-native $(B)/gen/cal-a.rpb firmware/firmware.mk
 	@echo "GEN $@"
 	@$(B)/host/lanetrace-native fwblob --depth $(B)/gen/cal-a-depth.exr --crop 0,0,64,64 \
 	    --layers 2 --num n64 --tile 16 --move-rel 0.5,0.2,0.2 --rot 15,5,0 --out $@ -q
-FW_CAL_NAMES := $(foreach s,$(FW_CAL_SCENES),cal-$(s) calf-$(s) calr-$(s)) calr-c
+FW_CAL_NAMES := $(foreach s,$(FW_CAL_SCENES),cal-$(s) calf-$(s) calr-$(s)) calr2-a
 FW_CAL_IMAGES := $(foreach t,$(FW_TARGETS),$(FW_CAL_NAMES:%=$(B)/fw/$(t)/%.elf)) \
     $(FW_CAL_NAMES:%=$(B)/fw/cm55/%-portable.elf)
 fw-cal: $(FW_CAL_IMAGES) $(foreach s,$(FW_CAL_SCENES),$(B)/gen/cal-$(s).ltsb $(B)/gen/cal-$(s).ltfb $(B)/gen/cal-$(s).rpb) \
-    $(B)/gen/cal-c.rpb
+    $(B)/gen/cal-a2.rpb
 .PHONY: fw-cal
 FW_IMG_opcal := tests/fw/fw_opcal.c
 FW_IMG_tri := tests/fw/fw_tri.c tests/vectors/lt_tri_loop.c

@@ -40,7 +40,7 @@ trap 'rm -rf "$tmp"' EXIT
 # target -> machine (its file: sim/machines/<machine, - as _>.def; QEMU: $QEMU_<target>)
 declare -A MACH=([cm4]=mcu-m4 [cm55]=mcu-m55 [rv32]=rv32imac)
 # image -> the blob it links, as firmware.mk knows it (FW_BLOB_<image>)
-CAL="cal-a cal-b calf-a calf-b calr-a calr-b calr-c"   # the calibration images (make fw-cal)
+CAL="cal-a cal-b calf-a calf-b calr-a calr-b calr2-a"   # the calibration images (make fw-cal)
 IMAGES="$CAL scene-bunny scene-teapot scene-sibenik reproj-bb"
 declare -A BLOB
 eval "BLOB=($(make -s --no-print-directory B="$B" IMAGES="$IMAGES" \

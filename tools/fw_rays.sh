@@ -77,20 +77,25 @@ if [ -f "$B/fw/cm4/scene-sibenik.elf" ]; then
     done
 fi
 
-# the reprojection of the Beachball crop (reproj-bb.elf; only where ../shared is)
+# the reprojection of the Beachball crop, single rays (reproj-bb.elf) and packets
+# (reproj-bb-packets.elf); only where ../shared is
 if [ -f "$B/fw/cm4/reproj-bb.elf" ]; then
     echo
-    echo "| reprojection | target | per traced ray | quadtree build | whole run (plugin) | timed stages / plugin |"
-    echo "|---|---|---|---|---|---|"
-    for t in $TARGETS; do
-        elf=$(elf_of reproj-bb "$t") || continue
-        run "$elf" "$t"
-        awk -v t="$(label "$t")" -v cnt="$tmp/cnt" '
-            /^reproj-blob:/ { d = "Beachball crop 128x128 x 2 layers, n64" }
-            /^ticks/ { b = $4; sub(/,$/, "", b); r = $6; sub(/,$/, "", r); pr = $10; sub(/,$/, "", pr) }
-            END {
-                while ((getline l < cnt) > 0) if (l ~ /^icount total/) { split(l, f, " "); tot = f[3] }
-                printf "| %s | %s | %s | %s | %s | %.3f |\n", d, t, pr, b, tot, (b + r) / tot
-            }' "$tmp/out"
+    echo "| reprojection | target | walk | per traced ray | quadtree build | whole run (plugin) | timed stages / plugin |"
+    echo "|---|---|---|---|---|---|---|"
+    for img in reproj-bb reproj-bb-packets; do
+        for t in $TARGETS; do
+            elf=$(elf_of "$img" "$t") || continue
+            [ -f "$elf" ] || continue
+            run "$elf" "$t"
+            awk -v t="$(label "$t")" -v cnt="$tmp/cnt" '
+                /^reproj-blob:/ { d = "Beachball crop 128x128 x 2 layers, n64" }
+                /^ticks/ { b = $4; sub(/,$/, "", b); r = $6; sub(/,$/, "", r); pr = $10; sub(/,$/, "", pr)
+                    w = $NF == "single" ? "single rays" : "packets of 16" }
+                END {
+                    while ((getline l < cnt) > 0) if (l ~ /^icount total/) { split(l, f, " "); tot = f[3] }
+                    printf "| %s | %s | %s | %s | %s | %s | %.3f |\n", d, t, w, pr, b, tot, (b + r) / tot
+                }' "$tmp/out"
+        done
     done
 fi

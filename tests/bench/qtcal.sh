@@ -6,9 +6,15 @@
 # samples) is measured the same way as an out-of-sample check of the formats' order. lanetrace
 # info and reproject pick the cheaper of n64 and f32 (at equal accuracy) from these rows
 # (host/tune/lt_recommend.c). Prints a table and the rows. Needs ../shared; make bench runs it.
-# Usage: tests/bench/qtcal.sh [build/sim/lanetrace]
+# Usage: tests/bench/qtcal.sh [--write] [build/sim/lanetrace]; --write also puts the rows into
+# the machine files (then `make` rebuilds what prices with them).
 set -euo pipefail
 cd "$(dirname "$0")/../.."
+WRITE=0
+if [ "${1:-}" = --write ]; then
+    WRITE=1
+    shift
+fi
 LT=${1:-build/sim/lanetrace}
 SHARED=${LT_SHARED:-../shared}
 BB=$SHARED/depth/beachball_singlepart.0001.exr
@@ -61,3 +67,11 @@ awk '{ b[$1, $2] = $3; r[$1, $2] = $4; v[$1, $2] = $5; t[$1, $2] = $6
              printf "%-8s n64 vs f32 on the Trunks: %s\n", m, same ? "same order" : "ORDER DIFFERS"
          }
      }' "$tmp/rows"
+if [ "$WRITE" = 1 ]; then
+    while read -r m e b r _; do
+        f=sim/machines/${m//-/_}.def
+        grep -q "^LT_MACHINE_QT($e, " "$f" || { echo "qtcal: $f has no LT_MACHINE_QT($e, ...) row" >&2; exit 1; }
+        sed -i "s/^LT_MACHINE_QT($e, .*/LT_MACHINE_QT($e, $b, $r)/" "$f"
+    done <"$tmp/rows"
+    echo "qtcal: wrote the rows into sim/machines/*.def"
+fi
