@@ -735,24 +735,14 @@ static int rp_ground_truth(rp_t *r, const char *prog, const lt_rp_cli_hooks_t *h
  * s1.30 path; packets otherwise. */
 static void rp_walk(rp_t *r)
 {
-    lt_meter_machine_t m;
-    int narrow = r->machine != NULL && lt_meter_machine_info(r->machine, &m) == 0 && m.lanes < 16;
+    char why[sizeof r->walk_why - 8];
     if (r->walk != 0) {
         r->ro.single = r->walk == 2;
         snprintf(r->walk_why, sizeof r->walk_why, "set by --walk");
-    } else if (r->tracer != LT_RP_QUADTREE || r->path->screen->qt_trace1 == NULL) {
-        r->ro.single = 0;
-        snprintf(r->walk_why, sizeof r->walk_why, "auto: the single-ray walk is the s1.30 quadtree's");
-    } else if (narrow) {
-        r->ro.single = 1;
-        snprintf(r->walk_why, sizeof r->walk_why,
-                 "auto: machine %s has %u lane%s, where a packet step costs all 16 lanes", m.name,
-                 m.lanes, m.lanes == 1 ? "" : "s");
-    } else {
-        r->ro.single = 0;
-        snprintf(r->walk_why, sizeof r->walk_why, "auto: %s", lt_meter_available() ?
-                 "a 16-lane machine model" : "no machine model in this build");
+        return;
     }
+    r->ro.single = lt_rp_auto_single(r->machine, r->ro.enc, r->ro.tracer, why, sizeof why);
+    snprintf(r->walk_why, sizeof r->walk_why, "auto: %s", why);
 }
 
 /* The reprojection (and the comparison with the ground truth). Returns 0 or an exit code. */

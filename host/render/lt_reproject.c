@@ -35,6 +35,32 @@ void lt_rp_opts_default(lt_rp_opts_t *o)
     lt_ssb_params_default(&o->ssb);
 }
 
+int lt_rp_auto_single(const char *machine, lt_qt_enc_t enc, lt_rp_tracer_t tracer, char *why,
+                      size_t why_len)
+{
+    lt_meter_machine_t m;
+    char tmp[8];
+    if (why == NULL) {
+        why = tmp;
+        why_len = sizeof tmp;
+    }
+    if (tracer != LT_RP_QUADTREE || (enc != LT_QT_N64 && enc != LT_QT_N32)) {
+        snprintf(why, why_len, "the single-ray walk is the s1.30 quadtree's");
+        return 0;
+    }
+    if (machine == NULL || lt_meter_machine_info(machine, &m) != 0) {
+        snprintf(why, why_len, "no machine model in this build");
+        return 0;
+    }
+    if (m.lanes >= 16) {
+        snprintf(why, why_len, "machine %s has %u lanes", m.name, m.lanes);
+        return 0;
+    }
+    snprintf(why, why_len, "machine %s has %u lane%s, where a packet step costs all 16 lanes",
+             m.name, m.lanes, m.lanes == 1 ? "" : "s");
+    return 1;
+}
+
 /* The structure one run traces: the quadtree, the DDA over the w buffer or the Hi-Z pyramid. */
 typedef struct rp_tracer {
     lt_rp_tracer_t kind;

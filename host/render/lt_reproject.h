@@ -69,6 +69,13 @@ typedef struct lt_rp_opts {
  * lt_ssb_params_default). */
 void lt_rp_opts_default(lt_rp_opts_t *o);
 
+/* The walk of `--walk auto` (lanetrace reproject, lanetrace tune): 1, single rays, for the
+ * quadtree of an s1.30 node format (n64, n32) on a machine model narrower than 16 lanes (the MCU
+ * models: what their firmware runs, docs/firmware.md); else 0, packets (also in a build without
+ * machine models). why (may be NULL) receives the reason in a few words. */
+int lt_rp_auto_single(const char *machine, lt_qt_enc_t enc, lt_rp_tracer_t tracer, char *why,
+                      size_t why_len);
+
 /* Figures of one run; cycles are 0 outside the sim build. */
 typedef struct lt_rp_stats {
     uint64_t pixels;                    /* target pixels */

@@ -422,6 +422,8 @@ static void eval_screen(lt_tune_ctx_t *c, lt_tune_point_t *p, lt_tune_meas_t *m,
     o.tracer = (lt_rp_tracer_t)k->structure;
     o.params.gamma_norm = (lt_q30_t)floor(lt_tune_gammas[k->gamma].gamma_norm * 1073741824.0 + 0.5);
     o.params.gamma_dist = (lt_q30_t)floor(lt_tune_gammas[k->gamma].gamma_dist * 1073741824.0 + 0.5);
+    /* the walk the machine's firmware runs (single rays on the MCU models) */
+    o.single = lt_rp_auto_single(lt_meter_machine_name(k->machine), o.enc, o.tracer, NULL, 0);
     if (machine_init(k, m) != 0)
         return;
     memset(&res, 0, sizeof res);

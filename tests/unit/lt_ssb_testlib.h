@@ -44,6 +44,19 @@ struct ss_scene {
     double *wqd, *wfd; /* exact doubles of wq and wf (what each path sees; holes 0) */
 };
 
+/* s cleared, then its name, size, layers and w function (parameters and buffers left to the
+ * caller: p[], then ss_scene_sample). */
+static LT_UNUSED void ss_scene_set(ss_scene_t *s, const char *name, uint32_t W, uint32_t H,
+                                   uint32_t layers, ss_wfn_t fn)
+{
+    memset(s, 0, sizeof *s);
+    s->name = name;
+    s->W = W;
+    s->H = H;
+    s->layers = layers;
+    s->fn = fn;
+}
+
 static LT_UNUSED double ss_w_plane(const ss_scene_t *s, int layer, double x, double y)
 {
     (void)layer;

@@ -525,12 +525,7 @@ static void test_plane_one_node(void **state)
         assert_non_null(rays);
         assert_non_null(ex);
         assert_non_null(out);
-        memset(&s, 0, sizeof s);
-        s.name = "plane";
-        s.W = sz[si][0];
-        s.H = sz[si][1];
-        s.layers = 1;
-        s.fn = ss_w_plane;
+        ss_scene_set(&s, "plane", sz[si][0], sz[si][1], 1, ss_w_plane);
         s.p[0] = 0.45;
         s.p[1] = 2.1e-4;
         s.p[2] = -1.3e-4;
@@ -724,12 +719,7 @@ static void test_steps(void **state)
 {
     ss_scene_t s;
     (void)state;
-    memset(&s, 0, sizeof s);
-    s.name = "steps";
-    s.W = 160;
-    s.H = 96;
-    s.layers = 1;
-    s.fn = ss_w_steps;
+    ss_scene_set(&s, "steps", 160, 96, 1, ss_w_steps);
     run_scene(&s, 4096, 7, 99.0);
 }
 
@@ -737,12 +727,7 @@ static void test_spheres(void **state)
 {
     ss_scene_t s;
     (void)state;
-    memset(&s, 0, sizeof s);
-    s.name = "spheres";
-    s.W = 160;
-    s.H = 120;
-    s.layers = 1;
-    s.fn = ss_w_spheres;
+    ss_scene_set(&s, "spheres", 160, 120, 1, ss_w_spheres);
     s.p[0] = 140.0;                     /* focal length, pixels */
     s.p[1] = 0.12;                      /* background plane w = p1 + p2 x + p3 y */
     s.p[2] = 0.0002;
@@ -769,12 +754,7 @@ static void test_checkerboard_bound(void **state)
     double sum = 0.0;
     uint32_t bound;
     (void)state;
-    memset(&s, 0, sizeof s);
-    s.name = "checker";
-    s.W = 64;
-    s.H = 64;
-    s.layers = 2;
-    s.fn = ss_w_checker;
+    ss_scene_set(&s, "checker", 64, 64, 2, ss_w_checker);
     assert_int_equal(ss_scene_sample(&s), 0);
     build_all(&s, NULL, &b);
     rays = (lt_qt_ref_ray_t *)malloc(n * sizeof *rays);
@@ -837,12 +817,7 @@ static void test_edge_rays(void **state)
     size_t i;
     int f;
     (void)state;
-    memset(&s, 0, sizeof s);
-    s.name = "plane";
-    s.W = 48;
-    s.H = 40;
-    s.layers = 1;
-    s.fn = ss_w_plane;
+    ss_scene_set(&s, "plane", 48, 40, 1, ss_w_plane);
     s.p[0] = 0.4;
     s.p[1] = 3e-4;
     s.p[2] = 2e-4;
@@ -908,12 +883,7 @@ static void test_depth_range(void **state)
     int f, band;
     size_t i;
     (void)state;
-    memset(&s, 0, sizeof s);
-    s.name = "bands";
-    s.W = 256;
-    s.H = 16;
-    s.layers = 1;
-    s.fn = w_bands;
+    ss_scene_set(&s, "bands", 256, 16, 1, w_bands);
     assert_int_equal(ss_scene_sample(&s), 0);
     build_all(&s, NULL, &b);
     ltt_rng_seed(&g, 33);
@@ -988,12 +958,7 @@ static void test_small_images(void **state)
         lt_qt_ref_ray_t rays[256];
         ss_res_t out[256];
         lt_qt_ref_hit_t refh[256];
-        memset(&s, 0, sizeof s);
-        s.name = "wave";
-        s.W = dims[di][0];
-        s.H = dims[di][1];
-        s.layers = 1;
-        s.fn = ss_w_wave;
+        ss_scene_set(&s, "wave", dims[di][0], dims[di][1], 1, ss_w_wave);
         s.p[0] = 0.002;
         s.p[1] = 0.3 * (double)di;
         s.p[2] = 0.7;
@@ -1098,12 +1063,7 @@ static void test_two_layers(void **state)
     assert_non_null(rays);
     assert_non_null(out);
     assert_non_null(refh);
-    memset(&s, 0, sizeof s);
-    s.name = "card";
-    s.W = 96;
-    s.H = 64;
-    s.layers = 2;
-    s.fn = ss_w_card;
+    ss_scene_set(&s, "card", 96, 64, 2, ss_w_card);
     s.p[0] = 30, s.p[1] = 60, s.p[2] = 16, s.p[3] = 48;
     assert_int_equal(ss_scene_sample(&s), 0);
     build_all(&s, NULL, &b);
@@ -1166,12 +1126,7 @@ static void test_lanes(void **state)
     ltt_rng_t g;
     lt_qt_ref_ray_t rays[16];
     (void)state;
-    memset(&s, 0, sizeof s);
-    s.name = "spheres";
-    s.W = 64;
-    s.H = 48;
-    s.layers = 1;
-    s.fn = ss_w_steps;
+    ss_scene_set(&s, "spheres", 64, 48, 1, ss_w_steps);
     assert_int_equal(ss_scene_sample(&s), 0);
     build_all(&s, NULL, &b);
     ltt_rng_seed(&g, 71);
@@ -1228,12 +1183,7 @@ static void test_sim_counts(void **state)
     assert_non_null(t);
     assert_int_equal(lt_sim_init(lt_sim_machine_find("lrb16"), NULL, NULL, &diag), 0);
     g_single_check = 0;
-    memset(&s, 0, sizeof s);
-    s.name = "steps";
-    s.W = 160;
-    s.H = 96;
-    s.layers = 1;
-    s.fn = ss_w_steps;
+    ss_scene_set(&s, "steps", 160, 96, 1, ss_w_steps);
     assert_int_equal(ss_scene_sample(&s), 0);
     ltt_rng_seed(&g, 81);
     gen_rays(&s, &g, n, 1, rays);
@@ -1301,12 +1251,7 @@ static void test_single_rays(void **state)
     int f, rep, i;
     uint32_t steps;
     (void)state;
-    memset(&s, 0, sizeof s);
-    s.name = "steps";
-    s.W = 37;
-    s.H = 29;
-    s.layers = 2;
-    s.fn = ss_w_steps;
+    ss_scene_set(&s, "steps", 37, 29, 2, ss_w_steps);
     assert_int_equal(ss_scene_sample(&s), 0);
     build_all(&s, NULL, &b);
     ltt_rng_seed(&g, 131);
