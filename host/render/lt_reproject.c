@@ -38,13 +38,14 @@ void lt_rp_opts_default(lt_rp_opts_t *o)
 int lt_rp_auto_single(const char *machine, lt_qt_enc_t enc, lt_rp_tracer_t tracer, char *why,
                       size_t why_len)
 {
+    const lt_path_info_t *p = lt_paths_of_qt_enc(enc);
     lt_meter_machine_t m;
     char tmp[8];
     if (why == NULL) {
         why = tmp;
         why_len = sizeof tmp;
     }
-    if (tracer != LT_RP_QUADTREE || (enc != LT_QT_N64 && enc != LT_QT_N32)) {
+    if (tracer != LT_RP_QUADTREE || p == NULL || p->screen == NULL || p->screen->qt_trace1 == NULL) {
         snprintf(why, why_len, "the single-ray walk is the s1.30 quadtree's");
         return 0;
     }

@@ -571,32 +571,11 @@ typedef struct qlayer_out {
 
 /* Offset of the ray at t from the node centre in units of the node size, s1.30:
  * (o 2^30 + d t - (2q + 1) 2^(L + 45)) / 2^(16 + L), half up (o, d in s15.16, so s.46 before). */
-LT_INLINE int64_t q_uoff46(int64_t x46, int32_t q, int32_t L)
+LT_INLINE int64_t q_uoff(int32_t o, int32_t d, int32_t t, int32_t q, int32_t L)
 {
+    int64_t x46 = (int64_t)o * ((int64_t)1 << 30) + lt__mul32x32_64(d, t);
     int64_t c46 = (2 * (int64_t)q + 1) * ((int64_t)1 << (45 + L));
     return q_rnd(x46 - c46, 16u + (unsigned)L);
-}
-
-/* The ray's point at t, what the plane function needs of t: x, y in s.46 (o 2^30 + d t) and w in
- * s1.60. */
-typedef struct qpt {
-    int64_t x46, y46, w60;
-} qpt_t;
-
-LT_INLINE void q_point(int32_t ox, int32_t oy, int32_t dx, int32_t dy, int32_t w, int32_t dw,
-                       int32_t t, qpt_t *p)
-{
-    p->x46 = (int64_t)ox * ((int64_t)1 << 30) + lt__mul32x32_64(dx, t);
-    p->y46 = (int64_t)oy * ((int64_t)1 << 30) + lt__mul32x32_64(dy, t);
-    p->w60 = lt__ssb_wray_lane_q30(w, dw, t);
-}
-
-/* f at the point p for node (L, qx, qy) with plane c, al, be. */
-LT_INLINE int64_t q_plane_pt(const qpt_t *p, int32_t L, int32_t qx, int32_t qy, int32_t c,
-                             int32_t al, int32_t be)
-{
-    int64_t u = q_uoff46(p->x46, qx, L), v = q_uoff46(p->y46, qy, L);
-    return p->w60 - (int64_t)c * ((int64_t)1 << 30) - al * u - be * v;
 }
 
 /* f(t) of one ray (q_plane_f's lane body): o, d the ray's pixel origin and direction per axis,
@@ -605,9 +584,9 @@ LT_INLINE int64_t q_plane_lane(int32_t ox, int32_t oy, int32_t dx, int32_t dy, i
                                int32_t dw, int32_t t, int32_t L, int32_t qx, int32_t qy, int32_t c,
                                int32_t al, int32_t be)
 {
-    qpt_t p;
-    q_point(ox, oy, dx, dy, w, dw, t, &p);
-    return q_plane_pt(&p, L, qx, qy, c, al, be);
+    int64_t u = q_uoff(ox, dx, t, qx, L);
+    int64_t v = q_uoff(oy, dy, t, qy, L);
+    return lt__ssb_wray_lane_q30(w, dw, t) - (int64_t)c * ((int64_t)1 << 30) - al * u - be * v;
 }
 
 /* f(t) = w_ray(t) - w_plane(x(t), y(t)) in s1.60, for the lanes in k (0 elsewhere). Exact given
@@ -800,10 +779,12 @@ LT_INLINE void qt1_node(const lt_qt_t *qt, const void *layer, uint32_t idx, qnod
     }
 }
 
-/* The point of the ray R at t (q_point). */
-LT_INLINE void qt1_point(const lt__ssb_ray1_q30_t *R, int32_t t, qpt_t *p)
+/* f(t) of the ray R against plane node q at (L, qx, qy). */
+LT_INLINE int64_t qt1_plane_f(const lt__ssb_ray1_q30_t *R, int32_t t, int32_t L, int32_t qx,
+                              int32_t qy, const qnode1_t *q)
 {
-    q_point(R->o[0], R->o[1], R->d[0], R->d[1], R->w, R->dw, t, p);
+    return q_plane_lane(R->o[0], R->o[1], R->d[0], R->d[1], R->w, R->dw, t, L, qx, qy, q->c,
+                        q->al, q->be);
 }
 
 /* The crossings a walk computed last, per axis: the two most recent (X, t) pairs. A node's exit
@@ -884,12 +865,8 @@ static void qt1_layer(const lt_qt_t *qt, const void *layer, const lt__ssb_ray1_q
 
         if (!nd.aabb) {
             /* plane node */
-            qpt_t p;
-            int64_t fn, ff;
-            qt1_point(R, tcur, &p);
-            fn = q_plane_pt(&p, lvl, qx, qy, nd.c, nd.al, nd.be);
-            qt1_point(R, tf, &p);
-            ff = q_plane_pt(&p, lvl, qx, qy, nd.c, nd.al, nd.be);
+            int64_t fn = qt1_plane_f(R, tcur, lvl, qx, qy, &nd);
+            int64_t ff = qt1_plane_f(R, tf, lvl, qx, qy, &nd);
             int nneg = fn < 0, fneg = ff < 0;
             int crack = nneg && front && !nd.o;
             int occ = nneg && !crack && !behind && !res->occ;
