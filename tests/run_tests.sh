@@ -116,8 +116,10 @@ check "q16 same triangle as double on >= 99% of pixels ($acc%)" awk -v a="$acc" 
 for f in tests/run.d/*.sh; do
     [ -f "$f" ] || continue
     echo "== $(basename "$f" .sh)"
+    part_t0=$SECONDS
     # shellcheck disable=SC1090
     source "$f"
+    echo "   ($(basename "$f" .sh): $((SECONDS - part_t0)) s)"
 done
 
 # the CLI scripts again, against the ASan + UBSan builds of every shipped program (build/asan/,
@@ -134,8 +136,10 @@ if [ -n "$ASAN_CLI_SCRIPTS" ] && [ "$SIMBIN" != "$B/asan" ]; then
     HOSTBIN=$B/asan
     for s in $ASAN_CLI_SCRIPTS; do
         echo "== $s (ASan + UBSan)"
+        part_t0=$SECONDS
         # shellcheck disable=SC1090
         source "tests/run.d/$s.sh"
+        echo "   ($s under ASan: $((SECONDS - part_t0)) s)"
     done
     unset ASAN_OPTIONS UBSAN_OPTIONS
     SIMBIN=${LT_SIMBIN:-$B/sim}
@@ -167,5 +171,5 @@ echo
 if [ $fail -ne 0 ]; then
     printf 'failed: %s\n' "${failed[@]}"
 fi
-echo "$pass passed, $fail failed"
+echo "$pass passed, $fail failed (in $SECONDS s)"
 [ $fail -eq 0 ]
