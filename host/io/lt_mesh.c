@@ -369,10 +369,18 @@ static int check_obj(const char *where, const char *buf, size_t len, lt_diag_t *
     return 0;
 }
 
-/* Remove the blanks that start lines, in place: assimp 5.2.5's OBJ reader silently skips a
- * statement with leading blanks (" v 1 2 3" shifts every later index; "\tf 1 2 3" drops a face),
- * although they are legal OBJ. Returns the new length (buffer stays NUL-terminated). */
-static size_t strip_leading_blanks(char *buf, size_t len)
+/* The checked OBJ text as assimp gets it, in place:
+ * - The blanks that start lines are removed: assimp 5.2.5's OBJ reader silently skips a statement
+ *   with leading blanks (" v 1 2 3" shifts every later index; "\tf 1 2 3" drops a face), although
+ *   they are legal OBJ.
+ * - `mtllib` statements become comments. lanetrace keeps geometry only, and from memory assimp
+ *   does not find the named material file: it then parses its fallback, the OBJ's own name with
+ *   .mtl, which the memory reader answers with the OBJ text itself. Its material reader, given
+ *   OBJ lines, writes through a null current material on a texture statement before any
+ *   `newmtl` ("map_Pm -1": SEGV; found by the mesh fuzz target, tests/fuzz/corpus/mesh/
+ *   crash-mtllib-self).
+ * Returns the new length (the buffer stays NUL-terminated). */
+static size_t obj_for_assimp(char *buf, size_t len)
 {
     size_t r = 0, w = 0;
     int line_start = 1;
@@ -380,6 +388,9 @@ static size_t strip_leading_blanks(char *buf, size_t len)
         char c = buf[r];
         if (line_start && is_blank(c))
             continue;
+        if (line_start && len - r >= 6 && memcmp(buf + r, "mtllib", 6) == 0 &&
+            (len - r == 6 || is_blank(buf[r + 6]) || is_eol(buf[r + 6])))
+            c = '#';
         line_start = c == '\n';
         buf[w++] = c;
     }
@@ -500,7 +511,7 @@ int lt_mesh_load(const char *path, lt_mesh_t *m, lt_diag_t *diag)
         if (obj) {
             if (check_obj(path, text, textlen, diag) != 0)
                 goto done;
-            textlen = strip_leading_blanks(text, textlen);
+            textlen = obj_for_assimp(text, textlen);
             (void)snprintf(hint, sizeof hint, "obj");
         }
     } else {
@@ -523,9 +534,8 @@ int lt_mesh_load(const char *path, lt_mesh_t *m, lt_diag_t *diag)
         rc = lt_import_mesh(path, text, textlen, hint, IMPORT_FLAGS, scene_to_mesh, m, diag);
         goto done;
     }
-    /* OBJ (checked, blanks stripped; plain or unpacked from .gz): in process, from memory.
-     * Material files are not found from there, which only costs assimp a warning: we keep
-     * geometry only. */
+    /* OBJ (checked, blanks stripped, no material library: obj_for_assimp; plain or unpacked
+     * from .gz): in process, from memory. */
     sc = aiImportFileFromMemory(text, (unsigned)textlen, IMPORT_FLAGS, hint);
     if (sc == NULL || sc->mNumMeshes == 0) {
         lt_diag_fail(diag, "%s: not a readable mesh (assimp: %s)", path,
