@@ -209,7 +209,48 @@ static int check_index(long long idx, uint64_t have, obj_ref_t *r, unsigned long
     return 0;
 }
 
-/* Check OBJ text (NUL-terminated at len). where names the file in messages. */
+/* The numbers of a v / vt / vn statement from q to the line's end p: each finite and within
+ * float32 (the importer's format); their count into *n. what names the statement in messages. */
+static int obj_numbers(const char *where, unsigned long line, const char *what, const char *q,
+                       const char *p, int *n, lt_diag_t *diag)
+{
+    *n = 0;
+    for (;;) {
+        char *e;
+        double d;
+        while (q < p && is_blank(*q))
+            q++;
+        if (q >= p || is_eol(*q) || *q == '#')
+            return 0;
+        d = strtod(q, &e);
+        if (e == q || (e < p && !is_blank(*e) && !is_eol(*e))) {
+            const char *t = q;
+            while (t < p && !is_blank(*t) && !is_eol(*t))
+                t++;
+            lt_diag_fail(diag, "%s: line %lu: %s coordinate %d '%.*s' is not a number", where,
+                         line, what, *n + 1, (int)(t - q), q);
+            return -1;
+        }
+        if (!isfinite(d)) {
+            lt_diag_fail(diag, "%s: line %lu: %s coordinate %d '%.*s' is not finite", where, line,
+                         what, *n + 1, (int)(e - q), q);
+            return -1;
+        }
+        if (fabs(d) > (double)FLT_MAX) {
+            lt_diag_fail(diag, "%s: line %lu: %s coordinate %d '%.*s' overflows float32, the "
+                         "importer's vertex format (|x| <= 3.4e38)",
+                         where, line, what, *n + 1, (int)(e - q), q);
+            return -1;
+        }
+        (*n)++;
+        q = e;
+    }
+}
+
+/* Check OBJ text (NUL-terminated at len). where names the file in messages. Statements are told
+ * apart as assimp 5.2.5's OBJ reader tells them: by their first letters, so that "vtx" is a
+ * texture coordinate and "fo" or "lod" a face or a line to it; l and p statements are left out
+ * before import (obj_for_assimp: lanetrace keeps triangles). */
 static int check_obj(const char *where, const char *buf, size_t len, lt_diag_t *diag)
 {
     const char *nul = (const char *)memchr(buf, '\0', len);
@@ -246,49 +287,47 @@ static int check_obj(const char *where, const char *buf, size_t len, lt_diag_t *
                 }
         }
         if (q < p && q[0] == 'v' && (is_blank(q[1]) || is_eol(q[1]))) {
-            int n = 0;
-            q++;
-            for (;;) {
-                char *e;
-                double d;
-                while (q < p && is_blank(*q))
-                    q++;
-                if (q >= p || is_eol(*q) || *q == '#')
-                    break;
-                d = strtod(q, &e);
-                if (e == q || (e < p && !is_blank(*e) && !is_eol(*e))) {
-                    const char *t = q;
-                    while (t < p && !is_blank(*t) && !is_eol(*t))
-                        t++;
-                    lt_diag_fail(diag, "%s: line %lu: vertex coordinate %d '%.*s' is not a number",
-                                 where, line, n + 1, (int)(t - q), q);
-                    return -1;
-                }
-                if (!isfinite(d)) {
-                    lt_diag_fail(diag, "%s: line %lu: vertex coordinate %d '%.*s' is not finite",
-                                 where, line, n + 1, (int)(e - q), q);
-                    return -1;
-                }
-                if (fabs(d) > (double)FLT_MAX) {
-                    lt_diag_fail(diag, "%s: line %lu: vertex coordinate %d '%.*s' overflows "
-                                 "float32, the importer's vertex format (|x| <= 3.4e38)",
-                                 where, line, n + 1, (int)(e - q), q);
-                    return -1;
-                }
-                n++;
-                q = e;
-            }
+            int n;
+            if (obj_numbers(where, line, "vertex", q + 1, p, &n, diag) != 0)
+                return -1;
             if (n < 3) {
                 lt_diag_fail(diag, "%s: line %lu: vertex has %d coordinate%s (need 3; truncated "
                              "file?)", where, line, n, n == 1 ? "" : "s");
                 return -1;
             }
             nv++;
-        } else if (q < p && q[0] == 'v' && q[1] == 't' && (is_blank(q[2]) || is_eol(q[2]))) {
-            nvt++;
-        } else if (q < p && q[0] == 'v' && q[1] == 'n' && (is_blank(q[2]) || is_eol(q[2]))) {
-            nvn++;
-        } else if (q < p && q[0] == 'f' && (is_blank(q[1]) || is_eol(q[1]))) {
+        } else if (q < p && q[0] == 'v' && (q[1] == 't' || q[1] == 'n')) {
+            /* assimp reads any "vt..." / "vn..." as a texture coordinate (2 or 3 numbers) / a
+             * normal (3), and a failed read there throws and leaks what it had built */
+            const char *w = q, *kind = q[1] == 't' ? "texture" : "normal";
+            int n, lo = q[1] == 't' ? 2 : 3;
+            while (w < p && !is_blank(*w) && !is_eol(*w))
+                w++;
+            if (w - q != 2) {
+                lt_diag_fail(diag, "%s: line %lu: '%.*s' is not an OBJ statement (assimp would "
+                             "read it as '%.2s')", where, line, (int)(w - q), q, q);
+                return -1;
+            }
+            if (obj_numbers(where, line, kind, w, p, &n, diag) != 0)
+                return -1;
+            if (n < lo || n > 3) {
+                lt_diag_fail(diag, "%s: line %lu: %s has %d coordinate%s (need %s)", where, line,
+                             q[1] == 't' ? "texture coordinate" : "normal", n, n == 1 ? "" : "s",
+                             q[1] == 't' ? "2 or 3" : "3");
+                return -1;
+            }
+            if (q[1] == 't')
+                nvt++;
+            else
+                nvn++;
+        } else if (q < p && q[0] == 'f' && !is_blank(q[1]) && !is_eol(q[1])) {
+            const char *w = q;
+            while (w < p && !is_blank(*w) && !is_eol(*w))
+                w++;
+            lt_diag_fail(diag, "%s: line %lu: '%.*s' is not an OBJ statement lanetrace reads "
+                         "(assimp would read it as a face 'f')", where, line, (int)(w - q), q);
+            return -1;
+        } else if (q < p && q[0] == 'f') {
             int n = 0;
             q++;
             for (;;) {
@@ -373,6 +412,9 @@ static int check_obj(const char *where, const char *buf, size_t len, lt_diag_t *
  * - The blanks that start lines are removed: assimp 5.2.5's OBJ reader silently skips a statement
  *   with leading blanks (" v 1 2 3" shifts every later index; "\tf 1 2 3" drops a face), although
  *   they are legal OBJ.
+ * - Lines that start with 'l' or 'p' become comments: assimp reads every one as a line or point
+ *   statement ("lod 1" too), throws on what it cannot read and leaks what it had built (found by
+ *   the mesh fuzz target under LeakSanitizer); lanetrace keeps triangles only.
  * - `mtllib` statements become comments. lanetrace keeps geometry only, and from memory assimp
  *   does not find the named material file: it then parses its fallback, the OBJ's own name with
  *   .mtl, which the memory reader answers with the OBJ text itself. Its material reader, given
@@ -390,6 +432,8 @@ static size_t obj_for_assimp(char *buf, size_t len)
             continue;
         if (line_start && len - r >= 6 && memcmp(buf + r, "mtllib", 6) == 0 &&
             (len - r == 6 || is_blank(buf[r + 6]) || is_eol(buf[r + 6])))
+            c = '#';
+        if (line_start && (c == 'l' || c == 'p'))
             c = '#';
         line_start = c == '\n';
         buf[w++] = c;
