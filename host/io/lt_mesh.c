@@ -212,9 +212,10 @@ static int check_index(long long idx, uint64_t have, obj_ref_t *r, unsigned long
 /* The numbers of a v / vt / vn statement from q to the line's end p: each finite and within
  * float32 (the importer's format); their count into *n. what names the statement in messages. */
 static int obj_numbers(const char *where, unsigned long line, const char *what, const char *q,
-                       const char *p, int *n, lt_diag_t *diag)
+                       const char *p, int *n, double *last, lt_diag_t *diag)
 {
     *n = 0;
+    *last = 0.0;
     for (;;) {
         char *e;
         double d;
@@ -243,6 +244,7 @@ static int obj_numbers(const char *where, unsigned long line, const char *what, 
             return -1;
         }
         (*n)++;
+        *last = d;
         q = e;
     }
 }
@@ -288,11 +290,24 @@ static int check_obj(const char *where, const char *buf, size_t len, lt_diag_t *
         }
         if (q < p && q[0] == 'v' && (is_blank(q[1]) || is_eol(q[1]))) {
             int n;
-            if (obj_numbers(where, line, "vertex", q + 1, p, &n, diag) != 0)
+            double w;
+            if (obj_numbers(where, line, "vertex", q + 1, p, &n, &w, diag) != 0)
                 return -1;
             if (n < 3) {
                 lt_diag_fail(diag, "%s: line %lu: vertex has %d coordinate%s (need 3; truncated "
                              "file?)", where, line, n, n == 1 ? "" : "s");
+                return -1;
+            }
+            /* x y z, x y z w (assimp divides by w) or x y z r g b; anything else assimp refuses
+             * by throwing, and leaks what it had built */
+            if (n != 3 && n != 4 && n != 6) {
+                lt_diag_fail(diag, "%s: line %lu: vertex has %d numbers (OBJ: x y z, x y z w or x "
+                             "y z r g b)", where, line, n);
+                return -1;
+            }
+            if (n == 4 && w == 0.0) {
+                lt_diag_fail(diag, "%s: line %lu: vertex has w = 0 (a point at infinity)", where,
+                             line);
                 return -1;
             }
             nv++;
@@ -301,6 +316,7 @@ static int check_obj(const char *where, const char *buf, size_t len, lt_diag_t *
              * normal (3), and a failed read there throws and leaks what it had built */
             const char *w = q, *kind = q[1] == 't' ? "texture" : "normal";
             int n, lo = q[1] == 't' ? 2 : 3;
+            double last;
             while (w < p && !is_blank(*w) && !is_eol(*w))
                 w++;
             if (w - q != 2) {
@@ -308,7 +324,7 @@ static int check_obj(const char *where, const char *buf, size_t len, lt_diag_t *
                              "read it as '%.2s')", where, line, (int)(w - q), q, q);
                 return -1;
             }
-            if (obj_numbers(where, line, kind, w, p, &n, diag) != 0)
+            if (obj_numbers(where, line, kind, w, p, &n, &last, diag) != 0)
                 return -1;
             if (n < lo || n > 3) {
                 lt_diag_fail(diag, "%s: line %lu: %s has %d coordinate%s (need %s)", where, line,

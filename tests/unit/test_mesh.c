@@ -289,6 +289,10 @@ static void test_malformed(void **state)
     /* non-finite vertices */
     /* statements as assimp tells them apart (by their first letters): a failed vt / vn read,
      * a face keyword it reads as 'f', threw inside assimp and leaked (LeakSanitizer, fuzz) */
+    write_text(tpath("v_five.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0 3 4\nf 1 2 3\n");
+    expect_fail("v_five.obj", "line 3: vertex has 5 numbers", &n);
+    write_text(tpath("v_w0.obj"), "v 0 0 0\nv 1 0 0 0\nv 0 1 0\nf 1 2 3\n");
+    expect_fail("v_w0.obj", "line 2: vertex has w = 0", &n);
     write_text(tpath("vn_word.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 x\nf 1//1 2//1 3//1\n");
     expect_fail("vn_word.obj", "line 4: normal coordinate 3 'x' is not a number", &n);
     write_text(tpath("vn_two.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 1\nf 1//1 2//1 3//1\n");
@@ -860,6 +864,12 @@ static void test_assimp_traps(void **state)
      * SIGSEGV in this process, before obj_for_assimp comments mtllib out) */
     /* line and point statements (and "lod", "lft": assimp reads any 'l' / 'p' line as one) are
      * left out: a bad one threw inside assimp and leaked; triangles are all lanetrace keeps */
+    /* x y z w (assimp divides by w) and x y z r g b vertices load */
+    write_text(tpath("vw.obj"), "v 0 0 0 2\nv 2 0 0 2\nv 0 1 0 0.5 0.5 0.5\nf 1 2 3\n");
+    assert_int_equal(load_timed(tpath("vw.obj"), &m, &diag), 0);
+    assert_int_equal(m.ntris, 1);
+    assert_true(m.v[3] == 1.0 && m.v[7] == 1.0);
+    lt_mesh_free(&m);
     write_text(tpath("lines.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nl 1 2\nlod 1\nlft 1//4 /1\np 3\n"
                                    "f 1 2 3\n");
     assert_int_equal(load_timed(tpath("lines.obj"), &m, &diag), 0);
