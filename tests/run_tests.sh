@@ -115,11 +115,12 @@ check "q16 same triangle as double on >= 99% of pixels ($acc%)" awk -v a="$acc" 
 # feature test scripts: each tests/run.d/*.sh is sourced and uses check/ok/ko and $B, $tmp
 for f in tests/run.d/*.sh; do
     [ -f "$f" ] || continue
-    echo "== $(basename "$f" .sh)"
+    run_part=$(basename "$f" .sh) # the scripts may reuse f (and t0): keep the name apart
+    echo "== $run_part"
     part_t0=$SECONDS
     # shellcheck disable=SC1090
     source "$f"
-    echo "   ($(basename "$f" .sh): $((SECONDS - part_t0)) s)"
+    echo "   ($run_part: $((SECONDS - part_t0)) s)"
 done
 
 # the CLI scripts again, against the ASan + UBSan builds of every shipped program (build/asan/,
