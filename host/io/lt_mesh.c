@@ -177,20 +177,14 @@ bad:
 
 /* ---- OBJ text check -------------------------------------------------------------------------- */
 
-/* Largest positive index seen for one index kind and the line it was on. */
-typedef struct obj_ref {
-    long long max;        /* largest positive index */
-    unsigned long line;   /* line of max */
-} obj_ref_t;
-
 static int is_blank(char c) { return c == ' ' || c == '\t' || c == '\v' || c == '\f'; }
 
 static int is_eol(char c) { return c == '\n' || c == '\r' || c == '\0'; }
 
-/* One index of a face vertex: positive (must end up <= count in the file), or negative
- * (relative: must reach one of the `have` defined so far). */
-static int check_index(long long idx, uint64_t have, obj_ref_t *r, unsigned long line,
-                       const char *what, const char *where, lt_diag_t *diag)
+/* One index of a face vertex: positive or negative (relative), it must reach one of the `have`
+ * defined so far. */
+static int check_index(long long idx, uint64_t have, unsigned long line, const char *what,
+                       const char *where, lt_diag_t *diag)
 {
     if (idx == 0) {
         lt_diag_fail(diag, "%s: line %lu: %s index 0 (OBJ indices start at 1, or -1 for the last)",
@@ -202,9 +196,13 @@ static int check_index(long long idx, uint64_t have, obj_ref_t *r, unsigned long
                      where, line, what, idx, (unsigned long long)have);
         return -1;
     }
-    if (idx > r->max) {
-        r->max = idx;
-        r->line = line;
+    /* assimp takes an index to one defined before the face (a later one throws inside its OBJ
+     * reader, which leaks what it had built) */
+    if (idx > 0 && (uint64_t)idx > have) {
+        lt_diag_fail(diag, "%s: line %lu: %s index %lld but the file defines %llu %s before "
+                     "that line", where, line, what, idx, (unsigned long long)have,
+                     what[0] == 'v' ? "vertices" : what[0] == 't' ? "(vt lines)" : "(vn lines)");
+        return -1;
     }
     return 0;
 }
@@ -259,7 +257,6 @@ static int check_obj(const char *where, const char *buf, size_t len, lt_diag_t *
     const char *p = buf, *end = buf + len;
     unsigned long line = 0;
     uint64_t nv = 0, nvt = 0, nvn = 0, nf = 0;
-    obj_ref_t rv = {0, 0}, rt = {0, 0}, rn = {0, 0};
 
     if (nul != NULL) {
         unsigned long l = 1;
@@ -378,8 +375,7 @@ static int check_obj(const char *where, const char *buf, size_t len, lt_diag_t *
                                      where, line, n + 1, (int)(t - q), q);
                         return -1;
                     }
-                    if (check_index(idx, part == 0 ? nv : part == 1 ? nvt : nvn,
-                                    part == 0 ? &rv : part == 1 ? &rt : &rn, line,
+                    if (check_index(idx, part == 0 ? nv : part == 1 ? nvt : nvn, line,
                                     part == 0 ? "vertex" : part == 1 ? "texture" : "normal", where,
                                     diag) != 0)
                         return -1;
@@ -400,21 +396,6 @@ static int check_obj(const char *where, const char *buf, size_t len, lt_diag_t *
             nf++;
         }
         p++; /* past '\n' */
-    }
-    if ((uint64_t)rv.max > nv) {
-        lt_diag_fail(diag, "%s: line %lu: vertex index %lld but the file defines %llu vertices",
-                     where, rv.line, rv.max, (unsigned long long)nv);
-        return -1;
-    }
-    if ((uint64_t)rt.max > nvt) {
-        lt_diag_fail(diag, "%s: line %lu: texture index %lld but the file defines %llu (vt lines)",
-                     where, rt.line, rt.max, (unsigned long long)nvt);
-        return -1;
-    }
-    if ((uint64_t)rn.max > nvn) {
-        lt_diag_fail(diag, "%s: line %lu: normal index %lld but the file defines %llu (vn lines)",
-                     where, rn.line, rn.max, (unsigned long long)nvn);
-        return -1;
     }
     if (nf == 0) {
         lt_diag_fail(diag, "%s: no faces ('f' lines) in %lu lines, %llu vertices (empty or "

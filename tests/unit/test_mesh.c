@@ -276,6 +276,9 @@ static void test_malformed(void **state)
     /* out of range: positive, relative, texture, normal, zero */
     write_text(tpath("oor.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 2 9\n");
     expect_fail("oor.obj", "line 5: vertex index 9 but the file defines 3 vertices", &n);
+    write_text(tpath("forward.obj"), "f 1 2 3\nv 0 0 0\nv 1 0 0\nv 0 1 0\n");
+    expect_fail("forward.obj", "line 1: vertex index 1 but the file defines 0 vertices before "
+                               "that line", &n);
     write_text(tpath("oor_rel.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nf -1 -2 -4\n");
     expect_fail("oor_rel.obj", "line 4: relative vertex index -4", &n);
     write_text(tpath("oor_vt.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/1 2/2 3/1\n");
