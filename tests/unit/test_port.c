@@ -15,9 +15,6 @@
 #include <stdio.h>
 #include <string.h>
 
-/* The 32-bit cores' division path (lt__udivmod64 through lt__udiv64_32), so that the host checks
- * what the firmware runs; the host's own builds divide with C's 64-bit '/'. */
-#define LT_DIV64_NARROW 1
 #include "lt/lt_fx.h"
 #include "lt_test_util.h"
 
@@ -245,10 +242,8 @@ static void test_divfloor64(void **state)
             a = edge[i / ne];
             b = edge[i % ne];
         } else {
-            /* every other draw: a divisor of 1..32 bits, and every other dividend below 2^48,
-             * so that lt__udiv64_32 takes many of them */
-            a = (i & 2) ? lt__asr64(ltt_rng_i64(&r), 16u + i % 32u) : ltt_rng_i64_shr(&r, 64);
-            b = (i & 1) ? lt__asr64(ltt_rng_i64(&r), 32u + i % 32u) : ltt_rng_i64_shr(&r, 64);
+            a = ltt_rng_i64_shr(&r, 64);
+            b = ltt_rng_i64_shr(&r, 64);
         }
         /* b == 0 is outside the contract; INT64_MIN / -1 overflows int64 (undefined in C99,
          * and the quotient 2^63 has no int64 value): both are excluded from the domain. */
@@ -264,48 +259,6 @@ static void test_divfloor64(void **state)
     }
     ltt_stat_print(&st);
     assert_int_equal(st.bad, 0);
-}
-
-/* lt__udiv64_32 (lt_port.h): (n1 2^32 + n0) / d and the remainder, n1 < d, against C's 64-bit
- * division: divisors of every length 1..32 bits, n1 at 0, d - 1 and random below d, and the digit
- * corrections' edges (d = 2^15, 2^16 - 1, 2^16, 2^31, 2^32 - 1). */
-static void test_udiv64_32(void **state)
-{
-    ltt_rng_t r;
-    static const uint32_t edge[] = { 1u, 2u, 3u, 0x7FFFu, 0x8000u, 0xFFFFu, 0x10000u, 0x10001u,
-                                     0x7FFFFFFFu, 0x80000000u, 0x80000001u, 0xFFFF0000u,
-                                     0xFFFFFFFEu, 0xFFFFFFFFu };
-    unsigned i, ne = (unsigned)(sizeof edge / sizeof edge[0]), bad = 0, n = 0;
-    (void)state;
-    ltt_rng_seed(&r, 8);
-    for (i = 0; i < ne * 4u + 32u * N_RANDOM; i++) {
-        uint32_t d, n1, n0, q, rem;
-        uint64_t num;
-        if (i < ne * 4u) {
-            d = edge[i / 4u];
-            n1 = (i & 1u) ? d - 1u : 0u;
-            n0 = (i & 2u) ? 0xFFFFFFFFu : 0u;
-        } else {
-            unsigned bits = 1u + i % 32u;
-            d = ltt_rng_u32(&r) >> (32u - bits);
-            if (d == 0)
-                d = 1;
-            n1 = (i & 64u) ? d - 1u - (ltt_rng_u32(&r) & 3u) % d : ltt_rng_u32(&r) % d;
-            n0 = ltt_rng_u32(&r);
-        }
-        num = ((uint64_t)n1 << 32) | n0;
-        q = lt__udiv64_32(n1, n0, d, &rem);
-        n++;
-        if ((uint64_t)q != num / d || (uint64_t)rem != num % d) {
-            if (bad++ < 5)
-                print_error("(%u 2^32 + %u) / %u: got %u rem %u, want %llu rem %llu\n", n1, n0, d,
-                            q, rem, (unsigned long long)(num / d),
-                            (unsigned long long)(num % d));
-        }
-    }
-    ltt_report("lt__udiv64_32: %u divisions (divisors of 1..32 bits, edges), %u wrong (bound 0)\n",
-               n, bad);
-    assert_int_equal(bad, 0);
 }
 
 /* lt__div_round64 (lt_fx.h): round(a / b) half up over the whole int64 range but INT64_MIN (the
@@ -331,8 +284,8 @@ static void test_div_round64(void **state)
             a = edge[i / ne];
             b = edge[i % ne];
         } else {
-            a = (i & 2) ? lt__asr64(ltt_rng_i64(&r), 16u + i % 32u) : ltt_rng_i64_shr(&r, 64);
-            b = (i & 1) ? lt__asr64(ltt_rng_i64(&r), 32u + i % 32u) : ltt_rng_i64_shr(&r, 64);
+            a = ltt_rng_i64_shr(&r, 64);
+            b = ltt_rng_i64_shr(&r, 64);
             if ((i & 7) == 0) {
                 /* an exact half: a = b k + b / 2 for an even b below 2^40 */
                 b = lt__asr64(ltt_rng_i64(&r), 24) * 2;
@@ -425,7 +378,6 @@ int main(void)
         cmocka_unit_test(test_asr32),       cmocka_unit_test(test_asr64),
         cmocka_unit_test(test_bitcounts),   cmocka_unit_test(test_ssat_wrap),
         cmocka_unit_test(test_mul32x32_64), cmocka_unit_test(test_divfloor64),
-        cmocka_unit_test(test_udiv64_32),
 #ifdef __SIZEOF_INT128__
         cmocka_unit_test(test_div_round64),
 #endif

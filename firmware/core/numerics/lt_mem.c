@@ -28,17 +28,6 @@ LT__RT_FN void *lt__memcpy(void *LT_RESTRICT dst, const void *LT_RESTRICT src, s
     if ((((uintptr_t)d | (uintptr_t)s) & 3u) == 0) {
         lt__rt_word_t *dw = (lt__rt_word_t *)(void *)d;
         const lt__rt_word_t *sw = (const lt__rt_word_t *)(const void *)s;
-        /* four words per pass (the copies GCC emits are lane vectors of 64 and 128 bytes): on
-         * Cortex-M4 one LDM/STM pair or four loads and stores and one loop test per 16 bytes */
-        for (; n >= 16; n -= 16) {
-            uint32_t w0 = sw[0], w1 = sw[1], w2 = sw[2], w3 = sw[3];
-            dw[0] = w0;
-            dw[1] = w1;
-            dw[2] = w2;
-            dw[3] = w3;
-            dw += 4;
-            sw += 4;
-        }
         for (; n >= 4; n -= 4)
             *dw++ = *sw++;
         d = (unsigned char *)dw;

@@ -181,23 +181,18 @@ LT_INLINE lt_q16_t lt__q16_neg_sat(lt_q16_t a)
  * floor(a/b + 1/2) = q + (r >= b - r) for q = floor(a/b), r = a - q b in [0, b). */
 LT_INLINE int64_t lt__div_round64(int64_t a, int64_t b)
 {
-    uint64_t ua, ub, q, r;
+    int64_t q, r;
     if (b < 0) {
         a = -a;
         b = -b;
     }
-    ub = (uint64_t)b;
-    if (a >= 0) {
-        q = lt__udivmod64((uint64_t)a, ub, &r);
-        return (int64_t)q + (r >= ub - r);
+    q = a / b;
+    r = a % b;
+    if (r < 0) {
+        q -= 1;
+        r += b;
     }
-    /* a < 0: floor(a / b) = -ceil(|a| / b), with remainder b - (|a| mod b) when inexact */
-    ua = (uint64_t)0 - (uint64_t)a;
-    q = lt__udivmod64(ua, ub, &r);
-    if (r == 0)
-        return -(int64_t)q;
-    r = ub - r;
-    return -(int64_t)q - 1 + (r >= ub - r);
+    return r >= b - r ? q + 1 : q;
 }
 
 /* a / b in s15.16. b == 0 saturates toward the sign of a (0 / 0 = 0), counted as a saturation. */

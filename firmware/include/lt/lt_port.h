@@ -42,41 +42,26 @@ extern "C" {
 #endif
 
 /* Arithmetic right shift of a signed 32-bit value by s (0..31), rounding toward minus infinity.
- * C99 leaves >> of a negative value implementation-defined. GCC and Clang define it as the
- * arithmetic shift (GCC manual, "Integers implementation"), one instruction (ASR, SRA, SAR);
- * elsewhere it is built from unsigned ops: complementing a negative value makes it non-negative,
- * shifts it, and complements back. Both give the same bits (tests/unit/test_port.c). */
+ * C99 leaves >> of a negative value implementation-defined, so it is built from unsigned ops:
+ * complementing a negative value makes it non-negative, shifts it, and complements back. */
 LT_INLINE int32_t lt__asr32(int32_t v, unsigned s)
 {
-#if defined(__GNUC__) || defined(__clang__)
-    return v >> s;
-#else
     if (v >= 0)
         return (int32_t)((uint32_t)v >> s);
     return (int32_t)~(~(uint32_t)v >> s);
-#endif
 }
 
-/* 64-bit twin of lt__asr32, s in 0..63 (on 32-bit cores GCC inlines the two-word shift). */
+/* 64-bit twin of lt__asr32, s in 0..63. */
 LT_INLINE int64_t lt__asr64(int64_t v, unsigned s)
 {
-#if defined(__GNUC__) || defined(__clang__)
-    return v >> s;
-#else
     if (v >= 0)
         return (int64_t)((uint64_t)v >> s);
     return (int64_t)~(~(uint64_t)v >> s);
-#endif
 }
 
-/* Count leading zeros of a 32-bit value; lt__clz32(0) = 32 (defined, unlike __builtin_clz, which
- * GCC and Clang turn into one instruction where the core has it: CLZ on Arm v7-M and v8.1-M, LZCNT
- * or BSR on x86; RV32IMAC has none and gets libgcc's __clzsi2). */
+/* Count leading zeros of a 32-bit value; lt__clz32(0) = 32 (defined, unlike __builtin_clz). */
 LT_INLINE unsigned lt__clz32(uint32_t x)
 {
-#if defined(__GNUC__) || defined(__clang__)
-    return x == 0 ? 32u : (unsigned)__builtin_clz(x);
-#else
     unsigned n = 0;
     if (x == 0)
         return 32;
@@ -86,7 +71,6 @@ LT_INLINE unsigned lt__clz32(uint32_t x)
     if ((x & 0xC0000000u) == 0) { n += 2;  x <<= 2; }
     if ((x & 0x80000000u) == 0) { n += 1; }
     return n;
-#endif
 }
 
 /* Count leading zeros of a 64-bit value; lt__clz64(0) = 64. */
@@ -149,89 +133,14 @@ LT_INLINE int64_t lt__mul32x32_64(int32_t a, int32_t b)
     return (int64_t)a * (int64_t)b;
 }
 
-/* 64-bit division on 32-bit cores. There C's 64-bit '/' is a library call (libgcc's
- * __udivmoddi4: about 100-200 instructions on Cortex-M4), while most of the kernels' divisions
- * have a divisor below 2^32 and a quotient below 2^32 (the hit parameter, the reprojection's
- * divide by H, its clip ratios). Those take lt__udiv64_32, two 32-bit hardware divides. The
- * results are exact either way, so every target gives the same bits. LT_DIV64_NARROW is 1 where
- * pointers are 32 bits wide; a build (or a test, to check this path on the host) may set it. */
-#ifndef LT_DIV64_NARROW
-#if UINTPTR_MAX <= 0xFFFFFFFFu
-#define LT_DIV64_NARROW 1
-#else
-#define LT_DIV64_NARROW 0
-#endif
-#endif
-
-/* (n1 2^32 + n0) / d and its remainder *r for n1 < d (so the quotient fits 32 bits): Knuth's
- * algorithm D with 16-bit digits after normalising d (Hacker's Delight, divlu). Every product and
- * sum below is taken mod 2^32 where the true value is known to fit. */
-LT_INLINE uint32_t lt__udiv64_32(uint32_t n1, uint32_t n0, uint32_t d, uint32_t *r)
-{
-    unsigned s = lt__clz32(d);
-    uint32_t dn1, dn0, un32, un10, un1, un0, q1, q0, rhat, un21;
-    d <<= s;
-    dn1 = d >> 16;
-    dn0 = d & 0xFFFFu;
-    un32 = s == 0 ? n1 : (n1 << s) | (n0 >> (32u - s));
-    un10 = n0 << s;
-    un1 = un10 >> 16;
-    un0 = un10 & 0xFFFFu;
-    q1 = un32 / dn1;
-    rhat = un32 - q1 * dn1;
-    while (q1 > 0xFFFFu || q1 * dn0 > ((rhat << 16) | un1)) {
-        q1 -= 1u;
-        rhat += dn1;
-        if (rhat > 0xFFFFu)
-            break;
-    }
-    un21 = (un32 << 16) + un1 - q1 * d;
-    q0 = un21 / dn1;
-    rhat = un21 - q0 * dn1;
-    while (q0 > 0xFFFFu || q0 * dn0 > ((rhat << 16) | un0)) {
-        q0 -= 1u;
-        rhat += dn1;
-        if (rhat > 0xFFFFu)
-            break;
-    }
-    *r = ((un21 << 16) + un0 - q0 * d) >> s;
-    return (q1 << 16) | q0;
-}
-
-/* n / d and *r = n % d, d != 0. */
-LT_INLINE uint64_t lt__udivmod64(uint64_t n, uint64_t d, uint64_t *r)
-{
-#if LT_DIV64_NARROW
-    if ((d >> 32) == 0 && (n >> 32) < d) {
-        uint32_t r32, q = lt__udiv64_32((uint32_t)(n >> 32), (uint32_t)n, (uint32_t)d, &r32);
-        *r = r32;
-        return q;
-    }
-#endif
-    *r = n % d;
-    return n / d;
-}
-
-/* |v| as uint64 (INT64_MIN gives 2^63), and the int64 of -u for u <= 2^63, without a conversion
- * of an out-of-range value. */
-LT_INLINE uint64_t lt__u64_abs(int64_t v)
-{
-    return v < 0 ? (uint64_t)0 - (uint64_t)v : (uint64_t)v;
-}
-
-LT_INLINE int64_t lt__i64_neg_u(uint64_t u)
-{
-    return u == 0 ? 0 : -(int64_t)(u - 1u) - 1;
-}
-
-/* Floor division of 64-bit values, b != 0 and not (a == INT64_MIN and b == -1): on the
- * magnitudes, then -q, one less when the signs differ and the division was not exact. */
+/* Floor division of 64-bit values, b != 0 and not (a == INT64_MIN and b == -1). C99 '/' truncates toward zero; this corrects it. */
 LT_INLINE int64_t lt__divfloor64(int64_t a, int64_t b)
 {
-    uint64_t r, q = lt__udivmod64(lt__u64_abs(a), lt__u64_abs(b), &r);
-    if ((a < 0) == (b < 0))
-        return (int64_t)q;
-    return lt__i64_neg_u(q + (r != 0));
+    int64_t q = a / b;
+    int64_t r = a % b;
+    if (r != 0 && ((r < 0) != (b < 0)))
+        q -= 1;
+    return q;
 }
 
 /* Freestanding memory helpers: the core never calls libc, and GCC may emit memcpy/memset for
