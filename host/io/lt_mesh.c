@@ -417,7 +417,7 @@ static int check_obj(const char *where, const char *buf, size_t len, lt_diag_t *
  *   .mtl, which the memory reader answers with the OBJ text itself. Its material reader, given
  *   OBJ lines, writes through a null current material on a texture statement before any
  *   `newmtl` ("map_Pm -1": SEGV; found by the mesh fuzz target, tests/fuzz/corpus/mesh/
- *   crash-mtllib-self).
+ *   regress-mtllib-self).
  * Returns the new length (the buffer stays NUL-terminated). */
 static size_t obj_for_assimp(char *buf, size_t len)
 {
