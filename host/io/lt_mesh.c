@@ -405,6 +405,18 @@ static int check_obj(const char *where, const char *buf, size_t len, lt_diag_t *
     return 0;
 }
 
+/* A CR not followed by LF ends a line for assimp (classic Mac line ends, or a stray CR inside a
+ * line: "g a\rl 3 7 6" is a group and then a line statement to it, which threw inside its reader
+ * and leaked; mesh fuzz target, regress-bare-cr-leak): make it an LF, in place, so that the check
+ * sees the lines assimp will read. CRLF stays as it is. */
+static void obj_bare_cr(char *buf, size_t len)
+{
+    size_t i;
+    for (i = 0; i < len; i++)
+        if (buf[i] == '\r' && (i + 1 == len || buf[i + 1] != '\n'))
+            buf[i] = '\n';
+}
+
 /* The checked OBJ text as assimp gets it, in place:
  * - The blanks that start lines are removed: assimp 5.2.5's OBJ reader silently skips a statement
  *   with leading blanks (" v 1 2 3" shifts every later index; "\tf 1 2 3" drops a face), although
@@ -550,6 +562,7 @@ int lt_mesh_load(const char *path, lt_mesh_t *m, lt_diag_t *diag)
             raw = NULL;
         }
         if (obj) {
+            obj_bare_cr(text, textlen);
             if (check_obj(path, text, textlen, diag) != 0)
                 goto done;
             textlen = obj_for_assimp(text, textlen);

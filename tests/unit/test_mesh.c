@@ -867,6 +867,12 @@ static void test_assimp_traps(void **state)
      * SIGSEGV in this process, before obj_for_assimp comments mtllib out) */
     /* line and point statements (and "lod", "lft": assimp reads any 'l' / 'p' line as one) are
      * left out: a bad one threw inside assimp and leaked; triangles are all lanetrace keeps */
+    /* classic Mac line ends (CR only) and a stray CR inside a line end lines, as assimp reads
+     * them ("g a\rl 3 7 6" was a group, then a line statement that threw and leaked) */
+    write_text(tpath("cr.obj"), "v 0 0 0\rv 1 0 0\rv 0 1 0\rg a\rl 3 7 6\rf 1 2 3\r");
+    assert_int_equal(load_timed(tpath("cr.obj"), &m, &diag), 0);
+    assert_int_equal(m.ntris, 1);
+    lt_mesh_free(&m);
     /* x y z w (assimp divides by w) and x y z r g b vertices load */
     write_text(tpath("vw.obj"), "v 0 0 0 2\nv 2 0 0 2\nv 0 1 0 0.5 0.5 0.5\nf 1 2 3\n");
     assert_int_equal(load_timed(tpath("vw.obj"), &m, &diag), 0);
