@@ -207,6 +207,38 @@ static int check_index(long long idx, uint64_t have, unsigned long line, const c
     return 0;
 }
 
+/* 1 when [q, e) is a decimal number as assimp's OBJ reader counts and reads one: a digit or a
+ * sign first (it counts only tokens that start so: ".5" would silently drop the whole vertex and
+ * shift every later index), then digits with at most one '.', an optional exponent. strtod
+ * accepts more (hex floats, "infinity"), which assimp would read as something else. */
+static int obj_decimal(const char *q, const char *e)
+{
+    int digits = 0;
+    if (q < e && (*q == '+' || *q == '-'))
+        q++;
+    else if (q >= e || *q < '0' || *q > '9')
+        return 0;
+    while (q < e && *q >= '0' && *q <= '9')
+        q++, digits++;
+    if (q < e && *q == '.') {
+        q++;
+        while (q < e && *q >= '0' && *q <= '9')
+            q++, digits++;
+    }
+    if (digits == 0)
+        return 0;
+    if (q < e && (*q == 'e' || *q == 'E')) {
+        q++;
+        if (q < e && (*q == '+' || *q == '-'))
+            q++;
+        if (q >= e || *q < '0' || *q > '9')
+            return 0;
+        while (q < e && *q >= '0' && *q <= '9')
+            q++;
+    }
+    return q == e;
+}
+
 /* The numbers of a v / vt / vn statement from q to the line's end p: each finite and within
  * float32 (the importer's format); their count into *n. what names the statement in messages. */
 static int obj_numbers(const char *where, unsigned long line, const char *what, const char *q,
@@ -228,6 +260,12 @@ static int obj_numbers(const char *where, unsigned long line, const char *what, 
                 t++;
             lt_diag_fail(diag, "%s: line %lu: %s coordinate %d '%.*s' is not a number", where,
                          line, what, *n + 1, (int)(t - q), q);
+            return -1;
+        }
+        if (isfinite(d) && !obj_decimal(q, e)) {
+            lt_diag_fail(diag, "%s: line %lu: %s coordinate %d '%.*s' is not a decimal number "
+                         "the importer reads (a digit or sign first, e.g. 0.5 for .5)",
+                         where, line, what, *n + 1, (int)(e - q), q);
             return -1;
         }
         if (!isfinite(d)) {

@@ -292,6 +292,12 @@ static void test_malformed(void **state)
     /* non-finite vertices */
     /* statements as assimp tells them apart (by their first letters): a failed vt / vn read,
      * a face keyword it reads as 'f', threw inside assimp and leaked (LeakSanitizer, fuzz) */
+    /* assimp counts only numbers that start with a digit or a sign: ".009" dropped the vertex
+     * and shifted every later index (an index then out of range threw and leaked) */
+    write_text(tpath("v_dot.obj"), "v 0 0 0\nv 1 0 .009\nv 0 1 0\nf 1 2 3\n");
+    expect_fail("v_dot.obj", "line 2: vertex coordinate 3 '.009' is not a decimal number", &n);
+    write_text(tpath("v_hex.obj"), "v 0 0 0\nv 0x1p0 0 0\nv 0 1 0\nf 1 2 3\n");
+    expect_fail("v_hex.obj", "line 2: vertex coordinate 1 '0x1p0' is not a decimal number", &n);
     write_text(tpath("v_five.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0 3 4\nf 1 2 3\n");
     expect_fail("v_five.obj", "line 3: vertex has 5 numbers", &n);
     write_text(tpath("v_w0.obj"), "v 0 0 0\nv 1 0 0 0\nv 0 1 0\nf 1 2 3\n");
@@ -873,10 +879,12 @@ static void test_assimp_traps(void **state)
     assert_int_equal(load_timed(tpath("cr.obj"), &m, &diag), 0);
     assert_int_equal(m.ntris, 1);
     lt_mesh_free(&m);
-    /* x y z w (assimp divides by w) and x y z r g b vertices load */
-    write_text(tpath("vw.obj"), "v 0 0 0 2\nv 2 0 0 2\nv 0 1 0 0.5 0.5 0.5\nf 1 2 3\n");
+    /* x y z w (assimp divides by w) and x y z r g b vertices load; signs, "-.5", exponents */
+    write_text(tpath("vw.obj"), "v 0 0 0 2\nv 2 0 0 2\nv 0 1 0 0.5 0.5 0.5\nv +1 -.5 2.5E-1\n"
+                                "f 1 2 3\nf 1 2 4\n");
     assert_int_equal(load_timed(tpath("vw.obj"), &m, &diag), 0);
-    assert_int_equal(m.ntris, 1);
+    assert_int_equal(m.ntris, 2);
+    assert_true(m.v[9 + 6] == 1.0 && m.v[9 + 7] == -0.5 && m.v[9 + 8] == 0.25);
     assert_true(m.v[3] == 1.0 && m.v[7] == 1.0);
     lt_mesh_free(&m);
     write_text(tpath("lines.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nl 1 2\nlod 1\nlft 1//4 /1\np 3\n"
