@@ -849,6 +849,15 @@ static void test_isolation(void **state)
 }
 
 /* Real assimp 5.2.5 traps, made here: each aborted, crashed or hung the program before. */
+/* Write text to the test directory as name; it must load with ntris triangles into *m. */
+static void obj_loads(const char *name, const char *text, uint32_t ntris, lt_mesh_t *m)
+{
+    lt_diag_t diag;
+    write_text(tpath(name), text);
+    assert_int_equal(load_timed(tpath(name), m, &diag), 0);
+    assert_int_equal(m->ntris, ntris);
+}
+
 static void test_assimp_traps(void **state)
 {
     static const char ogex[] =
@@ -871,32 +880,24 @@ static void test_assimp_traps(void **state)
     /* an OBJ naming a material library (not found from memory: assimp parsed the OBJ text
      * itself as the library, and "map_Pm -1" before any newmtl wrote through a null material,
      * SIGSEGV in this process, before obj_for_assimp comments mtllib out) */
+    obj_loads("selfmtl.obj", "mtllib cube.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nmap_Pm -1\n"
+                             "f 1//1 2//1 3//1\n", 1, &m);
+    assert_true(m.v[3] == 1.0 && m.v[7] == 1.0);
+    lt_mesh_free(&m);
     /* line and point statements (and "lod", "lft": assimp reads any 'l' / 'p' line as one) are
      * left out: a bad one threw inside assimp and leaked; triangles are all lanetrace keeps */
+    obj_loads("lines.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nl 1 2\nlod 1\nlft 1//4 /1\np 3\nf 1 2 3\n",
+              1, &m);
+    lt_mesh_free(&m);
     /* classic Mac line ends (CR only) and a stray CR inside a line end lines, as assimp reads
      * them ("g a\rl 3 7 6" was a group, then a line statement that threw and leaked) */
-    write_text(tpath("cr.obj"), "v 0 0 0\rv 1 0 0\rv 0 1 0\rg a\rl 3 7 6\rf 1 2 3\r");
-    assert_int_equal(load_timed(tpath("cr.obj"), &m, &diag), 0);
-    assert_int_equal(m.ntris, 1);
+    obj_loads("cr.obj", "v 0 0 0\rv 1 0 0\rv 0 1 0\rg a\rl 3 7 6\rf 1 2 3\r", 1, &m);
     lt_mesh_free(&m);
     /* x y z w (assimp divides by w) and x y z r g b vertices load; signs, "-.5", exponents */
-    write_text(tpath("vw.obj"), "v 0 0 0 2\nv 2 0 0 2\nv 0 1 0 0.5 0.5 0.5\nv +1 -.5 2.5E-1\n"
-                                "f 1 2 3\nf 1 2 4\n");
-    assert_int_equal(load_timed(tpath("vw.obj"), &m, &diag), 0);
-    assert_int_equal(m.ntris, 2);
+    obj_loads("vw.obj", "v 0 0 0 2\nv 2 0 0 2\nv 0 1 0 0.5 0.5 0.5\nv +1 -.5 2.5E-1\nf 1 2 3\n"
+                        "f 1 2 4\n", 2, &m);
+    assert_true(m.v[3] == 1.0 && m.v[7] == 1.0);
     assert_true(m.v[9 + 6] == 1.0 && m.v[9 + 7] == -0.5 && m.v[9 + 8] == 0.25);
-    assert_true(m.v[3] == 1.0 && m.v[7] == 1.0);
-    lt_mesh_free(&m);
-    write_text(tpath("lines.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nl 1 2\nlod 1\nlft 1//4 /1\np 3\n"
-                                   "f 1 2 3\n");
-    assert_int_equal(load_timed(tpath("lines.obj"), &m, &diag), 0);
-    assert_int_equal(m.ntris, 1);
-    lt_mesh_free(&m);
-    write_text(tpath("selfmtl.obj"), "mtllib cube.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\n"
-                                     "map_Pm -1\nf 1//1 2//1 3//1\n");
-    assert_int_equal(load_timed(tpath("selfmtl.obj"), &m, &diag), 0);
-    assert_int_equal(m.ntris, 1);
-    assert_true(m.v[3] == 1.0 && m.v[7] == 1.0);
     lt_mesh_free(&m);
     /* the light's name is not a node's: PretransformVertices' ai_assert (SIGABRT) before */
     write_text(tpath("lamp.ogex"), ogex);
