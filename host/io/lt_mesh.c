@@ -181,10 +181,18 @@ static int is_blank(char c) { return c == ' ' || c == '\t' || c == '\v' || c == 
 
 static int is_eol(char c) { return c == '\n' || c == '\r' || c == '\0'; }
 
+/* The end of the word that starts at q on a line ending at p (for messages and keywords). */
+static const char *word_end(const char *q, const char *p)
+{
+    while (q < p && !is_blank(*q) && !is_eol(*q))
+        q++;
+    return q;
+}
+
 /* One index of a face vertex: positive or negative (relative), it must reach one of the `have`
  * defined so far. */
 static int check_index(long long idx, uint64_t have, unsigned long line, const char *what,
-                       const char *where, lt_diag_t *diag)
+                       const char *defined, const char *where, lt_diag_t *diag)
 {
     if (idx == 0) {
         lt_diag_fail(diag, "%s: line %lu: %s index 0 (OBJ indices start at 1, or -1 for the last)",
@@ -200,8 +208,7 @@ static int check_index(long long idx, uint64_t have, unsigned long line, const c
      * reader, which leaks what it had built) */
     if (idx > 0 && (uint64_t)idx > have) {
         lt_diag_fail(diag, "%s: line %lu: %s index %lld but the file defines %llu %s before "
-                     "that line", where, line, what, idx, (unsigned long long)have,
-                     what[0] == 'v' ? "vertices" : what[0] == 't' ? "(vt lines)" : "(vn lines)");
+                     "that line", where, line, what, idx, (unsigned long long)have, defined);
         return -1;
     }
     return 0;
@@ -255,11 +262,8 @@ static int obj_numbers(const char *where, unsigned long line, const char *what, 
             return 0;
         d = strtod(q, &e);
         if (e == q || (e < p && !is_blank(*e) && !is_eol(*e))) {
-            const char *t = q;
-            while (t < p && !is_blank(*t) && !is_eol(*t))
-                t++;
             lt_diag_fail(diag, "%s: line %lu: %s coordinate %d '%.*s' is not a number", where,
-                         line, what, *n + 1, (int)(t - q), q);
+                         line, what, *n + 1, (int)(word_end(q, p) - q), q);
             return -1;
         }
         if (isfinite(d) && !obj_decimal(q, e)) {
@@ -291,6 +295,9 @@ static int obj_numbers(const char *where, unsigned long line, const char *what, 
  * before import (obj_for_assimp: lanetrace keeps triangles). */
 static int check_obj(const char *where, const char *buf, size_t len, lt_diag_t *diag)
 {
+    /* a face vertex's three indices: v, vt, vn */
+    static const char *const kind_name[3] = {"vertex", "texture", "normal"};
+    static const char *const kind_defined[3] = {"vertices", "(vt lines)", "(vn lines)"};
     const char *nul = (const char *)memchr(buf, '\0', len);
     const char *p = buf, *end = buf + len;
     unsigned long line = 0;
@@ -349,11 +356,9 @@ static int check_obj(const char *where, const char *buf, size_t len, lt_diag_t *
         } else if (q < p && q[0] == 'v' && (q[1] == 't' || q[1] == 'n')) {
             /* assimp reads any "vt..." / "vn..." as a texture coordinate (2 or 3 numbers) / a
              * normal (3), and a failed read there throws and leaks what it had built */
-            const char *w = q, *kind = q[1] == 't' ? "texture" : "normal";
+            const char *w = word_end(q, p), *kind = q[1] == 't' ? "texture" : "normal";
             int n, lo = q[1] == 't' ? 2 : 3;
             double last;
-            while (w < p && !is_blank(*w) && !is_eol(*w))
-                w++;
             if (w - q != 2) {
                 lt_diag_fail(diag, "%s: line %lu: '%.*s' is not an OBJ statement (assimp would "
                              "read it as '%.2s')", where, line, (int)(w - q), q, q);
@@ -372,11 +377,9 @@ static int check_obj(const char *where, const char *buf, size_t len, lt_diag_t *
             else
                 nvn++;
         } else if (q < p && q[0] == 'f' && !is_blank(q[1]) && !is_eol(q[1])) {
-            const char *w = q;
-            while (w < p && !is_blank(*w) && !is_eol(*w))
-                w++;
             lt_diag_fail(diag, "%s: line %lu: '%.*s' is not an OBJ statement lanetrace reads "
-                         "(assimp would read it as a face 'f')", where, line, (int)(w - q), q);
+                         "(assimp would read it as a face 'f')", where, line,
+                         (int)(word_end(q, p) - q), q);
             return -1;
         } else if (q < p && q[0] == 'f') {
             int n = 0;
@@ -406,16 +409,12 @@ static int check_obj(const char *where, const char *buf, size_t len, lt_diag_t *
                     errno = 0;
                     idx = strtoll(q, &e, 10);
                     if (e == q || (e < p && *e != '/' && !is_blank(*e) && !is_eol(*e))) {
-                        const char *t = q;
-                        while (t < p && !is_blank(*t) && !is_eol(*t))
-                            t++;
                         lt_diag_fail(diag, "%s: line %lu: face vertex %d: '%.*s' is not an index",
-                                     where, line, n + 1, (int)(t - q), q);
+                                     where, line, n + 1, (int)(word_end(q, p) - q), q);
                         return -1;
                     }
                     if (check_index(idx, part == 0 ? nv : part == 1 ? nvt : nvn, line,
-                                    part == 0 ? "vertex" : part == 1 ? "texture" : "normal", where,
-                                    diag) != 0)
+                                    kind_name[part], kind_defined[part], where, diag) != 0)
                         return -1;
                     q = e;
                 }
@@ -451,7 +450,7 @@ static void obj_bare_cr(char *buf, size_t len)
 {
     size_t i;
     for (i = 0; i < len; i++)
-        if (buf[i] == '\r' && (i + 1 == len || buf[i + 1] != '\n'))
+        if (buf[i] == '\r' && buf[i + 1] != '\n') /* buf[len] is the NUL */
             buf[i] = '\n';
 }
 
@@ -478,7 +477,7 @@ static size_t obj_for_assimp(char *buf, size_t len)
         if (line_start && is_blank(c))
             continue;
         if (line_start && len - r >= 6 && memcmp(buf + r, "mtllib", 6) == 0 &&
-            (len - r == 6 || is_blank(buf[r + 6]) || is_eol(buf[r + 6])))
+            (is_blank(buf[r + 6]) || is_eol(buf[r + 6]))) /* buf[len] is the NUL */
             c = '#';
         if (line_start && (c == 'l' || c == 'p'))
             c = '#';
