@@ -115,7 +115,7 @@ static const char *const filter_names[] = {"irradiance", "visibility", NULL};
 /* --cull, --pcull: any of the letters b (back-face), c (corner rays), r (CR), l (ray-AABB leaf
  * culling), s (wide frusta split into packets), or "none"; --cull (ctx non-NULL) also f (FS:
  * shrink the shadow frusta's direction intervals with their corner rays; implies r) and p (the
- * paper's 256-ray packet walk) */
+ * paper's 256-ray packet walk); --pcull also t (LT_FRUSTA_TRIPAR: triangle-parallel leaves) */
 static int parse_cull(const char *text, void *dest, const void *ctx)
 {
     uint32_t f = 0;
@@ -137,6 +137,8 @@ static int parse_cull(const char *text, void *dest, const void *ctx)
                 f |= LT_FRUSTA_FS | LT_FRUSTA_CR;
             else if (*c == 'p' && ctx != NULL)
                 f |= LT_FRUSTA_P256;
+            else if (*c == 't' && ctx == NULL)
+                f |= LT_FRUSTA_TRIPAR;
             else
                 return -1;
         }
@@ -194,10 +196,12 @@ static int shadows_parse(shadows_t *s, int argc, char **argv)
          .help = "primary method(s) (default both: P-Packet feeds S-Packet and\n"
                  "P-Frusta S-Frusta; with one, both S rows use it)"},
         {.name = "--pcull", .kind = LT_OPT_CUSTOM, .dest = &s->pflags, .meta = "LIST",
-         .parse = parse_pcull, .expect = "letters b, c, r, l, s or none",
+         .parse = parse_pcull, .expect = "letters b, c, r, l, s, t or none",
          .help = "primary culling: b (back faces, both methods), c (corner rays),\n"
                  "r (corner rays through the on-image pixels), l (ray-AABB leaf\n"
-                 "culling), s (wide frusta go on as packets), or none (default bcrls)"},
+                 "culling), s (wide frusta go on as packets), t (a leaf with fewer\n"
+                 "rays in its box than triangles: ray by ray, its triangles in the\n"
+                 "lanes; both methods), or none (default bcrlst)"},
         LT_OPT_ENUM_("--qmc", &s->qmc, qmc_names, "sample set (default lp)"),
         LT_OPT_ENUM_("--isect", &s->isect, lt_sf_isects,
                      "ray/triangle test of every stage: wt (watertight, default) or mt\n"
@@ -416,7 +420,7 @@ static void shadows_print_scene(const shadows_t *s)
     uint32_t flags = s->flags, pflags = s->pflags;
     printf("scene     %s: %u triangles%s, radius %.1f units (scale %g), %ux%u, %s, light "
            "%.3g x %.3g units at (%.1f, %.1f, %.1f), frusta leaf %u, culling %s%s%s%s%s%s%s, "
-           "primary culling %s%s%s%s%s%s, %d shadow samples per pixel (%s), isect %s\n",
+           "primary culling %s%s%s%s%s%s%s, %d shadow samples per pixel (%s), isect %s\n",
            s->mesh_path, s->sc.ntris, s->ground ? " (with ground quad)" : "", s->sc.radius,
            s->sc.scale, s->res, s->res, s->path->format, light->eu[0], light->ev[2],
            light->c[0] + 0.5 * light->eu[0], light->c[1], light->c[2] + 0.5 * light->ev[2],
@@ -426,7 +430,8 @@ static void shadows_print_scene(const shadows_t *s)
            flags & LT_FRUSTA_LEAFRAY ? "l" : "", flags & LT_FRUSTA_SPLIT ? "s" : "",
            pflags == 0 ? "none" : "", pflags & LT_FRUSTA_BACKFACE ? "b" : "",
            pflags & LT_FRUSTA_CORNER ? "c" : "", pflags & LT_FRUSTA_CR ? "r" : "",
-           pflags & LT_FRUSTA_LEAFRAY ? "l" : "", pflags & LT_FRUSTA_SPLIT ? "s" : "", s->spp,
+           pflags & LT_FRUSTA_LEAFRAY ? "l" : "", pflags & LT_FRUSTA_SPLIT ? "s" : "",
+           pflags & LT_FRUSTA_TRIPAR ? "t" : "", s->spp,
            qmc_kinds[s->qmc] == LT_QMC_LP ? "Larcher-Pillichshammer" : "Hammersley",
            lt_sf_isects[s->isect]);
 }
@@ -858,8 +863,8 @@ int lt_shadows_cli(int argc, char **argv, const char *prog)
     s.depth_rel = 0.05;
     s.cos_min = 0.9;
     s.pflags = LT_FRUSTA_BACKFACE | LT_FRUSTA_CORNER | LT_FRUSTA_CR | LT_FRUSTA_LEAFRAY |
-               LT_FRUSTA_SPLIT;
-    s.flags = s.pflags | LT_FRUSTA_FS;
+               LT_FRUSTA_SPLIT | LT_FRUSTA_TRIPAR;
+    s.flags = (s.pflags & ~LT_FRUSTA_TRIPAR) | LT_FRUSTA_FS;
     snprintf(who, sizeof who, "%s shadows", prog);
     rc = shadows_parse(&s, argc, argv);
     if (rc != LT_OPT_OK)

@@ -62,7 +62,7 @@ void lt_ss_opts_default(const lt_scene_t *s, lt_ss_opts_t *o)
     o->flags = LT_FRUSTA_BACKFACE | LT_FRUSTA_CORNER | LT_FRUSTA_CR | LT_FRUSTA_FS |
                LT_FRUSTA_LEAFRAY | LT_FRUSTA_SPLIT;
     o->pflags = LT_FRUSTA_BACKFACE | LT_FRUSTA_CORNER | LT_FRUSTA_CR | LT_FRUSTA_LEAFRAY |
-                LT_FRUSTA_SPLIT;
+                LT_FRUSTA_SPLIT | LT_FRUSTA_TRIPAR;
     o->qmc = LT_QMC_LP;
     o->spp = 16;
     o->depth_rel = 0.05;

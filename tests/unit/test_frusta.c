@@ -1395,7 +1395,9 @@ static void pcompare_all(const tscene_t *s, const tbvh_t *shal, const tbvh_t *de
     pref_fill(s, &vt, &vtf, &R);
     *ties += R.ties;
     for (fl = 0; fl < NFLAGS; fl++) {
-        vq->flags = vf->flags = g_flagsets[fl] & ~(LT_FRUSTA_FS | LT_FRUSTA_P256); /* shadow only */
+        /* FS and P256 are the shadow frusta's; TRIPAR (primary only) on every other set */
+        vq->flags = vf->flags = (g_flagsets[fl] & ~(LT_FRUSTA_FS | LT_FRUSTA_P256)) |
+                                (fl % 2u == 1u ? LT_FRUSTA_TRIPAR : 0u);
         pcompare(s, shal, deep, vq, vf, &R, T, what);
     }
 }
@@ -1456,7 +1458,7 @@ static void test_primary_random(void **state)
         unbuild(&deep);
     }
     ltt_isect = LT_ISECT_WT;
-    ptally_print("primary random scenes (6 scenes, 2 cameras each, 13 flag sets (FS and P256 are the shadow frusta's), leaf 8 and 16; "
+    ptally_print("primary random scenes (6 scenes, 2 cameras each, 13 flag sets (FS and P256 are the shadow frusta's; TRIPAR on every other one), leaf 8 and 16; "
                  "odd scenes Moller-Trumbore)",
                  &t, ties);
 #if LT_COST_MODE == LT_COST_SIM
@@ -1473,13 +1475,16 @@ static void test_primary_random(void **state)
                    (unsigned long long)ev[LT_EV_TRI_FETCH], (unsigned long long)ev[LT_EV_TRI_KEPT],
                    (unsigned long long)ev[LT_EV_CULL_BACK],
                    (unsigned long long)ev[LT_EV_CULL_CORNER]);
-        ltt_report("  sim events so far: LEAF_CULL %llu SPLIT %llu (the leaf culling and split walks "
-                   "of the LEAFRAY / SPLIT flag sets fired)\n",
-                   (unsigned long long)ev[LT_EV_LEAF_CULL], (unsigned long long)ev[LT_EV_SPLIT]);
+        ltt_report("  sim events so far: LEAF_CULL %llu SPLIT %llu TRIPAR %llu (the leaf culling, "
+                   "split walks and triangle-parallel leaves of the LEAFRAY / SPLIT / TRIPAR flag "
+                   "sets fired)\n",
+                   (unsigned long long)ev[LT_EV_LEAF_CULL], (unsigned long long)ev[LT_EV_SPLIT],
+                   (unsigned long long)ev[LT_EV_TRIPAR]);
         assert_true(ev[LT_EV_CULL_CORNER] > 1000u);
         assert_true(ev[LT_EV_CULL_BACK] > 1000u);
         assert_true(ev[LT_EV_LEAF_CULL] > 100u);
         assert_true(ev[LT_EV_SPLIT] > 100u);
+        assert_true(ev[LT_EV_TRIPAR] > 100u);
     }
 #endif
     assert_true(t.hits > 1000);
@@ -1524,6 +1529,100 @@ static void pon_ray(const lt_frusta_view_q16_t *v, uint32_t x, uint32_t y, unsig
         int64_t d = (int64_t)v->d0[a] + (int64_t)x * v->dx[a] + (int64_t)y * v->dy[a];
         p[a] = (int32_t)(v->o[a] + (d >> 14) * ((int64_t)1 << k));
     }
+}
+
+/* LT_FRUSTA_TRIPAR in the packet walk (pk_closest, the P-Packet baseline and P-Frusta's split
+ * walks): a leaf of 8 exact copies of one triangle (ids 0-7, an 8-way tie) met by 1, 3 or all 16
+ * rays of a packet; with and without back-face culling, both paths. The hit must be id 0 (the smallest of a tie) at the same t as without
+ * TRIPAR; with fewer rays than triangles the triangle-parallel leaf must have run (sim event). */
+static void test_tripar_ties(void **state)
+{
+    static tscene_t s;
+    tbvh_t b;
+    int32_t v0[3] = {-4 * U, -4 * U, 0}, v1[3] = {4 * U, -4 * U, 0}, v2[3] = {0, 4 * U, 0};
+    int32_t o[3] = {0, 0, -10 * U};
+    float of[3] = {0.0f, 0.0f, -10.0f};
+    unsigned long cases = 0, bad = 0, nmeet, fl, i;
+    (void)state;
+    s.n = 0;
+    for (i = 0; i < 8; i++) /* facing o (N = e1 x e2 towards -z): back-face culling keeps them */
+        add_tri(&s, v0, v2, v1);
+    build(&s, 8, 8, &b);
+    for (nmeet = 1; nmeet <= 16; nmeet = nmeet == 1 ? 3 : nmeet + 13)
+        for (fl = 0; fl < 4; fl++) {
+            uint32_t flags = ((fl & 1u) ? LT_FRUSTA_TRIPAR : 0u) |
+                             ((fl & 2u) ? LT_FRUSTA_BACKFACE : 0u);
+            lt_ray16_q16_t r;
+            lt_ray16_f32_t rf;
+            lt_hit16_t h, hf;
+            uint64_t e0 = 0, e1 = 0;
+            int j;
+            memset(&r, 0, sizeof r);
+            memset(&rf, 0, sizeof rf);
+            for (j = 0; j < LT_LANES; j++) {
+                /* lanes below nmeet towards points inside the triangle, the others away */
+                double dx = (unsigned)j < nmeet ? 0.01 * j : 0.9, dy = (unsigned)j < nmeet ? 0.0 : 0.3;
+                double dz = sqrt(1.0 - dx * dx - dy * dy);
+                r.ox.l[j] = o[0], r.oy.l[j] = o[1], r.oz.l[j] = o[2];
+                r.dx.l[j] = lt_q30_from_double_sat(dx);
+                r.dy.l[j] = lt_q30_from_double_sat(dy);
+                r.dz.l[j] = lt_q30_from_double_sat(dz);
+                r.tmin.l[j] = 0;
+                r.tmax.l[j] = 100 * U;
+                rf.ox.l[j] = of[0], rf.oy.l[j] = of[1], rf.oz.l[j] = of[2];
+                rf.dx.l[j] = (float)dx, rf.dy.l[j] = (float)dy, rf.dz.l[j] = (float)dz;
+                rf.tmin.l[j] = 0.0f;
+                rf.tmax.l[j] = 100.0f;
+            }
+            lt_ray16_q16_setup(&r);
+            lt_ray16_f32_setup(&rf);
+#if LT_COST_MODE == LT_COST_SIM
+            {
+                uint64_t ev[LT_EV__COUNT];
+                sim_events(ev);
+                e0 = ev[LT_EV_TRIPAR];
+            }
+#endif
+            assert_int_equal(lt_frusta_packet_trace16_q16(&b.q, s.tq, flags, o, &r, 0xFFFFu, &h),
+                             LT_OK);
+            assert_int_equal(lt_frusta_packet_trace16_f32(&b.f, s.tf, flags, of, &rf, 0xFFFFu, &hf),
+                             LT_OK);
+#if LT_COST_MODE == LT_COST_SIM
+            {
+                uint64_t ev[LT_EV__COUNT];
+                sim_events(ev);
+                e1 = ev[LT_EV_TRIPAR];
+            }
+            /* the triangle-parallel leaf ran exactly when asked for and fewer rays than 8 met */
+            if ((e1 != e0) != ((flags & LT_FRUSTA_TRIPAR) != 0 && nmeet < 8)) {
+                bad++;
+                printf("  FAIL tripar ties: %lu rays, flags %u: TRIPAR events %llu\n", nmeet,
+                       (unsigned)flags, (unsigned long long)(e1 - e0));
+            }
+#endif
+            (void)e0;
+            (void)e1;
+            for (j = 0; j < LT_LANES; j++) {
+                int e;
+                cases++;
+                if ((unsigned)j < nmeet)
+                    e = h.id.l[j] != 0 || hf.id.l[j] != 0 || r.tmax.l[j] <= 9 * U ||
+                        r.tmax.l[j] >= 11 * U || !(rf.tmax.l[j] > 9.0f && rf.tmax.l[j] < 11.0f);
+                else
+                    e = h.id.l[j] != -1 || hf.id.l[j] != -1;
+                if (e && bad++ < 6)
+                    printf("  FAIL tripar ties: %lu rays, flags %u, lane %d: id %d / %d t %d / %g\n",
+                           nmeet, (unsigned)flags, j, h.id.l[j], hf.id.l[j], r.tmax.l[j],
+                           (double)rf.tmax.l[j]);
+            }
+        }
+    unbuild(&b);
+    ltt_report("triangle-parallel leaves (LT_FRUSTA_TRIPAR) at an 8-way tie: 8 copies of a triangle "
+               "in one leaf, 1, 3 or 16 of a packet's rays meeting it, with and without TRIPAR and "
+               "back-face culling, q16 and f32: %lu lane cases, %lu wrong (id 0 at t 10 expected, "
+               "-1 elsewhere; in sim builds the triangle-parallel leaf ran exactly when fewer rays "
+               "than triangles met it) (bound 0)\n", cases, bad);
+    assert_int_equal(bad, 0);
 }
 
 static void test_primary_edges(void **state)
@@ -1761,6 +1860,7 @@ int main(void)
         cmocka_unit_test(test_primary_args),
         cmocka_unit_test(test_primary_random),
         cmocka_unit_test(test_primary_edges),
+        cmocka_unit_test(test_tripar_ties),
         cmocka_unit_test(test_primary_bunny),
     };
     return cmocka_run_group_tests(tests, setup_sets, NULL);

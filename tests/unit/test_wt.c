@@ -47,6 +47,8 @@
 #if LT_COST_MODE == LT_COST_SIM
 #include "lt_sim.h"
 #endif
+/* internal: the triangle-parallel layout (lt__wt16_meet_tris) against the packet test */
+#include "../../firmware/core/object/lt_isel.h"
 
 #define FMT_Q16 0
 #define FMT_F32 1
@@ -1848,6 +1850,146 @@ static void test_lanes(void **state)
     assert_int_equal(bad, 0);
 }
 
+/* ---- the triangle-parallel layout --------------------------------------------------------------- */
+
+/* lt__wt16_meet_tris (one ray, a triangle per lane) against lt__wt16_meet (16 rays, one triangle):
+ * every (ray, triangle) pair must give the same meet bit and the same t bits, in both paths, for
+ * any n and lane order. The triangles: random ones (every 8th a sliver), two sharing an edge, a
+ * zero-area one, one far off; the rays: aimed inside, within 1e-4 of an edge, from behind the
+ * plane, through a shared vertex, axis-parallel, and a zero direction (bad lane). */
+static void test_tris_layout(void **state)
+{
+    unsigned long pairs = 0, meets = 0, bad = 0;
+    unsigned round, i, j;
+    ltt_rng_t r;
+    int a;
+    (void)state;
+    ltt_rng_seed(&r, 7701);
+    for (round = 0; round < 300; round++) {
+        double v[LT_LANES][3][3];
+        lt_tri_q16_t tq[LT_LANES];
+        lt_ray16_q16_t p;
+        lt_wt16_q16_t w;
+        lt_vq16_t tp[LT_LANES], tt;
+        lt_mask16_t mp[LT_LANES], mt;
+        uint32_t idx[LT_LANES];
+        unsigned n = 1u + ltt_rng_below(&r, LT_LANES);
+        dray_t dr;
+#if LT_CFG_FLOAT32
+        lt_tri_f32_t tf[LT_LANES];
+        lt_ray16_f32_t pf;
+        lt_wt16_f32_t wf;
+        lt_vf32_t tpf[LT_LANES], ttf;
+        lt_mask16_t mpf[LT_LANES], mtf;
+        memset(&pf, 0, sizeof pf);
+#endif
+        memset(&p, 0, sizeof p);
+        for (i = 0; i < LT_LANES; i++)
+            tri_make(&r, 40.0, round * LT_LANES + i, v[i]);
+        for (a = 0; a < 3; a++) {
+            v[1][0][a] = v[0][1][a]; /* triangles 0 and 1 share the edge (v1, v2) of 0 */
+            v[1][1][a] = v[0][2][a];
+            v[2][2][a] = v[2][1][a]; /* triangle 2 has zero area */
+            v[3][0][a] += 1000.0;    /* triangle 3 is far off */
+        }
+        for (i = 0; i < LT_LANES; i++)
+            for (a = 0; a < 3; a++) {
+                tq[i].v0[a] = lt_q16_from_double_sat(v[i][0][a]);
+                tq[i].e1[a] = lt_q16_from_double_sat(v[i][1][a]) - tq[i].v0[a];
+                tq[i].e2[a] = lt_q16_from_double_sat(v[i][2][a]) - tq[i].v0[a];
+#if LT_CFG_FLOAT32
+                tf[i].v0[a] = (float)v[i][0][a];
+                tf[i].e1[a] = (float)(v[i][1][a] - v[i][0][a]);
+                tf[i].e2[a] = (float)(v[i][2][a] - v[i][0][a]);
+#endif
+            }
+        /* n of the 16 triangles in a random order */
+        for (i = 0; i < LT_LANES; i++)
+            idx[i] = i;
+        for (i = LT_LANES - 1u; i > 0; i--) {
+            unsigned k = ltt_rng_below(&r, i + 1u);
+            uint32_t x = idx[i];
+            idx[i] = idx[k];
+            idx[k] = x;
+        }
+        for (j = 0; j < LT_LANES; j++) {
+            double o[3], d[3];
+            /* each ray aimed at one of the n triangles tested */
+            tri_aim(&r, (const double(*)[3])v[idx[j % n]], 40.0, j % 3u, o, d);
+            if (j == 13)
+                for (a = 0; a < 3; a++) /* through the shared vertex v0[1] */
+                    d[a] = v[0][1][a] - o[a];
+            if (j == 14)
+                for (a = 0; a < 3; a++) /* axis-parallel */
+                    d[a] = a == (int)(round % 3u) ? (round & 4u ? -1.0 : 1.0) : 0.0;
+            if (j % 4u == 3u) { /* short directions, as the frusta's (t scale sh > 0) */
+                double sc = ltt_rng_uniform(&r, 0.01, 0.6);
+                for (a = 0; a < 3; a++)
+                    d[a] *= sc;
+            }
+            if (j == 15)
+                d[0] = d[1] = d[2] = 0.0; /* no direction: a bad lane */
+            if (j == 13) {
+                double l = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+                for (a = 0; a < 3; a++)
+                    d[a] /= l;
+            }
+            q_lane(&p, (int)j, o, d, 0.0, 80.0, &dr);
+#if LT_CFG_FLOAT32
+            f_lane(&pf, (int)j, o, d, 0.0, 80.0, &dr);
+#endif
+        }
+        (void)lt_ray16_wt_setup_q16(&p, &w);
+#if LT_CFG_FLOAT32
+        (void)lt_ray16_wt_setup_f32(&pf, &wf);
+#endif
+        for (i = 0; i < LT_LANES; i++) {
+            tp[i] = lt_vq16_set1(-7);
+            mp[i] = lt__wt16_meet_q16(&w, 0xFFFFu, &tq[i], &tp[i]);
+#if LT_CFG_FLOAT32
+            tpf[i] = lt_vf32_set1(-7.0f);
+            mpf[i] = lt__wt16_meet_f32(&wf, 0xFFFFu, &tf[i], &tpf[i]);
+#endif
+        }
+        for (j = 0; j < LT_LANES; j++) {
+            tt = lt_vq16_set1(-7);
+            mt = lt__wt16_meet_tris_q16(&w, j, tq, idx, n, &tt);
+#if LT_CFG_FLOAT32
+            ttf = lt_vf32_set1(-7.0f);
+            mtf = lt__wt16_meet_tris_f32(&wf, j, tf, idx, n, &ttf);
+#endif
+            for (i = 0; i < LT_LANES; i++) {
+                unsigned x = idx[i];
+                int e = 0, on = (int)(mt >> i & 1u);
+                if (i >= n) {
+                    e = on;
+#if LT_CFG_FLOAT32
+                    e |= (int)(mtf >> i & 1u);
+#endif
+                } else {
+                    pairs++;
+                    meets += (unsigned long)on;
+                    e = on != (int)(mp[x] >> j & 1u) || (on && tt.l[i] != tp[x].l[j]);
+#if LT_CFG_FLOAT32
+                    on = (int)(mtf >> i & 1u);
+                    e |= on != (int)(mpf[x] >> j & 1u) ||
+                         (on && memcmp(&ttf.l[i], &tpf[x].l[j], sizeof(float)) != 0);
+#endif
+                }
+                if (e && bad++ < 6)
+                    ltt_report("  FAIL tris layout: round %u ray %u lane %u (triangle %u, n %u)\n",
+                               round, j, i, x, n);
+            }
+        }
+    }
+    ltt_report("lt__wt16_meet_tris (one ray, a triangle per lane) against lt__wt16_meet (16 rays, one "
+               "triangle): %lu ray-triangle pairs (shared edge and vertex, zero area, axis-parallel, "
+               "short and zero directions, n 1-16 in random lane order; q16 and f32), %lu meet, %lu differ "
+               "in the meet bit or t bits or set a lane past n (bound 0)\n", pairs, meets, bad);
+    assert_int_equal(bad, 0);
+    assert_true(meets * 8 > (unsigned long)300 * LT_LANES); /* most rays meet their target */
+}
+
 /* ---- bad directions and the f32 fallback ----------------------------------------------------- */
 
 /* Lanes with a zero or too short direction are flagged and never hit; the float32 double fallback
@@ -2166,6 +2308,7 @@ int main(void)
         cmocka_unit_test(test_degenerate),
         cmocka_unit_test(test_parallel),
         cmocka_unit_test(test_lanes),
+        cmocka_unit_test(test_tris_layout),
 #if LT_COST_MODE == LT_COST_SIM
         cmocka_unit_test(test_cost),
 #endif

@@ -21,6 +21,18 @@ lt_mask16_t lt__wt16_meet_f32(const lt_wt16_f32_t *w, lt_mask16_t k, const lt_tr
                               lt_vf32_t *t);
 #endif
 
+/* The same test in the triangle-parallel layout (lt_wt.inc): ray j of w (its lane j) against
+ * tris[idx[i]] in lane i < n (n <= 16), each lane giving the bits lane j of lt__wt16_meet gives
+ * against that triangle. Returns the lanes (triangles) the ray meets, t written for those lanes.
+ * Cost: LANE_GATHER x 9n, WT_TRIS_VERTS, WT_ZERO_AREA per triangle, WT_TRIS_RAY, VBCAST x6, then
+ * the packet test's shear, edge and t stage; events TRIS 1, TRI_RAYS n. */
+lt_mask16_t lt__wt16_meet_tris_q16(const lt_wt16_q16_t *w, unsigned j, const lt_tri_q16_t *tris,
+                                   const uint32_t *idx, unsigned n, lt_vq16_t *t);
+#if LT_CFG_FLOAT32
+lt_mask16_t lt__wt16_meet_tris_f32(const lt_wt16_f32_t *w, unsigned j, const lt_tri_f32_t *tris,
+                                   const uint32_t *idx, unsigned n, lt_vf32_t *t);
+#endif
+
 /* One selection per packet and per single ray, for both numeric paths. */
 #define LT__ISEL_DEFINE(SFX, RAY, TRI, WT16, WT1, T)                                               \
     typedef struct {                                                                               \

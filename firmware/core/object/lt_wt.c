@@ -201,12 +201,12 @@ static lt_vq16_t q_tdiv_m(lt_vq16_t src, lt_mask16_t k, wt_v128_t tn, lt_vql32_t
 }
 
 /* e1 x e2 == 0 exactly for the rebuilt vertices (s15.16 differences, int64 products compared
- * without subtracting, so no overflow for any input). Cost: SALU x9, SMUL x6. */
-static int q_zero_area(lt_q16_t p[3][3])
+ * without subtracting, so no overflow for any input). Uncharged: q_zero_area (a triangle, scalar)
+ * and q_zero_area16 (a triangle per lane) charge it. */
+static int q_zero_area1(lt_q16_t p[3][3])
 {
     int32_t a[3], b[3];
     int i;
-    LT_CHARGE(WT_ZERO_AREA);
     for (i = 0; i < 3; i++) {
         a[i] = lt__ssat32((int64_t)p[1][i] - p[0][i]);
         b[i] = lt__ssat32((int64_t)p[2][i] - p[0][i]);
@@ -214,6 +214,13 @@ static int q_zero_area(lt_q16_t p[3][3])
     return lt__mul32x32_64(a[1], b[2]) == lt__mul32x32_64(a[2], b[1]) &&
            lt__mul32x32_64(a[2], b[0]) == lt__mul32x32_64(a[0], b[2]) &&
            lt__mul32x32_64(a[0], b[1]) == lt__mul32x32_64(a[1], b[0]);
+}
+
+/* Cost: SALU x9, SMUL x6. */
+static int q_zero_area(lt_q16_t p[3][3])
+{
+    LT_CHARGE(WT_ZERO_AREA);
+    return q_zero_area1(p);
 }
 
 /* The ray axis of one ray, as the packet setup computes it per lane from |d|: the largest
@@ -307,6 +314,14 @@ int lt_tri1_wt_q16(const lt_wt1_q16_t *w, const lt_tri_q16_t *tri, lt_q16_t tmin
     return 0;
 }
 
+/* Every lane's t scale set to sh (a lane broadcast of lt__wt16_meet_tris). */
+static void memset_sh(uint8_t sh[LT_LANES], uint8_t v)
+{
+    int i;
+    for (i = 0; i < LT_LANES; i++)
+        sh[i] = v;
+}
+
 #include "numerics/lt_traits_q16.h"
 #define LTN_WT lt_wt16_q16_t
 #define LTN_DV lt_vq30_t
@@ -314,6 +329,9 @@ int lt_tri1_wt_q16(const lt_wt1_q16_t *w, const lt_tri_q16_t *tri, lt_q16_t tmin
 #define LTN_D_CMPGE lt_vq30_cmpge
 #define LTN_D_CMPLT0 lt_vq30_cmplt0
 #define LTN_D_BLEND lt_vq30_blend
+#define LTN_D_SET1 lt_vq30_set1
+/* the rest of a lane broadcast (lt__wt16_meet_tris): the t scale */
+#define LTN_WT_LANE_EXTRA(r, w, j) memset_sh((r)->sh, (w)->sh[(j)])
 #define LTN_WT_BADDIR q_baddir
 #define LTN_WT_RATIO q_ratio
 #define LTN_WT_RECIP q_recip
@@ -333,6 +351,8 @@ int lt_tri1_wt_q16(const lt_wt1_q16_t *w, const lt_tri_q16_t *tri, lt_q16_t tmin
 #define LTN_WT_TSUM q_tsum
 #define LTN_WT_TDIV_M q_tdiv_m
 #define LTN_WT_ZERO_AREA q_zero_area
+#define LTN_WT_ZERO_AREA1 q_zero_area1
+#define LTN_WT_ZERO_AREA16 WT_Q_ZERO_AREA16
 #include "lt_wt.inc"
 #include "numerics/lt_traits_undef.h"
 #undef LTN_WT
@@ -341,6 +361,8 @@ int lt_tri1_wt_q16(const lt_wt1_q16_t *w, const lt_tri_q16_t *tri, lt_q16_t tmin
 #undef LTN_D_CMPGE
 #undef LTN_D_CMPLT0
 #undef LTN_D_BLEND
+#undef LTN_D_SET1
+#undef LTN_WT_LANE_EXTRA
 #undef LTN_WT_BADDIR
 #undef LTN_WT_RATIO
 #undef LTN_WT_RECIP
@@ -357,6 +379,8 @@ int lt_tri1_wt_q16(const lt_wt1_q16_t *w, const lt_tri_q16_t *tri, lt_q16_t tmin
 #undef LTN_WT_TSUM
 #undef LTN_WT_TDIV_M
 #undef LTN_WT_ZERO_AREA
+#undef LTN_WT_ZERO_AREA1
+#undef LTN_WT_ZERO_AREA16
 
 /* ---- float32 -------------------------------------------------------------------------------- */
 #if LT_CFG_FLOAT32
@@ -424,8 +448,8 @@ static void f_edge_fix(lt_mask16_t z, lt_vf32_t *u, lt_vf32_t *v, lt_vf32_t *w,
 }
 
 /* e1 x e2 == 0 exactly: float differences and their products are exact in double for
- * coordinates within a 2^29 ratio of each other. Cost: SALU x9, SMUL x6. */
-static int f_zero_area(float p[3][3])
+ * coordinates within a 2^29 ratio of each other. Uncharged, as q_zero_area1. */
+static int f_zero_area1(float p[3][3])
 {
     double a[3], b[3];
     int i;
@@ -439,8 +463,8 @@ static int f_zero_area(float p[3][3])
 #define F_EXACT_EDGES 0
 #else
 /* Without double: products compared in float, so a zero-area triangle is always caught but a
- * sliver whose products round equal is taken as zero-area too. Cost: SALU x9, SMUL x6. */
-static int f_zero_area(float p[3][3])
+ * sliver whose products round equal is taken as zero-area too. Uncharged, as q_zero_area1. */
+static int f_zero_area1(float p[3][3])
 {
     float a[3], b[3];
     int i;
@@ -453,6 +477,13 @@ static int f_zero_area(float p[3][3])
 }
 #define F_EXACT_EDGES 1
 #endif
+
+/* Cost: SALU x9, SMUL x6. */
+static int f_zero_area(float p[3][3])
+{
+    LT_CHARGE(WT_ZERO_AREA);
+    return f_zero_area1(p);
+}
 
 /* ---- single rays in float32: one lane of the packet test ----------------------------------- */
 
@@ -536,6 +567,8 @@ int lt_tri1_wt_f32(const lt_wt1_f32_t *w, const lt_tri_f32_t *tri, float tmin, f
 #define LTN_D_CMPGE lt_vf32_cmpge
 #define LTN_D_CMPLT0(a) lt_vf32_cmplt((a), lt_vf32_set1(0.0f))
 #define LTN_D_BLEND lt_vf32_blend
+#define LTN_D_SET1 lt_vf32_set1
+#define LTN_WT_LANE_EXTRA(r, w, j) ((void)(r), (void)(w), (void)(j)) /* no t scale in float */
 #define LTN_WT_BADDIR f_baddir
 #define LTN_WT_RATIO f_ratio
 #define LTN_WT_RECIP f_recip
@@ -556,6 +589,8 @@ int lt_tri1_wt_f32(const lt_wt1_f32_t *w, const lt_tri_f32_t *tri, float tmin, f
     ((void)(k), lt_vf32_dot3((u), (v), (w), (za), (zb), (zc)))
 #define LTN_WT_TDIV_M(src, k, n, d, w) ((void)(w), lt_vf32_div_m((src), (k), (n), (d)))
 #define LTN_WT_ZERO_AREA f_zero_area
+#define LTN_WT_ZERO_AREA1 f_zero_area1
+#define LTN_WT_ZERO_AREA16 WT_F_ZERO_AREA16
 #include "lt_wt.inc"
 #include "numerics/lt_traits_undef.h"
 

@@ -46,6 +46,10 @@ extern "C" {
 #define LT_FRUSTA_P256 32u    /* shadow frusta only: the walk's box tests are the 16 frusta's rays
                                  as 16 packets of 16 rays (a 256-ray packet, [Benthin09] 5.3's
                                  comparison) instead of the interval test; leaves unchanged */
+#define LT_FRUSTA_TRIPAR 128u /* primary frusta, with LEAFRAY and the watertight test: a frustum
+                                 with fewer rays in a leaf's box than the leaf has triangles tests
+                                 them ray by ray, the leaf's triangles in the lanes (one 16-lane
+                                 test per ray instead of one per triangle; the same hits) */
 #define LT_FRUSTA_LEAFRAY 8u  /* ray-AABB leaf culling ([Benthin09] Table 2 "Ray-AABB"): at a
                                  leaf, a frustum whose own live rays (a 16-ray packet with
                                  reciprocals, made once per call) miss the leaf's box skips it;
@@ -71,6 +75,15 @@ extern "C" {
  * (measured 4, 8, 12, 16 on the dragons, Sibenik and Sponza at 256 x 256: 4 is best). */
 #ifndef LT_FRUSTA_PSPLIT_WIDE
 #define LT_FRUSTA_PSPLIT_WIDE 4u
+#endif
+
+/* LT_FRUSTA_TRIPAR's rule: a frustum goes triangle-parallel at a leaf of n triangles (n <= 16)
+ * when its rays in the leaf's box number fewer than n NUM / DEN. */
+#ifndef LT_FRUSTA_TRIPAR_NUM
+#define LT_FRUSTA_TRIPAR_NUM 1u
+#endif
+#ifndef LT_FRUSTA_TRIPAR_DEN
+#define LT_FRUSTA_TRIPAR_DEN 1u
 #endif
 
 #define LT_FRUSTA_END_SHIFT 10u /* default: rays stop 2^-10 of their length short of the light */
