@@ -442,16 +442,18 @@ static int check_obj(const char *where, const char *buf, size_t len, lt_diag_t *
     return 0;
 }
 
-/* A CR not followed by LF ends a line for assimp (classic Mac line ends, or a stray CR inside a
- * line: "g a\rl 3 7 6" is a group and then a line statement to it, which threw inside its reader
- * and leaked; mesh fuzz target, regress-bare-cr-leak): make it an LF, in place, so that the check
- * sees the lines assimp will read. CRLF stays as it is. */
-static void obj_bare_cr(char *buf, size_t len)
+/* What ends a line for assimp (its IsLineEnd) that does not for the check: a CR not followed by
+ * LF (classic Mac line ends, or a stray CR inside a line: "g a\rl 3 7 6" is a group and then a
+ * line statement to it, which threw inside its reader and leaked; mesh fuzz target,
+ * regress-bare-cr-leak), a form feed ("g a\f\ff 1 x" is a group and then a face that threw and
+ * leaked; regress-formfeed-leak) and a NUL inside the text. Each becomes an LF, in place, so that
+ * the check sees the lines assimp will read. CRLF stays as it is. */
+static void obj_line_ends(char *buf, size_t len)
 {
     size_t i;
     for (i = 0; i < len; i++)
-        if (buf[i] == '\r' && buf[i + 1] != '\n') /* buf[len] is the NUL */
-            buf[i] = '\n';
+        if ((buf[i] == '\r' && buf[i + 1] != '\n') || buf[i] == '\f' || buf[i] == '\0')
+            buf[i] = '\n'; /* buf[len] is the NUL */
 }
 
 /* The checked OBJ text as assimp gets it, in place:
@@ -599,7 +601,7 @@ int lt_mesh_load(const char *path, lt_mesh_t *m, lt_diag_t *diag)
             raw = NULL;
         }
         if (obj) {
-            obj_bare_cr(text, textlen);
+            obj_line_ends(text, textlen);
             if (check_obj(path, text, textlen, diag) != 0)
                 goto done;
             textlen = obj_for_assimp(text, textlen);
