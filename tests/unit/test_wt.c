@@ -1960,19 +1960,19 @@ static void test_tris_layout(void **state)
 #endif
             for (i = 0; i < LT_LANES; i++) {
                 unsigned x = idx[i];
-                int e = 0, on = (int)(mt >> i & 1u);
+                int e = 0, on = (int)((unsigned)mt >> i & 1u);
                 if (i >= n) {
                     e = on;
 #if LT_CFG_FLOAT32
-                    e |= (int)(mtf >> i & 1u);
+                    e |= (int)((unsigned)mtf >> i & 1u);
 #endif
                 } else {
                     pairs++;
                     meets += (unsigned long)on;
-                    e = on != (int)(mp[x] >> j & 1u) || (on && tt.l[i] != tp[x].l[j]);
+                    e = on != (int)((unsigned)mp[x] >> j & 1u) || (on && tt.l[i] != tp[x].l[j]);
 #if LT_CFG_FLOAT32
-                    on = (int)(mtf >> i & 1u);
-                    e |= on != (int)(mpf[x] >> j & 1u) ||
+                    on = (int)((unsigned)mtf >> i & 1u);
+                    e |= on != (int)((unsigned)mpf[x] >> j & 1u) ||
                          (on && memcmp(&ttf.l[i], &tpf[x].l[j], sizeof(float)) != 0);
 #endif
                 }
