@@ -302,6 +302,9 @@ static void test_malformed(void **state)
      * was read as part of the group name, then threw inside assimp and leaked) */
     write_text(tpath("ff.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\ng a\f\ff 1 2 x\nf 1 2 3\n");
     expect_fail("ff.obj", "line 6: face vertex 3: 'x' is not an index", &n);
+    /* a vertical tab is no blank to assimp: "2\v2" was read as an index and threw */
+    write_text(tpath("vt.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\v2\n");
+    expect_fail("vt.obj", "line 4: control byte 0x0b", &n);
     write_text(tpath("v_five.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0 3 4\nf 1 2 3\n");
     expect_fail("v_five.obj", "line 3: vertex has 5 numbers", &n);
     write_text(tpath("v_w0.obj"), "v 0 0 0\nv 1 0 0 0\nv 0 1 0\nf 1 2 3\n");

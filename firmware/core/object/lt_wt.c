@@ -453,7 +453,6 @@ static int f_zero_area1(float p[3][3])
 {
     double a[3], b[3];
     int i;
-    LT_CHARGE(WT_ZERO_AREA);
     for (i = 0; i < 3; i++) {
         a[i] = (double)p[1][i] - (double)p[0][i];
         b[i] = (double)p[2][i] - (double)p[0][i];
@@ -468,7 +467,6 @@ static int f_zero_area1(float p[3][3])
 {
     float a[3], b[3];
     int i;
-    LT_CHARGE(WT_ZERO_AREA);
     for (i = 0; i < 3; i++) {
         a[i] = p[1][i] - p[0][i];
         b[i] = p[2][i] - p[0][i];
