@@ -115,7 +115,7 @@ static const char *const filter_names[] = {"irradiance", "visibility", NULL};
 /* --cull, --pcull: any of the letters b (back-face), c (corner rays), r (CR), l (ray-AABB leaf
  * culling), s (wide frusta split into packets), or "none"; --cull (ctx non-NULL) also f (FS:
  * shrink the shadow frusta's direction intervals with their corner rays; implies r) and p (the
- * paper's 256-ray packet walk); --pcull also t (LT_FRUSTA_TRIPAR: triangle-parallel leaves) */
+ * paper's 256-ray packet walk); both also t (LT_FRUSTA_TRIPAR: triangle-parallel leaves) */
 static int parse_cull(const char *text, void *dest, const void *ctx)
 {
     uint32_t f = 0;
@@ -137,7 +137,7 @@ static int parse_cull(const char *text, void *dest, const void *ctx)
                 f |= LT_FRUSTA_FS | LT_FRUSTA_CR;
             else if (*c == 'p' && ctx != NULL)
                 f |= LT_FRUSTA_P256;
-            else if (*c == 't' && ctx == NULL)
+            else if (*c == 't')
                 f |= LT_FRUSTA_TRIPAR;
             else
                 return -1;
@@ -185,12 +185,14 @@ static int shadows_parse(shadows_t *s, int argc, char **argv)
          .help = "frusta BVH leaf size, {range} (max_leaf N, min_leaf N/2; default 8)"},
         {.name = "--cull", .kind = LT_OPT_CUSTOM, .dest = &s->flags, .seen = &s->seen_cull,
          .meta = "LIST",
-         .parse = parse_cull, .ctx = "shadow", .expect = "letters b, c, r, f, l, s, p or none",
+         .parse = parse_cull, .ctx = "shadow", .expect = "letters b, c, r, f, l, s, p, t or none",
          .help = "shadow culling: any of b (back-face), c (corner rays), r (CR),\n"
                  "f (FS: CR that also shrinks the traversal's direction intervals),\n"
                  "l (ray-AABB leaf culling), s (wide frusta go on as packets),\n"
                  "p (walk as 16 packets of 16 rays: the paper's 256-ray packet\n"
-                 "comparison), or none (default bcrfls)"},
+                 "comparison), t (a packet leaf with fewer live rays than\n"
+                 "triangles: ray by ray, its triangles in the lanes; S-Packet and\n"
+                 "the frusta's packet walks), or none (default bcrflst)"},
         {.name = "--prim", .kind = LT_OPT_ENUM, .dest = &s->prim, .seen = &s->seen_prim,
          .names = prim_names,
          .help = "primary method(s) (default both: P-Packet feeds S-Packet and\n"
@@ -419,7 +421,7 @@ static void shadows_print_scene(const shadows_t *s)
     const lt_ss_light_t *light = &s->light;
     uint32_t flags = s->flags, pflags = s->pflags;
     printf("scene     %s: %u triangles%s, radius %.1f units (scale %g), %ux%u, %s, light "
-           "%.3g x %.3g units at (%.1f, %.1f, %.1f), frusta leaf %u, culling %s%s%s%s%s%s%s, "
+           "%.3g x %.3g units at (%.1f, %.1f, %.1f), frusta leaf %u, culling %s%s%s%s%s%s%s%s%s, "
            "primary culling %s%s%s%s%s%s%s, %d shadow samples per pixel (%s), isect %s\n",
            s->mesh_path, s->sc.ntris, s->ground ? " (with ground quad)" : "", s->sc.radius,
            s->sc.scale, s->res, s->res, s->path->format, light->eu[0], light->ev[2],
@@ -428,6 +430,7 @@ static void shadows_print_scene(const shadows_t *s)
            flags & LT_FRUSTA_CORNER ? "c" : "", flags & LT_FRUSTA_CR ? "r" : "",
            flags & LT_FRUSTA_FS ? "f" : "",
            flags & LT_FRUSTA_LEAFRAY ? "l" : "", flags & LT_FRUSTA_SPLIT ? "s" : "",
+           flags & LT_FRUSTA_P256 ? "p" : "", flags & LT_FRUSTA_TRIPAR ? "t" : "",
            pflags == 0 ? "none" : "", pflags & LT_FRUSTA_BACKFACE ? "b" : "",
            pflags & LT_FRUSTA_CORNER ? "c" : "", pflags & LT_FRUSTA_CR ? "r" : "",
            pflags & LT_FRUSTA_LEAFRAY ? "l" : "", pflags & LT_FRUSTA_SPLIT ? "s" : "",
@@ -864,7 +867,7 @@ int lt_shadows_cli(int argc, char **argv, const char *prog)
     s.cos_min = 0.9;
     s.pflags = LT_FRUSTA_BACKFACE | LT_FRUSTA_CORNER | LT_FRUSTA_CR | LT_FRUSTA_LEAFRAY |
                LT_FRUSTA_SPLIT | LT_FRUSTA_TRIPAR;
-    s.flags = (s.pflags & ~LT_FRUSTA_TRIPAR) | LT_FRUSTA_FS;
+    s.flags = s.pflags | LT_FRUSTA_FS;
     snprintf(who, sizeof who, "%s shadows", prog);
     rc = shadows_parse(&s, argc, argv);
     if (rc != LT_OPT_OK)

@@ -302,7 +302,7 @@ static int parse_reproject(ctx_t *c, const cJSON *rp, lt_scenefile_t *sf)
 }
 
 /* "shadows": { "primary": "packet"|"frusta"|"both", "method": "frusta"|"packet"|"both",
- * "filter": bool, "leaf": N, "cull": "bcrfls" (letters b c r f l s p), "spp": 4|8|16|32 }
+ * "filter": bool, "leaf": N, "cull": "bcrflst" (letters b c r f l s p t), "spp": 4|8|16|32 }
  * (lanetrace shadows; written by lanetrace tune) */
 static int parse_shadows(ctx_t *c, const cJSON *sh, lt_scenefile_t *sf)
 {
@@ -344,9 +344,9 @@ static int parse_shadows(ctx_t *c, const cJSON *sh, lt_scenefile_t *sf)
         if (get_string(c, it, "shadows.cull", sf->sh_cull, sizeof sf->sh_cull) != 0)
             return -1;
         for (p = sf->sh_cull; *p != '\0' && strcmp(sf->sh_cull, "none") != 0; p++)
-            if (strchr("bcrflsp", *p) == NULL)
+            if (strchr("bcrflspt", *p) == NULL)
                 return fail(c, "'shadows.cull' = \"%s\": expected letters of b, c, r, f, l, s, "
-                               "p or \"none\"", sf->sh_cull);
+                               "p, t or \"none\"", sf->sh_cull);
     }
     sf->has_shadows = 1;
     return 0;

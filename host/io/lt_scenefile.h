@@ -68,8 +68,8 @@ typedef struct lt_scenefile {
     int sh_filter;                   /* 1: the filtered image is the result (default), 0: the
                                         16-spp image unfiltered */
     uint32_t sh_leaf;                /* frusta BVH leaf size (0 = 8) */
-    char sh_cull[8];                 /* shadow-ray culling letters b c r f l s p or "none" ("" =
-                                        the default, bcrfls) */
+    char sh_cull[16];                /* shadow-ray culling letters b c r f l s p t or "none" ("" =
+                                        the default, bcrflst) */
     uint32_t sh_spp;                 /* shadow samples per pixel: 4, 8, 16, 32 (0 = 16) */
 } lt_scenefile_t;
 

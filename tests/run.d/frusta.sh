@@ -102,8 +102,8 @@ fi
 # primary frusta refuse f, and with it or without it the frusta equal the packets on every pixel
 "$SH_SIM" shadows --mesh scenes/teapot.obj --res 48 --no-ref >"$tmp/fs1.txt" 2>&1
 "$SH_SIM" shadows --mesh scenes/teapot.obj --res 48 --no-ref --cull bcrls >"$tmp/fs2.txt" 2>&1
-check "shadows: FS is on by default (culling bcrfls), frusta = packets with and without it" \
-    bash -c "grep -q 'culling bcrfls, primary culling bcrls' '$tmp/fs1.txt' &&
+check "shadows: FS and t are on by default (culling bcrflst), frusta = packets with and without it" \
+    bash -c "grep -q 'culling bcrflst, primary culling bcrlst' '$tmp/fs1.txt' &&
              grep -q 'culling bcrls, primary' '$tmp/fs2.txt' &&
              grep -q 'frusta = packet visibility on 2304 of 2304 pixels (0 differ)' '$tmp/fs1.txt' &&
              grep -q 'frusta = packet visibility on 2304 of 2304 pixels (0 differ)' '$tmp/fs2.txt'"

@@ -396,7 +396,9 @@ static void test_random_scenes(void **state)
             for (rep = 0; rep < 3; rep++) {
                 lt_frusta_light_q16_t l;
                 int32_t org[16][3];
-                random_light(&r, &l, rep == 0 ? 4.0 : (rep == 1 ? 40.0 : 120.0), g_flagsets[fl]);
+                /* TRIPAR (the packet walks' triangle-parallel leaves) on every other run */
+                random_light(&r, &l, rep == 0 ? 4.0 : (rep == 1 ? 40.0 : 120.0),
+                             g_flagsets[fl] | ((fl + rep) % 2u == 1u ? LT_FRUSTA_TRIPAR : 0u));
                 random_origins(&r, org, rep == 2 ? 100.0 : 3.0);
                 compare(&s, rep == 1 ? &deep : &shallow, &l, org, LT_MASK_ALL, &t, "random");
                 /* random frustum masks, with 4, 8 or all 16 samples per frustum traced */
@@ -408,9 +410,9 @@ static void test_random_scenes(void **state)
         unbuild(&deep);
     }
     ltt_isect = LT_ISECT_WT;
-    tally_print("random scenes (6 scenes, 13 flag sets, 3 light sizes, coherent and scattered "
-                "origins, random masks with 4, 8 and 16 samples traced (lt_frusta_restrict16); "
-                "odd scenes Moller-Trumbore)", &t);
+    tally_print("random scenes (6 scenes, 13 flag sets, TRIPAR on every other run, 3 light sizes, "
+                "coherent and scattered origins, random masks with 4, 8 and 16 samples traced "
+                "(lt_frusta_restrict16); odd scenes Moller-Trumbore)", &t);
 #if LT_COST_MODE == LT_COST_SIM
     {
         /* the equality above is only worth something if the culling actually removed pairs */
@@ -427,13 +429,16 @@ static void test_random_scenes(void **state)
                    (unsigned long long)ev[LT_EV_CULL_BACK],
                    (unsigned long long)ev[LT_EV_CULL_CORNER], (unsigned long long)ev[LT_EV_TRIS],
                    (unsigned long long)ev[LT_EV_HITS], (unsigned long long)ev[LT_EV_AABB]);
-        ltt_report("  sim events so far: LEAF_CULL %llu SPLIT %llu (the leaf culling and split walks "
-                   "of the LEAFRAY / SPLIT flag sets fired)\n",
-                   (unsigned long long)ev[LT_EV_LEAF_CULL], (unsigned long long)ev[LT_EV_SPLIT]);
+        ltt_report("  sim events so far: LEAF_CULL %llu SPLIT %llu TRIPAR %llu (the leaf culling, "
+                   "split walks and triangle-parallel packet leaves of the LEAFRAY / SPLIT / "
+                   "TRIPAR flag sets fired)\n",
+                   (unsigned long long)ev[LT_EV_LEAF_CULL], (unsigned long long)ev[LT_EV_SPLIT],
+                   (unsigned long long)ev[LT_EV_TRIPAR]);
         assert_true(ev[LT_EV_CULL_CORNER] > 1000u);
         assert_true(ev[LT_EV_CULL_BACK] > 1000u);
         assert_true(ev[LT_EV_LEAF_CULL] > 100u);
         assert_true(ev[LT_EV_SPLIT] > 100u);
+        assert_true(ev[LT_EV_TRIPAR] > 100u);
     }
 #endif
     assert_true(t.partial > 50);
@@ -656,7 +661,7 @@ static void test_generator_and_args(void **state)
     l.end_shift = 31;
     assert_int_equal(lt_frusta_table_q16(&l, &g_sets, &tb), LT_E_ARG);
     l.end_shift = 0;
-    l.flags = 128;
+    l.flags = 256; /* no such flag */
     assert_int_equal(lt_frusta_table_q16(&l, &g_sets, &tb), LT_E_ARG);
     l.flags = 0;
     l.c[1] = 4097 * U;
@@ -1625,6 +1630,115 @@ static void test_tripar_ties(void **state)
     assert_int_equal(bad, 0);
 }
 
+/* LT_FRUSTA_TRIPAR in the any-hit packet walk (pk_any: the S-Packet baseline and the shadow
+ * frusta's split walks): one leaf of 8 triangles on four planes at t = 10, 20, 40, 70 along +z,
+ * two per plane, facing the origin or away (at t = 20 both away), met by 1, 3 or all 16 rays of a
+ * packet whose lanes have different (tmin, tmax). A lane is occluded exactly when a plane it may
+ * see (all four without back-face culling, 10, 40 and 70 with it) lies strictly inside
+ * (tmin, tmax); the same with and without TRIPAR, both paths; in sim builds the triangle-parallel
+ * leaf must run exactly when asked for and fewer than 8 rays reach the leaf. */
+static void test_tripar_any(void **state)
+{
+    static tscene_t s;
+    tbvh_t b;
+    static const double zs[4] = {0.0, 10.0, 30.0, 60.0};     /* t = 10, 20, 40, 70 */
+    static const int face[4][2] = {{1, 1}, {0, 0}, {1, 0}, {0, 1}}; /* 1: faces the origin */
+    static const double tmins[3] = {0.0, 12.0, 25.0}, tmaxs[4] = {15.0, 30.0, 100.0, 50.0};
+    int32_t o[3] = {0, 0, -10 * U};
+    float of[3] = {0.0f, 0.0f, -10.0f};
+    unsigned long cases = 0, bad = 0, nmeet, fl, i;
+    (void)state;
+    s.n = 0;
+    for (i = 0; i < 8; i++) {
+        int32_t z = (int32_t)(zs[i / 2] * U);
+        int32_t v0[3] = {-32 * U, -32 * U, z}, v1[3] = {32 * U, -32 * U, z}, v2[3] = {0, 32 * U, z};
+        if (face[i / 2][i % 2]) /* N = e1 x e2 towards -z: faces the origin */
+            add_tri(&s, v0, v2, v1);
+        else
+            add_tri(&s, v0, v1, v2);
+    }
+    build(&s, 8, 8, &b);
+    for (nmeet = 1; nmeet <= 16; nmeet = nmeet == 1 ? 3 : nmeet + 13)
+        for (fl = 0; fl < 4; fl++) {
+            uint32_t flags = ((fl & 1u) ? LT_FRUSTA_TRIPAR : 0u) |
+                             ((fl & 2u) ? LT_FRUSTA_BACKFACE : 0u);
+            lt_ray16_q16_t r;
+            lt_ray16_f32_t rf;
+            lt_mask16_t occ = 0, occf = 0;
+            uint64_t e0 = 0, e1 = 0;
+            int j;
+            memset(&r, 0, sizeof r);
+            memset(&rf, 0, sizeof rf);
+            for (j = 0; j < LT_LANES; j++) {
+                /* lanes below nmeet towards the triangles (x < 11 at t 70), the others back, away
+                   from the leaf's box */
+                double dx = (unsigned)j < nmeet ? 0.01 * j : 0.9, dy = (unsigned)j < nmeet ? 0.0 : 0.3;
+                double dz = ((unsigned)j < nmeet ? 1.0 : -1.0) * sqrt(1.0 - dx * dx - dy * dy);
+                double t0 = tmins[j % 3], t1 = tmaxs[j % 4];
+                r.ox.l[j] = o[0], r.oy.l[j] = o[1], r.oz.l[j] = o[2];
+                r.dx.l[j] = lt_q30_from_double_sat(dx);
+                r.dy.l[j] = lt_q30_from_double_sat(dy);
+                r.dz.l[j] = lt_q30_from_double_sat(dz);
+                r.tmin.l[j] = (int32_t)(t0 * U);
+                r.tmax.l[j] = (int32_t)(t1 * U);
+                rf.ox.l[j] = of[0], rf.oy.l[j] = of[1], rf.oz.l[j] = of[2];
+                rf.dx.l[j] = (float)dx, rf.dy.l[j] = (float)dy, rf.dz.l[j] = (float)dz;
+                rf.tmin.l[j] = (float)t0;
+                rf.tmax.l[j] = (float)t1;
+            }
+            lt_ray16_q16_setup(&r);
+            lt_ray16_f32_setup(&rf);
+#if LT_COST_MODE == LT_COST_SIM
+            {
+                uint64_t ev[LT_EV__COUNT];
+                sim_events(ev);
+                e0 = ev[LT_EV_TRIPAR];
+            }
+#endif
+            assert_int_equal(lt_frusta_packet_occluded16_q16(&b.q, s.tq, flags, o, &r, 0xFFFFu, &occ),
+                             LT_OK);
+            assert_int_equal(
+                lt_frusta_packet_occluded16_f32(&b.f, s.tf, flags, of, &rf, 0xFFFFu, &occf), LT_OK);
+#if LT_COST_MODE == LT_COST_SIM
+            {
+                uint64_t ev[LT_EV__COUNT];
+                sim_events(ev);
+                e1 = ev[LT_EV_TRIPAR];
+            }
+            if ((e1 != e0) != ((flags & LT_FRUSTA_TRIPAR) != 0 && nmeet < 8)) {
+                bad++;
+                printf("  FAIL tripar any: %lu rays, flags %u: TRIPAR events %llu\n", nmeet,
+                       (unsigned)flags, (unsigned long long)(e1 - e0));
+            }
+#endif
+            (void)e0;
+            (void)e1;
+            for (j = 0; j < LT_LANES; j++) {
+                double t0 = tmins[j % 3], t1 = tmaxs[j % 4];
+                int want = 0, got = (int)((unsigned)occ >> j & 1u), gotf = (int)((unsigned)occf >> j & 1u);
+                unsigned p;
+                for (p = 0; p < 4 && (unsigned)j < nmeet; p++) {
+                    double t = 10.0 + zs[p];
+                    int seen = (flags & LT_FRUSTA_BACKFACE) == 0 || face[p][0] || face[p][1];
+                    want |= seen && t > t0 && t < t1;
+                }
+                cases++;
+                if ((got != want || gotf != want) && bad++ < 6)
+                    printf("  FAIL tripar any: %lu rays, flags %u, lane %d (t %g..%g): occluded "
+                           "%d / %d, expected %d\n", nmeet, (unsigned)flags, j, t0, t1, got, gotf,
+                           want);
+            }
+        }
+    unbuild(&b);
+    ltt_report("triangle-parallel leaves (LT_FRUSTA_TRIPAR) in the any-hit packet walk: a leaf of 8 "
+               "triangles on planes at t 10, 20, 40, 70 (some facing away), 1, 3 or 16 rays with "
+               "tmin 0/12/25 and tmax 15/30/50/100, with and without TRIPAR and back-face culling, "
+               "q16 and f32: %lu lane cases, %lu wrong (occluded exactly when a visible plane lies "
+               "inside (tmin, tmax); in sim builds the triangle-parallel leaf ran exactly when fewer "
+               "rays than triangles reached it) (bound 0)\n", cases, bad);
+    assert_int_equal(bad, 0);
+}
+
 static void test_primary_edges(void **state)
 {
     static tscene_t s;
@@ -1861,6 +1975,7 @@ int main(void)
         cmocka_unit_test(test_primary_random),
         cmocka_unit_test(test_primary_edges),
         cmocka_unit_test(test_tripar_ties),
+        cmocka_unit_test(test_tripar_any),
         cmocka_unit_test(test_primary_bunny),
     };
     return cmocka_run_group_tests(tests, setup_sets, NULL);

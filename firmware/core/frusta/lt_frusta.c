@@ -22,7 +22,7 @@ lt_status_t lt_frusta_table_q16(const lt_frusta_light_q16_t *light, const lt_qmc
     unsigned s, j, a, c;
     if (light == NULL || sets == NULL || tb == NULL || light->end_shift > 30u ||
         (light->flags & ~(LT_FRUSTA_BACKFACE | LT_FRUSTA_CORNER | LT_FRUSTA_CR | LT_FRUSTA_LEAFRAY |
-                          LT_FRUSTA_SPLIT | LT_FRUSTA_FS | LT_FRUSTA_P256)) != 0)
+                          LT_FRUSTA_SPLIT | LT_FRUSTA_FS | LT_FRUSTA_P256 | LT_FRUSTA_TRIPAR)) != 0)
         return LT_E_ARG;
     for (a = 0; a < 3; a++)
         if ((light->eu[a] % LT_FRUSTA_GRID) != 0 || (light->ev[a] % LT_FRUSTA_GRID) != 0)
@@ -702,7 +702,7 @@ lt_status_t lt_frusta_table_f32(const lt_frusta_light_f32_t *light, const lt_qmc
     unsigned s, j, a;
     if (light == NULL || sets == NULL || tb == NULL || light->end_shift > 30u ||
         (light->flags & ~(LT_FRUSTA_BACKFACE | LT_FRUSTA_CORNER | LT_FRUSTA_CR | LT_FRUSTA_LEAFRAY |
-                          LT_FRUSTA_SPLIT | LT_FRUSTA_FS | LT_FRUSTA_P256)) != 0)
+                          LT_FRUSTA_SPLIT | LT_FRUSTA_FS | LT_FRUSTA_P256 | LT_FRUSTA_TRIPAR)) != 0)
         return LT_E_ARG;
     for (a = 0; a < 3; a++)
         if (!f_finite(light->c[a]) || !f_finite(light->eu[a]) || !f_finite(light->ev[a]))

@@ -228,7 +228,11 @@ lt_status_t lt_frusta_ray1_q16(const lt_frusta_table_q16_t *tb, const lt_q16_t o
 /* Packet baseline: any hit of the lanes in k of a packet whose lanes share the origin o (one
  * pixel's samples, from lt_frusta_rays16_q16), through a BVH, with early termination (the any-hit
  * path of lt_bvh_occluded16_q16) and, with BACKFACE in flags, triangles facing away from o skipped
- * (decided by the sign of the kernel's own tnum, so it equals per-ray culling of det < 0).
+ * (decided by the sign of the kernel's own tnum, so it equals per-ray culling of det < 0). With
+ * TRIPAR in flags (watertight test only), a leaf of n <= 16 triangles reached by fewer than n
+ * live lanes is tested ray by ray, its front triangles in the lanes (lt__wt16_meet_tris): the same
+ * occluded lanes (event TRIPAR; cost FR_PACKET_TRIPAR_TEST per leaf, per ray FR_PTRIS_RAY, the
+ * test, FR_PTRIS_ANY when it meets a lane).
  * Events: TRI_FETCH, TRI_KEPT, CULL_BACK. Without BACKFACE *occluded equals lt_bvh_occluded16_q16.
  * Cost: TRAVERSE per call VBCAST x2; lt_slab16_q16 per box test; per node BVH_TRAV_NODE,
  * interior: BVH_TRAV_CHILDREN16 (+ BVH_TRAV_ORDER, FR_TRAV_PUSH with both children entered),
