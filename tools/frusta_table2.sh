@@ -8,7 +8,8 @@
 # rays recomputed after a leaf that occluded rays), "FS" (+ f: CR that also shrinks the direction
 # intervals the traversal tests boxes with), and "+ split" (+ s: wide frusta go on as packets),
 # "256-ray packets" (+ p: the walk's box tests done by the 16 frusta's rays as 16 packets, the
-# paper's section 5.3 comparison), the defaults without FS (b c r l s) and with it (b c r f l s);
+# paper's section 5.3 comparison), the defaults without FS (b c r l s), without the packet walks'
+# triangle-parallel leaves (b c r f l s) and the default (b c r f l s t);
 # percentages against No Shrink., as the paper prints them.
 # Usage: tools/frusta_table2.sh [RES] [MESH ...]   (default 512; the shared Sibenik, Sponza,
 # Conference and dragon; SHARED=../shared, B=build)
@@ -24,7 +25,8 @@ meshes=("$@")
 [ -x "$LT" ] || { echo "frusta_table2: $LT missing (run make)" >&2; exit 1; }
 variants=("bc:No Shrink. (b c)" "bcl:Ray-AABB (b c l)" "bcr:CR (b c r)" "bcrf:FS (b c r f)"
           "bcs:split (b c s)" "bcp:256-ray packets (b c p)"
-          "bcrls:without FS (b c r l s)" "bcrfls:default (b c r f l s)")
+          "bcrls:without FS (b c r l s)" "bcrfls:without t (b c r f l s)"
+          "bcrflst:default (b c r f l s t)")
 pct() { awk -v a="$1" -v b="$2" 'BEGIN { if (b == 0) print "-"; else printf "%+.1f%%", 100 * (a - b) / b }'; }
 echo "| scene | variant | #tris accessed / +culling | #AABB tests | #isec tests | cycles | vs No Shrink. (#tris / +culling, #AABB, #isec, cycles) |"
 echo "|---|---|---|---|---|---|---|"

@@ -32,7 +32,7 @@ const lt_tune_gamma_t lt_tune_gammas[LT_TUNE_NGAMMA] = {
 const char *const lt_tune_cull_names[LT_TUNE_NCULL] = {"bcrflst", "bcr", "b"};
 const unsigned lt_tune_cull_flags[LT_TUNE_NCULL] = {
     LT_FRUSTA_BACKFACE | LT_FRUSTA_CORNER | LT_FRUSTA_CR | LT_FRUSTA_FS | LT_FRUSTA_LEAFRAY |
-        LT_FRUSTA_SPLIT,
+        LT_FRUSTA_SPLIT | LT_FRUSTA_TRIPAR,
     LT_FRUSTA_BACKFACE | LT_FRUSTA_CORNER | LT_FRUSTA_CR, LT_FRUSTA_BACKFACE};
 
 static const char *const tracer_names[] = {"quadtree", "dda", "hiz"};
