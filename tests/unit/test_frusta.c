@@ -1536,6 +1536,51 @@ static void pon_ray(const lt_frusta_view_q16_t *v, uint32_t x, uint32_t y, unsig
     }
 }
 
+/* TRIPAR events so far (0 outside sim builds). */
+static uint64_t tripar_events(void)
+{
+#if LT_COST_MODE == LT_COST_SIM
+    uint64_t ev[LT_EV__COUNT];
+    sim_events(ev);
+    return ev[LT_EV_TRIPAR];
+#else
+    return 0;
+#endif
+}
+
+/* In sim builds: the triangle-parallel leaf ran (TRIPAR events since e0) exactly when asked for
+ * and fewer than 8 rays reached the 8-triangle leaf. */
+static void tripar_ran(const char *what, uint64_t e0, uint32_t flags, unsigned long nmeet,
+                       unsigned long *bad)
+{
+#if LT_COST_MODE == LT_COST_SIM
+    uint64_t e1 = tripar_events();
+    if ((e1 != e0) != ((flags & LT_FRUSTA_TRIPAR) != 0 && nmeet < 8)) {
+        (*bad)++;
+        printf("  FAIL %s: %lu rays, flags %u: TRIPAR events %llu\n", what, nmeet, (unsigned)flags,
+               (unsigned long long)(e1 - e0));
+    }
+#else
+    (void)what, (void)e0, (void)flags, (void)nmeet, (void)bad;
+#endif
+}
+
+/* Lane j of a q16 and a float32 packet from o (of) along the unit (dx, dy, dz), t in [t0, t1]. */
+static void tripar_lane(lt_ray16_q16_t *r, lt_ray16_f32_t *rf, int j, const int32_t o[3],
+                        const float of[3], double dx, double dy, double dz, double t0, double t1)
+{
+    r->ox.l[j] = o[0], r->oy.l[j] = o[1], r->oz.l[j] = o[2];
+    r->dx.l[j] = lt_q30_from_double_sat(dx);
+    r->dy.l[j] = lt_q30_from_double_sat(dy);
+    r->dz.l[j] = lt_q30_from_double_sat(dz);
+    r->tmin.l[j] = (int32_t)(t0 * U);
+    r->tmax.l[j] = (int32_t)(t1 * U);
+    rf->ox.l[j] = of[0], rf->oy.l[j] = of[1], rf->oz.l[j] = of[2];
+    rf->dx.l[j] = (float)dx, rf->dy.l[j] = (float)dy, rf->dz.l[j] = (float)dz;
+    rf->tmin.l[j] = (float)t0;
+    rf->tmax.l[j] = (float)t1;
+}
+
 /* LT_FRUSTA_TRIPAR in the packet walk (pk_closest, the P-Packet baseline and P-Frusta's split
  * walks): a leaf of 8 exact copies of one triangle (ids 0-7, an 8-way tie) met by 1, 3 or all 16
  * rays of a packet; with and without back-face culling, both paths. The hit must be id 0 (the smallest of a tie) at the same t as without
@@ -1560,53 +1605,23 @@ static void test_tripar_ties(void **state)
             lt_ray16_q16_t r;
             lt_ray16_f32_t rf;
             lt_hit16_t h, hf;
-            uint64_t e0 = 0, e1 = 0;
+            uint64_t e0;
             int j;
             memset(&r, 0, sizeof r);
             memset(&rf, 0, sizeof rf);
             for (j = 0; j < LT_LANES; j++) {
                 /* lanes below nmeet towards points inside the triangle, the others away */
                 double dx = (unsigned)j < nmeet ? 0.01 * j : 0.9, dy = (unsigned)j < nmeet ? 0.0 : 0.3;
-                double dz = sqrt(1.0 - dx * dx - dy * dy);
-                r.ox.l[j] = o[0], r.oy.l[j] = o[1], r.oz.l[j] = o[2];
-                r.dx.l[j] = lt_q30_from_double_sat(dx);
-                r.dy.l[j] = lt_q30_from_double_sat(dy);
-                r.dz.l[j] = lt_q30_from_double_sat(dz);
-                r.tmin.l[j] = 0;
-                r.tmax.l[j] = 100 * U;
-                rf.ox.l[j] = of[0], rf.oy.l[j] = of[1], rf.oz.l[j] = of[2];
-                rf.dx.l[j] = (float)dx, rf.dy.l[j] = (float)dy, rf.dz.l[j] = (float)dz;
-                rf.tmin.l[j] = 0.0f;
-                rf.tmax.l[j] = 100.0f;
+                tripar_lane(&r, &rf, j, o, of, dx, dy, sqrt(1.0 - dx * dx - dy * dy), 0.0, 100.0);
             }
             lt_ray16_q16_setup(&r);
             lt_ray16_f32_setup(&rf);
-#if LT_COST_MODE == LT_COST_SIM
-            {
-                uint64_t ev[LT_EV__COUNT];
-                sim_events(ev);
-                e0 = ev[LT_EV_TRIPAR];
-            }
-#endif
+            e0 = tripar_events();
             assert_int_equal(lt_frusta_packet_trace16_q16(&b.q, s.tq, flags, o, &r, 0xFFFFu, &h),
                              LT_OK);
             assert_int_equal(lt_frusta_packet_trace16_f32(&b.f, s.tf, flags, of, &rf, 0xFFFFu, &hf),
                              LT_OK);
-#if LT_COST_MODE == LT_COST_SIM
-            {
-                uint64_t ev[LT_EV__COUNT];
-                sim_events(ev);
-                e1 = ev[LT_EV_TRIPAR];
-            }
-            /* the triangle-parallel leaf ran exactly when asked for and fewer rays than 8 met */
-            if ((e1 != e0) != ((flags & LT_FRUSTA_TRIPAR) != 0 && nmeet < 8)) {
-                bad++;
-                printf("  FAIL tripar ties: %lu rays, flags %u: TRIPAR events %llu\n", nmeet,
-                       (unsigned)flags, (unsigned long long)(e1 - e0));
-            }
-#endif
-            (void)e0;
-            (void)e1;
+            tripar_ran("tripar ties", e0, flags, nmeet, &bad);
             for (j = 0; j < LT_LANES; j++) {
                 int e;
                 cases++;
@@ -1665,7 +1680,7 @@ static void test_tripar_any(void **state)
             lt_ray16_q16_t r;
             lt_ray16_f32_t rf;
             lt_mask16_t occ = 0, occf = 0;
-            uint64_t e0 = 0, e1 = 0;
+            uint64_t e0;
             int j;
             memset(&r, 0, sizeof r);
             memset(&rf, 0, sizeof rf);
@@ -1674,45 +1689,16 @@ static void test_tripar_any(void **state)
                    from the leaf's box */
                 double dx = (unsigned)j < nmeet ? 0.01 * j : 0.9, dy = (unsigned)j < nmeet ? 0.0 : 0.3;
                 double dz = ((unsigned)j < nmeet ? 1.0 : -1.0) * sqrt(1.0 - dx * dx - dy * dy);
-                double t0 = tmins[j % 3], t1 = tmaxs[j % 4];
-                r.ox.l[j] = o[0], r.oy.l[j] = o[1], r.oz.l[j] = o[2];
-                r.dx.l[j] = lt_q30_from_double_sat(dx);
-                r.dy.l[j] = lt_q30_from_double_sat(dy);
-                r.dz.l[j] = lt_q30_from_double_sat(dz);
-                r.tmin.l[j] = (int32_t)(t0 * U);
-                r.tmax.l[j] = (int32_t)(t1 * U);
-                rf.ox.l[j] = of[0], rf.oy.l[j] = of[1], rf.oz.l[j] = of[2];
-                rf.dx.l[j] = (float)dx, rf.dy.l[j] = (float)dy, rf.dz.l[j] = (float)dz;
-                rf.tmin.l[j] = (float)t0;
-                rf.tmax.l[j] = (float)t1;
+                tripar_lane(&r, &rf, j, o, of, dx, dy, dz, tmins[j % 3], tmaxs[j % 4]);
             }
             lt_ray16_q16_setup(&r);
             lt_ray16_f32_setup(&rf);
-#if LT_COST_MODE == LT_COST_SIM
-            {
-                uint64_t ev[LT_EV__COUNT];
-                sim_events(ev);
-                e0 = ev[LT_EV_TRIPAR];
-            }
-#endif
+            e0 = tripar_events();
             assert_int_equal(lt_frusta_packet_occluded16_q16(&b.q, s.tq, flags, o, &r, 0xFFFFu, &occ),
                              LT_OK);
             assert_int_equal(
                 lt_frusta_packet_occluded16_f32(&b.f, s.tf, flags, of, &rf, 0xFFFFu, &occf), LT_OK);
-#if LT_COST_MODE == LT_COST_SIM
-            {
-                uint64_t ev[LT_EV__COUNT];
-                sim_events(ev);
-                e1 = ev[LT_EV_TRIPAR];
-            }
-            if ((e1 != e0) != ((flags & LT_FRUSTA_TRIPAR) != 0 && nmeet < 8)) {
-                bad++;
-                printf("  FAIL tripar any: %lu rays, flags %u: TRIPAR events %llu\n", nmeet,
-                       (unsigned)flags, (unsigned long long)(e1 - e0));
-            }
-#endif
-            (void)e0;
-            (void)e1;
+            tripar_ran("tripar any", e0, flags, nmeet, &bad);
             for (j = 0; j < LT_LANES; j++) {
                 double t0 = tmins[j % 3], t1 = tmaxs[j % 4];
                 int want = 0, got = (int)((unsigned)occ >> j & 1u), gotf = (int)((unsigned)occf >> j & 1u);
