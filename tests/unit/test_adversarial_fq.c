@@ -561,7 +561,7 @@ static unsigned shadow_args(void)
     lq.eu[0] = 1; /* off the grid */
     assert_int_equal(lt_frusta_table_q16(&lq, &g_sets, &tq), LT_E_ARG), n++;
     sh_light_q16(0, 0, &lq);
-    lq.flags = 128u;
+    lq.flags = 256u; /* no such flag */
     assert_int_equal(lt_frusta_table_q16(&lq, &g_sets, &tq), LT_E_ARG), n++;
     lq.flags = 0xFFFFFFFFu;
     assert_int_equal(lt_frusta_table_q16(&lq, &g_sets, &tq), LT_E_ARG), n++;
@@ -577,7 +577,7 @@ static unsigned shadow_args(void)
                 (w == 0 ? lf.c : (w == 1 ? lf.eu : lf.ev))[a] = bad[i];
                 assert_int_equal(lt_frusta_table_f32(&lf, &g_sets, &tf), LT_E_ARG), n++;
             }
-    sh_light_f32(0, 128u, &lf);
+    sh_light_f32(0, 256u, &lf); /* no such flag */
     assert_int_equal(lt_frusta_table_f32(&lf, &g_sets, &tf), LT_E_ARG), n++;
     sh_light_f32(0, 0, &lf);
     lf.c[0] = FLT_MAX; /* finite: accepted (float lights have no geometry bound) */
