@@ -865,9 +865,8 @@ int lt_shadows_cli(int argc, char **argv, const char *prog)
     s.tol = 0.05;
     s.depth_rel = 0.05;
     s.cos_min = 0.9;
-    s.pflags = LT_FRUSTA_BACKFACE | LT_FRUSTA_CORNER | LT_FRUSTA_CR | LT_FRUSTA_LEAFRAY |
-               LT_FRUSTA_SPLIT | LT_FRUSTA_TRIPAR;
-    s.flags = s.pflags | LT_FRUSTA_FS;
+    s.pflags = LT_SS_PFLAGS_DEFAULT;
+    s.flags = LT_SS_FLAGS_DEFAULT;
     snprintf(who, sizeof who, "%s shadows", prog);
     rc = shadows_parse(&s, argc, argv);
     if (rc != LT_OPT_OK)

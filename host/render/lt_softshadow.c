@@ -59,10 +59,8 @@ void lt_ss_opts_default(const lt_scene_t *s, lt_ss_opts_t *o)
     memset(o, 0, sizeof *o);
     o->path = lt_paths_find("q16", LT_PATHS_FRUSTA);
     o->leaf = 8;
-    o->flags = LT_FRUSTA_BACKFACE | LT_FRUSTA_CORNER | LT_FRUSTA_CR | LT_FRUSTA_FS |
-               LT_FRUSTA_LEAFRAY | LT_FRUSTA_SPLIT | LT_FRUSTA_TRIPAR;
-    o->pflags = LT_FRUSTA_BACKFACE | LT_FRUSTA_CORNER | LT_FRUSTA_CR | LT_FRUSTA_LEAFRAY |
-                LT_FRUSTA_SPLIT | LT_FRUSTA_TRIPAR;
+    o->flags = LT_SS_FLAGS_DEFAULT;
+    o->pflags = LT_SS_PFLAGS_DEFAULT;
     o->qmc = LT_QMC_LP;
     o->spp = 16;
     o->depth_rel = 0.05;

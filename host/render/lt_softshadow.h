@@ -48,9 +48,14 @@ typedef struct lt_ss_opts {
 #define LT_SS_SPP_LIST "4, 8, 16 or 32"
 int lt_ss_spp_log2(uint32_t spp);
 
-/* Defaults: q16, leaf 8, all three culling flags for shadows and for primary rays (the paper's
- * setting; pflags = LT_FRUSTA_CORNER | LT_FRUSTA_CR keeps primary rays two-sided, as
- * lt_bvh_trace16), LP samples, no scramble, depth 5%, cos 0.9 (25.8 deg), eps = 2^-12 of the scene
+/* The default culling sets (--cull bcrflst, --pcull bcrlst): one definition for the renderer's
+ * defaults, the shadows CLI and tune's default set. */
+#define LT_SS_PFLAGS_DEFAULT                                                                       \
+    (LT_FRUSTA_BACKFACE | LT_FRUSTA_CORNER | LT_FRUSTA_CR | LT_FRUSTA_LEAFRAY | LT_FRUSTA_SPLIT |  \
+     LT_FRUSTA_TRIPAR)
+#define LT_SS_FLAGS_DEFAULT (LT_SS_PFLAGS_DEFAULT | LT_FRUSTA_FS)
+
+/* Defaults: q16, leaf 8, the default culling sets above, LP samples, no scramble, depth 5%, cos 0.9 (25.8 deg), eps = 2^-12 of the scene
  * radius (rounded to a power of two). */
 void lt_ss_opts_default(const lt_scene_t *s, lt_ss_opts_t *o);
 

@@ -9,6 +9,7 @@
 #include "render/lt_path_ops.h"
 #include "render/lt_render.h"
 #include "render/lt_reproject.h"
+#include "render/lt_softshadow.h"
 
 #include <errno.h>
 #include <math.h>
@@ -31,9 +32,7 @@ const lt_tune_gamma_t lt_tune_gammas[LT_TUNE_NGAMMA] = {
 
 const char *const lt_tune_cull_names[LT_TUNE_NCULL] = {"bcrflst", "bcr", "b"};
 const unsigned lt_tune_cull_flags[LT_TUNE_NCULL] = {
-    LT_FRUSTA_BACKFACE | LT_FRUSTA_CORNER | LT_FRUSTA_CR | LT_FRUSTA_FS | LT_FRUSTA_LEAFRAY |
-        LT_FRUSTA_SPLIT | LT_FRUSTA_TRIPAR,
-    LT_FRUSTA_BACKFACE | LT_FRUSTA_CORNER | LT_FRUSTA_CR, LT_FRUSTA_BACKFACE};
+    LT_SS_FLAGS_DEFAULT, LT_FRUSTA_BACKFACE | LT_FRUSTA_CORNER | LT_FRUSTA_CR, LT_FRUSTA_BACKFACE};
 
 static const char *const tracer_names[] = {"quadtree", "dda", "hiz"};
 
