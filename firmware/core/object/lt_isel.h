@@ -45,16 +45,22 @@ lt_mask16_t lt__wt16_meet_tris_f32(const lt_wt16_f32_t *w, unsigned j, const lt_
         s->mt = isect == LT_ISECT_MT;                                                              \
         s->ready = 0;                                                                              \
     }                                                                                              \
+    /* The packet's watertight setup, computed on first use (also for kernels that test the       \
+     * packet's rays one by one, lt__wt16_meet_tris_*). */                                         \
+    LT_INLINE const WT16 *lt__isel16_wt_##SFX(lt__isel16_##SFX *s, const RAY *r)               \
+    {                                                                                              \
+        if (!s->ready) {                                                                           \
+            (void)lt_ray16_wt_setup_##SFX(r, &s->wt);                                              \
+            s->ready = 1;                                                                          \
+        }                                                                                          \
+        return &s->wt;                                                                             \
+    }                                                                                              \
     LT_INLINE lt_mask16_t lt__isel16_tri_##SFX(lt__isel16_##SFX *s, RAY *r, lt_mask16_t k,     \
                                                const TRI *tri, int32_t id, lt_hit16_t *hit)        \
     {                                                                                              \
         if (s->mt)                                                                                 \
             return lt_tri16_##SFX(r, k, tri, id, hit);                                             \
-        if (!s->ready) {                                                                           \
-            (void)lt_ray16_wt_setup_##SFX(r, &s->wt);                                              \
-            s->ready = 1;                                                                          \
-        }                                                                                          \
-        return lt_tri16_wt_##SFX(r, &s->wt, k, tri, id, hit);                                      \
+        return lt_tri16_wt_##SFX(r, lt__isel16_wt_##SFX(s, r), k, tri, id, hit);                  \
     }
 
 #define LT__ISEL1_DEFINE(SFX, RAY1, TRI, WT1)                                                      \
