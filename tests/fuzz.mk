@@ -18,7 +18,7 @@
 #   make fuzz-merge         minimise build/fuzz/corpus-<t> + tests/fuzz/corpus/<t> into the latter
 #                           (libFuzzer -merge=1, tests/fuzz/merge.sh; regress-* inputs kept by
 #                           name): the step before committing a corpus
-FUZZ_TARGETS := scene frame exr mesh meshcheck cache opt blob
+FUZZ_TARGETS := scene frame exr mesh meshcheck cache opt blob cli
 
 FUZZ_SRCS_scene := host/io/lt_scenefile.c sim/lt_cache.c host/io/lt_diag.c tests/fuzz/fuzz_util.c
 FUZZ_LIBS_scene := -lcjson -lm
@@ -34,6 +34,15 @@ FUZZ_SRCS_cache := sim/lt_cache.c host/io/lt_diag.c tests/fuzz/fuzz_util.c
 FUZZ_SRCS_opt := host/cli/lt_opt.c host/io/lt_diag.c
 FUZZ_SRCS_blob := firmware/apps/lt_sblob.c $(CORE_SRCS)
 FUZZ_LIBS_opt := -lm
+# cli: the subcommands' argument handling (tests/fuzz/fuzz_cli.h); each fuzz_cli_<command>.c
+# includes its command's source, so those leave the host library's list
+FUZZ_CLI_CMDS := main reproject shadows tune pack
+FUZZ_SRCS_cli := $(FUZZ_CLI_CMDS:%=tests/fuzz/fuzz_cli_%.c) $(CORE_SRCS) \
+    $(filter-out $(FUZZ_CLI_CMDS:%=host/cli/lt_%_cli.c),$(HOSTLIB_SRCS)) $(CACHE_SRCS) \
+    $(HOSTAPP_SRCS)
+FUZZ_LIBS_cli = $(HOST_LIBS)
+FUZZ_CLI_INCLUDED := host/cli/lanetrace_main.c \
+    $(patsubst %,host/cli/lt_%_cli.c,$(filter-out main,$(FUZZ_CLI_CMDS)))
 # largest input libFuzzer makes, per target (default 4096)
 FUZZ_MAXLEN_exr := 16384
 FUZZ_MAXLEN_mesh := 8192
@@ -88,6 +97,8 @@ fuzz-merge-$(1): $(B)/fuzz/fuzz-$(1)
 .PHONY: fuzz-$(1) fuzz-merge-$(1)
 endef
 $(foreach t,$(FUZZ_TARGETS),$(eval $(call fuzz_target,$(t))))
+# the command sources fuzz_cli_<command>.c include
+$(B)/fuzz/fuzz-cli: $(FUZZ_CLI_INCLUDED)
 
 FUZZ_REPLAYS := $(FUZZ_TARGETS:%=$(B)/asan/fuzz-%)
 EXTRA_TEST_BINS += $(FUZZ_REPLAYS)

@@ -237,6 +237,16 @@ static const char *run_selected_names(const lt_scenefile_t *sf)
     return buf;
 }
 
+/* r before the options: nothing given, the defaults of a run. */
+static void run_defaults(run_t *r)
+{
+    memset(r, 0, sizeof *r);
+    lt_sf_defaults(&r->sf);
+    r->repeat = 1;
+    r->do_ref = 1;
+    r->autop = 1;
+}
+
 /* The options into r; LT_OPT_OK, LT_OPT_HELP or LT_OPT_USAGE. */
 static int run_parse(run_t *r, int argc, char **argv)
 {
@@ -846,11 +856,7 @@ static int cmd_run(int argc, char **argv)
 {
     run_t r;
     int rc, path;
-    memset(&r, 0, sizeof r);
-    lt_sf_defaults(&r.sf);
-    r.repeat = 1;
-    r.do_ref = 1;
-    r.autop = 1;
+    run_defaults(&r);
     rc = run_parse(&r, argc, argv);
     if (rc != LT_OPT_OK)
         return rc == LT_OPT_HELP ? 0 : EXIT_USAGE;
@@ -1507,6 +1513,17 @@ static int render_out(render_t *r, const char *suffix, char path[LT_TMP_PATH_MAX
 }
 
 /* The options into r; LT_OPT_OK, LT_OPT_HELP or LT_OPT_USAGE. */
+/* r before the options: nothing given, the defaults of a render. */
+static void render_defaults(render_t *r)
+{
+    memset(r, 0, sizeof *r);
+    lt_sf_defaults(&r->sf);
+    r->layers = 1;
+    r->autop = 1;
+    for (r->structure = 0; strcmp(lt_render_structures[r->structure], "bvh") != 0; r->structure++)
+        ;
+}
+
 static int render_parse(render_t *r, int argc, char **argv)
 {
     char who[64], num_help[256];
@@ -2049,12 +2066,7 @@ static int cmd_render(int argc, char **argv)
 {
     render_t r;
     int rc, a;
-    memset(&r, 0, sizeof r);
-    lt_sf_defaults(&r.sf);
-    r.layers = 1;
-    r.autop = 1;
-    for (r.structure = 0; strcmp(lt_render_structures[r.structure], "bvh") != 0; r.structure++)
-        ;
+    render_defaults(&r);
     rc = render_parse(&r, argc, argv);
     if (rc != LT_OPT_OK)
         return rc == LT_OPT_HELP ? 0 : EXIT_USAGE;

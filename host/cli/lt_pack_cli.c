@@ -75,6 +75,14 @@ static void camera_words(const lt_camera_t *c, int32_t d00[3], int32_t dx[3], in
     }
 }
 
+/* p before the options: nothing given, the defaults of a pack. */
+static void pack_defaults(pack_t *p)
+{
+    memset(p, 0, sizeof *p);
+    lt_sf_defaults(&p->sf);
+    p->leaf = 4;
+}
+
 static int pack_parse(pack_t *p, int argc, char **argv, const char *prog)
 {
     static char who[64];
@@ -112,6 +120,11 @@ static int pack_parse(pack_t *p, int argc, char **argv, const char *prog)
     snprintf(who, sizeof who, "%s pack", prog);
     who_g = who;
     rc = lt_opt_parse(&cmd, argc, argv, 2);
+    if (rc == LT_OPT_OK && (p->out == NULL) == (p->in == NULL)) {
+        fprintf(stderr, "%s: give one of --out PATH.ltsb (make a blob) and --in PATH.ltsb (trace "
+                        "one)\n", who_g);
+        return LT_OPT_USAGE;
+    }
     return rc;
 }
 
@@ -347,17 +360,10 @@ int lt_pack_cli(int argc, char **argv, const char *prog)
 {
     pack_t p;
     int rc;
-    memset(&p, 0, sizeof p);
-    lt_sf_defaults(&p.sf);
-    p.leaf = 4;
+    pack_defaults(&p);
     rc = pack_parse(&p, argc, argv, prog);
     if (rc != LT_OPT_OK)
         return rc == LT_OPT_HELP ? 0 : EXIT_USAGE;
-    if ((p.out == NULL) == (p.in == NULL)) {
-        fprintf(stderr, "%s: give one of --out PATH.ltsb (make a blob) and --in PATH.ltsb (trace "
-                        "one)\n", who_g);
-        return EXIT_USAGE;
-    }
     if (p.in != NULL) {
         rc = pack_read(&p);
         if (rc == 0)

@@ -82,9 +82,9 @@ static const char *const tracer_name[] = {"quadtree", "dda", "hiz", NULL};
 static const char *const walk_name[] = {"auto", "packets", "single", NULL};
 static const char *const sample_name[] = {"bilinear", "nearest", NULL};
 
-/* --src-cam, --dst-cam: FX,FY,CX,CY in pixels, FX and FY > 0 */
 static int rp_threads; /* --threads (0: every core) */
 
+/* --src-cam, --dst-cam: FX,FY,CX,CY in pixels, FX and FY > 0 */
 static int parse_cam(const char *text, void *dest, const void *ctx)
 {
     double k[4];
@@ -93,6 +93,22 @@ static int parse_cam(const char *text, void *dest, const void *ctx)
         return -1;
     memcpy(dest, k, sizeof k);
     return 0;
+}
+
+/* r before the options: nothing given, the defaults of a reprojection. */
+static void rp_defaults(rp_t *r)
+{
+    memset(r, 0, sizeof *r);
+    lt_sf_defaults(&r->sf);
+    r->dist = -1;
+    r->inpaint = 1;
+    r->thickness = -1.0;
+    r->qtp[0] = r->qtp[1] = r->qtp[2] = r->qtp[3] = -1.0;
+    r->truth_tol = RP_DEFAULT_TRUTH_TOL;
+    r->fov = RP_DEFAULT_FOV;
+    r->cam_desc = "default";
+    r->part = -1;
+    r->autop = 1;
 }
 
 /* The options of r: parse argv (help == NULL) or print the help on help. LT_OPT_OK, LT_OPT_HELP
@@ -1187,18 +1203,8 @@ int lt_rp_cli(int argc, char **argv, const char *prog, const lt_rp_cli_hooks_t *
     rp_t r;
     rp_figs_t f;
     int rc;
-    memset(&r, 0, sizeof r);
     memset(&f, 0, sizeof f);
-    lt_sf_defaults(&r.sf);
-    r.dist = -1;
-    r.inpaint = 1;
-    r.thickness = -1.0;
-    r.qtp[0] = r.qtp[1] = r.qtp[2] = r.qtp[3] = -1.0;
-    r.truth_tol = RP_DEFAULT_TRUTH_TOL;
-    r.fov = RP_DEFAULT_FOV;
-    r.cam_desc = "default";
-    r.part = -1;
-    r.autop = 1;
+    rp_defaults(&r);
     rc = rp_options(&r, hk->quiet, prog, argc, argv, NULL);
     if (rc != LT_OPT_OK)
         return rc == LT_OPT_HELP ? 0 : EXIT_USAGE;

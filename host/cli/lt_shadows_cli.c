@@ -163,6 +163,25 @@ static int parse_light(const char *text, void *dest, const void *ctx)
     return 0;
 }
 
+/* s before the options: nothing given, the defaults of a shadows run; who names the command. */
+static void shadows_defaults(shadows_t *s, const char *prog)
+{
+    memset(s, 0, sizeof *s);
+    s->res = 128;
+    s->leaf = 8;
+    s->spp = 16;
+    s->ground = -1;
+    s->prim = 2;  /* both */
+    s->only = -1; /* both */
+    s->fov = 60;
+    s->tol = 0.05;
+    s->depth_rel = 0.05;
+    s->cos_min = 0.9;
+    s->pflags = LT_SS_PFLAGS_DEFAULT;
+    s->flags = LT_SS_FLAGS_DEFAULT;
+    snprintf(who, sizeof who, "%s shadows", prog);
+}
+
 /* The options into s; LT_OPT_OK, LT_OPT_HELP or LT_OPT_USAGE. */
 static int shadows_parse(shadows_t *s, int argc, char **argv)
 {
@@ -265,6 +284,10 @@ static int shadows_parse(shadows_t *s, int argc, char **argv)
     if (rc == LT_OPT_OK && lt_ss_spp_log2((uint32_t)s->spp) < 0) {
         fprintf(stderr, "lanetrace shadows: --spp %d: expected %s samples per pixel\n", s->spp,
                 LT_SS_SPP_LIST);
+        return LT_OPT_USAGE;
+    }
+    if (rc == LT_OPT_OK && (s->pack_block == NULL) != (s->blob == NULL)) {
+        fprintf(stderr, "%s: --pack-block and --blob go together\n", who);
         return LT_OPT_USAGE;
     }
     return rc;
@@ -854,27 +877,10 @@ int lt_shadows_cli(int argc, char **argv, const char *prog)
 {
     shadows_t s;
     int rc;
-    memset(&s, 0, sizeof s);
-    s.res = 128;
-    s.leaf = 8;
-    s.spp = 16;
-    s.ground = -1;
-    s.prim = 2;  /* both */
-    s.only = -1; /* both */
-    s.fov = 60;
-    s.tol = 0.05;
-    s.depth_rel = 0.05;
-    s.cos_min = 0.9;
-    s.pflags = LT_SS_PFLAGS_DEFAULT;
-    s.flags = LT_SS_FLAGS_DEFAULT;
-    snprintf(who, sizeof who, "%s shadows", prog);
+    shadows_defaults(&s, prog);
     rc = shadows_parse(&s, argc, argv);
     if (rc != LT_OPT_OK)
         return rc == LT_OPT_HELP ? 0 : EXIT_USAGE;
-    if ((s.pack_block == NULL) != (s.blob == NULL)) {
-        fprintf(stderr, "%s: --pack-block and --blob go together\n", who);
-        return EXIT_USAGE;
-    }
     rc = shadows_scene(&s);
     if (rc != 0)
         return rc;

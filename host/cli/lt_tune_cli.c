@@ -77,6 +77,15 @@ static void progress(const char *stage, size_t done, size_t total)
 
 /* ---- options ------------------------------------------------------------------------------- */
 
+/* t before the options: nothing given, the defaults of a tune. */
+static void tune_defaults(tune_t *t)
+{
+    memset(t, 0, sizeof *t);
+    t->jobs = 1;
+    t->res = 128;
+    t->slack = 0.2;
+}
+
 static int tune_parse(tune_t *t, int argc, char **argv, const char *prog)
 {
     static char mhelp[256];
@@ -186,14 +195,15 @@ static int settle_machines(tune_t *t)
     }
     for (i = 0; i < t->nmach_names; i++) {
         const char *s = t->mach_names[i];
-        while (*s != '\0') {
+        do { /* every comma-separated name, an empty one too ('' or 'a,,b') */
             size_t n = strcspn(s, ",");
             int m = -1, dup = 0;
             for (j = 0; lt_meter_machine_name(j) != NULL; j++)
                 if (strlen(lt_meter_machine_name(j)) == n && strncmp(lt_meter_machine_name(j), s, n) == 0)
                     m = j;
             if (m < 0) {
-                fprintf(stderr, "%s: --machine '%.*s': unknown machine (known: %s)\n", t->who,
+                fprintf(stderr, "%s: --machine '%s': %s '%.*s' (known: %s)\n", t->who,
+                        t->mach_names[i], n == 0 ? "empty machine name" : "unknown machine",
                         (int)n, s, lt_meter_machine_names());
                 return EXIT_USAGE;
             }
@@ -202,9 +212,7 @@ static int settle_machines(tune_t *t)
             if (!dup && t->o.nmach < MAX_MACH)
                 t->o.machines[t->o.nmach++] = m;
             s += n;
-            if (*s == ',')
-                s++;
-        }
+        } while (*s++ == ',');
     }
     return 0;
 }
@@ -728,10 +736,7 @@ int lt_tune_cli(int argc, char **argv, const char *prog)
     lt_diag_t d;
     int rc;
     fixed_layout(argv);
-    memset(&t, 0, sizeof t);
-    t.jobs = 1;
-    t.res = 128;
-    t.slack = 0.2;
+    tune_defaults(&t);
     rc = tune_parse(&t, argc, argv, prog);
     if (rc != LT_OPT_OK)
         return rc == LT_OPT_HELP ? 0 : EXIT_USAGE;

@@ -94,6 +94,11 @@ tu_expect "tune --budget no selected family measures" 2 "no selected family meas
     "$LT" tune scenes/teapot.obj --family object --budget 'psnr>=30' --out "$TU/bad"
 tu_expect "tune --machine unknown" 2 "--machine 'pdp11': unknown machine" \
     "$LT" tune scenes/teapot.obj --machine pdp11 --out "$TU/bad"
+# found by the cli fuzz target: --machine '' planned and measured no machine, exit 0
+tu_expect "tune --machine with an empty name" 2 "--machine '': empty machine name" \
+    "$LT" tune scenes/teapot.obj --machine '' --plan "$TU/bad-plan"
+tu_expect "tune --machine with an empty name in a list" 2 "--machine 'lrb16,,mcu-m4': empty machine name" \
+    "$LT" tune scenes/teapot.obj --machine lrb16,,mcu-m4 --out "$TU/bad"
 tu_expect "tune of a missing input" 1 "nothing.obj: cannot read the input" \
     "$LT" tune nothing.obj --out "$TU/bad"
 tu_expect "tune with an impossible budget" 1 "is impossible for object: the best achievable values are wrong 0%, cycles" \
