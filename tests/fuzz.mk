@@ -14,7 +14,8 @@
 #                           FUZZ_TARGETS="a b" for a subset)
 #                           exec/s, new inputs and crashes (also build/fuzz/campaign.md); exit 1 on
 #                           any crash, hang or out-of-memory
-#   make fuzz-doc           copy that table into docs/reliability.md (between its markers)
+#   make fuzz-doc           copy that table into docs/reliability.md (between its markers), then
+#                           make fuzz-summary: the per-target totals into docs/results.md
 #   make fuzz-merge         minimise build/fuzz/corpus-<t> + tests/fuzz/corpus/<t> into the latter
 #                           (libFuzzer -merge=1, tests/fuzz/merge.sh; regress-* inputs kept by
 #                           name): the step before committing a corpus
@@ -126,4 +127,11 @@ fuzz-seeds: $(B)/fuzz/seeds-exr
 # the last campaign's table (build/fuzz/campaign.md) into docs/reliability.md, between its markers
 fuzz-doc:
 	@tests/fuzz/doc.sh $(B)/fuzz/campaign.md docs/reliability.md
-.PHONY: fuzz-seeds fuzz-doc
+	@$(MAKE) --no-print-directory fuzz-summary
+# the per-target totals of that table (runs, executions, crashes, 10 million reached) into
+# docs/results.md, between its fuzz-summary markers
+fuzz-summary:
+	@mkdir -p $(B)/fuzz
+	@python3 tools/fuzz_summary.py docs/reliability.md >$(B)/fuzz/summary.md
+	@tools/doc_insert.sh fuzz-summary $(B)/fuzz/summary.md docs/results.md
+.PHONY: fuzz-seeds fuzz-doc fuzz-summary
