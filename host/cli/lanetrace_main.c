@@ -1512,7 +1512,6 @@ static int render_out(render_t *r, const char *suffix, char path[LT_TMP_PATH_MAX
     return 0;
 }
 
-/* The options into r; LT_OPT_OK, LT_OPT_HELP or LT_OPT_USAGE. */
 /* r before the options: nothing given, the defaults of a render. */
 static void render_defaults(render_t *r)
 {
@@ -1524,6 +1523,7 @@ static void render_defaults(render_t *r)
         ;
 }
 
+/* The options into r; LT_OPT_OK, LT_OPT_HELP or LT_OPT_USAGE. */
 static int render_parse(render_t *r, int argc, char **argv)
 {
     char who[64], num_help[256];

@@ -12,6 +12,14 @@
 #ifndef FUZZ_CLI_H
 #define FUZZ_CLI_H
 
+#include <stdint.h>
+
+/* w x h within 1..max per side (an accepted --res). */
+static inline int fuzz_cli_size_ok(uint32_t w, uint32_t h, uint32_t max)
+{
+    return w >= 1 && w <= max && h >= 1 && h <= max;
+}
+
 int fuzz_cli_run(int argc, char **argv);
 int fuzz_cli_render(int argc, char **argv);
 int fuzz_cli_reproject(int argc, char **argv);

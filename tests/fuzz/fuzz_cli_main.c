@@ -1,12 +1,12 @@
 /* fuzz_cli_main.c - `lanetrace run` and `lanetrace render` for the cli fuzz target (fuzz_cli.h):
  * lanetrace_main.c itself, its main renamed, and the two commands' argument handling. Host only.
  */
-#include "fuzz_cli.h"
-
 int fuzz_cli_lanetrace_main(int argc, char **argv);
 #define main fuzz_cli_lanetrace_main
 #include "cli/lanetrace_main.c"
 #undef main
+
+#include "fuzz_cli.h" /* after the command source: its feature-test macros come first */
 
 /* A broken promise of an accepted command line: say which, then abort (the fuzzer's crash). */
 static void cli_broken(const char *cmd, const char *what)
@@ -30,8 +30,7 @@ int fuzz_cli_run(int argc, char **argv)
     rc = run_settle(&r);
     if (rc == 0) {
         const lt_scenefile_t *sf = &r.sf;
-        if (sf->width < 1 || sf->width > LT_SF_MAX_RES || sf->height < 1 ||
-            sf->height > LT_SF_MAX_RES)
+        if (!fuzz_cli_size_ok(sf->width, sf->height, LT_SF_MAX_RES))
             cli_broken("run", "the image size is outside 1..LT_SF_MAX_RES");
         if (!lt_meter_machine_known(sf->machine) || sf->mesh[0] == '\0')
             cli_broken("run", "the machine is unknown or the mesh empty");
@@ -52,8 +51,7 @@ int fuzz_cli_render(int argc, char **argv)
     if (rc != LT_OPT_OK)
         return rc == LT_OPT_HELP ? 0 : EXIT_USAGE;
     if (r.out == NULL || r.layers < 1 || r.layers > 16 || r.path == NULL ||
-        (r.seen_res && (r.wh[0] < 1 || r.wh[0] > LT_SF_MAX_RES || r.wh[1] < 1 ||
-                        r.wh[1] > LT_SF_MAX_RES)))
+        (r.seen_res && !fuzz_cli_size_ok(r.wh[0], r.wh[1], LT_SF_MAX_RES)))
         cli_broken("render", "--out is missing, or --layers, --num or --res out of range");
     if (r.seen_light && !(isfinite(r.lf[0]) && isfinite(r.lf[1]) && isfinite(r.lf[2])))
         cli_broken("render", "--light is not finite");

@@ -1,9 +1,8 @@
 /* fuzz_cli_reproject.c - `lanetrace reproject` for the cli fuzz target (fuzz_cli.h):
  * lt_reproject_cli.c itself, then its options and rp_settle without reading a file. Host only.
  */
-#include "fuzz_cli.h"
-
 #include "cli/lt_reproject_cli.c"
+#include "fuzz_cli.h" /* after the command source: its feature-test macros come first */
 
 int fuzz_cli_reproject(int argc, char **argv)
 {

@@ -1,9 +1,8 @@
 /* fuzz_cli_shadows.c - `lanetrace shadows` for the cli fuzz target (fuzz_cli.h): lt_shadows_cli.c
  * itself, then its options and shadows_scene without reading a file. Host only.
  */
-#include "fuzz_cli.h"
-
 #include "cli/lt_shadows_cli.c"
+#include "fuzz_cli.h" /* after the command source: its feature-test macros come first */
 
 int fuzz_cli_shadows(int argc, char **argv)
 {

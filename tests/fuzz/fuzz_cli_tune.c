@@ -2,9 +2,8 @@
  * then its options and the settle steps of families, machines and budget (not settle_input,
  * which reads the input). Host only.
  */
-#include "fuzz_cli.h"
-
 #include "cli/lt_tune_cli.c"
+#include "fuzz_cli.h" /* after the command source: its feature-test macros come first */
 
 int fuzz_cli_tune(int argc, char **argv)
 {
