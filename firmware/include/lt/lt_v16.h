@@ -42,6 +42,11 @@ typedef struct { float l[LT_LANES]; } lt_vf32_t;    /* 16 x IEEE binary32, 64 by
 #else
 #define LT__X86_BLEND32(k, a, b, r) ((void)(k), (void)(a), (void)(b), (void)(r))
 #endif
+#if LT__X86_LANES == 512
+#define LT__X86_SET1_32(x, r) lt__x86_set1_32((x), (r))
+#else
+#define LT__X86_SET1_32(x, r) ((void)(x), (void)(r))
+#endif
 /* the Helium (MVE) sequences of the 32-bit integer lane ops on Cortex-M55, or nothing */
 #include "lt_v16_mve.h"
 #if LT__MVE_LANES
@@ -182,9 +187,11 @@ LT_INLINE lt_mask16_t lt_mask16_clear_first(lt_mask16_t k) /* MASK x1 */
         return (lt_mask16_t)(m & k);                                                               \
     }
 
-/* A binary op of 32-bit integer lanes with a Helium body vf (int32x4_t vf(int32x4_t, int32x4_t),
- * lt_v16_mve.h) on four quads; the masked forms compute every lane and select (the ops are pure),
- * so they equal the portable loops. Without MVE: LT__V16_BIN. */
+/* A binary op of 32-bit integer lanes with a Helium body lt__mve_##vf (int32x4_t (int32x4_t,
+ * int32x4_t), lt_v16_mve.h) on four quads; the masked forms compute every lane and select (the
+ * ops are pure), so they equal the portable loops. vf names the body of each backend (qadd, qsub,
+ * add, sub, min, max, or, xor, mul16, mul30; a compare's vc: lt, le, gt, ge, eq). Without MVE
+ * or AVX-512 (below): LT__V16_BIN. */
 #if LT__MVE_LANES
 #define LT__V16_BINV(VT, name, op, f, vf)                                                          \
     LT_INLINE VT name(VT a, VT b)                                                                  \
@@ -193,7 +200,7 @@ LT_INLINE lt_mask16_t lt_mask16_clear_first(lt_mask16_t k) /* MASK x1 */
         unsigned q;                                                                                \
         LT_COST(op, 1);                                                                            \
         for (q = 0; q < 4u; q++)                                                                   \
-            vst1q_s32(&r.l[4u * q], vf(vld1q_s32(&a.l[4u * q]), vld1q_s32(&b.l[4u * q])));        \
+            vst1q_s32(&r.l[4u * q], lt__mve_##vf(vld1q_s32(&a.l[4u * q]), vld1q_s32(&b.l[4u * q])));        \
         return r;                                                                                  \
     }                                                                                              \
     LT_INLINE VT name##_m(VT src, lt_mask16_t k, VT a, VT b)                                       \
@@ -203,7 +210,7 @@ LT_INLINE lt_mask16_t lt_mask16_clear_first(lt_mask16_t k) /* MASK x1 */
         LT_UTIL(k);                                                                                \
         for (q = 0; q < 4u; q++)                                                                   \
             vst1q_s32(&src.l[4u * q],                                                              \
-                      vpselq_s32(vf(vld1q_s32(&a.l[4u * q]), vld1q_s32(&b.l[4u * q])),             \
+                      vpselq_s32(lt__mve_##vf(vld1q_s32(&a.l[4u * q]), vld1q_s32(&b.l[4u * q])),             \
                                  vld1q_s32(&src.l[4u * q]), lt__mve_pred(k, q)));                  \
         return src;                                                                                \
     }                                                                                              \
@@ -215,7 +222,7 @@ LT_INLINE lt_mask16_t lt_mask16_clear_first(lt_mask16_t k) /* MASK x1 */
         LT_UTIL(k);                                                                                \
         for (q = 0; q < 4u; q++)                                                                   \
             vst1q_s32(&r.l[4u * q],                                                                \
-                      vpselq_s32(vf(vld1q_s32(&a.l[4u * q]), vld1q_s32(&b.l[4u * q])),             \
+                      vpselq_s32(lt__mve_##vf(vld1q_s32(&a.l[4u * q]), vld1q_s32(&b.l[4u * q])),             \
                                  vdupq_n_s32(0), lt__mve_pred(k, q)));                             \
         return r;                                                                                  \
     }
@@ -226,7 +233,7 @@ LT_INLINE lt_mask16_t lt_mask16_clear_first(lt_mask16_t k) /* MASK x1 */
         unsigned m = 0, q;                                                                         \
         LT_COST(op, 1);                                                                            \
         for (q = 0; q < 4u; q++)                                                                   \
-            m |= lt__mve_bits(vc(vld1q_s32(&a.l[4u * q]), vld1q_s32(&b.l[4u * q]))) << (4u * q);  \
+            m |= lt__mve_bits(lt__mve_##vc(vld1q_s32(&a.l[4u * q]), vld1q_s32(&b.l[4u * q]))) << (4u * q);  \
         return (lt_mask16_t)m;                                                                     \
     }                                                                                              \
     LT_INLINE lt_mask16_t name##_m(lt_mask16_t k, VT a, VT b)                                      \
@@ -235,9 +242,45 @@ LT_INLINE lt_mask16_t lt_mask16_clear_first(lt_mask16_t k) /* MASK x1 */
         LT_COST(op, 1);                                                                            \
         LT_UTIL(k);                                                                                \
         for (q = 0; q < 4u; q++)                                                                   \
-            m |= lt__mve_bits(vc(vld1q_s32(&a.l[4u * q]), vld1q_s32(&b.l[4u * q]))) << (4u * q);  \
+            m |= lt__mve_bits(lt__mve_##vc(vld1q_s32(&a.l[4u * q]), vld1q_s32(&b.l[4u * q]))) << (4u * q);  \
         return (lt_mask16_t)(m & k);                                                               \
     }
+#elif LT__X86_LANES == 512
+/* The same ops with an AVX-512 register body lt__x86_##vf (lt_v16_x86.h): one 512-bit store per
+ * result, so the next op's 512-bit load forwards from it; masked forms compute every lane and
+ * blend or zero by the mask register (SAT events counted for the lanes of k only, as the loop
+ * counts them). Compares stay loops (their 256-bit loads forward from any store). */
+#define LT__V16_BINV(VT, name, op, f, vf)                                                          \
+    LT_INLINE VT name(VT a, VT b)                                                                  \
+    {                                                                                              \
+        VT r;                                                                                      \
+        LT_COST(op, 1);                                                                            \
+        _mm512_storeu_si512((void *)r.l, lt__x86_##vf(lt__x86_load16(a.l), lt__x86_load16(b.l),    \
+                                                      LT_MASK_ALL));                               \
+        return r;                                                                                  \
+    }                                                                                              \
+    LT_INLINE VT name##_m(VT src, lt_mask16_t k, VT a, VT b)                                       \
+    {                                                                                              \
+        LT_COST(op, 1);                                                                            \
+        LT_UTIL(k);                                                                                \
+        _mm512_storeu_si512((void *)src.l,                                                         \
+                            _mm512_mask_mov_epi32(lt__x86_load16(src.l), (__mmask16)k,             \
+                                                  lt__x86_##vf(lt__x86_load16(a.l),                \
+                                                               lt__x86_load16(b.l), k)));          \
+        return src;                                                                                \
+    }                                                                                              \
+    LT_INLINE VT name##_z(lt_mask16_t k, VT a, VT b)                                               \
+    {                                                                                              \
+        VT r;                                                                                      \
+        LT_COST(op, 1);                                                                            \
+        LT_UTIL(k);                                                                                \
+        _mm512_storeu_si512((void *)r.l,                                                           \
+                            _mm512_maskz_mov_epi32((__mmask16)k,                                   \
+                                                   lt__x86_##vf(lt__x86_load16(a.l),               \
+                                                                lt__x86_load16(b.l), k)));         \
+        return r;                                                                                  \
+    }
+#define LT__V16_CMPV(VT, name, op, rel, vc) LT__V16_CMP(VT, name, op, rel)
 #else
 #define LT__V16_BINV(VT, name, op, f, vf) LT__V16_BIN(VT, name, op, f)
 #define LT__V16_CMPV(VT, name, op, rel, vc) LT__V16_CMP(VT, name, op, rel)
@@ -273,6 +316,16 @@ LT_INLINE lt_mask16_t lt_mask16_clear_first(lt_mask16_t k) /* MASK x1 */
         VT r;                                                                                      \
         int i;                                                                                     \
         LT_COST(VBCAST, 1);                                                                        \
+        if (LT__X86_LANES == 512 && sizeof(ET) == 4) {                                             \
+            /* one 512-bit store (lt_v16_x86.h, lt__x86_load16) */                                 \
+            union {                                                                                \
+                ET e;                                                                              \
+                int32_t i;                                                                         \
+            } u;                                                                                   \
+            u.e = x;                                                                               \
+            LT__X86_SET1_32(u.i, r.l);                                                             \
+            return r;                                                                              \
+        }                                                                                          \
         for (i = 0; i < LT_LANES; i++)                                                             \
             r.l[i] = x;                                                                            \
         return r;                                                                                  \
@@ -365,12 +418,12 @@ LT_INLINE lt_mask16_t lt_mask16_clear_first(lt_mask16_t k) /* MASK x1 */
 /* Each op below has the scalar op's contract per lane (see lt_fx.h): Format s15.16, Rounding half up,
  * Overflow saturates (_sat) or wraps (_wrap). Cost: one op of the class named. */
 LT__V16_MOVE(lt_vq16_t, int32_t, lt_vq16, VALU, VRED)
-LT__V16_BINV(lt_vq16_t, lt_vq16_add_sat, VALU, lt__q16_add_sat, lt__mve_qadd)
-LT__V16_BINV(lt_vq16_t, lt_vq16_sub_sat, VALU, lt__q16_sub_sat, lt__mve_qsub)
-LT__V16_BINV(lt_vq16_t, lt_vq16_add_wrap, VALU, lt__q16_add_wrap, lt__mve_add)
-LT__V16_BINV(lt_vq16_t, lt_vq16_sub_wrap, VALU, lt__q16_sub_wrap, lt__mve_sub)
-LT__V16_BINV(lt_vq16_t, lt_vq16_min, VALU, lt__q16_min, lt__mve_min)
-LT__V16_BINV(lt_vq16_t, lt_vq16_max, VALU, lt__q16_max, lt__mve_max)
+LT__V16_BINV(lt_vq16_t, lt_vq16_add_sat, VALU, lt__q16_add_sat, qadd)
+LT__V16_BINV(lt_vq16_t, lt_vq16_sub_sat, VALU, lt__q16_sub_sat, qsub)
+LT__V16_BINV(lt_vq16_t, lt_vq16_add_wrap, VALU, lt__q16_add_wrap, add)
+LT__V16_BINV(lt_vq16_t, lt_vq16_sub_wrap, VALU, lt__q16_sub_wrap, sub)
+LT__V16_BINV(lt_vq16_t, lt_vq16_min, VALU, lt__q16_min, min)
+LT__V16_BINV(lt_vq16_t, lt_vq16_max, VALU, lt__q16_max, max)
 #if LT__X86_LANES
 /* The s15.16 product on the x86 backend (lt_v16_x86.h): the same three variants, bit-identical to
  * the loop below; a masked variant computes every lane and keeps the active ones. */
@@ -404,17 +457,17 @@ LT_INLINE lt_vq16_t lt_vq16_mul_sat_z(lt_mask16_t k, lt_vq16_t a, lt_vq16_t b)
     return r;
 }
 #else
-LT__V16_BINV(lt_vq16_t, lt_vq16_mul_sat, VMUL, lt__q16_mul_sat, lt__mve_mul16)
+LT__V16_BINV(lt_vq16_t, lt_vq16_mul_sat, VMUL, lt__q16_mul_sat, mul16)
 #endif
 LT__V16_BIN(lt_vq16_t, lt_vq16_mul_sat_rd, VMUL, lt__q16_mul_sat_rd)
 LT__V16_BIN(lt_vq16_t, lt_vq16_div_sat, VDIV, lt__q16_div_sat)
 LT__V16_UN(lt_vq16_t, lt_vq16_abs_sat, VALU, lt__q16_abs_sat)
 LT__V16_UN(lt_vq16_t, lt_vq16_neg_sat, VALU, lt__q16_neg_sat)
-LT__V16_CMPV(lt_vq16_t, lt_vq16_cmplt, VCMP, <, lt__mve_lt)
-LT__V16_CMPV(lt_vq16_t, lt_vq16_cmple, VCMP, <=, lt__mve_le)
-LT__V16_CMPV(lt_vq16_t, lt_vq16_cmpgt, VCMP, >, lt__mve_gt)
-LT__V16_CMPV(lt_vq16_t, lt_vq16_cmpge, VCMP, >=, lt__mve_ge)
-LT__V16_CMPV(lt_vq16_t, lt_vq16_cmpeq, VCMP, ==, lt__mve_eq)
+LT__V16_CMPV(lt_vq16_t, lt_vq16_cmplt, VCMP, <, lt)
+LT__V16_CMPV(lt_vq16_t, lt_vq16_cmple, VCMP, <=, le)
+LT__V16_CMPV(lt_vq16_t, lt_vq16_cmpgt, VCMP, >, gt)
+LT__V16_CMPV(lt_vq16_t, lt_vq16_cmpge, VCMP, >=, ge)
+LT__V16_CMPV(lt_vq16_t, lt_vq16_cmpeq, VCMP, ==, eq)
 
 LT_INLINE lt_q16_t lt__q16_recip_sat(lt_q16_t x) { return lt__q16_div_sat(LT_Q16_ONE, x); }
 /* 1/x per lane. Format: s15.16 -> s15.16; x == 0 gives +max. Rounding: half up. Overflow: saturates.
@@ -509,18 +562,18 @@ LT_INLINE lt_mask16_t lt_vq16_cmpsat(lt_vq16_t a) /* VBCAST x2, VCMP x2 */
 /* The s15.16 bodies of lt_fx.h are format-free integer ops, so add, sub, min, max, abs and the
  * compares have the contract of their lt_vq16_* twins per lane, in s1.30. */
 LT__V16_MOVE(lt_vq30_t, int32_t, lt_vq30, VALU, VRED)
-LT__V16_BINV(lt_vq30_t, lt_vq30_mul_sat, VMUL, lt__q30_mul_sat, lt__mve_mul30)
-LT__V16_BINV(lt_vq30_t, lt_vq30_add_sat, VALU, lt__q16_add_sat, lt__mve_qadd)
-LT__V16_BINV(lt_vq30_t, lt_vq30_sub_sat, VALU, lt__q16_sub_sat, lt__mve_qsub)
-LT__V16_BINV(lt_vq30_t, lt_vq30_add_wrap, VALU, lt__q16_add_wrap, lt__mve_add)
-LT__V16_BINV(lt_vq30_t, lt_vq30_min, VALU, lt__q16_min, lt__mve_min)
-LT__V16_BINV(lt_vq30_t, lt_vq30_max, VALU, lt__q16_max, lt__mve_max)
+LT__V16_BINV(lt_vq30_t, lt_vq30_mul_sat, VMUL, lt__q30_mul_sat, mul30)
+LT__V16_BINV(lt_vq30_t, lt_vq30_add_sat, VALU, lt__q16_add_sat, qadd)
+LT__V16_BINV(lt_vq30_t, lt_vq30_sub_sat, VALU, lt__q16_sub_sat, qsub)
+LT__V16_BINV(lt_vq30_t, lt_vq30_add_wrap, VALU, lt__q16_add_wrap, add)
+LT__V16_BINV(lt_vq30_t, lt_vq30_min, VALU, lt__q16_min, min)
+LT__V16_BINV(lt_vq30_t, lt_vq30_max, VALU, lt__q16_max, max)
 LT__V16_UN(lt_vq30_t, lt_vq30_abs_sat, VALU, lt__q16_abs_sat)
-LT__V16_CMPV(lt_vq30_t, lt_vq30_cmpeq, VCMP, ==, lt__mve_eq)
-LT__V16_CMPV(lt_vq30_t, lt_vq30_cmplt, VCMP, <, lt__mve_lt)
-LT__V16_CMPV(lt_vq30_t, lt_vq30_cmple, VCMP, <=, lt__mve_le)
-LT__V16_CMPV(lt_vq30_t, lt_vq30_cmpgt, VCMP, >, lt__mve_gt)
-LT__V16_CMPV(lt_vq30_t, lt_vq30_cmpge, VCMP, >=, lt__mve_ge)
+LT__V16_CMPV(lt_vq30_t, lt_vq30_cmpeq, VCMP, ==, eq)
+LT__V16_CMPV(lt_vq30_t, lt_vq30_cmplt, VCMP, <, lt)
+LT__V16_CMPV(lt_vq30_t, lt_vq30_cmple, VCMP, <=, le)
+LT__V16_CMPV(lt_vq30_t, lt_vq30_cmpgt, VCMP, >, gt)
+LT__V16_CMPV(lt_vq30_t, lt_vq30_cmpge, VCMP, >=, ge)
 /* Signs of s1.30 lanes (direction components): a REL 0. Cost: VCMP x1. */
 LT__V16_CMP0(lt_vq30_t, lt_vq30_cmplt0, VCMP, <)
 LT__V16_CMP0(lt_vq30_t, lt_vq30_cmple0, VCMP, <=)
@@ -555,15 +608,15 @@ LT_INLINE int32_t lt__i32_xor(int32_t a, int32_t b)
 LT_INLINE int32_t lt__i32_min(int32_t a, int32_t b) { return a < b ? a : b; }
 LT_INLINE int32_t lt__i32_max(int32_t a, int32_t b) { return a > b ? a : b; }
 LT__V16_MOVE(lt_vi32_t, int32_t, lt_vi32, VALU, VRED)
-LT__V16_BINV(lt_vi32_t, lt_vi32_add_wrap, VALU, lt__i32_add_wrap, lt__mve_add)
-LT__V16_BINV(lt_vi32_t, lt_vi32_sub_wrap, VALU, lt__i32_sub_wrap, lt__mve_sub)
-LT__V16_BINV(lt_vi32_t, lt_vi32_or, VALU, lt__i32_or, lt__mve_or)
-LT__V16_BINV(lt_vi32_t, lt_vi32_xor, VALU, lt__i32_xor, lt__mve_xor)
-LT__V16_BINV(lt_vi32_t, lt_vi32_min, VALU, lt__i32_min, lt__mve_min)
-LT__V16_BINV(lt_vi32_t, lt_vi32_max, VALU, lt__i32_max, lt__mve_max)
-LT__V16_CMPV(lt_vi32_t, lt_vi32_cmpeq, VCMP, ==, lt__mve_eq)
-LT__V16_CMPV(lt_vi32_t, lt_vi32_cmplt, VCMP, <, lt__mve_lt)
-LT__V16_CMPV(lt_vi32_t, lt_vi32_cmple, VCMP, <=, lt__mve_le)
+LT__V16_BINV(lt_vi32_t, lt_vi32_add_wrap, VALU, lt__i32_add_wrap, add)
+LT__V16_BINV(lt_vi32_t, lt_vi32_sub_wrap, VALU, lt__i32_sub_wrap, sub)
+LT__V16_BINV(lt_vi32_t, lt_vi32_or, VALU, lt__i32_or, or)
+LT__V16_BINV(lt_vi32_t, lt_vi32_xor, VALU, lt__i32_xor, xor)
+LT__V16_BINV(lt_vi32_t, lt_vi32_min, VALU, lt__i32_min, min)
+LT__V16_BINV(lt_vi32_t, lt_vi32_max, VALU, lt__i32_max, max)
+LT__V16_CMPV(lt_vi32_t, lt_vi32_cmpeq, VCMP, ==, eq)
+LT__V16_CMPV(lt_vi32_t, lt_vi32_cmplt, VCMP, <, lt)
+LT__V16_CMPV(lt_vi32_t, lt_vi32_cmple, VCMP, <=, le)
 LT__V16_CMP(lt_vi32_t, lt_vi32_cmpgt, VCMP, >)
 LT__V16_CMP(lt_vi32_t, lt_vi32_cmpge, VCMP, >=)
 

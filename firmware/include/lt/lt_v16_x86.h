@@ -27,13 +27,36 @@
 #if LT__X86_LANES
 #include <immintrin.h>
 
+#if LT__X86_LANES == 512
+/* The 16 lanes at p as one 512-bit register, loaded as two 256-bit halves. The lane vectors live
+ * in memory between ops, and the compiler writes the portable loops' results 256 bits at a time
+ * where it prefers 256-bit vectors (-march=native on Intel cores: -mprefer-vector-width=256); a
+ * 512-bit load of two such stores cannot take its data from the store buffer and waits for
+ * both stores to reach the cache (a store-forwarding stall, measured as the slab test's largest
+ * cost on a Rocket Lake Xeon). Two 256-bit loads forward from either store width. */
+LT_INLINE __m512i lt__x86_load16(const void *p)
+{
+    const __m256i *h = (const __m256i *)p;
+    return _mm512_inserti64x4(_mm512_castsi256_si512(_mm256_loadu_si256(h)),
+                              _mm256_loadu_si256(h + 1), 1);
+}
+#endif
+
 /* r[i] = sat32((a[i] * b[i] + 2^(f-1)) >> f) for the 16 lanes (1 <= f <= 31); in sim builds the
  * lanes of ev whose result saturated are counted as SAT events. */
 #if LT__X86_LANES == 512
-LT_INLINE void lt__x86_mul_round_sat(const int32_t *a, const int32_t *b, int32_t *r, unsigned f,
-                                     lt_mask16_t ev)
+/* The SAT events of the lanes of sat that are in ev (sim builds; nothing elsewhere). */
+#if LT_COST_MODE == LT_COST_SIM
+#define LT__X86_SAT_EVENTS(sat, ev) LT_EVENT(SAT, lt__popcount32((unsigned)(sat) & (unsigned)(ev)))
+#else
+#define LT__X86_SAT_EVENTS(sat, ev) ((void)(sat), (void)(ev))
+#endif
+
+/* sat32((a * b + 2^(f-1)) >> f) on the 16 lanes of two registers: vpmuldq on the even lanes and on
+ * the odd lanes shifted down, the rounding constant, vpsraq, the int32 clamp, the two halves
+ * merged back; SAT events for the lanes of ev whose result saturated. */
+LT_INLINE __m512i lt__x86_mulr(__m512i va, __m512i vb, unsigned f, lt_mask16_t ev)
 {
-    __m512i va = _mm512_loadu_si512((const void *)a), vb = _mm512_loadu_si512((const void *)b);
     __m512i rnd = _mm512_set1_epi64((long long)1 << (f - 1u));
     __m128i sh = _mm_cvtsi32_si128((int)f);
     __m512i hi = _mm512_set1_epi64(INT32_MAX), lo = _mm512_set1_epi64(INT32_MIN);
@@ -49,7 +72,7 @@ LT_INLINE void lt__x86_mul_round_sat(const int32_t *a, const int32_t *b, int32_t
         unsigned m = 0, i;
         for (i = 0; i < 8; i++)
             m |= ((se >> i) & 1u) << (2 * i) | ((so >> i) & 1u) << (2 * i + 1);
-        LT_EVENT(SAT, lt__popcount32(m & ev));
+        LT__X86_SAT_EVENTS(m, ev);
     }
 #else
     (void)ev;
@@ -57,9 +80,58 @@ LT_INLINE void lt__x86_mul_round_sat(const int32_t *a, const int32_t *b, int32_t
     pe = _mm512_max_epi64(_mm512_min_epi64(pe, hi), lo);
     po = _mm512_max_epi64(_mm512_min_epi64(po, hi), lo);
     /* lane 2i = low dword of pe's qword i, lane 2i+1 = low dword of po's qword i */
-    _mm512_storeu_si512((void *)r, _mm512_mask_blend_epi32((__mmask16)0xAAAA, pe,
-                                                           _mm512_slli_epi64(po, 32)));
+    return _mm512_mask_blend_epi32((__mmask16)0xAAAA, pe, _mm512_slli_epi64(po, 32));
 }
+
+LT_INLINE void lt__x86_mul_round_sat(const int32_t *a, const int32_t *b, int32_t *r, unsigned f,
+                                     lt_mask16_t ev)
+{
+    _mm512_storeu_si512((void *)r, lt__x86_mulr(lt__x86_load16(a), lt__x86_load16(b), f, ev));
+}
+
+/* The register bodies of the 32-bit integer lane ops (lt_v16.h's LT__V16_BINV on this backend:
+ * every lane vector an op writes is one 512-bit store, read back by lt__x86_load16), each
+ * bit-identical to its scalar body in lt_fx.h. The saturating add and subtract clamp where the
+ * wrapped result's sign differs from both operands' (add) or from a's where the operands' signs
+ * differ (subtract), to INT32_MAX for a >= 0 and INT32_MIN for a < 0; ev: the lanes whose
+ * saturations count as SAT events. */
+LT_INLINE __m512i lt__x86_qadd(__m512i a, __m512i b, lt_mask16_t ev)
+{
+    __m512i r = _mm512_add_epi32(a, b);
+    __mmask16 o = _mm512_cmplt_epi32_mask(
+        _mm512_andnot_si512(_mm512_xor_si512(a, b), _mm512_xor_si512(a, r)), _mm512_setzero_si512());
+    LT__X86_SAT_EVENTS(o, ev);
+    return _mm512_mask_mov_epi32(
+        r, o, _mm512_xor_si512(_mm512_srai_epi32(a, 31), _mm512_set1_epi32(INT32_MAX)));
+}
+LT_INLINE __m512i lt__x86_qsub(__m512i a, __m512i b, lt_mask16_t ev)
+{
+    __m512i r = _mm512_sub_epi32(a, b);
+    __mmask16 o = _mm512_cmplt_epi32_mask(
+        _mm512_and_si512(_mm512_xor_si512(a, b), _mm512_xor_si512(a, r)), _mm512_setzero_si512());
+    LT__X86_SAT_EVENTS(o, ev);
+    return _mm512_mask_mov_epi32(
+        r, o, _mm512_xor_si512(_mm512_srai_epi32(a, 31), _mm512_set1_epi32(INT32_MAX)));
+}
+/* wrapping add and subtract, min, max, or, xor: no events */
+#define LT__X86_BODY(name, expr)                                                                   \
+    LT_INLINE __m512i lt__x86_##name(__m512i a, __m512i b, lt_mask16_t ev)                        \
+    {                                                                                              \
+        (void)ev;                                                                                  \
+        return expr;                                                                               \
+    }
+LT__X86_BODY(add, _mm512_add_epi32(a, b))
+LT__X86_BODY(sub, _mm512_sub_epi32(a, b))
+LT__X86_BODY(min, _mm512_min_epi32(a, b))
+LT__X86_BODY(max, _mm512_max_epi32(a, b))
+LT__X86_BODY(or, _mm512_or_si512(a, b))
+LT__X86_BODY(xor, _mm512_xor_si512(a, b))
+#undef LT__X86_BODY
+LT_INLINE __m512i lt__x86_mul16(__m512i a, __m512i b, lt_mask16_t ev) { return lt__x86_mulr(a, b, 16u, ev); }
+LT_INLINE __m512i lt__x86_mul30(__m512i a, __m512i b, lt_mask16_t ev) { return lt__x86_mulr(a, b, 30u, ev); }
+
+/* The 16 lanes at r set to the 32-bit pattern x in one 512-bit store. */
+LT_INLINE void lt__x86_set1_32(int32_t x, void *r) { _mm512_storeu_si512(r, _mm512_set1_epi32(x)); }
 #else
 /* 64-bit arithmetic shift right by sh and clamp to the int32 range, 4 lanes (AVX2). */
 LT_INLINE __m256i lt__x86_sra_sat64(__m256i x, __m128i sh, __m128i shl, __m256i hi, __m256i lo,
@@ -108,8 +180,8 @@ LT_INLINE void lt__x86_mul_round_sat(const int32_t *a, const int32_t *b, int32_t
 LT_INLINE void lt__x86_blend32(lt_mask16_t k, const void *a, const void *b, void *r)
 {
 #if LT__X86_LANES == 512
-    _mm512_storeu_si512(r, _mm512_mask_blend_epi32((__mmask16)k, _mm512_loadu_si512(a),
-                                                   _mm512_loadu_si512(b)));
+    _mm512_storeu_si512(r, _mm512_mask_blend_epi32((__mmask16)k, lt__x86_load16(a),
+                                                   lt__x86_load16(b)));
 #else
     const __m256i bits = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
     int h;
