@@ -187,6 +187,55 @@ LT_INLINE lt_mask16_t lt_mask16_clear_first(lt_mask16_t k) /* MASK x1 */
         return (lt_mask16_t)(m & k);                                                               \
     }
 
+#if LT__X86_LANES == 512
+/* The same ops with an AVX-512 register body lt__x86_##vf (lt_v16_x86.h): one 512-bit store per
+ * result, so the next op's 512-bit load forwards from it; masked forms compute every lane and
+ * blend or zero by the mask register (SAT events counted for the lanes of k only, as the loop
+ * counts them); a compare is one vpcmpd or vcmpps into the mask (lt__x86_cmp_##vc). */
+#define LT__V16_BINX(VT, name, op, vf)                                                             \
+    LT_INLINE VT name(VT a, VT b)                                                                  \
+    {                                                                                              \
+        VT r;                                                                                      \
+        LT_COST(op, 1);                                                                            \
+        _mm512_storeu_si512((void *)r.l, lt__x86_##vf(lt__x86_load16(a.l), lt__x86_load16(b.l),    \
+                                                      LT_MASK_ALL));                               \
+        return r;                                                                                  \
+    }                                                                                              \
+    LT_INLINE VT name##_m(VT src, lt_mask16_t k, VT a, VT b)                                       \
+    {                                                                                              \
+        LT_COST(op, 1);                                                                            \
+        LT_UTIL(k);                                                                                \
+        _mm512_storeu_si512((void *)src.l,                                                         \
+                            _mm512_mask_mov_epi32(lt__x86_load16(src.l), (__mmask16)k,             \
+                                                  lt__x86_##vf(lt__x86_load16(a.l),                \
+                                                               lt__x86_load16(b.l), k)));          \
+        return src;                                                                                \
+    }                                                                                              \
+    LT_INLINE VT name##_z(lt_mask16_t k, VT a, VT b)                                               \
+    {                                                                                              \
+        VT r;                                                                                      \
+        LT_COST(op, 1);                                                                            \
+        LT_UTIL(k);                                                                                \
+        _mm512_storeu_si512((void *)r.l,                                                           \
+                            _mm512_maskz_mov_epi32((__mmask16)k,                                   \
+                                                   lt__x86_##vf(lt__x86_load16(a.l),               \
+                                                                lt__x86_load16(b.l), k)));         \
+        return r;                                                                                  \
+    }
+#define LT__V16_CMPX(VT, name, op, vc, ld)                                                         \
+    LT_INLINE lt_mask16_t name(VT a, VT b)                                                         \
+    {                                                                                              \
+        LT_COST(op, 1);                                                                            \
+        return (lt_mask16_t)lt__x86_cmp_##vc(ld(a.l), ld(b.l));                                  \
+    }                                                                                              \
+    LT_INLINE lt_mask16_t name##_m(lt_mask16_t k, VT a, VT b)                                      \
+    {                                                                                              \
+        LT_COST(op, 1);                                                                            \
+        LT_UTIL(k);                                                                                \
+        return (lt_mask16_t)(lt__x86_cmp_##vc(ld(a.l), ld(b.l)) & k);                            \
+    }
+#endif
+
 /* A binary op of 32-bit integer lanes with a Helium body lt__mve_##vf (int32x4_t (int32x4_t,
  * int32x4_t), lt_v16_mve.h) on four quads; the masked forms compute every lane and select (the
  * ops are pure), so they equal the portable loops. vf names the body of each backend (qadd, qsub,
@@ -246,44 +295,20 @@ LT_INLINE lt_mask16_t lt_mask16_clear_first(lt_mask16_t k) /* MASK x1 */
         return (lt_mask16_t)(m & k);                                                               \
     }
 #elif LT__X86_LANES == 512
-/* The same ops with an AVX-512 register body lt__x86_##vf (lt_v16_x86.h): one 512-bit store per
- * result, so the next op's 512-bit load forwards from it; masked forms compute every lane and
- * blend or zero by the mask register (SAT events counted for the lanes of k only, as the loop
- * counts them). Compares stay loops (their 256-bit loads forward from any store). */
-#define LT__V16_BINV(VT, name, op, f, vf)                                                          \
-    LT_INLINE VT name(VT a, VT b)                                                                  \
-    {                                                                                              \
-        VT r;                                                                                      \
-        LT_COST(op, 1);                                                                            \
-        _mm512_storeu_si512((void *)r.l, lt__x86_##vf(lt__x86_load16(a.l), lt__x86_load16(b.l),    \
-                                                      LT_MASK_ALL));                               \
-        return r;                                                                                  \
-    }                                                                                              \
-    LT_INLINE VT name##_m(VT src, lt_mask16_t k, VT a, VT b)                                       \
-    {                                                                                              \
-        LT_COST(op, 1);                                                                            \
-        LT_UTIL(k);                                                                                \
-        _mm512_storeu_si512((void *)src.l,                                                         \
-                            _mm512_mask_mov_epi32(lt__x86_load16(src.l), (__mmask16)k,             \
-                                                  lt__x86_##vf(lt__x86_load16(a.l),                \
-                                                               lt__x86_load16(b.l), k)));          \
-        return src;                                                                                \
-    }                                                                                              \
-    LT_INLINE VT name##_z(lt_mask16_t k, VT a, VT b)                                               \
-    {                                                                                              \
-        VT r;                                                                                      \
-        LT_COST(op, 1);                                                                            \
-        LT_UTIL(k);                                                                                \
-        _mm512_storeu_si512((void *)r.l,                                                           \
-                            _mm512_maskz_mov_epi32((__mmask16)k,                                   \
-                                                   lt__x86_##vf(lt__x86_load16(a.l),               \
-                                                                lt__x86_load16(b.l), k)));         \
-        return r;                                                                                  \
-    }
-#define LT__V16_CMPV(VT, name, op, rel, vc) LT__V16_CMP(VT, name, op, rel)
+#define LT__V16_BINV(VT, name, op, f, vf) LT__V16_BINX(VT, name, op, vf)
+#define LT__V16_CMPV(VT, name, op, rel, vc) LT__V16_CMPX(VT, name, op, vc, lt__x86_load16)
 #else
 #define LT__V16_BINV(VT, name, op, f, vf) LT__V16_BIN(VT, name, op, f)
 #define LT__V16_CMPV(VT, name, op, rel, vc) LT__V16_CMP(VT, name, op, rel)
+#endif
+/* float32 lanes: the AVX-512 bodies (fadd, ..., compares flt, ...) on that backend, else the
+ * loops (Helium's bodies are integer only). */
+#if LT__X86_LANES == 512
+#define LT__V16_BINF(VT, name, op, f, vf) LT__V16_BIN(VT, name, op, f)
+#define LT__V16_CMPF(VT, name, op, rel, vc) LT__V16_CMPX(VT, name, op, vc, lt__x86_load16h)
+#else
+#define LT__V16_BINF(VT, name, op, f, vf) LT__V16_BIN(VT, name, op, f)
+#define LT__V16_CMPF(VT, name, op, rel, vc) LT__V16_CMP(VT, name, op, rel)
 #endif
 
 /* Compare with zero: mask of lanes where a REL 0 (against a zero register: nothing is broadcast);
@@ -750,20 +775,20 @@ LT_INLINE float lt__f32_abs(float a)
 }
 LT_INLINE float lt__f32_neg(float a) { return -a; }
 LT__V16_MOVE(lt_vf32_t, float, lt_vf32, FADD, VRED)
-LT__V16_BIN(lt_vf32_t, lt_vf32_add, FADD, lt__f32_add)
-LT__V16_BIN(lt_vf32_t, lt_vf32_sub, FADD, lt__f32_sub)
-LT__V16_BIN(lt_vf32_t, lt_vf32_mul, FMUL, lt__f32_mul)
-LT__V16_BIN(lt_vf32_t, lt_vf32_div, FDIV, lt__f32_div)
-LT__V16_BIN(lt_vf32_t, lt_vf32_min, FADD, lt__f32_min)
-LT__V16_BIN(lt_vf32_t, lt_vf32_max, FADD, lt__f32_max)
+LT__V16_BINF(lt_vf32_t, lt_vf32_add, FADD, lt__f32_add, fadd)
+LT__V16_BINF(lt_vf32_t, lt_vf32_sub, FADD, lt__f32_sub, fsub)
+LT__V16_BINF(lt_vf32_t, lt_vf32_mul, FMUL, lt__f32_mul, fmul)
+LT__V16_BINF(lt_vf32_t, lt_vf32_div, FDIV, lt__f32_div, fdiv)
+LT__V16_BINF(lt_vf32_t, lt_vf32_min, FADD, lt__f32_min, fmin)
+LT__V16_BINF(lt_vf32_t, lt_vf32_max, FADD, lt__f32_max, fmax)
 LT__V16_UN(lt_vf32_t, lt_vf32_rcp, FDIV, lt__f32_rcp)
 LT__V16_UN(lt_vf32_t, lt_vf32_abs, FADD, lt__f32_abs)
 LT__V16_UN(lt_vf32_t, lt_vf32_neg, FADD, lt__f32_neg)
-LT__V16_CMP(lt_vf32_t, lt_vf32_cmplt, FCMP, <)
-LT__V16_CMP(lt_vf32_t, lt_vf32_cmple, FCMP, <=)
-LT__V16_CMP(lt_vf32_t, lt_vf32_cmpgt, FCMP, >)
-LT__V16_CMP(lt_vf32_t, lt_vf32_cmpge, FCMP, >=)
-LT__V16_CMP(lt_vf32_t, lt_vf32_cmpeq, FCMP, ==)
+LT__V16_CMPF(lt_vf32_t, lt_vf32_cmplt, FCMP, <, flt)
+LT__V16_CMPF(lt_vf32_t, lt_vf32_cmple, FCMP, <=, fle)
+LT__V16_CMPF(lt_vf32_t, lt_vf32_cmpgt, FCMP, >, fgt)
+LT__V16_CMPF(lt_vf32_t, lt_vf32_cmpge, FCMP, >=, fge)
+LT__V16_CMPF(lt_vf32_t, lt_vf32_cmpeq, FCMP, ==, feq)
 LT_INLINE float lt__f32_mul3(float a) { return a * 3.0f; }
 /* 3 a per lane (one rounding). Cost: FMUL x1. */
 LT__V16_UN(lt_vf32_t, lt_vf32_mul3, FMUL, lt__f32_mul3)

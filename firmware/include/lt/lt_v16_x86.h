@@ -1,14 +1,18 @@
 /* lt_v16_x86.h - x86 SIMD sequences for the lane ops whose portable loops the compiler turns into
- * long code: the s15.16 products with rounding and saturation (32x32 -> 64-bit product, + half,
- * arithmetic shift, clamp to int32), the slab test's and the watertight test's hot op. Chosen at
- * build time from the compiler's target flags: AVX-512F (one 512-bit register per 16 lanes:
- * vpmuldq on the even and odd lanes, vpsraq, vpminsq/vpmaxsq, a masked blend) or AVX2 (two 8-lane
- * halves: vpmuldq pairs, the 64-bit arithmetic shift and clamp built from compares and blends);
- * anything else, -DLT_LANES_PORTABLE, and every firmware target use the portable loops of
- * lt_v16.h, which stay the reference. Bit-identical to the portable lanes (tests/golden/vectors.txt
- * is compared across the native (backend), asan (portable) and x86-64-v3 (AVX2) builds; test_v16
- * checks every op against references on the backend it was built with). In sim builds the SAT
- * events are counted per lane as the portable loop counts them. Builds: host x86 only.
+ * long or stalling code: the s15.16 and s1.30 products with rounding and saturation (32x32 ->
+ * 64-bit product, + half, arithmetic shift, clamp to int32), the slab test's and the watertight
+ * test's hot op; on AVX-512 also every 32-bit integer add, subtract (saturating and wrapping), min,
+ * max, or, xor and compare, the float32 compares, the blends and the 32-bit broadcasts, so that
+ * the lane vectors between these ops are written and read 512 bits at a time (lt__x86_load16).
+ * Chosen at build time from the compiler's target flags: AVX-512F (one 512-bit register per 16
+ * lanes: vpmuldq on the even and odd lanes, vpsraq, vpminsq/vpmaxsq, compares into mask registers,
+ * masked blends) or AVX2 (two 8-lane halves: vpmuldq pairs, the 64-bit arithmetic shift and clamp
+ * built from compares and blends); anything else, -DLT_LANES_PORTABLE, and every firmware target
+ * use the portable loops of lt_v16.h, which stay the reference. Bit-identical to the portable
+ * lanes (tests/golden/vectors.txt is compared across the native (backend), asan (portable) and
+ * x86-64-v3 (AVX2) builds; test_v16 checks every op against references on the backend it was
+ * built with). In sim builds the SAT events are counted per lane as the portable loop counts them.
+ * Builds: host x86 only.
  */
 #ifndef LT_V16_X86_H
 #define LT_V16_X86_H
@@ -28,13 +32,19 @@
 #include <immintrin.h>
 
 #if LT__X86_LANES == 512
-/* The 16 lanes at p as one 512-bit register, loaded as two 256-bit halves. The lane vectors live
- * in memory between ops, and the compiler writes the portable loops' results 256 bits at a time
- * where it prefers 256-bit vectors (-march=native on Intel cores: -mprefer-vector-width=256); a
- * 512-bit load of two such stores cannot take its data from the store buffer and waits for
- * both stores to reach the cache (a store-forwarding stall, measured as the slab test's largest
- * cost on a Rocket Lake Xeon). Two 256-bit loads forward from either store width. */
+/* The 16 lanes at p as one 512-bit register: lt__x86_load16 in one load, for lanes that the
+ * backend's own ops wrote (one 512-bit store each); lt__x86_load16h as two 256-bit halves, for
+ * lanes that the portable loops wrote. Where the compiler prefers 256-bit vectors (-march=native
+ * on Intel cores: -mprefer-vector-width=256) a loop stores its result 256 bits at a time, and a
+ * 512-bit load of two such stores cannot take its data from the store buffer: it waits for both
+ * stores to reach the cache (a store-forwarding stall, measured as the slab test's largest cost
+ * on a Rocket Lake Xeon). Two 256-bit loads forward from either store width; one 512-bit load
+ * is the cheaper where the store was 512 bits wide. */
 LT_INLINE __m512i lt__x86_load16(const void *p)
+{
+    return _mm512_loadu_si512(p);
+}
+LT_INLINE __m512i lt__x86_load16h(const void *p)
 {
     const __m256i *h = (const __m256i *)p;
     return _mm512_inserti64x4(_mm512_castsi256_si512(_mm256_loadu_si256(h)),
@@ -130,6 +140,40 @@ LT__X86_BODY(xor, _mm512_xor_si512(a, b))
 LT_INLINE __m512i lt__x86_mul16(__m512i a, __m512i b, lt_mask16_t ev) { return lt__x86_mulr(a, b, 16u, ev); }
 LT_INLINE __m512i lt__x86_mul30(__m512i a, __m512i b, lt_mask16_t ev) { return lt__x86_mulr(a, b, 30u, ev); }
 
+/* float32 lanes in the same registers: IEEE single add, subtract, multiply, divide (as the
+ * scalar bodies of lt_v16.h, no contraction) and min/max as a < b ? a : b and a > b ? a : b
+ * (vminps/vmaxps return the second operand on NaN or equality, as those expressions do). */
+#define LT__X86_FBODY(name, expr)                                                                  \
+    LT_INLINE __m512i lt__x86_##name(__m512i ai, __m512i bi, lt_mask16_t ev)                      \
+    {                                                                                              \
+        __m512 a = _mm512_castsi512_ps(ai), b = _mm512_castsi512_ps(bi);                          \
+        (void)ev;                                                                                  \
+        return _mm512_castps_si512(expr);                                                          \
+    }
+LT__X86_FBODY(fadd, _mm512_add_ps(a, b))
+LT__X86_FBODY(fsub, _mm512_sub_ps(a, b))
+LT__X86_FBODY(fmul, _mm512_mul_ps(a, b))
+LT__X86_FBODY(fdiv, _mm512_div_ps(a, b))
+LT__X86_FBODY(fmin, _mm512_min_ps(a, b))
+LT__X86_FBODY(fmax, _mm512_max_ps(a, b))
+#undef LT__X86_FBODY
+
+/* The compares' 16-bit lane masks in one instruction: signed int32 (vpcmpd) and float32
+ * (vcmpps, ordered and quiet: a NaN lane compares false, as C's relational operators). */
+#define LT__X86_CMP(name, expr)                                                                    \
+    LT_INLINE unsigned lt__x86_cmp_##name(__m512i a, __m512i b) { return (unsigned)(expr); }
+LT__X86_CMP(lt, _mm512_cmp_epi32_mask(a, b, _MM_CMPINT_LT))
+LT__X86_CMP(le, _mm512_cmp_epi32_mask(a, b, _MM_CMPINT_LE))
+LT__X86_CMP(gt, _mm512_cmp_epi32_mask(a, b, _MM_CMPINT_NLE))
+LT__X86_CMP(ge, _mm512_cmp_epi32_mask(a, b, _MM_CMPINT_NLT))
+LT__X86_CMP(eq, _mm512_cmp_epi32_mask(a, b, _MM_CMPINT_EQ))
+LT__X86_CMP(flt, _mm512_cmp_ps_mask(_mm512_castsi512_ps(a), _mm512_castsi512_ps(b), _CMP_LT_OQ))
+LT__X86_CMP(fle, _mm512_cmp_ps_mask(_mm512_castsi512_ps(a), _mm512_castsi512_ps(b), _CMP_LE_OQ))
+LT__X86_CMP(fgt, _mm512_cmp_ps_mask(_mm512_castsi512_ps(a), _mm512_castsi512_ps(b), _CMP_GT_OQ))
+LT__X86_CMP(fge, _mm512_cmp_ps_mask(_mm512_castsi512_ps(a), _mm512_castsi512_ps(b), _CMP_GE_OQ))
+LT__X86_CMP(feq, _mm512_cmp_ps_mask(_mm512_castsi512_ps(a), _mm512_castsi512_ps(b), _CMP_EQ_OQ))
+#undef LT__X86_CMP
+
 /* The 16 lanes at r set to the 32-bit pattern x in one 512-bit store. */
 LT_INLINE void lt__x86_set1_32(int32_t x, void *r) { _mm512_storeu_si512(r, _mm512_set1_epi32(x)); }
 #else
@@ -180,8 +224,8 @@ LT_INLINE void lt__x86_mul_round_sat(const int32_t *a, const int32_t *b, int32_t
 LT_INLINE void lt__x86_blend32(lt_mask16_t k, const void *a, const void *b, void *r)
 {
 #if LT__X86_LANES == 512
-    _mm512_storeu_si512(r, _mm512_mask_blend_epi32((__mmask16)k, lt__x86_load16(a),
-                                                   lt__x86_load16(b)));
+    _mm512_storeu_si512(r, _mm512_mask_blend_epi32((__mmask16)k, lt__x86_load16h(a),
+                                                   lt__x86_load16h(b)));
 #else
     const __m256i bits = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
     int h;
