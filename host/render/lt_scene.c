@@ -229,7 +229,9 @@ unsigned lt_camera_tile_dirs(const lt_camera_t *c, uint32_t tx, uint32_t ty, dou
 {
     double aspect = (double)c->width / (double)c->height;
     double w = (double)c->width, h = (double)c->height, t = c->tan_half_fov;
-    double u[LT_LANES], v[LT_LANES], l[LT_LANES];
+    /* local arrays: the compiler cannot prove that the callers' dx, dy and dz do not overlap,
+     * so loops over them stay scalar (48 divides a tile, measured as most of the function) */
+    double u[LT_LANES], v[LT_LANES], l[LT_LANES], ex[LT_LANES], ey[LT_LANES], ez[LT_LANES];
     unsigned k = 0;
     int i;
     for (i = 0; i < LT_LANES; i++) {
@@ -238,26 +240,29 @@ unsigned lt_camera_tile_dirs(const lt_camera_t *c, uint32_t tx, uint32_t ty, dou
         v[i] = (1.0 - 2.0 * (y + 0.5) / h) * t;
     }
     for (i = 0; i < LT_LANES; i++) {
-        dx[i] = c->fwd[0] + u[i] * c->right[0] + v[i] * c->up[0];
-        dy[i] = c->fwd[1] + u[i] * c->right[1] + v[i] * c->up[1];
-        dz[i] = c->fwd[2] + u[i] * c->right[2] + v[i] * c->up[2];
+        ex[i] = c->fwd[0] + u[i] * c->right[0] + v[i] * c->up[0];
+        ey[i] = c->fwd[1] + u[i] * c->right[1] + v[i] * c->up[1];
+        ez[i] = c->fwd[2] + u[i] * c->right[2] + v[i] * c->up[2];
     }
     for (i = 0; i < LT_LANES; i++)
-        l[i] = sqrt(dx[i] * dx[i] + dy[i] * dy[i] + dz[i] * dz[i]);
+        l[i] = sqrt(ex[i] * ex[i] + ey[i] * ey[i] + ez[i] * ez[i]);
     for (i = 0; i < LT_LANES; i++) {
-        dx[i] /= l[i];
-        dy[i] /= l[i];
-        dz[i] /= l[i];
+        ex[i] /= l[i];
+        ey[i] /= l[i];
+        ez[i] /= l[i];
     }
     for (i = 0; i < LT_LANES; i++) {
         uint32_t x = tx + (uint32_t)(i % 4), y = ty + (uint32_t)(i / 4);
         if (x < c->width && y < c->height) {
             k |= 1u << i;
         } else {
-            dx[i] = dy[i] = 0.0;
-            dz[i] = 1.0;
+            ex[i] = ey[i] = 0.0;
+            ez[i] = 1.0;
         }
     }
+    memcpy(dx, ex, sizeof ex);
+    memcpy(dy, ey, sizeof ey);
+    memcpy(dz, ez, sizeof ez);
     return k;
 }
 

@@ -425,6 +425,60 @@ static void gen_f32fin_vec(ltt_rng_t *r, lt_vf32_t *v)
 TEST_MOVE(lt_vf32, lt_vf32_t, float, gen_f32fin, same_f32, -HUGE_VALF, HUGE_VALF)
 #endif
 
+#if LT_CFG_FLOAT32
+/* hmin/hmax where the lanes' order decides the bits: every lane drawn from a small set with
+ * -0 and +0 (equal, different bits), NaN (never compares), the infinities and the smallest
+ * denormals, so that many lanes tie; starting values from the same set. The reference is the
+ * lane model's loop: a lane replaces the current value only where strictly less (greater), in
+ * index order. Bit equality (a NaN start stays the bits it was). Every mask of 16 lanes. */
+static float hred_ref(lt_mask16_t k, const lt_vf32_t *a, float none, int ismax)
+{
+    int i;
+    for (i = 0; i < LT_LANES; i++)
+        if (LTT_ON(k, i) && (ismax ? a->l[i] > none : a->l[i] < none))
+            none = a->l[i];
+    return none;
+}
+
+static int same_bits_f32(float x, float y)
+{
+    uint32_t a, b;
+    memcpy(&a, &x, sizeof a);
+    memcpy(&b, &y, sizeof b);
+    return a == b;
+}
+
+static void test_vf32_hred_ties(void **state)
+{
+    static const float e[] = { 0.0f, -0.0f, NAN, 1.0f, -1.0f, HUGE_VALF, -HUGE_VALF, 1e-45f, -1e-45f };
+    const unsigned ne = (unsigned)(sizeof e / sizeof e[0]);
+    unsigned long checks = 0, bad = 0;
+    unsigned k, rep;
+    ltt_rng_t r;
+    (void)state;
+    ltt_rng_seed(&r, seed_of("hred_ties"));
+    for (rep = 0; rep < 8; rep++) {
+        lt_vf32_t a;
+        int i;
+        /* reps 0-3: zeros and NaN only (every tie is a -0/+0 tie); then the whole set */
+        for (i = 0; i < LT_LANES; i++)
+            a.l[i] = e[ltt_rng_below(&r, rep < 4 ? 3u : ne)];
+        for (k = 0; k <= 0xFFFFu; k++) {
+            float none = e[ltt_rng_below(&r, ne)];
+            float mn = lt_vf32_hmin((lt_mask16_t)k, a, none), mx = lt_vf32_hmax((lt_mask16_t)k, a, none);
+            checks += 2;
+            if (!same_bits_f32(mn, hred_ref((lt_mask16_t)k, &a, none, 0)))
+                note_bad(&bad, "lt_vf32_hmin tie", k, -1);
+            if (!same_bits_f32(mx, hred_ref((lt_mask16_t)k, &a, none, 1)))
+                note_bad(&bad, "lt_vf32_hmax tie", k, -1);
+        }
+    }
+    ltt_report("lt_vf32_hmin/hmax with -0/+0 ties, NaN lanes and NaN starts (%s lanes): %lu results, "
+               "%lu mismatches vs the ordered loop (bound 0)\n", LT_LANES_BACKEND, checks, bad);
+    assert_int_equal(bad, 0);
+}
+#endif
+
 /* ---- masks ---------------------------------------------------------------------------------- */
 
 static void test_mask_helpers(void **state)
@@ -1360,7 +1414,7 @@ int main(void)
         T(lt_vf32_min),      T(lt_vf32_max),      T(lt_vf32_rcp),        T(lt_vf32_abs),
         T(lt_vf32_neg),      T(lt_vf32_cmplt),    T(lt_vf32_cmple),      T(lt_vf32_cmpgt),
         T(lt_vf32_cmpge),    T(lt_vf32_cmpeq),    T(lt_vf32_move),       T(lt_vf32_mul3),
-        T(vf32_extras),
+        T(vf32_extras),      T(vf32_hred_ties),
 #endif
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -44,8 +44,10 @@ typedef struct { float l[LT_LANES]; } lt_vf32_t;    /* 16 x IEEE binary32, 64 by
 #endif
 #if LT__X86_LANES == 512
 #define LT__X86_SET1_32(x, r) lt__x86_set1_32((x), (r))
+#define LT__X86_HRED32(k, a, none, isf, ismax) lt__x86_hred32((k), (a), (none), (isf), (ismax))
 #else
 #define LT__X86_SET1_32(x, r) ((void)(x), (void)(r))
+#define LT__X86_HRED32(k, a, none, isf, ismax) ((void)(k), (void)(a), (void)(none))
 #endif
 /* the Helium (MVE) sequences of the 32-bit integer lane ops on Cortex-M55, or nothing */
 #include "lt_v16_mve.h"
@@ -424,6 +426,10 @@ LT_INLINE lt_mask16_t lt_mask16_clear_first(lt_mask16_t k) /* MASK x1 */
     {                                                                                              \
         int i;                                                                                     \
         LT_COST(vred, 1);                                                                          \
+        if (LT__X86_LANES == 512 && sizeof(ET) == 4 && ((ET)1 / 2 != 0 || (ET)-1 < 0)) {          \
+            LT__X86_HRED32(k, a.l, &none, (ET)1 / 2 != 0, 0);                                      \
+            return none;                                                                           \
+        }                                                                                          \
         for (i = 0; i < LT_LANES; i++)                                                             \
             if (LT__ON(k, i) && a.l[i] < none)                                                     \
                 none = a.l[i];                                                                     \
@@ -433,6 +439,10 @@ LT_INLINE lt_mask16_t lt_mask16_clear_first(lt_mask16_t k) /* MASK x1 */
     {                                                                                              \
         int i;                                                                                     \
         LT_COST(vred, 1);                                                                          \
+        if (LT__X86_LANES == 512 && sizeof(ET) == 4 && ((ET)1 / 2 != 0 || (ET)-1 < 0)) {          \
+            LT__X86_HRED32(k, a.l, &none, (ET)1 / 2 != 0, 1);                                      \
+            return none;                                                                           \
+        }                                                                                          \
         for (i = 0; i < LT_LANES; i++)                                                             \
             if (LT__ON(k, i) && a.l[i] > none)                                                     \
                 none = a.l[i];                                                                     \

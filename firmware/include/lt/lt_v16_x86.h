@@ -174,6 +174,39 @@ LT__X86_CMP(fge, _mm512_cmp_ps_mask(_mm512_castsi512_ps(a), _mm512_castsi512_ps(
 LT__X86_CMP(feq, _mm512_cmp_ps_mask(_mm512_castsi512_ps(a), _mm512_castsi512_ps(b), _CMP_EQ_OQ))
 #undef LT__X86_CMP
 
+/* The lane model's horizontal min (ismax 0) or max (1) of the lanes of k of the 16 int32 or float32
+ * (isf) lanes at a, starting from *none, as its loop computes it: *none takes a lane's value
+ * only where that value is strictly less (greater) than the current one, lanes in index order.
+ * So the result is *none unless the reduction m over the active lanes beats it, and then the
+ * first active lane equal to m: of float lanes -0 and +0, the loop keeps the first; NaN lanes
+ * never compare and are left out. One masked reduction and a compare instead of a branch per
+ * lane. */
+LT_INLINE void lt__x86_hred32(lt_mask16_t k, const void *a, void *none, int isf, int ismax)
+{
+    if (k == 0)
+        return;
+    if (isf) {
+        __m512 v = _mm512_castsi512_ps(lt__x86_load16h(a));
+        __mmask16 on = _mm512_mask_cmp_ps_mask((__mmask16)k, v, v, _CMP_ORD_Q);
+        float n = *(const float *)none, m;
+        __mmask16 eq;
+        if (on == 0)
+            return;
+        m = ismax ? _mm512_mask_reduce_max_ps(on, v) : _mm512_mask_reduce_min_ps(on, v);
+        if (!(ismax ? m > n : m < n))
+            return;
+        eq = _mm512_mask_cmp_ps_mask(on, v, _mm512_set1_ps(m), _CMP_EQ_OQ);
+        *(float *)none = ((const float *)a)[lt__ctz32(eq)];
+    } else {
+        __m512i v = lt__x86_load16h(a);
+        int32_t n = *(const int32_t *)none;
+        int32_t m = ismax ? _mm512_mask_reduce_max_epi32((__mmask16)k, v)
+                          : _mm512_mask_reduce_min_epi32((__mmask16)k, v);
+        if (ismax ? m > n : m < n)
+            *(int32_t *)none = m;
+    }
+}
+
 /* The 16 lanes at r set to the 32-bit pattern x in one 512-bit store. */
 LT_INLINE void lt__x86_set1_32(int32_t x, void *r) { _mm512_storeu_si512(r, _mm512_set1_epi32(x)); }
 #else
