@@ -226,10 +226,16 @@ static void w_plane8_q16(const lt_q16_t *p, lt_q16_t o, lt_q16_t rd, lt_q16_t *t
 #define LTW_NODE lt_bvh8_node_q16_t
 #define LTW_NODE_RECIPE BVH8_NODE_Q16
 #define LTW_PLANE8 w_plane8_q16
+#if LT__X86_LANES == 512 && LT_COST_MODE != LT_COST_SIM
+#define LTW_TEST8(r, n, tn)                                                                        \
+    lt__x86_wtest8_q16(&(n)->lo[0][0], &(n)->hi[0][0], (n)->cnt, (r)->o, (r)->rd, (r)->tmin,       \
+                       (r)->tmax, LT_BVH8_EMPTY, (tn))
+#endif
 #include "lt_bvh8.inc"
 #undef LTW_NODE
 #undef LTW_NODE_RECIPE
 #undef LTW_PLANE8
+#undef LTW_TEST8
 /* named compile-time checks (LT_STATIC_ASSERT names its typedef by __LINE__, which could meet a
  * header's line in this translation unit) */
 typedef char bvh_check_bin_q16[sizeof(lt__bvh_bin_t_q16) == BVH_BIN_BYTES ? 1 : -1];
@@ -362,10 +368,16 @@ static void slab_fix1_f32(unsigned par, float o, float d, float lo, float hi, fl
 #define LTW_NODE lt_bvh8_node_f32_t
 #define LTW_NODE_RECIPE BVH8_NODE_F32
 #define LTW_PLANE8 w_plane8_f32
+#if LT__X86_LANES == 512 && LT_COST_MODE != LT_COST_SIM
+#define LTW_TEST8(r, n, tn)                                                                        \
+    lt__x86_wtest8_f32(&(n)->lo[0][0], &(n)->hi[0][0], (n)->cnt, (r)->o, (r)->rd, (r)->tmin,       \
+                       (r)->tmax, LT_BVH8_EMPTY, (tn))
+#endif
 #include "lt_bvh8.inc"
 #undef LTW_NODE
 #undef LTW_NODE_RECIPE
 #undef LTW_PLANE8
+#undef LTW_TEST8
 typedef char bvh_check_bin_f32[sizeof(lt__bvh_bin_t_f32) == BVH_BIN_BYTES ? 1 : -1];
 
 #endif /* LT_CFG_FLOAT32 */

@@ -324,6 +324,66 @@ LT_INLINE void lt__x86_plane8_q16(const int32_t *p, int32_t o, int32_t rd, int32
 }
 #endif
 
+#if LT__X86_LANES == 512
+/* The 8-wide node test of a single ray (lt_bvh8.inc's w_test without a parallel or saturated
+ * axis, whose fix-ups stay in C) in registers: per axis the two planes as lt__x86_plane8_q16
+ * computes them (s15.16) or (p - o) x 1/d (float32), the interval's min/max, then tnear <= tfar
+ * and the slot in use, as one mask; tn gets the 8 tnear. The C loops stored each plane's 8
+ * results with a narrowing store (vpmovqd) and read them back, a store the next load cannot
+ * forward from on Intel cores. No events: the counting build keeps the C loops. */
+LT_INLINE __m256i lt__x86_plane8r_q16(const int32_t *p, int32_t o, int32_t rd)
+{
+    __m512i hi = _mm512_set1_epi64(INT32_MAX), lo = _mm512_set1_epi64(INT32_MIN);
+    __m512i d = _mm512_sub_epi64(
+        _mm512_cvtepi32_epi64(_mm256_loadu_si256((const __m256i *)(const void *)p)),
+        _mm512_set1_epi64(o));
+    __m512i q;
+    d = _mm512_max_epi64(_mm512_min_epi64(d, hi), lo);
+    q = _mm512_mul_epi32(d, _mm512_set1_epi64(rd));
+    q = _mm512_srai_epi64(_mm512_add_epi64(q, _mm512_set1_epi64((long long)1 << 15)), 16);
+    q = _mm512_max_epi64(_mm512_min_epi64(q, hi), lo);
+    return _mm512_cvtepi64_epi32(q);
+}
+
+LT_INLINE unsigned lt__x86_wtest8_q16(const int32_t *lo, const int32_t *hi, const uint16_t *cnt,
+                                      const int32_t *o, const int32_t *rd, int32_t tmin,
+                                      int32_t tmax, uint16_t empty, int32_t *tn)
+{
+    __m256i vn = _mm256_set1_epi32(tmin), vf = _mm256_set1_epi32(tmax);
+    int a;
+    for (a = 0; a < 3; a++) {
+        __m256i t0 = lt__x86_plane8r_q16(lo + 8 * a, o[a], rd[a]);
+        __m256i t1 = lt__x86_plane8r_q16(hi + 8 * a, o[a], rd[a]);
+        vn = _mm256_max_epi32(vn, _mm256_min_epi32(t0, t1));
+        vf = _mm256_min_epi32(vf, _mm256_max_epi32(t0, t1));
+    }
+    _mm256_storeu_si256((__m256i *)(void *)tn, vn);
+    return (unsigned)(_mm256_cmp_epi32_mask(vn, vf, _MM_CMPINT_LE) &
+                      _mm_cmpneq_epi16_mask(_mm_loadu_si128((const __m128i *)(const void *)cnt),
+                                            _mm_set1_epi16((short)empty)));
+}
+
+LT_INLINE unsigned lt__x86_wtest8_f32(const float *lo, const float *hi, const uint16_t *cnt,
+                                      const float *o, const float *rd, float tmin, float tmax,
+                                      uint16_t empty, float *tn)
+{
+    __m256 vn = _mm256_set1_ps(tmin), vf = _mm256_set1_ps(tmax);
+    int a;
+    for (a = 0; a < 3; a++) {
+        __m256 vo = _mm256_set1_ps(o[a]), vr = _mm256_set1_ps(rd[a]);
+        __m256 t0 = _mm256_mul_ps(_mm256_sub_ps(_mm256_loadu_ps(lo + 8 * a), vo), vr);
+        __m256 t1 = _mm256_mul_ps(_mm256_sub_ps(_mm256_loadu_ps(hi + 8 * a), vo), vr);
+        /* lt__f32_min / max: a < b ? a : b and a > b ? a : b, vminps / vmaxps operand order */
+        vn = _mm256_max_ps(vn, _mm256_min_ps(t0, t1));
+        vf = _mm256_min_ps(vf, _mm256_max_ps(t0, t1));
+    }
+    _mm256_storeu_ps(tn, vn);
+    return (unsigned)(_mm256_cmp_ps_mask(vn, vf, _CMP_LE_OQ) &
+                      _mm_cmpneq_epi16_mask(_mm_loadu_si128((const __m128i *)(const void *)cnt),
+                                            _mm_set1_epi16((short)empty)));
+}
+#endif
+
 /* round(2^46 / d) half up for d != 0 (lt__div_round64(2^46, d)), exactly, without a 64-bit integer
  * divide: for d > 0 it is floor((2^47 + b) / 2b), for d < 0 -floor((2^47 + b - 1) / 2b) (b = |d|);
  * numerator < 2^48 and denominator <= 2^32 are exact doubles, the double quotient is within 2^-6
