@@ -303,13 +303,12 @@ LT_INLINE lt_mask16_t lt_mask16_clear_first(lt_mask16_t k) /* MASK x1 */
 #define LT__V16_BINV(VT, name, op, f, vf) LT__V16_BIN(VT, name, op, f)
 #define LT__V16_CMPV(VT, name, op, rel, vc) LT__V16_CMP(VT, name, op, rel)
 #endif
-/* float32 lanes: the AVX-512 bodies (fadd, ..., compares flt, ...) on that backend, else the
- * loops (Helium's bodies are integer only). */
+/* float32 compares: the AVX-512 bodies (flt, ...) on that backend, else the loops (Helium's
+ * bodies are integer only); float32 arithmetic stays the loops everywhere (measured slower
+ * through the backend: the compiler keeps those loops in registers). */
 #if LT__X86_LANES == 512
-#define LT__V16_BINF(VT, name, op, f, vf) LT__V16_BIN(VT, name, op, f)
 #define LT__V16_CMPF(VT, name, op, rel, vc) LT__V16_CMPX(VT, name, op, vc, lt__x86_load16h)
 #else
-#define LT__V16_BINF(VT, name, op, f, vf) LT__V16_BIN(VT, name, op, f)
 #define LT__V16_CMPF(VT, name, op, rel, vc) LT__V16_CMP(VT, name, op, rel)
 #endif
 
@@ -459,9 +458,10 @@ LT__V16_BINV(lt_vq16_t, lt_vq16_add_wrap, VALU, lt__q16_add_wrap, add)
 LT__V16_BINV(lt_vq16_t, lt_vq16_sub_wrap, VALU, lt__q16_sub_wrap, sub)
 LT__V16_BINV(lt_vq16_t, lt_vq16_min, VALU, lt__q16_min, min)
 LT__V16_BINV(lt_vq16_t, lt_vq16_max, VALU, lt__q16_max, max)
-#if LT__X86_LANES
-/* The s15.16 product on the x86 backend (lt_v16_x86.h): the same three variants, bit-identical to
- * the loop below; a masked variant computes every lane and keeps the active ones. */
+#if LT__X86_LANES == 256
+/* The s15.16 product on the AVX2 backend (lt_v16_x86.h): the same three variants, bit-identical to
+ * the loop below; a masked variant computes every lane and keeps the active ones. (AVX-512 takes
+ * LT__V16_BINV's register form with lt__x86_mul16.) */
 LT_INLINE lt_vq16_t lt_vq16_mul_sat(lt_vq16_t a, lt_vq16_t b) /* VMUL x1 */
 {
     lt_vq16_t r;
@@ -785,12 +785,12 @@ LT_INLINE float lt__f32_abs(float a)
 }
 LT_INLINE float lt__f32_neg(float a) { return -a; }
 LT__V16_MOVE(lt_vf32_t, float, lt_vf32, FADD, VRED)
-LT__V16_BINF(lt_vf32_t, lt_vf32_add, FADD, lt__f32_add, fadd)
-LT__V16_BINF(lt_vf32_t, lt_vf32_sub, FADD, lt__f32_sub, fsub)
-LT__V16_BINF(lt_vf32_t, lt_vf32_mul, FMUL, lt__f32_mul, fmul)
-LT__V16_BINF(lt_vf32_t, lt_vf32_div, FDIV, lt__f32_div, fdiv)
-LT__V16_BINF(lt_vf32_t, lt_vf32_min, FADD, lt__f32_min, fmin)
-LT__V16_BINF(lt_vf32_t, lt_vf32_max, FADD, lt__f32_max, fmax)
+LT__V16_BIN(lt_vf32_t, lt_vf32_add, FADD, lt__f32_add)
+LT__V16_BIN(lt_vf32_t, lt_vf32_sub, FADD, lt__f32_sub)
+LT__V16_BIN(lt_vf32_t, lt_vf32_mul, FMUL, lt__f32_mul)
+LT__V16_BIN(lt_vf32_t, lt_vf32_div, FDIV, lt__f32_div)
+LT__V16_BIN(lt_vf32_t, lt_vf32_min, FADD, lt__f32_min)
+LT__V16_BIN(lt_vf32_t, lt_vf32_max, FADD, lt__f32_max)
 LT__V16_UN(lt_vf32_t, lt_vf32_rcp, FDIV, lt__f32_rcp)
 LT__V16_UN(lt_vf32_t, lt_vf32_abs, FADD, lt__f32_abs)
 LT__V16_UN(lt_vf32_t, lt_vf32_neg, FADD, lt__f32_neg)

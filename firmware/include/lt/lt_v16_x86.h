@@ -105,23 +105,25 @@ LT_INLINE void lt__x86_mul_round_sat(const int32_t *a, const int32_t *b, int32_t
  * wrapped result's sign differs from both operands' (add) or from a's where the operands' signs
  * differ (subtract), to INT32_MAX for a >= 0 and INT32_MIN for a < 0; ev: the lanes whose
  * saturations count as SAT events. */
-LT_INLINE __m512i lt__x86_qadd(__m512i a, __m512i b, lt_mask16_t ev)
+/* r where the lanes of ovf (sign bit set: the wrapped result overflowed) hold the clamp of a's
+ * sign instead; SAT events for those of ev. */
+LT_INLINE __m512i lt__x86_qsat(__m512i r, __m512i a, __m512i ovf, lt_mask16_t ev)
 {
-    __m512i r = _mm512_add_epi32(a, b);
-    __mmask16 o = _mm512_cmplt_epi32_mask(
-        _mm512_andnot_si512(_mm512_xor_si512(a, b), _mm512_xor_si512(a, r)), _mm512_setzero_si512());
+    __mmask16 o = _mm512_cmplt_epi32_mask(ovf, _mm512_setzero_si512());
     LT__X86_SAT_EVENTS(o, ev);
     return _mm512_mask_mov_epi32(
         r, o, _mm512_xor_si512(_mm512_srai_epi32(a, 31), _mm512_set1_epi32(INT32_MAX)));
 }
+LT_INLINE __m512i lt__x86_qadd(__m512i a, __m512i b, lt_mask16_t ev)
+{
+    __m512i r = _mm512_add_epi32(a, b);
+    return lt__x86_qsat(r, a, _mm512_andnot_si512(_mm512_xor_si512(a, b), _mm512_xor_si512(a, r)),
+                        ev);
+}
 LT_INLINE __m512i lt__x86_qsub(__m512i a, __m512i b, lt_mask16_t ev)
 {
     __m512i r = _mm512_sub_epi32(a, b);
-    __mmask16 o = _mm512_cmplt_epi32_mask(
-        _mm512_and_si512(_mm512_xor_si512(a, b), _mm512_xor_si512(a, r)), _mm512_setzero_si512());
-    LT__X86_SAT_EVENTS(o, ev);
-    return _mm512_mask_mov_epi32(
-        r, o, _mm512_xor_si512(_mm512_srai_epi32(a, 31), _mm512_set1_epi32(INT32_MAX)));
+    return lt__x86_qsat(r, a, _mm512_and_si512(_mm512_xor_si512(a, b), _mm512_xor_si512(a, r)), ev);
 }
 /* wrapping add and subtract, min, max, or, xor: no events */
 #define LT__X86_BODY(name, expr)                                                                   \
@@ -139,24 +141,6 @@ LT__X86_BODY(xor, _mm512_xor_si512(a, b))
 #undef LT__X86_BODY
 LT_INLINE __m512i lt__x86_mul16(__m512i a, __m512i b, lt_mask16_t ev) { return lt__x86_mulr(a, b, 16u, ev); }
 LT_INLINE __m512i lt__x86_mul30(__m512i a, __m512i b, lt_mask16_t ev) { return lt__x86_mulr(a, b, 30u, ev); }
-
-/* float32 lanes in the same registers: IEEE single add, subtract, multiply, divide (as the
- * scalar bodies of lt_v16.h, no contraction) and min/max as a < b ? a : b and a > b ? a : b
- * (vminps/vmaxps return the second operand on NaN or equality, as those expressions do). */
-#define LT__X86_FBODY(name, expr)                                                                  \
-    LT_INLINE __m512i lt__x86_##name(__m512i ai, __m512i bi, lt_mask16_t ev)                      \
-    {                                                                                              \
-        __m512 a = _mm512_castsi512_ps(ai), b = _mm512_castsi512_ps(bi);                          \
-        (void)ev;                                                                                  \
-        return _mm512_castps_si512(expr);                                                          \
-    }
-LT__X86_FBODY(fadd, _mm512_add_ps(a, b))
-LT__X86_FBODY(fsub, _mm512_sub_ps(a, b))
-LT__X86_FBODY(fmul, _mm512_mul_ps(a, b))
-LT__X86_FBODY(fdiv, _mm512_div_ps(a, b))
-LT__X86_FBODY(fmin, _mm512_min_ps(a, b))
-LT__X86_FBODY(fmax, _mm512_max_ps(a, b))
-#undef LT__X86_FBODY
 
 /* The compares' 16-bit lane masks in one instruction: signed int32 (vpcmpd) and float32
  * (vcmpps, ordered and quiet: a NaN lane compares false, as C's relational operators). */
