@@ -281,8 +281,10 @@ int lt_tri1_wt_q16(const lt_wt1_q16_t *w, const lt_tri_q16_t *tri, lt_q16_t tmin
         p[1][a] = lt__q16_add_sat(tri->v0[a], tri->e1[a]);
         p[2][a] = lt__q16_add_sat(tri->v0[a], tri->e2[a]);
     }
-    if (q_zero_area(p))
-        return 0;
+    /* zero area never hits: charged here, where the packet test makes it, and evaluated only
+       for a triangle that passes the signs (the same answer, without its six products for
+       every triangle that misses) */
+    LT_CHARGE(WT_ZERO_AREA);
     for (i = 0; i < 3; i++) {
         lt_q16_t ax = lt__q16_sub_sat(p[i][w->k[0]], w->o[0]);
         lt_q16_t ay = lt__q16_sub_sat(p[i][w->k[1]], w->o[1]);
@@ -296,7 +298,7 @@ int lt_tri1_wt_q16(const lt_wt1_q16_t *w, const lt_tri_q16_t *tri, lt_q16_t tmin
     neg = eu < 0 || ev < 0 || ew < 0;
     pos = eu > 0 || ev > 0 || ew > 0;
     det = lt__l64_add_wrap(lt__l64_add_wrap(eu, ev), ew);
-    if ((neg && pos) || det == 0)
+    if ((neg && pos) || det == 0 || q_zero_area1(p))
         return 0;
     LT_CHARGE(WT_TRI1_T);
     for (i = 0; i < 3; i++)
@@ -523,8 +525,9 @@ int lt_tri1_wt_f32(const lt_wt1_f32_t *w, const lt_tri_f32_t *tri, float tmin, f
         p[1][a] = tri->v0[a] + tri->e1[a];
         p[2][a] = tri->v0[a] + tri->e2[a];
     }
-    if (f_zero_area(p))
-        return 0;
+    /* zero area: charged here, evaluated only where it can change the answer (as
+       lt_tri1_wt_q16) */
+    LT_CHARGE(WT_ZERO_AREA);
     for (i = 0; i < 3; i++) {
         float ax = p[i][w->k[0]] - w->o[0], ay = p[i][w->k[1]] - w->o[1];
         zk[i] = p[i][w->k[2]] - w->o[2];
@@ -536,6 +539,8 @@ int lt_tri1_wt_f32(const lt_wt1_f32_t *w, const lt_tri_f32_t *tri, float tmin, f
     ew = x[1] * y[0] - y[1] * x[0];
 #if !F_EXACT_EDGES
     if (eu == 0.0f || ev == 0.0f || ew == 0.0f) {
+        if (f_zero_area1(p))
+            return 0; /* before the fix-up's charge, as when the test came first */
         LT_CHARGE(WT_F_EDGE_FIX1);
         eu = f_narrow((double)x[2] * (double)y[1] - (double)y[2] * (double)x[1]);
         ev = f_narrow((double)x[0] * (double)y[2] - (double)y[0] * (double)x[2]);
@@ -545,7 +550,7 @@ int lt_tri1_wt_f32(const lt_wt1_f32_t *w, const lt_tri_f32_t *tri, float tmin, f
     neg = eu < 0.0f || ev < 0.0f || ew < 0.0f;
     pos = eu > 0.0f || ev > 0.0f || ew > 0.0f;
     det = (eu + ev) + ew;
-    if ((neg && pos) || !(det < 0.0f || det > 0.0f))
+    if ((neg && pos) || !(det < 0.0f || det > 0.0f) || f_zero_area1(p))
         return 0;
     LT_CHARGE(WT_TRI1_T);
     tn = (eu * (w->s[2] * zk[0]) + ev * (w->s[2] * zk[1])) + ew * (w->s[2] * zk[2]);
