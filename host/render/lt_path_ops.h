@@ -60,7 +60,8 @@ typedef struct lt_render_ops {
                           const double d[3], double *t);
     /* the wide BVH for single rays (lt_bvh8.h), collapsed from the binary tree: one ray from o
        along d (doubles) closest hit (id, *t) or any hit within (tmin, tmax) (1 = occluded) */
-    lt_status_t (*bvh8_build)(lt_bvh8_t *w, const lt_bvh_t *src, void *mem, size_t bytes);
+    lt_status_t (*bvh8_build)(lt_bvh8_t *w, const lt_bvh_t *src, const void *tris, void *mem,
+                              size_t bytes);
     int32_t (*bvh8_trace1)(const lt_bvh8_t *w, const void *tris, const double o[3],
                            const double d[3], double *t);
     int (*bvh8_occluded1)(const lt_bvh8_t *w, const void *tris, const double o[3],

@@ -525,7 +525,7 @@ static int wide_tree(const lt_accel_t *ac, lt_diag_t *diag)
         st = LT_E_SPACE;
     if (st == LT_OK) {
         lt_meter_region(a->wmem, bytes, 0x38000000u);
-        st = a->ops->bvh8_build(&a->wide, &a->bvh, a->wmem, bytes);
+        st = a->ops->bvh8_build(&a->wide, &a->bvh, a->tris, a->wmem, bytes);
     }
     if (st != LT_OK) {
         lt_diag_fail(diag, "collapsing the BVH into 8-wide nodes (%zu bytes): %s", bytes,

@@ -1716,14 +1716,20 @@ static void test_quantised(void **state)
 
 typedef struct wcheck {
     unsigned long nodes, children, leaves, tris, rays, same, ties, occl, occl_bad, bad, errs;
+    unsigned long zero_area;
 } wcheck_t;
 
-/* Structure: every node has 1..8 children in its first slots, empty slots inverted, every binary
- * leaf is one wide leaf child (its slot range once), every interior child a later node. */
-static void w_structure(const lt_bvh8_t *w, const lt_bvh_t *b, int fmt, wcheck_t *c)
+/* Structure: every node has 1..8 children in its first slots, empty slots inverted, every interior
+ * child a later node; every leaf child a range of whole blocks (the blocks used once, in order),
+ * every triangle in exactly one lane with its rebuilt vertices (v0, v0 + e1, v0 + e2 as the
+ * triangle tests rebuild them) and its id (-2 - id for a zero-area triangle, -1 and zero vertices
+ * for the lanes past a leaf's last triangle); a leaf holds at most max(LT_BVH8_MERGE, the
+ * binary tree's largest leaf) triangles. */
+static void w_structure(const lt_bvh8_t *w, const lt_bvh_t *b, const lt_scene_t *s, int fmt,
+                        uint32_t max_leaf, wcheck_t *c)
 {
     unsigned char *seen = calloc(b->ntris + 1u, 1);
-    uint32_t i, slot;
+    uint32_t i, next_block = 0, zero_area = 0;
     unsigned k;
     assert_non_null(seen);
     for (i = 0; i < w->nnodes; i++) {
@@ -1740,9 +1746,9 @@ static void w_structure(const lt_bvh8_t *w, const lt_bvh_t *b, int fmt, wcheck_t
             child = ((const lt_bvh8_node_q16_t *)w->nodes)[i].child;
             cnt = ((const lt_bvh8_node_q16_t *)w->nodes)[i].cnt;
         }
-        (void)fmt;
         c->nodes++;
         for (k = 0; k < LT_BVH8_WIDTH; k++) {
+            uint32_t j;
             if (cnt[k] == LT_BVH8_EMPTY)
                 continue;
             assert_int_equal(k, used); /* slots in use first */
@@ -1753,19 +1759,73 @@ static void w_structure(const lt_bvh8_t *w, const lt_bvh_t *b, int fmt, wcheck_t
                 continue;
             }
             c->leaves++;
-            for (slot = child[k]; slot < child[k] + cnt[k]; slot++) {
-                assert_true(slot < b->ntris);
-                assert_int_equal(seen[slot], 0);
-                seen[slot] = 1;
+            assert_true(cnt[k] <= (max_leaf > LT_BVH8_MERGE ? max_leaf : LT_BVH8_MERGE));
+            /* blocks are numbered in the order the breadth-first fill writes the leaves */
+            assert_int_equal(child[k], next_block);
+            next_block += (cnt[k] + LT_BVH8_LANES - 1u) / LT_BVH8_LANES;
+            assert_true(next_block <= w->nblocks);
+            for (j = 0; j < (cnt[k] + 3u) / 4u * 4u; j++) {
+                unsigned l = j % LT_BVH8_LANES, a, v;
+                int32_t id;
+                int32_t vq[9] = {0};
+                float vf[9] = {0};
+#if LT_CFG_FLOAT32
+                if (fmt == FMT_F32) {
+                    const lt_bvh8_tris4_f32_t *bk =
+                        (const lt_bvh8_tris4_f32_t *)w->blocks + child[k] + j / 4u;
+                    id = bk->id[l];
+                    for (a = 0; a < 9; a++)
+                        vf[a] = bk->v[a][l];
+                } else
+#endif
+                {
+                    const lt_bvh8_tris4_q16_t *bk =
+                        (const lt_bvh8_tris4_q16_t *)w->blocks + child[k] + j / 4u;
+                    id = bk->id[l];
+                    for (a = 0; a < 9; a++)
+                        vq[a] = bk->v[a][l];
+                }
+                if (j >= cnt[k]) {
+                    assert_int_equal(id, -1);
+                    for (a = 0; a < 9; a++)
+                        assert_true(fmt == FMT_F32 ? vf[a] == 0.0f : vq[a] == 0);
+                    continue;
+                }
+                if (id <= -2) {
+                    id = -2 - id;
+                    zero_area++;
+                }
+                assert_true(id >= 0 && (uint32_t)id < b->ntris);
+                assert_int_equal(seen[id], 0);
+                seen[id] = 1;
                 c->tris++;
+                for (v = 0; v < 3; v++)
+                    for (a = 0; a < 3; a++) {
+#if LT_CFG_FLOAT32
+                        if (fmt == FMT_F32) {
+                            const lt_tri_f32_t *t = &s->tf[id];
+                            float want = v == 0 ? t->v0[a] : t->v0[a] + (v == 1 ? t->e1[a] : t->e2[a]);
+                            assert_true(memcmp(&vf[3 * v + a], &want, sizeof want) == 0);
+                            continue;
+                        }
+#endif
+                        {
+                            const lt_tri_q16_t *t = &s->tq[id];
+                            lt_q16_t want = v == 0 ? t->v0[a]
+                                                   : lt_q16_add_sat(t->v0[a], v == 1 ? t->e1[a] : t->e2[a]);
+                            assert_int_equal(vq[3 * v + a], want);
+                        }
+                    }
             }
         }
         assert_true(used >= 1 && used <= LT_BVH8_WIDTH);
         assert_true(used >= 2 || w->nnodes == 1);
     }
-    assert_int_equal(c->leaves, b->leaves);
+    assert_int_equal(next_block, w->nblocks);
+    assert_int_equal(c->leaves, w->leaves);
     assert_int_equal(c->tris, b->ntris);
     assert_int_equal(w->children, c->children);
+    c->zero_area = zero_area;
     free(seen);
 }
 
@@ -1819,12 +1879,14 @@ static void w_ray(const lt_bvh8_t *w, const lt_bvh_t *b, const lt_scene_t *s, in
 
 static void test_wide(void **state)
 {
-    static const int kinds[] = {MESH_CLUSTERS, MESH_GRID, MESH_SAME_CENTROID};
-    static const char *names[] = {"clustered", "grid", "same-centroid"};
+    /* the fourth: the clustered mesh with every 7th triangle collapsed to zero area (a repeated
+       vertex), which the blocks flag and no ray may hit */
+    static const int kinds[] = {MESH_CLUSTERS, MESH_GRID, MESH_SAME_CENTROID, MESH_CLUSTERS};
+    static const char *names[] = {"clustered", "grid", "same-centroid", "clustered, 1/7 zero-area"};
     unsigned ki;
     int fmt;
     (void)state;
-    for (ki = 0; ki < 3; ki++)
+    for (ki = 0; ki < 4; ki++)
         for (fmt = FMT_Q16; fmt <= (LT_CFG_FLOAT32 ? FMT_F32 : FMT_Q16); fmt++) {
             static const uint32_t leaves[] = {0, 1, 16};
             unsigned li;
@@ -1846,6 +1908,12 @@ static void test_wide(void **state)
                 d.min_leaf = leaves[li] / 2u;
                 mesh_random(&s, kinds[ki] == MESH_CLUSTERS ? 1500u : (kinds[ki] == MESH_GRID ? 1200u : 600u),
                             kinds[ki], 91 + ki);
+                if (ki == 3) {
+                    uint32_t t;
+                    for (t = 0; t < s.ntris; t += 7u)
+                        set_vert(&s, t, 2, s.vd[t * 9u], s.vd[t * 9u + 1u], s.vd[t * 9u + 2u]);
+                    mesh_quantise(&s);
+                }
                 assert_int_equal(build(&bb, &s, fmt, &d), LT_OK);
                 assert_int_equal(lt_bvh8_size(&bb.bvh, &bytes), LT_OK);
                 mem = malloc(bytes + TAIL);
@@ -1853,28 +1921,34 @@ static void test_wide(void **state)
                 ltt_poison(mem, bytes + TAIL);
                 /* too small: LT_E_SPACE naming the size, nothing written */
 #if LT_CFG_FLOAT32
-                st = fmt == FMT_F32 ? lt_bvh8_build_f32(&w2, &bb.bvh, mem, bytes - 8u)
-                                    : lt_bvh8_build_q16(&w2, &bb.bvh, mem, bytes - 8u);
+                st = fmt == FMT_F32 ? lt_bvh8_build_f32(&w2, &bb.bvh, s.tf, mem, bytes - 8u)
+                                    : lt_bvh8_build_q16(&w2, &bb.bvh, s.tq, mem, bytes - 8u);
 #else
-                st = lt_bvh8_build_q16(&w2, &bb.bvh, mem, bytes - 8u);
+                st = lt_bvh8_build_q16(&w2, &bb.bvh, s.tq, mem, bytes - 8u);
 #endif
                 assert_int_equal(st, LT_E_SPACE);
                 assert_int_equal(w2.bytes, bytes);
                 assert_int_equal(ltt_touched(mem, 0, bytes + TAIL), 0);
 #if LT_CFG_FLOAT32
-                st = fmt == FMT_F32 ? lt_bvh8_build_f32(&w, &bb.bvh, mem, bytes)
-                                    : lt_bvh8_build_q16(&w, &bb.bvh, mem, bytes);
+                st = fmt == FMT_F32 ? lt_bvh8_build_f32(&w, &bb.bvh, s.tf, mem, bytes)
+                                    : lt_bvh8_build_q16(&w, &bb.bvh, s.tq, mem, bytes);
                 /* the other path's tree is refused */
-                assert_int_equal(fmt == FMT_F32 ? lt_bvh8_build_q16(&w2, &bb.bvh, mem, bytes)
-                                                : lt_bvh8_build_f32(&w2, &bb.bvh, mem, bytes),
+                assert_int_equal(fmt == FMT_F32 ? lt_bvh8_build_q16(&w2, &bb.bvh, s.tq, mem, bytes)
+                                                : lt_bvh8_build_f32(&w2, &bb.bvh, s.tf, mem, bytes),
+                                 LT_E_ARG);
+                /* no triangles: refused */
+                assert_int_equal(fmt == FMT_F32 ? lt_bvh8_build_f32(&w2, &bb.bvh, NULL, mem, bytes)
+                                                : lt_bvh8_build_q16(&w2, &bb.bvh, NULL, mem, bytes),
                                  LT_E_ARG);
 #else
-                st = lt_bvh8_build_q16(&w, &bb.bvh, mem, bytes);
+                st = lt_bvh8_build_q16(&w, &bb.bvh, s.tq, mem, bytes);
 #endif
                 assert_int_equal(st, LT_OK);
                 assert_int_equal(w.bytes, bytes);
                 assert_int_equal(ltt_touched(mem, bytes, bytes + TAIL), 0);
-                w_structure(&w, &bb.bvh, fmt, &c);
+                w_structure(&w, &bb.bvh, &s, fmt, leaves[li] ? leaves[li] : 4u, &c);
+                if (ki == 3)
+                    assert_int_equal(c.zero_area, (s.ntris + 6u) / 7u);
                 ltt_rng_seed(&r, 777 + ki * 3 + li);
                 for (pk = 0; pk < 400u / WORK; pk++) {
                     dray_t rs[LT_LANES];
@@ -1894,15 +1968,56 @@ static void test_wide(void **state)
                         w_ray(&w, &bb.bvh, &s, fmt, &pq, &pf, lane, &c);
                 }
                 print_message("wide %s %s leaf %u: %lu nodes from %u binary (%.2f children per "
-                              "node), %lu rays: closest hit equal on %lu, exact ties %lu, differ "
+                              "node), %lu leaves from %u binary, %u blocks (%lu zero-area lanes), "
+                              "%lu rays: closest hit equal on %lu, exact ties %lu, differ "
                               "%lu; any hit equal on %lu of %lu\n",
                               fmt == FMT_Q16 ? "q16" : "f32", names[ki], leaves[li], c.nodes,
-                              bb.bvh.nnodes, (double)c.children / (double)c.nodes, c.rays, c.same,
+                              bb.bvh.nnodes, (double)c.children / (double)c.nodes, c.leaves,
+                              bb.bvh.leaves, w.nblocks, c.zero_area, c.rays, c.same,
                               c.ties, c.bad, c.occl - c.occl_bad, c.occl);
                 assert_int_equal(c.bad, 0);
                 assert_int_equal(c.occl_bad, 0);
                 assert_int_equal(c.errs, 0);
                 assert_true(c.same > c.rays * 9 / 10);
+                if (li == 0) {
+                    /* Moller-Trumbore (--isect mt): the wide walk tests the blocks' triangles one
+                       by one, zero-area ones included, as the binary walk */
+                    wcheck_t cm;
+                    memset(&cm, 0, sizeof cm);
+                    bb.bvh.isect = LT_ISECT_MT;
+#if LT_CFG_FLOAT32
+                    st = fmt == FMT_F32 ? lt_bvh8_build_f32(&w, &bb.bvh, s.tf, mem, bytes)
+                                        : lt_bvh8_build_q16(&w, &bb.bvh, s.tq, mem, bytes);
+#else
+                    st = lt_bvh8_build_q16(&w, &bb.bvh, s.tq, mem, bytes);
+#endif
+                    assert_int_equal(st, LT_OK);
+                    assert_int_equal(w.isect, LT_ISECT_MT);
+                    for (pk = 0; pk < 200u / WORK; pk++) {
+                        dray_t rs[LT_LANES];
+                        lt_ray16_q16_t pq;
+                        int lane;
+#if LT_CFG_FLOAT32
+                        lt_ray16_f32_t pf;
+#else
+                        int pf = 0;
+#endif
+                        rand_rays(&r, (int)(pk % RAY_KINDS), ext, &s, rs, LT_LANES);
+                        q16_packet(rs, &pq);
+#if LT_CFG_FLOAT32
+                        f32_packet(rs, &pf);
+#endif
+                        for (lane = 0; lane < LT_LANES; lane++)
+                            w_ray(&w, &bb.bvh, &s, fmt, &pq, &pf, lane, &cm);
+                    }
+                    print_message("  with Moller-Trumbore: %lu rays, closest hit equal on %lu, "
+                                  "exact ties %lu, differ %lu; any hit equal on %lu\n",
+                                  cm.rays, cm.same, cm.ties, cm.bad, cm.occl - cm.occl_bad);
+                    assert_int_equal(cm.bad, 0);
+                    assert_int_equal(cm.occl_bad, 0);
+                    assert_int_equal(cm.errs, 0);
+                    bb.bvh.isect = LT_ISECT_WT;
+                }
                 free(mem);
                 unbuild(&bb);
                 lt_scene_free(&s);
@@ -1921,8 +2036,8 @@ static void test_wide(void **state)
         assert_int_equal(lt_bvh8_size(NULL, &bytes), LT_E_ARG);
         assert_int_equal(lt_bvh8_size(&e, &bytes), LT_OK);
         assert_int_equal(bytes, 0);
-        assert_int_equal(lt_bvh8_build_q16(NULL, &e, NULL, 0), LT_E_ARG);
-        assert_int_equal(lt_bvh8_build_q16(&w, &e, NULL, 0), LT_OK);
+        assert_int_equal(lt_bvh8_build_q16(NULL, &e, NULL, NULL, 0), LT_E_ARG);
+        assert_int_equal(lt_bvh8_build_q16(&w, &e, NULL, NULL, 0), LT_OK);
         memset(&r, 0, sizeof r);
         r.d[2] = 1 << 30;
         r.tmax = 1000 << 16;

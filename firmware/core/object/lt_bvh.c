@@ -224,6 +224,9 @@ static void w_plane8_q16(const lt_q16_t *p, lt_q16_t o, lt_q16_t rd, lt_q16_t *t
 #define LTS_TDIV s_tdiv
 #include "lt_bvh.inc"
 #define LTW_NODE lt_bvh8_node_q16_t
+#define LTW_BLOCK lt_bvh8_tris4_q16_t
+#define LTW_ZERO_AREA lt__wt_zero_area_q16
+#define LTW_TRIS4 lt__wt_tris4_q16
 #define LTW_NODE_RECIPE BVH8_NODE_Q16
 #define LTW_PLANE8 w_plane8_q16
 #if LT__X86_LANES == 512 && LT_COST_MODE != LT_COST_SIM
@@ -233,6 +236,9 @@ static void w_plane8_q16(const lt_q16_t *p, lt_q16_t o, lt_q16_t rd, lt_q16_t *t
 #endif
 #include "lt_bvh8.inc"
 #undef LTW_NODE
+#undef LTW_BLOCK
+#undef LTW_ZERO_AREA
+#undef LTW_TRIS4
 #undef LTW_NODE_RECIPE
 #undef LTW_PLANE8
 #undef LTW_TEST8
@@ -366,6 +372,9 @@ static void slab_fix1_f32(unsigned par, float o, float d, float lo, float hi, fl
 #define LTS_TDIV(n, d) ((n) / (d))
 #include "lt_bvh.inc"
 #define LTW_NODE lt_bvh8_node_f32_t
+#define LTW_BLOCK lt_bvh8_tris4_f32_t
+#define LTW_ZERO_AREA lt__wt_zero_area_f32
+#define LTW_TRIS4 lt__wt_tris4_f32
 #define LTW_NODE_RECIPE BVH8_NODE_F32
 #define LTW_PLANE8 w_plane8_f32
 #if LT__X86_LANES == 512 && LT_COST_MODE != LT_COST_SIM
@@ -375,6 +384,9 @@ static void slab_fix1_f32(unsigned par, float o, float d, float lo, float hi, fl
 #endif
 #include "lt_bvh8.inc"
 #undef LTW_NODE
+#undef LTW_BLOCK
+#undef LTW_ZERO_AREA
+#undef LTW_TRIS4
 #undef LTW_NODE_RECIPE
 #undef LTW_PLANE8
 #undef LTW_TEST8
@@ -814,6 +826,7 @@ lt_status_t lt_bvhq_trace1_q16(const lt_bvhq_t *bvh, const lt_tri_q16_t *tris, l
 /* Wide nodes of a binary tree of either path (each path's collapse counts its own tree). */
 lt_status_t lt_bvh8_size(const lt_bvh_t *bvh, size_t *bytes)
 {
+    uint32_t nodes, blocks = 0;
     if (bvh == NULL || bytes == NULL)
         return LT_E_ARG;
     if (bvh->nnodes == 0) {
@@ -822,14 +835,16 @@ lt_status_t lt_bvh8_size(const lt_bvh_t *bvh, size_t *bytes)
     }
 #if LT_CFG_FLOAT32
     if (bvh->num == LT_BVH_NUM_F32) {
-        *bytes = (size_t)w_count_f32((const lt_bvh_node_f32_t *)bvh->nodes, 0) *
-                 sizeof(lt_bvh8_node_f32_t);
+        nodes = w_count_f32((const lt_bvh_node_f32_t *)bvh->nodes, 0, &blocks);
+        *bytes = (size_t)nodes * sizeof(lt_bvh8_node_f32_t) +
+                 (size_t)blocks * sizeof(lt_bvh8_tris4_f32_t);
         return LT_OK;
     }
 #endif
     if (bvh->num != LT_BVH_NUM_Q16)
         return LT_E_ARG;
-    *bytes = (size_t)w_count_q16((const lt_bvh_node_q16_t *)bvh->nodes, 0) *
-             sizeof(lt_bvh8_node_q16_t);
+    nodes = w_count_q16((const lt_bvh_node_q16_t *)bvh->nodes, 0, &blocks);
+    *bytes = (size_t)nodes * sizeof(lt_bvh8_node_q16_t) +
+             (size_t)blocks * sizeof(lt_bvh8_tris4_q16_t);
     return LT_OK;
 }

@@ -9,6 +9,7 @@
 #ifndef LT_ISEL_H
 #define LT_ISEL_H
 
+#include "lt/lt_bvh8.h"
 #include "lt/lt_wt.h"
 
 /* Watertight meet test of lt_wt.inc without the interval (lt_wt.c): lanes of k whose ray meets
@@ -31,6 +32,25 @@ lt_mask16_t lt__wt16_meet_tris_q16(const lt_wt16_q16_t *w, unsigned j, const lt_
 #if LT_CFG_FLOAT32
 lt_mask16_t lt__wt16_meet_tris_f32(const lt_wt16_f32_t *w, unsigned j, const lt_tri_f32_t *tris,
                                    const uint32_t *idx, unsigned n, lt_vf32_t *t);
+#endif
+
+/* The wide tree's leaf blocks (lt_bvh8.h) for one ray: the n triangles of the blocks at b in lane
+ * order, each lane with lt_tri1_wt's arithmetic (the same bits), the shear, edge and sign stage of
+ * a block's four lanes as 4-lane loops; then the lanes that meet the ray, in order, each taken when
+ * tmin < t < *tmax (*tmax = t), as the triangle loop takes them; with any the first block with a
+ * hit ends it. Returns the triangle id of the last hit taken (any: the first), or -1. Cost (in the
+ * caller's phase): per block its 160-byte read, BVH_TRAV_LEAF_TRI and WT_TRI1 per triangle of the
+ * block, WT_TRI1_T per lane that meets the ray (float32: WT_F_EDGE_FIX1 per lane with a zero edge
+ * that is not zero-area); events TRIS, TRI_RAYS per triangle, HITS per hit taken. */
+int32_t lt__wt_tris4_q16(const lt_wt1_q16_t *w, const lt_bvh8_tris4_q16_t *b, uint32_t n,
+                         lt_q16_t tmin, lt_q16_t *tmax, int any);
+/* 1 if the triangle has zero area (e1 x e2 == 0 exactly for its rebuilt vertices: the test of
+ * lt_tri1_wt_q16). Uncharged. */
+int lt__wt_zero_area_q16(const lt_tri_q16_t *tri);
+#if LT_CFG_FLOAT32
+int32_t lt__wt_tris4_f32(const lt_wt1_f32_t *w, const lt_bvh8_tris4_f32_t *b, uint32_t n,
+                         float tmin, float *tmax, int any);
+int lt__wt_zero_area_f32(const lt_tri_f32_t *tri);
 #endif
 
 /* One selection per packet and per single ray, for both numeric paths. */
@@ -74,15 +94,21 @@ lt_mask16_t lt__wt16_meet_tris_f32(const lt_wt16_f32_t *w, unsigned j, const lt_
         s->mt = isect == LT_ISECT_MT;                                                              \
         s->ready = 0;                                                                              \
     }                                                                                              \
-    LT_INLINE int lt__isel1_tri_##SFX(lt__isel1_##SFX *s, RAY1 *r, const TRI *tri)             \
+    /* The ray's watertight setup, computed on first use (also for the wide tree's leaf blocks,  \
+     * lt__wt_tris4_*). */                                                                         \
+    LT_INLINE const WT1 *lt__isel1_wt_##SFX(lt__isel1_##SFX *s, const RAY1 *r)                 \
     {                                                                                              \
-        if (s->mt)                                                                                 \
-            return lt_tri1_##SFX(r, tri);                                                          \
         if (!s->ready) {                                                                           \
             (void)lt_ray1_wt_setup_##SFX(r->o, r->d, &s->wt);                                      \
             s->ready = 1;                                                                          \
         }                                                                                          \
-        return lt_tri1_wt_##SFX(&s->wt, tri, r->tmin, &r->tmax);                                   \
+        return &s->wt;                                                                             \
+    }                                                                                              \
+    LT_INLINE int lt__isel1_tri_##SFX(lt__isel1_##SFX *s, RAY1 *r, const TRI *tri)             \
+    {                                                                                              \
+        if (s->mt)                                                                                 \
+            return lt_tri1_##SFX(r, tri);                                                          \
+        return lt_tri1_wt_##SFX(lt__isel1_wt_##SFX(s, r), tri, r->tmin, &r->tmax);                 \
     }
 
 LT__ISEL_DEFINE(q16, lt_ray16_q16_t, lt_tri_q16_t, lt_wt16_q16_t, lt_wt1_q16_t, lt_q16_t)

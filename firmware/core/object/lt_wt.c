@@ -281,10 +281,8 @@ int lt_tri1_wt_q16(const lt_wt1_q16_t *w, const lt_tri_q16_t *tri, lt_q16_t tmin
         p[1][a] = lt__q16_add_sat(tri->v0[a], tri->e1[a]);
         p[2][a] = lt__q16_add_sat(tri->v0[a], tri->e2[a]);
     }
-    /* zero area never hits: charged here, where the packet test makes it, and evaluated only
-       for a triangle that passes the signs (the same answer, without its six products for
-       every triangle that misses) */
-    LT_CHARGE(WT_ZERO_AREA);
+    if (q_zero_area(p))
+        return 0;
     for (i = 0; i < 3; i++) {
         lt_q16_t ax = lt__q16_sub_sat(p[i][w->k[0]], w->o[0]);
         lt_q16_t ay = lt__q16_sub_sat(p[i][w->k[1]], w->o[1]);
@@ -298,7 +296,7 @@ int lt_tri1_wt_q16(const lt_wt1_q16_t *w, const lt_tri_q16_t *tri, lt_q16_t tmin
     neg = eu < 0 || ev < 0 || ew < 0;
     pos = eu > 0 || ev > 0 || ew > 0;
     det = lt__l64_add_wrap(lt__l64_add_wrap(eu, ev), ew);
-    if ((neg && pos) || det == 0 || q_zero_area1(p))
+    if ((neg && pos) || det == 0)
         return 0;
     LT_CHARGE(WT_TRI1_T);
     for (i = 0; i < 3; i++)
@@ -314,6 +312,78 @@ int lt_tri1_wt_q16(const lt_wt1_q16_t *w, const lt_tri_q16_t *tri, lt_q16_t tmin
         return 1;
     }
     return 0;
+}
+
+int lt__wt_zero_area_q16(const lt_tri_q16_t *tri)
+{
+    lt_q16_t p[3][3];
+    int a;
+    for (a = 0; a < 3; a++) {
+        p[0][a] = tri->v0[a];
+        p[1][a] = lt__q16_add_sat(tri->v0[a], tri->e1[a]);
+        p[2][a] = lt__q16_add_sat(tri->v0[a], tri->e2[a]);
+    }
+    return q_zero_area1(p);
+}
+
+/* The wide tree's leaf blocks: lt_tri1_wt_q16 per lane (lt_isel.h), lane by lane in scalar code
+ * (measured: the 64-bit lanes with their saturation and rounding fix-ups as 2-lane SIMD ran at 0.7x
+ * the scalar test on the host), on the block's rebuilt vertices and zero-area flags. */
+int32_t lt__wt_tris4_q16(const lt_wt1_q16_t *w, const lt_bvh8_tris4_q16_t *b, uint32_t n,
+                         lt_q16_t tmin, lt_q16_t *tmax, int any)
+{
+    const unsigned k0 = w->k[0], k1 = w->k[1], k2 = w->k[2];
+    int32_t res = -1;
+    uint32_t done;
+    for (done = 0; done < n; done += LT_BVH8_LANES, b++) {
+        uint32_t nt = n - done < LT_BVH8_LANES ? n - done : LT_BVH8_LANES;
+        unsigned c;
+        LT_MEM(b, sizeof *b, LT_MEM_READ);
+        LT_CHARGE_N(BVH_TRAV_LEAF_TRI, nt);
+        LT_CHARGE_N(WT_TRI1, nt);
+        LT_EVENT(TRIS, nt);
+        LT_EVENT(TRI_RAYS, nt);
+        if (w->bad)
+            continue;
+        for (c = 0; c < nt; c++) {
+            lt_q16_t x[3], y[3], zk[3], t;
+            int64_t eu, ev, ew, det;
+            uint64_t h = 0, l = 0;
+            unsigned v;
+            int neg, pos, sat;
+            if (b->id[c] < 0)
+                continue; /* zero area */
+            for (v = 0; v < 3; v++) {
+                lt_q16_t ax = lt__q16_sub_sat(b->v[3 * v + k0][c], w->o[0]);
+                lt_q16_t ay = lt__q16_sub_sat(b->v[3 * v + k1][c], w->o[1]);
+                zk[v] = lt__q16_sub_sat(b->v[3 * v + k2][c], w->o[2]);
+                x[v] = lt__q16_sub_sat(ax, lt__q16_mul_q30_sat(zk[v], w->s[0]));
+                y[v] = lt__q16_sub_sat(ay, lt__q16_mul_q30_sat(zk[v], w->s[1]));
+            }
+            eu = lt__l64_sub_wrap(lt__mul32x32_64(x[2], y[1]), lt__mul32x32_64(y[2], x[1]));
+            ev = lt__l64_sub_wrap(lt__mul32x32_64(x[0], y[2]), lt__mul32x32_64(y[0], x[2]));
+            ew = lt__l64_sub_wrap(lt__mul32x32_64(x[1], y[0]), lt__mul32x32_64(y[1], x[0]));
+            neg = eu < 0 || ev < 0 || ew < 0;
+            pos = eu > 0 || ev > 0 || ew > 0;
+            det = lt__l64_add_wrap(lt__l64_add_wrap(eu, ev), ew);
+            if ((neg && pos) || det == 0)
+                continue;
+            LT_CHARGE(WT_TRI1_T);
+            q_mac128(&h, &l, eu, lt__q16_mul_q30_sat(zk[0], w->s[2]));
+            q_mac128(&h, &l, ev, lt__q16_mul_q30_sat(zk[1], w->s[2]));
+            q_mac128(&h, &l, ew, lt__q16_mul_q30_sat(zk[2], w->s[2]));
+            t = q_tdiv1(h, l, det, w->sh, &sat);
+            LT_EVENT(SAT, sat);
+            if (t > tmin && t < *tmax) {
+                *tmax = t;
+                LT_EVENT(HITS, 1);
+                res = b->id[c];
+                if (any)
+                    return res;
+            }
+        }
+    }
+    return res;
 }
 
 /* Every lane's t scale set to sh (a lane broadcast of lt__wt16_meet_tris). */
@@ -525,9 +595,8 @@ int lt_tri1_wt_f32(const lt_wt1_f32_t *w, const lt_tri_f32_t *tri, float tmin, f
         p[1][a] = tri->v0[a] + tri->e1[a];
         p[2][a] = tri->v0[a] + tri->e2[a];
     }
-    /* zero area: charged here, evaluated only where it can change the answer (as
-       lt_tri1_wt_q16) */
-    LT_CHARGE(WT_ZERO_AREA);
+    if (f_zero_area(p))
+        return 0;
     for (i = 0; i < 3; i++) {
         float ax = p[i][w->k[0]] - w->o[0], ay = p[i][w->k[1]] - w->o[1];
         zk[i] = p[i][w->k[2]] - w->o[2];
@@ -539,8 +608,6 @@ int lt_tri1_wt_f32(const lt_wt1_f32_t *w, const lt_tri_f32_t *tri, float tmin, f
     ew = x[1] * y[0] - y[1] * x[0];
 #if !F_EXACT_EDGES
     if (eu == 0.0f || ev == 0.0f || ew == 0.0f) {
-        if (f_zero_area1(p))
-            return 0; /* before the fix-up's charge, as when the test came first */
         LT_CHARGE(WT_F_EDGE_FIX1);
         eu = f_narrow((double)x[2] * (double)y[1] - (double)y[2] * (double)x[1]);
         ev = f_narrow((double)x[0] * (double)y[2] - (double)y[0] * (double)x[2]);
@@ -550,7 +617,7 @@ int lt_tri1_wt_f32(const lt_wt1_f32_t *w, const lt_tri_f32_t *tri, float tmin, f
     neg = eu < 0.0f || ev < 0.0f || ew < 0.0f;
     pos = eu > 0.0f || ev > 0.0f || ew > 0.0f;
     det = (eu + ev) + ew;
-    if ((neg && pos) || !(det < 0.0f || det > 0.0f) || f_zero_area1(p))
+    if ((neg && pos) || !(det < 0.0f || det > 0.0f))
         return 0;
     LT_CHARGE(WT_TRI1_T);
     tn = (eu * (w->s[2] * zk[0]) + ev * (w->s[2] * zk[1])) + ew * (w->s[2] * zk[2]);
@@ -561,6 +628,98 @@ int lt_tri1_wt_f32(const lt_wt1_f32_t *w, const lt_tri_f32_t *tri, float tmin, f
         return 1;
     }
     return 0;
+}
+
+int lt__wt_zero_area_f32(const lt_tri_f32_t *tri)
+{
+    float p[3][3];
+    int a;
+    for (a = 0; a < 3; a++) {
+        p[0][a] = tri->v0[a];
+        p[1][a] = tri->v0[a] + tri->e1[a];
+        p[2][a] = tri->v0[a] + tri->e2[a];
+    }
+    return f_zero_area1(p);
+}
+
+/* The wide tree's leaf blocks: lt_tri1_wt_f32 per lane (lt_isel.h). */
+int32_t lt__wt_tris4_f32(const lt_wt1_f32_t *w, const lt_bvh8_tris4_f32_t *b, uint32_t n,
+                         float tmin, float *tmax, int any)
+{
+    const unsigned k0 = w->k[0], k1 = w->k[1], k2 = w->k[2];
+    int32_t res = -1;
+    uint32_t done;
+    for (done = 0; done < n; done += LT_BVH8_LANES, b++) {
+        uint32_t nt = n - done < LT_BVH8_LANES ? n - done : LT_BVH8_LANES;
+        float x[3][LT_BVH8_LANES], y[3][LT_BVH8_LANES], zk[3][LT_BVH8_LANES];
+        float eu[LT_BVH8_LANES], ev[LT_BVH8_LANES], ew[LT_BVH8_LANES], det[LT_BVH8_LANES];
+        int32_t ok[LT_BVH8_LANES], zr[LT_BVH8_LANES];
+        unsigned c, v, m = 0;
+        LT_MEM(b, sizeof *b, LT_MEM_READ);
+        LT_CHARGE_N(BVH_TRAV_LEAF_TRI, nt);
+        LT_CHARGE_N(WT_TRI1, nt);
+        LT_EVENT(TRIS, nt);
+        LT_EVENT(TRI_RAYS, nt);
+        if (w->bad)
+            continue;
+        /* translate, permute and shear the lanes' vertices (lt_tri1_wt_f32's first stage) */
+        for (v = 0; v < 3; v++)
+            for (c = 0; c < LT_BVH8_LANES; c++) {
+                float ax = b->v[3 * v + k0][c] - w->o[0], ay = b->v[3 * v + k1][c] - w->o[1];
+                zk[v][c] = b->v[3 * v + k2][c] - w->o[2];
+                x[v][c] = ax - w->s[0] * zk[v][c];
+                y[v][c] = ay - w->s[1] * zk[v][c];
+            }
+        /* edges, signs, det (no short circuits, so the loop stays SIMD); a lane with a zero edge
+           goes on to the exact recomputation below */
+        for (c = 0; c < LT_BVH8_LANES; c++) {
+            int neg, pos, live = b->id[c] >= 0;
+            eu[c] = x[2][c] * y[1][c] - y[2][c] * x[1][c];
+            ev[c] = x[0][c] * y[2][c] - y[0][c] * x[2][c];
+            ew[c] = x[1][c] * y[0][c] - y[1][c] * x[0][c];
+            neg = (eu[c] < 0.0f) | (ev[c] < 0.0f) | (ew[c] < 0.0f);
+            pos = (eu[c] > 0.0f) | (ev[c] > 0.0f) | (ew[c] > 0.0f);
+            det[c] = (eu[c] + ev[c]) + ew[c];
+            zr[c] = ((eu[c] == 0.0f) | (ev[c] == 0.0f) | (ew[c] == 0.0f)) & live & !F_EXACT_EDGES;
+            ok[c] = (((neg & pos) ^ 1) & ((det[c] < 0.0f) | (det[c] > 0.0f)) & live) | zr[c];
+        }
+        for (c = 0; c < LT_BVH8_LANES; c++)
+            m |= (unsigned)ok[c] << c;
+        /* the lanes that may meet the ray, in order: t, and the triangle loop's acceptance */
+        for (; m != 0; m &= m - 1u) {
+            float t;
+            c = lt__ctz32(m);
+#if !F_EXACT_EDGES
+            if (zr[c]) {
+                int neg, pos;
+                LT_CHARGE(WT_F_EDGE_FIX1);
+                eu[c] = f_narrow((double)x[2][c] * (double)y[1][c] -
+                                 (double)y[2][c] * (double)x[1][c]);
+                ev[c] = f_narrow((double)x[0][c] * (double)y[2][c] -
+                                 (double)y[0][c] * (double)x[2][c]);
+                ew[c] = f_narrow((double)x[1][c] * (double)y[0][c] -
+                                 (double)y[1][c] * (double)x[0][c]);
+                neg = eu[c] < 0.0f || ev[c] < 0.0f || ew[c] < 0.0f;
+                pos = eu[c] > 0.0f || ev[c] > 0.0f || ew[c] > 0.0f;
+                det[c] = (eu[c] + ev[c]) + ew[c];
+                if ((neg && pos) || !(det[c] < 0.0f || det[c] > 0.0f))
+                    continue;
+            }
+#endif
+            LT_CHARGE(WT_TRI1_T);
+            t = ((eu[c] * (w->s[2] * zk[0][c]) + ev[c] * (w->s[2] * zk[1][c])) +
+                 ew[c] * (w->s[2] * zk[2][c])) /
+                det[c];
+            if (t > tmin && t < *tmax) {
+                *tmax = t;
+                LT_EVENT(HITS, 1);
+                res = b->id[c];
+                if (any)
+                    return res;
+            }
+        }
+    }
+    return res;
 }
 
 #include "numerics/lt_traits_f32.h"
