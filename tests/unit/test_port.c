@@ -290,6 +290,15 @@ static void test_div_round64(void **state)
                 /* an exact half: a = b k + b / 2 for an even b below 2^40 */
                 b = lt__asr64(ltt_rng_i64(&r), 24) * 2;
                 a = b * ((int64_t)(i % 17) - 8) + b / 2;
+            } else if ((i & 7) <= 3) {
+                /* the kernels' range: |a| < 2^62, quotients of every size */
+                a = lt__asr64(ltt_rng_i64(&r), 2u + (unsigned)ltt_rng_below(&r, 40));
+                b = lt__asr64(ltt_rng_i64(&r), 3u + (unsigned)ltt_rng_below(&r, 60));
+            } else if ((i & 7) == 4) {
+                /* near an exact half: b k + b / 2 + {-1, 0, 1} with b up to 2^60 */
+                b = lt__asr64(ltt_rng_i64(&r), 3u + (unsigned)ltt_rng_below(&r, 60)) | 2;
+                a = b * ((int64_t)ltt_rng_below(&r, 9) - 4) + b / 2 +
+                    ((int64_t)ltt_rng_below(&r, 3) - 1);
             }
         }
         if (b == 0 || a == INT64_MIN || b == INT64_MIN)

@@ -227,6 +227,7 @@ static void w_plane8_q16(const lt_q16_t *p, lt_q16_t o, lt_q16_t rd, lt_q16_t *t
 #define LTW_BLOCK lt_bvh8_tris4_q16_t
 #define LTW_ZERO_AREA lt__wt_zero_area_q16
 #define LTW_TRIS4 lt__wt_tris4_q16
+#define LTW_MERGE 0u
 #define LTW_NODE_RECIPE BVH8_NODE_Q16
 #define LTW_PLANE8 w_plane8_q16
 #if LT__X86_LANES == 512 && LT_COST_MODE != LT_COST_SIM
@@ -239,6 +240,7 @@ static void w_plane8_q16(const lt_q16_t *p, lt_q16_t o, lt_q16_t rd, lt_q16_t *t
 #undef LTW_BLOCK
 #undef LTW_ZERO_AREA
 #undef LTW_TRIS4
+#undef LTW_MERGE
 #undef LTW_NODE_RECIPE
 #undef LTW_PLANE8
 #undef LTW_TEST8
@@ -375,6 +377,7 @@ static void slab_fix1_f32(unsigned par, float o, float d, float lo, float hi, fl
 #define LTW_BLOCK lt_bvh8_tris4_f32_t
 #define LTW_ZERO_AREA lt__wt_zero_area_f32
 #define LTW_TRIS4 lt__wt_tris4_f32
+#define LTW_MERGE LT_BVH8_MERGE
 #define LTW_NODE_RECIPE BVH8_NODE_F32
 #define LTW_PLANE8 w_plane8_f32
 #if LT__X86_LANES == 512 && LT_COST_MODE != LT_COST_SIM
@@ -387,6 +390,7 @@ static void slab_fix1_f32(unsigned par, float o, float d, float lo, float hi, fl
 #undef LTW_BLOCK
 #undef LTW_ZERO_AREA
 #undef LTW_TRIS4
+#undef LTW_MERGE
 #undef LTW_NODE_RECIPE
 #undef LTW_PLANE8
 #undef LTW_TEST8

@@ -22,7 +22,8 @@ extern "C" {
 #define LT_BVH8_WIDTH 8
 #define LT_BVH8_EMPTY 0xFFFFu /* cnt of an unused child slot */
 #define LT_BVH8_LANES 4       /* triangles per leaf block */
-/* a binary subtree of at most this many triangles (in one slot range) becomes one wide leaf */
+/* float32: a binary subtree of at most this many triangles (in one slot range) becomes one wide
+ * leaf (s15.16 keeps the binary leaves: its block test is scalar, lane by lane) */
 #define LT_BVH8_MERGE 4u
 /* a walk's stack: at most 7 far children per level of a tree at most LT_BVH_MAX_DEPTH deep */
 #define LT_BVH8_STACK (7u * LT_BVH_MAX_DEPTH + 1u)
@@ -93,8 +94,9 @@ lt_status_t lt_bvh8_size(const lt_bvh_t *bvh, size_t *bytes);
 /* Collapse the binary tree into 8-wide nodes in mem (8-byte aligned, bytes >= lt_bvh8_size):
  * each wide node takes its binary node's two children and, while it has fewer than 8, opens the
  * interior child with the largest surface area into its two children (the standard greedy
- * collapse); a child whose subtree holds at most LT_BVH8_MERGE triangles (its binary leaves'
- * slots one range) is not opened but becomes one leaf of those triangles in slot order; wide nodes
+ * collapse); in float32 a child whose subtree holds at most LT_BVH8_MERGE triangles (its binary
+ * leaves' slots one range) is not opened but becomes one leaf of those triangles in slot order
+ * (s15.16: every binary leaf is one wide leaf); wide nodes
  * are numbered breadth first, each leaf's triangles written into its blocks (from tris, the
  * triangles the binary tree was built over; the zero-area test of lt_tri1_wt once per triangle).
  * Cost: BUILD phase, BVH8_BUILD_NODE per wide node, BVH8_BUILD_OPEN per binary node opened,
