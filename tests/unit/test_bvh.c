@@ -1716,7 +1716,7 @@ static void test_quantised(void **state)
 
 typedef struct wcheck {
     unsigned long nodes, children, leaves, tris, rays, same, ties, occl, occl_bad, bad, errs;
-    unsigned long zero_area;
+    unsigned long zero_area, clamped;
 } wcheck_t;
 
 /* Structure: every node has 1..8 children in its first slots, empty slots inverted, every interior
@@ -1856,6 +1856,16 @@ static void w_ray(const lt_bvh8_t *w, const lt_bvh_t *b, const lt_scene_t *s, in
         lt_ray1_q16_t r0, rw, rb;
         (void)pf;
         q16_single(pq, lane, &r0);
+        {
+            /* a ray whose |origin| + span leaves int32 takes the node test with the clamp */
+            int a;
+            for (a = 0; a < 3; a++)
+                if ((uint64_t)w->span + (uint64_t)(r0.o[a] < 0 ? -(int64_t)r0.o[a] : r0.o[a]) >
+                    (uint64_t)INT32_MAX) {
+                    c->clamped++;
+                    break;
+                }
+        }
         rw = r0;
         rb = r0;
         c->errs += lt_bvh8_trace1_q16(w, s->tq, &rw, &iw) != LT_OK;
@@ -1881,12 +1891,18 @@ static void test_wide(void **state)
 {
     /* the fourth: the clustered mesh with every 7th triangle collapsed to zero area (a repeated
        vertex), which the blocks flag and no ray may hit */
-    static const int kinds[] = {MESH_CLUSTERS, MESH_GRID, MESH_SAME_CENTROID, MESH_CLUSTERS};
-    static const char *names[] = {"clustered", "grid", "same-centroid", "clustered, 1/7 zero-area"};
+    /* the fifth: the clustered mesh scaled by 9 (planes to +-3,900 units, inside the 4,096-unit
+       geometry bound) with origins to +-32,000, so that plane - origin leaves int32 for some rays:
+       the s15.16 node test's clamp (the other meshes' rays take the register form without it,
+       lt_bvh8_t.span) */
+    static const int kinds[] = {MESH_CLUSTERS, MESH_GRID, MESH_SAME_CENTROID, MESH_CLUSTERS,
+                                MESH_CLUSTERS};
+    static const char *names[] = {"clustered", "grid", "same-centroid", "clustered, 1/7 zero-area",
+                                  "clustered x9, far origins"};
     unsigned ki;
     int fmt;
     (void)state;
-    for (ki = 0; ki < 4; ki++)
+    for (ki = 0; ki < 5; ki++)
         for (fmt = FMT_Q16; fmt <= (LT_CFG_FLOAT32 ? FMT_F32 : FMT_Q16); fmt++) {
             static const uint32_t leaves[] = {0, 1, 16};
             unsigned li;
@@ -1913,6 +1929,13 @@ static void test_wide(void **state)
                     for (t = 0; t < s.ntris; t += 7u)
                         set_vert(&s, t, 2, s.vd[t * 9u], s.vd[t * 9u + 1u], s.vd[t * 9u + 2u]);
                     mesh_quantise(&s);
+                }
+                if (ki == 4) {
+                    uint32_t t;
+                    for (t = 0; t < s.ntris * 9u; t++)
+                        s.vd[t] *= 9.0;
+                    mesh_quantise(&s);
+                    ext = 12800.0; /* eyes of rand_rays' first kind up to 2.5 ext */
                 }
                 assert_int_equal(build(&bb, &s, fmt, &d), LT_OK);
                 assert_int_equal(lt_bvh8_size(&bb.bvh, &bytes), LT_OK);
@@ -1947,6 +1970,22 @@ static void test_wide(void **state)
                 assert_int_equal(w.bytes, bytes);
                 assert_int_equal(ltt_touched(mem, bytes, bytes + TAIL), 0);
                 w_structure(&w, &bb.bvh, &s, fmt, leaves[li] ? leaves[li] : 4u, &c);
+                if (fmt == FMT_Q16) {
+                    /* span: the largest |plane| of the children in use */
+                    uint32_t smax = 0, ni;
+                    unsigned kk, a;
+                    for (ni = 0; ni < w.nnodes; ni++) {
+                        const lt_bvh8_node_q16_t *nd = (const lt_bvh8_node_q16_t *)w.nodes + ni;
+                        for (kk = 0; kk < LT_BVH8_WIDTH; kk++)
+                            for (a = 0; a < 3 && nd->cnt[kk] != LT_BVH8_EMPTY; a++) {
+                                uint32_t l0 = nd->lo[a][kk] < 0 ? 0u - (uint32_t)nd->lo[a][kk] : (uint32_t)nd->lo[a][kk];
+                                uint32_t h0 = nd->hi[a][kk] < 0 ? 0u - (uint32_t)nd->hi[a][kk] : (uint32_t)nd->hi[a][kk];
+                                smax = l0 > smax ? l0 : smax;
+                                smax = h0 > smax ? h0 : smax;
+                            }
+                    }
+                    assert_int_equal(w.span, smax);
+                }
                 if (ki == 3)
                     assert_int_equal(c.zero_area, (s.ntris + 6u) / 7u);
                 ltt_rng_seed(&r, 777 + ki * 3 + li);
@@ -1969,16 +2008,18 @@ static void test_wide(void **state)
                 }
                 print_message("wide %s %s leaf %u: %lu nodes from %u binary (%.2f children per "
                               "node), %lu leaves from %u binary, %u blocks (%lu zero-area lanes), "
-                              "%lu rays: closest hit equal on %lu, exact ties %lu, differ "
-                              "%lu; any hit equal on %lu of %lu\n",
+                              "%lu rays (%lu through the clamped node test): closest hit equal on "
+                              "%lu, exact ties %lu, differ %lu; any hit equal on %lu of %lu\n",
                               fmt == FMT_Q16 ? "q16" : "f32", names[ki], leaves[li], c.nodes,
                               bb.bvh.nnodes, (double)c.children / (double)c.nodes, c.leaves,
-                              bb.bvh.leaves, w.nblocks, c.zero_area, c.rays, c.same,
+                              bb.bvh.leaves, w.nblocks, c.zero_area, c.rays, c.clamped, c.same,
                               c.ties, c.bad, c.occl - c.occl_bad, c.occl);
                 assert_int_equal(c.bad, 0);
                 assert_int_equal(c.occl_bad, 0);
                 assert_int_equal(c.errs, 0);
                 assert_true(c.same > c.rays * 9 / 10);
+                if (ki == 4 && fmt == FMT_Q16)
+                    assert_true(c.clamped > c.rays / 50 && c.clamped < c.rays);
                 if (li == 0) {
                     /* Moller-Trumbore (--isect mt): the wide walk tests the blocks' triangles one
                        by one, zero-area ones included, as the binary walk */
@@ -2023,6 +2064,65 @@ static void test_wide(void **state)
                 lt_scene_free(&s);
             }
         }
+    {
+        /* the s15.16 node test's clamp, aimed: one leaf of three triangles (min_leaf 3) whose box
+           spans x in [-2500, 3800], y and z in [-10, 10]; a ray from (-32000, -1000, -2) towards
+           (-2000, 0, 0) crosses the near x plane at t ~ 29,516, enters the y slab at ~29,716 and
+           meets triangle 0 (x = -2000) at ~30,017; its far x plane lies 35,800 units from the
+           origin, beyond int32 in s15.16: without the clamp plane - origin wraps, the far plane's
+           t turns negative, the x interval ends at 29,516 and the box (and the hit) is lost */
+        lt_scene_t s;
+        built_t bb;
+        lt_bvh_desc_t d;
+        lt_bvh8_t w;
+        lt_ray1_q16_t r, rb;
+        int32_t iw = -1, ib = -1;
+        size_t bytes = 0;
+        unsigned char *mem;
+        double dir[3] = {30000.0, 1000.0, 2.0}, len;
+        int a;
+        memset(&d, 0, sizeof d);
+        d.min_leaf = 3;
+        mesh_alloc(&s, 3);
+        set_vert(&s, 0, 0, -2000.0, -10.0, -10.0);
+        set_vert(&s, 0, 1, -2000.0, 10.0, -10.0);
+        set_vert(&s, 0, 2, -2000.0, 0.0, 10.0);
+        set_vert(&s, 1, 0, 3800.0, -10.0, -10.0);
+        set_vert(&s, 1, 1, 3800.0, 10.0, -10.0);
+        set_vert(&s, 1, 2, 3800.0, 0.0, 10.0);
+        set_vert(&s, 2, 0, -2500.0, -10.0, 5.0);
+        set_vert(&s, 2, 1, -2500.0, 10.0, 5.0);
+        set_vert(&s, 2, 2, -2500.0, 0.0, 10.0);
+        mesh_quantise(&s);
+        len = sqrt(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
+        assert_int_equal(build(&bb, &s, FMT_Q16, &d), LT_OK);
+        assert_int_equal(lt_bvh8_size(&bb.bvh, &bytes), LT_OK);
+        mem = malloc(bytes);
+        assert_non_null(mem);
+        assert_int_equal(lt_bvh8_build_q16(&w, &bb.bvh, s.tq, mem, bytes), LT_OK);
+        memset(&r, 0, sizeof r);
+        r.o[0] = lt_q16_from_double_sat(-32000.0);
+        r.o[1] = lt_q16_from_double_sat(-1000.0);
+        r.o[2] = lt_q16_from_double_sat(-2.0);
+        for (a = 0; a < 3; a++)
+            r.d[a] = lt_q30_from_double_sat(dir[a] / len);
+        r.tmax = LT_Q16_MAX - 1;
+        lt_ray1_q16_setup(&r);
+        assert_int_equal(r.par | r.rsat, 0); /* the register form's case */
+        rb = r;
+        assert_true((uint64_t)w.span + 32000u * 65536u > (uint64_t)INT32_MAX);
+        assert_int_equal(lt_bvh8_trace1_q16(&w, s.tq, &r, &iw), LT_OK);
+        assert_int_equal(lt_bvh_trace1_q16(&bb.bvh, s.tq, &rb, &ib), LT_OK);
+        print_message("wide: far origin (plane - origin beyond int32): wide %d at t %.1f, binary %d "
+                      "at t %.1f (want triangle 0 near 30017)\n", iw, r.tmax / 65536.0, ib,
+                      rb.tmax / 65536.0);
+        assert_int_equal(iw, 0);
+        assert_int_equal(ib, 0);
+        assert_int_equal(r.tmax, rb.tmax);
+        free(mem);
+        unbuild(&bb);
+        lt_scene_free(&s);
+    }
     {
         /* arguments and the empty tree */
         lt_bvh8_t w;

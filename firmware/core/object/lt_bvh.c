@@ -231,10 +231,16 @@ static void w_plane8_q16(const lt_q16_t *p, lt_q16_t o, lt_q16_t rd, lt_q16_t *t
 #define LTW_NODE_RECIPE BVH8_NODE_Q16
 #define LTW_PLANE8 w_plane8_q16
 #if LT__X86_LANES == 512 && LT_COST_MODE != LT_COST_SIM
-#define LTW_TEST8(r, n, tn)                                                                        \
+#define LTW_TEST8(r, n, tn, nc)                                                                    \
     lt__x86_wtest8_q16(&(n)->lo[0][0], &(n)->hi[0][0], (n)->cnt, (r)->o, (r)->rd, (r)->tmin,       \
-                       (r)->tmax, LT_BVH8_EMPTY, (tn))
+                       (r)->tmax, LT_BVH8_EMPTY, (tn), (nc))
 #endif
+/* the largest |plane| in use, and whether a ray's |origin| + that fits int32 (plane - o exact) */
+#define LTW_SPAN(x) ((x) < 0 ? 0u - (uint32_t)(x) : (uint32_t)(x))
+#define LTW_NOCLAMP(w, r)                                                                          \
+    ((uint64_t)(w)->span + LTW_SPAN((r)->o[0]) <= (uint64_t)INT32_MAX &&                           \
+     (uint64_t)(w)->span + LTW_SPAN((r)->o[1]) <= (uint64_t)INT32_MAX &&                           \
+     (uint64_t)(w)->span + LTW_SPAN((r)->o[2]) <= (uint64_t)INT32_MAX)
 #include "lt_bvh8.inc"
 #undef LTW_NODE
 #undef LTW_BLOCK
@@ -244,6 +250,8 @@ static void w_plane8_q16(const lt_q16_t *p, lt_q16_t o, lt_q16_t rd, lt_q16_t *t
 #undef LTW_NODE_RECIPE
 #undef LTW_PLANE8
 #undef LTW_TEST8
+#undef LTW_SPAN
+#undef LTW_NOCLAMP
 /* named compile-time checks (LT_STATIC_ASSERT names its typedef by __LINE__, which could meet a
  * header's line in this translation unit) */
 typedef char bvh_check_bin_q16[sizeof(lt__bvh_bin_t_q16) == BVH_BIN_BYTES ? 1 : -1];
@@ -381,7 +389,7 @@ static void slab_fix1_f32(unsigned par, float o, float d, float lo, float hi, fl
 #define LTW_NODE_RECIPE BVH8_NODE_F32
 #define LTW_PLANE8 w_plane8_f32
 #if LT__X86_LANES == 512 && LT_COST_MODE != LT_COST_SIM
-#define LTW_TEST8(r, n, tn)                                                                        \
+#define LTW_TEST8(r, n, tn, nc)                                                                    \
     lt__x86_wtest8_f32(&(n)->lo[0][0], &(n)->hi[0][0], (n)->cnt, (r)->o, (r)->rd, (r)->tmin,       \
                        (r)->tmax, LT_BVH8_EMPTY, (tn))
 #endif
@@ -394,6 +402,8 @@ static void slab_fix1_f32(unsigned par, float o, float d, float lo, float hi, fl
 #undef LTW_NODE_RECIPE
 #undef LTW_PLANE8
 #undef LTW_TEST8
+#undef LTW_SPAN
+#undef LTW_NOCLAMP
 typedef char bvh_check_bin_f32[sizeof(lt__bvh_bin_t_f32) == BVH_BIN_BYTES ? 1 : -1];
 
 #endif /* LT_CFG_FLOAT32 */

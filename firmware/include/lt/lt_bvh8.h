@@ -83,7 +83,9 @@ typedef struct lt_bvh8 {
     uint32_t isect;      /* the binary tree's intersector (LT_ISECT_WT or LT_ISECT_MT) */
     uint32_t children;   /* child slots in use over all nodes (fill = children / (8 nnodes)) */
     uint32_t leaves;     /* leaf children over all nodes */
-    uint32_t pad_;       /* private */
+    uint32_t span;       /* s15.16: the largest |plane| (raw) of the children in use, so a ray
+                            whose |origin| + span fits int32 needs no clamp of plane - origin;
+                            float32: 0 */
     size_t bytes;        /* nnodes x 256 + nblocks x 160 */
 } lt_bvh8_t;
 

@@ -315,29 +315,32 @@ LT_INLINE void lt__x86_plane8_q16(const int32_t *p, int32_t o, int32_t rd, int32
  * and the slot in use, as one mask; tn gets the 8 tnear. The C loops stored each plane's 8
  * results with a narrowing store (vpmovqd) and read them back, a store the next load cannot
  * forward from on Intel cores. No events: the counting build keeps the C loops. */
-LT_INLINE __m256i lt__x86_plane8r_q16(const int32_t *p, int32_t o, int32_t rd)
+LT_INLINE __m256i lt__x86_plane8r_q16(const int32_t *p, int32_t o, int32_t rd, int clamp)
 {
     __m512i hi = _mm512_set1_epi64(INT32_MAX), lo = _mm512_set1_epi64(INT32_MIN);
     __m512i d = _mm512_sub_epi64(
         _mm512_cvtepi32_epi64(_mm256_loadu_si256((const __m256i *)(const void *)p)),
         _mm512_set1_epi64(o));
     __m512i q;
-    d = _mm512_max_epi64(_mm512_min_epi64(d, hi), lo);
+    /* the saturating subtract's clamp; without it (clamp == 0) the caller knows |p - o| fits */
+    if (clamp)
+        d = _mm512_max_epi64(_mm512_min_epi64(d, hi), lo);
     q = _mm512_mul_epi32(d, _mm512_set1_epi64(rd));
     q = _mm512_srai_epi64(_mm512_add_epi64(q, _mm512_set1_epi64((long long)1 << 15)), 16);
-    q = _mm512_max_epi64(_mm512_min_epi64(q, hi), lo);
-    return _mm512_cvtepi64_epi32(q);
+    /* the int32 clamp and the narrowing as one signed saturating narrow (vpmovsqd) */
+    return _mm512_cvtsepi64_epi32(q);
 }
 
-LT_INLINE unsigned lt__x86_wtest8_q16(const int32_t *lo, const int32_t *hi, const uint16_t *cnt,
-                                      const int32_t *o, const int32_t *rd, int32_t tmin,
-                                      int32_t tmax, uint16_t empty, int32_t *tn)
+LT_INLINE unsigned lt__x86_wtest8_q16_body(const int32_t *lo, const int32_t *hi,
+                                           const uint16_t *cnt, const int32_t *o,
+                                           const int32_t *rd, int32_t tmin, int32_t tmax,
+                                           uint16_t empty, int32_t *tn, int clamp)
 {
     __m256i vn = _mm256_set1_epi32(tmin), vf = _mm256_set1_epi32(tmax);
     int a;
     for (a = 0; a < 3; a++) {
-        __m256i t0 = lt__x86_plane8r_q16(lo + 8 * a, o[a], rd[a]);
-        __m256i t1 = lt__x86_plane8r_q16(hi + 8 * a, o[a], rd[a]);
+        __m256i t0 = lt__x86_plane8r_q16(lo + 8 * a, o[a], rd[a], clamp);
+        __m256i t1 = lt__x86_plane8r_q16(hi + 8 * a, o[a], rd[a], clamp);
         vn = _mm256_max_epi32(vn, _mm256_min_epi32(t0, t1));
         vf = _mm256_min_epi32(vf, _mm256_max_epi32(t0, t1));
     }
@@ -345,6 +348,17 @@ LT_INLINE unsigned lt__x86_wtest8_q16(const int32_t *lo, const int32_t *hi, cons
     return (unsigned)(_mm256_cmp_epi32_mask(vn, vf, _MM_CMPINT_LE) &
                       _mm_cmpneq_epi16_mask(_mm_loadu_si128((const __m128i *)(const void *)cnt),
                                             _mm_set1_epi16((short)empty)));
+}
+
+/* The wide node test of one ray in s15.16 (lt_bvh8.inc's w_test). noclamp: every |plane - o| of
+ * the children in use fits int32 (the tree's span plus |o|), so the subtract's clamp is left out;
+ * the empty slots' planes may then give any t, which their slot mask drops. */
+LT_INLINE unsigned lt__x86_wtest8_q16(const int32_t *lo, const int32_t *hi, const uint16_t *cnt,
+                                      const int32_t *o, const int32_t *rd, int32_t tmin,
+                                      int32_t tmax, uint16_t empty, int32_t *tn, int noclamp)
+{
+    return noclamp ? lt__x86_wtest8_q16_body(lo, hi, cnt, o, rd, tmin, tmax, empty, tn, 0)
+                   : lt__x86_wtest8_q16_body(lo, hi, cnt, o, rd, tmin, tmax, empty, tn, 1);
 }
 
 LT_INLINE unsigned lt__x86_wtest8_f32(const float *lo, const float *hi, const uint16_t *cnt,
