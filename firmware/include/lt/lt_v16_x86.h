@@ -331,6 +331,16 @@ LT_INLINE __m256i lt__x86_plane8r_q16(const int32_t *p, int32_t o, int32_t rd, i
     return _mm512_cvtsepi64_epi32(q);
 }
 
+/* The same t where plane - o fits int32 (no clamp): round((p - o) rd) = (p rd - (o rd - 2^15)) >> 16
+ * exactly in int64 (|p rd|, |o rd| < 2^62), one subtract of a per-axis constant instead of the
+ * per-plane subtract and rounding add. */
+LT_INLINE __m256i lt__x86_plane8k_q16(const int32_t *p, __m512i vrd, __m512i k)
+{
+    __m512i q = _mm512_mul_epi32(
+        _mm512_cvtepi32_epi64(_mm256_loadu_si256((const __m256i *)(const void *)p)), vrd);
+    return _mm512_cvtsepi64_epi32(_mm512_srai_epi64(_mm512_sub_epi64(q, k), 16));
+}
+
 LT_INLINE unsigned lt__x86_wtest8_q16_body(const int32_t *lo, const int32_t *hi,
                                            const uint16_t *cnt, const int32_t *o,
                                            const int32_t *rd, int32_t tmin, int32_t tmax,
@@ -339,8 +349,16 @@ LT_INLINE unsigned lt__x86_wtest8_q16_body(const int32_t *lo, const int32_t *hi,
     __m256i vn = _mm256_set1_epi32(tmin), vf = _mm256_set1_epi32(tmax);
     int a;
     for (a = 0; a < 3; a++) {
-        __m256i t0 = lt__x86_plane8r_q16(lo + 8 * a, o[a], rd[a], clamp);
-        __m256i t1 = lt__x86_plane8r_q16(hi + 8 * a, o[a], rd[a], clamp);
+        __m256i t0, t1;
+        if (clamp) {
+            t0 = lt__x86_plane8r_q16(lo + 8 * a, o[a], rd[a], 1);
+            t1 = lt__x86_plane8r_q16(hi + 8 * a, o[a], rd[a], 1);
+        } else {
+            __m512i vrd = _mm512_set1_epi64(rd[a]);
+            __m512i k = _mm512_set1_epi64((long long)o[a] * rd[a] - ((long long)1 << 15));
+            t0 = lt__x86_plane8k_q16(lo + 8 * a, vrd, k);
+            t1 = lt__x86_plane8k_q16(hi + 8 * a, vrd, k);
+        }
         vn = _mm256_max_epi32(vn, _mm256_min_epi32(t0, t1));
         vf = _mm256_min_epi32(vf, _mm256_max_epi32(t0, t1));
     }
