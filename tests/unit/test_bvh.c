@@ -1887,6 +1887,30 @@ static void w_ray(const lt_bvh8_t *w, const lt_bvh_t *b, const lt_scene_t *s, in
         print_message("  wide any-hit %d vs binary %d\n", ow, ob);
 }
 
+/* npk random packets of rand_rays' kinds, every lane through both trees (w_ray). */
+static void w_rays(const lt_bvh8_t *w, const lt_bvh_t *b, const lt_scene_t *s, int fmt,
+                   ltt_rng_t *r, double ext, unsigned npk, wcheck_t *c)
+{
+    unsigned pk;
+    for (pk = 0; pk < npk; pk++) {
+        dray_t rs[LT_LANES];
+        lt_ray16_q16_t pq;
+        int lane;
+#if LT_CFG_FLOAT32
+        lt_ray16_f32_t pf;
+#else
+        int pf = 0;
+#endif
+        rand_rays(r, (int)(pk % RAY_KINDS), ext, s, rs, LT_LANES);
+        q16_packet(rs, &pq);
+#if LT_CFG_FLOAT32
+        f32_packet(rs, &pf);
+#endif
+        for (lane = 0; lane < LT_LANES; lane++)
+            w_ray(w, b, s, fmt, &pq, &pf, lane, c);
+    }
+}
+
 static void test_wide(void **state)
 {
     /* the fourth: the clustered mesh with every 7th triangle collapsed to zero area (a repeated
@@ -1916,7 +1940,6 @@ static void test_wide(void **state)
                 size_t bytes = 0;
                 unsigned char *mem;
                 double ext = kinds[ki] == MESH_CLUSTERS ? 420.0 : (kinds[ki] == MESH_GRID ? 13.0 : 35.0);
-                unsigned pk;
                 lt_status_t st;
                 memset(&c, 0, sizeof c);
                 memset(&d, 0, sizeof d);
@@ -1989,23 +2012,7 @@ static void test_wide(void **state)
                 if (ki == 3)
                     assert_int_equal(c.zero_area, (s.ntris + 6u) / 7u);
                 ltt_rng_seed(&r, 777 + ki * 3 + li);
-                for (pk = 0; pk < 400u / WORK; pk++) {
-                    dray_t rs[LT_LANES];
-                    lt_ray16_q16_t pq;
-                    int lane;
-#if LT_CFG_FLOAT32
-                    lt_ray16_f32_t pf;
-#else
-                    int pf = 0;
-#endif
-                    rand_rays(&r, (int)(pk % RAY_KINDS), ext, &s, rs, LT_LANES);
-                    q16_packet(rs, &pq);
-#if LT_CFG_FLOAT32
-                    f32_packet(rs, &pf);
-#endif
-                    for (lane = 0; lane < LT_LANES; lane++)
-                        w_ray(&w, &bb.bvh, &s, fmt, &pq, &pf, lane, &c);
-                }
+                w_rays(&w, &bb.bvh, &s, fmt, &r, ext, 400u / WORK, &c);
                 print_message("wide %s %s leaf %u: %lu nodes from %u binary (%.2f children per "
                               "node), %lu leaves from %u binary, %u blocks (%lu zero-area lanes), "
                               "%lu rays (%lu through the clamped node test): closest hit equal on "
@@ -2034,23 +2041,7 @@ static void test_wide(void **state)
 #endif
                     assert_int_equal(st, LT_OK);
                     assert_int_equal(w.isect, LT_ISECT_MT);
-                    for (pk = 0; pk < 200u / WORK; pk++) {
-                        dray_t rs[LT_LANES];
-                        lt_ray16_q16_t pq;
-                        int lane;
-#if LT_CFG_FLOAT32
-                        lt_ray16_f32_t pf;
-#else
-                        int pf = 0;
-#endif
-                        rand_rays(&r, (int)(pk % RAY_KINDS), ext, &s, rs, LT_LANES);
-                        q16_packet(rs, &pq);
-#if LT_CFG_FLOAT32
-                        f32_packet(rs, &pf);
-#endif
-                        for (lane = 0; lane < LT_LANES; lane++)
-                            w_ray(&w, &bb.bvh, &s, fmt, &pq, &pf, lane, &cm);
-                    }
+                    w_rays(&w, &bb.bvh, &s, fmt, &r, ext, 200u / WORK, &cm);
                     print_message("  with Moller-Trumbore: %lu rays, closest hit equal on %lu, "
                                   "exact ties %lu, differ %lu; any hit equal on %lu\n",
                                   cm.rays, cm.same, cm.ties, cm.bad, cm.occl - cm.occl_bad);

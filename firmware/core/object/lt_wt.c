@@ -314,6 +314,20 @@ int lt_tri1_wt_q16(const lt_wt1_q16_t *w, const lt_tri_q16_t *tri, lt_q16_t tmin
     return 0;
 }
 
+/* A leaf block's read and its triangles' terms (lt__wt_tris4_q16 / _f32, lt_isel.h): the
+ * charges and events of nt triangle tests. */
+static void wt_block_terms(const void *b, size_t bytes, uint32_t nt)
+{
+    LT_MEM(b, bytes, LT_MEM_READ);
+    LT_CHARGE_N(BVH_TRAV_LEAF_TRI, nt);
+    LT_CHARGE_N(WT_TRI1, nt);
+    LT_EVENT(TRIS, nt);
+    LT_EVENT(TRI_RAYS, nt);
+    (void)b;
+    (void)bytes;
+    (void)nt;
+}
+
 int lt__wt_zero_area_q16(const lt_tri_q16_t *tri)
 {
     lt_q16_t p[3][3];
@@ -338,11 +352,7 @@ int32_t lt__wt_tris4_q16(const lt_wt1_q16_t *w, const lt_bvh8_tris4_q16_t *b, ui
     for (done = 0; done < n; done += LT_BVH8_LANES, b++) {
         uint32_t nt = n - done < LT_BVH8_LANES ? n - done : LT_BVH8_LANES;
         unsigned c;
-        LT_MEM(b, sizeof *b, LT_MEM_READ);
-        LT_CHARGE_N(BVH_TRAV_LEAF_TRI, nt);
-        LT_CHARGE_N(WT_TRI1, nt);
-        LT_EVENT(TRIS, nt);
-        LT_EVENT(TRI_RAYS, nt);
+        wt_block_terms(b, sizeof *b, nt);
         if (w->bad)
             continue;
         for (c = 0; c < nt; c++) {
@@ -655,11 +665,7 @@ int32_t lt__wt_tris4_f32(const lt_wt1_f32_t *w, const lt_bvh8_tris4_f32_t *b, ui
         float eu[LT_BVH8_LANES], ev[LT_BVH8_LANES], ew[LT_BVH8_LANES], det[LT_BVH8_LANES];
         int32_t ok[LT_BVH8_LANES], zr[LT_BVH8_LANES];
         unsigned c, v, m = 0;
-        LT_MEM(b, sizeof *b, LT_MEM_READ);
-        LT_CHARGE_N(BVH_TRAV_LEAF_TRI, nt);
-        LT_CHARGE_N(WT_TRI1, nt);
-        LT_EVENT(TRIS, nt);
-        LT_EVENT(TRI_RAYS, nt);
+        wt_block_terms(b, sizeof *b, nt);
         if (w->bad)
             continue;
         /* translate, permute and shear the lanes' vertices (lt_tri1_wt_f32's first stage) */
