@@ -328,18 +328,6 @@ static void wt_block_terms(const void *b, size_t bytes, uint32_t nt)
     (void)nt;
 }
 
-int lt__wt_zero_area_q16(const lt_tri_q16_t *tri)
-{
-    lt_q16_t p[3][3];
-    int a;
-    for (a = 0; a < 3; a++) {
-        p[0][a] = tri->v0[a];
-        p[1][a] = lt__q16_add_sat(tri->v0[a], tri->e1[a]);
-        p[2][a] = lt__q16_add_sat(tri->v0[a], tri->e2[a]);
-    }
-    return q_zero_area1(p);
-}
-
 /* The wide tree's leaf blocks: lt_tri1_wt_q16 per lane (lt_isel.h), lane by lane in scalar code
  * (measured: the 64-bit lanes with their saturation and rounding fix-ups as 2-lane SIMD ran at 0.7x
  * the scalar test on the host), on the block's rebuilt vertices and zero-area flags. */
@@ -638,18 +626,6 @@ int lt_tri1_wt_f32(const lt_wt1_f32_t *w, const lt_tri_f32_t *tri, float tmin, f
         return 1;
     }
     return 0;
-}
-
-int lt__wt_zero_area_f32(const lt_tri_f32_t *tri)
-{
-    float p[3][3];
-    int a;
-    for (a = 0; a < 3; a++) {
-        p[0][a] = tri->v0[a];
-        p[1][a] = tri->v0[a] + tri->e1[a];
-        p[2][a] = tri->v0[a] + tri->e2[a];
-    }
-    return f_zero_area1(p);
 }
 
 /* The wide tree's leaf blocks: lt_tri1_wt_f32 per lane (lt_isel.h). */
