@@ -1762,9 +1762,9 @@ static void w_structure(const lt_bvh8_t *w, const lt_bvh_t *b, const lt_scene_t 
             assert_true(cnt[k] <= (max_leaf > LT_BVH8_MERGE ? max_leaf : LT_BVH8_MERGE));
             /* blocks are numbered in the order the breadth-first fill writes the leaves */
             assert_int_equal(child[k], next_block);
-            next_block += (cnt[k] + LT_BVH8_LANES - 1u) / LT_BVH8_LANES;
+            next_block += LT_BVH8_BLOCKS(cnt[k]);
             assert_true(next_block <= w->nblocks);
-            for (j = 0; j < (cnt[k] + 3u) / 4u * 4u; j++) {
+            for (j = 0; j < LT_BVH8_BLOCKS(cnt[k]) * LT_BVH8_LANES; j++) {
                 unsigned l = j % LT_BVH8_LANES, a, v;
                 int32_t id;
                 int32_t vq[9] = {0};
@@ -1772,7 +1772,7 @@ static void w_structure(const lt_bvh8_t *w, const lt_bvh_t *b, const lt_scene_t 
 #if LT_CFG_FLOAT32
                 if (fmt == FMT_F32) {
                     const lt_bvh8_tris4_f32_t *bk =
-                        (const lt_bvh8_tris4_f32_t *)w->blocks + child[k] + j / 4u;
+                        (const lt_bvh8_tris4_f32_t *)w->blocks + child[k] + j / LT_BVH8_LANES;
                     id = bk->id[l];
                     for (a = 0; a < 9; a++)
                         vf[a] = bk->v[a][l];
@@ -1780,7 +1780,7 @@ static void w_structure(const lt_bvh8_t *w, const lt_bvh_t *b, const lt_scene_t 
 #endif
                 {
                     const lt_bvh8_tris4_q16_t *bk =
-                        (const lt_bvh8_tris4_q16_t *)w->blocks + child[k] + j / 4u;
+                        (const lt_bvh8_tris4_q16_t *)w->blocks + child[k] + j / LT_BVH8_LANES;
                     id = bk->id[l];
                     for (a = 0; a < 9; a++)
                         vq[a] = bk->v[a][l];

@@ -577,33 +577,14 @@ int lt_ray1_wt_setup_f32(const float o[3], const float d[3], lt_wt1_f32_t *w)
     return w->bad;
 }
 
-int lt_tri1_wt_f32(const lt_wt1_f32_t *w, const lt_tri_f32_t *tri, float tmin, float *tmax)
+/* The stage of lt_tri1_wt_f32 after the edges: a zero edge recomputed exactly in double, the
+ * signs, det, t and the acceptance tmin < t < *tmax; one body with the wide tree's leaf blocks
+ * (x, y the sheared vertices, zk their z before the shear, eu, ev, ew the float edges). */
+static int f_tri1_tail(const lt_wt1_f32_t *w, const float x[3], const float y[3],
+                       const float zk[3], float eu, float ev, float ew, float tmin, float *tmax)
 {
-    float p[3][3], x[3], y[3], zk[3], eu, ev, ew, det, tn, t;
-    int i, a, neg, pos;
-
-    LT_CHARGE(WT_TRI1);
-    LT_MEM(tri, sizeof *tri, LT_MEM_READ);
-    LT_EVENT(TRIS, 1);
-    LT_EVENT(TRI_RAYS, 1);
-    if (w->bad)
-        return 0;
-    for (a = 0; a < 3; a++) {
-        p[0][a] = tri->v0[a];
-        p[1][a] = tri->v0[a] + tri->e1[a];
-        p[2][a] = tri->v0[a] + tri->e2[a];
-    }
-    if (f_zero_area(p))
-        return 0;
-    for (i = 0; i < 3; i++) {
-        float ax = p[i][w->k[0]] - w->o[0], ay = p[i][w->k[1]] - w->o[1];
-        zk[i] = p[i][w->k[2]] - w->o[2];
-        x[i] = ax - w->s[0] * zk[i];
-        y[i] = ay - w->s[1] * zk[i];
-    }
-    eu = x[2] * y[1] - y[2] * x[1];
-    ev = x[0] * y[2] - y[0] * x[2];
-    ew = x[1] * y[0] - y[1] * x[0];
+    float det, tn, t;
+    int neg, pos;
 #if !F_EXACT_EDGES
     if (eu == 0.0f || ev == 0.0f || ew == 0.0f) {
         LT_CHARGE(WT_F_EDGE_FIX1);
@@ -628,6 +609,34 @@ int lt_tri1_wt_f32(const lt_wt1_f32_t *w, const lt_tri_f32_t *tri, float tmin, f
     return 0;
 }
 
+int lt_tri1_wt_f32(const lt_wt1_f32_t *w, const lt_tri_f32_t *tri, float tmin, float *tmax)
+{
+    float p[3][3], x[3], y[3], zk[3];
+    int i, a;
+
+    LT_CHARGE(WT_TRI1);
+    LT_MEM(tri, sizeof *tri, LT_MEM_READ);
+    LT_EVENT(TRIS, 1);
+    LT_EVENT(TRI_RAYS, 1);
+    if (w->bad)
+        return 0;
+    for (a = 0; a < 3; a++) {
+        p[0][a] = tri->v0[a];
+        p[1][a] = tri->v0[a] + tri->e1[a];
+        p[2][a] = tri->v0[a] + tri->e2[a];
+    }
+    if (f_zero_area(p))
+        return 0;
+    for (i = 0; i < 3; i++) {
+        float ax = p[i][w->k[0]] - w->o[0], ay = p[i][w->k[1]] - w->o[1];
+        zk[i] = p[i][w->k[2]] - w->o[2];
+        x[i] = ax - w->s[0] * zk[i];
+        y[i] = ay - w->s[1] * zk[i];
+    }
+    return f_tri1_tail(w, x, y, zk, x[2] * y[1] - y[2] * x[1], x[0] * y[2] - y[0] * x[2],
+                       x[1] * y[0] - y[1] * x[0], tmin, tmax);
+}
+
 /* The wide tree's leaf blocks: lt_tri1_wt_f32 per lane (lt_isel.h). */
 int32_t lt__wt_tris4_f32(const lt_wt1_f32_t *w, const lt_bvh8_tris4_f32_t *b, uint32_t n,
                          float tmin, float *tmax, int any)
@@ -638,8 +647,8 @@ int32_t lt__wt_tris4_f32(const lt_wt1_f32_t *w, const lt_bvh8_tris4_f32_t *b, ui
     for (done = 0; done < n; done += LT_BVH8_LANES, b++) {
         uint32_t nt = n - done < LT_BVH8_LANES ? n - done : LT_BVH8_LANES;
         float x[3][LT_BVH8_LANES], y[3][LT_BVH8_LANES], zk[3][LT_BVH8_LANES];
-        float eu[LT_BVH8_LANES], ev[LT_BVH8_LANES], ew[LT_BVH8_LANES], det[LT_BVH8_LANES];
-        int32_t ok[LT_BVH8_LANES], zr[LT_BVH8_LANES];
+        float eu[LT_BVH8_LANES], ev[LT_BVH8_LANES], ew[LT_BVH8_LANES];
+        int32_t ok[LT_BVH8_LANES];
         unsigned c, v, m = 0;
         wt_block_terms(b, sizeof *b, nt);
         if (w->bad)
@@ -652,49 +661,32 @@ int32_t lt__wt_tris4_f32(const lt_wt1_f32_t *w, const lt_bvh8_tris4_f32_t *b, ui
                 x[v][c] = ax - w->s[0] * zk[v][c];
                 y[v][c] = ay - w->s[1] * zk[v][c];
             }
-        /* edges, signs, det (no short circuits, so the loop stays SIMD); a lane with a zero edge
-           goes on to the exact recomputation below */
+        /* edges, signs, det (no short circuits, so the loop stays SIMD): the lanes that may meet
+           the ray, a lane with a zero edge among them (the tail recomputes it exactly) */
         for (c = 0; c < LT_BVH8_LANES; c++) {
-            int neg, pos, live = b->id[c] >= 0;
+            int neg, pos, zr;
+            float det;
             eu[c] = x[2][c] * y[1][c] - y[2][c] * x[1][c];
             ev[c] = x[0][c] * y[2][c] - y[0][c] * x[2][c];
             ew[c] = x[1][c] * y[0][c] - y[1][c] * x[0][c];
             neg = (eu[c] < 0.0f) | (ev[c] < 0.0f) | (ew[c] < 0.0f);
             pos = (eu[c] > 0.0f) | (ev[c] > 0.0f) | (ew[c] > 0.0f);
-            det[c] = (eu[c] + ev[c]) + ew[c];
-            zr[c] = ((eu[c] == 0.0f) | (ev[c] == 0.0f) | (ew[c] == 0.0f)) & live & !F_EXACT_EDGES;
-            ok[c] = (((neg & pos) ^ 1) & ((det[c] < 0.0f) | (det[c] > 0.0f)) & live) | zr[c];
+            det = (eu[c] + ev[c]) + ew[c];
+            zr = ((eu[c] == 0.0f) | (ev[c] == 0.0f) | (ew[c] == 0.0f)) & !F_EXACT_EDGES;
+            ok[c] = ((((neg & pos) ^ 1) & ((det < 0.0f) | (det > 0.0f))) | zr) & (b->id[c] >= 0);
         }
         for (c = 0; c < LT_BVH8_LANES; c++)
             m |= (unsigned)ok[c] << c;
-        /* the lanes that may meet the ray, in order: t, and the triangle loop's acceptance */
+        /* the lanes that may meet the ray, in order: lt_tri1_wt_f32's tail */
         for (; m != 0; m &= m - 1u) {
-            float t;
+            float xs[3], ys[3], zs[3];
             c = lt__ctz32(m);
-#if !F_EXACT_EDGES
-            if (zr[c]) {
-                int neg, pos;
-                LT_CHARGE(WT_F_EDGE_FIX1);
-                eu[c] = f_narrow((double)x[2][c] * (double)y[1][c] -
-                                 (double)y[2][c] * (double)x[1][c]);
-                ev[c] = f_narrow((double)x[0][c] * (double)y[2][c] -
-                                 (double)y[0][c] * (double)x[2][c]);
-                ew[c] = f_narrow((double)x[1][c] * (double)y[0][c] -
-                                 (double)y[1][c] * (double)x[0][c]);
-                neg = eu[c] < 0.0f || ev[c] < 0.0f || ew[c] < 0.0f;
-                pos = eu[c] > 0.0f || ev[c] > 0.0f || ew[c] > 0.0f;
-                det[c] = (eu[c] + ev[c]) + ew[c];
-                if ((neg && pos) || !(det[c] < 0.0f || det[c] > 0.0f))
-                    continue;
+            for (v = 0; v < 3; v++) {
+                xs[v] = x[v][c];
+                ys[v] = y[v][c];
+                zs[v] = zk[v][c];
             }
-#endif
-            LT_CHARGE(WT_TRI1_T);
-            t = ((eu[c] * (w->s[2] * zk[0][c]) + ev[c] * (w->s[2] * zk[1][c])) +
-                 ew[c] * (w->s[2] * zk[2][c])) /
-                det[c];
-            if (t > tmin && t < *tmax) {
-                *tmax = t;
-                LT_EVENT(HITS, 1);
+            if (f_tri1_tail(w, xs, ys, zs, eu[c], ev[c], ew[c], tmin, tmax)) {
                 res = b->id[c];
                 if (any)
                     return res;

@@ -22,6 +22,7 @@ extern "C" {
 #define LT_BVH8_WIDTH 8
 #define LT_BVH8_EMPTY 0xFFFFu /* cnt of an unused child slot */
 #define LT_BVH8_LANES 4       /* triangles per leaf block */
+#define LT_BVH8_BLOCKS(n) (((n) + LT_BVH8_LANES - 1u) / LT_BVH8_LANES) /* blocks of n triangles */
 /* float32: a binary subtree of at most this many triangles (in one slot range) becomes one wide
  * leaf (s15.16 keeps the binary leaves: its block test is scalar, lane by lane) */
 #define LT_BVH8_MERGE 4u

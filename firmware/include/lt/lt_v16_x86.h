@@ -258,9 +258,10 @@ LT_INLINE void lt__x86_blend32(lt_mask16_t k, const void *a, const void *b, void
 
 /* One plane of the wide BVH's node test in s15.16, 8 lanes: t[c] = sat32(round((sat32(p[c] - o)
  * x rd) / 2^16)), half up, as lt__q16_mul_sat(lt__q16_sub_sat(p[c], o), rd) per lane; in sim
- * builds both saturations counted per lane as there. */
+ * builds both saturations counted per lane as there. On AVX-512 in a register
+ * (lt__x86_plane8r_q16, the wide node test's register form) and stored. */
 #if LT__X86_LANES == 512
-LT_INLINE void lt__x86_plane8_q16(const int32_t *p, int32_t o, int32_t rd, int32_t *t)
+LT_INLINE __m256i lt__x86_plane8r_q16(const int32_t *p, int32_t o, int32_t rd)
 {
     __m512i hi = _mm512_set1_epi64(INT32_MAX), lo = _mm512_set1_epi64(INT32_MIN);
     __m512i d = _mm512_sub_epi64(
@@ -277,8 +278,12 @@ LT_INLINE void lt__x86_plane8_q16(const int32_t *p, int32_t o, int32_t rd, int32
     sq = (unsigned)(_mm512_cmpgt_epi64_mask(q, hi) | _mm512_cmplt_epi64_mask(q, lo));
     LT_EVENT(SAT, lt__popcount32(sd) + lt__popcount32(sq));
 #endif
-    q = _mm512_max_epi64(_mm512_min_epi64(q, hi), lo);
-    _mm256_storeu_si256((__m256i *)(void *)t, _mm512_cvtepi64_epi32(q));
+    /* the int32 clamp and the narrowing as one signed saturating narrow (vpmovsqd) */
+    return _mm512_cvtsepi64_epi32(q);
+}
+LT_INLINE void lt__x86_plane8_q16(const int32_t *p, int32_t o, int32_t rd, int32_t *t)
+{
+    _mm256_storeu_si256((__m256i *)(void *)t, lt__x86_plane8r_q16(p, o, rd));
 }
 #else
 LT_INLINE void lt__x86_plane8_q16(const int32_t *p, int32_t o, int32_t rd, int32_t *t)
@@ -310,27 +315,11 @@ LT_INLINE void lt__x86_plane8_q16(const int32_t *p, int32_t o, int32_t rd, int32
 
 #if LT__X86_LANES == 512
 /* The 8-wide node test of a single ray (lt_bvh8.inc's w_test without a parallel or saturated
- * axis, whose fix-ups stay in C) in registers: per axis the two planes as lt__x86_plane8_q16
+ * axis, whose fix-ups stay in C) in registers: per axis the two planes as lt__x86_plane8r_q16
  * computes them (s15.16) or (p - o) x 1/d (float32), the interval's min/max, then tnear <= tfar
  * and the slot in use, as one mask; tn gets the 8 tnear. The C loops stored each plane's 8
  * results with a narrowing store (vpmovqd) and read them back, a store the next load cannot
  * forward from on Intel cores. No events: the counting build keeps the C loops. */
-LT_INLINE __m256i lt__x86_plane8r_q16(const int32_t *p, int32_t o, int32_t rd, int clamp)
-{
-    __m512i hi = _mm512_set1_epi64(INT32_MAX), lo = _mm512_set1_epi64(INT32_MIN);
-    __m512i d = _mm512_sub_epi64(
-        _mm512_cvtepi32_epi64(_mm256_loadu_si256((const __m256i *)(const void *)p)),
-        _mm512_set1_epi64(o));
-    __m512i q;
-    /* the saturating subtract's clamp; without it (clamp == 0) the caller knows |p - o| fits */
-    if (clamp)
-        d = _mm512_max_epi64(_mm512_min_epi64(d, hi), lo);
-    q = _mm512_mul_epi32(d, _mm512_set1_epi64(rd));
-    q = _mm512_srai_epi64(_mm512_add_epi64(q, _mm512_set1_epi64((long long)1 << 15)), 16);
-    /* the int32 clamp and the narrowing as one signed saturating narrow (vpmovsqd) */
-    return _mm512_cvtsepi64_epi32(q);
-}
-
 /* The same t where plane - o fits int32 (no clamp): round((p - o) rd) = (p rd - (o rd - 2^15)) >> 16
  * exactly in int64 (|p rd|, |o rd| < 2^62), one subtract of a per-axis constant instead of the
  * per-plane subtract and rounding add. */
@@ -351,8 +340,8 @@ LT_INLINE unsigned lt__x86_wtest8_q16_body(const int32_t *lo, const int32_t *hi,
     for (a = 0; a < 3; a++) {
         __m256i t0, t1;
         if (clamp) {
-            t0 = lt__x86_plane8r_q16(lo + 8 * a, o[a], rd[a], 1);
-            t1 = lt__x86_plane8r_q16(hi + 8 * a, o[a], rd[a], 1);
+            t0 = lt__x86_plane8r_q16(lo + 8 * a, o[a], rd[a]);
+            t1 = lt__x86_plane8r_q16(hi + 8 * a, o[a], rd[a]);
         } else {
             __m512i vrd = _mm512_set1_epi64(rd[a]);
             __m512i k = _mm512_set1_epi64((long long)o[a] * rd[a] - ((long long)1 << 15));
