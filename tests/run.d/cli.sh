@@ -69,6 +69,19 @@ expect "diff --json" 0 '"changed"' "$LT" diff "$tmp/a.json" "$tmp/b.json" --json
 expect "info on a mesh" 0 "992 triangles" "$LT" info scenes/teapot.obj
 expect "info --json" 0 '"triangles":992' "$LT" info scenes/teapot.obj --json
 expect "run --native hands over to the native build" 0 "native" "$LT" run --native --res 8 --num f32
+# --rays single: each ray alone (bvh: the 8-wide tree's walk and leaf blocks), the same image hashes
+# as the packets in both paths, simulated (its own cycle report) and native, and on a structure
+# without a single-ray walk (kd: one-lane packets)
+for rs in "" "--native"; do
+    for st in bvh kd; do
+        hp=$("$LT" run scenes/teapot.json --res 48 --num both --structure $st --no-ref $rs 2>/dev/null | grep '^result' | paste -sd ' ')
+        hs=$("$LT" run scenes/teapot.json --res 48 --num both --structure $st --no-ref $rs --rays single 2>/dev/null | grep '^result' | paste -sd ' ')
+        check "run ${rs:+$rs }--structure $st --rays single: both paths' hashes equal the packets' ($hs)" \
+            test -n "$hp" -a "$hp" = "$hs"
+    done
+done
+expect "run --rays single prints the single-ray cycle report" 0 "single rays (counted" "$LT" run scenes/teapot.json --res 16 --num q16 --rays single --no-ref
+expect "run --rays bogus: usage error" 2 "expected packet or single" "$LT" run --res 8 --rays bogus
 mkdir -p "$tmp/plots"
 B=$B SWEEP_RES=8 tools/plots/sweep.sh "$tmp/plots/sweep.csv" >/dev/null 2>&1 &&
     tools/plots/plots.sh "$tmp/plots/sweep.csv" "$tmp/plots" >/dev/null 2>&1
