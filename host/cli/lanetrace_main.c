@@ -86,7 +86,7 @@ static int write_atomic(const char *path, const char *text, lt_diag_t *diag)
 }
 
 /* run --rays */
-static const char *const run_rays_names[] = {"packet", "single", NULL};
+static const char *const run_rays_names[] = {"packet", "single", "wide", NULL};
 
 /* ---- run --native ------------------------------------------------------------------------- */
 
@@ -186,7 +186,8 @@ typedef struct run {
     const char *mesh_over, *report, *csv, *depth_out, *heat_out, *machine, *l1, *l2;
     uint32_t wh[2];
     int num, structure, isect, json, repeat, do_ref, native;
-    int rays; /* --rays: 0 16-ray packets (default), 1 single rays (bvh: the wide tree) */
+    int rays; /* --rays: 0 16-ray packets (default), 1 single rays (bvh: the wide tree), 2 16-ray
+                 packets through the wide tree (bvh) */
     int seen_res, seen_num, seen_structure, seen_isect, seen_machine, seen_l1, seen_l2;
     int autop;              /* --auto: info's recommendation for the knobs nobody set */
     char auto_json[2048];   /* what --auto did, a JSON object for the report ("" = nothing) */
@@ -292,7 +293,8 @@ static int run_parse(run_t *r, int argc, char **argv)
                      "packet: 16-ray packets over 4x4 tiles (default); single: each ray\n"
                      "alone (bvh: through the 8-wide tree with 4-triangle leaf blocks,\n"
                      "docs/bvh.md; bvhq: its single-ray walk; kd, grid, chunks: a one-lane\n"
-                     "packet)"),
+                     "packet); wide: 16-ray packets through that 8-wide tree (bvh; one\n"
+                     "frustum test per node; other structures: as packet)"),
         LT_OPT_FLAG_("--native", &r->native, "run the native build (no cycle model; wall-clock speed)"),
         LT_OPT_FLAG_("--json", &r->json, "machine-readable JSON on stdout"),
         LT_OPT_THREADS_(&threads_opt),
@@ -732,10 +734,16 @@ static int run_path(run_t *r, const lt_path_info_t *p)
         return -1;
     }
     lt_accel_set_isect(acc, strcmp(sf->isect, "mt") == 0 ? LT_ISECT_MT : LT_ISECT_WT);
+    if (r->rays == 2 && lt_accel_set_walk(acc, 1, &diag) != 0) {
+        fprintf(stderr, "%s: %s\n", sf->path[0] ? sf->path : prog, diag.msg);
+        lt_accel_free(acc);
+        r->status = EXIT_INPUT;
+        return -1;
+    }
     progress_begin(pname);
     t0 = lt_now_s();
     for (rep = 0; rep < r->repeat; rep++) {
-        if (r->rays == 0) {
+        if (r->rays != 1) {
             lt_render_primary(&r->sc, acc, &r->cam, &r->fr, progress);
         } else if (lt_render_primary1(&r->sc, acc, &r->cam, &r->fr, &diag) != 0) {
             progress_end();
@@ -763,7 +771,7 @@ static int run_path(run_t *r, const lt_path_info_t *p)
         unsigned nth = lt_par_workers(UINT32_MAX, 1);
         printf("time      %-4s %.3f ms for %d frame(s) of %u %s (%s, %u thread%s, %s host)\n",
                pname, ms, r->repeat, sf->width * sf->height,
-               r->rays ? "single rays" : "rays",
+               r->rays == 1 ? "single rays" : r->rays == 2 ? "rays (wide-tree packets)" : "rays",
                lt_meter_available() ? "counted" : "native", nth, nth == 1 ? "" : "s",
                lt_rate_text(ms > 0.0 ? (double)rays / (ms * 1e-3) : -1.0, rt));
         printf("result    %-4s hash 0x%08x\n", pname, lt_frame_hash(&r->fr));

@@ -61,11 +61,15 @@ typedef struct lt_render_ops {
     /* the wide BVH for single rays (lt_bvh8.h), collapsed from the binary tree: one ray from o
        along d (doubles) closest hit (id, *t) or any hit within (tmin, tmax) (1 = occluded) */
     lt_status_t (*bvh8_build)(lt_bvh8_t *w, const lt_bvh_t *src, const void *tris, void *mem,
-                              size_t bytes);
+                              size_t bytes, uint32_t merge);
     int32_t (*bvh8_trace1)(const lt_bvh8_t *w, const void *tris, const double o[3],
                            const double d[3], double *t);
     int (*bvh8_occluded1)(const lt_bvh8_t *w, const void *tris, const double o[3],
                           const double d[3], double tmin, double tmax);
+    /* a packet through the wide tree, as bvh_trace16 / bvh_occluded16 */
+    void (*bvh8_trace16)(const lt_bvh8_t *w, const void *tris, void *r, lt_mask16_t k,
+                         lt_hit16_t *hit);
+    lt_mask16_t (*bvh8_occluded16)(const lt_bvh8_t *w, const void *tris, void *r, lt_mask16_t k);
     /* the BVH with 16-byte quantised nodes: all four NULL where the path has none */
     lt_status_t (*bvhq_build)(lt_bvhq_t *q, const lt_bvh_t *src, void *mem, size_t bytes);
     void (*bvhq_trace16)(const lt_bvhq_t *q, const void *tris, void *r, lt_mask16_t k,

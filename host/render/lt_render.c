@@ -31,6 +31,9 @@ struct lt_accel {
     void *ray;               /* one packet in the path's format, the traces' scratch */
     void *wmem;              /* bvh: the wide tree's nodes for single rays (built on first use) */
     lt_bvh8_t wide;
+    int wide16;              /* bvh: packets walk the wide tree pwide (lt_accel_set_walk) */
+    void *pmem;              /* bvh: the packets' wide tree without merged leaves, if its own */
+    lt_bvh8_t pwide;
     size_t bytes;            /* structure memory */
     uint32_t leaf;           /* lt_accel_params_t.leaf (0: default) */
     uint32_t isect;          /* the intersector of every walk (LT_ISECT_WT unless set) */
@@ -271,6 +274,8 @@ void lt_accel_set_isect(lt_accel_t *a, uint32_t isect)
     a->isect = isect;
     a->bvh.isect = isect;
     a->bvhq.isect = isect;
+    a->wide.isect = isect;
+    a->pwide.isect = isect;
     if (a->hdr != NULL && a->kind == ACC_KD)
         a->ops->kd_set_isect(a->hdr, isect);
     if (a->hdr != NULL && a->kind == ACC_GRID)
@@ -288,6 +293,7 @@ void lt_accel_free(lt_accel_t *a)
     free(a->hdr);
     free(a->ray);
     free(a->wmem);
+    free(a->pmem);
     free(a);
 }
 
@@ -308,6 +314,8 @@ static void trace16(const lt_accel_t *a, void *ray, lt_mask16_t k, lt_hit16_t *h
         ops->grid_trace16(a->hdr, ray, k, hit);
     else if (a->kind == ACC_BVHQ)
         ops->bvhq_trace16(&a->bvhq, a->tris, ray, k, hit);
+    else if (a->wide16)
+        ops->bvh8_trace16(&a->pwide, a->tris, ray, k, hit);
     else
         ops->bvh_trace16(&a->bvh, a->tris, ray, k, hit);
 }
@@ -322,6 +330,8 @@ static lt_mask16_t occluded16(const lt_accel_t *a, void *ray, lt_mask16_t k)
         return ops->grid_occluded16(a->hdr, ray, k);
     if (a->kind == ACC_BVHQ)
         return ops->bvhq_occluded16(&a->bvhq, a->tris, ray, k);
+    if (a->wide16)
+        return ops->bvh8_occluded16(&a->pwide, a->tris, ray, k);
     return ops->bvh_occluded16(&a->bvh, a->tris, ray, k);
 }
 
@@ -510,28 +520,55 @@ static void primary1_lanes_row(void *ctx, unsigned w, uint32_t row)
     }
 }
 
-/* bvh: the wide tree (lt_bvh8.h) its single rays walk, collapsed from the binary tree on the first
- * single-ray call (the packets and lt_accel_bytes keep to the binary tree); 0, or -1 with a
- * message. */
-static int wide_tree(const lt_accel_t *ac, lt_diag_t *diag)
+/* bvh: a wide tree (lt_bvh8.h) collapsed from the binary tree into *w (memory *mem, modelled at
+ * address base) with merge bound merge, once (the packets and lt_accel_bytes keep to the binary
+ * tree unless lt_accel_set_walk says otherwise); 0, or -1 with a message. */
+static int wide_build(lt_accel_t *a, lt_bvh8_t *w, void **mem, uint32_t merge, uint32_t base,
+                      lt_diag_t *diag)
 {
-    lt_accel_t *a = (lt_accel_t *)(uintptr_t)ac; /* a cache of the accel's own tree */
     size_t bytes = 0;
     lt_status_t st;
-    if (a->kind != ACC_BVH || a->wide.num != 0)
+    if (a->kind != ACC_BVH || w->num != 0)
         return 0;
-    st = lt_bvh8_size(&a->bvh, &bytes);
-    if (st == LT_OK && bytes > 0 && (a->wmem = alloc64(bytes)) == NULL)
+    st = lt_bvh8_size_merge(&a->bvh, merge, &bytes);
+    if (st == LT_OK && bytes > 0 && (*mem = alloc64(bytes)) == NULL)
         st = LT_E_SPACE;
     if (st == LT_OK) {
-        lt_meter_region(a->wmem, bytes, 0x38000000u);
-        st = a->ops->bvh8_build(&a->wide, &a->bvh, a->tris, a->wmem, bytes);
+        lt_meter_region(*mem, bytes, base);
+        st = a->ops->bvh8_build(w, &a->bvh, a->tris, *mem, bytes, merge);
     }
     if (st != LT_OK) {
         lt_diag_fail(diag, "collapsing the BVH into 8-wide nodes (%zu bytes): %s", bytes,
                      lt_status_str(st));
         return -1;
     }
+    return 0;
+}
+
+/* The single rays' wide tree (the path's merge bound), built on the first single-ray call. */
+static int wide_tree(const lt_accel_t *ac, lt_diag_t *diag)
+{
+    lt_accel_t *a = (lt_accel_t *)(uintptr_t)ac; /* a cache of the accel's own tree */
+    return wide_build(a, &a->wide, &a->wmem, lt_bvh8_merge_default(a->bvh.num), 0x38000000u,
+                      diag);
+}
+
+int lt_accel_set_walk(lt_accel_t *a, int wide, lt_diag_t *diag)
+{
+    if (!wide || a->kind != ACC_BVH) {
+        a->wide16 = 0;
+        return 0;
+    }
+    /* the packets' tree keeps every binary leaf (merge 0): the single rays' tree where that is
+       the path's own (s15.16), else its own copy */
+    if (lt_bvh8_merge_default(a->bvh.num) == 0) {
+        if (wide_tree(a, diag) != 0)
+            return -1;
+        a->pwide = a->wide;
+    } else if (wide_build(a, &a->pwide, &a->pmem, 0, 0x3C000000u, diag) != 0) {
+        return -1;
+    }
+    a->wide16 = 1;
     return 0;
 }
 

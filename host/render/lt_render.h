@@ -59,6 +59,14 @@ size_t lt_accel_bytes(const lt_accel_t *a);
  * watertight, what lt_accel_build sets, or LT_ISECT_MT, Moller-Trumbore. */
 void lt_accel_set_isect(lt_accel_t *a, uint32_t isect);
 
+/* The walk of the 16-ray packets (primary, shadow and peel) over bvh: wide != 0, the 8-wide tree
+ * of the single rays (lt_bvh8_trace16: one frustum test per node for the packet; collapsed here
+ * if not yet, its memory outside lt_accel_bytes), 0 the binary tree (what lt_accel_build sets;
+ * the walk the machine models' packets are measured on). Other structures: no effect. The
+ * closest distances are the same either way; an exact tie between coplanar faces may name the
+ * other face. Returns 0, or -1 with a message (no memory for the wide tree). */
+int lt_accel_set_walk(lt_accel_t *a, int wide, lt_diag_t *diag);
+
 /* Trace all primary rays of the camera into f (allocated to the camera size). progress (may be
  * NULL) is called with the fraction done. */
 void lt_render_primary(const lt_scene_t *s, const lt_accel_t *a, const lt_camera_t *c,

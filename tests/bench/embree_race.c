@@ -812,7 +812,8 @@ int main(int argc, char **argv)
     for (a = 0; a < 2; a++) {
         lt_accel_t *acc;
         uint32_t same = 0, sn = 0, so = 0;
-        double lp, l1 = 0.0, ls = 0.0, ls1 = 0.0, lb;
+        double lp, l1 = 0.0, ls = 0.0, ls1 = 0.0, lb, lpw = 0.0, lsw = 0.0;
+        uint32_t wso = 0;
         double light[3] = {r.light[0], r.light[1], r.light[2]};
         const char *name = a == 0 ? "s15.16 " : "float32";
         int chunks = strcmp(structure, "chunks") == 0;
@@ -843,6 +844,42 @@ int main(int argc, char **argv)
                 times[k] = lt_now_s() - t0;
         }
         lp = (double)res * res / median(times, runs) / 1e6;
+        if (strcmp(structure, "bvh") == 0) {
+            /* the same packets through the 8-wide tree (lt_accel_set_walk), then its shadow
+               packets; the closest distances must be the binary walk's, the occlusion the same */
+            uint32_t sw = 0, sn2 = 0, so2 = 0;
+            lt_frame_t fw;
+            if (lt_frame_alloc(&fw, res, res, &diag) != 0 || lt_accel_set_walk(acc, 1, &diag) != 0) {
+                fprintf(stderr, "%s\n", diag.msg);
+                return 1;
+            }
+            for (k = -1; k < runs; k++) {
+                t0 = lt_now_s();
+                lt_render_primary(&sc, acc, &r.cam, &fw, NULL);
+                if (k >= 0)
+                    times[k] = lt_now_s() - t0;
+            }
+            lpw = (double)res * res / median(times, runs) / 1e6;
+            for (i = 0; i < res * res; i++)
+                sw += fw.t[i] == fr.t[i];
+            if (sw != (uint32_t)(res * res)) {
+                fprintf(stderr, "embree-race: lanetrace wide-tree packets: %u of %u distances "
+                                "differ from the binary walk's\n", res * res - sw, res * res);
+                status = 1;
+            }
+            lt_frame_free(&fw);
+            if (!chunks) {
+                for (k = -1; k < runs; k++) {
+                    t0 = lt_now_s();
+                    lt_render_shadows(&sc, acc, &r.cam, &fr, light, &sn2, &so2, NULL, &diag);
+                    if (k >= 0)
+                        times[k] = lt_now_s() - t0;
+                }
+                lsw = (double)sn2 / median(times, runs) / 1e6;
+                wso = so2;
+            }
+            (void)lt_accel_set_walk(acc, 0, &diag);
+        }
         for (i = 0; i < res * res; i++) {
             int eh = r.id1[i] != RTC_INVALID_GEOMETRY_ID;
             same += eh ? (fr.id[i] == (int32_t)r.id1[i]) : (fr.id[i] < 0);
@@ -878,6 +915,12 @@ int main(int argc, char **argv)
         printf("lanetrace %s 16-ray packets  %8.2f Mrays/s", name, lp);
         print_ratios(lp, bestp, "packet", 1, 3);
         printf("; same triangle as Embree on %.3f%% of pixels\n", 100.0 * same / (res * res));
+        if (lpw > 0.0) {
+            printf("lanetrace %s 16-ray packets (wide BVH) %8.2f Mrays/s = %.2fx the binary walk",
+                   name, lpw, lpw / lp);
+            print_ratios(lpw, bestp, "packet", 1, 3);
+            printf("\n");
+        }
         if (!chunks) {
             printf("lanetrace %s shadow packets  %8.2f Mrays/s", name, ls);
             print_ratios(ls, bests, "shadow", 4, 7);
@@ -887,11 +930,22 @@ int main(int argc, char **argv)
                 print_ratios(ls1, bests, "shadow", 4, 7);
                 printf(" (the same %u occluded)\n", so);
             }
+            if (lsw > 0.0) {
+                printf("lanetrace %s shadow packets (wide BVH) %8.2f Mrays/s = %.2fx the binary "
+                       "walk", name, lsw, lsw / ls);
+                print_ratios(lsw, bests, "shadow", 4, 7);
+                printf(" (%u occluded)\n", wso);
+                if (wso != so) {
+                    fprintf(stderr, "embree-race: lanetrace wide-tree shadow packets %u occluded, "
+                                    "binary %u\n", wso, so);
+                    status = 1;
+                }
+            }
         }
         if (kv)
             printf("race: lanetrace path %s single %.3f packet %.3f shadow %.3f shadow1 %.3f "
-                   "same %.3f\n",
-                   a ? "f32" : "q16", l1, lp, ls, ls1, 100.0 * same / (res * res));
+                   "same %.3f packet8 %.3f shadow8 %.3f\n",
+                   a ? "f32" : "q16", l1, lp, ls, ls1, 100.0 * same / (res * res), lpw, lsw);
         lt_accel_free(acc);
     }
     if (status != 0)

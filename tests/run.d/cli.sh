@@ -78,10 +78,15 @@ for rs in "" "--native"; do
         hs=$("$LT" run scenes/teapot.json --res 48 --num both --structure $st --no-ref $rs --rays single 2>/dev/null | grep '^result' | paste -sd ' ')
         check "run ${rs:+$rs }--structure $st --rays single: both paths' hashes equal the packets' ($hs)" \
             test -n "$hp" -a "$hp" = "$hs"
+        # --rays wide: the packets through the 8-wide tree (bvh; kd: as packet)
+        hw=$("$LT" run scenes/teapot.json --res 48 --num both --structure $st --no-ref $rs --rays wide 2>/dev/null | grep '^result' | paste -sd ' ')
+        check "run ${rs:+$rs }--structure $st --rays wide: both paths' hashes equal the packets' ($hw)" \
+            test -n "$hp" -a "$hp" = "$hw"
     done
 done
+expect "run --rays wide prints the wide-packet cycle report" 0 "wide-tree packets" "$LT" run scenes/teapot.json --res 16 --num q16 --rays wide --no-ref
 expect "run --rays single prints the single-ray cycle report" 0 "single rays (counted" "$LT" run scenes/teapot.json --res 16 --num q16 --rays single --no-ref
-expect "run --rays bogus: usage error" 2 "expected packet or single" "$LT" run --res 8 --rays bogus
+expect "run --rays bogus: usage error" 2 "expected packet, single or wide" "$LT" run --res 8 --rays bogus
 mkdir -p "$tmp/plots"
 B=$B SWEEP_RES=8 tools/plots/sweep.sh "$tmp/plots/sweep.csv" >/dev/null 2>&1 &&
     tools/plots/plots.sh "$tmp/plots/sweep.csv" "$tmp/plots" >/dev/null 2>&1

@@ -32,11 +32,13 @@ for m in "${race_meshes[@]}"; do
                 awk -v a="${a:-0}" 'BEGIN { exit !(a >= 99.9) }' ;;
         esac
     done
-    check "embree-race $n: best packet and shadow modes, lanetrace against each mode" \
+    check "embree-race $n: best packet and shadow modes, lanetrace against each mode (binary and wide-tree packets)" \
         bash -c "grep -q '^Embree best packet mode: rtcIntersect' '$tmp/race.txt' &&
             grep -q '^Embree best shadow mode: rtcOccluded' '$tmp/race.txt' &&
-            [ \$(grep -cE '^lanetrace (s15.16 |float32) 16-ray packets .*[0-9]x Embree best packet mode rtcIntersect.*x rtcIntersect4, .*x rtcIntersect8.*, .*x rtcIntersect16' '$tmp/race.txt') -eq 2 ] &&
-            [ \$(grep -cE '^lanetrace (s15.16 |float32) shadow packets .*[0-9]x Embree best shadow mode rtcOccluded.*x rtcOccluded1, .*x rtcOccluded16' '$tmp/race.txt') -eq 2 ] &&
+            [ \$(grep -cE '^lanetrace (s15.16 |float32) 16-ray packets  .*[0-9]x Embree best packet mode rtcIntersect.*x rtcIntersect4, .*x rtcIntersect8.*, .*x rtcIntersect16' '$tmp/race.txt') -eq 2 ] &&
+            [ \$(grep -cE '^lanetrace (s15.16 |float32) 16-ray packets \(wide BVH\) .*[0-9]x the binary walk = .*x Embree best packet mode' '$tmp/race.txt') -eq 2 ] &&
+            [ \$(grep -cE '^lanetrace (s15.16 |float32) shadow packets  .*[0-9]x Embree best shadow mode rtcOccluded.*x rtcOccluded1, .*x rtcOccluded16' '$tmp/race.txt') -eq 2 ] &&
+            [ \$(grep -cE '^lanetrace (s15.16 |float32) shadow packets \(wide BVH\) .*[0-9]x the binary walk = .*x Embree best shadow mode' '$tmp/race.txt') -eq 2 ] &&
             [ \$(grep -cE '^lanetrace (s15.16 |float32) single rays .*[0-9]x Embree rtcIntersect1' '$tmp/race.txt') -eq 2 ]"
     check "embree-race $n --kv: 8 mode lines, both paths, the machine" \
         bash -c "[ \$(grep -c '^race: mode name ' '$tmp/race.txt') -eq 8 ] &&

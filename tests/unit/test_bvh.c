@@ -2142,6 +2142,193 @@ static void test_wide(void **state)
     }
 }
 
+/* A packet of lanes k through the wide tree (lt_bvh8_trace16 / occluded16) and the binary tree
+ * (lt_bvh_trace16 / occluded16): per lane the same closest distance (bits), the same triangle or
+ * an exact tie (the other tree's triangle gives the lane that distance on its own), the same
+ * occluded lanes. */
+static void wp_packet(const lt_bvh8_t *w, const lt_bvh_t *b, const lt_scene_t *s, int fmt,
+                      const dray_t *rs, lt_mask16_t k, wcheck_t *c)
+{
+    lt_hit16_t hw, hb;
+    lt_mask16_t ow = 0, ob = 0;
+    int i;
+#if LT_CFG_FLOAT32
+    if (fmt == FMT_F32) {
+        lt_ray16_f32_t p0, pw, pb;
+        f32_packet(rs, &p0);
+        pw = p0;
+        pb = p0;
+        c->errs += lt_bvh8_trace16_f32(w, s->tf, &pw, k, &hw) != LT_OK;
+        c->errs += lt_bvh_trace16_f32(b, s->tf, &pb, k, &hb) != LT_OK;
+        for (i = 0; i < LT_LANES; i++) {
+            int32_t iw = hw.id.l[i], ib = hb.id.l[i];
+            int same_t = memcmp(&pw.tmax.l[i], &pb.tmax.l[i], sizeof(float)) == 0;
+            if ((((unsigned)k >> i) & 1u) == 0)
+                continue;
+            c->rays++;
+            if (iw == ib && same_t)
+                c->same++;
+            else if (iw >= 0 && ib >= 0 && same_t && tie_f32(s, &p0, i, iw, pw.tmax.l[i]))
+                c->ties++;
+            else if (c->bad++ < 5)
+                print_message("  wide packet lane %d: %d vs binary %d (t %s)\n", i, iw, ib,
+                              same_t ? "equal" : "differs");
+        }
+        pw = p0;
+        pb = p0;
+        c->errs += lt_bvh8_occluded16_f32(w, s->tf, &pw, k, &ow) != LT_OK;
+        c->errs += lt_bvh_occluded16_f32(b, s->tf, &pb, k, &ob) != LT_OK;
+    } else
+#endif
+    {
+        lt_ray16_q16_t p0, pw, pb;
+        q16_packet(rs, &p0);
+        pw = p0;
+        pb = p0;
+        c->errs += lt_bvh8_trace16_q16(w, s->tq, &pw, k, &hw) != LT_OK;
+        c->errs += lt_bvh_trace16_q16(b, s->tq, &pb, k, &hb) != LT_OK;
+        for (i = 0; i < LT_LANES; i++) {
+            int32_t iw = hw.id.l[i], ib = hb.id.l[i];
+            int same_t = pw.tmax.l[i] == pb.tmax.l[i];
+            if ((((unsigned)k >> i) & 1u) == 0)
+                continue;
+            c->rays++;
+            if (iw == ib && same_t)
+                c->same++;
+            else if (iw >= 0 && ib >= 0 && same_t && tie_q16(s, &p0, i, iw, pw.tmax.l[i]))
+                c->ties++;
+            else if (c->bad++ < 5)
+                print_message("  wide packet lane %d: %d vs binary %d (t %s)\n", i, iw, ib,
+                              same_t ? "equal" : "differs");
+        }
+        pw = p0;
+        pb = p0;
+        c->errs += lt_bvh8_occluded16_q16(w, s->tq, &pw, k, &ow) != LT_OK;
+        c->errs += lt_bvh_occluded16_q16(b, s->tq, &pb, k, &ob) != LT_OK;
+    }
+    c->occl++;
+    if (ow != ob && c->occl_bad++ < 5)
+        print_message("  wide packet any-hit 0x%04x vs binary 0x%04x\n", ow, ob);
+}
+
+/* 16-ray packets through the wide tree (lt_bvh8_trace16 / occluded16): against the binary packet
+ * walk on the meshes of test_wide, both merge bounds, both intersectors, packets of every
+ * rand_rays kind (a camera's coherent packets, incoherent ones, axis-parallel lanes, windows,
+ * aimed rays, origins beyond int32 for plane - origin), whole and with random lane subsets. */
+static void test_wide_packets(void **state)
+{
+    static const int kinds[] = {MESH_CLUSTERS, MESH_GRID, MESH_SAME_CENTROID, MESH_CLUSTERS,
+                                MESH_CLUSTERS};
+    static const char *names[] = {"clustered", "grid", "same-centroid", "clustered, 1/7 zero-area",
+                                  "clustered x9, far origins"};
+    unsigned ki;
+    int fmt;
+    (void)state;
+    for (ki = 0; ki < 5; ki++)
+        for (fmt = FMT_Q16; fmt <= (LT_CFG_FLOAT32 ? FMT_F32 : FMT_Q16); fmt++) {
+            static const uint32_t leaves[] = {0, 16};
+            unsigned li, mi, isect;
+            for (li = 0; li < 2; li++)
+                for (mi = 0; mi < 2; mi++)
+                    for (isect = LT_ISECT_WT; isect <= LT_ISECT_MT; isect++) {
+                        lt_scene_t s;
+                        built_t bb;
+                        lt_bvh_desc_t d;
+                        lt_bvh8_t w;
+                        wcheck_t c;
+                        ltt_rng_t r;
+                        size_t bytes = 0;
+                        unsigned char *mem;
+                        unsigned pk;
+                        uint32_t merge = mi ? LT_BVH8_MERGE : 0u;
+                        double ext = kinds[ki] == MESH_CLUSTERS ? 420.0
+                                                                : (kinds[ki] == MESH_GRID ? 13.0 : 35.0);
+                        memset(&c, 0, sizeof c);
+                        memset(&d, 0, sizeof d);
+                        d.max_leaf = leaves[li];
+                        d.min_leaf = leaves[li] / 2u;
+                        mesh_random(&s, kinds[ki] == MESH_CLUSTERS ? 1500u : (kinds[ki] == MESH_GRID ? 1200u : 600u),
+                                    kinds[ki], 91 + ki);
+                        if (ki == 3) {
+                            uint32_t t;
+                            for (t = 0; t < s.ntris; t += 7u)
+                                set_vert(&s, t, 2, s.vd[t * 9u], s.vd[t * 9u + 1u], s.vd[t * 9u + 2u]);
+                            mesh_quantise(&s);
+                        }
+                        if (ki == 4) {
+                            uint32_t t;
+                            for (t = 0; t < s.ntris * 9u; t++)
+                                s.vd[t] *= 9.0;
+                            mesh_quantise(&s);
+                            ext = 12800.0;
+                        }
+                        assert_int_equal(build(&bb, &s, fmt, &d), LT_OK);
+                        bb.bvh.isect = isect;
+                        assert_int_equal(lt_bvh8_size_merge(&bb.bvh, merge, &bytes), LT_OK);
+                        mem = malloc(bytes + 8u);
+                        assert_non_null(mem);
+#if LT_CFG_FLOAT32
+                        assert_int_equal(fmt == FMT_F32
+                                             ? lt_bvh8_build_merge_f32(&w, &bb.bvh, s.tf, mem, bytes, merge)
+                                             : lt_bvh8_build_merge_q16(&w, &bb.bvh, s.tq, mem, bytes, merge),
+                                         LT_OK);
+#else
+                        assert_int_equal(lt_bvh8_build_merge_q16(&w, &bb.bvh, s.tq, mem, bytes, merge),
+                                         LT_OK);
+#endif
+                        assert_int_equal(w.merge, merge);
+                        assert_int_equal(w.isect, isect);
+                        ltt_rng_seed(&r, 555 + ki * 7 + li * 3 + mi);
+                        for (pk = 0; pk < 300u / WORK; pk++) {
+                            dray_t rs[LT_LANES];
+                            lt_mask16_t k = pk % 3u == 2u ? (lt_mask16_t)ltt_rng_below(&r, 0x10000u)
+                                                          : LT_MASK_ALL;
+                            rand_rays(&r, (int)(pk % RAY_KINDS), ext, &s, rs, LT_LANES);
+                            wp_packet(&w, &bb.bvh, &s, fmt, rs, k, &c);
+                        }
+                        if (li == 0 && isect == LT_ISECT_WT)
+                            print_message("wide packets %s %s leaf %u merge %u: %lu lanes: closest "
+                                          "hit equal on %lu, exact ties %lu, differ %lu; any hit "
+                                          "equal on %lu of %lu packets\n",
+                                          fmt == FMT_Q16 ? "q16" : "f32", names[ki], leaves[li],
+                                          merge, c.rays, c.same, c.ties, c.bad, c.occl - c.occl_bad,
+                                          c.occl);
+                        assert_int_equal(c.bad, 0);
+                        assert_int_equal(c.occl_bad, 0);
+                        assert_int_equal(c.errs, 0);
+                        assert_true(c.same > c.rays * 9 / 10);
+                        free(mem);
+                        unbuild(&bb);
+                        lt_scene_free(&s);
+                    }
+        }
+    {
+        /* arguments: a bound past LT_BVH8_MERGE, NULLs, the other path's tree; an empty mask */
+        lt_bvh_t e;
+        lt_bvh8_t w;
+        lt_ray16_q16_t p;
+        lt_hit16_t h;
+        lt_mask16_t o = 1;
+        size_t bytes = 1;
+        memset(&e, 0, sizeof e);
+        memset(&p, 0, sizeof p);
+        e.num = LT_BVH_NUM_Q16;
+        assert_int_equal(lt_bvh8_size_merge(&e, LT_BVH8_MERGE + 1u, &bytes), LT_E_ARG);
+        assert_int_equal(lt_bvh8_build_merge_q16(&w, &e, NULL, NULL, 0, LT_BVH8_MERGE + 1u),
+                         LT_E_ARG);
+        assert_int_equal(lt_bvh8_build_merge_q16(&w, &e, NULL, NULL, 0, 0), LT_OK);
+        assert_int_equal(lt_bvh8_trace16_q16(NULL, NULL, &p, LT_MASK_ALL, &h), LT_E_ARG);
+        assert_int_equal(lt_bvh8_trace16_q16(&w, NULL, &p, LT_MASK_ALL, &h), LT_OK);
+        assert_int_equal(h.id.l[0], -1);
+        assert_int_equal(lt_bvh8_occluded16_q16(&w, NULL, &p, LT_MASK_ALL, &o), LT_OK);
+        assert_int_equal(o, 0);
+        w.num = LT_BVH_NUM_F32;
+        assert_int_equal(lt_bvh8_trace16_q16(&w, NULL, &p, LT_MASK_ALL, &h), LT_E_ARG);
+        print_message("wide packets: bad merge bound, NULL and the other path's tree LT_E_ARG; "
+                      "empty tree: no hit\n");
+    }
+}
+
 static int shared_missing(const char *path)
 {
     const char *ci = getenv("CI");
@@ -2503,6 +2690,7 @@ int main(void)
         cmocka_unit_test(test_stack_overflow),
         cmocka_unit_test(test_quantised),
         cmocka_unit_test(test_wide),
+        cmocka_unit_test(test_wide_packets),
         cmocka_unit_test(test_real_meshes),
         cmocka_unit_test(test_sim_cycles),
     };

@@ -838,10 +838,10 @@ lt_status_t lt_bvhq_trace1_q16(const lt_bvhq_t *bvh, const lt_tri_q16_t *tris, l
 /* ---- wide nodes for single rays (lt_bvh8.h) ------------------------------------------------------ */
 
 /* Wide nodes of a binary tree of either path (each path's collapse counts its own tree). */
-lt_status_t lt_bvh8_size(const lt_bvh_t *bvh, size_t *bytes)
+lt_status_t lt_bvh8_size_merge(const lt_bvh_t *bvh, uint32_t merge, size_t *bytes)
 {
     uint32_t nodes, blocks = 0;
-    if (bvh == NULL || bytes == NULL)
+    if (bvh == NULL || bytes == NULL || merge > LT_BVH8_MERGE)
         return LT_E_ARG;
     if (bvh->nnodes == 0) {
         *bytes = 0;
@@ -849,7 +849,7 @@ lt_status_t lt_bvh8_size(const lt_bvh_t *bvh, size_t *bytes)
     }
 #if LT_CFG_FLOAT32
     if (bvh->num == LT_BVH_NUM_F32) {
-        nodes = w_count_f32((const lt_bvh_node_f32_t *)bvh->nodes, 0, &blocks);
+        nodes = w_count_f32((const lt_bvh_node_f32_t *)bvh->nodes, 0, merge, &blocks);
         *bytes = (size_t)nodes * sizeof(lt_bvh8_node_f32_t) +
                  (size_t)blocks * sizeof(lt_bvh8_tris4_f32_t);
         return LT_OK;
@@ -857,8 +857,15 @@ lt_status_t lt_bvh8_size(const lt_bvh_t *bvh, size_t *bytes)
 #endif
     if (bvh->num != LT_BVH_NUM_Q16)
         return LT_E_ARG;
-    nodes = w_count_q16((const lt_bvh_node_q16_t *)bvh->nodes, 0, &blocks);
+    nodes = w_count_q16((const lt_bvh_node_q16_t *)bvh->nodes, 0, merge, &blocks);
     *bytes = (size_t)nodes * sizeof(lt_bvh8_node_q16_t) +
              (size_t)blocks * sizeof(lt_bvh8_tris4_q16_t);
     return LT_OK;
+}
+
+lt_status_t lt_bvh8_size(const lt_bvh_t *bvh, size_t *bytes)
+{
+    if (bvh == NULL)
+        return LT_E_ARG;
+    return lt_bvh8_size_merge(bvh, lt_bvh8_merge_default(bvh->num), bytes);
 }

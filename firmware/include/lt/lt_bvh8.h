@@ -84,6 +84,7 @@ typedef struct lt_bvh8 {
     uint32_t isect;      /* the binary tree's intersector (LT_ISECT_WT or LT_ISECT_MT) */
     uint32_t children;   /* child slots in use over all nodes (fill = children / (8 nnodes)) */
     uint32_t leaves;     /* leaf children over all nodes */
+    uint32_t merge;      /* the largest binary subtree merged into one leaf (0: none) */
     uint32_t span;       /* s15.16: the largest |plane| (raw) of the children in use, so a ray
                             whose |origin| + span fits int32 needs no clamp of plane - origin;
                             float32: 0 */
@@ -93,6 +94,19 @@ typedef struct lt_bvh8 {
 /* Bytes of the wide nodes and leaf blocks lt_bvh8_build_* makes from bvh (a pass over the binary
  * tree, no memory; the same for both paths). Cost: none. Returns LT_OK, LT_E_ARG (NULL). */
 lt_status_t lt_bvh8_size(const lt_bvh_t *bvh, size_t *bytes);
+
+/* The path's merge bound of lt_bvh8_build_* / lt_bvh8_size: LT_BVH8_MERGE in float32 (its single
+ * rays test a leaf's four lanes at once), 0 in s15.16. */
+LT_INLINE uint32_t lt_bvh8_merge_default(uint32_t num)
+{
+    return num == LT_BVH_NUM_F32 ? LT_BVH8_MERGE : 0u;
+}
+
+/* The same with an explicit merge bound (0..LT_BVH8_MERGE; 0 keeps every binary leaf as one wide
+ * leaf: the 16-ray packets' tree, whose leaf tests take the packet's lanes one triangle at a
+ * time, so a merged leaf costs more tests than it saves nodes). Returns LT_E_ARG for a larger
+ * bound. */
+lt_status_t lt_bvh8_size_merge(const lt_bvh_t *bvh, uint32_t merge, size_t *bytes);
 
 /* Collapse the binary tree into 8-wide nodes in mem (8-byte aligned, bytes >= lt_bvh8_size):
  * each wide node takes its binary node's two children and, while it has fewer than 8, opens the
@@ -107,6 +121,10 @@ lt_status_t lt_bvh8_size(const lt_bvh_t *bvh, size_t *bytes);
  * tree of the other path), LT_E_SPACE (bytes too small: out->bytes = the size needed). */
 lt_status_t lt_bvh8_build_q16(lt_bvh8_t *out, const lt_bvh_t *bvh, const lt_tri_q16_t *tris,
                               void *mem, size_t bytes);
+/* With an explicit merge bound (lt_bvh8_size_merge); lt_bvh8_build_q16 uses 0. */
+lt_status_t lt_bvh8_build_merge_q16(lt_bvh8_t *out, const lt_bvh_t *bvh,
+                                    const lt_tri_q16_t *tris, void *mem, size_t bytes,
+                                    uint32_t merge);
 
 /* Closest hit of one ray: *id = triangle id or -1, r->tmax = its distance. At each node the 8
  * child boxes in one test (lt_slab1's arithmetic per child: the same verdicts as the binary
@@ -133,14 +151,46 @@ lt_status_t lt_bvh8_trace1_q16(const lt_bvh8_t *w, const lt_tri_q16_t *tris, lt_
 lt_status_t lt_bvh8_occluded1_q16(const lt_bvh8_t *w, const lt_tri_q16_t *tris, lt_ray1_q16_t *r,
                                   int *occluded);
 
+/* Closest hit of the lanes k of a 16-ray packet through the wide tree (hit->id per lane, -1 for
+ * none; a lane's distance is its tmax), the walk of the packet as one frustum: at each node the
+ * 8 child boxes against the range of the live lanes' origins and reciprocals (each plane's t at
+ * the corners of those ranges bounds every lane's: the path's slab arithmetic is monotone in
+ * each), a hit leaf child's own lanes from lt_slab16 of its box (the binary packet walk's test of
+ * that box), children near to far by the frustum's tnear, an entry skipped when its tnear is
+ * beyond every live lane's tmax; a leaf's triangles tested as the binary packet walk tests them
+ * (lt_tri16_wt, or lt_tri16 with Moller-Trumbore), zero-area ones skipped by the watertight test.
+ * Every lane meets every leaf box its own test hits, so its closest distance is the binary walk's;
+ * where two triangles meet a lane at exactly that distance (coplanar duplicate faces) either may
+ * be reported. For coherent packets (a camera tile): an axis on which a live lane is parallel or
+ * has a saturated reciprocal bounds nothing, and a packet whose directions differ in sign tests
+ * boxes loosely (correct, slower). Cost: TRAVERSE once the frustum (VRED x16), per node
+ * LTW_NODE_RECIPE x2 (x4 when the origins differ) and per hit leaf child lt_slab16, BVH8_PUSH per
+ * child pushed, BVH_TRAV16_POP per entry popped; INTERSECT per leaf triangle BVH_TRAV_LEAF_TRI
+ * and lt_tri16_wt (lt_tri16), VRED x1 per leaf. Returns LT_OK, LT_E_ARG, LT_E_DEPTH (a foreign
+ * tree deeper than LT_BVH_MAX_DEPTH). */
+lt_status_t lt_bvh8_trace16_q16(const lt_bvh8_t *w, const lt_tri_q16_t *tris, lt_ray16_q16_t *r,
+                                lt_mask16_t k, lt_hit16_t *hit);
+/* Any hit of the lanes k: *occluded = the lanes with a triangle at tmin < t < tmax (a lane retires
+ * at its first hit; the walk ends when all have), the binary walk's answer. Cost: as
+ * lt_bvh8_trace16_q16, BVH_TRAV_ANY_RETIRE per triangle test. */
+lt_status_t lt_bvh8_occluded16_q16(const lt_bvh8_t *w, const lt_tri_q16_t *tris,
+                                   lt_ray16_q16_t *r, lt_mask16_t k, lt_mask16_t *occluded);
+
 #if LT_CFG_FLOAT32
 /* The float32 twins. */
 lt_status_t lt_bvh8_build_f32(lt_bvh8_t *out, const lt_bvh_t *bvh, const lt_tri_f32_t *tris,
                               void *mem, size_t bytes);
+lt_status_t lt_bvh8_build_merge_f32(lt_bvh8_t *out, const lt_bvh_t *bvh,
+                                    const lt_tri_f32_t *tris, void *mem, size_t bytes,
+                                    uint32_t merge);
 lt_status_t lt_bvh8_trace1_f32(const lt_bvh8_t *w, const lt_tri_f32_t *tris, lt_ray1_f32_t *r,
                                int32_t *id);
 lt_status_t lt_bvh8_occluded1_f32(const lt_bvh8_t *w, const lt_tri_f32_t *tris, lt_ray1_f32_t *r,
                                   int *occluded);
+lt_status_t lt_bvh8_trace16_f32(const lt_bvh8_t *w, const lt_tri_f32_t *tris, lt_ray16_f32_t *r,
+                                lt_mask16_t k, lt_hit16_t *hit);
+lt_status_t lt_bvh8_occluded16_f32(const lt_bvh8_t *w, const lt_tri_f32_t *tris,
+                                   lt_ray16_f32_t *r, lt_mask16_t k, lt_mask16_t *occluded);
 #endif
 
 #ifdef __cplusplus
