@@ -95,7 +95,8 @@ $2 == "mode" { kv(); m = v["name"]; rate[sc, m] = v["mrays"]; flag[sc, m] = subs
                if (m ~ /Occluded/ && (!((sc, "smin") in agree) || v["ties"] < agree[sc, "smin"])) agree[sc, "smin"] = v["ties"] }
 $2 == "best" { kv(); bestp[sc] = v["packet"]; bests[sc] = v["shadow"]; nbp[v["packet"]]++; nbs[v["shadow"]]++ }
 $2 == "lanetrace" { kv(); p = v["path"]; ls[sc, p] = v["single"]; lp[sc, p] = v["packet"]
-                    lsh[sc, p] = v["shadow"]; lsh1[sc, p] = v["shadow1"]; same[sc, p] = v["same"] }
+                    lsh[sc, p] = v["shadow"]; lsh1[sc, p] = v["shadow1"]; same[sc, p] = v["same"]
+                    lpw[sc, p] = v["packet8"]; lshw[sc, p] = v["shadow8"] }
 END {
     split("rtcIntersect1 rtcIntersect4 rtcIntersect8 rtcIntersect16 rtcOccluded1 rtcOccluded4 rtcOccluded8 rtcOccluded16", M, " ")
     split("single 2x2 4x2 4x4 single 2x2 4x2 4x4", T, " ")
@@ -120,29 +121,36 @@ END {
         }
         printf " %.3f%% / %.3f%% |\n", agree[s, "pmin"], agree[s, "smin"]
     }
-    printf "\nlanetrace (its own code paths, one thread) against Embree in the same run: Mrays/s and lanetrace / Embree; single rays against rtcIntersect1, 16-ray packets against the best of rtcIntersect4/8/16, shadow packets and single shadow rays against the best of rtcOccluded1/4/8/16, then against each mode (single rays and single shadow rays walk the 8-wide BVH, lt_bvh8.h; packets the binary one):\n\n"
-    printf "| scene | path | single rays (x rtcIntersect1) | 16-ray packets (x Embree best) | packets x rtcIntersect4 / 8 / 16 | shadow packets (x Embree best) | shadows x rtcOccluded1 / 4 / 8 / 16 | single shadow rays (x Embree best) | same triangle as Embree |\n"
-    printf "|---|---|---|---|---|---|---|---|---|\n"
+    printf "\nlanetrace (its own code paths, one thread) against Embree in the same run: Mrays/s and lanetrace / Embree; single rays against rtcIntersect1, 16-ray packets against the best of rtcIntersect4/8/16, shadow packets and single shadow rays against the best of rtcOccluded1/4/8/16, then against each mode (single rays and single shadow rays walk the 8-wide BVH, lt_bvh8.h; packets the binary one, the tree the machine models price; the wide-tree columns are the same packets through the 8-wide tree, `lanetrace run --rays wide`, against Embree'"'"'s best mode and against the binary walk):\n\n"
+    printf "| scene | path | single rays (x rtcIntersect1) | 16-ray packets (x Embree best) | packets x rtcIntersect4 / 8 / 16 | wide-tree packets (x Embree best; x binary) | shadow packets (x Embree best) | shadows x rtcOccluded1 / 4 / 8 / 16 | wide-tree shadow packets (x Embree best; x binary) | single shadow rays (x Embree best) | same triangle as Embree |\n"
+    printf "|---|---|---|---|---|---|---|---|---|---|---|\n"
     for (s = 1; s <= ns; s++)
         for (q = 1; q <= 2; q++) {
             p = q == 1 ? "q16" : "f32"
             x1 = ls[s, p] / rate[s, "rtcIntersect1"]; xp = lp[s, p] / rate[s, bestp[s]]; xs = lsh[s, p] / rate[s, bests[s]]
             xs1 = lsh1[s, p] / rate[s, bests[s]]
+            xpw = lpw[s, p] / rate[s, bestp[s]]; xsw = lshw[s, p] / rate[s, bests[s]]
+            bpw = lpw[s, p] / lp[s, p]; bsw = lshw[s, p] / lsh[s, p]
             upd(p "1", x1); upd(p "p", xp); upd(p "s", xs); upd(p "s1", xs1)
-            printf "| %s | %s | %s (%s) | %s (%s %s) | %s / %s / %s | %s (%s %s) | %s / %s / %s / %s | %s (%s) | %.3f%% |\n", \
+            upd(p "pw", xpw); upd(p "sw", xsw); upd(p "bpw", bpw); upd(p "bsw", bsw)
+            printf "| %s | %s | %s (%s) | %s (%s %s) | %s / %s / %s | %s (%s; %s) | %s (%s %s) | %s / %s / %s / %s | %s (%s; %s) | %s (%s) | %.3f%% |\n", \
                 q == 1 ? sname[s] : "", q == 1 ? "s15.16" : "float32", mr(ls[s, p]), rt(x1), \
                 mr(lp[s, p]), rt(xp), bestp[s], \
                 rt(lp[s, p] / rate[s, "rtcIntersect4"]), rt(lp[s, p] / rate[s, "rtcIntersect8"]), rt(lp[s, p] / rate[s, "rtcIntersect16"]), \
+                mr(lpw[s, p]), rt(xpw), rt(bpw), \
                 mr(lsh[s, p]), rt(xs), bests[s], \
                 rt(lsh[s, p] / rate[s, "rtcOccluded1"]), rt(lsh[s, p] / rate[s, "rtcOccluded4"]), rt(lsh[s, p] / rate[s, "rtcOccluded8"]), rt(lsh[s, p] / rate[s, "rtcOccluded16"]), \
+                mr(lshw[s, p]), rt(xsw), rt(bsw), \
                 mr(lsh1[s, p]), rt(xs1), same[s, p]
         }
     bp = ""; for (m in nbp) bp = bp (bp == "" ? "" : ", ") m " on " nbp[m]
     bs = ""; for (m in nbs) bs = bs (bs == "" ? "" : ", ") m " on " nbs[m]
-    printf "\nOn these %d scenes lanetrace'"'"'s float32 16-ray packets run at %s of Embree'"'"'s best packet mode and its s15.16 packets at %s; its float32 shadow packets at %s of Embree'"'"'s best shadow mode, s15.16 at %s; its single shadow rays through the wide BVH at %s (float32) and %s (s15.16); single rays at %s (float32) and %s (s15.16) of rtcIntersect1. Embree'"'"'s best packet mode: %s of the scenes; best shadow mode: %s.\n", \
+    printf "\nOn these %d scenes lanetrace'"'"'s float32 16-ray packets run at %s of Embree'"'"'s best packet mode and its s15.16 packets at %s; its float32 shadow packets at %s of Embree'"'"'s best shadow mode, s15.16 at %s; its single shadow rays through the wide BVH at %s (float32) and %s (s15.16); single rays at %s (float32) and %s (s15.16) of rtcIntersect1. Through the 8-wide tree the 16-ray packets run at %s (float32) and %s (s15.16) of Embree'"'"'s best packet mode (%s and %s of the binary walk), the shadow packets at %s and %s of its best shadow mode (%s and %s of the binary walk). Embree'"'"'s best packet mode: %s of the scenes; best shadow mode: %s.\n", \
         ns, range(lo["f32p"], hi["f32p"]), range(lo["q16p"], hi["q16p"]), range(lo["f32s"], hi["f32s"]), range(lo["q16s"], hi["q16s"]), \
         range(lo["f32s1"], hi["f32s1"]), range(lo["q16s1"], hi["q16s1"]), \
-        range(lo["f321"], hi["f321"]), range(lo["q161"], hi["q161"]), bp, bs
+        range(lo["f321"], hi["f321"]), range(lo["q161"], hi["q161"]), \
+        range(lo["f32pw"], hi["f32pw"]), range(lo["q16pw"], hi["q16pw"]), range(lo["f32bpw"], hi["f32bpw"]), range(lo["q16bpw"], hi["q16bpw"]), \
+        range(lo["f32sw"], hi["f32sw"]), range(lo["q16sw"], hi["q16sw"]), range(lo["f32bsw"], hi["f32bsw"]), range(lo["q16bsw"], hi["q16bsw"]), bp, bs
 }' "$OUT/race.kv" >"$OUT/race.md"
 
 echo "race-doc: $OUT/race.md" >&2

@@ -234,6 +234,9 @@ static void w_plane8_q16(const lt_q16_t *p, lt_q16_t o, lt_q16_t rd, lt_q16_t *t
 #define LTW_TEST8(r, n, tn, nc)                                                                    \
     lt__x86_wtest8_q16(&(n)->lo[0][0], &(n)->hi[0][0], (n)->cnt, (r)->o, (r)->rd, (r)->tmin,       \
                        (r)->tmax, LT_BVH8_EMPTY, (tn), (nc))
+#define LTW_TEST16(f, n, tmin, tmax, tn)                                                           \
+    lt__x86_wtest16_q16(&(n)->lo[0][0], &(n)->hi[0][0], (n)->cnt, (f)->olo, (f)->ohi, (f)->rlo,    \
+                        (f)->rhi, (int)(f)->same_o, (f)->free, (tmin), (tmax), LT_BVH8_EMPTY, (tn))
 #endif
 /* the largest |plane| in use, and whether a ray's |origin| + that fits int32 (plane - o exact) */
 #define LTW_SPAN(x) ((x) < 0 ? 0u - (uint32_t)(x) : (uint32_t)(x))
@@ -250,6 +253,7 @@ static void w_plane8_q16(const lt_q16_t *p, lt_q16_t o, lt_q16_t rd, lt_q16_t *t
 #undef LTW_NODE_RECIPE
 #undef LTW_PLANE8
 #undef LTW_TEST8
+#undef LTW_TEST16
 #undef LTW_SPAN
 #undef LTW_NOCLAMP
 /* named compile-time checks (LT_STATIC_ASSERT names its typedef by __LINE__, which could meet a
@@ -392,6 +396,9 @@ static void slab_fix1_f32(unsigned par, float o, float d, float lo, float hi, fl
 #define LTW_TEST8(r, n, tn, nc)                                                                    \
     lt__x86_wtest8_f32(&(n)->lo[0][0], &(n)->hi[0][0], (n)->cnt, (r)->o, (r)->rd, (r)->tmin,       \
                        (r)->tmax, LT_BVH8_EMPTY, (tn))
+#define LTW_TEST16(f, n, tmin, tmax, tn)                                                           \
+    lt__x86_wtest16_f32(&(n)->lo[0][0], &(n)->hi[0][0], (n)->cnt, (f)->olo, (f)->ohi, (f)->rlo,    \
+                        (f)->rhi, (int)(f)->same_o, (f)->free, (tmin), (tmax), LT_BVH8_EMPTY, (tn))
 #endif
 #include "lt_bvh8.inc"
 #undef LTW_NODE
@@ -402,6 +409,7 @@ static void slab_fix1_f32(unsigned par, float o, float d, float lo, float hi, fl
 #undef LTW_NODE_RECIPE
 #undef LTW_PLANE8
 #undef LTW_TEST8
+#undef LTW_TEST16
 #undef LTW_SPAN
 #undef LTW_NOCLAMP
 typedef char bvh_check_bin_f32[sizeof(lt__bvh_bin_t_f32) == BVH_BIN_BYTES ? 1 : -1];

@@ -387,6 +387,98 @@ LT_INLINE unsigned lt__x86_wtest8_f32(const float *lo, const float *hi, const ui
                       _mm_cmpneq_epi16_mask(_mm_loadu_si128((const __m128i *)(const void *)cnt),
                                             _mm_set1_epi16((short)empty)));
 }
+
+/* The 16-ray packet walk's node test (lt_bvh8.inc's w_test16) in registers: per axis not in free,
+ * each plane's t at the corners of the frustum's origin range [olo, ohi] and reciprocal range
+ * [rlo, rhi] (the origin's two corners only when same_o is 0), as lt__x86_plane8r_q16 computes
+ * one ray's t (s15.16) or (p - o) x 1/d (float32): their min and max bound every lane's; then
+ * the children whose bounds meet over [tmin, tmax] and whose slot is in use, as one mask; tn gets
+ * the 8 lower bounds. No events: the counting build keeps the C loops. */
+LT_INLINE __m512i lt__x86_diff8_q16(const int32_t *p, int32_t o)
+{
+    __m512i hi = _mm512_set1_epi64(INT32_MAX), lo = _mm512_set1_epi64(INT32_MIN);
+    __m512i d = _mm512_sub_epi64(
+        _mm512_cvtepi32_epi64(_mm256_loadu_si256((const __m256i *)(const void *)p)),
+        _mm512_set1_epi64(o));
+    return _mm512_max_epi64(_mm512_min_epi64(d, hi), lo);
+}
+LT_INLINE __m256i lt__x86_prod8_q16(__m512i d, __m512i vrd)
+{
+    __m512i q = _mm512_mul_epi32(d, vrd);
+    q = _mm512_srai_epi64(_mm512_add_epi64(q, _mm512_set1_epi64((long long)1 << 15)), 16);
+    return _mm512_cvtsepi64_epi32(q);
+}
+LT_INLINE unsigned lt__x86_wtest16_q16(const int32_t *lo, const int32_t *hi, const uint16_t *cnt,
+                                       const int32_t *olo, const int32_t *ohi,
+                                       const int32_t *rlo, const int32_t *rhi, int same_o,
+                                       unsigned free, int32_t tmin, int32_t tmax, uint16_t empty,
+                                       int32_t *tn)
+{
+    __m256i vn = _mm256_set1_epi32(tmin), vf = _mm256_set1_epi32(tmax);
+    int a, s;
+    for (a = 0; a < 3; a++) {
+        __m512i r0 = _mm512_set1_epi64(rlo[a]), r1 = _mm512_set1_epi64(rhi[a]);
+        __m256i l[2], h[2];
+        if ((free >> a) & 1u)
+            continue;
+        for (s = 0; s < 2; s++) {
+            const int32_t *p = (s == 0 ? lo : hi) + 8 * a;
+            __m512i d = lt__x86_diff8_q16(p, olo[a]);
+            __m256i x = lt__x86_prod8_q16(d, r0), y = lt__x86_prod8_q16(d, r1);
+            l[s] = _mm256_min_epi32(x, y);
+            h[s] = _mm256_max_epi32(x, y);
+            if (!same_o) {
+                d = lt__x86_diff8_q16(p, ohi[a]);
+                x = lt__x86_prod8_q16(d, r0);
+                y = lt__x86_prod8_q16(d, r1);
+                l[s] = _mm256_min_epi32(l[s], _mm256_min_epi32(x, y));
+                h[s] = _mm256_max_epi32(h[s], _mm256_max_epi32(x, y));
+            }
+        }
+        vn = _mm256_max_epi32(vn, _mm256_min_epi32(l[0], l[1]));
+        vf = _mm256_min_epi32(vf, _mm256_max_epi32(h[0], h[1]));
+    }
+    _mm256_storeu_si256((__m256i *)(void *)tn, vn);
+    return (unsigned)(_mm256_cmp_epi32_mask(vn, vf, _MM_CMPINT_LE) &
+                      _mm_cmpneq_epi16_mask(_mm_loadu_si128((const __m128i *)(const void *)cnt),
+                                            _mm_set1_epi16((short)empty)));
+}
+
+LT_INLINE unsigned lt__x86_wtest16_f32(const float *lo, const float *hi, const uint16_t *cnt,
+                                       const float *olo, const float *ohi, const float *rlo,
+                                       const float *rhi, int same_o, unsigned free, float tmin,
+                                       float tmax, uint16_t empty, float *tn)
+{
+    __m256 vn = _mm256_set1_ps(tmin), vf = _mm256_set1_ps(tmax);
+    int a, s;
+    for (a = 0; a < 3; a++) {
+        __m256 r0 = _mm256_set1_ps(rlo[a]), r1 = _mm256_set1_ps(rhi[a]);
+        __m256 l[2], h[2];
+        if ((free >> a) & 1u)
+            continue;
+        for (s = 0; s < 2; s++) {
+            __m256 p = _mm256_loadu_ps((s == 0 ? lo : hi) + 8 * a);
+            __m256 d = _mm256_sub_ps(p, _mm256_set1_ps(olo[a]));
+            __m256 x = _mm256_mul_ps(d, r0), y = _mm256_mul_ps(d, r1);
+            /* lt__f32_min / max operand order, as lt__x86_wtest8_f32 */
+            l[s] = _mm256_min_ps(x, y);
+            h[s] = _mm256_max_ps(x, y);
+            if (!same_o) {
+                d = _mm256_sub_ps(p, _mm256_set1_ps(ohi[a]));
+                x = _mm256_mul_ps(d, r0);
+                y = _mm256_mul_ps(d, r1);
+                l[s] = _mm256_min_ps(l[s], _mm256_min_ps(x, y));
+                h[s] = _mm256_max_ps(h[s], _mm256_max_ps(x, y));
+            }
+        }
+        vn = _mm256_max_ps(vn, _mm256_min_ps(l[0], l[1]));
+        vf = _mm256_min_ps(vf, _mm256_max_ps(h[0], h[1]));
+    }
+    _mm256_storeu_ps(tn, vn);
+    return (unsigned)(_mm256_cmp_ps_mask(vn, vf, _CMP_LE_OQ) &
+                      _mm_cmpneq_epi16_mask(_mm_loadu_si128((const __m128i *)(const void *)cnt),
+                                            _mm_set1_epi16((short)empty)));
+}
 #endif
 
 /* round(2^46 / d) half up for d != 0 (lt__div_round64(2^46, d)), exactly, without a 64-bit integer
