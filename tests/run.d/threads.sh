@@ -36,6 +36,14 @@ for s in bvh bvhq kd grid chunks; do
     done
     th_same "run --structure $s 77x45 (result hashes)" "$tmp/th.run$s"
 done
+# run --rays wide: the packets through the 8-wide tree, both paths (and the sim build's hashes)
+for t in 1 2 7; do
+    "$TH_NAT" run scenes/teapot.json --res 77x45 --num both --rays wide --threads "$t" --no-ref 2>&1 |
+        grep '^result' >"$tmp/th.runwide.$t"
+done
+"$TH_SIM" run scenes/teapot.json --res 77x45 --num both --rays wide --no-ref 2>&1 | grep '^result' \
+    >"$tmp/th.runwide.sim"
+th_same "run --rays wide 77x45 (result hashes)" "$tmp/th.runwide"
 grep -q "native, 7 threads" <("$TH_NAT" run scenes/teapot.json --res 16 --threads 7 --no-ref 2>&1)
 check "run --threads 7 prints 'native, 7 threads' on its time line" test $? -eq 0
 
