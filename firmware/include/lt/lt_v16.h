@@ -299,6 +299,69 @@ LT_INLINE lt_mask16_t lt_mask16_clear_first(lt_mask16_t k) /* MASK x1 */
 #elif LT__X86_LANES == 512
 #define LT__V16_BINV(VT, name, op, f, vf) LT__V16_BINX(VT, name, op, vf)
 #define LT__V16_CMPV(VT, name, op, rel, vc) LT__V16_CMPX(VT, name, op, vc, lt__x86_load16)
+#elif LT__X86_LANES == 256
+/* AVX2: the register bodies lt__x86_##vf##8 (lt_v16_x86.h) on the two 256-bit halves, each
+ * written with one 256-bit store; masked forms compute every lane and blend or zero by the mask
+ * (SAT events counted for the lanes of k only, as the loop counts them). */
+#define LT__V16_BINV(VT, name, op, f, vf)                                                          \
+    LT_INLINE VT name(VT a, VT b)                                                                  \
+    {                                                                                              \
+        VT r;                                                                                      \
+        int h;                                                                                     \
+        LT_COST(op, 1);                                                                            \
+        for (h = 0; h < 2; h++)                                                                    \
+            _mm256_storeu_si256((__m256i *)(void *)(r.l + 8 * h),                                  \
+                                lt__x86_##vf##8(lt__x86_load8(a.l + 8 * h),                        \
+                                                lt__x86_load8(b.l + 8 * h), 0xFFu));               \
+        return r;                                                                                  \
+    }                                                                                              \
+    LT_INLINE VT name##_m(VT src, lt_mask16_t k, VT a, VT b)                                       \
+    {                                                                                              \
+        int h;                                                                                     \
+        LT_COST(op, 1);                                                                            \
+        LT_UTIL(k);                                                                                \
+        for (h = 0; h < 2; h++) {                                                                  \
+            unsigned k8 = ((unsigned)k >> (8 * h)) & 0xFFu;                                        \
+            __m256i x = lt__x86_##vf##8(lt__x86_load8(a.l + 8 * h), lt__x86_load8(b.l + 8 * h),   \
+                                        k8);                                                       \
+            _mm256_storeu_si256((__m256i *)(void *)(src.l + 8 * h),                                \
+                                _mm256_blendv_epi8(lt__x86_load8(src.l + 8 * h), x,                \
+                                                   lt__x86_mask8(k8)));                            \
+        }                                                                                          \
+        return src;                                                                                \
+    }                                                                                              \
+    LT_INLINE VT name##_z(lt_mask16_t k, VT a, VT b)                                               \
+    {                                                                                              \
+        VT r;                                                                                      \
+        int h;                                                                                     \
+        LT_COST(op, 1);                                                                            \
+        LT_UTIL(k);                                                                                \
+        for (h = 0; h < 2; h++) {                                                                  \
+            unsigned k8 = ((unsigned)k >> (8 * h)) & 0xFFu;                                        \
+            __m256i x = lt__x86_##vf##8(lt__x86_load8(a.l + 8 * h), lt__x86_load8(b.l + 8 * h),   \
+                                        k8);                                                       \
+            _mm256_storeu_si256((__m256i *)(void *)(r.l + 8 * h),                                  \
+                                _mm256_and_si256(x, lt__x86_mask8(k8)));                           \
+        }                                                                                          \
+        return r;                                                                                  \
+    }
+#define LT__V16_CMPV(VT, name, op, rel, vc)                                                        \
+    LT_INLINE lt_mask16_t name(VT a, VT b)                                                         \
+    {                                                                                              \
+        LT_COST(op, 1);                                                                            \
+        return (lt_mask16_t)(lt__x86_cmp8_##vc(lt__x86_load8(a.l), lt__x86_load8(b.l)) |          \
+                             lt__x86_cmp8_##vc(lt__x86_load8(a.l + 8), lt__x86_load8(b.l + 8))     \
+                                 << 8);                                                            \
+    }                                                                                              \
+    LT_INLINE lt_mask16_t name##_m(lt_mask16_t k, VT a, VT b)                                      \
+    {                                                                                              \
+        LT_COST(op, 1);                                                                            \
+        LT_UTIL(k);                                                                                \
+        return (lt_mask16_t)((lt__x86_cmp8_##vc(lt__x86_load8(a.l), lt__x86_load8(b.l)) |         \
+                              lt__x86_cmp8_##vc(lt__x86_load8(a.l + 8), lt__x86_load8(b.l + 8))    \
+                                  << 8) &                                                          \
+                             k);                                                                   \
+    }
 #else
 #define LT__V16_BINV(VT, name, op, f, vf) LT__V16_BIN(VT, name, op, f)
 #define LT__V16_CMPV(VT, name, op, rel, vc) LT__V16_CMP(VT, name, op, rel)
@@ -308,6 +371,8 @@ LT_INLINE lt_mask16_t lt_mask16_clear_first(lt_mask16_t k) /* MASK x1 */
  * through the backend: the compiler keeps those loops in registers). */
 #if LT__X86_LANES == 512
 #define LT__V16_CMPF(VT, name, op, rel, vc) LT__V16_CMPX(VT, name, op, vc, lt__x86_load16h)
+#elif LT__X86_LANES == 256
+#define LT__V16_CMPF(VT, name, op, rel, vc) LT__V16_CMPV(VT, name, op, rel, vc)
 #else
 #define LT__V16_CMPF(VT, name, op, rel, vc) LT__V16_CMP(VT, name, op, rel)
 #endif
@@ -458,42 +523,7 @@ LT__V16_BINV(lt_vq16_t, lt_vq16_add_wrap, VALU, lt__q16_add_wrap, add)
 LT__V16_BINV(lt_vq16_t, lt_vq16_sub_wrap, VALU, lt__q16_sub_wrap, sub)
 LT__V16_BINV(lt_vq16_t, lt_vq16_min, VALU, lt__q16_min, min)
 LT__V16_BINV(lt_vq16_t, lt_vq16_max, VALU, lt__q16_max, max)
-#if LT__X86_LANES == 256
-/* The s15.16 product on the AVX2 backend (lt_v16_x86.h): the same three variants, bit-identical to
- * the loop below; a masked variant computes every lane and keeps the active ones. (AVX-512 takes
- * LT__V16_BINV's register form with lt__x86_mul16.) */
-LT_INLINE lt_vq16_t lt_vq16_mul_sat(lt_vq16_t a, lt_vq16_t b) /* VMUL x1 */
-{
-    lt_vq16_t r;
-    LT_COST(VMUL, 1);
-    lt__x86_mul_round_sat(a.l, b.l, r.l, 16, LT_MASK_ALL);
-    return r;
-}
-LT_INLINE lt_vq16_t lt_vq16_mul_sat_m(lt_vq16_t src, lt_mask16_t k, lt_vq16_t a, lt_vq16_t b)
-{
-    lt_vq16_t r;
-    int i;
-    LT_COST(VMUL, 1);
-    LT_UTIL(k);
-    lt__x86_mul_round_sat(a.l, b.l, r.l, 16, k);
-    for (i = 0; i < LT_LANES; i++)
-        src.l[i] = LT__ON(k, i) ? r.l[i] : src.l[i];
-    return src;
-}
-LT_INLINE lt_vq16_t lt_vq16_mul_sat_z(lt_mask16_t k, lt_vq16_t a, lt_vq16_t b)
-{
-    lt_vq16_t r;
-    int i;
-    LT_COST(VMUL, 1);
-    LT_UTIL(k);
-    lt__x86_mul_round_sat(a.l, b.l, r.l, 16, k);
-    for (i = 0; i < LT_LANES; i++)
-        r.l[i] = LT__ON(k, i) ? r.l[i] : 0;
-    return r;
-}
-#else
 LT__V16_BINV(lt_vq16_t, lt_vq16_mul_sat, VMUL, lt__q16_mul_sat, mul16)
-#endif
 LT__V16_BIN(lt_vq16_t, lt_vq16_mul_sat_rd, VMUL, lt__q16_mul_sat_rd)
 LT__V16_BIN(lt_vq16_t, lt_vq16_div_sat, VDIV, lt__q16_div_sat)
 LT__V16_UN(lt_vq16_t, lt_vq16_abs_sat, VALU, lt__q16_abs_sat)

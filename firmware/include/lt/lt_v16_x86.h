@@ -54,13 +54,13 @@ LT_INLINE __m512i lt__x86_load16h(const void *p)
 
 /* r[i] = sat32((a[i] * b[i] + 2^(f-1)) >> f) for the 16 lanes (1 <= f <= 31); in sim builds the
  * lanes of ev whose result saturated are counted as SAT events. */
-#if LT__X86_LANES == 512
 /* The SAT events of the lanes of sat that are in ev (sim builds; nothing elsewhere). */
 #if LT_COST_MODE == LT_COST_SIM
 #define LT__X86_SAT_EVENTS(sat, ev) LT_EVENT(SAT, lt__popcount32((unsigned)(sat) & (unsigned)(ev)))
 #else
 #define LT__X86_SAT_EVENTS(sat, ev) ((void)(sat), (void)(ev))
 #endif
+#if LT__X86_LANES == 512
 
 /* sat32((a * b + 2^(f-1)) >> f) on the 16 lanes of two registers: vpmuldq on the even lanes and on
  * the odd lanes shifted down, the rounding constant, vpsraq, the int32 clamp, the two halves
@@ -233,6 +233,99 @@ LT_INLINE void lt__x86_mul_round_sat(const int32_t *a, const int32_t *b, int32_t
     (void)m;
     (void)ev;
 }
+#endif
+
+#if LT__X86_LANES == 256
+/* The register bodies of the 32-bit integer lane ops on AVX2 (lt_v16.h's LT__V16_BINV and
+ * LT__V16_CMPV on this backend): 8 lanes each, a 16-lane op as two 256-bit halves, each half one
+ * whole 256-bit store that the next op's 256-bit load forwards from (the portable loops' int64
+ * saturation became 64-bit lane code); each bit-identical to its scalar body in lt_fx.h. ev8: the
+ * half's lanes whose saturations count as SAT events. */
+LT_INLINE unsigned lt__x86_bits8(__m256i m)
+{
+    return (unsigned)_mm256_movemask_ps(_mm256_castsi256_ps(m));
+}
+LT_INLINE __m256i lt__x86_qsat8(__m256i r, __m256i a, __m256i ovf, unsigned ev8)
+{
+    __m256i o = _mm256_srai_epi32(ovf, 31);
+    LT__X86_SAT_EVENTS(lt__x86_bits8(o), ev8);
+    return _mm256_blendv_epi8(
+        r, _mm256_xor_si256(_mm256_srai_epi32(a, 31), _mm256_set1_epi32(INT32_MAX)), o);
+}
+LT_INLINE __m256i lt__x86_qadd8(__m256i a, __m256i b, unsigned ev8)
+{
+    __m256i r = _mm256_add_epi32(a, b);
+    return lt__x86_qsat8(r, a, _mm256_andnot_si256(_mm256_xor_si256(a, b), _mm256_xor_si256(a, r)),
+                         ev8);
+}
+LT_INLINE __m256i lt__x86_qsub8(__m256i a, __m256i b, unsigned ev8)
+{
+    __m256i r = _mm256_sub_epi32(a, b);
+    return lt__x86_qsat8(r, a, _mm256_and_si256(_mm256_xor_si256(a, b), _mm256_xor_si256(a, r)),
+                         ev8);
+}
+#define LT__X86_BODY8(name, expr)                                                                  \
+    LT_INLINE __m256i lt__x86_##name##8(__m256i a, __m256i b, unsigned ev8)                       \
+    {                                                                                              \
+        (void)ev8;                                                                                 \
+        return expr;                                                                               \
+    }
+LT__X86_BODY8(add, _mm256_add_epi32(a, b))
+LT__X86_BODY8(sub, _mm256_sub_epi32(a, b))
+LT__X86_BODY8(min, _mm256_min_epi32(a, b))
+LT__X86_BODY8(max, _mm256_max_epi32(a, b))
+LT__X86_BODY8(or, _mm256_or_si256(a, b))
+LT__X86_BODY8(xor, _mm256_xor_si256(a, b))
+#undef LT__X86_BODY8
+/* sat32((a * b + 2^(f-1)) >> f) on 8 lanes: vpmuldq on the even lanes and the odd lanes shifted
+ * down, the 64-bit arithmetic shift and clamp (lt__x86_sra_sat64), merged back */
+LT_INLINE __m256i lt__x86_mulr8(__m256i va, __m256i vb, unsigned f, unsigned ev8)
+{
+    __m256i rnd = _mm256_set1_epi64x((long long)1 << (f - 1u));
+    __m128i sh = _mm_cvtsi32_si128((int)f), shl = _mm_cvtsi32_si128(64 - (int)f);
+    __m256i hi = _mm256_set1_epi64x(INT32_MAX), lo = _mm256_set1_epi64x(INT32_MIN);
+    __m256i pe = _mm256_mul_epi32(va, vb);
+    __m256i po = _mm256_mul_epi32(_mm256_srli_epi64(va, 32), _mm256_srli_epi64(vb, 32));
+    unsigned se, so;
+    pe = lt__x86_sra_sat64(_mm256_add_epi64(pe, rnd), sh, shl, hi, lo, &se);
+    po = lt__x86_sra_sat64(_mm256_add_epi64(po, rnd), sh, shl, hi, lo, &so);
+#if LT_COST_MODE == LT_COST_SIM
+    {
+        unsigned m = 0, i;
+        for (i = 0; i < 4; i++)
+            m |= ((se >> i) & 1u) << (2 * i) | ((so >> i) & 1u) << (2 * i + 1);
+        LT__X86_SAT_EVENTS(m, ev8);
+    }
+#else
+    (void)se;
+    (void)so;
+    (void)ev8;
+#endif
+    return _mm256_blend_epi32(pe, _mm256_slli_epi64(po, 32), 0xAA);
+}
+LT_INLINE __m256i lt__x86_mul168(__m256i a, __m256i b, unsigned ev8) { return lt__x86_mulr8(a, b, 16u, ev8); }
+LT_INLINE __m256i lt__x86_mul308(__m256i a, __m256i b, unsigned ev8) { return lt__x86_mulr8(a, b, 30u, ev8); }
+/* the lanes of k8 as a lane mask (all ones where on) */
+LT_INLINE __m256i lt__x86_mask8(unsigned k8)
+{
+    const __m256i bits = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
+    return _mm256_cmpeq_epi32(_mm256_and_si256(_mm256_set1_epi32((int)k8), bits), bits);
+}
+/* compares: 8-bit masks; float compares ordered and quiet (a NaN lane compares false) */
+#define LT__X86_CMP8(name, expr)                                                                   \
+    LT_INLINE unsigned lt__x86_cmp8_##name(__m256i a, __m256i b) { return (expr) & 0xFFu; }
+LT__X86_CMP8(lt, lt__x86_bits8(_mm256_cmpgt_epi32(b, a)))
+LT__X86_CMP8(le, ~lt__x86_bits8(_mm256_cmpgt_epi32(a, b)))
+LT__X86_CMP8(gt, lt__x86_bits8(_mm256_cmpgt_epi32(a, b)))
+LT__X86_CMP8(ge, ~lt__x86_bits8(_mm256_cmpgt_epi32(b, a)))
+LT__X86_CMP8(eq, lt__x86_bits8(_mm256_cmpeq_epi32(a, b)))
+LT__X86_CMP8(flt, (unsigned)_mm256_movemask_ps(_mm256_cmp_ps(_mm256_castsi256_ps(a), _mm256_castsi256_ps(b), _CMP_LT_OQ)))
+LT__X86_CMP8(fle, (unsigned)_mm256_movemask_ps(_mm256_cmp_ps(_mm256_castsi256_ps(a), _mm256_castsi256_ps(b), _CMP_LE_OQ)))
+LT__X86_CMP8(fgt, (unsigned)_mm256_movemask_ps(_mm256_cmp_ps(_mm256_castsi256_ps(a), _mm256_castsi256_ps(b), _CMP_GT_OQ)))
+LT__X86_CMP8(fge, (unsigned)_mm256_movemask_ps(_mm256_cmp_ps(_mm256_castsi256_ps(a), _mm256_castsi256_ps(b), _CMP_GE_OQ)))
+LT__X86_CMP8(feq, (unsigned)_mm256_movemask_ps(_mm256_cmp_ps(_mm256_castsi256_ps(a), _mm256_castsi256_ps(b), _CMP_EQ_OQ)))
+#undef LT__X86_CMP8
+LT_INLINE __m256i lt__x86_load8(const void *p) { return _mm256_loadu_si256((const __m256i *)p); }
 #endif
 
 /* r = b in the lanes of k, a elsewhere, for 16 lanes of 32 bits (the lane model's blend): one
