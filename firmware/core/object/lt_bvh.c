@@ -230,7 +230,7 @@ static void w_plane8_q16(const lt_q16_t *p, lt_q16_t o, lt_q16_t rd, lt_q16_t *t
 #define LTW_MERGE 0u
 #define LTW_NODE_RECIPE BVH8_NODE_Q16
 #define LTW_PLANE8 w_plane8_q16
-#if LT__X86_LANES == 512 && LT_COST_MODE != LT_COST_SIM
+#if LT__X86_LANES && LT_COST_MODE != LT_COST_SIM
 #define LTW_TEST8(r, n, tn, nc)                                                                    \
     lt__x86_wtest8_q16(&(n)->lo[0][0], &(n)->hi[0][0], (n)->cnt, (r)->o, (r)->rd, (r)->tmin,       \
                        (r)->tmax, LT_BVH8_EMPTY, (tn), (nc))
@@ -392,7 +392,7 @@ static void slab_fix1_f32(unsigned par, float o, float d, float lo, float hi, fl
 #define LTW_MERGE LT_BVH8_MERGE
 #define LTW_NODE_RECIPE BVH8_NODE_F32
 #define LTW_PLANE8 w_plane8_f32
-#if LT__X86_LANES == 512 && LT_COST_MODE != LT_COST_SIM
+#if LT__X86_LANES && LT_COST_MODE != LT_COST_SIM
 #define LTW_TEST8(r, n, tn, nc)                                                                    \
     lt__x86_wtest8_f32(&(n)->lo[0][0], &(n)->hi[0][0], (n)->cnt, (r)->o, (r)->rd, (r)->tmin,       \
                        (r)->tmax, LT_BVH8_EMPTY, (tn))

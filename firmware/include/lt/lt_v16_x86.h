@@ -572,6 +572,138 @@ LT_INLINE unsigned lt__x86_wtest16_f32(const float *lo, const float *hi, const u
                       _mm_cmpneq_epi16_mask(_mm_loadu_si128((const __m128i *)(const void *)cnt),
                                             _mm_set1_epi16((short)empty)));
 }
+#elif LT__X86_LANES == 256
+/* The wide BVH's node tests (single ray: lt__x86_wtest8_*, 16-ray packet frustum:
+ * lt__x86_wtest16_*) on AVX2, in registers as on AVX-512: each plane's 8 t in one ymm (s15.16: two
+ * 4-lane int64 halves, lt__x86_plane8r_q16; always with the clamp of plane - o), the verdicts and
+ * the slots in use as an 8-bit mask. No events: the counting build keeps the C loops. */
+/* One plane's t = sat32(round(sat32(p - o) x rd / 2^16)) in doubles, 4 lanes: p - o is exact, its
+ * clamp too; where |d rd| < 2^53 the product, the rounding add and the power-of-two scale are
+ * exact, so the floor is the integer result, and where |d rd| >= 2^53 (beyond the int32 result
+ * bound 2^47) the rounded product saturates on the same side: the bits of
+ * lt__q16_mul_sat(lt__q16_sub_sat(p, o), rd), without AVX2's 64-bit shift and clamp emulation. */
+LT_INLINE __m128i lt__x86_plane4d_q16(__m128i p, __m256d o, __m256d rd)
+{
+    __m256d hi = _mm256_set1_pd(2147483647.0), lo = _mm256_set1_pd(-2147483648.0);
+    __m256d d = _mm256_sub_pd(_mm256_cvtepi32_pd(p), o);
+    d = _mm256_max_pd(_mm256_min_pd(d, hi), lo);
+    d = _mm256_floor_pd(_mm256_mul_pd(_mm256_add_pd(_mm256_mul_pd(d, rd), _mm256_set1_pd(32768.0)),
+                                      _mm256_set1_pd(1.0 / 65536.0)));
+    return _mm256_cvttpd_epi32(_mm256_max_pd(_mm256_min_pd(d, hi), lo));
+}
+LT_INLINE __m256i lt__x86_plane8r_q16(const int32_t *p, int32_t o, int32_t rd)
+{
+    __m256d od = _mm256_set1_pd((double)o), rdd = _mm256_set1_pd((double)rd);
+    __m256i v = _mm256_loadu_si256((const __m256i *)(const void *)p);
+    return _mm256_set_m128i(lt__x86_plane4d_q16(_mm256_extracti128_si256(v, 1), od, rdd),
+                            lt__x86_plane4d_q16(_mm256_castsi256_si128(v), od, rdd));
+}
+/* the slots in use: cnt[c] != empty, as 8 bits */
+LT_INLINE unsigned lt__x86_used8(const uint16_t *cnt, uint16_t empty)
+{
+    __m128i e = _mm_cmpeq_epi16(_mm_loadu_si128((const __m128i *)(const void *)cnt),
+                                _mm_set1_epi16((short)empty));
+    return ~(unsigned)_mm_movemask_epi8(_mm_packs_epi16(e, _mm_setzero_si128())) & 0xFFu;
+}
+LT_INLINE unsigned lt__x86_wtest8_q16(const int32_t *lo, const int32_t *hi, const uint16_t *cnt,
+                                      const int32_t *o, const int32_t *rd, int32_t tmin,
+                                      int32_t tmax, uint16_t empty, int32_t *tn, int noclamp)
+{
+    __m256i vn = _mm256_set1_epi32(tmin), vf = _mm256_set1_epi32(tmax);
+    int a;
+    (void)noclamp;
+    for (a = 0; a < 3; a++) {
+        __m256i t0 = lt__x86_plane8r_q16(lo + 8 * a, o[a], rd[a]);
+        __m256i t1 = lt__x86_plane8r_q16(hi + 8 * a, o[a], rd[a]);
+        vn = _mm256_max_epi32(vn, _mm256_min_epi32(t0, t1));
+        vf = _mm256_min_epi32(vf, _mm256_max_epi32(t0, t1));
+    }
+    _mm256_storeu_si256((__m256i *)(void *)tn, vn);
+    return ~(unsigned)_mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpgt_epi32(vn, vf))) &
+           lt__x86_used8(cnt, empty);
+}
+LT_INLINE unsigned lt__x86_wtest8_f32(const float *lo, const float *hi, const uint16_t *cnt,
+                                      const float *o, const float *rd, float tmin, float tmax,
+                                      uint16_t empty, float *tn)
+{
+    __m256 vn = _mm256_set1_ps(tmin), vf = _mm256_set1_ps(tmax);
+    int a;
+    for (a = 0; a < 3; a++) {
+        __m256 vo = _mm256_set1_ps(o[a]), vr = _mm256_set1_ps(rd[a]);
+        __m256 t0 = _mm256_mul_ps(_mm256_sub_ps(_mm256_loadu_ps(lo + 8 * a), vo), vr);
+        __m256 t1 = _mm256_mul_ps(_mm256_sub_ps(_mm256_loadu_ps(hi + 8 * a), vo), vr);
+        vn = _mm256_max_ps(vn, _mm256_min_ps(t0, t1));
+        vf = _mm256_min_ps(vf, _mm256_max_ps(t0, t1));
+    }
+    _mm256_storeu_ps(tn, vn);
+    return (unsigned)_mm256_movemask_ps(_mm256_cmp_ps(vn, vf, _CMP_LE_OQ)) &
+           lt__x86_used8(cnt, empty);
+}
+LT_INLINE unsigned lt__x86_wtest16_q16(const int32_t *lo, const int32_t *hi, const uint16_t *cnt,
+                                       const int32_t *olo, const int32_t *ohi,
+                                       const int32_t *rlo, const int32_t *rhi, int same_o,
+                                       unsigned free, int32_t tmin, int32_t tmax, uint16_t empty,
+                                       int32_t *tn)
+{
+    __m256i vn = _mm256_set1_epi32(tmin), vf = _mm256_set1_epi32(tmax);
+    int a, s;
+    for (a = 0; a < 3; a++) {
+        __m256i l[2], h[2];
+        if ((free >> a) & 1u)
+            continue;
+        for (s = 0; s < 2; s++) {
+            const int32_t *p = (s == 0 ? lo : hi) + 8 * a;
+            __m256i x = lt__x86_plane8r_q16(p, olo[a], rlo[a]);
+            __m256i y = lt__x86_plane8r_q16(p, olo[a], rhi[a]);
+            l[s] = _mm256_min_epi32(x, y);
+            h[s] = _mm256_max_epi32(x, y);
+            if (!same_o) {
+                x = lt__x86_plane8r_q16(p, ohi[a], rlo[a]);
+                y = lt__x86_plane8r_q16(p, ohi[a], rhi[a]);
+                l[s] = _mm256_min_epi32(l[s], _mm256_min_epi32(x, y));
+                h[s] = _mm256_max_epi32(h[s], _mm256_max_epi32(x, y));
+            }
+        }
+        vn = _mm256_max_epi32(vn, _mm256_min_epi32(l[0], l[1]));
+        vf = _mm256_min_epi32(vf, _mm256_max_epi32(h[0], h[1]));
+    }
+    _mm256_storeu_si256((__m256i *)(void *)tn, vn);
+    return ~(unsigned)_mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpgt_epi32(vn, vf))) &
+           lt__x86_used8(cnt, empty);
+}
+LT_INLINE unsigned lt__x86_wtest16_f32(const float *lo, const float *hi, const uint16_t *cnt,
+                                       const float *olo, const float *ohi, const float *rlo,
+                                       const float *rhi, int same_o, unsigned free, float tmin,
+                                       float tmax, uint16_t empty, float *tn)
+{
+    __m256 vn = _mm256_set1_ps(tmin), vf = _mm256_set1_ps(tmax);
+    int a, s;
+    for (a = 0; a < 3; a++) {
+        __m256 r0 = _mm256_set1_ps(rlo[a]), r1 = _mm256_set1_ps(rhi[a]);
+        __m256 l[2], h[2];
+        if ((free >> a) & 1u)
+            continue;
+        for (s = 0; s < 2; s++) {
+            __m256 p = _mm256_loadu_ps((s == 0 ? lo : hi) + 8 * a);
+            __m256 d = _mm256_sub_ps(p, _mm256_set1_ps(olo[a]));
+            __m256 x = _mm256_mul_ps(d, r0), y = _mm256_mul_ps(d, r1);
+            l[s] = _mm256_min_ps(x, y);
+            h[s] = _mm256_max_ps(x, y);
+            if (!same_o) {
+                d = _mm256_sub_ps(p, _mm256_set1_ps(ohi[a]));
+                x = _mm256_mul_ps(d, r0);
+                y = _mm256_mul_ps(d, r1);
+                l[s] = _mm256_min_ps(l[s], _mm256_min_ps(x, y));
+                h[s] = _mm256_max_ps(h[s], _mm256_max_ps(x, y));
+            }
+        }
+        vn = _mm256_max_ps(vn, _mm256_min_ps(l[0], l[1]));
+        vf = _mm256_min_ps(vf, _mm256_max_ps(h[0], h[1]));
+    }
+    _mm256_storeu_ps(tn, vn);
+    return (unsigned)_mm256_movemask_ps(_mm256_cmp_ps(vn, vf, _CMP_LE_OQ)) &
+           lt__x86_used8(cnt, empty);
+}
 #endif
 
 /* round(2^46 / d) half up for d != 0 (lt__div_round64(2^46, d)), exactly, without a 64-bit integer
