@@ -9,7 +9,9 @@
 # Without ../shared (SHARED=...) it says so and leaves the page alone: exit 1 under CI=true, else 0.
 # An Embree mode that disagrees with its single-ray mode (embree-race exits 1) stops it: no table.
 # Usage: tests/bench/race_doc.sh   (from the repository root; B=build RES=1024 RUNS=3 DOC=docs/results.md;
-#        RACE_ARGS: more embree-race options, e.g. "--embree-config isa=avx2", named in the caption)
+#        RACE_ARGS: more embree-race options, e.g. "--embree-config isa=avx2", named in the caption;
+#        VARIANT=avx2: build/avx2/embree-race into the race-avx2 markers, no profile: make
+#        race-doc-avx2)
 set -euo pipefail
 B=${B:-build}
 SHARED=${SHARED:-../shared}
@@ -17,8 +19,14 @@ RES=${RES:-1024}
 RUNS=${RUNS:-3}
 DOC=${DOC:-docs/results.md}
 RACE_ARGS=${RACE_ARGS:-}
-RACE="$B/host/embree-race"
+VARIANT=${VARIANT:-host}
+RACE="$B/$VARIANT/embree-race"
 OUT="$B/race"
+MARK=race
+if [ "$VARIANT" != host ]; then
+    OUT="$B/race-$VARIANT"
+    MARK="race-$VARIANT"
+fi
 scenes=(scenes/teapot.obj "$SHARED/scenes/bunny.obj" "$SHARED/scenes/dragon_res3.obj"
         "$SHARED/scenes/sponza.obj" "$SHARED/scenes/sibenik.obj" "$SHARED/scenes/conference.obj.gz"
         "$SHARED/scenes/CornellBox-Original.obj")
@@ -60,7 +68,9 @@ if ! git diff --quiet HEAD -- firmware host tests/bench Makefile tests/bench.mk 
 fi
 when=$(date '+%Y-%m-%d %H:%M %Z')
 
-awk -v res="$RES" -v runs="$RUNS" -v commit="$commit" -v when="$when" '
+target=race-doc
+[ "$VARIANT" = host ] || target="race-doc-$VARIANT"
+awk -v res="$RES" -v runs="$RUNS" -v commit="$commit" -v when="$when" -v target="$target" '
 function rest(n,   s, i) { s = $n; for (i = n + 1; i <= NF; i++) s = s " " $i; return s }
 function kv(   i) { delete v; for (i = 3; i < NF; i += 2) v[$i] = $(i + 1) }
 function mr(x) { return x >= 100 ? sprintf("%.0f", x) : x >= 10 ? sprintf("%.1f", x) : sprintf("%.2f", x) }
@@ -102,8 +112,8 @@ END {
     split("single 2x2 4x2 4x4 single 2x2 4x2 4x4", T, " ")
     split("1 4 8 16 1 4 8 16", W, " ")
     printf "Measured on **%s**, ISA **%s** (the CPU supports %s; lanetrace built for %s), ", cpu, widest, cisa, bisa
-    printf "**Embree %s%s native ray4/8/16: %s/%s/%s**, one thread, %dx%d rays, median of %d after one warm-up pass per mode, %s, git %s (`make race-doc`).\n\n", \
-        ever, ecfg, yn(nat[4]), yn(nat[8]), yn(nat[16]), res, res, runs, when, commit
+    printf "**Embree %s%s native ray4/8/16: %s/%s/%s**, one thread, %dx%d rays, median of %d after one warm-up pass per mode, %s, git %s (`make %s`).\n\n", \
+        ever, ecfg, yn(nat[4]), yn(nat[8]), yn(nat[16]), res, res, runs, when, commit, target
     printf "Embree 3, Mrays/s per mode (every mode timed with the incoherent and the coherent context flag, the faster kept: i / c; best packet and best shadow mode in bold; agreement: the lowest over the modes of the same triangle as rtcIntersect1 or a verified same-distance tie, and of the same occlusion as rtcOccluded1):\n\n"
     printf "| scene (tris) | build ms first / rebuilt |"
     for (k = 1; k <= 8; k++)
@@ -154,7 +164,8 @@ END {
 }' "$OUT/race.kv" >"$OUT/race.md"
 
 echo "race-doc: $OUT/race.md" >&2
-tools/doc_insert.sh race "$OUT/race.md" "$DOC"
+tools/doc_insert.sh "$MARK" "$OUT/race.md" "$DOC"
+[ "$VARIANT" = host ] || exit 0
 # where lanetrace's time goes (perf; skipped with a line where perf cannot sample)
 if B=$B tests/bench/profile.sh --md "$OUT/profile.md" && [ -s "$OUT/profile.md" ]; then
     tools/doc_insert.sh race-profile "$OUT/profile.md" "$DOC"
