@@ -208,30 +208,16 @@ LT_INLINE __m256i lt__x86_sra_sat64(__m256i x, __m128i sh, __m128i shl, __m256i 
     return _mm256_blendv_epi8(x, lo, lt);
 }
 
+LT_INLINE __m256i lt__x86_mulr8(__m256i va, __m256i vb, unsigned f, unsigned ev8);
 LT_INLINE void lt__x86_mul_round_sat(const int32_t *a, const int32_t *b, int32_t *r, unsigned f,
                                      lt_mask16_t ev)
 {
-    __m256i rnd = _mm256_set1_epi64x((long long)1 << (f - 1u));
-    __m128i sh = _mm_cvtsi32_si128((int)f), shl = _mm_cvtsi32_si128(64 - (int)f);
-    __m256i hi = _mm256_set1_epi64x(INT32_MAX), lo = _mm256_set1_epi64x(INT32_MIN);
-    unsigned m = 0;
     int h;
-    for (h = 0; h < 2; h++) {
-        __m256i va = _mm256_loadu_si256((const __m256i *)(const void *)(a + 8 * h));
-        __m256i vb = _mm256_loadu_si256((const __m256i *)(const void *)(b + 8 * h));
-        __m256i pe = _mm256_mul_epi32(va, vb);
-        __m256i po = _mm256_mul_epi32(_mm256_srli_epi64(va, 32), _mm256_srli_epi64(vb, 32));
-        unsigned se, so, i;
-        pe = lt__x86_sra_sat64(_mm256_add_epi64(pe, rnd), sh, shl, hi, lo, &se);
-        po = lt__x86_sra_sat64(_mm256_add_epi64(po, rnd), sh, shl, hi, lo, &so);
-        for (i = 0; i < 4; i++)
-            m |= (((se >> i) & 1u) << (2 * i) | ((so >> i) & 1u) << (2 * i + 1)) << (8 * h);
+    for (h = 0; h < 2; h++)
         _mm256_storeu_si256((__m256i *)(void *)(r + 8 * h),
-                            _mm256_blend_epi32(pe, _mm256_slli_epi64(po, 32), 0xAA));
-    }
-    LT_EVENT(SAT, lt__popcount32(m & ev));
-    (void)m;
-    (void)ev;
+                            lt__x86_mulr8(_mm256_loadu_si256((const __m256i *)(const void *)(a + 8 * h)),
+                                          _mm256_loadu_si256((const __m256i *)(const void *)(b + 8 * h)),
+                                          f, ((unsigned)ev >> (8 * h)) & 0xFFu));
 }
 #endif
 
@@ -277,31 +263,28 @@ LT__X86_BODY8(max, _mm256_max_epi32(a, b))
 LT__X86_BODY8(or, _mm256_or_si256(a, b))
 LT__X86_BODY8(xor, _mm256_xor_si256(a, b))
 #undef LT__X86_BODY8
-/* sat32((a * b + 2^(f-1)) >> f) on 8 lanes: vpmuldq on the even lanes and the odd lanes shifted
- * down, the 64-bit arithmetic shift and clamp (lt__x86_sra_sat64), merged back */
+/* sat32((a * b + 2^(f-1)) >> f) on 8 lanes without AVX2's missing 64-bit arithmetic shift: with
+ * x = a b + 2^(f-1) (vpmuldq on the even lanes and the odd lanes shifted down), t = x + 2^(31+f)
+ * lies in [0, 2^(32+f)) exactly when x >> f fits int32, and then the low 32 bits of t >> f (a
+ * logical shift) are (x >> f) + 2^31; out of range the result is the clamp of the product's sign,
+ * that of a ^ b (the product is not zero there). */
 LT_INLINE __m256i lt__x86_mulr8(__m256i va, __m256i vb, unsigned f, unsigned ev8)
 {
-    __m256i rnd = _mm256_set1_epi64x((long long)1 << (f - 1u));
-    __m128i sh = _mm_cvtsi32_si128((int)f), shl = _mm_cvtsi32_si128(64 - (int)f);
-    __m256i hi = _mm256_set1_epi64x(INT32_MAX), lo = _mm256_set1_epi64x(INT32_MIN);
-    __m256i pe = _mm256_mul_epi32(va, vb);
-    __m256i po = _mm256_mul_epi32(_mm256_srli_epi64(va, 32), _mm256_srli_epi64(vb, 32));
-    unsigned se, so;
-    pe = lt__x86_sra_sat64(_mm256_add_epi64(pe, rnd), sh, shl, hi, lo, &se);
-    po = lt__x86_sra_sat64(_mm256_add_epi64(po, rnd), sh, shl, hi, lo, &so);
-#if LT_COST_MODE == LT_COST_SIM
-    {
-        unsigned m = 0, i;
-        for (i = 0; i < 4; i++)
-            m |= ((se >> i) & 1u) << (2 * i) | ((so >> i) & 1u) << (2 * i + 1);
-        LT__X86_SAT_EVENTS(m, ev8);
-    }
-#else
-    (void)se;
-    (void)so;
+    __m256i c = _mm256_set1_epi64x((long long)(((uint64_t)1 << (f - 1u)) + ((uint64_t)1 << (31u + f))));
+    __m128i sh = _mm_cvtsi32_si128((int)f), shr = _mm_cvtsi32_si128(32 + (int)f);
+    __m256i te = _mm256_add_epi64(_mm256_mul_epi32(va, vb), c);
+    __m256i to = _mm256_add_epi64(
+        _mm256_mul_epi32(_mm256_srli_epi64(va, 32), _mm256_srli_epi64(vb, 32)), c);
+    __m256i z = _mm256_setzero_si256();
+    __m256i r = _mm256_blend_epi32(_mm256_srl_epi64(te, sh), _mm256_slli_epi64(_mm256_srl_epi64(to, sh), 32),
+                                   0xAA);
+    __m256i ok = _mm256_blend_epi32(_mm256_cmpeq_epi64(_mm256_srl_epi64(te, shr), z),
+                                    _mm256_cmpeq_epi64(_mm256_srl_epi64(to, shr), z), 0xAA);
+    __m256i satv = _mm256_xor_si256(_mm256_srai_epi32(_mm256_xor_si256(va, vb), 31),
+                                    _mm256_set1_epi32(INT32_MAX));
+    LT__X86_SAT_EVENTS(~lt__x86_bits8(ok) & 0xFFu, ev8);
     (void)ev8;
-#endif
-    return _mm256_blend_epi32(pe, _mm256_slli_epi64(po, 32), 0xAA);
+    return _mm256_blendv_epi8(satv, _mm256_xor_si256(r, _mm256_set1_epi32(INT32_MIN)), ok);
 }
 LT_INLINE __m256i lt__x86_mul168(__m256i a, __m256i b, unsigned ev8) { return lt__x86_mulr8(a, b, 16u, ev8); }
 LT_INLINE __m256i lt__x86_mul308(__m256i a, __m256i b, unsigned ev8) { return lt__x86_mulr8(a, b, 30u, ev8); }
