@@ -87,6 +87,8 @@ static int write_atomic(const char *path, const char *text, lt_diag_t *diag)
 
 /* run --rays */
 static const char *const run_rays_names[] = {"packet", "single", "wide", NULL};
+/* render --rays */
+static const char *const render_rays_names[] = {"packet", "wide", NULL};
 
 /* ---- run --native ------------------------------------------------------------------------- */
 
@@ -1497,6 +1499,7 @@ typedef struct render {
     double lf[3];
     int seen_res, seen_light, seen_num, num, structure, isect, seen_isect, layers, json;
     int seen_structure, autop;
+    int rays; /* --rays: 0 packets through the binary BVH, 1 through the 8-wide one */
     char auto_json[2048]; /* what the recommendation did, a JSON object ("" = nothing) */
     const char *num_names[8];
     unsigned num_sets[8];
@@ -1573,6 +1576,11 @@ static int render_parse(render_t *r, int argc, char **argv)
          .help = "ray/triangle test: {choices} (default: the scene's, else wt:\n"
                  "watertight; mt: Moller-Trumbore, cheaper, leaks at shared edges)"},
         LT_OPT_INT("--layers", "K", &r->layers, 1, 16, "depth peels, {range} (default 1)"),
+        LT_OPT_ENUM_("--rays", &r->rays, render_rays_names,
+                     "packet: 16-ray packets through the binary BVH (default, the walk the\n"
+                     "machine models price); wide: the same packets through the 8-wide BVH\n"
+                     "(bvh; one frustum test per node: the same distances, faster natively;\n"
+                     "docs/bvh.md)"),
         LT_OPT_OUT("--report", "PATH.json",
                    &r->report, "json", "(simulator build) write the cycle report of the whole render as\n"
                                "JSON; the text report is printed unless -q or --json"),
@@ -1790,6 +1798,10 @@ static int render_trace(render_t *r)
     if (r->seen_isect)
         snprintf(r->sf.isect, sizeof r->sf.isect, "%s", lt_sf_isects[r->isect]);
     lt_accel_set_isect(r->acc, strcmp(sf->isect, "mt") == 0 ? LT_ISECT_MT : LT_ISECT_WT);
+    if (r->rays == 1 && lt_accel_set_walk(r->acc, 1, &diag) != 0) {
+        fprintf(stderr, "%s render: %s\n", prog, diag.msg);
+        return EXIT_INPUT;
+    }
     progress_begin("render");
     lt_render_primary(&r->sc, r->acc, &r->cam, &r->fr, progress);
     progress_end();

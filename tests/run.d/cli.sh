@@ -85,6 +85,13 @@ for rs in "" "--native"; do
     done
 done
 expect "run --rays wide prints the wide-packet cycle report" 0 "wide-tree packets" "$LT" run scenes/teapot.json --res 16 --num q16 --rays wide --no-ref
+# render --rays wide: primary, shadow and peel packets through the 8-wide tree, the same images
+for rw in packet wide; do
+    "$HOSTBIN/lanetrace-native" render scenes/teapot.json --res 90x70 --layers 2 --rays $rw \
+        --out "$tmp/rw_$rw" -q >/dev/null 2>&1
+done
+check "render --rays wide (native): the same EXR and PNG as --rays packet (primary, shadows, 2 layers)" \
+    bash -c "cmp -s '$tmp/rw_packet.exr' '$tmp/rw_wide.exr' && cmp -s '$tmp/rw_packet.png' '$tmp/rw_wide.png'"
 expect "run --rays single prints the single-ray cycle report" 0 "single rays (counted" "$LT" run scenes/teapot.json --res 16 --num q16 --rays single --no-ref
 expect "run --rays bogus: usage error" 2 "expected packet, single or wide" "$LT" run --res 8 --rays bogus
 mkdir -p "$tmp/plots"
