@@ -1911,18 +1911,39 @@ static void w_rays(const lt_bvh8_t *w, const lt_bvh_t *b, const lt_scene_t *s, i
     }
 }
 
-static void test_wide(void **state)
+/* The meshes of the wide-tree tests: clustered, grid, same-centroid; the fourth the clustered mesh
+ * with every 7th triangle collapsed to zero area (a repeated vertex), which the blocks flag and no
+ * ray may hit; the fifth the clustered mesh scaled by 9 (planes to +-3,900 units, inside the
+ * 4,096-unit geometry bound) with origins to +-32,000, so that plane - origin leaves int32 for
+ * some rays: the s15.16 node test's clamp (the other meshes' rays take the register form without
+ * it, lt_bvh8_t.span). Mesh ki into *s; returns the extent for rand_rays. */
+static const char *const wide_names[] = {"clustered", "grid", "same-centroid",
+                                         "clustered, 1/7 zero-area", "clustered x9, far origins"};
+static double wide_mesh(unsigned ki, lt_scene_t *s)
 {
-    /* the fourth: the clustered mesh with every 7th triangle collapsed to zero area (a repeated
-       vertex), which the blocks flag and no ray may hit */
-    /* the fifth: the clustered mesh scaled by 9 (planes to +-3,900 units, inside the 4,096-unit
-       geometry bound) with origins to +-32,000, so that plane - origin leaves int32 for some rays:
-       the s15.16 node test's clamp (the other meshes' rays take the register form without it,
-       lt_bvh8_t.span) */
     static const int kinds[] = {MESH_CLUSTERS, MESH_GRID, MESH_SAME_CENTROID, MESH_CLUSTERS,
                                 MESH_CLUSTERS};
-    static const char *names[] = {"clustered", "grid", "same-centroid", "clustered, 1/7 zero-area",
-                                  "clustered x9, far origins"};
+    double ext = kinds[ki] == MESH_CLUSTERS ? 420.0 : (kinds[ki] == MESH_GRID ? 13.0 : 35.0);
+    uint32_t t;
+    mesh_random(s, kinds[ki] == MESH_CLUSTERS ? 1500u : (kinds[ki] == MESH_GRID ? 1200u : 600u),
+                kinds[ki], 91 + (uint64_t)ki);
+    if (ki == 3) {
+        for (t = 0; t < s->ntris; t += 7u)
+            set_vert(s, t, 2, s->vd[t * 9u], s->vd[t * 9u + 1u], s->vd[t * 9u + 2u]);
+        mesh_quantise(s);
+    }
+    if (ki == 4) {
+        for (t = 0; t < s->ntris * 9u; t++)
+            s->vd[t] *= 9.0;
+        mesh_quantise(s);
+        ext = 12800.0; /* eyes of rand_rays' first kind up to 2.5 ext */
+    }
+    return ext;
+}
+
+static void test_wide(void **state)
+{
+    /* the five meshes of wide_mesh */
     unsigned ki;
     int fmt;
     (void)state;
@@ -1939,27 +1960,12 @@ static void test_wide(void **state)
                 ltt_rng_t r;
                 size_t bytes = 0;
                 unsigned char *mem;
-                double ext = kinds[ki] == MESH_CLUSTERS ? 420.0 : (kinds[ki] == MESH_GRID ? 13.0 : 35.0);
+                double ext = wide_mesh(ki, &s);
                 lt_status_t st;
                 memset(&c, 0, sizeof c);
                 memset(&d, 0, sizeof d);
                 d.max_leaf = leaves[li];
                 d.min_leaf = leaves[li] / 2u;
-                mesh_random(&s, kinds[ki] == MESH_CLUSTERS ? 1500u : (kinds[ki] == MESH_GRID ? 1200u : 600u),
-                            kinds[ki], 91 + ki);
-                if (ki == 3) {
-                    uint32_t t;
-                    for (t = 0; t < s.ntris; t += 7u)
-                        set_vert(&s, t, 2, s.vd[t * 9u], s.vd[t * 9u + 1u], s.vd[t * 9u + 2u]);
-                    mesh_quantise(&s);
-                }
-                if (ki == 4) {
-                    uint32_t t;
-                    for (t = 0; t < s.ntris * 9u; t++)
-                        s.vd[t] *= 9.0;
-                    mesh_quantise(&s);
-                    ext = 12800.0; /* eyes of rand_rays' first kind up to 2.5 ext */
-                }
                 assert_int_equal(build(&bb, &s, fmt, &d), LT_OK);
                 assert_int_equal(lt_bvh8_size(&bb.bvh, &bytes), LT_OK);
                 mem = malloc(bytes + TAIL);
@@ -2017,7 +2023,7 @@ static void test_wide(void **state)
                               "node), %lu leaves from %u binary, %u blocks (%lu zero-area lanes), "
                               "%lu rays (%lu through the clamped node test): closest hit equal on "
                               "%lu, exact ties %lu, differ %lu; any hit equal on %lu of %lu\n",
-                              fmt == FMT_Q16 ? "q16" : "f32", names[ki], leaves[li], c.nodes,
+                              fmt == FMT_Q16 ? "q16" : "f32", wide_names[ki], leaves[li], c.nodes,
                               bb.bvh.nnodes, (double)c.children / (double)c.nodes, c.leaves,
                               bb.bvh.leaves, w.nblocks, c.zero_area, c.rays, c.clamped, c.same,
                               c.ties, c.bad, c.occl - c.occl_bad, c.occl);
@@ -2217,10 +2223,6 @@ static void wp_packet(const lt_bvh8_t *w, const lt_bvh_t *b, const lt_scene_t *s
  * aimed rays, origins beyond int32 for plane - origin), whole and with random lane subsets. */
 static void test_wide_packets(void **state)
 {
-    static const int kinds[] = {MESH_CLUSTERS, MESH_GRID, MESH_SAME_CENTROID, MESH_CLUSTERS,
-                                MESH_CLUSTERS};
-    static const char *names[] = {"clustered", "grid", "same-centroid", "clustered, 1/7 zero-area",
-                                  "clustered x9, far origins"};
     unsigned ki;
     int fmt;
     (void)state;
@@ -2241,27 +2243,11 @@ static void test_wide_packets(void **state)
                         unsigned char *mem;
                         unsigned pk;
                         uint32_t merge = mi ? LT_BVH8_MERGE : 0u;
-                        double ext = kinds[ki] == MESH_CLUSTERS ? 420.0
-                                                                : (kinds[ki] == MESH_GRID ? 13.0 : 35.0);
+                        double ext = wide_mesh(ki, &s);
                         memset(&c, 0, sizeof c);
                         memset(&d, 0, sizeof d);
                         d.max_leaf = leaves[li];
                         d.min_leaf = leaves[li] / 2u;
-                        mesh_random(&s, kinds[ki] == MESH_CLUSTERS ? 1500u : (kinds[ki] == MESH_GRID ? 1200u : 600u),
-                                    kinds[ki], 91 + ki);
-                        if (ki == 3) {
-                            uint32_t t;
-                            for (t = 0; t < s.ntris; t += 7u)
-                                set_vert(&s, t, 2, s.vd[t * 9u], s.vd[t * 9u + 1u], s.vd[t * 9u + 2u]);
-                            mesh_quantise(&s);
-                        }
-                        if (ki == 4) {
-                            uint32_t t;
-                            for (t = 0; t < s.ntris * 9u; t++)
-                                s.vd[t] *= 9.0;
-                            mesh_quantise(&s);
-                            ext = 12800.0;
-                        }
                         assert_int_equal(build(&bb, &s, fmt, &d), LT_OK);
                         bb.bvh.isect = isect;
                         assert_int_equal(lt_bvh8_size_merge(&bb.bvh, merge, &bytes), LT_OK);
@@ -2290,7 +2276,7 @@ static void test_wide_packets(void **state)
                             print_message("wide packets %s %s leaf %u merge %u: %lu lanes: closest "
                                           "hit equal on %lu, exact ties %lu, differ %lu; any hit "
                                           "equal on %lu of %lu packets\n",
-                                          fmt == FMT_Q16 ? "q16" : "f32", names[ki], leaves[li],
+                                          fmt == FMT_Q16 ? "q16" : "f32", wide_names[ki], leaves[li],
                                           merge, c.rays, c.same, c.ties, c.bad, c.occl - c.occl_bad,
                                           c.occl);
                         assert_int_equal(c.bad, 0);

@@ -444,116 +444,17 @@ LT_INLINE unsigned lt__x86_wtest8_q16(const int32_t *lo, const int32_t *hi, cons
                    : lt__x86_wtest8_q16_body(lo, hi, cnt, o, rd, tmin, tmax, empty, tn, 1);
 }
 
-LT_INLINE unsigned lt__x86_wtest8_f32(const float *lo, const float *hi, const uint16_t *cnt,
-                                      const float *o, const float *rd, float tmin, float tmax,
-                                      uint16_t empty, float *tn)
+/* the wide node tests' final masks (lt__x86_wtest*_f32 and lt__x86_wtest16_q16 below): a <= b per
+ * lane, and the slots in use (cnt[c] != empty), as 8 bits */
+LT_INLINE unsigned lt__x86_fle8(__m256 a, __m256 b) { return (unsigned)_mm256_cmp_ps_mask(a, b, _CMP_LE_OQ); }
+LT_INLINE unsigned lt__x86_ile8(__m256i a, __m256i b)
 {
-    __m256 vn = _mm256_set1_ps(tmin), vf = _mm256_set1_ps(tmax);
-    int a;
-    for (a = 0; a < 3; a++) {
-        __m256 vo = _mm256_set1_ps(o[a]), vr = _mm256_set1_ps(rd[a]);
-        __m256 t0 = _mm256_mul_ps(_mm256_sub_ps(_mm256_loadu_ps(lo + 8 * a), vo), vr);
-        __m256 t1 = _mm256_mul_ps(_mm256_sub_ps(_mm256_loadu_ps(hi + 8 * a), vo), vr);
-        /* lt__f32_min / max: a < b ? a : b and a > b ? a : b, vminps / vmaxps operand order */
-        vn = _mm256_max_ps(vn, _mm256_min_ps(t0, t1));
-        vf = _mm256_min_ps(vf, _mm256_max_ps(t0, t1));
-    }
-    _mm256_storeu_ps(tn, vn);
-    return (unsigned)(_mm256_cmp_ps_mask(vn, vf, _CMP_LE_OQ) &
-                      _mm_cmpneq_epi16_mask(_mm_loadu_si128((const __m128i *)(const void *)cnt),
-                                            _mm_set1_epi16((short)empty)));
+    return (unsigned)_mm256_cmp_epi32_mask(a, b, _MM_CMPINT_LE);
 }
-
-/* The 16-ray packet walk's node test (lt_bvh8.inc's w_test16) in registers: per axis not in free,
- * each plane's t at the corners of the frustum's origin range [olo, ohi] and reciprocal range
- * [rlo, rhi] (the origin's two corners only when same_o is 0), as lt__x86_plane8r_q16 computes
- * one ray's t (s15.16) or (p - o) x 1/d (float32): their min and max bound every lane's; then
- * the children whose bounds meet over [tmin, tmax] and whose slot is in use, as one mask; tn gets
- * the 8 lower bounds. No events: the counting build keeps the C loops. */
-LT_INLINE __m512i lt__x86_diff8_q16(const int32_t *p, int32_t o)
+LT_INLINE unsigned lt__x86_used8(const uint16_t *cnt, uint16_t empty)
 {
-    __m512i hi = _mm512_set1_epi64(INT32_MAX), lo = _mm512_set1_epi64(INT32_MIN);
-    __m512i d = _mm512_sub_epi64(
-        _mm512_cvtepi32_epi64(_mm256_loadu_si256((const __m256i *)(const void *)p)),
-        _mm512_set1_epi64(o));
-    return _mm512_max_epi64(_mm512_min_epi64(d, hi), lo);
-}
-LT_INLINE __m256i lt__x86_prod8_q16(__m512i d, __m512i vrd)
-{
-    __m512i q = _mm512_mul_epi32(d, vrd);
-    q = _mm512_srai_epi64(_mm512_add_epi64(q, _mm512_set1_epi64((long long)1 << 15)), 16);
-    return _mm512_cvtsepi64_epi32(q);
-}
-LT_INLINE unsigned lt__x86_wtest16_q16(const int32_t *lo, const int32_t *hi, const uint16_t *cnt,
-                                       const int32_t *olo, const int32_t *ohi,
-                                       const int32_t *rlo, const int32_t *rhi, int same_o,
-                                       unsigned free, int32_t tmin, int32_t tmax, uint16_t empty,
-                                       int32_t *tn)
-{
-    __m256i vn = _mm256_set1_epi32(tmin), vf = _mm256_set1_epi32(tmax);
-    int a, s;
-    for (a = 0; a < 3; a++) {
-        __m512i r0 = _mm512_set1_epi64(rlo[a]), r1 = _mm512_set1_epi64(rhi[a]);
-        __m256i l[2], h[2];
-        if ((free >> a) & 1u)
-            continue;
-        for (s = 0; s < 2; s++) {
-            const int32_t *p = (s == 0 ? lo : hi) + 8 * a;
-            __m512i d = lt__x86_diff8_q16(p, olo[a]);
-            __m256i x = lt__x86_prod8_q16(d, r0), y = lt__x86_prod8_q16(d, r1);
-            l[s] = _mm256_min_epi32(x, y);
-            h[s] = _mm256_max_epi32(x, y);
-            if (!same_o) {
-                d = lt__x86_diff8_q16(p, ohi[a]);
-                x = lt__x86_prod8_q16(d, r0);
-                y = lt__x86_prod8_q16(d, r1);
-                l[s] = _mm256_min_epi32(l[s], _mm256_min_epi32(x, y));
-                h[s] = _mm256_max_epi32(h[s], _mm256_max_epi32(x, y));
-            }
-        }
-        vn = _mm256_max_epi32(vn, _mm256_min_epi32(l[0], l[1]));
-        vf = _mm256_min_epi32(vf, _mm256_max_epi32(h[0], h[1]));
-    }
-    _mm256_storeu_si256((__m256i *)(void *)tn, vn);
-    return (unsigned)(_mm256_cmp_epi32_mask(vn, vf, _MM_CMPINT_LE) &
-                      _mm_cmpneq_epi16_mask(_mm_loadu_si128((const __m128i *)(const void *)cnt),
-                                            _mm_set1_epi16((short)empty)));
-}
-
-LT_INLINE unsigned lt__x86_wtest16_f32(const float *lo, const float *hi, const uint16_t *cnt,
-                                       const float *olo, const float *ohi, const float *rlo,
-                                       const float *rhi, int same_o, unsigned free, float tmin,
-                                       float tmax, uint16_t empty, float *tn)
-{
-    __m256 vn = _mm256_set1_ps(tmin), vf = _mm256_set1_ps(tmax);
-    int a, s;
-    for (a = 0; a < 3; a++) {
-        __m256 r0 = _mm256_set1_ps(rlo[a]), r1 = _mm256_set1_ps(rhi[a]);
-        __m256 l[2], h[2];
-        if ((free >> a) & 1u)
-            continue;
-        for (s = 0; s < 2; s++) {
-            __m256 p = _mm256_loadu_ps((s == 0 ? lo : hi) + 8 * a);
-            __m256 d = _mm256_sub_ps(p, _mm256_set1_ps(olo[a]));
-            __m256 x = _mm256_mul_ps(d, r0), y = _mm256_mul_ps(d, r1);
-            /* lt__f32_min / max operand order, as lt__x86_wtest8_f32 */
-            l[s] = _mm256_min_ps(x, y);
-            h[s] = _mm256_max_ps(x, y);
-            if (!same_o) {
-                d = _mm256_sub_ps(p, _mm256_set1_ps(ohi[a]));
-                x = _mm256_mul_ps(d, r0);
-                y = _mm256_mul_ps(d, r1);
-                l[s] = _mm256_min_ps(l[s], _mm256_min_ps(x, y));
-                h[s] = _mm256_max_ps(h[s], _mm256_max_ps(x, y));
-            }
-        }
-        vn = _mm256_max_ps(vn, _mm256_min_ps(l[0], l[1]));
-        vf = _mm256_min_ps(vf, _mm256_max_ps(h[0], h[1]));
-    }
-    _mm256_storeu_ps(tn, vn);
-    return (unsigned)(_mm256_cmp_ps_mask(vn, vf, _CMP_LE_OQ) &
-                      _mm_cmpneq_epi16_mask(_mm_loadu_si128((const __m128i *)(const void *)cnt),
-                                            _mm_set1_epi16((short)empty)));
+    return (unsigned)_mm_cmpneq_epi16_mask(_mm_loadu_si128((const __m128i *)(const void *)cnt),
+                                          _mm_set1_epi16((short)empty));
 }
 #elif LT__X86_LANES == 256
 /* The wide BVH's node tests (single ray: lt__x86_wtest8_*, 16-ray packet frustum:
@@ -581,7 +482,15 @@ LT_INLINE __m256i lt__x86_plane8r_q16(const int32_t *p, int32_t o, int32_t rd)
     return _mm256_set_m128i(lt__x86_plane4d_q16(_mm256_extracti128_si256(v, 1), od, rdd),
                             lt__x86_plane4d_q16(_mm256_castsi256_si128(v), od, rdd));
 }
-/* the slots in use: cnt[c] != empty, as 8 bits */
+/* the final masks, as on AVX-512 */
+LT_INLINE unsigned lt__x86_fle8(__m256 a, __m256 b)
+{
+    return (unsigned)_mm256_movemask_ps(_mm256_cmp_ps(a, b, _CMP_LE_OQ));
+}
+LT_INLINE unsigned lt__x86_ile8(__m256i a, __m256i b)
+{
+    return ~(unsigned)_mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpgt_epi32(a, b))) & 0xFFu;
+}
 LT_INLINE unsigned lt__x86_used8(const uint16_t *cnt, uint16_t empty)
 {
     __m128i e = _mm_cmpeq_epi16(_mm_loadu_si128((const __m128i *)(const void *)cnt),
@@ -602,9 +511,12 @@ LT_INLINE unsigned lt__x86_wtest8_q16(const int32_t *lo, const int32_t *hi, cons
         vf = _mm256_min_epi32(vf, _mm256_max_epi32(t0, t1));
     }
     _mm256_storeu_si256((__m256i *)(void *)tn, vn);
-    return ~(unsigned)_mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpgt_epi32(vn, vf))) &
-           lt__x86_used8(cnt, empty);
+    return lt__x86_ile8(vn, vf) & lt__x86_used8(cnt, empty);
 }
+#endif
+
+#if LT__X86_LANES
+/* One ray's float32 node test of an 8-wide node (AVX-512 and AVX2 alike: one ymm per plane). */
 LT_INLINE unsigned lt__x86_wtest8_f32(const float *lo, const float *hi, const uint16_t *cnt,
                                       const float *o, const float *rd, float tmin, float tmax,
                                       uint16_t empty, float *tn)
@@ -615,78 +527,65 @@ LT_INLINE unsigned lt__x86_wtest8_f32(const float *lo, const float *hi, const ui
         __m256 vo = _mm256_set1_ps(o[a]), vr = _mm256_set1_ps(rd[a]);
         __m256 t0 = _mm256_mul_ps(_mm256_sub_ps(_mm256_loadu_ps(lo + 8 * a), vo), vr);
         __m256 t1 = _mm256_mul_ps(_mm256_sub_ps(_mm256_loadu_ps(hi + 8 * a), vo), vr);
+        /* lt__f32_min / max: a < b ? a : b and a > b ? a : b, vminps / vmaxps operand order */
         vn = _mm256_max_ps(vn, _mm256_min_ps(t0, t1));
         vf = _mm256_min_ps(vf, _mm256_max_ps(t0, t1));
     }
     _mm256_storeu_ps(tn, vn);
-    return (unsigned)_mm256_movemask_ps(_mm256_cmp_ps(vn, vf, _CMP_LE_OQ)) &
-           lt__x86_used8(cnt, empty);
+    return lt__x86_fle8(vn, vf) & lt__x86_used8(cnt, empty);
 }
+
+/* The 16-ray packet walk's node test (lt_bvh8.inc's w_test16) in registers: per axis not in free,
+ * each plane's t at the corners of the frustum's origin range [olo, ohi] and reciprocal range
+ * [rlo, rhi] (the origin's two corners only when same_o is 0), as lt__x86_plane8r_q16 computes
+ * one ray's t (s15.16) or (p - o) x 1/d (float32): their min and max bound every lane's; then
+ * the children whose bounds meet over [tmin, tmax] and whose slot is in use, as one mask; tn gets
+ * the 8 lower bounds. No events: the counting build keeps the C loops. */
+#define LT__X86_WTEST16(T, V, SET1, MIN, MAX, PLANE, LE, STORE)                                    \
+    {                                                                                              \
+        V vn = SET1(tmin), vf = SET1(tmax);                                                        \
+        int a, s;                                                                                  \
+        for (a = 0; a < 3; a++) {                                                                  \
+            V l[2], h[2];                                                                          \
+            if ((free >> a) & 1u)                                                                  \
+                continue;                                                                          \
+            for (s = 0; s < 2; s++) {                                                              \
+                const T *p = (s == 0 ? lo : hi) + 8 * a;                                           \
+                V x = PLANE(p, olo[a], rlo[a]), y = PLANE(p, olo[a], rhi[a]);                      \
+                l[s] = MIN(x, y);                                                                  \
+                h[s] = MAX(x, y);                                                                  \
+                if (!same_o) {                                                                     \
+                    x = PLANE(p, ohi[a], rlo[a]);                                                  \
+                    y = PLANE(p, ohi[a], rhi[a]);                                                  \
+                    l[s] = MIN(l[s], MIN(x, y));                                                   \
+                    h[s] = MAX(h[s], MAX(x, y));                                                   \
+                }                                                                                  \
+            }                                                                                      \
+            vn = MAX(vn, MIN(l[0], l[1]));                                                         \
+            vf = MIN(vf, MAX(h[0], h[1]));                                                         \
+        }                                                                                          \
+        STORE(tn, vn);                                                                             \
+        return LE(vn, vf) & lt__x86_used8(cnt, empty);                                             \
+    }
+LT_INLINE __m256 lt__x86_plane8_f32(const float *p, float o, float rd)
+{
+    return _mm256_mul_ps(_mm256_sub_ps(_mm256_loadu_ps(p), _mm256_set1_ps(o)), _mm256_set1_ps(rd));
+}
+LT_INLINE void lt__x86_store8i(int32_t *t, __m256i v) { _mm256_storeu_si256((__m256i *)(void *)t, v); }
 LT_INLINE unsigned lt__x86_wtest16_q16(const int32_t *lo, const int32_t *hi, const uint16_t *cnt,
                                        const int32_t *olo, const int32_t *ohi,
                                        const int32_t *rlo, const int32_t *rhi, int same_o,
                                        unsigned free, int32_t tmin, int32_t tmax, uint16_t empty,
                                        int32_t *tn)
-{
-    __m256i vn = _mm256_set1_epi32(tmin), vf = _mm256_set1_epi32(tmax);
-    int a, s;
-    for (a = 0; a < 3; a++) {
-        __m256i l[2], h[2];
-        if ((free >> a) & 1u)
-            continue;
-        for (s = 0; s < 2; s++) {
-            const int32_t *p = (s == 0 ? lo : hi) + 8 * a;
-            __m256i x = lt__x86_plane8r_q16(p, olo[a], rlo[a]);
-            __m256i y = lt__x86_plane8r_q16(p, olo[a], rhi[a]);
-            l[s] = _mm256_min_epi32(x, y);
-            h[s] = _mm256_max_epi32(x, y);
-            if (!same_o) {
-                x = lt__x86_plane8r_q16(p, ohi[a], rlo[a]);
-                y = lt__x86_plane8r_q16(p, ohi[a], rhi[a]);
-                l[s] = _mm256_min_epi32(l[s], _mm256_min_epi32(x, y));
-                h[s] = _mm256_max_epi32(h[s], _mm256_max_epi32(x, y));
-            }
-        }
-        vn = _mm256_max_epi32(vn, _mm256_min_epi32(l[0], l[1]));
-        vf = _mm256_min_epi32(vf, _mm256_max_epi32(h[0], h[1]));
-    }
-    _mm256_storeu_si256((__m256i *)(void *)tn, vn);
-    return ~(unsigned)_mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpgt_epi32(vn, vf))) &
-           lt__x86_used8(cnt, empty);
-}
+LT__X86_WTEST16(int32_t, __m256i, _mm256_set1_epi32, _mm256_min_epi32, _mm256_max_epi32,
+                lt__x86_plane8r_q16, lt__x86_ile8, lt__x86_store8i)
 LT_INLINE unsigned lt__x86_wtest16_f32(const float *lo, const float *hi, const uint16_t *cnt,
                                        const float *olo, const float *ohi, const float *rlo,
                                        const float *rhi, int same_o, unsigned free, float tmin,
                                        float tmax, uint16_t empty, float *tn)
-{
-    __m256 vn = _mm256_set1_ps(tmin), vf = _mm256_set1_ps(tmax);
-    int a, s;
-    for (a = 0; a < 3; a++) {
-        __m256 r0 = _mm256_set1_ps(rlo[a]), r1 = _mm256_set1_ps(rhi[a]);
-        __m256 l[2], h[2];
-        if ((free >> a) & 1u)
-            continue;
-        for (s = 0; s < 2; s++) {
-            __m256 p = _mm256_loadu_ps((s == 0 ? lo : hi) + 8 * a);
-            __m256 d = _mm256_sub_ps(p, _mm256_set1_ps(olo[a]));
-            __m256 x = _mm256_mul_ps(d, r0), y = _mm256_mul_ps(d, r1);
-            l[s] = _mm256_min_ps(x, y);
-            h[s] = _mm256_max_ps(x, y);
-            if (!same_o) {
-                d = _mm256_sub_ps(p, _mm256_set1_ps(ohi[a]));
-                x = _mm256_mul_ps(d, r0);
-                y = _mm256_mul_ps(d, r1);
-                l[s] = _mm256_min_ps(l[s], _mm256_min_ps(x, y));
-                h[s] = _mm256_max_ps(h[s], _mm256_max_ps(x, y));
-            }
-        }
-        vn = _mm256_max_ps(vn, _mm256_min_ps(l[0], l[1]));
-        vf = _mm256_min_ps(vf, _mm256_max_ps(h[0], h[1]));
-    }
-    _mm256_storeu_ps(tn, vn);
-    return (unsigned)_mm256_movemask_ps(_mm256_cmp_ps(vn, vf, _CMP_LE_OQ)) &
-           lt__x86_used8(cnt, empty);
-}
+LT__X86_WTEST16(float, __m256, _mm256_set1_ps, _mm256_min_ps, _mm256_max_ps,
+                lt__x86_plane8_f32, lt__x86_fle8, _mm256_storeu_ps)
+#undef LT__X86_WTEST16
 #endif
 
 /* round(2^46 / d) half up for d != 0 (lt__div_round64(2^46, d)), exactly, without a 64-bit integer
