@@ -2148,6 +2148,20 @@ static void test_wide(void **state)
     }
 }
 
+/* One lane of wp_packet: the wide walk's triangle iw against the binary walk's ib, with the same
+ * distance (same_t) and, where they differ, iw verified as an exact tie (tie). */
+static void wp_lane(wcheck_t *c, int lane, int32_t iw, int32_t ib, int same_t, int tie)
+{
+    c->rays++;
+    if (iw == ib && same_t)
+        c->same++;
+    else if (iw >= 0 && ib >= 0 && same_t && tie)
+        c->ties++;
+    else if (c->bad++ < 5)
+        print_message("  wide packet lane %d: %d vs binary %d (t %s)\n", lane, iw, ib,
+                      same_t ? "equal" : "differs");
+}
+
 /* A packet of lanes k through the wide tree (lt_bvh8_trace16 / occluded16) and the binary tree
  * (lt_bvh_trace16 / occluded16): per lane the same closest distance (bits), the same triangle or
  * an exact tie (the other tree's triangle gives the lane that distance on its own), the same
@@ -2167,18 +2181,10 @@ static void wp_packet(const lt_bvh8_t *w, const lt_bvh_t *b, const lt_scene_t *s
         c->errs += lt_bvh8_trace16_f32(w, s->tf, &pw, k, &hw) != LT_OK;
         c->errs += lt_bvh_trace16_f32(b, s->tf, &pb, k, &hb) != LT_OK;
         for (i = 0; i < LT_LANES; i++) {
-            int32_t iw = hw.id.l[i], ib = hb.id.l[i];
             int same_t = memcmp(&pw.tmax.l[i], &pb.tmax.l[i], sizeof(float)) == 0;
-            if ((((unsigned)k >> i) & 1u) == 0)
-                continue;
-            c->rays++;
-            if (iw == ib && same_t)
-                c->same++;
-            else if (iw >= 0 && ib >= 0 && same_t && tie_f32(s, &p0, i, iw, pw.tmax.l[i]))
-                c->ties++;
-            else if (c->bad++ < 5)
-                print_message("  wide packet lane %d: %d vs binary %d (t %s)\n", i, iw, ib,
-                              same_t ? "equal" : "differs");
+            if ((((unsigned)k >> i) & 1u) != 0)
+                wp_lane(c, i, hw.id.l[i], hb.id.l[i], same_t,
+                        same_t && tie_f32(s, &p0, i, hw.id.l[i], pw.tmax.l[i]));
         }
         pw = p0;
         pb = p0;
@@ -2194,18 +2200,10 @@ static void wp_packet(const lt_bvh8_t *w, const lt_bvh_t *b, const lt_scene_t *s
         c->errs += lt_bvh8_trace16_q16(w, s->tq, &pw, k, &hw) != LT_OK;
         c->errs += lt_bvh_trace16_q16(b, s->tq, &pb, k, &hb) != LT_OK;
         for (i = 0; i < LT_LANES; i++) {
-            int32_t iw = hw.id.l[i], ib = hb.id.l[i];
             int same_t = pw.tmax.l[i] == pb.tmax.l[i];
-            if ((((unsigned)k >> i) & 1u) == 0)
-                continue;
-            c->rays++;
-            if (iw == ib && same_t)
-                c->same++;
-            else if (iw >= 0 && ib >= 0 && same_t && tie_q16(s, &p0, i, iw, pw.tmax.l[i]))
-                c->ties++;
-            else if (c->bad++ < 5)
-                print_message("  wide packet lane %d: %d vs binary %d (t %s)\n", i, iw, ib,
-                              same_t ? "equal" : "differs");
+            if ((((unsigned)k >> i) & 1u) != 0)
+                wp_lane(c, i, hw.id.l[i], hb.id.l[i], same_t,
+                        same_t && tie_q16(s, &p0, i, hw.id.l[i], pw.tmax.l[i]));
         }
         pw = p0;
         pb = p0;
