@@ -2241,6 +2241,7 @@ static void test_wide_packets(void **state)
                         unsigned char *mem;
                         unsigned pk;
                         uint32_t merge = mi ? LT_BVH8_MERGE : 0u;
+                        unsigned cnear = 0;
                         double ext = wide_mesh(ki, &s);
                         memset(&c, 0, sizeof c);
                         memset(&d, 0, sizeof d);
@@ -2268,15 +2269,29 @@ static void test_wide_packets(void **state)
                             lt_mask16_t k = pk % 3u == 2u ? (lt_mask16_t)ltt_rng_below(&r, 0x10000u)
                                                           : LT_MASK_ALL;
                             rand_rays(&r, (int)(pk % RAY_KINDS), ext, &s, rs, LT_LANES);
+                            if (pk % 11u == 10u) {
+                                /* near-axis lanes: a direction component of 2^-17..2^-20 (a
+                                   saturated s15.16 reciprocal, rsat; float32's huge one), the
+                                   frustum's unbounded axis; and one zero component (par) */
+                                unsigned l;
+                                for (l = 0; l < LT_LANES; l += 2) {
+                                    rs[l].d[l % 3u] = ldexp(1.0, -17 - (int)(l % 4u)) *
+                                                      (l % 3u == 1u ? -1.0 : 1.0);
+                                    rs[l].d[(l + 1u) % 3u] = l == 4u ? 0.0 : rs[l].d[(l + 1u) % 3u];
+                                    normalize(rs[l].d);
+                                }
+                                cnear++;
+                            }
                             wp_packet(&w, &bb.bvh, &s, fmt, rs, k, &c);
                         }
                         if (li == 0 && isect == LT_ISECT_WT)
-                            print_message("wide packets %s %s leaf %u merge %u: %lu lanes: closest "
-                                          "hit equal on %lu, exact ties %lu, differ %lu; any hit "
-                                          "equal on %lu of %lu packets\n",
+                            print_message("wide packets %s %s leaf %u merge %u: %lu lanes (%u "
+                                          "packets with near-axis lanes): closest hit equal on %lu, "
+                                          "exact ties %lu, differ %lu; any hit equal on %lu of %lu "
+                                          "packets\n",
                                           fmt == FMT_Q16 ? "q16" : "f32", wide_names[ki], leaves[li],
-                                          merge, c.rays, c.same, c.ties, c.bad, c.occl - c.occl_bad,
-                                          c.occl);
+                                          merge, c.rays, cnear, c.same, c.ties, c.bad,
+                                          c.occl - c.occl_bad, c.occl);
                         assert_int_equal(c.bad, 0);
                         assert_int_equal(c.occl_bad, 0);
                         assert_int_equal(c.errs, 0);
