@@ -31,9 +31,10 @@ struct lt_accel {
     void *ray;               /* one packet in the path's format, the traces' scratch */
     void *wmem;              /* bvh: the wide tree's nodes for single rays (built on first use) */
     lt_bvh8_t wide;
-    int wide16;              /* bvh: packets walk the wide tree pwide (lt_accel_set_walk) */
-    void *pmem;              /* bvh: the packets' wide tree without merged leaves, if its own */
-    lt_bvh8_t pwide;
+    const lt_bvh8_t *walk16; /* bvh: the wide tree the packets walk (lt_accel_set_walk: wide or,
+                                in float32, pwide), NULL for the binary tree */
+    void *pmem;              /* bvh, float32: pwide's memory */
+    lt_bvh8_t pwide;         /* bvh, float32: the packets' wide tree, no merged leaves */
     size_t bytes;            /* structure memory */
     uint32_t leaf;           /* lt_accel_params_t.leaf (0: default) */
     uint32_t isect;          /* the intersector of every walk (LT_ISECT_WT unless set) */
@@ -314,8 +315,8 @@ static void trace16(const lt_accel_t *a, void *ray, lt_mask16_t k, lt_hit16_t *h
         ops->grid_trace16(a->hdr, ray, k, hit);
     else if (a->kind == ACC_BVHQ)
         ops->bvhq_trace16(&a->bvhq, a->tris, ray, k, hit);
-    else if (a->wide16)
-        ops->bvh8_trace16(&a->pwide, a->tris, ray, k, hit);
+    else if (a->walk16 != NULL)
+        ops->bvh8_trace16(a->walk16, a->tris, ray, k, hit);
     else
         ops->bvh_trace16(&a->bvh, a->tris, ray, k, hit);
 }
@@ -330,8 +331,8 @@ static lt_mask16_t occluded16(const lt_accel_t *a, void *ray, lt_mask16_t k)
         return ops->grid_occluded16(a->hdr, ray, k);
     if (a->kind == ACC_BVHQ)
         return ops->bvhq_occluded16(&a->bvhq, a->tris, ray, k);
-    if (a->wide16)
-        return ops->bvh8_occluded16(&a->pwide, a->tris, ray, k);
+    if (a->walk16 != NULL)
+        return ops->bvh8_occluded16(a->walk16, a->tris, ray, k);
     return ops->bvh_occluded16(&a->bvh, a->tris, ray, k);
 }
 
@@ -555,20 +556,20 @@ static int wide_tree(const lt_accel_t *ac, lt_diag_t *diag)
 
 int lt_accel_set_walk(lt_accel_t *a, int wide, lt_diag_t *diag)
 {
-    if (!wide || a->kind != ACC_BVH) {
-        a->wide16 = 0;
+    a->walk16 = NULL;
+    if (!wide || a->kind != ACC_BVH)
         return 0;
-    }
     /* the packets' tree keeps every binary leaf (merge 0): the single rays' tree where that is
-       the path's own (s15.16), else its own copy */
+       the path's own (s15.16), else its own */
     if (lt_bvh8_merge_default(a->bvh.num) == 0) {
         if (wide_tree(a, diag) != 0)
             return -1;
-        a->pwide = a->wide;
-    } else if (wide_build(a, &a->pwide, &a->pmem, 0, 0x3C000000u, diag) != 0) {
-        return -1;
+        a->walk16 = &a->wide;
+    } else {
+        if (wide_build(a, &a->pwide, &a->pmem, 0, 0x3C000000u, diag) != 0)
+            return -1;
+        a->walk16 = &a->pwide;
     }
-    a->wide16 = 1;
     return 0;
 }
 

@@ -301,8 +301,9 @@ LT_INLINE lt_mask16_t lt_mask16_clear_first(lt_mask16_t k) /* MASK x1 */
 #define LT__V16_CMPV(VT, name, op, rel, vc) LT__V16_CMPX(VT, name, op, vc, lt__x86_load16)
 #elif LT__X86_LANES == 256
 /* AVX2: the register bodies lt__x86_##vf##8 (lt_v16_x86.h) on the two 256-bit halves, each
- * written with one 256-bit store; masked forms compute every lane and blend or zero by the mask
- * (SAT events counted for the lanes of k only, as the loop counts them). */
+ * written with one 256-bit store; the masked form computes every lane and blends by the mask
+ * (SAT events counted for the lanes of k only, as the loop counts them), the zeroing form is the
+ * masked form over zero lanes. */
 #define LT__V16_BINV(VT, name, op, f, vf)                                                          \
     LT_INLINE VT name(VT a, VT b)                                                                  \
     {                                                                                              \
@@ -332,18 +333,8 @@ LT_INLINE lt_mask16_t lt_mask16_clear_first(lt_mask16_t k) /* MASK x1 */
     }                                                                                              \
     LT_INLINE VT name##_z(lt_mask16_t k, VT a, VT b)                                               \
     {                                                                                              \
-        VT r;                                                                                      \
-        int h;                                                                                     \
-        LT_COST(op, 1);                                                                            \
-        LT_UTIL(k);                                                                                \
-        for (h = 0; h < 2; h++) {                                                                  \
-            unsigned k8 = ((unsigned)k >> (8 * h)) & 0xFFu;                                        \
-            __m256i x = lt__x86_##vf##8(lt__x86_load8(a.l + 8 * h), lt__x86_load8(b.l + 8 * h),   \
-                                        k8);                                                       \
-            _mm256_storeu_si256((__m256i *)(void *)(r.l + 8 * h),                                  \
-                                _mm256_and_si256(x, lt__x86_mask8(k8)));                           \
-        }                                                                                          \
-        return r;                                                                                  \
+        VT z = {{0}}; /* the masked form over zero lanes */                                        \
+        return name##_m(z, k, a, b);                                                               \
     }
 #define LT__V16_CMPV(VT, name, op, rel, vc)                                                        \
     LT_INLINE lt_mask16_t name(VT a, VT b)                                                         \
