@@ -52,6 +52,8 @@
 
 #define FMT_Q16 0
 #define FMT_F32 1
+#define FMT_W32 2 /* s15.16 on the grid 2^w32_g (lt_tri16_wt32_q16, LT_ISECT_WT32) */
+static unsigned w32_g;
 #define ULP16 (1.0 / 65536.0)
 #define TWO_PI 6.283185307179586
 
@@ -768,7 +770,10 @@ static int crossing(const wmesh_t *m, const feature_t *f, const dray_t *r, int f
             maxa = fmax(maxa, aa[a]);
     }
     w = winding((const double(*)[2])poly, (int)f->np, &dist);
-    return w != 0 && dist > (fmt == FMT_Q16 ? ldexp(1.0, -14) : ldexp(maxa, -18) + ldexp(1.0, -14));
+    /* the grid moves each snapped coordinate by at most half a step, 2^(g-17) units */
+    return w != 0 && dist > (fmt == FMT_Q16   ? ldexp(1.0, -14)
+                             : fmt == FMT_W32 ? ldexp(1.0, -14) + ldexp(3.0, (int)w32_g - 17)
+                                              : ldexp(maxa, -18) + ldexp(1.0, -14));
 }
 
 /* Rays of packet `pk` at feature f: a random origin per lane (or one for all lanes when
@@ -811,7 +816,7 @@ static void crack_packet(const wmesh_t *m, const feature_t *f, ltt_rng_t *rng, i
         }
         s = sqrt(dot3(d, d));
         normalize(d);
-        if (fmt == FMT_Q16)
+        if (fmt != FMT_F32)
             q_lane(&pq, i, o, d, 0.0, 2.0 * s + 10.0, &dr[i]);
 #if LT_CFG_FLOAT32
         else
@@ -825,7 +830,7 @@ static void crack_packet(const wmesh_t *m, const feature_t *f, ltt_rng_t *rng, i
     }
     /* each triangle of D from the same tmax, so that every triangle that accepts a ray is
      * counted (ties on a shared edge accept both) */
-    if (fmt == FMT_Q16) {
+    if (fmt != FMT_F32) {
         lt_hit16_t h1, h2;
         lt_vq16_t tmax0;
         lt_ray16_q16_setup(&pq);
@@ -834,8 +839,11 @@ static void crack_packet(const wmesh_t *m, const feature_t *f, ltt_rng_t *rng, i
         tmax0 = pq.tmax;
         h1.id = h2.id = lt_vi32_set1(-1);
         for (j = 0; j < f->nd; j++) {
-            lt_mask16_t hm = lt_tri16_wt_q16(&pq, &wq, LT_MASK_ALL, &m->tq[f->d[j]],
-                                             (int32_t)f->d[j], &h1);
+            lt_mask16_t hm = fmt == FMT_W32
+                                 ? lt_tri16_wt32_q16(&pq, &wq, w32_g, LT_MASK_ALL,
+                                                     &m->tq[f->d[j]], (int32_t)f->d[j], &h1)
+                                 : lt_tri16_wt_q16(&pq, &wq, LT_MASK_ALL, &m->tq[f->d[j]],
+                                                   (int32_t)f->d[j], &h1);
             multi = (lt_mask16_t)(multi | (wt & hm));
             wt = (lt_mask16_t)(wt | hm);
             for (i = 0; i < LT_LANES; i++)
@@ -885,7 +893,8 @@ static void crack_packet(const wmesh_t *m, const feature_t *f, ltt_rng_t *rng, i
         for (i = 0; i < LT_LANES; i++)
             if (LTT_ON(judge, i) && !LTT_ON(wt, i) && c->leak_wt[kind] < 6)
                 ltt_report("  FAIL %s %s leak: %s %u-%u lane %d o=(%.9g %.9g %.9g) d=(%.12g %.12g "
-                           "%.12g)\n", fmt == FMT_Q16 ? "q16" : "f32", m->name,
+                           "%.12g)\n", fmt == FMT_Q16 ? "q16" : fmt == FMT_W32 ? "wt32" : "f32",
+                           m->name,
                            f->is_edge ? "edge" : "vertex", f->P, f->Q, i, dr[i].o[0], dr[i].o[1],
                            dr[i].o[2], dr[i].d[0], dr[i].d[1], dr[i].d[2]);
     }
@@ -913,13 +922,16 @@ static void crack_mesh(const wmesh_t *m, int fmt, unsigned edge_packets, unsigne
 
 static unsigned long crack_report(const wmesh_t *m, int fmt, const crack_t *c)
 {
-    const char *wt = fmt == FMT_Q16 ? "lt_tri16_wt_q16" : "lt_tri16_wt_f32";
-    const char *mt = fmt == FMT_Q16 ? "lt_tri16_q16" : "lt_tri16_f32";
-    ltt_report("%s crack, %s (%u tris, %u manifold edges, %u boundary, %u non-manifold, %u "
+    const char *wt = fmt == FMT_Q16   ? "lt_tri16_wt_q16"
+                     : fmt == FMT_W32 ? "lt_tri16_wt32_q16"
+                                      : "lt_tri16_wt_f32";
+    const char *mt = fmt == FMT_F32 ? "lt_tri16_f32" : "lt_tri16_q16";
+    ltt_report("%s%s crack, %s (%u tris, %u manifold edges, %u boundary, %u non-manifold, %u "
                "inconsistent; %u/%u interior vertices): %lu rays at edges, %lu at vertices; "
                "crossing with margin: %lu + %lu; leaked %lu + %lu (bound 0); %lu + %lu hit 2+ "
                "triangles; max |t - target| %.3g\n",
-               wt, m->name, m->nt, m->ne, m->nbound, m->nnonman, m->nincons, m->ninterior, m->nv,
+               wt, fmt == FMT_W32 ? " (on the grid)" : "",
+               m->name, m->nt, m->ne, m->nbound, m->nnonman, m->nincons, m->ninterior, m->nv,
                c->rays[0], c->rays[1], c->judged[0], c->judged[1], c->leak_wt[0], c->leak_wt[1],
                c->multi[0], c->multi[1], c->max_dt);
     if (fmt == FMT_F32)
@@ -935,9 +947,21 @@ static void crack_all_formats(wmesh_t *m, unsigned ep, unsigned vp, uint64_t see
 {
     crack_t c;
     unsigned long bad;
+    unsigned k;
     crack_mesh(m, FMT_Q16, ep, vp, seed, &c);
     bad = crack_report(m, FMT_Q16, &c);
     assert_true(c.judged[0] > 0);
+    /* the grid test at the mesh's own grid (lt_wt32_shift_q16) and at 4 steps coarser */
+    for (k = 0; k < 2; k++) {
+        w32_g = lt_wt32_shift_q16(m->tq, m->nt) + 4u * k;
+        w32_g = w32_g > LT_WT32_SHIFT_MAX ? LT_WT32_SHIFT_MAX : w32_g;
+        ltt_report("  %s: LT_ISECT_WT32 grid 2^%u raw (%.3g units)%s\n", m->name, w32_g,
+                   ldexp(1.0, (int)w32_g - 16),
+                   k ? ", coarser than lt_wt32_shift_q16's (+4, at most 15)" : "");
+        crack_mesh(m, FMT_W32, ep, vp, seed + 2 + k, &c);
+        bad += crack_report(m, FMT_W32, &c);
+        assert_true(c.judged[0] > 0);
+    }
 #if LT_CFG_FLOAT32
     ltt_report("  %s float32 copy on the 2^-8 grid: %lu vertex rebuilds fl(v0 + e) inexact "
                "(bound 0)\n", m->name, m->f_recon_bad);
@@ -1061,8 +1085,9 @@ static void test_axis_grid(void **state)
     wmesh_t m;
     ltt_rng_t r;
     unsigned long rays = 0, judged = 0, leak_wt = 0, leak_mt = 0, leak_wtf = 0, leak_mtf = 0;
-    unsigned long fallback = 0, recovered = 0;
+    unsigned long fallback = 0, recovered = 0, leak_32 = 0;
     uint32_t i, j, e, v;
+    unsigned g32;
     static const double dirs[4][3] = { { 0, 0, -1 }, { 0, 0, 1 }, { 1, 1, -1 }, { -1, 1, 1 } };
     (void)state;
     memset(&m, 0, sizeof m);
@@ -1089,6 +1114,7 @@ static void test_axis_grid(void **state)
             }
         }
     mesh_finish(&m);
+    g32 = lt_wt32_shift_q16(m.tq, m.nt);
     ltt_rng_seed(&r, 7100);
     for (e = 0; e < m.ne + m.nv; e++) {
         feature_t f;
@@ -1098,11 +1124,11 @@ static void test_axis_grid(void **state)
         if (!ok)
             continue;
         for (dk = 0; dk < 4; dk++) {
-            lt_ray16_q16_t p, p2;
+            lt_ray16_q16_t p, p2, p3;
             lt_wt16_q16_t w;
             lt_hit16_t h;
             dray_t dr[LT_LANES];
-            lt_mask16_t judge = 0, hw = 0, hm = 0;
+            lt_mask16_t judge = 0, hw = 0, hm = 0, h32 = 0;
 #if LT_CFG_FLOAT32
             lt_ray16_f32_t pf, pf2;
             lt_wt16_f32_t wf;
@@ -1131,6 +1157,7 @@ static void test_axis_grid(void **state)
             lt_ray16_q16_setup(&p);
             (void)lt_ray16_wt_setup_q16(&p, &w);
             p2 = p;
+            p3 = p;
 #if LT_CFG_FLOAT32
             lt_ray16_f32_setup(&pf);
             (void)lt_ray16_wt_setup_f32(&pf, &wf);
@@ -1139,6 +1166,7 @@ static void test_axis_grid(void **state)
             for (v = 0; v < f.nd; v++) {
                 hw |= lt_tri16_wt_q16(&p, &w, LT_MASK_ALL, &m.tq[f.d[v]], 1, &h);
                 hm |= lt_tri16_q16(&p2, LT_MASK_ALL, &m.tq[f.d[v]], 1, &h);
+                h32 |= lt_tri16_wt32_q16(&p3, &w, g32, LT_MASK_ALL, &m.tq[f.d[v]], 1, &h);
 #if LT_CFG_FLOAT32
                 hwf |= lt_tri16_wt_f32(&pf, &wf, LT_MASK_ALL, &m.tf[f.d[v]], 1, &h);
                 for (i = 0; i < LT_LANES; i++) {
@@ -1153,6 +1181,7 @@ static void test_axis_grid(void **state)
             judged += lt__popcount32(judge);
             leak_wt += lt__popcount32((uint32_t)judge & ~(uint32_t)hw);
             leak_mt += lt__popcount32((uint32_t)judge & ~(uint32_t)hm);
+            leak_32 += lt__popcount32((uint32_t)judge & ~(uint32_t)h32);
 #if LT_CFG_FLOAT32
             leak_wtf += lt__popcount32((uint32_t)judge & ~(uint32_t)hwf);
             leak_mtf += lt__popcount32((uint32_t)judge & ~(uint32_t)hmf);
@@ -1164,8 +1193,10 @@ static void test_axis_grid(void **state)
                "%lu f32 lane-triangle tests took the double fallback, %lu recovered a sign); "
                "Moller-Trumbore leaked q16 %lu, f32 %lu\n", m.ne, m.ninterior, rays, judged,
                leak_wt, leak_wtf, fallback, recovered, leak_mt, leak_mtf);
+    ltt_report("lt_tri16_wt32_q16 (grid 2^%u) on the same rays: leaked %lu (bound 0)\n", g32,
+               leak_32);
     assert_int_equal(judged, rays);
-    assert_int_equal(leak_wt + leak_wtf, 0);
+    assert_int_equal(leak_wt + leak_wtf + leak_32, 0);
     mesh_free(&m);
 }
 
@@ -1190,9 +1221,11 @@ static wref_t wt_ref(const dray_t *r, const double v[3][3], int zero_area, int f
     frame_make(r, &fr);
     for (i = 0; i < 3; i++) {
         frame_proj(&fr, v[i], s[i], aa[i]);
-        if (fmt == FMT_Q16) {
+        if (fmt != FMT_F32) {
             eps[i] = aa[i][2] * ldexp(1.0, -31) + ldexp(1.0, -17);
             epz[i] = eps[i];
+            if (fmt == FMT_W32) /* snapped: half a grid step more per coordinate */
+                eps[i] += ldexp(1.0, (int)w32_g - 17);
         } else {
             eps[i] = ldexp(aa[i][0] + aa[i][1] + aa[i][2], -21);
             epz[i] = ldexp(fabs(s[i][2]), -21);
@@ -1229,7 +1262,7 @@ static wref_t wt_ref(const dray_t *r, const double v[3][3], int zero_area, int f
     for (i = 0; i < 3; i++)
         w.tb += de[i] * fabs(s[i][2] - w.t);
     w.tb = w.tb / (fabs(det) - sde) + mz;
-    if (fmt == FMT_Q16)
+    if (fmt != FMT_F32)
         w.tb += 0.5 * ULP16;
     else
         w.tb += ldexp(fabs(e[0] * s[0][2]) + fabs(e[1] * s[1][2]) + fabs(e[2] * s[2][2]), -21) /
@@ -1247,7 +1280,7 @@ static wref_t wt_ref(const dray_t *r, const double v[3][3], int zero_area, int f
 __extension__ typedef __int128 ltt_i128_t;
 
 static int q16_replica(const lt_ray16_q16_t *p, const lt_wt16_q16_t *w, int i,
-                       const lt_tri_q16_t *tr, int32_t *t_out)
+                       const lt_tri_q16_t *tr, int g, int32_t *t_out)
 {
     lt_q16_t v[3][3], x[3], y[3], z[3], o[3];
     int64_t e[3], det, c[3];
@@ -1282,6 +1315,16 @@ static int q16_replica(const lt_ray16_q16_t *p, const lt_wt16_q16_t *w, int i,
         y[k] = lt__q16_sub_sat(lt__q16_sub_sat(v[k][ax[1]], o[1]),
                                lt__q16_mul_q30_sat(az, w->sy.l[i]));
         z[k] = lt__q16_mul_q30_sat(az, w->sz.l[i]);
+    }
+    /* LT_ISECT_WT32's definition (g >= 0): a vertex whose coordinates round (half up) to at most
+     * 16383 steps of 2^g is moved to that grid point; then the exact test on the points */
+    for (k = 0; g >= 0 && k < 3; k++) {
+        int64_t sx = (int64_t)floor(((double)x[k] + (g > 0 ? ldexp(1.0, g - 1) : 0.0)) / ldexp(1.0, g));
+        int64_t sy = (int64_t)floor(((double)y[k] + (g > 0 ? ldexp(1.0, g - 1) : 0.0)) / ldexp(1.0, g));
+        if (llabs(sx) <= 16383 && llabs(sy) <= 16383) {
+            x[k] = (lt_q16_t)(sx * ((int64_t)1 << g));
+            y[k] = (lt_q16_t)(sy * ((int64_t)1 << g));
+        }
     }
     e[0] = (int64_t)x[2] * y[1] - (int64_t)y[2] * x[1];
     e[1] = (int64_t)x[0] * y[2] - (int64_t)y[0] * x[2];
@@ -1387,13 +1430,14 @@ static void test_reference(void **state)
 {
     static const double scales[5] = { 2.0, 40.0, 400.0, 1000.0, 0.0 /* range corners */ };
     ltt_rng_t r;
-    rtally_t tq, tf;
+    rtally_t tq, tf, tw;
     unsigned pk;
     int i, a, j;
     (void)state;
     ltt_rng_seed(&r, 7200);
     memset(&tq, 0, sizeof tq);
     memset(&tf, 0, sizeof tf);
+    memset(&tw, 0, sizeof tw);
     for (pk = 0; pk < REF_PACKETS; pk++) {
         double sc = scales[pk % 5u], v[3][3], vq[3][3], sg[3];
         lt_ray16_q16_t p;
@@ -1457,11 +1501,35 @@ static void test_reference(void **state)
         h.id = lt_vi32_set1(-7);
         tmax0 = p.tmax;
         {
+            /* LT_ISECT_WT32 on the same lanes: the triangle's own grid, 16x coarser, or g = 0
+             * (most vertices off the grid's range: the exact points) */
+            lt_ray16_q16_t pw = p;
+            unsigned gs = lt_wt32_shift_q16(&tri, 1);
+            w32_g = pk % 3u == 0 ? gs : (pk % 3u == 1 ? (gs + 4u > 15u ? 15u : gs + 4u) : 0u);
+            got = lt_tri16_wt32_q16(&pw, &w, w32_g, LT_MASK_ALL, &tri, 42, &h);
+            for (i = 0; i < LT_LANES; i++) {
+                int32_t tr = 0;
+                int rh = q16_replica(&p, &w, i, &tri, (int)w32_g, &tr);
+                wref_t ref = wt_ref(&dr[i], (const double(*)[3])vq, 0, FMT_W32);
+                int g = LTT_ON(got, i);
+                if (rh != g || (rh && tr != pw.tmax.l[i]))
+                    if (tw.replica_bad++ < 6)
+                        ltt_report("  FAIL lt_tri16_wt32_q16 (g %u) vs 128-bit replica: lane %d "
+                                   "hit %d/%d t %d/%d\n", w32_g, i, g, rh, pw.tmax.l[i], tr);
+                rtally_case(&tw, "lt_tri16_wt32_q16 random", &ref, g,
+                            lt_q16_to_double(pw.tmax.l[i]));
+                if (g ? (h.id.l[i] != 42 || pw.tmax.l[i] >= tmax0.l[i])
+                      : (h.id.l[i] != -7 || pw.tmax.l[i] != tmax0.l[i]))
+                    tw.upd_bad++;
+            }
+            h.id = lt_vi32_set1(-7);
+        }
+        {
             lt_ray16_q16_t p0 = p;
             got = lt_tri16_wt_q16(&p, &w, LT_MASK_ALL, &tri, 42, &h);
             for (i = 0; i < LT_LANES; i++) {
                 int32_t tr = 0;
-                int rh = q16_replica(&p0, &w, i, &tri, &tr);
+                int rh = q16_replica(&p0, &w, i, &tri, -1, &tr);
                 if (rh != LTT_ON(got, i) || (rh && tr != p.tmax.l[i]))
                     if (tq.replica_bad++ < 6)
                         ltt_report("  FAIL lt_tri16_wt_q16 vs 128-bit replica: lane %d hit %d/%d "
@@ -1516,8 +1584,16 @@ static void test_reference(void **state)
                "%lu t over bound; %lu wrong id/tmax updates\n", tf.cases, tf.hits, tf.close,
                tf.allowed, tf.bad, tf.max_terr, tf.max_frac, tf.t_bad, tf.upd_bad);
 #endif
+    ltt_report("lt_tri16_wt32_q16 (LT_ISECT_WT32) vs the same double reference: %lu cases (grid: "
+               "the triangle's own lt_wt32_shift_q16, 16x coarser, or 2^0), %lu hits, %lu "
+               "within the bound of a boundary (each snapped coordinate adds 2^(g-17) units to "
+               "the per-vertex error), %lu disagreements (all such), %lu unexplained; max |t "
+               "err| %.3g (%.3g of its bound), %lu t over bound; %lu wrong id/tmax updates; %lu "
+               "lanes differ from the __int128 replica of the grid's definition (bound 0)\n",
+               tw.cases, tw.hits, tw.close, tw.allowed, tw.bad, tw.max_terr, tw.max_frac,
+               tw.t_bad, tw.upd_bad, tw.replica_bad);
     assert_int_equal(tq.bad + tq.t_bad + tq.upd_bad + tq.replica_bad + tf.bad + tf.t_bad +
-                         tf.upd_bad, 0);
+                         tf.upd_bad + tw.bad + tw.t_bad + tw.upd_bad + tw.replica_bad, 0);
 }
 
 /* ---- zero-area and degenerate triangles ------------------------------------------------------ */
@@ -2039,7 +2115,7 @@ static void test_bad_dir(void **state)
 static void test_single_ray(void **state)
 {
     ltt_rng_t rng;
-    unsigned long cases = 0, hits = 0, bad = 0;
+    unsigned long cases = 0, hits = 0, bad = 0, cases32 = 0, hits32 = 0;
     int it;
     (void)state;
     ltt_rng_seed(&rng, 91);
@@ -2113,6 +2189,36 @@ static void test_single_ray(void **state)
                 }
             }
         }
+        {
+            /* LT_ISECT_WT32: the same lanes (unit and short directions: sh > 0 takes the wide
+             * arithmetic) on the triangle's grid, 16x coarser, or 2^0 */
+            lt_ray16_q16_t p0 = p;
+            unsigned g = lt_wt32_shift_q16(&tq, 1);
+            g = it % 3 == 0 ? g : (it % 3 == 1 ? (g + 4u > 15u ? 15u : g + 4u) : 0u);
+            h.id = lt_vi32_set1(-1);
+            p = p0;
+            got = lt_tri16_wt32_q16(&p, &w, g, LT_MASK_ALL, &tq, 3, &h);
+            for (i = 0; i < LT_LANES; i++) {
+                lt_q16_t o[3], tmax = p0.tmax.l[i];
+                lt_q30_t d[3];
+                lt_wt1_q16_t w1;
+                int hit1;
+                o[0] = p0.ox.l[i], o[1] = p0.oy.l[i], o[2] = p0.oz.l[i];
+                d[0] = p0.dx.l[i], d[1] = p0.dy.l[i], d[2] = p0.dz.l[i];
+                (void)lt_ray1_wt_setup_q16(o, d, &w1);
+                hit1 = lt_tri1_wt32_q16(&w1, g, &tq, p0.tmin.l[i], &tmax);
+                cases32++;
+                hits32 += (unsigned long)hit1;
+                if (hit1 != (int)(((unsigned)got >> (unsigned)i) & 1u) || tmax != p.tmax.l[i]) {
+                    if (bad < 5)
+                        ltt_report("  FAIL wt32 single ray: case %d lane %d g %u: hit %d/%d t "
+                                   "%d/%d\n", it, i, g, hit1,
+                                   (int)(((unsigned)got >> (unsigned)i) & 1u), tmax, p.tmax.l[i]);
+                    bad++;
+                }
+            }
+            p = p0;
+        }
 #if LT_CFG_FLOAT32
         {
             lt_ray16_f32_t pf;
@@ -2159,8 +2265,9 @@ static void test_single_ray(void **state)
         }
 #endif
     }
-    ltt_report("lt_tri1_wt_q16/_f32 vs their packet lane: %lu cases, %lu hits, %lu differ\n", cases,
-               hits, bad);
+    ltt_report("lt_tri1_wt_q16/_f32 vs their packet lane: %lu cases, %lu hits; lt_tri1_wt32_q16 "
+               "vs its packet lane (grids 2^0 .. 2^15, unit and short directions): %lu cases, %lu "
+               "hits; %lu differ (bound 0)\n", cases, hits, cases32, hits32, bad);
     assert_int_equal(bad, 0);
 }
 

@@ -706,7 +706,7 @@ lt_status_t lt_bvhq_trace16_q16(const lt_bvhq_t *bvh, const lt_tri_q16_t *tris, 
                                 lt_mask16_t k, lt_hit16_t *hit)
 {
     lt_mask16_t unused;
-    if (bvh == NULL || r == NULL || hit == NULL || bvh->isect > LT_ISECT_MT ||
+    if (bvh == NULL || r == NULL || hit == NULL || !LT_ISECT_VALID(bvh->isect, 1) ||
         (tris == NULL && bvh->nnodes != 0))
         return LT_E_ARG;
     return bvhq_trav16(bvh, tris, r, k, hit, 0, &unused);
@@ -716,7 +716,7 @@ lt_status_t lt_bvhq_occluded16_q16(const lt_bvhq_t *bvh, const lt_tri_q16_t *tri
                                    lt_ray16_q16_t *r, lt_mask16_t k, lt_mask16_t *occluded)
 {
     lt_hit16_t h;
-    if (bvh == NULL || r == NULL || occluded == NULL || bvh->isect > LT_ISECT_MT ||
+    if (bvh == NULL || r == NULL || occluded == NULL || !LT_ISECT_VALID(bvh->isect, 1) ||
         (tris == NULL && bvh->nnodes != 0))
         return LT_E_ARG;
     return bvhq_trav16(bvh, tris, r, k, &h, 1, occluded);
@@ -743,7 +743,7 @@ lt_status_t lt_bvhq_trace1_q16(const lt_bvhq_t *bvh, const lt_tri_q16_t *tris, l
     lt_phase_t prev;
     lt__isel1_q16 isel;
 
-    if (bvh == NULL || r == NULL || id == NULL || bvh->isect > LT_ISECT_MT ||
+    if (bvh == NULL || r == NULL || id == NULL || !LT_ISECT_VALID(bvh->isect, 1) ||
         (tris == NULL && bvh->nnodes != 0))
         return LT_E_ARG;
     lt__isel1_init_q16(&isel, bvh->isect);

@@ -58,11 +58,15 @@ int lt__wt_zero_area_f32(const lt_tri_f32_t *tri);
     typedef struct {                                                                               \
         uint32_t mt;    /* Moller-Trumbore chosen */                                               \
         uint32_t ready; /* the watertight setup is computed */                                     \
+        uint32_t wt32;  /* s15.16: the watertight test on the grid 2^g (LT_ISECT_WT32) */          \
+        uint32_t g;     /* its grid shift */                                                       \
         WT16 wt;        /* the packet's watertight setup */                                        \
     } lt__isel16_##SFX;                                                                        \
     LT_INLINE void lt__isel16_init_##SFX(lt__isel16_##SFX *s, uint32_t isect)                  \
     {                                                                                              \
         s->mt = isect == LT_ISECT_MT;                                                              \
+        s->wt32 = LT_ISECT_KIND(isect) == LT_ISECT_WT32;                                           \
+        s->g = LT_ISECT_WT32_SHIFT(isect);                                                         \
         s->ready = 0;                                                                              \
     }                                                                                              \
     /* The packet's watertight setup, computed on first use (also for kernels that test the       \
@@ -80,6 +84,8 @@ int lt__wt_zero_area_f32(const lt_tri_f32_t *tri);
     {                                                                                              \
         if (s->mt)                                                                                 \
             return lt_tri16_##SFX(r, k, tri, id, hit);                                             \
+        if (s->wt32)                                                                               \
+            return LT__ISEL16_WT32_##SFX(s, r, k, tri, id, hit);                                   \
         return lt_tri16_wt_##SFX(r, lt__isel16_wt_##SFX(s, r), k, tri, id, hit);                  \
     }
 
@@ -87,11 +93,15 @@ int lt__wt_zero_area_f32(const lt_tri_f32_t *tri);
     typedef struct {                                                                               \
         uint32_t mt;    /* Moller-Trumbore chosen */                                               \
         uint32_t ready; /* the watertight setup is computed */                                     \
+        uint32_t wt32;  /* s15.16: the watertight test on the grid 2^g (LT_ISECT_WT32) */          \
+        uint32_t g;     /* its grid shift */                                                       \
         WT1 wt;         /* the ray's watertight setup */                                           \
     } lt__isel1_##SFX;                                                                         \
     LT_INLINE void lt__isel1_init_##SFX(lt__isel1_##SFX *s, uint32_t isect)                    \
     {                                                                                              \
         s->mt = isect == LT_ISECT_MT;                                                              \
+        s->wt32 = LT_ISECT_KIND(isect) == LT_ISECT_WT32;                                           \
+        s->g = LT_ISECT_WT32_SHIFT(isect);                                                         \
         s->ready = 0;                                                                              \
     }                                                                                              \
     /* The ray's watertight setup, computed on first use (also for the wide tree's leaf blocks,  \
@@ -108,8 +118,21 @@ int lt__wt_zero_area_f32(const lt_tri_f32_t *tri);
     {                                                                                              \
         if (s->mt)                                                                                 \
             return lt_tri1_##SFX(r, tri);                                                          \
+        if (s->wt32)                                                                               \
+            return LT__ISEL1_WT32_##SFX(s, r, tri);                                                \
         return lt_tri1_wt_##SFX(lt__isel1_wt_##SFX(s, r), tri, r->tmin, &r->tmax);                 \
     }
+
+/* LT_ISECT_WT32 per path: the s15.16 test on the grid; float32 structures never carry it
+ * (LT_ISECT_VALID), and take the exact test if one did. */
+#define LT__ISEL16_WT32_q16(s, r, k, tri, id, hit)                                                 \
+    lt_tri16_wt32_q16((r), lt__isel16_wt_q16((s), (r)), (s)->g, (k), (tri), (id), (hit))
+#define LT__ISEL1_WT32_q16(s, r, tri)                                                              \
+    lt_tri1_wt32_q16(lt__isel1_wt_q16((s), (r)), (s)->g, (tri), (r)->tmin, &(r)->tmax)
+#define LT__ISEL16_WT32_f32(s, r, k, tri, id, hit)                                                 \
+    lt_tri16_wt_f32((r), lt__isel16_wt_f32((s), (r)), (k), (tri), (id), (hit))
+#define LT__ISEL1_WT32_f32(s, r, tri)                                                              \
+    lt_tri1_wt_f32(lt__isel1_wt_f32((s), (r)), (tri), (r)->tmin, &(r)->tmax)
 
 LT__ISEL_DEFINE(q16, lt_ray16_q16_t, lt_tri_q16_t, lt_wt16_q16_t, lt_wt1_q16_t, lt_q16_t)
 #if LT_CFG_FLOAT32

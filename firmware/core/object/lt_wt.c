@@ -452,6 +452,259 @@ static void memset_sh(uint8_t sh[LT_LANES], uint8_t v)
 #undef LTN_WT_ZERO_AREA1
 #undef LTN_WT_ZERO_AREA16
 
+/* ---- s15.16 on a grid: the watertight test with 32-bit edge functions (LT_ISECT_WT32) ---------- */
+
+/* A sheared vertex is snapped to the grid of step 2^g raw when both its coordinates then lie within
+ * WT32_LIM steps: each 2D cross product of two snapped points is then below 2^29 and det below
+ * 2^31, so edges and det are int32 and T = U z0 + V z1 + W z2 an int64. */
+#define WT32_LIM 16383
+
+/* round(x / 2^g), half up, in int64 (no overflow for any x). */
+static int64_t wt32_snap1(lt_q16_t x, unsigned g)
+{
+    return g == 0u ? (int64_t)x : lt__asr64((int64_t)x + ((int64_t)1 << (g - 1u)), g);
+}
+
+static int wt32_fits(int64_t a) { return a >= -WT32_LIM && a <= WT32_LIM; }
+
+/* t = round(T / det) as s15.16 for det != 0: q_tdiv1's quotient, rounding and saturation for a
+ * 64-bit numerator and sh = 0 (the same bits as q_tdiv1 on T sign-extended), by one 64/32-bit
+ * division. */
+static lt_q16_t wt32_tdiv1(int64_t T, int32_t det, int *sat)
+{
+    uint64_t n = T < 0 ? 0u - (uint64_t)T : (uint64_t)T;
+    uint64_t ad = det < 0 ? 0u - (uint64_t)(int64_t)det : (uint64_t)(int64_t)det;
+    uint64_t q, rem;
+    int neg = (T < 0) != (det < 0);
+    *sat = 0;
+    if (n >= ad << 31) {
+        *sat = 1;
+        return neg ? LT_Q16_MIN : LT_Q16_MAX;
+    }
+    q = n / ad;
+    rem = n - q * ad;
+    if (neg) {
+        q += (uint64_t)(rem > ad - rem);
+        return q == 0 ? 0 : -(int32_t)(q - 1u) - 1;
+    }
+    q += (uint64_t)(rem >= ad - rem);
+    return lt__ssat32((int64_t)q);
+}
+
+/* One ray against one triangle on the grid 2^g: the ray's sheared vertices x, y (raw s15.16, as
+ * the exact test shears them), their distances along the ray axis zk, its Sz and shift sh. Each
+ * vertex is one 2D point per ray: snapped when it fits the grid's range, else its exact sheared
+ * point, so an edge shared by two triangles is the same function in both (watertight: the exact
+ * test on those points). With every vertex snapped and sh == 0 (every unit direction): int32
+ * edges and det, int64 T, a 64/32 division. Otherwise (*wide = 1) the exact test's int64 edges of
+ * the same points (snapped ones scaled back by 2^g, exact) and its 128-bit T and division: the
+ * same t (the scale 2^2g cancels in T / det). Returns 1 and *t when the ray meets the points'
+ * triangle (signs agree, det != 0). */
+static int wt32_lane(const lt_q16_t x[3], const lt_q16_t y[3], const lt_q16_t zk[3], lt_q30_t sz,
+                     unsigned sh, unsigned g, lt_q16_t *t, int *wide, int *sat)
+{
+    int64_t sx[3], sy[3];
+    lt_q16_t px[3], py[3], z[3];
+    int64_t eu, ev, ew, det;
+    uint64_t h = 0, l = 0;
+    int fit[3], i, neg, pos;
+
+    *wide = 0;
+    *sat = 0;
+    g = g > LT_WT32_SHIFT_MAX ? LT_WT32_SHIFT_MAX : g; /* the documented range */
+    for (i = 0; i < 3; i++) {
+        sx[i] = wt32_snap1(x[i], g);
+        sy[i] = wt32_snap1(y[i], g);
+        fit[i] = wt32_fits(sx[i]) && wt32_fits(sy[i]);
+    }
+    if (fit[0] && fit[1] && fit[2]) {
+        int32_t a[3], b[3], u, v, w, d;
+        for (i = 0; i < 3; i++) {
+            a[i] = (int32_t)sx[i];
+            b[i] = (int32_t)sy[i];
+        }
+        u = a[2] * b[1] - b[2] * a[1];
+        v = a[0] * b[2] - b[0] * a[2];
+        w = a[1] * b[0] - b[1] * a[0];
+        neg = u < 0 || v < 0 || w < 0;
+        pos = u > 0 || v > 0 || w > 0;
+        d = u + v + w;
+        if ((neg && pos) || d == 0)
+            return 0;
+        for (i = 0; i < 3; i++)
+            z[i] = lt__q16_mul_q30_sat(zk[i], sz);
+        if (sh == 0u) {
+            *t = wt32_tdiv1((int64_t)u * z[0] + (int64_t)v * z[1] + (int64_t)w * z[2], d, sat);
+            return 1;
+        }
+    }
+    *wide = 1;
+    for (i = 0; i < 3; i++) {
+        px[i] = fit[i] ? (lt_q16_t)(sx[i] * ((int64_t)1 << g)) : x[i];
+        py[i] = fit[i] ? (lt_q16_t)(sy[i] * ((int64_t)1 << g)) : y[i];
+    }
+    eu = lt__l64_sub_wrap(lt__mul32x32_64(px[2], py[1]), lt__mul32x32_64(py[2], px[1]));
+    ev = lt__l64_sub_wrap(lt__mul32x32_64(px[0], py[2]), lt__mul32x32_64(py[0], px[2]));
+    ew = lt__l64_sub_wrap(lt__mul32x32_64(px[1], py[0]), lt__mul32x32_64(py[1], px[0]));
+    neg = eu < 0 || ev < 0 || ew < 0;
+    pos = eu > 0 || ev > 0 || ew > 0;
+    det = lt__l64_add_wrap(lt__l64_add_wrap(eu, ev), ew);
+    if ((neg && pos) || det == 0)
+        return 0;
+    for (i = 0; i < 3; i++)
+        z[i] = lt__q16_mul_q30_sat(zk[i], sz);
+    q_mac128(&h, &l, eu, z[0]);
+    q_mac128(&h, &l, ev, z[1]);
+    q_mac128(&h, &l, ew, z[2]);
+    *t = q_tdiv1(h, l, det, sh, sat);
+    return 1;
+}
+
+lt_mask16_t lt__wt32_meet16_q16(const lt_wt16_q16_t *w, unsigned g, lt_mask16_t k,
+                                const lt_tri_q16_t *tri, lt_vq16_t *t)
+{
+    lt_vq16_t ax[3], ay[3], zk[3], x[3], y[3];
+    lt_mask16_t meet = 0, wide = 0, wmeet = 0;
+    int i;
+
+    k = wt_prep_q16(w, k, tri, ax, ay, zk);
+    if (k == 0)
+        return 0;
+    /* the exact test's shear, lane ops (VMUL, VALU) */
+    for (i = 0; i < 3; i++) {
+        x[i] = lt_vq16_sub_sat(ax[i], lt_vq16_mul_q30_sat(zk[i], w->sx));
+        y[i] = lt_vq16_sub_sat(ay[i], lt_vq16_mul_q30_sat(zk[i], w->sy));
+    }
+    LT_CHARGE(WT32_EDGES);
+    LT_UTIL(k);
+    for (i = 0; i < LT_LANES; i++) {
+        lt_q16_t lx[3], ly[3], lz[3], lt;
+        int v, wd, sat;
+        if (!LT__ON(k, i))
+            continue;
+        for (v = 0; v < 3; v++) {
+            lx[v] = x[v].l[i];
+            ly[v] = y[v].l[i];
+            lz[v] = zk[v].l[i];
+        }
+        if (wt32_lane(lx, ly, lz, w->sz.l[i], w->sh[i], g, &lt, &wd, &sat)) {
+            t->l[i] = lt;
+            if (wd)
+                wmeet = (lt_mask16_t)(wmeet | (1u << i));
+            else
+                meet = (lt_mask16_t)(meet | (1u << i));
+        }
+        if (wd)
+            wide = (lt_mask16_t)(wide | (1u << i));
+        LT_EVENT(SAT, sat);
+    }
+    /* the wide arithmetic only when a lane needs it, t only when a lane meets the triangle */
+    LT_CHARGE_N(WT32_T, meet != 0);
+    LT_CHARGE_N(WT32_WIDE, wide != 0);
+    LT_CHARGE_N(WT32_WIDE_T, wmeet != 0);
+    return (lt_mask16_t)(meet | wmeet);
+}
+
+lt_mask16_t lt_tri16_wt32_q16(lt_ray16_q16_t *r, const lt_wt16_q16_t *w, unsigned g, lt_mask16_t k,
+                              const lt_tri_q16_t *tri, int32_t id, lt_hit16_t *hit)
+{
+    lt_vq16_t t = r->tmax;
+    lt_mask16_t hits = lt__wt32_meet16_q16(w, g, k, tri, &t);
+    if (hits == 0)
+        return 0;
+    hits = lt_vq16_cmpgt_m(hits, t, r->tmin);
+    hits = lt_vq16_cmplt_m(hits, t, r->tmax);
+    r->tmax = lt_vq16_blend(hits, r->tmax, t);
+    hit->id = lt_vi32_blend(hits, hit->id, lt_vi32_set1(id));
+    LT_EVENT(HITS, lt__popcount32(hits));
+    return hits;
+}
+
+int lt_tri1_wt32_q16(const lt_wt1_q16_t *w, unsigned g, const lt_tri_q16_t *tri, lt_q16_t tmin,
+                     lt_q16_t *tmax)
+{
+    lt_q16_t p[3][3], x[3], y[3], zk[3], t;
+    int i, a, wide, sat;
+
+    LT_CHARGE(WT32_TRI1);
+    LT_MEM(tri, sizeof *tri, LT_MEM_READ);
+    LT_EVENT(TRIS, 1);
+    LT_EVENT(TRI_RAYS, 1);
+    if (w->bad)
+        return 0;
+    for (a = 0; a < 3; a++) {
+        p[0][a] = tri->v0[a];
+        p[1][a] = lt__q16_add_sat(tri->v0[a], tri->e1[a]);
+        p[2][a] = lt__q16_add_sat(tri->v0[a], tri->e2[a]);
+    }
+    if (q_zero_area(p))
+        return 0;
+    for (i = 0; i < 3; i++) {
+        lt_q16_t ax = lt__q16_sub_sat(p[i][w->k[0]], w->o[0]);
+        lt_q16_t ay = lt__q16_sub_sat(p[i][w->k[1]], w->o[1]);
+        zk[i] = lt__q16_sub_sat(p[i][w->k[2]], w->o[2]);
+        x[i] = lt__q16_sub_sat(ax, lt__q16_mul_q30_sat(zk[i], w->s[0]));
+        y[i] = lt__q16_sub_sat(ay, lt__q16_mul_q30_sat(zk[i], w->s[1]));
+    }
+    if (!wt32_lane(x, y, zk, w->s[2], w->sh, g, &t, &wide, &sat)) {
+        LT_CHARGE_N(WT32_TRI1_WIDE, wide);
+        return 0;
+    }
+    LT_CHARGE_N(WT32_TRI1_WIDE, wide);
+    LT_CHARGE_N(WT32_TRI1_T, !wide);
+    LT_CHARGE_N(WT_TRI1_T, wide);
+    LT_EVENT(SAT, sat);
+    if (t > tmin && t < *tmax) {
+        *tmax = t;
+        LT_EVENT(HITS, 1);
+        return 1;
+    }
+    return 0;
+}
+
+/* The largest of |e1|, |e2|, |e2 - e1| over the axes (raw), in int64. */
+static int64_t wt32_edge_max(const lt_tri_q16_t *tri)
+{
+    int64_t m = 0;
+    int a;
+    for (a = 0; a < 3; a++) {
+        int64_t e1 = tri->e1[a], e2 = tri->e2[a], d = e2 - e1;
+        e1 = e1 < 0 ? -e1 : e1;
+        e2 = e2 < 0 ? -e2 : e2;
+        d = d < 0 ? -d : d;
+        m = e1 > m ? e1 : m;
+        m = e2 > m ? e2 : m;
+        m = d > m ? d : m;
+    }
+    return m;
+}
+
+unsigned lt_wt32_shift_q16(const lt_tri_q16_t *tris, uint32_t n)
+{
+    uint32_t hist[34], i, total = 0, acc = 0;
+    unsigned b, g = 0;
+    for (b = 0; b < 34u; b++)
+        hist[b] = 0;
+    for (i = 0; i < n; i++) {
+        int64_t m = wt32_edge_max(&tris[i]);
+        if (m == 0)
+            continue;
+        for (b = 0; b < 33u && (m >> b) != 0; b++) {
+        }
+        hist[b]++; /* m < 2^b */
+        total++;
+    }
+    for (b = 0; b < 34u && total != 0; b++) {
+        acc += hist[b];
+        if ((uint64_t)acc * 100u >= (uint64_t)total * LT_WT32_SHIFT_PCT) {
+            /* |sheared| < 2^(b+1) for a vertex of a triangle the ray meets: 2^(b+1-g) <= 2^13 */
+            g = b > 12u ? b - 12u : 0u;
+            break;
+        }
+    }
+    return g > LT_WT32_SHIFT_MAX ? LT_WT32_SHIFT_MAX : g;
+}
+
 /* ---- float32 -------------------------------------------------------------------------------- */
 #if LT_CFG_FLOAT32
 

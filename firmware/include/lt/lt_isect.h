@@ -22,6 +22,17 @@ extern "C" {
  * is loop-invariant, a compiler unswitches it). docs/watertight.md. */
 #define LT_ISECT_WT 0u /* watertight (Woop, Benthin, Wald 2013; lt_wt.h): the default */
 #define LT_ISECT_MT 1u /* Moller-Trumbore (lt_tri16_*): cheaper, leaks at shared edges */
+/* s15.16 only: the watertight test on a grid of step 2^g (lt_tri16_wt32_q16): 32-bit edge functions,
+ * watertight, t of the snapped triangle. The value carries g in bits 8..12: LT_ISECT_WT32_G(g). */
+#define LT_ISECT_WT32 2u
+#define LT_ISECT_WT32_G(g) (LT_ISECT_WT32 | (((uint32_t)(g) & 31u) << 8))
+#define LT_ISECT_KIND(v) ((uint32_t)(v) & 0xFFu)
+#define LT_ISECT_WT32_SHIFT(v) (((uint32_t)(v) >> 8) & 31u)
+/* 1 if v names an intersector (for a float32 structure: WT or MT only). */
+#define LT_ISECT_VALID(v, q16)                                                                     \
+    ((v) == LT_ISECT_WT || (v) == LT_ISECT_MT ||                                                   \
+     ((q16) && LT_ISECT_KIND(v) == LT_ISECT_WT32 && LT_ISECT_WT32_SHIFT(v) <= 15u &&               \
+      ((uint32_t)(v) >> 13) == 0u))
 
 /* A packet of 16 rays in fixed point. 16 x 64 B x 11 = 704 bytes, 4-byte aligned. */
 typedef struct lt_ray16_q16 {

@@ -93,6 +93,47 @@ int lt_ray1_wt_setup_q16(const lt_q16_t o[3], const lt_q30_t d[3], lt_wt1_q16_t 
 int lt_tri1_wt_q16(const lt_wt1_q16_t *w, const lt_tri_q16_t *tri, lt_q16_t tmin,
                    lt_q16_t *tmax);
 
+/* ---- s15.16 on a grid: LT_ISECT_WT32 (docs/watertight.md, "A narrower test") ----------------
+ * The same test with the sheared vertices snapped to a grid of step 2^g raw s15.16 (g from the
+ * structure's isect value, LT_ISECT_WT32_SHIFT): a vertex whose snapped coordinates lie within
+ * 16383 steps is snapped, any other keeps its exact sheared point. Each vertex is one 2D point per
+ * ray, so the test is the exact watertight test on those points: no crack. With the three
+ * vertices snapped and a unit direction (sh = 0), the edge functions and det are int32 (2D cross
+ * products of 15-bit values, |U| < 2^29, |det| < 2^31), T = U z0 + V z1 + W z2 an int64 and
+ * t = round(T / det) one 64/32-bit division; otherwise the exact test's int64 edges and 128-bit T
+ * on the same points (the same t: the grid scale cancels).
+ * Format: as lt_tri16_wt_q16; U, V, W in grid steps squared. Range: as lt_tri16_wt_q16, g <= 15.
+ * Rounding: each sheared coordinate to the grid, half up; t half up from the exact quotient.
+ * Error against the exact test: the hit point moves by at most 2^(g-1) raw per sheared axis per
+ * vertex; a hit or miss changes only for rays within that of an edge, and t is the t of the
+ * snapped triangle (tests/unit/test_wt32.c states and checks the bound).
+ * Cost: as lt_tri16_wt_q16 up to the shear, then WT32_EDGES (VSHIFT x6, VALU x11, VCMP x12,
+ * VMUL x6, MASK x10); a lane that meets adds WT32_T (VMUL x6, VMULW x2, VDIV x1); a lane off the
+ * grid's range or with sh > 0 adds WT32_WIDE and, if it meets, WT32_WIDE_T (the exact T).
+ * Returns: the mask of lanes whose ray was shortened by this triangle. */
+lt_mask16_t lt_tri16_wt32_q16(lt_ray16_q16_t *r, const lt_wt16_q16_t *w, unsigned g, lt_mask16_t k,
+                              const lt_tri_q16_t *tri, int32_t id, lt_hit16_t *hit);
+
+/* The lanes of k that meet tri on the grid (lt_tri16_wt32_q16 without the interval), t written for
+ * those lanes. */
+lt_mask16_t lt__wt32_meet16_q16(const lt_wt16_q16_t *w, unsigned g, lt_mask16_t k,
+                                const lt_tri_q16_t *tri, lt_vq16_t *t);
+
+/* One ray: one lane of lt_tri16_wt32_q16, bit for bit. Cost: WT32_TRI1, a candidate WT32_TRI1_T
+ * (or, off the grid's range or sh > 0, WT32_TRI1_WIDE and WT_TRI1_T). Returns: 1 if
+ * tmin < t < *tmax (then *tmax = t). */
+int lt_tri1_wt32_q16(const lt_wt1_q16_t *w, unsigned g, const lt_tri_q16_t *tri, lt_q16_t tmin,
+                     lt_q16_t *tmax);
+
+/* The grid for a triangle set: g such that, for LT_WT32_SHIFT_PCT % of its non-degenerate
+ * triangles, the sheared vertices of the triangle around a ray that meets it (within twice its
+ * largest edge component of the ray) fit the grid's range with a factor 2 to spare: g = b - 12
+ * for that percentile's largest edge component < 2^b raw, 0 <= g <= LT_WT32_SHIFT_MAX. Uncharged
+ * (a build-time choice). */
+#define LT_WT32_SHIFT_PCT 99u
+#define LT_WT32_SHIFT_MAX 15u
+unsigned lt_wt32_shift_q16(const lt_tri_q16_t *tris, uint32_t n);
+
 #if LT_CFG_FLOAT32
 /* Float32 twin of lt_wt16_q16_t (same layout rules; no shift: Sz = 1/d[kz] in float). 416
  * bytes. */
