@@ -6,6 +6,9 @@
 #   build/fw/<T>/reproj.elf    the shared 64 x 64 reprojection workload (tests/fw/fw_reproj.c)
 #   build/fw/<T>/scene-<S>.elf a real mesh (bunny, teapot) as a scene blob in read-only data,
 #                              traced tile by tile (firmware/apps/scene_fw.c, docs/firmware.md)
+#   build/fw/<T>/scene-bunny-wt32.elf  the bunny blob traced with the s15.16 grid test
+#                              (LT_ISECT_WT32; objects in objw/, LT_CFG_WT32=1: every other
+#                              image is built with LT_CFG_WT32=0)
 #   build/fw/<T>/scene-sibenik.elf  a multi-frusta block of the shared Sibenik as a frusta blob
 #                              (only where ../shared is; make test-build builds it)
 #   build/fw/<T>/reproj-bb.elf the reprojection app over a 128 x 128, 2-layer crop of the Beachball
@@ -81,6 +84,16 @@ $(B)/gen/$(1)64.ltsb: $(B)/host/lanetrace-native $(FW_SCENE_MESH_$(1))
 	@$(B)/host/lanetrace-native pack --mesh $(FW_SCENE_MESH_$(1)) --res 64 --out $$@ >/dev/null
 endef
 $(foreach s,$(FW_SCENES),$(eval $(call fw_scene,$(s))))
+# The bunny blob traced with the s15.16 grid test (LT_ISECT_WT32, docs/watertight.md): the blob's
+# LT_SBLOB_F_WT32 flag, the image's objects built with LT_CFG_WT32 1 (objw; every other image has
+# 0, so the instruction counts the fitted MCU models price are unchanged).
+FW_IMG_scene-bunny-wt32 := $(FW_IMG_scene-bunny)
+FW_BLOB_scene-bunny-wt32 := $(B)/gen/bunny64-wt32.ltsb
+$(B)/gen/bunny64-wt32.ltsb: $(B)/host/lanetrace-native $(FW_SCENE_MESH_bunny)
+	@mkdir -p $(@D)
+	@echo "PACK $@"
+	@$(B)/host/lanetrace-native pack --mesh $(FW_SCENE_MESH_bunny) --res 64 --isect wt32 \
+	    --out $@ >/dev/null
 # One multi-frusta block of a shared interior (a frusta blob: `lanetrace shadows --pack-block`,
 # the 16x16 block with the most penumbra pixels at 128x128, 16 spp, the crop of the triangles that
 # can shadow it). Built by make test-build only where ../shared is (a fresh clone has none).
@@ -160,7 +173,7 @@ $(B)/fw/$(1)/$(2)/%.o: %.c Makefile
 	@mkdir -p $$(@D)
 	@echo "CC [$(1)] $$<"
 	@$(CC_$(1)) $(FW_CFLAGS_COMMON) $(DEPFLAGS) $(FPFLAGS) $(CFLAGS_$(1)) $$(FW_SRC_INC) \
-	    -DLT_COST_MODE=LT_COST_OFF $(3) -c $$< -o $$@
+	    -DLT_COST_MODE=LT_COST_OFF -DLT_CFG_WT32=0 $(3) -c $$< -o $$@
 $(B)/fw/$(1)/$(2)/%.o: %.S $(FW_RT_DEPS)
 	@mkdir -p $$(@D)
 	@echo "AS [$(1)] $$<"
@@ -194,6 +207,7 @@ $(eval $(call fw_obj_rules,cm55,objp,-DLT_LANES_PORTABLE))
 $(eval $(call fw_obj_rules,cm4,objp,-DLT_LANES_PORTABLE))
 $(foreach t,$(FW_TARGETS),$(eval $(call fw_obj_rules,$(t),obj,)) \
     $(eval $(call fw_obj_rules,$(t),objx,-DLT_CFG_FLOAT32=0)) \
+    $(eval $(call fw_obj_rules,$(t),objw,-ULT_CFG_WT32 -DLT_CFG_WT32=1)) \
     $(eval $(call fw_obj_rules,$(t),objc,-ULT_COST_MODE -DLT_COST_MODE=LT_COST_HANDLER \
         -include firmware/apps/lt_fw_count.h)))
 # the counting image's generated table, compiled per target
@@ -211,6 +225,7 @@ FW_ALL_IMAGES := vectors slab frusta reproj stream $(FW_SCENES:%=scene-%) \
 $(foreach t,$(FW_TARGETS),$(foreach i,$(FW_ALL_IMAGES),$(eval $(call fw_image,$(t),$(i),obj,))))
 $(foreach t,$(FW_TARGETS),$(eval $(call fw_image,$(t),stream-count,objc,)))
 $(foreach t,$(FW_TARGETS),$(eval $(call fw_image,$(t),scene-sibenik,obj,)))
+$(foreach t,$(FW_TARGETS),$(eval $(call fw_image,$(t),scene-bunny-wt32,objw,)))
 $(eval $(call fw_image,rv32,vectors,objx,-fixed))
 FW_PORTABLE_IMAGES := vectors scene-bunny $(if $(FW_FRUSTA_MESH),scene-sibenik) \
     $(if $(wildcard $(FW_RPBB_EXR)),reproj-bb)
@@ -224,7 +239,7 @@ $(foreach i,$(FW_CAL_NAMES),$(eval $(call fw_image,cm55,$(i),objp,-portable)))
 $(foreach t,$(FW_TARGETS),$(eval fw_$(t)_CORE := $(call fw_objs,$(t),obj,$(FW_CORE_SRCS))) \
     $(eval fw_$(t)_RT := $(call fw_objs,$(t),obj,$(FW_RT_SRCS_$(t)))))
 
-FW_IMAGES := $(foreach t,$(FW_TARGETS),$(foreach i,$(FW_ALL_IMAGES) stream-count,$(B)/fw/$(t)/$(i).elf)) \
+FW_IMAGES := $(foreach t,$(FW_TARGETS),$(foreach i,$(FW_ALL_IMAGES) stream-count scene-bunny-wt32,$(B)/fw/$(t)/$(i).elf)) \
     $(B)/fw/rv32/vectors-fixed.elf $(FW_SHARED_IMAGES) \
     $(FW_PORTABLE_IMAGES:%=$(B)/fw/cm55/%-portable.elf) \
     $(FW_PORTABLE_IMAGES_cm4:%=$(B)/fw/cm4/%-portable.elf) $(FW_CAL_IMAGES)

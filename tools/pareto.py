@@ -20,7 +20,7 @@ FAMILIES = ("object", "screen", "shadows")
 PRIMARY = {"object": ("rmse", "depth RMSE (scene units)", False),
            "screen": ("rel99", "rel99 (%)", False),
            "shadows": ("psnr", "PSNR (dB)", True)}
-KNOBS = {"object": ("path", "structure", "leaf"),
+KNOBS = {"object": ("path", "structure", "leaf", "isect"),
          "screen": ("path", "tracer", "layers", "gamma"),
          "shadows": ("path", "leaf", "cull", "spp", "primary", "shadow", "filter")}
 

@@ -271,6 +271,9 @@ static lt_sblob_err_t check_head(const void *p, size_t bytes, uint32_t magic, ui
     return LT_SBLOB_OK;
 }
 
+/* the flags a blob may carry in this build */
+#define SB_FLAGS (LT_SBLOB_F_SHADOWS | (LT_CFG_WT32 ? LT_SBLOB_F_WT32 : 0u))
+
 lt_sblob_err_t lt_sblob_open(const void *p, size_t bytes, lt_sblob_t *s)
 {
     const uint32_t *h = (const uint32_t *)p;
@@ -296,7 +299,7 @@ lt_sblob_err_t lt_sblob_open(const void *p, size_t bytes, lt_sblob_t *s)
     s->flags = h[LT_SB_FLAGS];
     s->eps = (lt_q16_t)h[LT_SB_EPS];
     if (s->width == 0 || s->width > LT_SBLOB_MAX_RES || s->height == 0 ||
-        s->height > LT_SBLOB_MAX_RES || (s->flags & ~LT_SBLOB_F_SHADOWS) != 0 || s->eps <= 0 ||
+        s->height > LT_SBLOB_MAX_RES || (s->flags & ~SB_FLAGS) != 0 || s->eps <= 0 ||
         s->eps > (lt_q16_t)LT_Q16_ONE * 256)
         return fail(s, LT_SBLOB_E_IMAGE, 0);
     s->tiles_x = (s->width + LT_SBLOB_TILE - 1u) / LT_SBLOB_TILE;
@@ -331,8 +334,19 @@ lt_sblob_err_t lt_sblob_open(const void *p, size_t bytes, lt_sblob_t *s)
                 return fail(s, LT_SBLOB_E_CAMERA, c);
     }
 
+#if LT_CFG_WT32
+    {
+        lt_sblob_err_t cs = check_scene(b, nt, nn, h[LT_SB_OFF_TRIS], h[LT_SB_OFF_NODES],
+                                       h[LT_SB_OFF_IDX], h[LT_SB_DEPTH], h[LT_SB_LEAF], &s->bvh,
+                                       &s->tris, &s->bad);
+        if (cs == LT_SBLOB_OK && (s->flags & LT_SBLOB_F_WT32) != 0)
+            s->bvh.isect = LT_ISECT_WT32_G(lt_wt32_shift_q16(s->tris, s->bvh.ntris));
+        return cs;
+    }
+#else
     return check_scene(b, nt, nn, h[LT_SB_OFF_TRIS], h[LT_SB_OFF_NODES], h[LT_SB_OFF_IDX],
                        h[LT_SB_DEPTH], h[LT_SB_LEAF], &s->bvh, &s->tris, &s->bad);
+#endif
 }
 
 /* The unit direction through pixel (x, y) inside the image (never zero: lt_sblob_open checked). */

@@ -55,6 +55,9 @@ enum lt_sblob_word {
 };
 
 #define LT_SBLOB_F_SHADOWS 1u /* trace a shadow ray from every primary hit to the light */
+#define LT_SBLOB_F_WT32 2u    /* trace with LT_ISECT_WT32 (lt_wt.h) on the grid lt_wt32_shift_q16
+                                 picks for the blob's triangles; a build with LT_CFG_WT32 0
+                                 refuses such a blob (flags out of range) */
 
 /* Why a blob was refused (lt_sblob_open). */
 typedef enum lt_sblob_err {

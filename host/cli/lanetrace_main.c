@@ -17,6 +17,7 @@
 #include "render/lt_paths.h"
 #include "tune/lt_recommend.h"
 #include "render/lt_render.h"
+#include "lt/lt_wt.h"
 #include "cli/lt_reproject_cli.h"
 #include "cli/lt_pack_cli.h"
 #include "cli/lt_fwblob_cli.h"
@@ -271,7 +272,8 @@ static int run_parse(run_t *r, int argc, char **argv)
         {.name = "--isect", .kind = LT_OPT_ENUM, .dest = &r->isect, .seen = &r->seen_isect,
          .meta = "NAME", .names = lt_sf_isects,
          .help = "ray/triangle test: {choices} (default wt: watertight; mt: Moller-Trumbore,\n"
-                 "cheaper, leaks at shared edges)"},
+                 "cheaper, leaks at shared edges; wt32: s15.16 only, watertight on a grid\n"
+                 "with 32-bit edge functions, t of the snapped triangle)"},
         {.name = "--machine", .kind = LT_OPT_STRING, .dest = &r->machine,
          .seen = &r->seen_machine, .meta = "NAME", .help = machine_help},
         {.name = "--l1", .kind = LT_OPT_STRING, .dest = &r->l1, .seen = &r->seen_l1,
@@ -711,6 +713,16 @@ static void run_csv_row(run_t *r, const char *pname, uint64_t rays, double ms,
 
 /* One numeric path: build, trace (--repeat times), depth and heatmaps, accuracy, the report, the
  * CSV row. Returns -1 when the other paths should not run (r->status says why). */
+/* The intersector of path p's pass: the scene's, except that with both paths (--num both) the
+ * float32 pass takes wt for wt32 (an s15.16 test; said once in the report's scene line). */
+static const char *run_isect(const lt_scenefile_t *sf, const lt_path_info_t *p)
+{
+    if (strcmp(sf->isect, "wt32") == 0 && p->bvh_num != LT_BVH_NUM_Q16 &&
+        sf->numeric == LT_SF_NUM_BOTH)
+        return "wt";
+    return sf->isect;
+}
+
 static int run_path(run_t *r, const lt_path_info_t *p)
 {
     const lt_scenefile_t *sf = &r->sf;
@@ -735,7 +747,12 @@ static int run_path(run_t *r, const lt_path_info_t *p)
         r->status = EXIT_INPUT;
         return -1;
     }
-    lt_accel_set_isect(acc, strcmp(sf->isect, "mt") == 0 ? LT_ISECT_MT : LT_ISECT_WT);
+    if (lt_accel_set_isect_name(acc, run_isect(sf, p), NULL, &diag) != 0) {
+        fprintf(stderr, "%s: %s\n", sf->path[0] ? sf->path : prog, diag.msg);
+        lt_accel_free(acc);
+        r->status = EXIT_USAGE;
+        return -1;
+    }
     if (r->rays == 2 && lt_accel_set_walk(acc, 1, &diag) != 0) {
         fprintf(stderr, "%s: %s\n", sf->path[0] ? sf->path : prog, diag.msg);
         lt_accel_free(acc);
@@ -853,6 +870,13 @@ static int run_trace(run_t *r)
                "%ux%u pixels, %u packets, structure %s, isect %s\n",
                sf->mesh, r->sc.ntris, r->sc.scale, r->sc.radius, sf->width, sf->height,
                ((sf->width + 3) / 4) * ((sf->height + 3) / 4), sf->structure, sf->isect);
+    if (!quiet && strcmp(sf->isect, "wt32") == 0) {
+        unsigned g = lt_wt32_shift_q16(r->sc.tq, r->sc.ntris);
+        printf("isect     wt32: s15.16 watertight test on a grid of 2^%u raw = %.3g s15.16 units "
+               "(%.3g file units; lt_wt32_shift_q16: 99%% of the triangles' edges fit 2^13 "
+               "steps)%s\n", g, ldexp(1.0, (int)g - 16), ldexp(1.0, (int)g - 16) / r->sc.scale,
+               sf->numeric == LT_SF_NUM_BOTH ? "; the float32 pass takes wt" : "");
+    }
     if (lt_frame_alloc(&r->ref, sf->width, sf->height, &diag) != 0 ||
         lt_frame_alloc(&r->fr, sf->width, sf->height, &diag) != 0) {
         fprintf(stderr, "%s\n", diag.msg);
@@ -1574,7 +1598,8 @@ static int render_parse(render_t *r, int argc, char **argv)
         {.name = "--isect", .kind = LT_OPT_ENUM, .dest = &r->isect, .seen = &r->seen_isect,
          .meta = "NAME", .names = lt_sf_isects,
          .help = "ray/triangle test: {choices} (default: the scene's, else wt:\n"
-                 "watertight; mt: Moller-Trumbore, cheaper, leaks at shared edges)"},
+                 "watertight; mt: Moller-Trumbore, cheaper, leaks at shared edges;\n"
+                 "wt32: s15.16 only, watertight on a grid with 32-bit edge functions)"},
         LT_OPT_INT("--layers", "K", &r->layers, 1, 16, "depth peels, {range} (default 1)"),
         LT_OPT_ENUM_("--rays", &r->rays, render_rays_names,
                      "packet: 16-ray packets through the binary BVH (default, the walk the\n"
@@ -1797,7 +1822,10 @@ static int render_trace(render_t *r)
     }
     if (r->seen_isect)
         snprintf(r->sf.isect, sizeof r->sf.isect, "%s", lt_sf_isects[r->isect]);
-    lt_accel_set_isect(r->acc, strcmp(sf->isect, "mt") == 0 ? LT_ISECT_MT : LT_ISECT_WT);
+    if (lt_accel_set_isect_name(r->acc, sf->isect, NULL, &diag) != 0) {
+        fprintf(stderr, "%s render: %s\n", prog, diag.msg);
+        return EXIT_USAGE;
+    }
     if (r->rays == 1 && lt_accel_set_walk(r->acc, 1, &diag) != 0) {
         fprintf(stderr, "%s render: %s\n", prog, diag.msg);
         return EXIT_INPUT;

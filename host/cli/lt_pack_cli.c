@@ -26,7 +26,7 @@ typedef struct pack {
     const char *scene_path, *mesh_over, *out, *in;
     uint32_t wh[2];
     double lf[3];
-    int seen_res, seen_light, leaf, no_shadows, trace, npos;
+    int seen_res, seen_light, leaf, no_shadows, trace, npos, isect;
     lt_scenefile_t sf;
     lt_mesh_t mesh;
     lt_scene_t sc;
@@ -37,6 +37,7 @@ typedef struct pack {
 } pack_t;
 
 static const char *who_g = "lanetrace pack";
+static const char *const pack_isects[] = {"wt", "wt32", NULL};
 
 static size_t align64(size_t n)
 {
@@ -103,6 +104,10 @@ static int pack_parse(pack_t *p, int argc, char **argv, const char *prog)
         LT_OPT_INT("--leaf", "N", &p->leaf, 1, LT_BVH_MAX_LEAF,
                    "BVH leaf size, {range} (default 4: the 1-lane machines' pick)"),
         LT_OPT_FLAG_("--no-shadows", &p->no_shadows, "primary rays only"),
+        LT_OPT_ENUM_("--isect", &p->isect, pack_isects,
+                     "the targets' ray/triangle test: wt (watertight, default) or wt32\n"
+                     "(the s15.16 grid test, LT_ISECT_WT32: a blob flag; firmware built\n"
+                     "with LT_CFG_WT32 0 refuses it)"),
         LT_OPT_FLAG_("--trace", &p->trace,
                      "trace the blob here and print the lines a target prints"),
         LT_OPT_END_};
@@ -231,7 +236,7 @@ static int pack_build(pack_t *p)
     }
     v.width = p->cam.width;
     v.height = p->cam.height;
-    v.flags = p->no_shadows ? 0u : LT_SBLOB_F_SHADOWS;
+    v.flags = (p->no_shadows ? 0u : LT_SBLOB_F_SHADOWS) | (p->isect == 1 ? LT_SBLOB_F_WT32 : 0u);
     v.eps = eps;
     v.scale = (uint32_t)fmin(4294967295.0, floor(p->sc.scale * 65536.0 + 0.5));
     total = lt_sblob_size(n, bvh.nnodes);
@@ -311,6 +316,9 @@ static int pack_trace(const pack_t *p, const char *name)
     printf("sblob %u triangles, %u nodes, %ux%u pixels, %u tiles, %s, %zu bytes\n",
            s.bvh.ntris, s.bvh.nnodes, s.width, s.height, s.tiles_x * s.tiles_y,
            (s.flags & LT_SBLOB_F_SHADOWS) ? "shadows" : "no shadows", p->bytes);
+    if ((s.flags & LT_SBLOB_F_WT32) != 0)
+        printf("isect wt32: the s15.16 grid test, grid 2^%u raw\n",
+               (unsigned)LT_ISECT_WT32_SHIFT(s.bvh.isect));
     for (single = 0; single < 2; single++) {
         uint32_t t, hash = LT_SBLOB_FNV0, rays = 0, hits = 0, srays = 0, occ = 0;
         for (t = 0; t < s.tiles_x * s.tiles_y; t++) {
@@ -375,9 +383,10 @@ int lt_pack_cli(int argc, char **argv, const char *prog)
         if (rc == 0)
             rc = pack_write(&p);
         if (rc == 0)
-            printf("pack  %s: %u triangles, %ux%u pixels, leaf %d, %s -> %s (%zu bytes)\n",
+            printf("pack  %s: %u triangles, %ux%u pixels, leaf %d, %s%s -> %s (%zu bytes)\n",
                    p.sf.mesh, p.sc.ntris, p.cam.width, p.cam.height, p.leaf,
-                   p.no_shadows ? "no shadows" : "hard shadows", p.out, p.bytes);
+                   p.no_shadows ? "no shadows" : "hard shadows",
+                   p.isect == 1 ? ", isect wt32" : "", p.out, p.bytes);
         if (rc == 0 && p.trace)
             rc = pack_trace(&p, p.out);
         lt_scene_free(&p.sc);

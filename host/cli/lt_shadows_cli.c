@@ -226,7 +226,7 @@ static int shadows_parse(shadows_t *s, int argc, char **argv)
         LT_OPT_ENUM_("--qmc", &s->qmc, qmc_names, "sample set (default lp)"),
         LT_OPT_ENUM_("--isect", &s->isect, lt_sf_isects,
                      "ray/triangle test of every stage: wt (watertight, default) or mt\n"
-                     "(Moller-Trumbore: cheaper, leaks at shared edges)"),
+                     "(Moller-Trumbore: cheaper, leaks at shared edges); not wt32"),
         {.name = "--light", .kind = LT_OPT_CUSTOM, .dest = s->light_c, .seen = &s->seen_light,
          .meta = "X,Y,Z,S", .parse = parse_light,
          .expect = "X,Y,Z,SIZE (4 finite numbers, SIZE >= 0)",
@@ -428,6 +428,11 @@ static int shadows_load(shadows_t *s)
     o.cos_min = s->cos_min;
     o.filter_vis = s->filter == 1;
     o.pflags = s->pflags;
+    if (s->isect == 2) {
+        fprintf(stderr, "%s: --isect wt32: the multi-frusta kernels take wt or mt (wt32, the "
+                        "s15.16 grid test, is for run and render)\n", who);
+        return EXIT_USAGE;
+    }
     o.isect = s->isect == 1 ? LT_ISECT_MT : LT_ISECT_WT;
     o.spp = (uint32_t)s->spp;
     s->ss = lt_ss_create(&s->sc, &s->cam, &s->light, &o, &diag);

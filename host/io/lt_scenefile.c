@@ -14,7 +14,7 @@
 #include <sys/stat.h>
 
 const char *const lt_sf_structures[] = {"chunks", "bvh", "bvhq", "kd", "grid", NULL};
-const char *const lt_sf_isects[] = {"wt", "mt", NULL};
+const char *const lt_sf_isects[] = {"wt", "mt", "wt32", NULL};
 
 /* The machine models' names, from the same generated list as the simulator's table
  * (sim/lt_machines.h): names only, so the validator links without the simulator. */

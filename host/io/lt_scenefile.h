@@ -36,8 +36,9 @@ typedef struct lt_scenefile {
     double fov_y_deg;              /* vertical field of view, (1, 179) */
     uint32_t width, height;        /* 1..LT_SF_MAX_RES */
     char structure[16];            /* "chunks" */
-    char isect[4];                 /* ray/triangle intersector: "wt" (watertight, the default) or
-                                      "mt" (Moller-Trumbore) */
+    char isect[8];                 /* ray/triangle intersector: "wt" (watertight, the default),
+                                      "mt" (Moller-Trumbore) or "wt32" (s15.16: watertight on a
+                                      grid, 32-bit edge functions) */
     lt_sf_num_t numeric;
     char machine[32];              /* one of lt_sf_machines ("lrb16") */
     char l1[32], l2[32];           /* cache overrides, "" = the machine's */

@@ -4,6 +4,7 @@
  * the cycle model's total per packet (lt_meter.h; zeros natively).
  */
 #include "render/lt_render.h"
+#include "lt/lt_wt.h"
 #include "lt_meter.h"
 #include "render/lt_par.h"
 
@@ -281,6 +282,32 @@ void lt_accel_set_isect(lt_accel_t *a, uint32_t isect)
         a->ops->kd_set_isect(a->hdr, isect);
     if (a->hdr != NULL && a->kind == ACC_GRID)
         a->ops->grid_set_isect(a->hdr, isect);
+}
+
+int lt_accel_set_isect_name(lt_accel_t *a, const char *name, uint32_t *g, lt_diag_t *diag)
+{
+    uint32_t v;
+    if (strcmp(name, "wt") == 0) {
+        v = LT_ISECT_WT;
+    } else if (strcmp(name, "mt") == 0) {
+        v = LT_ISECT_MT;
+    } else if (strcmp(name, "wt32") == 0) {
+        unsigned sh;
+        if (a->path->bvh_num != LT_BVH_NUM_Q16) {
+            lt_diag_fail(diag, "--isect wt32 is the s15.16 test on a grid (32-bit edge "
+                               "functions); the %s path takes wt or mt", a->path->name);
+            return -1;
+        }
+        sh = lt_wt32_shift_q16((const lt_tri_q16_t *)a->tris, a->n);
+        v = LT_ISECT_WT32_G(sh);
+        if (g != NULL)
+            *g = sh;
+    } else {
+        lt_diag_fail(diag, "unknown intersector '%s' (wt, mt, wt32)", name);
+        return -1;
+    }
+    lt_accel_set_isect(a, v);
+    return 0;
 }
 
 void lt_accel_free(lt_accel_t *a)

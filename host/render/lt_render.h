@@ -56,8 +56,14 @@ void lt_accel_free(lt_accel_t *a);
 size_t lt_accel_bytes(const lt_accel_t *a);
 
 /* The ray/triangle intersector of every walk over the structure (lt_isect.h): LT_ISECT_WT,
- * watertight, what lt_accel_build sets, or LT_ISECT_MT, Moller-Trumbore. */
+ * watertight, what lt_accel_build sets, LT_ISECT_MT, Moller-Trumbore, or (s15.16)
+ * LT_ISECT_WT32_G(g), the watertight test on the grid 2^g. */
 void lt_accel_set_isect(lt_accel_t *a, uint32_t isect);
+
+/* The same by name: "wt", "mt" or "wt32" (s15.16 only: the grid lt_wt32_shift_q16 picks for the
+ * scene's triangles, written to *g when g != NULL). Returns 0, or -1 with the reason in diag (an
+ * unknown name, wt32 on a float32 structure). */
+int lt_accel_set_isect_name(lt_accel_t *a, const char *name, uint32_t *g, lt_diag_t *diag);
 
 /* The walk of the 16-ray packets (primary, shadow and peel) over bvh: wide != 0, the 8-wide tree
  * of the single rays (lt_bvh8_trace16: one frustum test per node for the packet; collapsed here

@@ -10,6 +10,7 @@
 #include "render/lt_render.h"
 #include "render/lt_reproject.h"
 #include "render/lt_softshadow.h"
+#include "io/lt_scenefile.h"
 
 #include <errno.h>
 #include <math.h>
@@ -91,17 +92,24 @@ static int enum_object(grow_t *g, int mach, int skip_q16)
                             : strcmp(sn, "kd") == 0 ? leaves_kd : NULL;
             if (strcmp(sn, "bvhq") == 0 && lt_paths[pi].render->bvhq_build == NULL)
                 continue;
+            /* the ray/triangle test on the BVH (the other structures take the default, wt):
+               wt, mt, and on the s15.16 path wt32 */
+            int ni = strcmp(sn, "bvh") != 0 ? 1 : lt_paths[pi].bvh_num == LT_BVH_NUM_Q16 ? 3 : 2;
             for (j = 0; j < (lv != NULL ? 4 : 1); j++) {
-                lt_tune_knobs_t k;
-                memset(&k, 0, sizeof k);
-                k.family = 0;
-                k.machine = mach;
-                k.path = pi;
-                k.structure = s;
-                k.leaf = lv != NULL ? lv[j] : 0;
-                if (add(g, &k) != 0)
-                    return -1;
-                g->run++;
+                int is;
+                for (is = 0; is < ni; is++) {
+                    lt_tune_knobs_t k;
+                    memset(&k, 0, sizeof k);
+                    k.family = 0;
+                    k.machine = mach;
+                    k.path = pi;
+                    k.structure = s;
+                    k.leaf = lv != NULL ? lv[j] : 0;
+                    k.isect = is;
+                    if (add(g, &k) != 0)
+                        return -1;
+                    g->run++;
+                }
             }
         }
     }
@@ -199,10 +207,14 @@ void lt_tune_knobs_text(const lt_tune_knobs_t *k, char *buf, size_t n)
 {
     const char *pn = lt_paths[k->path].name;
     if (k->family == 0) {
+        char is[16] = "";
+        if (k->isect != 0)
+            snprintf(is, sizeof is, " isect %s", lt_sf_isects[k->isect]);
         if (k->leaf > 0)
-            snprintf(buf, n, "%s %s leaf %d", pn, lt_render_structures[k->structure], k->leaf);
+            snprintf(buf, n, "%s %s leaf %d%s", pn, lt_render_structures[k->structure], k->leaf,
+                     is);
         else
-            snprintf(buf, n, "%s %s", pn, lt_render_structures[k->structure]);
+            snprintf(buf, n, "%s %s%s", pn, lt_render_structures[k->structure], is);
     } else if (k->family == 1) {
         if (k->structure == LT_RP_QUADTREE)
             snprintf(buf, n, "%s quadtree %d layer%s gamma %s", pn, k->layers,

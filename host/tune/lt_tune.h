@@ -67,6 +67,7 @@ typedef struct lt_tune_knobs {
     int filter;    /* shadows: 1 the 4x4 discontinuity filter */
     int cull;      /* shadows: lt_tune_cull_names index */
     int spp;       /* shadows: shadow samples per pixel (4, 8, 32); 0 = 16, the default */
+    int isect;     /* object: lt_sf_isects index (0 wt, the default; 1 mt; 2 wt32, s15.16) */
 } lt_tune_knobs_t;
 
 /* What one measurement gives. */

@@ -5,6 +5,7 @@
  */
 #define _XOPEN_SOURCE 600 /* makecontext, swapcontext */
 #include "tune/lt_tune.h"
+#include "io/lt_scenefile.h"
 
 #include "cli/lt_reproject_cli.h"
 #include "io/lt_mesh.h"
@@ -379,6 +380,12 @@ static void eval_object(lt_tune_ctx_t *c, lt_tune_point_t *p, lt_tune_meas_t *m,
                             &lt_paths[k->path], &prm, &d);
     if (acc == NULL) {
         snprintf(m->msg, sizeof m->msg, "%s", d.msg);
+        lt_frame_free(&fr);
+        return;
+    }
+    if (lt_accel_set_isect_name(acc, lt_sf_isects[k->isect], NULL, &d) != 0) {
+        snprintf(m->msg, sizeof m->msg, "%s", d.msg);
+        lt_accel_free(acc);
         lt_frame_free(&fr);
         return;
     }

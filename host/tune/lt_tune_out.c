@@ -4,6 +4,7 @@
  */
 #define _XOPEN_SOURCE 700 /* realpath */
 #include "tune/lt_tune.h"
+#include "io/lt_scenefile.h"
 
 #include "lt_meter.h"
 #include "render/lt_paths.h"
@@ -108,7 +109,7 @@ static int write_csv(const char *path, const lt_tune_report_t *rep, lt_diag_t *d
     if (f == NULL)
         return lt_diag_fail(diag, "%s: cannot create (%s)", path, strerror(errno));
     fprintf(f, "id,family,machine,path,structure,leaf,layers,gamma,primary,shadow,filter,cull,spp,"
-               "knobs,status,res,");
+               "isect,knobs,status,res,");
     for (m = 0; m < LT_M__COUNT; m++)
         fprintf(f, "%s,", lt_metric_names[m]);
     fprintf(f, "maxerr,rel50,within1,off,");
@@ -122,7 +123,7 @@ static int write_csv(const char *path, const lt_tune_report_t *rep, lt_diag_t *d
         char kt[160];
         lt_tune_knobs_text(&p->k, kt, sizeof kt);
         (void)lt_tune_objectives(p->k.family, &p->probe, po);
-        fprintf(f, "%zu,%s,%s,%s,%s,%d,%d,%s,%s,%s,%s,%s,%s,\"%s\",%s,%u,", i,
+        fprintf(f, "%zu,%s,%s,%s,%s,%d,%d,%s,%s,%s,%s,%s,%s,%s,\"%s\",%s,%u,", i,
                 lt_tune_family_names[p->k.family], lt_meter_machine_name(p->k.machine),
                 lt_paths[p->k.path].name,
                 p->k.family == 0   ? lt_render_structures[p->k.structure]
@@ -133,7 +134,7 @@ static int write_csv(const char *path, const lt_tune_report_t *rep, lt_diag_t *d
                 p->k.family == 2 ? (p->k.filter ? "on" : "off") : "",
                 p->k.family == 2 ? lt_tune_cull_names[p->k.cull] : "",
                 p->k.family == 2 ? (p->k.spp == 4 ? "4" : p->k.spp == 8 ? "8" : p->k.spp == 32 ? "32" : "16") : "",
-                kt,
+                p->k.family == 0 ? lt_sf_isects[p->k.isect] : "", kt,
                 p->full.ok ? "full" : (p->pruned && p->probe.ok ? "pruned" : "failed"), x->res);
         for (m = 0; m < LT_M__COUNT; m++)
             num(f, x->m[m], ",");
@@ -235,6 +236,7 @@ static cJSON *knobs_json(const lt_tune_knobs_t *k)
     if (k->family == 0) {
         cJSON_AddStringToObject(o, "structure", lt_render_structures[k->structure]);
         cJSON_AddNumberToObject(o, "leaf", k->leaf);
+        cJSON_AddStringToObject(o, "isect", lt_sf_isects[k->isect]);
     } else if (k->family == 1) {
         cJSON_AddStringToObject(o, "tracer", tracer_names[k->structure]);
         cJSON_AddNumberToObject(o, "layers", k->layers);
@@ -807,6 +809,8 @@ int lt_tune_write_scene(const char *path, const lt_tune_input_t *in, const lt_tu
         cJSON_AddStringToObject(o, "numeric", lt_paths[k->path].name);
         if (k->leaf > 0)
             cJSON_AddNumberToObject(o, "leaf", k->leaf);
+        if (k->isect != 0)
+            cJSON_AddStringToObject(o, "isect", lt_sf_isects[k->isect]);
     } else if (k->family == 1) {
         static const double move[3] = {0.08, 0, 0}, rot[3] = {-3, 0, 0};
         x = cJSON_AddObjectToObject(o, "reproject");

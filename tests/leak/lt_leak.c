@@ -13,7 +13,7 @@
  * A candidate counts only if the double-precision brute force (lt_ref_trace) confirms it: its first
  * hit is a front face whose hit point does not lie within 1e-7 radii of a silhouette edge (an edge
  * whose other face looks away: a grazing ray may miss there without a crack).
- * Usage: lt-leak MESH [--res N] [--subdiv K] [--isect wt|mt|both] [--num q16|f32|both]
+ * Usage: lt-leak MESH [--res N] [--subdiv K] [--isect wt|mt|wt32|both|all] [--num q16|f32|both]
  *        [--structures LIST] [--max-leaks N] [--allow-open] (trace a mesh that fails the check)
  * Prints one line per (path, structure, intersector, ray kind) and exits 1 when a watertight run
  * leaks more than --max-leaks (default 0) or the mesh is not closed. Host only (tests/).
@@ -249,7 +249,7 @@ int main(int argc, char **argv)
         else if (strcmp(argv[i], "--allow-open") == 0)
             allow_open = 1;
         else if (strcmp(argv[i], "--help") == 0) {
-            printf("usage: lt-leak MESH [--res N] [--subdiv K] [--isect wt|mt|both] "
+            printf("usage: lt-leak MESH [--res N] [--subdiv K] [--isect wt|mt|wt32|both|all] "
                    "[--num q16|f32|both] [--structures LIST] [--max-leaks N]\n");
             return 0;
         } else if (argv[i][0] != '-' && path == NULL)
@@ -260,7 +260,7 @@ int main(int argc, char **argv)
         }
     }
     if (path == NULL || res < 4 || res > 4096) {
-        fprintf(stderr, "usage: lt-leak MESH [--res N] [--subdiv K] [--isect wt|mt|both] ...\n");
+        fprintf(stderr, "usage: lt-leak MESH [--res N] [--subdiv K] [--isect wt|mt|wt32|both|all] ...\n");
         return 2;
     }
     if (lt_mesh_load(path, &m, &diag) != 0) {
@@ -291,10 +291,14 @@ int main(int argc, char **argv)
         const lt_path_info_t *p = lt_paths_find(pi == 0 ? "q16" : "f32", LT_PATHS_OBJECT);
         if (strcmp(nums, "both") != 0 && strcmp(nums, pi == 0 ? "q16" : "f32") != 0)
             continue;
-        for (ii = 0; ii < 2; ii++) {
+        for (ii = 0; ii < 3; ii++) {
+            static const char *const inames[3] = {"wt", "mt", "wt32"};
             char list[256], *tok, *save = NULL;
-            uint32_t isect = ii == 0 ? LT_ISECT_WT : LT_ISECT_MT;
-            if (strcmp(isects, "both") != 0 && strcmp(isects, ii == 0 ? "wt" : "mt") != 0)
+            /* wt32 (the s15.16 grid test) must be watertight too; mt is the before figure */
+            int must = ii != 1;
+            if (!(strcmp(isects, inames[ii]) == 0 || (strcmp(isects, "both") == 0 && ii < 2) ||
+                  strcmp(isects, "all") == 0) ||
+                (ii == 2 && pi != 0))
                 continue;
             snprintf(list, sizeof list, "%s", structs);
             for (tok = strtok_r(list, ",", &save); tok != NULL; tok = strtok_r(NULL, ",", &save)) {
@@ -315,7 +319,10 @@ int main(int argc, char **argv)
                         fprintf(stderr, "lt-leak: %s\n", diag.msg);
                         return 1;
                     }
-                    lt_accel_set_isect(acc, isect);
+                    if (lt_accel_set_isect_name(acc, inames[ii], NULL, &diag) != 0) {
+                        fprintf(stderr, "lt-leak: %s\n", diag.msg);
+                        return 1;
+                    }
                     if (lt_frame_alloc(&f, res, res, &diag) != 0 ||
                         lt_frame_alloc(&g, res, res, &diag) != 0)
                         return 1;
@@ -348,9 +355,9 @@ int main(int argc, char **argv)
                         }
                     printf("leak      %s %s %-6s %-6s %s primary: %lu pixels enter the mesh, %lu "
                            "candidates, %lu leaks\n", p->name,
-                           isect == LT_ISECT_WT ? "wt" : "mt", tok, single ? "single" : "packet",
+                           inames[ii], tok, single ? "single" : "packet",
                            path, inside, cand, leaks);
-                    if (isect == LT_ISECT_WT && leaks > max_leaks)
+                    if (must && leaks > max_leaks)
                         fail = 1;
                     /* shadow (packets, any hit): from behind the front surface back to the eye */
                     if (!single && strcmp(tok, "chunks") != 0) {
@@ -386,9 +393,9 @@ int main(int argc, char **argv)
                         }
                         printf("leak      %s %s %-6s %-6s %s shadow: %lu rays from behind the "
                                "front surface, %lu occluded, %lu leaks\n",
-                               p->name, isect == LT_ISECT_WT ? "wt" : "mt",
+                               p->name, inames[ii],
                                tok, "packet", path, srays, (unsigned long)nocc, sleaks);
-                        if (isect == LT_ISECT_WT && sleaks > max_leaks)
+                        if (must && sleaks > max_leaks)
                             fail = 1;
                         free(occ);
                     }

@@ -46,6 +46,31 @@ for s in bunny teapot; do
     done
 done
 
+# ---- the bunny with the s15.16 grid test (LT_ISECT_WT32): the blob flag, objw images ----
+blob="$B/gen/bunny64-wt32.ltsb"
+"$FS_NAT" pack --mesh scenes/bunny.obj --res 64 --isect wt32 --out "$tmp/fs-w.ltsb" --trace >"$tmp/fs-w.pack" 2>&1
+check "pack bunny --isect wt32: the blob is the firmware build's byte for byte; $(grep '^isect' "$tmp/fs-w.pack"); $(grep '^accuracy' "$tmp/fs-w.pack" | sed 's/accuracy against the //') (bound >= 99.9%)" \
+    bash -c "cmp -s '$tmp/fs-w.ltsb' '$blob' && $(declare -f fs_acc_ok); fs_acc_ok '$tmp/fs-w.pack' 99.9"
+"$FS_NAT" pack --in "$blob" >"$tmp/fs-w.host" 2>&1
+grep -E '^(tile|image)' "$tmp/fs-w.host" >"$tmp/fs-w.want"
+hp=$(sed -n 's/^image hash \(0x[0-9a-f]*\).*/\1/p' "$tmp/fs-w.want")
+hs=$(sed -n 's/^image single rays hash \(0x[0-9a-f]*\).*/\1/p' "$tmp/fs-w.want")
+hx=$(sed -n 's/^image hash \(0x[0-9a-f]*\).*/\1/p' "$tmp/fs-bunny.want")
+check "pack --in bunny64-wt32 (host): single rays = packets ($hp = $hs), not the exact test's image ($hx): $(grep '^image hash' "$tmp/fs-w.want" | sed 's/.*rays/rays/') against $(grep '^image hash' "$tmp/fs-bunny.want" | sed 's/.*rays/rays/')" \
+    bash -c "[ -n '$hp' ] && [ '$hp' = '$hs' ] && [ '$hp' != '$hx' ]"
+for t in cm4 cm55 rv32; do
+    qvar="QEMU_$t"
+    timeout 300 ${!qvar} "$B/fw/$t/scene-bunny-wt32.elf" </dev/null >"$tmp/fs-w.$t" 2>&1
+    rc=$?
+    grep -E '^(tile|image)' "$tmp/fs-w.$t" >"$tmp/fs-w.$t.got"
+    check "scene-bunny-wt32.elf on $t under QEMU: exit 0, its 16 tile lines and 2 image lines = the host's (image $hp) (rc $rc)" \
+        bash -c "[ $rc -eq 0 ] && [ -s '$tmp/fs-w.want' ] && cmp -s '$tmp/fs-w.want' '$tmp/fs-w.$t.got'"
+    # instructions per ray against the exact test's image on the same target
+    awk -v t="$t" 'FNR == 1 { f++ } /^instr .* (packets|single) primary/ { for (i = 1; i <= NF; i++) { if ($i == "primary") p[f, $3] = $(i + 1); if ($i == "shadow") s[f, $3] = $(i + 1) } }
+        END { for (m = 0; m < 2; m++) { k = m ? "single" : "packets"; if (p[1, k] > 0 && s[1, k] > 0) printf "     bunny %s %s: exact %s / %s, wt32 %s / %s instructions per primary / shadow ray (%.2fx / %.2fx)\n", t, k, p[1, k], s[1, k], p[2, k], s[2, k], p[2, k] / p[1, k], s[2, k] / s[1, k] } }' \
+        "$tmp/fs-bunny.$t" "$tmp/fs-w.$t"
+done
+
 # ---- bad blobs and flags ----
 head -c 1000 "$B/gen/teapot64.ltsb" >"$tmp/fs-short.ltsb"
 cp "$B/gen/teapot64.ltsb" "$tmp/fs-dmg.ltsb"

@@ -1501,11 +1501,12 @@ static void test_reference(void **state)
         h.id = lt_vi32_set1(-7);
         tmax0 = p.tmax;
         {
-            /* LT_ISECT_WT32 on the same lanes: the triangle's own grid, 16x coarser, or g = 0
+            /* LT_ISECT_WT32 on the same lanes: the triangle's own grid, up to 16x coarser (at most 2^13), or g = 0
              * (most vertices off the grid's range: the exact points) */
             lt_ray16_q16_t pw = p;
             unsigned gs = lt_wt32_shift_q16(&tri, 1);
-            w32_g = pk % 3u == 0 ? gs : (pk % 3u == 1 ? (gs + 4u > 15u ? 15u : gs + 4u) : 0u);
+            w32_g = gs + 4u > LT_WT32_SHIFT_MAX ? LT_WT32_SHIFT_MAX : gs + 4u;
+            w32_g = pk % 3u == 0 ? gs : (pk % 3u == 1 ? w32_g : 0u);
             got = lt_tri16_wt32_q16(&pw, &w, w32_g, LT_MASK_ALL, &tri, 42, &h);
             for (i = 0; i < LT_LANES; i++) {
                 int32_t tr = 0;
@@ -1585,7 +1586,7 @@ static void test_reference(void **state)
                tf.allowed, tf.bad, tf.max_terr, tf.max_frac, tf.t_bad, tf.upd_bad);
 #endif
     ltt_report("lt_tri16_wt32_q16 (LT_ISECT_WT32) vs the same double reference: %lu cases (grid: "
-               "the triangle's own lt_wt32_shift_q16, 16x coarser, or 2^0), %lu hits, %lu "
+               "the triangle's own lt_wt32_shift_q16, up to 16x coarser, or 2^0), %lu hits, %lu "
                "within the bound of a boundary (each snapped coordinate adds 2^(g-17) units to "
                "the per-vertex error), %lu disagreements (all such), %lu unexplained; max |t "
                "err| %.3g (%.3g of its bound), %lu t over bound; %lu wrong id/tmax updates; %lu "
@@ -2191,10 +2192,11 @@ static void test_single_ray(void **state)
         }
         {
             /* LT_ISECT_WT32: the same lanes (unit and short directions: sh > 0 takes the wide
-             * arithmetic) on the triangle's grid, 16x coarser, or 2^0 */
+             * arithmetic) on the triangle's grid, up to 16x coarser, or 2^0 */
             lt_ray16_q16_t p0 = p;
             unsigned g = lt_wt32_shift_q16(&tq, 1);
-            g = it % 3 == 0 ? g : (it % 3 == 1 ? (g + 4u > 15u ? 15u : g + 4u) : 0u);
+            unsigned gc = g + 4u > LT_WT32_SHIFT_MAX ? LT_WT32_SHIFT_MAX : g + 4u;
+            g = it % 3 == 0 ? g : (it % 3 == 1 ? gc : 0u);
             h.id = lt_vi32_set1(-1);
             p = p0;
             got = lt_tri16_wt32_q16(&p, &w, g, LT_MASK_ALL, &tq, 3, &h);
@@ -2266,7 +2268,7 @@ static void test_single_ray(void **state)
 #endif
     }
     ltt_report("lt_tri1_wt_q16/_f32 vs their packet lane: %lu cases, %lu hits; lt_tri1_wt32_q16 "
-               "vs its packet lane (grids 2^0 .. 2^15, unit and short directions): %lu cases, %lu "
+               "vs its packet lane (grids 2^0 .. 2^13, unit and short directions): %lu cases, %lu "
                "hits; %lu differ (bound 0)\n", cases, hits, cases32, hits32, bad);
     assert_int_equal(bad, 0);
 }

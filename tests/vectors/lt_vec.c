@@ -441,31 +441,27 @@ static void run_bvh_q16(void (*put)(const char *))
     emit(put, "bvh_wt_q16", &h);
 }
 
-/* LT_ISECT_WT32 (lt_tri16_wt32_q16, lt_tri1_wt32_q16): the mesh's grid shift, then for that grid,
- * the finest (2^0: most vertices off the grid's range) and the coarsest (2^15) the packet test on
- * every triangle, each lane's single-ray test, and the BVH's packet, any-hit and single-ray walks
- * with the grid as their intersector; some lanes with short directions (the wide arithmetic). */
+/* LT_ISECT_WT32's kernels (lt_tri16_wt32_q16, lt_tri1_wt32_q16, compiled whatever LT_CFG_WT32):
+ * the mesh's grid shift, then for that grid, the finest (2^0: most vertices off the grid's range)
+ * and the coarsest (2^13) the packet test on every triangle and each lane's single-ray test, some
+ * lanes with short directions (the wide arithmetic). The walks that dispatch to them are checked
+ * on the targets by scene-bunny-wt32.elf (tests/run.d/fwscene.sh). */
 static void run_wt32_q16(void (*put)(const char *))
 {
     hash_t h;
-    lt_bvh_t bvh;
-    lt_bvh_desc_t desc;
     int i, j, gi;
     unsigned gs;
     static lt_ray16_q16_t r, r0;
     static lt_wt16_q16_t w;
     h_init(&h);
-    lt__memset(&desc, 0, sizeof desc);
-    h_case(&h, (uint32_t)lt_bvh_build_q16(&bvh, &desc, mesh_q, N_MESH, bvh_arena, sizeof bvh_arena));
     gs = lt_wt32_shift_q16(mesh_q, N_MESH);
     h_case(&h, gs);
     rng_state = 0x3232u;
     for (gi = 0; gi < 3; gi++) {
         unsigned g = gi == 0 ? gs : (gi == 1 ? 0u : LT_WT32_SHIFT_MAX);
-        bvh.isect = LT_ISECT_WT32_G(g);
         for (i = 0; i < 12; i++) {
             lt_hit16_t hit;
-            lt_mask16_t occ = 0, k = rmask(i);
+            lt_mask16_t k = rmask(i);
             rand_ray_q16(&r);
             for (j = 0; j < LT_LANES; j += 5) { /* short directions: sh > 0 */
                 r.dx.l[j] = lt__asr32(r.dx.l[j], (unsigned)(1 + j % 7));
@@ -479,6 +475,8 @@ static void run_wt32_q16(void (*put)(const char *))
             for (j = 0; j < N_MESH; j++)
                 h_case(&h, lt_tri16_wt32_q16(&r, &w, g, k, &mesh_q[j], j, &hit));
             h_vq16(&h, r.tmax);
+            for (j = 0; j < LT_LANES; j++)
+                h_u32(&h, (uint32_t)hit.id.l[j]);
             for (j = 0; j < LT_LANES; j++) {
                 lt_wt1_q16_t w1;
                 lt_q16_t o[3], tmax = r0.tmax.l[j];
@@ -490,31 +488,6 @@ static void run_wt32_q16(void (*put)(const char *))
                 for (t = 0; t < N_MESH; t++)
                     h_case(&h, (uint32_t)lt_tri1_wt32_q16(&w1, g, &mesh_q[t], 0, &tmax));
                 h_u32(&h, (uint32_t)tmax);
-            }
-            r = r0;
-            h_case(&h, (uint32_t)lt_bvh_trace16_q16(&bvh, mesh_q, &r, k, &hit));
-            for (j = 0; j < LT_LANES; j++)
-                h_u32(&h, (uint32_t)hit.id.l[j]);
-            h_vq16(&h, r.tmax);
-            r = r0;
-            h_case(&h, (uint32_t)lt_bvh_occluded16_q16(&bvh, mesh_q, &r, k, &occ));
-            h_case(&h, occ);
-            for (j = 0; j < LT_LANES; j++) {
-                lt_ray1_q16_t r1;
-                int32_t id = -1;
-                lt__memset(&r1, 0, sizeof r1);
-                r1.o[0] = r0.ox.l[j];
-                r1.o[1] = r0.oy.l[j];
-                r1.o[2] = r0.oz.l[j];
-                r1.d[0] = r0.dx.l[j];
-                r1.d[1] = r0.dy.l[j];
-                r1.d[2] = r0.dz.l[j];
-                r1.tmin = 0;
-                r1.tmax = 0x7FFFFFF;
-                lt_ray1_q16_setup(&r1);
-                h_case(&h, (uint32_t)lt_bvh_trace1_q16(&bvh, mesh_q, &r1, &id));
-                h_u32(&h, (uint32_t)id);
-                h_u32(&h, (uint32_t)r1.tmax);
             }
         }
     }

@@ -200,6 +200,8 @@ static void w_plane8_q16(const lt_q16_t *p, lt_q16_t o, lt_q16_t rd, lt_q16_t *t
 }
 
 #include "numerics/lt_traits_q16.h"
+/* an intersector the structure's path takes (LT_ISECT_WT32: s15.16 only) */
+#define LTB_ISECT_OK(v) LT_ISECT_VALID((v), LTB_NUM == LT_BVH_NUM_Q16)
 #define LTB_NUM LT_BVH_NUM_Q16
 #define LTB_NODE lt_bvh_node_q16_t
 #define LTB_AREA_T uint64_t

@@ -53,20 +53,35 @@ int32_t lt__wt_tris4_f32(const lt_wt1_f32_t *w, const lt_bvh8_tris4_f32_t *b, ui
 int lt__wt_zero_area_f32(const lt_tri_f32_t *tri);
 #endif
 
+/* LT_ISECT_WT32 in the selection (LT_CFG_WT32): its flag and grid shift, set from the structure's
+ * isect value; with LT_CFG_WT32 0 neither exists and the walks compile as without it. */
+#if LT_CFG_WT32
+#define LT__ISEL_WT32_FIELDS                                                                       \
+    uint32_t wt32; /* s15.16: the watertight test on the grid 2^g (LT_ISECT_WT32) */              \
+    uint32_t g;    /* its grid shift */
+#define LT__ISEL_WT32_INIT(s, isect)                                                               \
+    ((s)->wt32 = LT_ISECT_KIND(isect) == LT_ISECT_WT32, (s)->g = LT_ISECT_WT32_SHIFT(isect))
+#define LT__ISEL_IS_WT32(s) ((s)->wt32 != 0)
+#define LT__ISEL_G(s) ((s)->g)
+#else
+#define LT__ISEL_WT32_FIELDS
+#define LT__ISEL_WT32_INIT(s, isect) ((void)(s), (void)(isect))
+#define LT__ISEL_IS_WT32(s) ((void)(s), 0)
+#define LT__ISEL_G(s) ((void)(s), 0u)
+#endif
+
 /* One selection per packet and per single ray, for both numeric paths. */
 #define LT__ISEL_DEFINE(SFX, RAY, TRI, WT16, WT1, T)                                               \
     typedef struct {                                                                               \
         uint32_t mt;    /* Moller-Trumbore chosen */                                               \
         uint32_t ready; /* the watertight setup is computed */                                     \
-        uint32_t wt32;  /* s15.16: the watertight test on the grid 2^g (LT_ISECT_WT32) */          \
-        uint32_t g;     /* its grid shift */                                                       \
+        LT__ISEL_WT32_FIELDS                                                                       \
         WT16 wt;        /* the packet's watertight setup */                                        \
     } lt__isel16_##SFX;                                                                        \
     LT_INLINE void lt__isel16_init_##SFX(lt__isel16_##SFX *s, uint32_t isect)                  \
     {                                                                                              \
         s->mt = isect == LT_ISECT_MT;                                                              \
-        s->wt32 = LT_ISECT_KIND(isect) == LT_ISECT_WT32;                                           \
-        s->g = LT_ISECT_WT32_SHIFT(isect);                                                         \
+        LT__ISEL_WT32_INIT(s, isect);                                                              \
         s->ready = 0;                                                                              \
     }                                                                                              \
     /* The packet's watertight setup, computed on first use (also for kernels that test the       \
@@ -84,7 +99,7 @@ int lt__wt_zero_area_f32(const lt_tri_f32_t *tri);
     {                                                                                              \
         if (s->mt)                                                                                 \
             return lt_tri16_##SFX(r, k, tri, id, hit);                                             \
-        if (s->wt32)                                                                               \
+        if (LT__ISEL_IS_WT32(s))                                                                   \
             return LT__ISEL16_WT32_##SFX(s, r, k, tri, id, hit);                                   \
         return lt_tri16_wt_##SFX(r, lt__isel16_wt_##SFX(s, r), k, tri, id, hit);                  \
     }
@@ -93,15 +108,13 @@ int lt__wt_zero_area_f32(const lt_tri_f32_t *tri);
     typedef struct {                                                                               \
         uint32_t mt;    /* Moller-Trumbore chosen */                                               \
         uint32_t ready; /* the watertight setup is computed */                                     \
-        uint32_t wt32;  /* s15.16: the watertight test on the grid 2^g (LT_ISECT_WT32) */          \
-        uint32_t g;     /* its grid shift */                                                       \
+        LT__ISEL_WT32_FIELDS                                                                       \
         WT1 wt;         /* the ray's watertight setup */                                           \
     } lt__isel1_##SFX;                                                                         \
     LT_INLINE void lt__isel1_init_##SFX(lt__isel1_##SFX *s, uint32_t isect)                    \
     {                                                                                              \
         s->mt = isect == LT_ISECT_MT;                                                              \
-        s->wt32 = LT_ISECT_KIND(isect) == LT_ISECT_WT32;                                           \
-        s->g = LT_ISECT_WT32_SHIFT(isect);                                                         \
+        LT__ISEL_WT32_INIT(s, isect);                                                              \
         s->ready = 0;                                                                              \
     }                                                                                              \
     /* The ray's watertight setup, computed on first use (also for the wide tree's leaf blocks,  \
@@ -118,7 +131,7 @@ int lt__wt_zero_area_f32(const lt_tri_f32_t *tri);
     {                                                                                              \
         if (s->mt)                                                                                 \
             return lt_tri1_##SFX(r, tri);                                                          \
-        if (s->wt32)                                                                               \
+        if (LT__ISEL_IS_WT32(s))                                                                   \
             return LT__ISEL1_WT32_##SFX(s, r, tri);                                                \
         return lt_tri1_wt_##SFX(lt__isel1_wt_##SFX(s, r), tri, r->tmin, &r->tmax);                 \
     }
@@ -126,9 +139,9 @@ int lt__wt_zero_area_f32(const lt_tri_f32_t *tri);
 /* LT_ISECT_WT32 per path: the s15.16 test on the grid; float32 structures never carry it
  * (LT_ISECT_VALID), and take the exact test if one did. */
 #define LT__ISEL16_WT32_q16(s, r, k, tri, id, hit)                                                 \
-    lt_tri16_wt32_q16((r), lt__isel16_wt_q16((s), (r)), (s)->g, (k), (tri), (id), (hit))
+    lt_tri16_wt32_q16((r), lt__isel16_wt_q16((s), (r)), LT__ISEL_G(s), (k), (tri), (id), (hit))
 #define LT__ISEL1_WT32_q16(s, r, tri)                                                              \
-    lt_tri1_wt32_q16(lt__isel1_wt_q16((s), (r)), (s)->g, (tri), (r)->tmin, &(r)->tmax)
+    lt_tri1_wt32_q16(lt__isel1_wt_q16((s), (r)), LT__ISEL_G(s), (tri), (r)->tmin, &(r)->tmax)
 #define LT__ISEL16_WT32_f32(s, r, k, tri, id, hit)                                                 \
     lt_tri16_wt_f32((r), lt__isel16_wt_f32((s), (r)), (k), (tri), (id), (hit))
 #define LT__ISEL1_WT32_f32(s, r, tri)                                                              \

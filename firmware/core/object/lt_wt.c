@@ -467,27 +467,63 @@ static int64_t wt32_snap1(lt_q16_t x, unsigned g)
 
 static int wt32_fits(int64_t a) { return a >= -WT32_LIM && a <= WT32_LIM; }
 
+/* floor(n / d) and n mod d for d != 0 and n < d 2^32 (the quotient fits 32 bits), with 32-bit
+ * divides only (one UDIV / divu each on the targets, no 64-bit division helper): Knuth's
+ * algorithm D in base 2^16 on the normalised divisor (Hacker's Delight, divlu). */
+static uint32_t wt32_udiv(uint64_t n, uint32_t d, uint32_t *rem)
+{
+    unsigned s = lt__clz32(d);
+    uint32_t nh = (uint32_t)(n >> 32), nl = (uint32_t)n, d1, d0, n1, n0, q1, q0, r, u;
+    d <<= s;
+    if (s != 0u) {
+        nh = (nh << s) | (nl >> (32u - s));
+        nl <<= s;
+    }
+    d1 = d >> 16;
+    d0 = d & 0xFFFFu;
+    n1 = nl >> 16;
+    n0 = nl & 0xFFFFu;
+    q1 = nh / d1;
+    r = nh - q1 * d1;
+    while (q1 >= 0x10000u || q1 * d0 > ((r << 16) | n1)) {
+        q1--;
+        r += d1;
+        if (r >= 0x10000u)
+            break;
+    }
+    u = (nh << 16) + n1 - q1 * d; /* the partial remainder, < d (mod 2^32 arithmetic) */
+    q0 = u / d1;
+    r = u - q0 * d1;
+    while (q0 >= 0x10000u || q0 * d0 > ((r << 16) | n0)) {
+        q0--;
+        r += d1;
+        if (r >= 0x10000u)
+            break;
+    }
+    *rem = ((u << 16) + n0 - q0 * d) >> s;
+    return (q1 << 16) | q0;
+}
+
 /* t = round(T / det) as s15.16 for det != 0: q_tdiv1's quotient, rounding and saturation for a
  * 64-bit numerator and sh = 0 (the same bits as q_tdiv1 on T sign-extended), by one 64/32-bit
- * division. */
+ * division (|det| < 2^31). */
 static lt_q16_t wt32_tdiv1(int64_t T, int32_t det, int *sat)
 {
     uint64_t n = T < 0 ? 0u - (uint64_t)T : (uint64_t)T;
-    uint64_t ad = det < 0 ? 0u - (uint64_t)(int64_t)det : (uint64_t)(int64_t)det;
-    uint64_t q, rem;
+    uint32_t ad = det < 0 ? 0u - (uint32_t)det : (uint32_t)det;
+    uint32_t q, rem;
     int neg = (T < 0) != (det < 0);
     *sat = 0;
-    if (n >= ad << 31) {
+    if (n >= (uint64_t)ad << 31) {
         *sat = 1;
         return neg ? LT_Q16_MIN : LT_Q16_MAX;
     }
-    q = n / ad;
-    rem = n - q * ad;
+    q = wt32_udiv(n, ad, &rem);
     if (neg) {
-        q += (uint64_t)(rem > ad - rem);
+        q += (uint32_t)(rem > ad - rem);
         return q == 0 ? 0 : -(int32_t)(q - 1u) - 1;
     }
-    q += (uint64_t)(rem >= ad - rem);
+    q += (uint32_t)(rem >= ad - rem);
     return lt__ssat32((int64_t)q);
 }
 
@@ -563,17 +599,36 @@ static int wt32_lane(const lt_q16_t x[3], const lt_q16_t y[3], const lt_q16_t zk
 lt_mask16_t lt__wt32_meet16_q16(const lt_wt16_q16_t *w, unsigned g, lt_mask16_t k,
                                 const lt_tri_q16_t *tri, lt_vq16_t *t)
 {
-    lt_vq16_t ax[3], ay[3], zk[3], x[3], y[3];
+    lt_q16_t p[3][3];
+    lt_vq16_t x[3], y[3], zk[3];
     lt_mask16_t meet = 0, wide = 0, wmeet = 0;
-    int i;
+    int i, a;
 
-    k = wt_prep_q16(w, k, tri, ax, ay, zk);
-    if (k == 0)
+    /* The exact test's first stage with its charges (lt_wt.inc, lt__wt16_meet: load, vertices,
+     * zero area, translate and permute, shear), written apart so that the compiled exact test,
+     * whose firmware instruction counts the fitted MCU models price, stays as it was. */
+    LT_CHARGE(WT_TRI_LOAD);
+    LT_MEM(tri, sizeof *tri, LT_MEM_READ);
+    LT_EVENT(TRIS, 1);
+    LT_EVENT(TRI_RAYS, lt__popcount32(k));
+    k = (lt_mask16_t)(k & ~w->bad);
+    for (a = 0; a < 3; a++) {
+        p[0][a] = tri->v0[a];
+        p[1][a] = lt__q16_add_sat(tri->v0[a], tri->e1[a]);
+        p[2][a] = lt__q16_add_sat(tri->v0[a], tri->e2[a]);
+    }
+    LT_CHARGE(WT_TRI_VERTS);
+    if (k == 0 || q_zero_area(p))
         return 0;
-    /* the exact test's shear, lane ops (VMUL, VALU) */
     for (i = 0; i < 3; i++) {
-        x[i] = lt_vq16_sub_sat(ax[i], lt_vq16_mul_q30_sat(zk[i], w->sx));
-        y[i] = lt_vq16_sub_sat(ay[i], lt_vq16_mul_q30_sat(zk[i], w->sy));
+        lt_vq16_t z = lt_vq16_sub_sat(wt_pick_q16(w->kz, k, p[i][0], p[i][1], p[i][2]), w->oz);
+        x[i] = lt_vq16_sub_sat(lt_vq16_sub_sat(wt_pick_q16(w->kx, k, p[i][0], p[i][1], p[i][2]),
+                                               w->ox),
+                               lt_vq16_mul_q30_sat(z, w->sx));
+        y[i] = lt_vq16_sub_sat(lt_vq16_sub_sat(wt_pick_q16(w->ky, k, p[i][0], p[i][1], p[i][2]),
+                                               w->oy),
+                               lt_vq16_mul_q30_sat(z, w->sy));
+        zk[i] = z;
     }
     LT_CHARGE(WT32_EDGES);
     LT_UTIL(k);

@@ -12,6 +12,15 @@
 #define LT_CFG_FLOAT32 1
 #endif
 
+/* LT_CFG_WT32: 1 lets a structure choose LT_ISECT_WT32 (lt_wt.h: the s15.16 watertight test on a
+ * grid, 32-bit edge functions): the triangle-test dispatch of every walk (lt_isel.h) tests for it.
+ * 0 leaves that test out (a walk then takes the exact test for LT_ISECT_WT32); the kernels
+ * themselves are always compiled. Default 1; the firmware images whose instruction counts the
+ * fitted MCU cycle models price are built with 0 (firmware/firmware.mk, docs/firmware.md). */
+#ifndef LT_CFG_WT32
+#define LT_CFG_WT32 1
+#endif
+
 /* LT_CFG_NO_STATUS_STRINGS: 1 drops the text table behind lt_status_str() (saves .rodata on MCUs);
  * lt_status_str() then returns "". Default 0. */
 #ifndef LT_CFG_NO_STATUS_STRINGS

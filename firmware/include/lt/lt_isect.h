@@ -28,11 +28,16 @@ extern "C" {
 #define LT_ISECT_WT32_G(g) (LT_ISECT_WT32 | (((uint32_t)(g) & 31u) << 8))
 #define LT_ISECT_KIND(v) ((uint32_t)(v) & 0xFFu)
 #define LT_ISECT_WT32_SHIFT(v) (((uint32_t)(v) >> 8) & 31u)
-/* 1 if v names an intersector (for a float32 structure: WT or MT only). */
+/* 1 if v names an intersector the build takes (for a float32 structure: WT or MT only; WT32 needs
+ * LT_CFG_WT32). */
+#if LT_CFG_WT32
 #define LT_ISECT_VALID(v, q16)                                                                     \
-    ((v) == LT_ISECT_WT || (v) == LT_ISECT_MT ||                                                   \
-     ((q16) && LT_ISECT_KIND(v) == LT_ISECT_WT32 && LT_ISECT_WT32_SHIFT(v) <= 15u &&               \
+    ((v) <= LT_ISECT_MT ||                                                                         \
+     ((q16) && LT_ISECT_KIND(v) == LT_ISECT_WT32 && LT_ISECT_WT32_SHIFT(v) <= 13u &&               \
       ((uint32_t)(v) >> 13) == 0u))
+#else
+#define LT_ISECT_VALID(v, q16) ((void)(q16), (v) <= LT_ISECT_MT)
+#endif
 
 /* A packet of 16 rays in fixed point. 16 x 64 B x 11 = 704 bytes, 4-byte aligned. */
 typedef struct lt_ray16_q16 {

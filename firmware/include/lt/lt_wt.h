@@ -102,7 +102,7 @@ int lt_tri1_wt_q16(const lt_wt1_q16_t *w, const lt_tri_q16_t *tri, lt_q16_t tmin
  * products of 15-bit values, |U| < 2^29, |det| < 2^31), T = U z0 + V z1 + W z2 an int64 and
  * t = round(T / det) one 64/32-bit division; otherwise the exact test's int64 edges and 128-bit T
  * on the same points (the same t: the grid scale cancels).
- * Format: as lt_tri16_wt_q16; U, V, W in grid steps squared. Range: as lt_tri16_wt_q16, g <= 15.
+ * Format: as lt_tri16_wt_q16; U, V, W in grid steps squared. Range: as lt_tri16_wt_q16, g <= LT_WT32_SHIFT_MAX (13; larger g are taken as 13).
  * Rounding: each sheared coordinate to the grid, half up; t half up from the exact quotient.
  * Error against the exact test: the hit point moves by at most 2^(g-1) raw per sheared axis per
  * vertex; a hit or miss changes only for rays within that of an edge, and t is the t of the
@@ -128,10 +128,12 @@ int lt_tri1_wt32_q16(const lt_wt1_q16_t *w, unsigned g, const lt_tri_q16_t *tri,
 /* The grid for a triangle set: g such that, for LT_WT32_SHIFT_PCT % of its non-degenerate
  * triangles, the sheared vertices of the triangle around a ray that meets it (within twice its
  * largest edge component of the ray) fit the grid's range with a factor 2 to spare: g = b - 12
- * for that percentile's largest edge component < 2^b raw, 0 <= g <= LT_WT32_SHIFT_MAX. Uncharged
- * (a build-time choice). */
+ * for that percentile's largest edge component < 2^b raw, 0 <= g <= LT_WT32_SHIFT_MAX. At most 13:
+ * a snapped vertex moves by at most 2^(g-17) units per sheared axis, 2^-4 sqrt 2 < 0.09 units,
+ * inside the 2^(GEOM-15) = 0.125-unit pad of the BVH's boxes, so no walk culls a box the snapped
+ * triangle reaches out of (docs/watertight.md). Uncharged (a build-time choice). */
 #define LT_WT32_SHIFT_PCT 99u
-#define LT_WT32_SHIFT_MAX 15u
+#define LT_WT32_SHIFT_MAX 13u
 unsigned lt_wt32_shift_q16(const lt_tri_q16_t *tris, uint32_t n);
 
 #if LT_CFG_FLOAT32
