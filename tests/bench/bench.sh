@@ -70,15 +70,18 @@ B=$B tests/bench/scaling.sh
 echo "== 4. structures: grid vs kd-tree vs BVH (lrb16, simulator, ${STRUCT_RES:-128}x${STRUCT_RES:-128})"
 B=$B tests/bench/structures.sh
 
-echo "== 4b. intersector: watertight (default) vs Moller-Trumbore, BVH trace cycles per ray (lrb16, simulator, 128x128; docs/watertight.md)"
-for m in scenes/teapot.obj ../shared/scenes/dragon_res3.obj; do
+echo "== 4b. intersector: watertight (default) vs Moller-Trumbore vs the s15.16 grid test (wt32), BVH trace cycles per ray (lrb16, simulator, 128x128; docs/watertight.md)"
+for m in scenes/teapot.obj ../shared/scenes/bunny.obj ../shared/scenes/dragon_res3.obj; do
     [ -f "$m" ] || continue
-    for is in wt mt; do
-        "$B/sim/lanetrace" run --mesh "$m" --res 128 --isect "$is" --no-ref 2>&1 |
+    for is in wt mt wt32; do
+        nums=both
+        [ "$is" = wt32 ] && nums=q16
+        "$B/sim/lanetrace" run --mesh "$m" --res 128 --isect "$is" --num "$nums" --no-ref 2>&1 |
             awk -v m="$(basename "$m")" -v is="$is" '/^result/ {p = $2} /^rays/ {for (i = 1; i <= NF; i++) if ($i == "build:") c = $(i + 1); printf "  %-16s %-4s %s  %s cycles/ray (trace only)\n", m, p, is, c}'
     done
 done
-echo "   larger sweeps: build/host/lt-leak MESH --res 1024 --isect both [--subdiv 1] (leak counts per structure)"
+echo "   larger sweeps: build/host/lt-leak MESH --res 1024 --isect all [--subdiv 1] (leak counts per structure)"
+echo "   on the targets (instructions per ray, wt against wt32): make test, tests/run.d/fwscene.sh (scene-bunny-wt32.elf)"
 
 echo "== 5. cycle report: bundled scene on lrb16"
 "$B/sim/lanetrace" run --mesh "$SCENE" --res "$RES" --structure "$STRUCT" --num both --report "$B/bench-report.json"
