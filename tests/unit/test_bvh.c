@@ -1169,6 +1169,29 @@ static void test_trace_random(void **state)
             snprintf(name, sizeof name, "  axis-parallel rays, tight tree (%s)",
                      fmt == FMT_Q16 ? "q16" : "f32");
             bad += cmp_report(name, &ct);
+            if (fmt == FMT_Q16) {
+                /* the s15.16 grid test (LT_ISECT_WT32) through the packet, single-ray and any-hit
+                   walks against the brute force with the same test, at the mesh's grid and 2^0 */
+                unsigned gi;
+                for (gi = 0; gi < 2; gi++) {
+                    cmp_t cw;
+                    unsigned g = gi == 0 ? lt_wt32_shift_q16(s.tq, s.ntris) : 0u;
+                    memset(&cw, 0, sizeof cw);
+                    ltt_isect = LT_ISECT_WT32_G(g);
+                    bb.bvh.isect = ltt_isect;
+                    for (pk = 0; pk < 80u / WORK; pk++) {
+                        dray_t rs[LT_LANES];
+                        lt_mask16_t k = pk < LTT_MASK_COUNT ? masks[pk] : LT_MASK_ALL;
+                        rand_rays(&r, (int)(pk % RAY_KINDS), ext, &s, rs, LT_LANES);
+                        cmp_packet(fmt, &bb.bvh, &s, rs, k, &r, &cw);
+                    }
+                    snprintf(name, sizeof name, "  isect wt32, grid 2^%u (q16)", g);
+                    bad += cmp_report(name, &cw);
+                    bad += cw.hits == 0;
+                }
+                ltt_isect = LT_ISECT_WT;
+                bb.bvh.isect = LT_ISECT_WT;
+            }
             unbuild(&bb);
             unbuild(&bt);
             lt_scene_free(&s);
@@ -2054,6 +2077,24 @@ static void test_wide(void **state)
                     assert_int_equal(cm.bad, 0);
                     assert_int_equal(cm.occl_bad, 0);
                     assert_int_equal(cm.errs, 0);
+                    bb.bvh.isect = LT_ISECT_WT;
+                }
+                if (li == 0 && fmt == FMT_Q16) {
+                    /* the s15.16 grid test (LT_ISECT_WT32): the wide walk tests the blocks'
+                       triangles one by one through it, as the binary walk */
+                    wcheck_t cg;
+                    memset(&cg, 0, sizeof cg);
+                    bb.bvh.isect = LT_ISECT_WT32_G(lt_wt32_shift_q16(s.tq, s.ntris));
+                    assert_int_equal(lt_bvh8_build_q16(&w, &bb.bvh, s.tq, mem, bytes), LT_OK);
+                    assert_int_equal(w.isect, bb.bvh.isect);
+                    w_rays(&w, &bb.bvh, &s, fmt, &r, ext, 200u / WORK, &cg);
+                    print_message("  with the grid test (wt32, 2^%u): %lu rays, closest hit equal "
+                                  "on %lu, exact ties %lu, differ %lu; any hit equal on %lu\n",
+                                  (unsigned)LT_ISECT_WT32_SHIFT(bb.bvh.isect), cg.rays, cg.same,
+                                  cg.ties, cg.bad, cg.occl - cg.occl_bad);
+                    assert_int_equal(cg.bad, 0);
+                    assert_int_equal(cg.occl_bad, 0);
+                    assert_int_equal(cg.errs, 0);
                     bb.bvh.isect = LT_ISECT_WT;
                 }
                 free(mem);
