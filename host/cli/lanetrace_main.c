@@ -870,7 +870,7 @@ static int run_trace(run_t *r)
                "%ux%u pixels, %u packets, structure %s, isect %s\n",
                sf->mesh, r->sc.ntris, r->sc.scale, r->sc.radius, sf->width, sf->height,
                ((sf->width + 3) / 4) * ((sf->height + 3) / 4), sf->structure, sf->isect);
-    if (!quiet && strcmp(sf->isect, "wt32") == 0) {
+    if (!quiet && strcmp(sf->isect, "wt32") == 0 && (sf->numeric & LT_SF_NUM_Q16) != 0) {
         unsigned g = lt_wt32_shift_q16(r->sc.tq, r->sc.ntris);
         printf("isect     wt32: s15.16 watertight test on a grid of 2^%u raw = %.3g s15.16 units "
                "(%.3g file units; lt_wt32_shift_q16: 99%% of the triangles' edges fit 2^13 "
