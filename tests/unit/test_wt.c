@@ -2113,6 +2113,16 @@ static void test_bad_dir(void **state)
 /* The single-ray test (lt_ray1_wt_setup_*, lt_tri1_wt_*) equals its packet lane bit for bit:
  * random triangles (some sharing vertices, some zero-area) and rays, unit and short directions
  * (components down to 2^-20), aimed at vertices, edges and random points. */
+/* The single-ray setup of lane i of a packet (lt_ray1_wt_setup_q16 on its origin and direction). */
+static void q_lane_setup1(const lt_ray16_q16_t *p, int i, lt_wt1_q16_t *w1)
+{
+    lt_q16_t o[3];
+    lt_q30_t d[3];
+    o[0] = p->ox.l[i], o[1] = p->oy.l[i], o[2] = p->oz.l[i];
+    d[0] = p->dx.l[i], d[1] = p->dy.l[i], d[2] = p->dz.l[i];
+    (void)lt_ray1_wt_setup_q16(o, d, w1);
+}
+
 static void test_single_ray(void **state)
 {
     ltt_rng_t rng;
@@ -2172,13 +2182,10 @@ static void test_single_ray(void **state)
             h.id = lt_vi32_set1(-1);
             got = lt_tri16_wt_q16(&p, &w, LT_MASK_ALL, &tq, 3, &h);
             for (i = 0; i < LT_LANES; i++) {
-                lt_q16_t o[3], tmax = p0.tmax.l[i];
-                lt_q30_t d[3];
+                lt_q16_t tmax = p0.tmax.l[i];
                 lt_wt1_q16_t w1;
                 int hit1;
-                o[0] = p0.ox.l[i], o[1] = p0.oy.l[i], o[2] = p0.oz.l[i];
-                d[0] = p0.dx.l[i], d[1] = p0.dy.l[i], d[2] = p0.dz.l[i];
-                (void)lt_ray1_wt_setup_q16(o, d, &w1);
+                q_lane_setup1(&p0, i, &w1);
                 hit1 = lt_tri1_wt_q16(&w1, &tq, p0.tmin.l[i], &tmax);
                 cases++;
                 hits += (unsigned long)hit1;
@@ -2201,13 +2208,10 @@ static void test_single_ray(void **state)
             p = p0;
             got = lt_tri16_wt32_q16(&p, &w, g, LT_MASK_ALL, &tq, 3, &h);
             for (i = 0; i < LT_LANES; i++) {
-                lt_q16_t o[3], tmax = p0.tmax.l[i];
-                lt_q30_t d[3];
+                lt_q16_t tmax = p0.tmax.l[i];
                 lt_wt1_q16_t w1;
                 int hit1;
-                o[0] = p0.ox.l[i], o[1] = p0.oy.l[i], o[2] = p0.oz.l[i];
-                d[0] = p0.dx.l[i], d[1] = p0.dy.l[i], d[2] = p0.dz.l[i];
-                (void)lt_ray1_wt_setup_q16(o, d, &w1);
+                q_lane_setup1(&p0, i, &w1);
                 hit1 = lt_tri1_wt32_q16(&w1, g, &tq, p0.tmin.l[i], &tmax);
                 cases32++;
                 hits32 += (unsigned long)hit1;
