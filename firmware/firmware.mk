@@ -225,7 +225,19 @@ FW_ALL_IMAGES := vectors slab frusta reproj stream $(FW_SCENES:%=scene-%) \
 $(foreach t,$(FW_TARGETS),$(foreach i,$(FW_ALL_IMAGES),$(eval $(call fw_image,$(t),$(i),obj,))))
 $(foreach t,$(FW_TARGETS),$(eval $(call fw_image,$(t),stream-count,objc,)))
 $(foreach t,$(FW_TARGETS),$(eval $(call fw_image,$(t),scene-sibenik,obj,)))
-$(foreach t,$(FW_TARGETS),$(eval $(call fw_image,$(t),scene-bunny-wt32,objw,)))
+# An image with LT_CFG_WT32=1 takes from objw/ only the sources whose code depends on it (the
+# walks' triangle dispatch, lt_isel.h; the structures' isect check; the scene blob's flag) and
+# every other object from obj/, which the same source compiles to whatever LT_CFG_WT32.
+FW_WT32_SRCS := $(shell grep -lE 'lt_isel\.h|LT_CFG_WT32|LT_ISECT_VALID' $(FW_CORE_SRCS) firmware/apps/*.c)
+define fw_image_w
+$(B)/fw/$(1)/$(2).elf: $(call fw_objs,$(1),objw,$(filter $(FW_WT32_SRCS),$(FW_IMG_$(2)) $(FW_CORE_SRCS))) \
+    $(call fw_objs,$(1),obj,$(filter-out $(FW_WT32_SRCS),$(FW_IMG_$(2)) $(FW_CORE_SRCS)) $(FW_RT_SRCS_$(1))) \
+    $(call fw_blob_obj,$(1),$(2),objw)
+	@echo "LD $$@"
+	@$(CC_$(1)) $(LDFLAGS_$(1)) -Wl,-Map=$$@.map -o $$@ $$^ $(LDLIBS_$(1))
+$(if $(FW_BLOB_$(2)),$(eval $(call fw_blob_rule,$(1),$(2),objw)))
+endef
+$(foreach t,$(FW_TARGETS),$(eval $(call fw_image_w,$(t),scene-bunny-wt32)))
 $(eval $(call fw_image,rv32,vectors,objx,-fixed))
 FW_PORTABLE_IMAGES := vectors scene-bunny $(if $(FW_FRUSTA_MESH),scene-sibenik) \
     $(if $(wildcard $(FW_RPBB_EXR)),reproj-bb)

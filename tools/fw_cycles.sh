@@ -9,7 +9,8 @@
 #            tools/fw_fit.py fits the machine file's op costs (sim/machines/<machine>.def, or
 #            $MACHDIR/<machine>.def) and rewrites them; rebuild the simulator afterwards (make).
 #   (none)   the check, out of sample: the whole-scene images (the bunny and the teapot scene
-#            blobs, the Sibenik frusta block, the Beachball reprojection; the last two where
+#            blobs, the bunny with the s15.16 grid test, the Sibenik frusta block, the Beachball
+#            reprojection; the last two where
 #            ../shared has them) -> a Markdown table per kernel family and target: the plugin's
 #            cycles per unit of work, the machine file's prediction and the residual; and with
 #            --check PCT, exit 1 when a residual exceeds PCT percent.
@@ -41,7 +42,11 @@ trap 'rm -rf "$tmp"' EXIT
 declare -A MACH=([cm4]=mcu-m4 [cm55]=mcu-m55 [rv32]=rv32imac)
 # image -> the blob it links, as firmware.mk knows it (FW_BLOB_<image>)
 CAL="cal-a cal-b calf-a calf-b calr-a calr-b calr2-a"   # the calibration images (make fw-cal)
-IMAGES="$CAL scene-bunny scene-teapot scene-sibenik reproj-bb"
+IMAGES="$CAL scene-bunny scene-bunny-wt32 scene-teapot scene-sibenik reproj-bb"
+# images whose rows are printed but not held to --check: kernels outside the calibration (the
+# s15.16 grid test, LT_ISECT_WT32: fitting it with the exact test moved the other families' residuals
+# past 10%, docs/firmware.md "Cycle models")
+UNCAL="scene-bunny-wt32"
 declare -A BLOB
 eval "BLOB=($(make -s --no-print-directory B="$B" IMAGES="$IMAGES" \
     --eval 'fw-blobs: ; @echo $(foreach i,$(IMAGES),[$(i)]=$(FW_BLOB_$(i)))' fw-blobs))"
@@ -98,7 +103,7 @@ if [ "$MODE" = fit ]; then
     exit 0
 fi
 
-imgs=(scene-bunny scene-teapot)
+imgs=(scene-bunny scene-bunny-wt32 scene-teapot)
 [ -f "$B/fw/cm4/scene-sibenik.elf" ] && imgs+=(scene-sibenik)
 [ -f "$B/fw/cm4/reproj-bb.elf" ] && imgs+=(reproj-bb)
 echo "| kernel family | scene | target (machine) | plugin: cycles per unit | machine file predicts | residual | plugin CPI |"
@@ -118,12 +123,15 @@ for img in "${imgs[@]}"; do
                 "$(awk -v c="$cyc" -v n="$n" 'BEGIN { printf "%.0f", c / n }')" "${unit%s}" \
                 "$(awk -v c="$pred" -v n="$n" 'BEGIN { printf "%.0f", c / n }')" "$r" \
                 "$(awk -v c="$cyc" -v i="$ins" 'BEGIN { printf "%.2f", c / i }')"
-            worst=$(awk -v w="$worst" -v r="$r" 'BEGIN { r = r < 0 ? -r : r; print (r > w ? r : w) }')
+            case " $UNCAL " in
+            *" $img "*) ;;
+            *) worst=$(awk -v w="$worst" -v r="$r" 'BEGIN { r = r < 0 ? -r : r; print (r > w ? r : w) }') ;;
+            esac
         done <"$tmp/p.$img.$t"
     done
 done
 echo
-echo "Largest residual: ${worst}% (units: rays, shadow samples, source pixels; CPI: the plugin's cycles per instruction)."
+echo "Largest residual: ${worst}% (units: rays, shadow samples, source pixels; CPI: the plugin's cycles per instruction); not calibrated, printed apart from it: ${UNCAL//scene-/} (the s15.16 grid test)."
 echo
 echo "The fit (tools/fw_fit.py on the calibration stages; a refit here, the machine files untouched):"
 echo

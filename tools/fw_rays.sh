@@ -6,14 +6,14 @@
 # the whole run against the sum of the stages the image timed. Needs `make firmware plugin`.
 # With the frusta block image (build/fw/<T>/scene-sibenik.elf, made where ../shared is) a second
 # table gives its instructions per shadow sample.
-# Usage: tools/fw_rays.sh [scene...] (default: bunny teapot). `make fw-doc` puts the table into
+# Usage: tools/fw_rays.sh [scene...] (default: bunny, bunny-wt32 (the s15.16 grid test), teapot). `make fw-doc` puts the table into
 # docs/firmware.md; `make bench` prints it.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 B=${B:-build}
 eval "$(make -s --no-print-directory -f tools/print_qemu.mk)"
 scenes=("$@")
-[ ${#scenes[@]} -gt 0 ] || scenes=(bunny teapot)
+[ ${#scenes[@]} -gt 0 ] || scenes=(bunny bunny-wt32 teapot)
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 # elf_of IMAGE TARGET: the image's file; a target with a p (cm4p, cm55p) is that target's portable

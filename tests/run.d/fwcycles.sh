@@ -15,7 +15,7 @@ fi
 B=$B tools/fw_cycles.sh --check 10 >"$tmp/fwc.md" 2>"$tmp/fwc.err"
 rc=$?
 sed -n '3,$p' "$tmp/fwc.md" | sed 's/^/     /'
-check "fw cycle models: $(grep -cE ' per (ray|sample|pixel) \|' "$tmp/fwc.md") family x scene x target predictions within 10% of the plugin's cycles ($(grep '^Largest' "$tmp/fwc.md" | sed 's/ (units.*//')) (rc $rc$( [ -s "$tmp/fwc.err" ] && echo ": $(head -c 300 "$tmp/fwc.err")"))" \
+check "fw cycle models: $(grep -E ' per (ray|sample|pixel) \|' "$tmp/fwc.md" | grep -cv 'bunny-wt32') family x scene x target predictions within 10% of the plugin's cycles (and $(grep -E ' per (ray|sample|pixel) \|' "$tmp/fwc.md" | grep -c 'bunny-wt32') of the grid test printed, not calibrated) ($(grep '^Largest' "$tmp/fwc.md" | sed 's/ (units.*//')) (rc $rc$( [ -s "$tmp/fwc.err" ] && echo ": $(head -c 300 "$tmp/fwc.err")"))" \
     test "$rc" -eq 0
 
 mkdir -p "$tmp/fwc-mach"
