@@ -334,19 +334,11 @@ lt_sblob_err_t lt_sblob_open(const void *p, size_t bytes, lt_sblob_t *s)
                 return fail(s, LT_SBLOB_E_CAMERA, c);
     }
 
-#if LT_CFG_WT32
-    {
-        lt_sblob_err_t cs = check_scene(b, nt, nn, h[LT_SB_OFF_TRIS], h[LT_SB_OFF_NODES],
-                                       h[LT_SB_OFF_IDX], h[LT_SB_DEPTH], h[LT_SB_LEAF], &s->bvh,
-                                       &s->tris, &s->bad);
-        if (cs == LT_SBLOB_OK && (s->flags & LT_SBLOB_F_WT32) != 0)
-            s->bvh.isect = LT_ISECT_WT32_G(lt_wt32_shift_q16(s->tris, s->bvh.ntris));
-        return cs;
-    }
-#else
-    return check_scene(b, nt, nn, h[LT_SB_OFF_TRIS], h[LT_SB_OFF_NODES], h[LT_SB_OFF_IDX],
-                       h[LT_SB_DEPTH], h[LT_SB_LEAF], &s->bvh, &s->tris, &s->bad);
-#endif
+    e = check_scene(b, nt, nn, h[LT_SB_OFF_TRIS], h[LT_SB_OFF_NODES], h[LT_SB_OFF_IDX],
+                    h[LT_SB_DEPTH], h[LT_SB_LEAF], &s->bvh, &s->tris, &s->bad);
+    if (LT_CFG_WT32 && e == LT_SBLOB_OK && (s->flags & LT_SBLOB_F_WT32) != 0)
+        s->bvh.isect = LT_ISECT_WT32_G(lt_wt32_shift_q16(s->tris, s->bvh.ntris));
+    return e;
 }
 
 /* The unit direction through pixel (x, y) inside the image (never zero: lt_sblob_open checked). */

@@ -17,7 +17,6 @@
 #include "render/lt_paths.h"
 #include "tune/lt_recommend.h"
 #include "render/lt_render.h"
-#include "lt/lt_wt.h"
 #include "cli/lt_reproject_cli.h"
 #include "cli/lt_pack_cli.h"
 #include "cli/lt_fwblob_cli.h"
@@ -747,11 +746,22 @@ static int run_path(run_t *r, const lt_path_info_t *p)
         r->status = EXIT_INPUT;
         return -1;
     }
-    if (lt_accel_set_isect_name(acc, run_isect(sf, p), NULL, &diag) != 0) {
-        fprintf(stderr, "%s: %s\n", sf->path[0] ? sf->path : prog, diag.msg);
-        lt_accel_free(acc);
-        r->status = EXIT_USAGE;
-        return -1;
+    {
+        const char *is = run_isect(sf, p);
+        uint32_t g = 0;
+        if (lt_accel_set_isect_name(acc, is, &g, &diag) != 0) {
+            fprintf(stderr, "%s: %s\n", sf->path[0] ? sf->path : prog, diag.msg);
+            lt_accel_free(acc);
+            r->status = EXIT_USAGE;
+            return -1;
+        }
+        if (!quiet && strcmp(is, "wt32") == 0)
+            printf("isect     wt32: s15.16 watertight test on a grid of 2^%u raw = %.3g s15.16 "
+                   "units (%.3g file units; lt_wt32_shift_q16: 99%% of the triangles' edges fit "
+                   "2^13 steps)\n",
+                   g, ldexp(1.0, (int)g - 16), ldexp(1.0, (int)g - 16) / r->sc.scale);
+        else if (!quiet && strcmp(is, sf->isect) != 0)
+            printf("isect     %s: wt (wt32 is an s15.16 test: the float32 pass takes wt)\n", p->name);
     }
     if (r->rays == 2 && lt_accel_set_walk(acc, 1, &diag) != 0) {
         fprintf(stderr, "%s: %s\n", sf->path[0] ? sf->path : prog, diag.msg);
@@ -870,13 +880,6 @@ static int run_trace(run_t *r)
                "%ux%u pixels, %u packets, structure %s, isect %s\n",
                sf->mesh, r->sc.ntris, r->sc.scale, r->sc.radius, sf->width, sf->height,
                ((sf->width + 3) / 4) * ((sf->height + 3) / 4), sf->structure, sf->isect);
-    if (!quiet && strcmp(sf->isect, "wt32") == 0 && (sf->numeric & LT_SF_NUM_Q16) != 0) {
-        unsigned g = lt_wt32_shift_q16(r->sc.tq, r->sc.ntris);
-        printf("isect     wt32: s15.16 watertight test on a grid of 2^%u raw = %.3g s15.16 units "
-               "(%.3g file units; lt_wt32_shift_q16: 99%% of the triangles' edges fit 2^13 "
-               "steps)%s\n", g, ldexp(1.0, (int)g - 16), ldexp(1.0, (int)g - 16) / r->sc.scale,
-               sf->numeric == LT_SF_NUM_BOTH ? "; the float32 pass takes wt" : "");
-    }
     if (lt_frame_alloc(&r->ref, sf->width, sf->height, &diag) != 0 ||
         lt_frame_alloc(&r->fr, sf->width, sf->height, &diag) != 0) {
         fprintf(stderr, "%s\n", diag.msg);

@@ -328,6 +328,32 @@ static void wt_block_terms(const void *b, size_t bytes, uint32_t nt)
     (void)nt;
 }
 
+/* The exact test's edge stage for one ray on its sheared points (x, y): U, V, W exact in int64 into
+ * e, their sum into *det; 1 when the signs agree and det != 0 (lt_tri1_wt_q16's arithmetic, which
+ * keeps its own copy: the firmware's compiled exact test is priced by the fitted MCU models). */
+LT_INLINE int wt1_edges64(const lt_q16_t x[3], const lt_q16_t y[3], int64_t e[3], int64_t *det)
+{
+    int neg, pos;
+    e[0] = lt__l64_sub_wrap(lt__mul32x32_64(x[2], y[1]), lt__mul32x32_64(y[2], x[1]));
+    e[1] = lt__l64_sub_wrap(lt__mul32x32_64(x[0], y[2]), lt__mul32x32_64(y[0], x[2]));
+    e[2] = lt__l64_sub_wrap(lt__mul32x32_64(x[1], y[0]), lt__mul32x32_64(y[1], x[0]));
+    neg = e[0] < 0 || e[1] < 0 || e[2] < 0;
+    pos = e[0] > 0 || e[1] > 0 || e[2] > 0;
+    *det = lt__l64_add_wrap(lt__l64_add_wrap(e[0], e[1]), e[2]);
+    return !((neg && pos) || *det == 0);
+}
+
+/* Its t: z = round(Sz zk), the exact 128-bit T = U z0 + V z1 + W z2, t = round(T 2^sh / det). */
+LT_INLINE lt_q16_t wt1_t64(const int64_t e[3], int64_t det, const lt_q16_t zk[3], lt_q30_t sz,
+                           unsigned sh, int *sat)
+{
+    uint64_t h = 0, l = 0;
+    int i;
+    for (i = 0; i < 3; i++)
+        q_mac128(&h, &l, e[i], lt__q16_mul_q30_sat(zk[i], sz));
+    return q_tdiv1(h, l, det, sh, sat);
+}
+
 /* The wide tree's leaf blocks: lt_tri1_wt_q16 per lane (lt_isel.h), lane by lane in scalar code
  * (measured: the 64-bit lanes with their saturation and rounding fix-ups as 2-lane SIMD ran at 0.7x
  * the scalar test on the host), on the block's rebuilt vertices and zero-area flags. */
@@ -345,10 +371,9 @@ int32_t lt__wt_tris4_q16(const lt_wt1_q16_t *w, const lt_bvh8_tris4_q16_t *b, ui
             continue;
         for (c = 0; c < nt; c++) {
             lt_q16_t x[3], y[3], zk[3], t;
-            int64_t eu, ev, ew, det;
-            uint64_t h = 0, l = 0;
+            int64_t e[3], det;
             unsigned v;
-            int neg, pos, sat;
+            int sat;
             if (b->id[c] < 0)
                 continue; /* zero area */
             for (v = 0; v < 3; v++) {
@@ -358,19 +383,10 @@ int32_t lt__wt_tris4_q16(const lt_wt1_q16_t *w, const lt_bvh8_tris4_q16_t *b, ui
                 x[v] = lt__q16_sub_sat(ax, lt__q16_mul_q30_sat(zk[v], w->s[0]));
                 y[v] = lt__q16_sub_sat(ay, lt__q16_mul_q30_sat(zk[v], w->s[1]));
             }
-            eu = lt__l64_sub_wrap(lt__mul32x32_64(x[2], y[1]), lt__mul32x32_64(y[2], x[1]));
-            ev = lt__l64_sub_wrap(lt__mul32x32_64(x[0], y[2]), lt__mul32x32_64(y[0], x[2]));
-            ew = lt__l64_sub_wrap(lt__mul32x32_64(x[1], y[0]), lt__mul32x32_64(y[1], x[0]));
-            neg = eu < 0 || ev < 0 || ew < 0;
-            pos = eu > 0 || ev > 0 || ew > 0;
-            det = lt__l64_add_wrap(lt__l64_add_wrap(eu, ev), ew);
-            if ((neg && pos) || det == 0)
+            if (!wt1_edges64(x, y, e, &det))
                 continue;
             LT_CHARGE(WT_TRI1_T);
-            q_mac128(&h, &l, eu, lt__q16_mul_q30_sat(zk[0], w->s[2]));
-            q_mac128(&h, &l, ev, lt__q16_mul_q30_sat(zk[1], w->s[2]));
-            q_mac128(&h, &l, ew, lt__q16_mul_q30_sat(zk[2], w->s[2]));
-            t = q_tdiv1(h, l, det, w->sh, &sat);
+            t = wt1_t64(e, det, zk, w->s[2], w->sh, &sat);
             LT_EVENT(SAT, sat);
             if (t > tmin && t < *tmax) {
                 *tmax = t;
@@ -539,11 +555,9 @@ static lt_q16_t wt32_tdiv1(int64_t T, int32_t det, int *sat)
 static int wt32_lane(const lt_q16_t x[3], const lt_q16_t y[3], const lt_q16_t zk[3], lt_q30_t sz,
                      unsigned sh, unsigned g, lt_q16_t *t, int *wide, int *sat)
 {
-    int64_t sx[3], sy[3];
-    lt_q16_t px[3], py[3], z[3];
-    int64_t eu, ev, ew, det;
-    uint64_t h = 0, l = 0;
-    int fit[3], i, neg, pos;
+    int64_t sx[3], sy[3], e[3], det;
+    lt_q16_t px[3], py[3];
+    int fit[3], i;
 
     *wide = 0;
     *sat = 0;
@@ -555,6 +569,8 @@ static int wt32_lane(const lt_q16_t x[3], const lt_q16_t y[3], const lt_q16_t zk
     }
     if (fit[0] && fit[1] && fit[2]) {
         int32_t a[3], b[3], u, v, w, d;
+        lt_q16_t z[3];
+        int neg, pos;
         for (i = 0; i < 3; i++) {
             a[i] = (int32_t)sx[i];
             b[i] = (int32_t)sy[i];
@@ -579,20 +595,9 @@ static int wt32_lane(const lt_q16_t x[3], const lt_q16_t y[3], const lt_q16_t zk
         px[i] = fit[i] ? (lt_q16_t)(sx[i] * ((int64_t)1 << g)) : x[i];
         py[i] = fit[i] ? (lt_q16_t)(sy[i] * ((int64_t)1 << g)) : y[i];
     }
-    eu = lt__l64_sub_wrap(lt__mul32x32_64(px[2], py[1]), lt__mul32x32_64(py[2], px[1]));
-    ev = lt__l64_sub_wrap(lt__mul32x32_64(px[0], py[2]), lt__mul32x32_64(py[0], px[2]));
-    ew = lt__l64_sub_wrap(lt__mul32x32_64(px[1], py[0]), lt__mul32x32_64(py[1], px[0]));
-    neg = eu < 0 || ev < 0 || ew < 0;
-    pos = eu > 0 || ev > 0 || ew > 0;
-    det = lt__l64_add_wrap(lt__l64_add_wrap(eu, ev), ew);
-    if ((neg && pos) || det == 0)
+    if (!wt1_edges64(px, py, e, &det))
         return 0;
-    for (i = 0; i < 3; i++)
-        z[i] = lt__q16_mul_q30_sat(zk[i], sz);
-    q_mac128(&h, &l, eu, z[0]);
-    q_mac128(&h, &l, ev, z[1]);
-    q_mac128(&h, &l, ew, z[2]);
-    *t = q_tdiv1(h, l, det, sh, sat);
+    *t = wt1_t64(e, det, zk, sz, sh, sat);
     return 1;
 }
 
