@@ -96,8 +96,10 @@ typedef struct lt_render_ops {
 
     /* packets */
     size_t ray16_bytes;
-    /* the camera's packet of the 4x4 tile at (tx, ty), set up; returns the lanes on the image */
-    lt_mask16_t (*camera_packet)(const lt_camera_t *c, uint32_t tx, uint32_t ty, void *r);
+    /* the camera's packet of the 4x4 tile at (tx, ty), set up, its directions from tab
+       (lt_camera_dirs_table of c) or computed (tab NULL); returns the lanes on the image */
+    lt_mask16_t (*camera_packet)(const lt_camera_t *c, const double *tab, uint32_t tx,
+                                 uint32_t ty, void *r);
     /* lane i from doubles (origin and tmin, tmax in scaled units, unit direction); not set up */
     void (*ray16_lane)(void *r, int i, const double o[3], const double d[3], double tmin,
                        double tmax);

@@ -39,6 +39,8 @@ struct lt_accel {
     size_t bytes;            /* structure memory */
     uint32_t leaf;           /* lt_accel_params_t.leaf (0: default) */
     uint32_t isect;          /* the intersector of every walk (LT_ISECT_WT unless set) */
+    double *view;            /* lt_accel_set_view: view_cam's directions, or NULL */
+    lt_camera_t view_cam;
 };
 
 const char *const lt_render_structures[] = {"chunks", "bvh", "bvhq", "kd", "grid", NULL};
@@ -322,7 +324,39 @@ void lt_accel_free(lt_accel_t *a)
     free(a->ray);
     free(a->wmem);
     free(a->pmem);
+    free(a->view);
     free(a);
+}
+
+static int same_camera(const lt_camera_t *a, const lt_camera_t *b)
+{
+    int i;
+    for (i = 0; i < 3; i++)
+        if (a->eye[i] != b->eye[i] || a->fwd[i] != b->fwd[i] || a->right[i] != b->right[i] ||
+            a->up[i] != b->up[i])
+            return 0;
+    return a->tan_half_fov == b->tan_half_fov && a->width == b->width && a->height == b->height;
+}
+
+int lt_accel_set_view(lt_accel_t *a, const lt_camera_t *c, lt_diag_t *diag)
+{
+    free(a->view);
+    a->view = NULL;
+    if (c == NULL)
+        return 0;
+    if ((a->view = lt_camera_dirs_table(c)) == NULL) {
+        lt_diag_fail(diag, "out of memory for the directions of a %ux%u view", c->width,
+                     c->height);
+        return -1;
+    }
+    a->view_cam = *c;
+    return 0;
+}
+
+/* The accel's direction table when it was made for camera c, else NULL (computed). */
+static const double *view_tab(const lt_accel_t *a, const lt_camera_t *c)
+{
+    return a->view != NULL && same_camera(&a->view_cam, c) ? a->view : NULL;
 }
 
 static uint64_t cycles_now(void) { return lt_meter_cycles(); }
@@ -376,6 +410,7 @@ typedef struct rd_job {
     double eps;                /* shadows */
     uint8_t *occluded;         /* shadows (may be NULL) */
     int single;                /* shadows: single rays through the wide tree, not packets */
+    const double *tab;         /* the camera's directions (lt_accel_set_view) or NULL */
     void *ray[LT_PAR_MAX_THREADS];
     uint32_t n[LT_PAR_MAX_THREADS], occ[LT_PAR_MAX_THREADS]; /* shadows: per-worker counts */
 } rd_job_t;
@@ -420,7 +455,7 @@ static void primary_row(void *ctx, unsigned w, uint32_t row)
         float per, steps;
         int i;
         lt_phase_t prev = LT_PHASE_ENTER(SETUP);
-        k = a->ops->camera_packet(c, tx, ty, ray);
+        k = a->ops->camera_packet(c, j->tab, tx, ty, ray);
         LT_EVENT(RAYS, lt__popcount32(k));
         LT_PHASE_LEAVE(prev);
         trace16(a, ray, k, &hit);
@@ -446,6 +481,7 @@ void lt_render_primary(const lt_scene_t *s, const lt_accel_t *a, const lt_camera
     unsigned w = rd_open(&j, a, tile_rows(c));
     (void)s;
     j.c = c;
+    j.tab = view_tab(a, c);
     j.f = f;
     (void)lt_par_run(tile_rows(c), w, primary_row, &j, progress);
     rd_close(&j);
@@ -533,7 +569,7 @@ static void primary1_lanes_row(void *ctx, unsigned w, uint32_t row)
     void *ray = j->ray[w];
     uint32_t tx, ty = 4u * row;
     for (tx = 0; tx < c->width; tx += 4) {
-        lt_mask16_t k = a->ops->camera_packet(c, tx, ty, ray);
+        lt_mask16_t k = a->ops->camera_packet(c, j->tab, tx, ty, ray);
         int i;
         LT_EVENT(RAYS, lt__popcount32(k));
         for (i = 0; i < LT_LANES; i++) {
@@ -611,7 +647,7 @@ static void primary1_row(void *ctx, unsigned w, uint32_t row)
     (void)w;
     for (tx = 0; tx < c->width; tx += 4) {
         double dx[LT_LANES], dy[LT_LANES], dz[LT_LANES];
-        unsigned k = lt_camera_tile_dirs(c, tx, ty, dx, dy, dz);
+        unsigned k = lt_camera_tile_dirs_tab(c, j->tab, tx, ty, dx, dy, dz);
         int i;
         for (i = 0; i < LT_LANES; i++) {
             double d[3];
@@ -641,6 +677,7 @@ int lt_render_primary1(const lt_scene_t *s, const lt_accel_t *a, const lt_camera
         return -1;
     w = rd_open(&j, a, nt);
     j.c = c;
+    j.tab = view_tab(a, c);
     j.f = f;
     (void)lt_par_run(nt, w, lanes ? primary1_lanes_row : primary1_row, &j, NULL);
     rd_close(&j);
@@ -661,7 +698,7 @@ static void shadows_row(void *ctx, unsigned w, uint32_t row)
         double cx[LT_LANES], cy[LT_LANES], cz[LT_LANES], t[LT_LANES], len[LT_LANES];
         double px[LT_LANES], py[LT_LANES], pz[LT_LANES], l2[LT_LANES];
         int i;
-        (void)lt_camera_tile_dirs(c, tx, ty, cx, cy, cz);
+        (void)lt_camera_tile_dirs_tab(c, j->tab, tx, ty, cx, cy, cz);
         for (i = 0; i < LT_LANES; i++) {
             uint32_t x = tx + (uint32_t)(i % 4), y = ty + (uint32_t)(i / 4);
             size_t q = (size_t)y * c->width + x;
@@ -754,6 +791,7 @@ static int shadows(const lt_scene_t *s, const lt_accel_t *a, const lt_camera_t *
     w = rd_open(&j, a, tile_rows(c));
     j.single = single;
     j.c = c;
+    j.tab = view_tab(a, c);
     j.prev = f;
     j.light = light;
     j.eps = 1e-4 * s->radius;
@@ -794,7 +832,7 @@ static void peel_row(void *ctx, unsigned w, uint32_t row)
         lt_hit16_t hit;
         lt_mask16_t k, live = 0;
         int i;
-        k = a->ops->camera_packet(c, tx, ty, ray);
+        k = a->ops->camera_packet(c, j->tab, tx, ty, ray);
         /* the next surface lies strictly beyond the previous hit: tmin = previous t */
         for (i = 0; i < LT_LANES; i++) {
             uint32_t x = tx + (uint32_t)(i % 4), y = ty + (uint32_t)(i / 4);
@@ -830,6 +868,7 @@ int lt_render_peel(const lt_scene_t *s, const lt_accel_t *a, const lt_camera_t *
     }
     w = rd_open(&j, a, tile_rows(c));
     j.c = c;
+    j.tab = view_tab(a, c);
     j.prev = prev;
     j.f = next;
     (void)lt_par_run(tile_rows(c), w, peel_row, &j, NULL);

@@ -73,6 +73,14 @@ int lt_accel_set_isect_name(lt_accel_t *a, const char *name, uint32_t *g, lt_dia
  * other face. Returns 0, or -1 with a message (no memory for the wide tree). */
 int lt_accel_set_walk(lt_accel_t *a, int wide, lt_diag_t *diag);
 
+/* The directions of camera c computed once (lt_camera_dirs_table, 24 bytes per pixel, outside
+ * lt_accel_bytes): every later render call on a whose camera equals *c field by field reads its
+ * tiles' directions from the table instead of computing them (the same values, so the same
+ * results); other cameras compute as before. For benchmarks that trace one view many times
+ * (embree-race, whose Embree side traces precomputed directions). c NULL drops the table.
+ * Returns 0, or -1 with a message (out of memory). */
+int lt_accel_set_view(lt_accel_t *a, const lt_camera_t *c, lt_diag_t *diag);
+
 /* Trace all primary rays of the camera into f (allocated to the camera size). progress (may be
  * NULL) is called with the fraction done. */
 void lt_render_primary(const lt_scene_t *s, const lt_accel_t *a, const lt_camera_t *c,

@@ -232,12 +232,18 @@ unsigned lt_camera_tile_dirs(const lt_camera_t *c, uint32_t tx, uint32_t ty, dou
     /* local arrays: the compiler cannot prove that the callers' dx, dy and dz do not overlap,
      * so loops over them stay scalar (48 divides a tile, measured as most of the function) */
     double u[LT_LANES], v[LT_LANES], l[LT_LANES], ex[LT_LANES], ey[LT_LANES], ez[LT_LANES];
+    double uc[4], vr[4];
     unsigned k = 0;
     int i;
+    /* u depends on the column only and v on the row: 4 + 4 divides, not 16 + 16 */
+    for (i = 0; i < 4; i++) {
+        double x = (double)(tx + (uint32_t)i), y = (double)(ty + (uint32_t)i);
+        uc[i] = (2.0 * (x + 0.5) / w - 1.0) * t * aspect;
+        vr[i] = (1.0 - 2.0 * (y + 0.5) / h) * t;
+    }
     for (i = 0; i < LT_LANES; i++) {
-        double x = (double)(tx + (uint32_t)(i % 4)), y = (double)(ty + (uint32_t)(i / 4));
-        u[i] = (2.0 * (x + 0.5) / w - 1.0) * t * aspect;
-        v[i] = (1.0 - 2.0 * (y + 0.5) / h) * t;
+        u[i] = uc[i % 4];
+        v[i] = vr[i / 4];
     }
     for (i = 0; i < LT_LANES; i++) {
         ex[i] = c->fwd[0] + u[i] * c->right[0] + v[i] * c->up[0];
@@ -266,10 +272,57 @@ unsigned lt_camera_tile_dirs(const lt_camera_t *c, uint32_t tx, uint32_t ty, dou
     return k;
 }
 
+double *lt_camera_dirs_table(const lt_camera_t *c)
+{
+    size_t tw = (c->width + 3u) / 4u, th = (c->height + 3u) / 4u, x, y;
+    double *tab;
+    if (tw == 0 || th == 0 || tw * th > SIZE_MAX / (3 * LT_LANES * sizeof *tab))
+        return NULL;
+    if ((tab = malloc(tw * th * 3 * LT_LANES * sizeof *tab)) == NULL)
+        return NULL;
+    for (y = 0; y < th; y++)
+        for (x = 0; x < tw; x++) {
+            double *p = &tab[(y * tw + x) * 3 * LT_LANES];
+            (void)lt_camera_tile_dirs(c, (uint32_t)(4 * x), (uint32_t)(4 * y), p, p + LT_LANES,
+                                      p + 2 * LT_LANES);
+        }
+    return tab;
+}
+
+unsigned lt_camera_tile_dirs_tab(const lt_camera_t *c, const double *tab, uint32_t tx,
+                                 uint32_t ty, double dx[LT_LANES], double dy[LT_LANES],
+                                 double dz[LT_LANES])
+{
+    const double *p;
+    unsigned k = 0;
+    int i;
+    if (tab == NULL)
+        return lt_camera_tile_dirs(c, tx, ty, dx, dy, dz);
+    p = &tab[((size_t)(ty / 4u) * ((c->width + 3u) / 4u) + tx / 4u) * 3 * LT_LANES];
+    memcpy(dx, p, LT_LANES * sizeof *dx);
+    memcpy(dy, p + LT_LANES, LT_LANES * sizeof *dy);
+    memcpy(dz, p + 2 * LT_LANES, LT_LANES * sizeof *dz);
+    for (i = 0; i < LT_LANES; i++)
+        k |= (unsigned)(tx + (uint32_t)(i % 4) < c->width && ty + (uint32_t)(i / 4) < c->height)
+             << i;
+    return k;
+}
+
 lt_mask16_t lt_camera_packet_q16(const lt_camera_t *c, uint32_t tx, uint32_t ty, lt_ray16_q16_t *r)
 {
+    return lt_camera_packet_tab_q16(c, NULL, tx, ty, r);
+}
+
+lt_mask16_t lt_camera_packet_f32(const lt_camera_t *c, uint32_t tx, uint32_t ty, lt_ray16_f32_t *r)
+{
+    return lt_camera_packet_tab_f32(c, NULL, tx, ty, r);
+}
+
+lt_mask16_t lt_camera_packet_tab_q16(const lt_camera_t *c, const double *tab, uint32_t tx,
+                                     uint32_t ty, lt_ray16_q16_t *r)
+{
     double dx[LT_LANES], dy[LT_LANES], dz[LT_LANES];
-    unsigned k = lt_camera_tile_dirs(c, tx, ty, dx, dy, dz);
+    unsigned k = lt_camera_tile_dirs_tab(c, tab, tx, ty, dx, dy, dz);
     lt_q16_t o[3];
     int i;
     for (i = 0; i < 3; i++)
@@ -288,10 +341,11 @@ lt_mask16_t lt_camera_packet_q16(const lt_camera_t *c, uint32_t tx, uint32_t ty,
     return (lt_mask16_t)k;
 }
 
-lt_mask16_t lt_camera_packet_f32(const lt_camera_t *c, uint32_t tx, uint32_t ty, lt_ray16_f32_t *r)
+lt_mask16_t lt_camera_packet_tab_f32(const lt_camera_t *c, const double *tab, uint32_t tx,
+                                     uint32_t ty, lt_ray16_f32_t *r)
 {
     double dx[LT_LANES], dy[LT_LANES], dz[LT_LANES];
-    unsigned k = lt_camera_tile_dirs(c, tx, ty, dx, dy, dz);
+    unsigned k = lt_camera_tile_dirs_tab(c, tab, tx, ty, dx, dy, dz);
     int i;
     for (i = 0; i < LT_LANES; i++) {
         r->ox.l[i] = (float)c->eye[0];

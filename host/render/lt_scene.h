@@ -81,10 +81,24 @@ void lt_camera_dir(const lt_camera_t *c, uint32_t x, uint32_t y, double d[3]);
 unsigned lt_camera_tile_dirs(const lt_camera_t *c, uint32_t tx, uint32_t ty, double dx[16],
                              double dy[16], double dz[16]);
 
+/* Every 4x4 tile's lt_camera_tile_dirs computed once, for tracing one view many times
+ * (benchmarks): tile-major (tile (tx, ty) at ((ty / 4) * ((width + 3) / 4) + tx / 4) * 48), dx[16],
+ * dy[16], dz[16] per tile. Returns NULL when out of memory; free() it. */
+double *lt_camera_dirs_table(const lt_camera_t *c);
+
+/* lt_camera_tile_dirs from such a table of c (tab NULL: computed): the same values. */
+unsigned lt_camera_tile_dirs_tab(const lt_camera_t *c, const double *tab, uint32_t tx,
+                                 uint32_t ty, double dx[16], double dy[16], double dz[16]);
+
 /* Packets of the 4x4 tile whose top-left pixel is (tx, ty); pixels outside the image are masked
- * off. Returns the active mask. Lane i = pixel (tx + i % 4, ty + i / 4). */
+ * off. Returns the active mask. Lane i = pixel (tx + i % 4, ty + i / 4). The _tab forms take the
+ * directions from lt_camera_dirs_table's tab (NULL: computed). */
 lt_mask16_t lt_camera_packet_q16(const lt_camera_t *c, uint32_t tx, uint32_t ty, lt_ray16_q16_t *r);
 lt_mask16_t lt_camera_packet_f32(const lt_camera_t *c, uint32_t tx, uint32_t ty, lt_ray16_f32_t *r);
+lt_mask16_t lt_camera_packet_tab_q16(const lt_camera_t *c, const double *tab, uint32_t tx,
+                                     uint32_t ty, lt_ray16_q16_t *r);
+lt_mask16_t lt_camera_packet_tab_f32(const lt_camera_t *c, const double *tab, uint32_t tx,
+                                     uint32_t ty, lt_ray16_f32_t *r);
 
 /* Independent double-precision closest hit (brute force Moller-Trumbore over all triangles):
  * returns the triangle id or -1, and the distance in *t. */

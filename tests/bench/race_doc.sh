@@ -106,7 +106,7 @@ $2 == "mode" { kv(); m = v["name"]; rate[sc, m] = v["mrays"]; flag[sc, m] = subs
 $2 == "best" { kv(); bestp[sc] = v["packet"]; bests[sc] = v["shadow"]; nbp[v["packet"]]++; nbs[v["shadow"]]++ }
 $2 == "lanetrace" { kv(); p = v["path"]; ls[sc, p] = v["single"]; lp[sc, p] = v["packet"]
                     lsh[sc, p] = v["shadow"]; lsh1[sc, p] = v["shadow1"]; same[sc, p] = v["same"]
-                    lpw[sc, p] = v["packet8"]; lshw[sc, p] = v["shadow8"] }
+                    lpw[sc, p] = v["packet8"]; lshw[sc, p] = v["shadow8"]; upd("comp", v["packetcomp"] / v["packet"]) }
 END {
     split("rtcIntersect1 rtcIntersect4 rtcIntersect8 rtcIntersect16 rtcOccluded1 rtcOccluded4 rtcOccluded8 rtcOccluded16", M, " ")
     split("single 2x2 4x2 4x4 single 2x2 4x2 4x4", T, " ")
@@ -131,7 +131,7 @@ END {
         }
         printf " %.3f%% / %.3f%% |\n", agree[s, "pmin"], agree[s, "smin"]
     }
-    printf "\nlanetrace (its own code paths, one thread) against Embree in the same run: Mrays/s and lanetrace / Embree; single rays against rtcIntersect1, 16-ray packets against the best of rtcIntersect4/8/16, shadow packets and single shadow rays against the best of rtcOccluded1/4/8/16, then against each mode (single rays and single shadow rays walk the 8-wide BVH, lt_bvh8.h; packets the binary one, the tree the machine models price; the wide-tree columns are the same packets through the 8-wide tree, `lanetrace run --rays wide`, against Embree'"'"'s best mode and against the binary walk):\n\n"
+    printf "\nlanetrace (its own code paths, one thread) against Embree in the same run: Mrays/s and lanetrace / Embree; single rays against rtcIntersect1, 16-ray packets against the best of rtcIntersect4/8/16, shadow packets and single shadow rays against the best of rtcOccluded1/4/8/16, then against each mode (both tracers take the camera'"'"'s directions computed before the timing, lanetrace'"'"'s with `lt_accel_set_view`; single rays and single shadow rays walk the 8-wide BVH, lt_bvh8.h; packets the binary one, the tree the machine models price; the wide-tree columns are the same packets through the 8-wide tree, `lanetrace run --rays wide`, against Embree'"'"'s best mode and against the binary walk):\n\n"
     printf "| scene | path | single rays (x rtcIntersect1) | 16-ray packets (x Embree best) | packets x rtcIntersect4 / 8 / 16 | wide-tree packets (x Embree best; x binary) | shadow packets (x Embree best) | shadows x rtcOccluded1 / 4 / 8 / 16 | wide-tree shadow packets (x Embree best; x binary) | single shadow rays (x Embree best) | same triangle as Embree |\n"
     printf "|---|---|---|---|---|---|---|---|---|---|---|\n"
     for (s = 1; s <= ns; s++)
@@ -155,12 +155,12 @@ END {
         }
     bp = ""; for (m in nbp) bp = bp (bp == "" ? "" : ", ") m " on " nbp[m]
     bs = ""; for (m in nbs) bs = bs (bs == "" ? "" : ", ") m " on " nbs[m]
-    printf "\nOn these %d scenes lanetrace'"'"'s float32 16-ray packets run at %s of Embree'"'"'s best packet mode and its s15.16 packets at %s; its float32 shadow packets at %s of Embree'"'"'s best shadow mode, s15.16 at %s; its single shadow rays through the wide BVH at %s (float32) and %s (s15.16); single rays at %s (float32) and %s (s15.16) of rtcIntersect1. Through the 8-wide tree the 16-ray packets run at %s (float32) and %s (s15.16) of Embree'"'"'s best packet mode (%s and %s of the binary walk), the shadow packets at %s and %s of its best shadow mode (%s and %s of the binary walk). Embree'"'"'s best packet mode: %s of the scenes; best shadow mode: %s.\n", \
+    printf "\nOn these %d scenes lanetrace'"'"'s float32 16-ray packets run at %s of Embree'"'"'s best packet mode and its s15.16 packets at %s; its float32 shadow packets at %s of Embree'"'"'s best shadow mode, s15.16 at %s; its single shadow rays through the wide BVH at %s (float32) and %s (s15.16); single rays at %s (float32) and %s (s15.16) of rtcIntersect1. Through the 8-wide tree the 16-ray packets run at %s (float32) and %s (s15.16) of Embree'"'"'s best packet mode (%s and %s of the binary walk), the shadow packets at %s and %s of its best shadow mode (%s and %s of the binary walk). Embree'"'"'s best packet mode: %s of the scenes; best shadow mode: %s. With the directions computed in the timed loop (`lanetrace run`'"'"'s way) lanetrace'"'"'s 16-ray packets run at %s of the speed above.\n", \
         ns, range(lo["f32p"], hi["f32p"]), range(lo["q16p"], hi["q16p"]), range(lo["f32s"], hi["f32s"]), range(lo["q16s"], hi["q16s"]), \
         range(lo["f32s1"], hi["f32s1"]), range(lo["q16s1"], hi["q16s1"]), \
         range(lo["f321"], hi["f321"]), range(lo["q161"], hi["q161"]), \
         range(lo["f32pw"], hi["f32pw"]), range(lo["q16pw"], hi["q16pw"]), range(lo["f32bpw"], hi["f32bpw"]), range(lo["q16bpw"], hi["q16bpw"]), \
-        range(lo["f32sw"], hi["f32sw"]), range(lo["q16sw"], hi["q16sw"]), range(lo["f32bsw"], hi["f32bsw"]), range(lo["q16bsw"], hi["q16bsw"]), bp, bs
+        range(lo["f32sw"], hi["f32sw"]), range(lo["q16sw"], hi["q16sw"]), range(lo["f32bsw"], hi["f32bsw"]), range(lo["q16bsw"], hi["q16bsw"]), bp, bs, range(lo["comp"], hi["comp"])
 }' "$OUT/race.kv" >"$OUT/race.md"
 
 echo "race-doc: $OUT/race.md" >&2

@@ -256,7 +256,7 @@ static void check_render_q16(const lt_render_ops_t *ops, const lt_scene_t *s, co
     assert_ptr_equal(ops->tris(s), s->tq);
     assert_int_equal(ops->tri_bytes, sizeof(lt_tri_q16_t));
     check_bvh_build(ops, s, &ba, &aa, &bb, &ab, 1);
-    k = ops->camera_packet(c, 16, 8, &ra);
+    k = ops->camera_packet(c, NULL, 16, 8, &ra);
     assert_int_equal(k, lt_camera_packet_q16(c, 16, 8, &rb));
     assert_memory_equal(&ra, &rb, sizeof ra);
     ops->bvh_trace16(&ba, ops->tris(s), &ra, k, &ha);
@@ -315,7 +315,7 @@ static void check_render_f32(const lt_render_ops_t *ops, const lt_scene_t *s, co
     assert_ptr_equal(ops->tris(s), s->tf);
     assert_int_equal(ops->tri_bytes, sizeof(lt_tri_f32_t));
     check_bvh_build(ops, s, &ba, &aa, &bb, &ab, 0);
-    k = ops->camera_packet(c, 16, 8, &ra);
+    k = ops->camera_packet(c, NULL, 16, 8, &ra);
     assert_int_equal(k, lt_camera_packet_f32(c, 16, 8, &rb));
     assert_memory_equal(&ra, &rb, sizeof ra);
     ops->bvh_trace16(&ba, ops->tris(s), &ra, k, &ha);
@@ -401,6 +401,92 @@ static void test_render_ops_agree(void **state)
             lt_accel_free(a);
         }
         lt_frame_free(&f);
+    }
+    lt_scene_free(&s);
+    lt_mesh_free(&m);
+}
+
+/* lt_accel_set_view: the table holds lt_camera_tile_dirs's directions (and lt_camera_dir's), and
+ * primary packets, single rays, shadow packets and depth peeling read from it give the frames and
+ * counts they give computing them (41x23: partial tiles at both edges); a camera other than the
+ * table's computes its own (a table would give the wrong rays). */
+static void test_view_table(void **state)
+{
+    lt_mesh_t m;
+    lt_scene_t s;
+    lt_camera_t c, c2;
+    lt_diag_t diag;
+    double *tab, light[3];
+    uint32_t tx, ty, nchk = 0;
+    size_t np;
+    int g, i;
+    (void)state;
+    memset(&m, 0, sizeof m);
+    assert_int_equal(lt_mesh_load("scenes/teapot.obj", &m, &diag), 0);
+    assert_int_equal(lt_scene_prepare(&m, &s, &diag), 0);
+    lt_camera_default(&s, 41, 23, &c);
+    np = (size_t)c.width * c.height;
+    c2 = c;
+    c2.eye[0] += 0.25 * s.radius;
+    lt_scene_light(&s, NULL, light);
+    tab = lt_camera_dirs_table(&c);
+    assert_non_null(tab);
+    for (ty = 0; ty < c.height; ty += 4)
+        for (tx = 0; tx < c.width; tx += 4) {
+            double ax[16], ay[16], az[16], bx[16], by[16], bz[16], d[3];
+            unsigned ka = lt_camera_tile_dirs(&c, tx, ty, ax, ay, az);
+            assert_int_equal(lt_camera_tile_dirs_tab(&c, tab, tx, ty, bx, by, bz), ka);
+            assert_memory_equal(ax, bx, sizeof ax);
+            assert_memory_equal(ay, by, sizeof ay);
+            assert_memory_equal(az, bz, sizeof az);
+            for (i = 0; i < 16; i++)
+                if ((ka >> i) & 1u) {
+                    lt_camera_dir(&c, tx + (uint32_t)(i % 4), ty + (uint32_t)(i / 4), d);
+                    assert_true(d[0] == bx[i] && d[1] == by[i] && d[2] == bz[i]);
+                    nchk++;
+                }
+        }
+    assert_int_equal(nchk, np);
+    free(tab);
+    for (g = 0; g < 2; g++) {
+        const lt_path_info_t *p = lt_paths_find(g == 0 ? "q16" : "f32", LT_PATHS_OBJECT);
+        lt_accel_t *a = lt_accel_build(&s, "bvh", p, &diag);
+        lt_frame_t f[4], v[4];
+        uint32_t n[2], o[2], nv[2], ov[2];
+        int pass;
+        assert_non_null(a);
+        for (i = 0; i < 4; i++) {
+            assert_int_equal(lt_frame_alloc(&f[i], c.width, c.height, &diag), 0);
+            assert_int_equal(lt_frame_alloc(&v[i], c.width, c.height, &diag), 0);
+        }
+        for (pass = 0; pass < 2; pass++) {
+            lt_frame_t *x = pass == 0 ? f : v;
+            uint32_t *xn = pass == 0 ? n : nv, *xo = pass == 0 ? o : ov;
+            assert_int_equal(lt_accel_set_view(a, pass == 0 ? NULL : &c, &diag), 0);
+            lt_render_primary(&s, a, &c, &x[0], NULL);
+            assert_int_equal(lt_render_primary1(&s, a, &c, &x[1], &diag), 0);
+            assert_int_equal(lt_render_peel(&s, a, &c, &x[0], &x[2], &diag), 0);
+            assert_int_equal(
+                lt_render_shadows(&s, a, &c, &x[0], light, &xn[0], &xo[0], NULL, &diag), 0);
+            assert_int_equal(
+                lt_render_shadows1(&s, a, &c, &x[0], light, &xn[1], &xo[1], NULL, &diag), 0);
+            lt_render_primary(&s, a, &c2, &x[3], NULL); /* not the table's camera */
+        }
+        for (i = 0; i < 4; i++) {
+            assert_memory_equal(f[i].id, v[i].id, np * sizeof *f[i].id);
+            assert_memory_equal(f[i].t, v[i].t, np * sizeof *f[i].t);
+        }
+        assert_int_not_equal(lt_frame_hash(&f[3]), lt_frame_hash(&f[0]));
+        assert_true(n[0] == nv[0] && o[0] == ov[0] && n[1] == nv[1] && o[1] == ov[1]);
+        assert_true(n[0] > 0 && o[0] > 0);
+        printf("  view table %s: %u pixels' directions equal; primary, single, peel, other camera "
+               "equal; %u shadow rays, %u occluded both ways\n",
+               p->name, nchk, n[0], o[0]);
+        for (i = 0; i < 4; i++) {
+            lt_frame_free(&f[i]);
+            lt_frame_free(&v[i]);
+        }
+        lt_accel_free(a);
     }
     lt_scene_free(&s);
     lt_mesh_free(&m);
@@ -580,6 +666,7 @@ int main(void)
         cmocka_unit_test(test_lists),                  cmocka_unit_test(test_scene_file_agrees),
         cmocka_unit_test(test_conversions),            cmocka_unit_test(test_ops_complete),
         cmocka_unit_test(test_render_ops_agree),       cmocka_unit_test(test_frusta_ops_golden),
+        cmocka_unit_test(test_view_table),
         cmocka_unit_test(test_screen_ops_agree),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
