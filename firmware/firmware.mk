@@ -65,6 +65,7 @@ $(B)/gen/fwc_%.c: sim/machines/%.def firmware/include/lt/lt_ops.def Makefile
 	  echo '#define LT_MACHINE(id, name, desc, clock_mhz, lanes) const char lt_fwc_machine[] = name;'; \
 	  echo '#define LT_MACHINE_CACHE(level, spec, hit)'; echo '#define LT_MACHINE_MEM(cycles)'; \
 	  echo '#define LT_MACHINE_QT(enc, build, rest)'; echo '#define LT_OP_COST(op, lat, iss)'; \
+	  echo '#define LT_MACHINE_LANEWISE()'; \
 	  echo '#include "$*.def"'; echo '#undef LT_MACHINE'; echo '#undef LT_OP_COST'; \
 	  echo '#define LT_MACHINE(id, name, desc, clock_mhz, lanes)'; \
 	  echo '#define LT_OP_COST(op, lat, iss) [LT_OP_##op] = iss,'; \

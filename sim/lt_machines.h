@@ -8,6 +8,9 @@
  *   LT_MACHINE_CACHE(L1, "sets:ways:line", hit_cycles)         L1 required
  *   LT_MACHINE_CACHE(L2, "sets:ways:line" or NULL, hit_cycles) optional; NULL: no L2
  *   LT_MACHINE_MEM(cycles)                                     a memory access
+ *   LT_MACHINE_LANEWISE()                                      optional: the target's firmware
+ *       runs the packet kernels that have a lane-by-lane form that way (LT_LANEWISE(), lt_v16.h:
+ *       the Cortex-M4 DSP backend), so the simulator charges that form when modelling it
  *   LT_OP_COST(op, latency, issue)                             every LT_OP of lt/lt_ops.def
  *   LT_MACHINE_QT(enc, build, rest)                            n64, n32 and f32: simulated cycles
  *       per pixel of a quadtree reprojection, build per source pixel and the rest (ray set-up,
@@ -28,6 +31,9 @@
 #ifndef LT_MACHINE_MEM
 #define LT_MACHINE_MEM(cycles)
 #endif
+#ifndef LT_MACHINE_LANEWISE
+#define LT_MACHINE_LANEWISE()
+#endif
 #ifndef LT_OP_COST
 #define LT_OP_COST(op, latency, issue)
 #endif
@@ -43,6 +49,7 @@
 #undef LT_MACHINE
 #undef LT_MACHINE_CACHE
 #undef LT_MACHINE_MEM
+#undef LT_MACHINE_LANEWISE
 #undef LT_OP_COST
 #undef LT_MACHINE_QT
 #undef LT_MACHINE_END

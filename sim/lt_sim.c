@@ -23,6 +23,7 @@
                                                  .lanes = (ln),
 #define LT_MACHINE_CACHE(level, spec, hit) LT_MACHINE_##level(spec, hit)
 #define LT_MACHINE_MEM(cycles) .mem = (cycles),
+#define LT_MACHINE_LANEWISE() .lanewise = 1,
 #define LT_OP_COST(op, lat, iss) .latency[LT_OP_##op] = (lat), .issue[LT_OP_##op] = (iss),
 #define LT_MACHINE_END };
 #include "lt_machines.h"
@@ -64,6 +65,10 @@ static lt_phase_t cur_phase = LT_PH_OTHER;
 uint64_t *lt__sim_cur = ctr[LT_PH_OTHER];
 
 static const lt_machine_t *mach;
+
+/* LT_LANEWISE() in the simulator build (lt_v16.h): the machine modelled runs the lane-by-lane
+ * forms (its file's LT_MACHINE_LANEWISE()). */
+int lt__sim_lanewise(void) { return mach != NULL && mach->lanewise; }
 static lt_cache_t l1, l2;
 static int have_l1, have_l2;
 static char l1_spec[32], l2_spec[32];

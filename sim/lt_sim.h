@@ -17,6 +17,7 @@ typedef struct lt_machine {
     const char *desc;             /* one line for reports */
     uint32_t clock_mhz;           /* modelled clock */
     uint32_t lanes;               /* SIMD lanes */
+    int lanewise;                 /* LT_MACHINE_LANEWISE(): charge the lane-by-lane forms */
     uint16_t latency[LT_OP__COUNT]; /* cycles until a result is usable (informational) */
     uint16_t issue[LT_OP__COUNT];   /* cycles the op occupies its unit: what is charged */
     const char *l1;               /* "sets:ways:line" */

@@ -236,8 +236,14 @@ static void test_known_values(void **state)
     assert_true(m->issue[LT_OP_FADD] > m->issue[LT_OP_VALU]);
     assert_true(m->issue[LT_OP_FMUL] > m->issue[LT_OP_VMUL]);
     assert_true(m->issue[LT_OP_FCMP] > m->issue[LT_OP_VCMP]);
-    m = tm_find("mcu-m4");
-    assert_true(m->issue[LT_OP_FMUL] < m->issue[LT_OP_VMUL]); /* there the FPU side is cheap */
+    {
+        /* the Cortex-M4F's FPU against RV32's soft float: the same 16-lane float ops far cheaper
+           (the fitted integer classes are effective costs, not compared with the float rows) */
+        const tm_machine_t *rv = m;
+        m = tm_find("mcu-m4");
+        assert_true(2 * m->issue[LT_OP_FMUL] < rv->issue[LT_OP_FMUL]);
+        assert_true(2 * m->issue[LT_OP_FADD] < rv->issue[LT_OP_FADD]);
+    }
 }
 
 /* ---- the names every build knows ---------------------------------------------------------------- */

@@ -71,6 +71,35 @@ static void q_slab_fix(lt_mask16_t par, lt_mask16_t rsat, lt_vq16_t o, lt_vq30_t
 #define LTN_W_CMPLE_M lt_vql32_cmple_m
 #define LTN_TDIV_M lt__tri_tdiv16_q16
 #define LTN_SLAB_FIX q_slab_fix
+/* The slab test lane by lane (LT_LANEWISE(), lt_v16.h), for lanes none of which takes the fix-up:
+ * each lane the lane ops' arithmetic in their order, in registers. */
+static lt_mask16_t q_slab16_lanes(const lt_ray16_q16_t *r, lt_mask16_t k, const lt_aabb_q16_t *b,
+                                  lt_vq16_t *tnear)
+{
+    const lt_vq16_t *o[3] = {&r->ox, &r->oy, &r->oz}, *rd[3] = {&r->rx, &r->ry, &r->rz};
+    unsigned hit = 0, i, a;
+    LT_CHARGE(ISECT_SLAB_LANES);
+    LT_CHARGE_N(ISECT_SLAB_LANE, lt__popcount32(k));
+    for (i = 0; i < LT_LANES; i++) {
+        lt_q16_t tn, tf;
+        if (((unsigned)k >> i & 1u) == 0)
+            continue;
+        tn = r->tmin.l[i];
+        tf = r->tmax.l[i];
+        for (a = 0; a < 3; a++) {
+            lt_q16_t t0 = lt__q16_mul_sat(lt__q16_sub_sat(b->lo[a], o[a]->l[i]), rd[a]->l[i]);
+            lt_q16_t t1 = lt__q16_mul_sat(lt__q16_sub_sat(b->hi[a], o[a]->l[i]), rd[a]->l[i]);
+            tn = lt__q16_max(tn, lt__q16_min(t0, t1));
+            tf = lt__q16_min(tf, lt__q16_max(t0, t1));
+        }
+        if (tn <= tf) {
+            tnear->l[i] = tn;
+            hit |= 1u << i;
+        }
+    }
+    return (lt_mask16_t)hit;
+}
+#define LTN_SLAB16_LANES q_slab16_lanes
 #include "lt_isect.inc"
 #include "numerics/lt_traits_undef.h"
 #undef LTN_QV
@@ -90,6 +119,7 @@ static void q_slab_fix(lt_mask16_t par, lt_mask16_t rsat, lt_vq16_t o, lt_vq30_t
 #undef LTN_W_CMPLE_M
 #undef LTN_TDIV_M
 #undef LTN_SLAB_FIX
+#undef LTN_SLAB16_LANES
 
 /* ---- float32 -------------------------------------------------------------------------------- */
 #if LT_CFG_FLOAT32

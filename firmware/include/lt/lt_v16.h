@@ -59,6 +59,25 @@ typedef struct { float l[LT_LANES]; } lt_vf32_t;    /* 16 x IEEE binary32, 64 by
 #define LT__MVE_BLEND32(k, a, b, r) ((void)(k), (void)(a), (void)(b), (void)(r))
 #endif
 
+/* LT_LANEWISE(): whether the packet kernels that have a lane-by-lane form (the s15.16 slab test,
+ * lt_isect.c, and the watertight test, lt_wt.c) take it - each lane's arithmetic of the lane ops,
+ * in registers, over the lanes of the mask only: what a core with one lane and the DSP
+ * extension does cheapest (the lane ops pass 64- and 128-byte vectors by value and compute all 16
+ * lanes). Builds that count nothing take it on the Cortex-M4 DSP backend (__ARM_FEATURE_DSP
+ * without Helium, not LT_LANES_PORTABLE), and so does its on-target counting build (handler
+ * mode: it charges the lane-by-lane recipes); the simulator takes it when the machine it models
+ * says so (LT_MACHINE_LANEWISE() in its file: mcu-m4), so its charges follow the code the target
+ * runs. Elsewhere (x86 backends, Helium, the portable builds, RV32) the lane ops. The same bits
+ * either way (golden vectors and scene hashes compare the builds). */
+#if LT_COST_MODE == LT_COST_SIM
+#define LT_LANEWISE() lt__sim_lanewise()
+#elif !defined(LT_LANES_PORTABLE) && !LT__X86_LANES && defined(__ARM_FEATURE_DSP) && \
+    !defined(__ARM_FEATURE_MVE)
+#define LT_LANEWISE() 1
+#else
+#define LT_LANEWISE() 0
+#endif
+
 /* ---- masks --------------------------------------------------------------------------------- */
 
 /* Mask queries. Format: 16-bit mask. Cost: MASK x1 each. */
