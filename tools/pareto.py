@@ -264,8 +264,10 @@ def main():
       "one beats in cycles and both errors at once. The MCU models are fitted on the firmware's "
       "BVH walks with the exact watertight test, frusta and quadtree; what else they price (kd, "
       "grid, chunks, bvhq, `isect mt`, `isect wt32`) they extrapolate by op class, and for "
-      "`wt32` the targets measure a larger saving on 16-ray packets than the models price "
-      "(docs/watertight.md, \"A narrower test\", measured by `make test`).\n")
+      "`wt32` the models over-price its 16-ray packets by 19-48% against the targets "
+      "(docs/firmware.md, \"Cycle models\"; docs/watertight.md, \"A narrower test\"). "
+      "mcu-m4 prices the exact test's packets lane by lane, as the Cortex-M4 build runs them "
+      "(docs/firmware.md, \"Lane by lane on Cortex-M4\").\n")
     ntris = []
     for p, doc in zip(sys.argv[2:], docs):
         name = os.path.splitext(os.path.basename(doc["input"]))[0]
