@@ -82,7 +82,8 @@ typedef enum lt_recipe {
 extern uint64_t *lt__sim_cur;
 void lt_sim_mem(const void *p, uint32_t bytes, int rw);
 lt_phase_t lt_sim_phase(lt_phase_t ph);
-/* 1 when the machine modelled has one lane (LT_LANEWISE(), lt_v16.h). */
+/* 1 when the machine modelled runs the lane-by-lane kernels (LT_MACHINE_LANEWISE() in its file;
+ * LT_LANEWISE(), lt_v16.h). */
 int lt__sim_lanewise(void);
 #define LT_COST(op, n) ((void)(lt__sim_cur[LT_OP_##op] += (uint64_t)(n)))
 #define LT_EVENT(ev, n) ((void)(lt__sim_cur[(int)LT_OP__COUNT + LT_EV_##ev] += (uint64_t)(n)))
