@@ -67,8 +67,8 @@ uint64_t *lt__sim_cur = ctr[LT_PH_OTHER];
 static const lt_machine_t *mach;
 
 /* LT_LANEWISE() in the simulator build (lt_v16.h): the machine modelled runs the lane-by-lane
- * forms (its file's LT_MACHINE_LANEWISE()). */
-int lt__sim_lanewise(void) { return mach != NULL && mach->lanewise; }
+ * forms (its file's LT_MACHINE_LANEWISE()); set by lt_sim_init. */
+int lt__sim_lanewise;
 static lt_cache_t l1, l2;
 static int have_l1, have_l2;
 static char l1_spec[32], l2_spec[32];
@@ -145,6 +145,7 @@ int lt_sim_init(const lt_machine_t *m, const char *l1s, const char *l2s, lt_diag
     lt_cache_cfg_t c1, c2;
     lt_sim_shutdown();
     mach = m;
+    lt__sim_lanewise = m->lanewise;
     if (l1s == NULL)
         l1s = m->l1;
     if (l2s == NULL)

@@ -415,13 +415,16 @@ typedef struct rd_job {
     uint32_t n[LT_PAR_MAX_THREADS], occ[LT_PAR_MAX_THREADS]; /* shadows: per-worker counts */
 } rd_job_t;
 
-/* The job's scratch packets for up to lt_par_workers(ntasks, 1) workers; returns how many are
- * ready (at least 1: worker 0 has the accel's). */
-static unsigned rd_open(rd_job_t *j, const lt_accel_t *a, uint32_t ntasks)
+/* The job over camera c (its directions from the accel's table when made for c) and its scratch
+ * packets for up to lt_par_workers(ntasks, 1) workers; returns how many are ready (at least 1:
+ * worker 0 has the accel's). */
+static unsigned rd_open(rd_job_t *j, const lt_accel_t *a, const lt_camera_t *c, uint32_t ntasks)
 {
     unsigned w = lt_par_workers(ntasks, 1), i;
     memset(j, 0, sizeof *j);
     j->a = a;
+    j->c = c;
+    j->tab = view_tab(a, c);
     j->ray[0] = a->ray;
     for (i = 1; i < w; i++) {
         if ((j->ray[i] = alloc64(a->ops->ray16_bytes)) == NULL)
@@ -478,10 +481,8 @@ void lt_render_primary(const lt_scene_t *s, const lt_accel_t *a, const lt_camera
                        lt_frame_t *f, void (*progress)(double done))
 {
     rd_job_t j;
-    unsigned w = rd_open(&j, a, tile_rows(c));
+    unsigned w = rd_open(&j, a, c, tile_rows(c));
     (void)s;
-    j.c = c;
-    j.tab = view_tab(a, c);
     j.f = f;
     (void)lt_par_run(tile_rows(c), w, primary_row, &j, progress);
     rd_close(&j);
@@ -675,9 +676,7 @@ int lt_render_primary1(const lt_scene_t *s, const lt_accel_t *a, const lt_camera
     (void)s;
     if (wide_tree(a, diag) != 0)
         return -1;
-    w = rd_open(&j, a, nt);
-    j.c = c;
-    j.tab = view_tab(a, c);
+    w = rd_open(&j, a, c, nt);
     j.f = f;
     (void)lt_par_run(nt, w, lanes ? primary1_lanes_row : primary1_row, &j, NULL);
     rd_close(&j);
@@ -788,10 +787,8 @@ static int shadows(const lt_scene_t *s, const lt_accel_t *a, const lt_camera_t *
     }
     if (single && wide_tree(a, diag) != 0)
         return -1;
-    w = rd_open(&j, a, tile_rows(c));
+    w = rd_open(&j, a, c, tile_rows(c));
     j.single = single;
-    j.c = c;
-    j.tab = view_tab(a, c);
     j.prev = f;
     j.light = light;
     j.eps = 1e-4 * s->radius;
@@ -866,9 +863,7 @@ int lt_render_peel(const lt_scene_t *s, const lt_accel_t *a, const lt_camera_t *
         lt_diag_fail(diag, "depth peeling needs a hierarchy (bvh, bvhq, kd, grid)");
         return -1;
     }
-    w = rd_open(&j, a, tile_rows(c));
-    j.c = c;
-    j.tab = view_tab(a, c);
+    w = rd_open(&j, a, c, tile_rows(c));
     j.prev = prev;
     j.f = next;
     (void)lt_par_run(tile_rows(c), w, peel_row, &j, NULL);

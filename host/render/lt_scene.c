@@ -221,6 +221,17 @@ void lt_camera_dir(const lt_camera_t *c, uint32_t x, uint32_t y, double d[3])
     normalize(d);
 }
 
+/* The lanes of the 4x4 tile at (tx, ty) whose pixel is on the image. */
+static unsigned tile_lanes(const lt_camera_t *c, uint32_t tx, uint32_t ty)
+{
+    unsigned k = 0;
+    int i;
+    for (i = 0; i < LT_LANES; i++)
+        k |= (unsigned)(tx + (uint32_t)(i % 4) < c->width && ty + (uint32_t)(i / 4) < c->height)
+             << i;
+    return k;
+}
+
 /* Written as lane loops over doubles that the compiler vectorises (IEEE +, x, / and sqrt are
  * correctly rounded in any width; the build keeps contraction off), so bit-identical to
  * lt_camera_dir. */
@@ -233,7 +244,7 @@ unsigned lt_camera_tile_dirs(const lt_camera_t *c, uint32_t tx, uint32_t ty, dou
      * so loops over them stay scalar (48 divides a tile, measured as most of the function) */
     double u[LT_LANES], v[LT_LANES], l[LT_LANES], ex[LT_LANES], ey[LT_LANES], ez[LT_LANES];
     double uc[4], vr[4];
-    unsigned k = 0;
+    unsigned k;
     int i;
     /* u depends on the column only and v on the row: 4 + 4 divides, not 16 + 16 */
     for (i = 0; i < 4; i++) {
@@ -257,15 +268,12 @@ unsigned lt_camera_tile_dirs(const lt_camera_t *c, uint32_t tx, uint32_t ty, dou
         ey[i] /= l[i];
         ez[i] /= l[i];
     }
-    for (i = 0; i < LT_LANES; i++) {
-        uint32_t x = tx + (uint32_t)(i % 4), y = ty + (uint32_t)(i / 4);
-        if (x < c->width && y < c->height) {
-            k |= 1u << i;
-        } else {
+    k = tile_lanes(c, tx, ty);
+    for (i = 0; i < LT_LANES; i++)
+        if (((k >> i) & 1u) == 0) {
             ex[i] = ey[i] = 0.0;
             ez[i] = 1.0;
         }
-    }
     memcpy(dx, ex, sizeof ex);
     memcpy(dy, ey, sizeof ey);
     memcpy(dz, ez, sizeof ez);
@@ -294,18 +302,13 @@ unsigned lt_camera_tile_dirs_tab(const lt_camera_t *c, const double *tab, uint32
                                  double dz[LT_LANES])
 {
     const double *p;
-    unsigned k = 0;
-    int i;
     if (tab == NULL)
         return lt_camera_tile_dirs(c, tx, ty, dx, dy, dz);
     p = &tab[((size_t)(ty / 4u) * ((c->width + 3u) / 4u) + tx / 4u) * 3 * LT_LANES];
     memcpy(dx, p, LT_LANES * sizeof *dx);
     memcpy(dy, p + LT_LANES, LT_LANES * sizeof *dy);
     memcpy(dz, p + 2 * LT_LANES, LT_LANES * sizeof *dz);
-    for (i = 0; i < LT_LANES; i++)
-        k |= (unsigned)(tx + (uint32_t)(i % 4) < c->width && ty + (uint32_t)(i / 4) < c->height)
-             << i;
-    return k;
+    return tile_lanes(c, tx, ty);
 }
 
 lt_mask16_t lt_camera_packet_q16(const lt_camera_t *c, uint32_t tx, uint32_t ty, lt_ray16_q16_t *r)

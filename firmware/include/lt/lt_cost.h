@@ -82,9 +82,9 @@ typedef enum lt_recipe {
 extern uint64_t *lt__sim_cur;
 void lt_sim_mem(const void *p, uint32_t bytes, int rw);
 lt_phase_t lt_sim_phase(lt_phase_t ph);
-/* 1 when the machine modelled runs the lane-by-lane kernels (LT_MACHINE_LANEWISE() in its file;
- * LT_LANEWISE(), lt_v16.h). */
-int lt__sim_lanewise(void);
+/* 1 while the machine modelled runs the lane-by-lane kernels (LT_MACHINE_LANEWISE() in its file;
+ * LT_LANEWISE(), lt_v16.h); set with the machine. */
+extern int lt__sim_lanewise;
 #define LT_COST(op, n) ((void)(lt__sim_cur[LT_OP_##op] += (uint64_t)(n)))
 #define LT_EVENT(ev, n) ((void)(lt__sim_cur[(int)LT_OP__COUNT + LT_EV_##ev] += (uint64_t)(n)))
 #define LT_MEM(p, bytes, rw) lt_sim_mem((const void *)(p), (uint32_t)(bytes), (rw))

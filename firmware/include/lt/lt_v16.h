@@ -70,7 +70,7 @@ typedef struct { float l[LT_LANES]; } lt_vf32_t;    /* 16 x IEEE binary32, 64 by
  * runs. Elsewhere (x86 backends, Helium, the portable builds, RV32) the lane ops. The same bits
  * either way (golden vectors and scene hashes compare the builds). */
 #if LT_COST_MODE == LT_COST_SIM
-#define LT_LANEWISE() lt__sim_lanewise()
+#define LT_LANEWISE() (lt__sim_lanewise != 0)
 #elif !defined(LT_LANES_PORTABLE) && !LT__X86_LANES && defined(__ARM_FEATURE_DSP) && \
     !defined(__ARM_FEATURE_MVE)
 #define LT_LANEWISE() 1
