@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # fw_rays.sh - instructions per ray on the firmware targets (issue #13 item 3; docs/firmware.md,
 # "Scene blobs"): runs build/fw/<T>/scene-<S>.elf under QEMU (-icount shift=0) on cm4, cm55 (its
-# portable lane loops and its Helium backend) and rv32 with the lt_icount plugin and prints a Markdown table: the image's own per-ray counts of
+# portable lane loops, and its Helium backend with the DSP lane-by-lane packet tests) and rv32
+# with the lt_icount plugin and prints a Markdown table: the image's own per-ray counts of
 # each stage (lt_fw_ticks: exact on rv32, SysTick-scaled on Arm) and the plugin's exact total of
 # the whole run against the sum of the stages the image timed. Needs `make firmware plugin`.
 # With the frusta block image (build/fw/<T>/scene-sibenik.elf, made where ../shared is) a second
@@ -33,7 +34,7 @@ run() {
     rm -f "$tmp/cnt"
     timeout 300 ${!q} "$1" -plugin "$B/plugin/lt_icount.so,out=$tmp/cnt" </dev/null >"$tmp/out"
 }
-label() { case $1 in cm55p) echo "cm55 portable" ;; cm55) echo "cm55 Helium" ;; cm4p) echo "cm4 portable" ;; cm4) echo "cm4 DSP" ;; *) echo "$1" ;; esac; }
+label() { case $1 in cm55p) echo "cm55 portable" ;; cm55) echo "cm55 Helium+DSP" ;; cm4p) echo "cm4 portable" ;; cm4) echo "cm4 DSP" ;; *) echo "$1" ;; esac; }
 TARGETS="cm4p cm4 cm55p cm55 rv32"
 echo "| scene | target | packets: primary | packets: shadow | single rays: primary | single rays: shadow | blob checks | whole run (plugin) | timed stages / plugin |"
 echo "|---|---|---|---|---|---|---|---|---|"

@@ -264,10 +264,11 @@ def main():
       "one beats in cycles and both errors at once. The MCU models are fitted on the firmware's "
       "BVH walks with the exact watertight test, frusta and quadtree; what else they price (kd, "
       "grid, chunks, bvhq, `isect mt`, `isect wt32`) they extrapolate by op class, and for "
-      "`wt32` the models over-price its 16-ray packets by 19-48% against the targets "
+      "`wt32` the models over-price its 16-ray packets by 19-71% against the targets "
       "(docs/firmware.md, \"Cycle models\"; docs/watertight.md, \"A narrower test\"). "
-      "mcu-m4 prices the exact test's packets lane by lane, as the Cortex-M4 build runs them "
-      "(docs/firmware.md, \"Lane by lane on Cortex-M4\").\n")
+      "mcu-m4 and mcu-m55 price the exact test's packets lane by lane, as the Cortex-M4 and "
+      "Cortex-M55 builds run them (docs/firmware.md, \"Lane by lane on Cortex-M4 and "
+      "Cortex-M55\").\n")
     ntris = []
     for p, doc in zip(sys.argv[2:], docs):
         name = os.path.splitext(os.path.basename(doc["input"]))[0]

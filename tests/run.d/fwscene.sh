@@ -3,7 +3,9 @@
 # makes the same blob twice (byte for byte) and its trace agrees with the double-precision
 # reference tracer; build/fw/<T>/scene-<S>.elf under QEMU on cm4, cm55 and rv32 prints every tile
 # line and the image lines exactly as `lanetrace pack --in` does on the host, single rays equal
-# packets; the instructions per ray each target counted are printed. Bad blobs (truncated, damaged,
+# packets; the instructions per ray each target counted are printed; on cm4 and cm55 the portable
+# lane ops' bunny image gives the same lines and at least 2x the backend's instructions per packet
+# ray. Bad blobs (truncated, damaged,
 # not a blob) and bad flags get a message naming the file or limit. The shared dragon at 256x256
 # when ../shared exists (SKIP otherwise, FAIL under CI=true).
 FS_NAT="$HOSTBIN/lanetrace-native"
@@ -44,6 +46,25 @@ for s in bunny teapot; do
             bash -c "[ $rc -eq 0 ] && [ -s '$tmp/fs-$s.want' ] && cmp -s '$tmp/fs-$s.want' '$tmp/fs-$s.$t.got'"
         grep -E '^instr' "$tmp/fs-$s.$t" | sed "s/^/     $s: /"
     done
+done
+
+# ---- the lane backends against the portable lane ops (LT_LANES_PORTABLE), the bunny ----
+# cm4 and cm55 run the slab and watertight packet tests lane by lane (LT_LANEWISE(), lt_v16.h) and
+# cm55 its other lane ops in Helium; the -portable images run the portable lane loops. The same
+# lines, and (issue #13 item 3) the backends' 16-ray packets at least 2x fewer instructions per
+# ray, counted on the target under -icount (deterministic).
+fs_pk() { # file, primary|shadow: packets' instructions per ray
+    awk -v w="$2" '/^instr .* packets primary/ { for (i = 1; i < NF; i++) if ($i == w) print $(i + 1) }' "$1"
+}
+for t in cm4 cm55; do
+    qvar="QEMU_$t"
+    timeout 300 ${!qvar} "$B/fw/$t/scene-bunny-portable.elf" </dev/null >"$tmp/fs-p.$t" 2>&1
+    rc=$?
+    grep -E '^(tile|image)' "$tmp/fs-p.$t" >"$tmp/fs-p.$t.got"
+    bp=$(fs_pk "$tmp/fs-bunny.$t" primary) bs=$(fs_pk "$tmp/fs-bunny.$t" shadow)
+    pp=$(fs_pk "$tmp/fs-p.$t" primary) ps=$(fs_pk "$tmp/fs-p.$t" shadow)
+    check "scene-bunny-portable.elf on $t: its lines = the host's (rc $rc); packets $pp / $ps instructions per primary / shadow ray, the backend image's $bp / $bs: $(awk -v a="$pp" -v b="$bp" -v c="$ps" -v d="$bs" 'BEGIN { if (b > 0 && d > 0) printf "%.2fx / %.2fx", a / b, c / d }') fewer (want >= 2x)" \
+        bash -c "[ $rc -eq 0 ] && cmp -s '$tmp/fs-bunny.want' '$tmp/fs-p.$t.got' && awk -v a='$pp' -v b='$bp' -v c='$ps' -v d='$bs' 'BEGIN { exit !(b > 0 && d > 0 && a >= 2 * b && c >= 2 * d) }'"
 done
 
 # ---- the bunny with the s15.16 grid test (LT_ISECT_WT32): the blob flag, objw images ----
