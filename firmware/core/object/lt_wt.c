@@ -408,11 +408,12 @@ static void memset_sh(uint8_t sh[LT_LANES], uint8_t v)
         sh[i] = v;
 }
 
-/* The packet test lane by lane (LT_LANEWISE(), lt_v16.h: the Cortex-M4 and Cortex-M55 DSP builds,
- * and the simulator when it models mcu-m4 or mcu-m55), after its vertices p and zero-area test: each lane of k (none
- * bad) computes what its lane of wt_edges computes - the same picks, saturating subtracts and
- * products, the exact int64 edges and their signs (wt1_edges64), T and t (wt1_t64) - so the same
- * bits (the other builds keep the lane ops; golden vectors and scene hashes compare them). The
+/* The packet test lane by lane (LT_LANEWISE(), lt_v16.h: the Cortex-M4 and Cortex-M55 DSP
+ * builds, and the simulator when it models mcu-m4 or mcu-m55), after its vertices p and zero-area
+ * test: each lane of k (none bad) computes what its lane of wt_edges computes - the same picks,
+ * saturating subtracts and products, the exact int64 edges and their signs (wt1_edges64), T and t
+ * (wt1_t64) - so the same bits (the other builds keep the lane ops; golden vectors and scene
+ * hashes compare them). The
  * lane ops pass 64- and 128-byte vectors by value and compute all 16 lanes (6,384 instructions
  * per 16-ray test on the bunny's Cortex-M55 image, most of them copies; docs/firmware.md, "Lane
  * by lane"). Returns the lanes that meet, t written for them. */

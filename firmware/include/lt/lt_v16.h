@@ -66,11 +66,11 @@ typedef struct { float l[LT_LANES]; } lt_vf32_t;    /* 16 x IEEE binary32, 64 by
  * lanes). Builds that count nothing take it on the Arm DSP backends (__ARM_FEATURE_DSP, not
  * LT_LANES_PORTABLE): Cortex-M4, and Cortex-M55, whose Helium lane ops keep every other kernel
  * (the bunny's packets: 4.0x fewer instructions than the portable lane loops there, the Helium
- * lane ops alone 1.5x; docs/firmware.md, "Lane by lane"); so does the Cortex-M4 on-target
- * counting build (handler mode: it charges the lane-by-lane recipes). The simulator takes it when the machine it models says so (LT_MACHINE_LANEWISE() in
- * its file: mcu-m4, mcu-m55), so its charges follow the code the target runs. Elsewhere (x86
- * backends, the portable builds, RV32) the lane ops. The same bits either way (golden vectors and
- * scene hashes compare the builds). */
+ * lane ops alone 1.5x; docs/firmware.md, "Lane by lane"); so do their on-target counting builds
+ * (handler mode: they charge the lane-by-lane recipes). The simulator takes it when the machine
+ * it models says so (LT_MACHINE_LANEWISE() in its file: mcu-m4, mcu-m55), so its charges follow
+ * the code the target runs. Elsewhere (x86 backends, the portable builds, RV32) the lane ops. The
+ * same bits either way (golden vectors and scene hashes compare the builds). */
 #if LT_COST_MODE == LT_COST_SIM
 #define LT_LANEWISE() (lt__sim_lanewise != 0)
 #elif !defined(LT_LANES_PORTABLE) && !LT__X86_LANES && defined(__ARM_FEATURE_DSP)
