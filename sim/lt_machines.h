@@ -10,7 +10,8 @@
  *   LT_MACHINE_MEM(cycles)                                     a memory access
  *   LT_MACHINE_LANEWISE()                                      optional: the target's firmware
  *       runs the packet kernels that have a lane-by-lane form that way (LT_LANEWISE(), lt_v16.h:
- *       the Cortex-M4 DSP backend), so the simulator charges that form when modelling it
+ *       the Arm DSP builds, Cortex-M4 and Cortex-M55), so the simulator charges that form when
+ *       modelling it
  *   LT_OP_COST(op, latency, issue)                             every LT_OP of lt/lt_ops.def
  *   LT_MACHINE_QT(enc, build, rest)                            n64, n32 and f32: simulated cycles
  *       per pixel of a quadtree reprojection, build per source pixel and the rest (ray set-up,

@@ -5,8 +5,8 @@
 # line and the image lines exactly as `lanetrace pack --in` does on the host, single rays equal
 # packets; the instructions per ray each target counted are printed; on cm4 and cm55 the portable
 # lane ops' bunny image gives the same lines and at least 2x the backend's instructions per packet
-# ray. Bad blobs (truncated, damaged,
-# not a blob) and bad flags get a message naming the file or limit. The shared dragon at 256x256
+# ray. Bad blobs (truncated, damaged, not a blob) and bad flags get a message naming the file or
+# limit. The shared dragon at 256x256
 # when ../shared exists (SKIP otherwise, FAIL under CI=true).
 FS_NAT="$HOSTBIN/lanetrace-native"
 fs_expect() { # name, expected rc, pattern ("" = any), command...

@@ -87,8 +87,8 @@ void lt_ray16_q16_setup(lt_ray16_q16_t *r);
  * Cost: ISECT_SLAB_LOAD (SLOAD x6), ISECT_SLAB_AXIS_FLAG x3 (MASK x3), VALU x19, VMUL x6, VCMP x1,
  * VBCAST x6; + ISECT_Q_SLAB_PAR (VCMP x2, VALU x2) per axis with parallel lanes, ISECT_Q_SLAB_RSAT
  * (VDIV x1) per axis with saturated lanes. Lane by lane (LT_LANEWISE(), lt_v16.h: the
- * Cortex-M4 DSP build, and the simulator modelling mcu-m4) when no lane of k is flagged:
- * ISECT_SLAB_LANES, ISECT_SLAB_LANE per lane of k (the same bits).
+ * Cortex-M4 and Cortex-M55 DSP builds, and the simulator modelling mcu-m4 or mcu-m55) when no lane
+ * of k is flagged: ISECT_SLAB_LANES, ISECT_SLAB_LANE per lane of k (the same bits).
  * Returns: the mask of lanes in k whose ray meets the box within [tmin, tmax]. */
 lt_mask16_t lt_slab16_q16(const lt_ray16_q16_t *r, lt_mask16_t k, const lt_aabb_q16_t *b,
                           lt_vq16_t *tnear);

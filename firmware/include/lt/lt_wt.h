@@ -63,8 +63,8 @@ lt_mask16_t lt_ray16_wt_setup_q16(const lt_ray16_q16_t *r, lt_wt16_q16_t *w);
  * test), BRANCH x1, MASK x27, VBCAST x10, VALU x15, VMUL x12, VMULW x5, VCMP x8; each further
  * permutation in the packet adds up to VBCAST x9, VALU x9, MASK x3-9; a packet with a candidate
  * lane adds VMUL x9, VMULW x10 (exact T), VDIV x2 (128/64 division), VCMP x2, VALU x2, VBCAST x1.
- * Lane by lane (LT_LANEWISE(), lt_v16.h: the Cortex-M4 DSP build, and the simulator modelling
- * mcu-m4): after the vertices and zero-area test, WT_LANE per lane of k and WT_TRI1_T per lane
+ * Lane by lane (LT_LANEWISE(), lt_v16.h: the Cortex-M4 and Cortex-M55 DSP builds, and the
+ * simulator modelling mcu-m4 or mcu-m55): after the vertices and zero-area test, WT_LANE per lane of k and WT_TRI1_T per lane
  * that meets (the same bits).
  * Returns: the mask of lanes whose ray was shortened by this triangle. */
 lt_mask16_t lt_tri16_wt_q16(lt_ray16_q16_t *r, const lt_wt16_q16_t *w, lt_mask16_t k,
