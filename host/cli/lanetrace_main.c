@@ -32,6 +32,7 @@
 #include <math.h>
 #include <signal.h>
 #include <sys/resource.h>
+#include <sys/stat.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -53,6 +54,50 @@ static void progress(double done) { lt_progress(done); }
 static void progress_begin(const char *label) { lt_progress_begin(label, quiet); }
 
 static void progress_end(void) { lt_progress_end(); }
+
+/* ---- scene files: the mesh and the outputs they name ---------------------------------------- */
+
+/* The mesh to trace: the scene file's (or --mesh), the bundled teapot when neither names one; a
+ * scene file without "mesh" (a depth image's scene, for `reproject`) is refused, not replaced. */
+static int scene_mesh_or_default(const char *scene, lt_scenefile_t *sf, const char *cmd)
+{
+    if (sf->mesh[0] != '\0')
+        return 0;
+    if (scene != NULL) {
+        fprintf(stderr, "%s %s: %s names no \"mesh\"%s; give --mesh PATH\n", prog, cmd, scene,
+                sf->depth[0] != '\0' ? " (it names a depth image: `lanetrace reproject` "
+                                       "traces it)" : "");
+        return -1;
+    }
+    snprintf(sf->mesh, sizeof sf->mesh, "scenes/teapot.obj");
+    return 0;
+}
+
+/* Whether a and b name the same existing file. */
+static int same_file(const char *a, const char *b)
+{
+    struct stat x, y;
+    return stat(a, &x) == 0 && stat(b, &y) == 0 && x.st_dev == y.st_dev && x.st_ino == y.st_ino;
+}
+
+/* A scene file's output (key "outputs.report" ...) under the checks its command-line option
+ * gets (lt_opt_output_bad), and not one of the scene's inputs. */
+static int scene_output_bad(const char *scene, const char *key, const char *path, const char *ext,
+                            const lt_scenefile_t *sf)
+{
+    char why[384];
+    if (lt_opt_output_bad(ext, path, why, sizeof why)) {
+        fprintf(stderr, "%s: '%s' = \"%s\": %s\n", scene, key, path, why);
+        return -1;
+    }
+    if (same_file(path, scene) || (sf->mesh[0] != '\0' && same_file(path, sf->mesh)) ||
+        (sf->depth[0] != '\0' && same_file(path, sf->depth))) {
+        fprintf(stderr, "%s: '%s' = \"%s\" is one of the scene's inputs; it would be "
+                "overwritten\n", scene, key, path);
+        return -1;
+    }
+    return 0;
+}
 
 /* ---- atomic outputs: a temporary name renamed into place; Ctrl-C removes the temporary ---------- */
 
@@ -76,13 +121,7 @@ static int write_atomic(const char *path, const char *text, lt_diag_t *diag)
         lt_tmp_discard(tmp);
         return -1;
     }
-    if (rename(tmp, path) != 0) {
-        lt_diag_fail(diag, "%s: cannot rename the output into place", path);
-        lt_tmp_discard(tmp);
-        return -1;
-    }
-    lt_tmp_end(tmp);
-    return 0;
+    return lt_tmp_commit(tmp, path, diag);
 }
 
 /* run --rays */
@@ -350,12 +389,18 @@ static int run_settle(run_t *r)
         snprintf(sf->l2, sizeof sf->l2, "%s", r->l2);
     if (r->mesh_over != NULL)
         snprintf(sf->mesh, sizeof sf->mesh, "%s", r->mesh_over);
-    if (sf->mesh[0] == '\0')
-        snprintf(sf->mesh, sizeof sf->mesh, "scenes/teapot.obj");
-    if (r->report == NULL && sf->out_report[0] != '\0')
+    if (scene_mesh_or_default(r->scene_path, sf, "run") != 0)
+        return EXIT_INPUT;
+    if (r->report == NULL && sf->out_report[0] != '\0') {
+        if (scene_output_bad(r->scene_path, "outputs.report", sf->out_report, "json", sf) != 0)
+            return EXIT_INPUT;
         r->report = sf->out_report;
-    if (r->csv == NULL && sf->out_csv[0] != '\0')
+    }
+    if (r->csv == NULL && sf->out_csv[0] != '\0') {
+        if (scene_output_bad(r->scene_path, "outputs.csv", sf->out_csv, "csv", sf) != 0)
+            return EXIT_INPUT;
         r->csv = sf->out_csv;
+    }
     if (!lt_meter_machine_known(sf->machine)) {
         fprintf(stderr, "%s run: machine '%s' unknown (known: %s)\n", prog, sf->machine,
                 lt_meter_machine_names());
@@ -396,6 +441,10 @@ static void auto_apply(lt_scenefile_t *sf, const lt_mesh_t *m, const lt_scene_t 
         cJSON *x = cJSON_AddObjectToObject(o, k->knob);
         if (strcmp(k->knob, "numeric") == 0) {
             who = by.numeric;
+            if (who == NULL && strcmp(sf->structure, "bvhq") == 0) {
+                who = "the structure bvhq (quantised s15.16 nodes)";
+                sf->numeric = LT_SF_NUM_Q16;
+            }
             if (who == NULL)
                 sf->numeric = strcmp(k->pick, "q16") == 0 ? LT_SF_NUM_Q16
                               : strcmp(k->pick, "f32") == 0 ? LT_SF_NUM_F32 : LT_SF_NUM_BOTH;
@@ -463,6 +512,13 @@ static int run_load(run_t *r)
     }
     if (r->autop)
         run_auto(r);
+    if (strcmp(sf->structure, "bvhq") == 0 && sf->numeric == LT_SF_NUM_BOTH) {
+        /* both paths (the default): bvhq has s15.16 nodes only, so the float32 pass is left out
+           (asked for alone, --num f32, the structure's error says why) */
+        sf->numeric = LT_SF_NUM_Q16;
+        if (!quiet)
+            printf("numeric   q16 only: the structure bvhq has quantised s15.16 nodes\n");
+    }
     /* a selected path that cannot represent the scene is dropped while another selected path
        remains (--num both, the default); asked for alone (--num q16), it is refused */
     for (p = lt_paths; p->name != NULL; p++)
@@ -856,14 +912,16 @@ static void run_write_depth(run_t *r)
 /* The CSV renamed into place. */
 static void run_csv_close(run_t *r)
 {
-    if (fclose(r->csvf) != 0 || rename(csv_tmp, r->csv) != 0) {
-        fprintf(stderr, "%s: cannot write the CSV output\n", r->csv);
+    lt_diag_t diag;
+    if (fclose(r->csvf) != 0) {
+        fprintf(stderr, "%s: cannot write the CSV output: %s\n", r->csv, strerror(errno));
         lt_tmp_discard(csv_tmp);
         r->status = EXIT_INPUT;
-    } else {
-        lt_tmp_end(csv_tmp);
-        if (!quiet)
-            printf("csv       %s\n", r->csv);
+    } else if (lt_tmp_commit(csv_tmp, r->csv, &diag) != 0) {
+        fprintf(stderr, "%s\n", diag.msg);
+        r->status = EXIT_INPUT;
+    } else if (!quiet) {
+        printf("csv       %s\n", r->csv);
     }
     csv_tmp[0] = '\0';
     r->csvf = NULL;
@@ -1353,12 +1411,19 @@ static int cmd_info(int argc, char **argv)
 
 static cJSON *load_json(const char *path, lt_diag_t *diag)
 {
-    FILE *f = fopen(path, "rb");
+    FILE *f;
     char *buf;
     long n;
     cJSON *j;
+    struct stat st;
+    if (stat(path, &st) == 0 && !S_ISREG(st.st_mode)) {
+        lt_diag_fail(diag, "%s: %s, not a report file", path,
+                     S_ISDIR(st.st_mode) ? "a directory" : "a device, FIFO or socket");
+        return NULL;
+    }
+    f = fopen(path, "rb");
     if (f == NULL) {
-        lt_diag_fail(diag, "%s: cannot open", path);
+        lt_diag_fail(diag, "%s: cannot open: %s", path, strerror(errno));
         return NULL;
     }
     fseek(f, 0, SEEK_END);
@@ -1697,8 +1762,8 @@ static int render_load(render_t *r)
     }
     if (r->mesh_over != NULL)
         snprintf(sf->mesh, sizeof sf->mesh, "%s", r->mesh_over);
-    if (sf->mesh[0] == '\0')
-        snprintf(sf->mesh, sizeof sf->mesh, "scenes/teapot.obj");
+    if (scene_mesh_or_default(r->scene_path, sf, "render") != 0)
+        return EXIT_INPUT;
     if (!r->seen_light && sf->nlights > 0) {
         memcpy(r->lf, sf->lights[0].position, sizeof r->lf);
         r->seen_light = 1;
@@ -1715,6 +1780,8 @@ static int render_load(render_t *r)
         fprintf(stderr, "%s: %s\n", sf->mesh, diag.msg);
         return EXIT_INPUT;
     }
+    if (r->seen_structure) /* the picks must see it (bvhq: s15.16, leaves of at most 15) */
+        snprintf(sf->structure, sizeof sf->structure, "%s", lt_render_structures[r->structure]);
     if (r->autop) {
         auto_by_t by = auto_by(sf, r->seen_num, r->seen_structure);
         auto_apply(sf, &r->mesh, &r->sc, &by, 1, quiet, r->auto_json, sizeof r->auto_json);

@@ -164,6 +164,13 @@ static int output_ext_bad(const char *ext, const char *v, char *why, size_t n)
     size_t k;
     int i;
     base = base != NULL ? base + 1 : v;
+    if (v[0] == '\0' || base[0] == '\0' || strcmp(base, ".") == 0 || strcmp(base, "..") == 0) {
+        /* "", "out/", ".": no name to write (a prefix would make hidden ".exr", ".png", ...) */
+        snprintf(why, n, "%s, not a %s", v[0] == '\0' ? "an empty name" : "a directory",
+                 ext[0] == '\0' ? "path prefix (give DIR/NAME: NAME.exr, NAME.png, ...)"
+                                : "file name");
+        return 1;
+    }
     dot = strrchr(base, '.');
     if (dot == NULL || dot == base || strlen(dot + 1) >= sizeof e)
         return 0;
@@ -181,6 +188,11 @@ static int output_ext_bad(const char *ext, const char *v, char *why, size_t n)
         snprintf(why, n, "this output is a .%s file; its name ends in '.%s' (name it "
                          "<name>.%s)", ext, e, ext);
     return 1;
+}
+
+int lt_opt_output_bad(const char *ext, const char *path, char *why, size_t n)
+{
+    return output_ext_bad(ext, path, why, n);
 }
 
 /* Read one option's value into its destination; prints the message and returns -1 when bad. */

@@ -157,6 +157,12 @@ void lt_opt_choices_text(const char *const *names, char *buf, size_t n);
 /* The number readers the kinds use, for custom parsers: 0 when text is a whole decimal integer /
  * a whole finite number / n comma-separated finite numbers, else -1; lt_opt_read_long returns -2
  * for an integer beyond long. */
+/* The check LT_OPT_OUT applies to an output option's value, for outputs named elsewhere (a scene
+ * file's "outputs"): 1 with the reason in why when path is empty, names a directory ("out/",
+ * ".") or ends in the extension of another kind of file than ext ("json"; "" for a prefix that
+ * takes none); else 0. */
+int lt_opt_output_bad(const char *ext, const char *path, char *why, size_t n);
+
 int lt_opt_read_long(const char *text, long *v);
 int lt_opt_read_double(const char *text, double *v);
 int lt_opt_read_vec(const char *text, double *v, int n);

@@ -447,21 +447,17 @@ int lt_exr_write(const char *path, const lt_exr_image_t *img, lt_diag_t *diag)
         goto done;
     }
     io.fd = -1;
-    if (rename(tmp, path) != 0) {
-        lt_diag_fail(diag, "%s: cannot rename %s to it: %s", path, tmp, strerror(errno));
-        goto done;
-    }
-    ok = 1;
+    ok = lt_tmp_commit(tmp, path, diag) == 0; /* removes or forgets tmp */
+    free(tmp);
+    tmp = NULL;
 
 done:
     if (ctx != NULL)
         (void)exr_finish(&ctx);
     if (tmp != NULL && io.fd >= 0)
         (void)close(io.fd);
-    if (tmp != NULL && !ok)
+    if (tmp != NULL)
         lt_tmp_discard(tmp);
-    else if (tmp != NULL)
-        lt_tmp_end(tmp);
     free(tmp);
     for (i = 0; i < img->nchannels; i++)
         free(halfs[i]);

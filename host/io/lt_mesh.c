@@ -38,11 +38,18 @@ static int ends_with(const char *s, const char *suffix)
 
 int lt_mesh_read_file(const char *path, char **buf, size_t *len, lt_diag_t *diag)
 {
-    FILE *f = fopen(path, "rb");
+    FILE *f;
     struct stat st;
     size_t got;
     *buf = NULL;
     *len = 0;
+    /* before opening: a FIFO without a writer would block the open */
+    if (stat(path, &st) == 0 && !S_ISREG(st.st_mode)) {
+        lt_diag_fail(diag, "%s: %s, not a regular file", path,
+                     S_ISDIR(st.st_mode) ? "a directory" : "a device, FIFO or socket");
+        return -1;
+    }
+    f = fopen(path, "rb");
     if (f == NULL) {
         lt_diag_fail(diag, "%s: cannot open the mesh file: %s", path, strerror(errno));
         return -1;
@@ -304,7 +311,7 @@ static int check_obj(const char *where, const char *buf, size_t len, lt_diag_t *
     const char *nul = (const char *)memchr(buf, '\0', len);
     const char *p = buf, *end = buf + len;
     unsigned long line = 0;
-    uint64_t nv = 0, nvt = 0, nvn = 0, nf = 0;
+    uint64_t nv = 0, nvt = 0, nvn = 0, nf = 0, poly2 = 0;
 
     if (nul != NULL) {
         unsigned long l = 1;
@@ -431,6 +438,22 @@ static int check_obj(const char *where, const char *buf, size_t len, lt_diag_t *
             if (n < 3) {
                 lt_diag_fail(diag, "%s: line %lu: face has %d vert%s (need 3; truncated file?)",
                              where, line, n, n == 1 ? "ex" : "ices");
+                return -1;
+            }
+            /* assimp triangulates a polygon in time quadratic in its vertices, in this process
+             * (no time limit): 60,000 took 6 s here, so a small file could hang the tool */
+            if (n > LT_MESH_MAX_FACE_VERTS) {
+                lt_diag_fail(diag, "%s: line %lu: face has %d vertices, more than "
+                             "LT_MESH_MAX_FACE_VERTS %d (split the polygon)", where, line, n,
+                             LT_MESH_MAX_FACE_VERTS);
+                return -1;
+            }
+            poly2 += (uint64_t)n * (uint64_t)n;
+            if (poly2 > LT_MESH_MAX_POLY_WORK) {
+                lt_diag_fail(diag, "%s: line %lu: the polygons up to here have a sum of squared "
+                             "vertex counts above LT_MESH_MAX_POLY_WORK %llu (triangulating them "
+                             "would take minutes; split the large polygons)", where, line,
+                             (unsigned long long)LT_MESH_MAX_POLY_WORK);
                 return -1;
             }
             nf++;

@@ -19,6 +19,12 @@ extern "C" {
 #define LT_MESH_MAX_TRIS 16000000u
 /* Largest mesh file read into memory (OBJ text, a .gz file, or what a .gz unpacks to): 1 GiB. */
 #define LT_MESH_MAX_BYTES (1024u * 1024u * 1024u)
+/* OBJ polygons: assimp's triangulation takes time quadratic in a polygon's vertices (measured
+ * here: 60,000 vertices of one repeated triangle 6 s, a convex disc of 40,000 12 s). At most this
+ * many per face, and a sum of squared counts over all faces at most LT_MESH_MAX_POLY_WORK (at
+ * most ~8 s of triangulation at the disc's rate; ordinary meshes add 9 or 16 per face). */
+#define LT_MESH_MAX_FACE_VERTS 4096
+#define LT_MESH_MAX_POLY_WORK 1000000000ull
 
 typedef struct lt_mesh {
     double *v;       /* 9 doubles per triangle: v0 v1 v2, file units */
@@ -33,7 +39,8 @@ typedef struct lt_mesh {
  * <ext> as the format hint. OBJ text (plain or gzip'd) is checked first: NUL or control bytes
  * (binary data), a "v" line with fewer than 3 numbers or a non-finite one, a face with fewer
  * than 3 vertices, index 0, or a v/vt/vn index outside the vertices defined (negative indices:
- * relative to those defined so far) are errors naming the line.
+ * relative to those defined so far), a face of more than LT_MESH_MAX_FACE_VERTS vertices or
+ * polygons past LT_MESH_MAX_POLY_WORK are errors naming the line.
  * Every other format is imported in a child process (io/lt_import.h): PLY, OFF and STL are
  * checked first (io/lt_meshcheck.h: counts against the file size, complete elements and faces),
  * and a crash or hang inside assimp becomes an error (time limit LT_IMPORT_TIMEOUT, 120 s).

@@ -128,14 +128,12 @@ int lt_png_write(const char *path, const uint8_t *pix, int32_t w, int32_t h, int
     } else if (fclose(fp) != 0) {
         lt_diag_fail(diag, "%s: closing %s failed: %s", path, tmp, strerror(errno));
         rc = -1;
-    } else if (rename(tmp, path) != 0) {
-        lt_diag_fail(diag, "%s: cannot rename %s to it: %s", path, tmp, strerror(errno));
-        rc = -1;
+    } else {
+        rc = lt_tmp_commit(tmp, path, diag); /* removes or forgets tmp */
+        free(tmp);
+        return rc;
     }
-    if (rc != 0)
-        lt_tmp_discard(tmp);
-    else
-        lt_tmp_end(tmp);
+    lt_tmp_discard(tmp);
     free(tmp);
     return rc;
 }

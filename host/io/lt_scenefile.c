@@ -173,8 +173,11 @@ static int get_path(ctx_t *c, const cJSON *it, const char *key, char *out, size_
         snprintf(out, n, "%s", raw);
     else if ((size_t)snprintf(out, n, "%s/%s", c->base, raw) >= n)
         return fail(c, "'%s': resolved path longer than %zu characters", key, n - 1);
-    if (must_exist && (stat(out, &st) != 0 || !S_ISREG(st.st_mode)))
+    if (must_exist && stat(out, &st) != 0)
         return fail(c, "'%s': file '%s' not found (resolved to '%s')", key, raw, out);
+    if (must_exist && !S_ISREG(st.st_mode))
+        return fail(c, "'%s': '%s' (resolved to '%s') is %s, not a regular file", key, raw, out,
+                    S_ISDIR(st.st_mode) ? "a directory" : "a device, FIFO or socket");
     return 0;
 }
 
@@ -512,6 +515,24 @@ int lt_sf_parse(const char *text, const char *name, const char *base_dir, lt_sce
     c.base = base_dir != NULL ? base_dir : "";
     c.diag = diag;
     lt_sf_defaults(sf);
+    {
+        /* cJSON keeps a string only up to a \u0000 escape: a path would be cut short silently */
+        const char *q;
+        for (q = strstr(text, "\\u"); q != NULL; q = strstr(q + 2, "\\u"))
+            if (q[2] == '0' && q[3] == '0' && q[4] == '0' && q[5] == '0') {
+                int line = 1;
+                const char *p;
+                size_t bs = 0;
+                for (p = q; p > text && p[-1] == '\\'; p--)
+                    bs++;
+                if (bs % 2 != 0)
+                    continue; /* an escaped backslash before "u0000": plain text */
+                for (p = text; p < q; p++)
+                    line += *p == '\n';
+                return lt_diag_fail(diag, "%s: line %d: a string holds \\u0000 (NUL); no key "
+                                    "or value of a scene file may contain it", name, line);
+            }
+    }
     root = cJSON_ParseWithOpts(text, &end, 1);
     if (root == NULL) {
         /* report line and column of the first byte cJSON could not take */

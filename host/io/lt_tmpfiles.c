@@ -3,6 +3,7 @@
 #include "io/lt_tmpfiles.h"
 
 #include <errno.h>
+#include <fcntl.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -42,9 +43,28 @@ void lt_tmp_handle_signals(void)
     }
 }
 
+/* Whether path exists and is neither a regular file nor a directory (a symbolic link, a device,
+ * a FIFO, a socket): such an output is written through, not replaced (lt_tmp_commit). */
+static int special_dest(const char *path)
+{
+    struct stat st;
+    return lstat(path, &st) == 0 && !S_ISREG(st.st_mode) && !S_ISDIR(st.st_mode);
+}
+
 int lt_tmp_begin(const char *path, char out[LT_TMP_PATH_MAX], lt_diag_t *diag)
 {
-    int i, k = snprintf(out, LT_TMP_PATH_MAX, "%s.tmp.%ld", path, (long)getpid());
+    static unsigned serial;
+    int i, k;
+    if (special_dest(path)) {
+        /* not beside it: /dev/null's directory is /dev */
+        const char *dir = getenv("TMPDIR");
+        if (dir == NULL || dir[0] == '\0')
+            dir = "/tmp";
+        k = snprintf(out, LT_TMP_PATH_MAX, "%s/lanetrace.%ld.%u.tmp", dir, (long)getpid(),
+                     serial++);
+    } else {
+        k = snprintf(out, LT_TMP_PATH_MAX, "%s.tmp.%ld", path, (long)getpid());
+    }
     if (k < 0 || k >= LT_TMP_PATH_MAX) {
         out[0] = '\0';
         return lt_diag_fail(diag, "%.80s...: the output path is %zu bytes, longer than the %d "
@@ -75,6 +95,60 @@ void lt_tmp_discard(const char *tmp)
 {
     (void)unlink(tmp);
     lt_tmp_end(tmp);
+}
+
+/* tmp's bytes written into path (opened as a shell redirection opens it), then tmp removed. */
+static int copy_into(const char *tmp, const char *path, lt_diag_t *diag)
+{
+    char buf[65536];
+    int in = open(tmp, O_RDONLY), out = -1, rc = 0;
+    ssize_t n = 0;
+    if (in < 0)
+        return lt_diag_fail(diag, "%s: cannot reopen its temporary %s: %s", path, tmp,
+                            strerror(errno));
+    out = open(path, O_WRONLY | O_CREAT | O_TRUNC, 0666);
+    if (out < 0)
+        rc = lt_diag_fail(diag, "%s: cannot open it for writing: %s", path, strerror(errno));
+    while (rc == 0 && (n = read(in, buf, sizeof buf)) > 0) {
+        ssize_t off = 0;
+        while (rc == 0 && off < n) {
+            ssize_t w = write(out, buf + off, (size_t)(n - off));
+            if (w < 0 && errno == EINTR)
+                continue;
+            if (w <= 0)
+                rc = lt_diag_fail(diag, "%s: writing it failed: %s", path,
+                                  w < 0 ? strerror(errno) : "no progress");
+            else
+                off += w;
+        }
+    }
+    if (rc == 0 && n < 0)
+        rc = lt_diag_fail(diag, "%s: reading its temporary %s failed: %s", path, tmp,
+                          strerror(errno));
+    if (out >= 0 && close(out) != 0 && rc == 0)
+        rc = lt_diag_fail(diag, "%s: closing it failed: %s", path, strerror(errno));
+    (void)close(in);
+    return rc;
+}
+
+int lt_tmp_commit(const char *tmp, const char *path, lt_diag_t *diag)
+{
+    struct stat st;
+    int rc = 0, renamed = 0;
+    if (lstat(path, &st) == 0 && S_ISDIR(st.st_mode))
+        rc = lt_diag_fail(diag, "%s: is a directory; the output was not written", path);
+    else if (special_dest(path))
+        rc = copy_into(tmp, path, diag); /* a link, device or FIFO stays what it is */
+    else if (rename(tmp, path) != 0)
+        rc = lt_diag_fail(diag, "%s: cannot move the finished output into place: %s", path,
+                          strerror(errno));
+    else
+        renamed = 1;
+    if (renamed)
+        lt_tmp_end(tmp);
+    else
+        lt_tmp_discard(tmp); /* copied through, or failed */
+    return rc;
 }
 
 int lt_outset_add(lt_outset_t *s, const char *path, const char **tmp, lt_diag_t *diag)
@@ -130,11 +204,8 @@ int lt_outset_commit(lt_outset_t *s, lt_diag_t *diag)
         return rc;
     }
     for (i = 0; i < s->n; i++) {
-        if (rc == 0 && rename(s->tmp[i], s->path[i]) != 0)
-            rc = lt_diag_fail(diag, "%s: cannot rename the output into place: %s", s->path[i],
-                              strerror(errno));
         if (rc == 0)
-            lt_tmp_end(s->tmp[i]);
+            rc = lt_tmp_commit(s->tmp[i], s->path[i], diag);
         else
             lt_tmp_discard(s->tmp[i]);
     }

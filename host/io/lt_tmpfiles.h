@@ -24,9 +24,18 @@ extern "C" {
 /* Install the handlers (once; later calls do nothing). */
 void lt_tmp_handle_signals(void);
 
-/* "<path>.tmp.<pid>" into out[LT_TMP_PATH_MAX] and registered. Returns 0, or -1 with a message
+/* "<path>.tmp.<pid>" into out[LT_TMP_PATH_MAX] and registered ("$TMPDIR/lanetrace.<pid>.<n>.tmp"
+ * when path is a link, device, FIFO or socket: see lt_tmp_commit). Returns 0, or -1 with a message
  * naming path when the name does not fit (nothing is cut) or the registry is full. */
 int lt_tmp_begin(const char *path, char out[LT_TMP_PATH_MAX], lt_diag_t *diag);
+
+/* Make the finished temporary tmp the output path, and forget it: renamed into place when path
+ * is a regular file or does not exist; written through (its bytes copied into path, then tmp
+ * removed) when path is a symbolic link, a device, a FIFO or a socket, which stays what it is
+ * (`--out /dev/null`, `--report /dev/stdout`, a link to a file elsewhere). For such a path
+ * lt_tmp_begin puts the temporary in $TMPDIR (default /tmp). Returns 0, or -1 with a message
+ * naming path (a directory there, a failed rename or write); tmp is removed either way. */
+int lt_tmp_commit(const char *tmp, const char *path, lt_diag_t *diag);
 
 /* Forget a temporary (after it was renamed into place or unlinked). */
 void lt_tmp_end(const char *tmp);

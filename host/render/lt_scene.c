@@ -194,6 +194,35 @@ int lt_camera_look(const lt_scene_t *s, const double eye[3], const double target
             return -1;
         }
     }
+    {
+        /* the scene file's rules (lt_scenefile.c), for eyes and targets given as flags: a view
+           direction, and an up vector not parallel to it (sine of their angle above 1e-6) */
+        double fm = fmax(fabs(dir[0]), fmax(fabs(dir[1]), fabs(dir[2])));
+        double um = fmax(fabs(up[0]), fmax(fabs(up[1]), fabs(up[2])));
+        double g[3], u[3], x[3], s2;
+        if (!(fm > 0.0) || !isfinite(fm)) {
+            lt_diag_fail(diag, "camera target [%g, %g, %g] %s the eye [%g, %g, %g]: no view "
+                         "direction", target[0], target[1], target[2],
+                         fm > 0.0 ? "is too far from" : "equals", eye[0], eye[1], eye[2]);
+            return -1;
+        }
+        for (a = 0; a < 3; a++) {
+            g[a] = dir[a] / fm;
+            u[a] = up[a] / um;
+        }
+        x[0] = g[1] * u[2] - g[2] * u[1];
+        x[1] = g[2] * u[0] - g[0] * u[2];
+        x[2] = g[0] * u[1] - g[1] * u[0];
+        s2 = (x[0] * x[0] + x[1] * x[1] + x[2] * x[2]) /
+             ((g[0] * g[0] + g[1] * g[1] + g[2] * g[2]) * (u[0] * u[0] + u[1] * u[1] + u[2] * u[2]));
+        if (!(s2 > 1e-12)) {
+            lt_diag_fail(diag, "camera view direction (target - eye = [%g, %g, %g]) is parallel "
+                         "to the up vector [%g, %g, %g] (the angle between them must be above "
+                         "1e-6 rad): move the eye or the target sideways",
+                         dir[0], dir[1], dir[2], up[0], up[1], up[2]);
+            return -1;
+        }
+    }
     lt_camera_basis(c, dir, up);
     c->tan_half_fov = tan(0.5 * fov_y_deg * 3.14159265358979323846 / 180.0);
     c->width = width;

@@ -59,7 +59,8 @@ typedef struct lt_camera {
 void lt_camera_default(const lt_scene_t *s, uint32_t width, uint32_t height, lt_camera_t *c);
 
 /* An explicit pinhole camera given in mesh file units (converted to the scaled space).
- * Returns 0, or -1 with a message when the eye lies outside the core's geometry bound. */
+ * Returns 0, or -1 with a message when the eye lies outside the core's geometry bound, the
+ * target equals the eye, or the view direction is parallel to up (the scene file's rules). */
 int lt_camera_look(const lt_scene_t *s, const double eye[3], const double target[3],
                    const double up[3], double fov_y_deg, uint32_t width, uint32_t height,
                    lt_camera_t *c, lt_diag_t *diag);

@@ -244,6 +244,18 @@ lt_rx_src_t *lt_rx_src_tcp(const char *hostport, int connect_ms, lt_diag_t *diag
     }
     memcpy(host, hostport, hl);
     host[hl] = '\0';
+    {
+        /* a numeric port must be a TCP port: getaddrinfo takes 70000 as 70000 mod 65536 */
+        const char *d = colon + 1;
+        unsigned long port = 0;
+        while (*d >= '0' && *d <= '9' && port <= 65535ul)
+            port = port * 10ul + (unsigned long)(*d++ - '0');
+        if (colon[1] >= '0' && colon[1] <= '9' && (*d != '\0' || port < 1 || port > 65535ul)) {
+            lt_diag_fail(diag, "--tcp %s: port '%s' is not a TCP port (1..65535)", hostport,
+                         colon + 1);
+            return NULL;
+        }
+    }
     memset(&hints, 0, sizeof hints);
     hints.ai_family = AF_UNSPEC;
     hints.ai_socktype = SOCK_STREAM;

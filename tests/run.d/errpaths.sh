@@ -4,12 +4,12 @@
 # second time against the ASan + UBSan builds by tests/run_tests.sh, where LeakSanitizer makes a
 # leak on any of these paths a failure. Sourced by tests/run_tests.sh (check/ok/ko, $B, $tmp,
 # $SIMBIN, $HOSTBIN).
-ep_expect() { # name, expected rc, pattern in output, command...
+ep_expect() { # name, expected rc, pattern in output ("" for any), command...
     local name=$1 want=$2 pat=$3
     shift 3
     "$@" >"$tmp/ep.txt" 2>&1
     local rc=$?
-    if [ "$rc" -eq "$want" ] && grep -q -- "$pat" "$tmp/ep.txt"; then
+    if [ "$rc" -eq "$want" ] && { [ -z "$pat" ] || grep -q -- "$pat" "$tmp/ep.txt"; }; then
         ok "$name (rc $rc)"
     else
         ko "$name (rc $rc, want $want; output: $(tail -c 300 "$tmp/ep.txt"))"
@@ -51,3 +51,88 @@ ep_expect "shadows: a PLY cut in its body" 1 "cut.ply" \
     "$SIMBIN/lanetrace" shadows --mesh "$E/cut.ply" --res 8 --no-ref
 ep_expect "run: a scene key holding a newline and an escape sequence: one line, shown as '?'" 1 \
     "unknown key 'co?lour?\[31m'" "$SIMBIN/lanetrace" run tests/fuzz/corpus/scene/regress-key-newline-escape.json
+
+# Outputs that are not regular files are written through and stay what they are (a symbolic link
+# to a file, a FIFO, a link to /dev/null); before, the temporary was renamed over them, which as
+# root replaced /dev/null itself with a regular file.
+echo keep >"$E/target.json"
+ln -sf target.json "$E/link.json"
+ep_expect "run: --report through a symbolic link" 0 "" \
+    "$SIMBIN/lanetrace" run --res 8 --num f32 --no-ref --report "$E/link.json" -q
+check "run: the link is still a link, its target the report" \
+    sh -c "test -L '$E/link.json' && grep -q '\"machine\"' '$E/target.json'"
+rm -f "$E/p.json" "$E/p.out"
+mkfifo "$E/p.json"
+(timeout 60 cat "$E/p.json" >"$E/p.out") &
+ep_expect "run: --report into a FIFO" 0 "" \
+    timeout 60 "$SIMBIN/lanetrace" run --res 8 --num f32 --no-ref --report "$E/p.json" -q
+wait
+check "run: the FIFO is still a FIFO and its reader got the report" \
+    sh -c "test -p '$E/p.json' && grep -q '\"machine\"' '$E/p.out'"
+ln -sf /dev/null "$E/null.exr"
+ep_expect "reproject: --out a link to /dev/null" 0 "" \
+    "$SIMBIN/lanetrace" reproject scenes/teapot.json --depth "$E/d.exr" --layers 2 --out "$E/null.exr" -q
+check "reproject: the link and /dev/null are unchanged, no temporary left in $E" \
+    sh -c "test -L '$E/null.exr' && test -c /dev/null && ! ls '$E' | grep -q '\\.tmp'"
+
+# Output names that name no file: an empty prefix or a directory would write hidden ".exr" ...
+ep_expect "render: an empty --out prefix" 2 "an empty name" \
+    "$HOSTBIN/lanetrace-native" render --res 8 --out "" -q
+ep_expect "render: --out a directory" 2 "a directory, not a path prefix" \
+    "$HOSTBIN/lanetrace-native" render --res 8 --out "$E/" -q
+
+# Scene files: a depth image's scene is not traced as the default teapot; a scene's outputs get
+# the command line's name checks and may not overwrite an input; a \u0000 escape is refused.
+printf '{"depth": "d.exr", "resolution": 16}\n' >"$E/depthonly.json"
+ep_expect "run: a scene file with a depth image and no mesh" 1 'names no "mesh"' \
+    "$HOSTBIN/lanetrace-native" run "$E/depthonly.json" --no-ref -q
+ep_expect "render: the same" 1 'names no "mesh"' \
+    "$HOSTBIN/lanetrace-native" render "$E/depthonly.json" --out "$E/do" -q
+cp scenes/teapot.obj "$E/tp.obj"
+printf '{"mesh": "tp.obj", "resolution": 16, "outputs": {"report": "tp.obj"}}\n' >"$E/outsame.json"
+ep_expect "run: a scene whose report would overwrite its mesh" 1 "outputs.report" \
+    "$SIMBIN/lanetrace" run "$E/outsame.json" --num f32 --no-ref -q
+check "run: the mesh is intact" cmp -s scenes/teapot.obj "$E/tp.obj"
+printf '{"mesh": "tp.obj", "resolution": 16, "outputs": {"csv": "x.png"}}\n' >"$E/outpng.json"
+ep_expect "run: a scene's CSV named .png" 1 "this output is a .csv file" \
+    "$SIMBIN/lanetrace" run "$E/outpng.json" --num f32 --no-ref -q
+printf '{"mesh": "tp\\u0000x.obj", "resolution": 16}\n' >"$E/nul.json"
+ep_expect "run: a scene string with \\u0000" 1 'u0000 (NUL)' \
+    "$HOSTBIN/lanetrace-native" run "$E/nul.json" -q
+printf '{"mesh": ".", "resolution": 16}\n' >"$E/dot.json"
+ep_expect "run: a scene whose mesh is a directory" 1 "is a directory, not a regular file" \
+    "$HOSTBIN/lanetrace-native" run "$E/dot.json" -q
+
+# Inputs that are not regular files are refused before they are opened (a FIFO without a writer
+# used to block info forever).
+rm -f "$E/fifo.obj"
+mkfifo "$E/fifo.obj"
+ep_expect "info: a FIFO" 1 "FIFO" timeout 20 "$HOSTBIN/lanetrace-native" info "$E/fifo.obj"
+ep_expect "run: a FIFO as the mesh" 1 "FIFO" \
+    timeout 20 "$HOSTBIN/lanetrace-native" run --mesh "$E/fifo.obj" -q
+ep_expect "diff: a directory" 1 "a directory, not a report file" \
+    "$SIMBIN/lanetrace" diff "$E" "$E/target.json"
+
+# OBJ polygons: assimp triangulates them in time quadratic in their size, in this process.
+awk 'BEGIN { print "v 0 0 0"; print "v 1 0 0"; print "v 0 1 0"; printf "f"; for (i = 0; i < 5000; i++) printf " 1 2 3"; print "" }' >"$E/longface.obj"
+ep_expect "info: a face of 15,000 vertices" 1 "LT_MESH_MAX_FACE_VERTS 4096" \
+    timeout 60 "$HOSTBIN/lanetrace-native" info "$E/longface.obj"
+awk 'BEGIN { print "v 0 0 0"; print "v 1 0 0"; print "v 0 1 0"; for (f = 0; f < 70; f++) { printf "f"; for (i = 0; i < 1360; i++) printf " 1 2 3"; print "" } }' >"$E/manyfaces.obj"
+ep_expect "info: 70 faces of 4,080 vertices" 1 "LT_MESH_MAX_POLY_WORK" \
+    timeout 60 "$HOSTBIN/lanetrace-native" info "$E/manyfaces.obj"
+
+# The quantised BVH with the automatic picks: s15.16 only, leaves of at most 15.
+ep_expect "run: --structure bvhq with the defaults" 0 "numeric   kept   set by the structure bvhq" \
+    "$SIMBIN/lanetrace" run --res 16 --structure bvhq --no-ref
+ep_expect "run: --structure bvhq without the automatic picks" 0 "numeric   q16 only" \
+    "$SIMBIN/lanetrace" run --res 16 --structure bvhq --no-ref --no-auto
+ep_expect "render: --structure bvhq with the defaults" 0 "" \
+    "$HOSTBIN/lanetrace-native" render --res 16 --structure bvhq --out "$E/bq" -q
+
+# Flags: the eye and target of shadows, the TCP port of lt-stream.
+ep_expect "shadows: the eye equals the target" 1 "equals the eye" \
+    "$SIMBIN/lanetrace" shadows --mesh scenes/teapot.obj --eye 0,0,0 --target 0,0,0 --res 8 --no-ref
+ep_expect "shadows: looking straight down the up vector" 1 "parallel to the up vector" \
+    "$SIMBIN/lanetrace" shadows --mesh scenes/teapot.obj --eye 0,100,0 --target 0,0,0 --res 8 --no-ref
+ep_expect "lt-stream: a TCP port above 65535" 1 "1..65535" \
+    "$HOSTBIN/lt-stream" --tcp 127.0.0.1:70000 -q

@@ -259,6 +259,68 @@ static void test_outset_all_or_nothing(void **state)
     free(s);
 }
 
+/* lt_tmp_commit over a symbolic link (to a file here, and to a FIFO with a reader): the link
+ * stays a link, its target gets the bytes, the temporary is in $TMPDIR and removed; over a
+ * regular file it is renamed into place. */
+static void test_commit_through_links(void **state)
+{
+    char f[300], l[300], fifo[300], lf[300], tmp[LT_TMP_PATH_MAX], got[64];
+    struct stat st;
+    lt_diag_t d;
+    pid_t pid;
+    int status;
+    (void)state;
+    snprintf(f, sizeof f, "%s/target.txt", g_dir);
+    snprintf(l, sizeof l, "%s/link.txt", g_dir);
+    snprintf(fifo, sizeof fifo, "%s/pipe", g_dir);
+    snprintf(lf, sizeof lf, "%s/link-to-pipe", g_dir);
+    write_text(f, "old");
+    assert_int_equal(symlink("target.txt", l), 0);
+    assert_int_equal(lt_tmp_begin(l, tmp, &d), 0);
+    assert_null(strstr(tmp, g_dir)); /* not beside the link */
+    write_text(tmp, "through the link");
+    assert_int_equal(lt_tmp_commit(tmp, l, &d), 0);
+    assert_int_equal(lstat(l, &st), 0);
+    assert_true(S_ISLNK(st.st_mode));
+    assert_true(same_text(f, "through the link"));
+    assert_int_not_equal(access(tmp, F_OK), 0);
+    /* a FIFO behind a link, read by a child */
+    assert_int_equal(mkfifo(fifo, 0600), 0);
+    assert_int_equal(symlink("pipe", lf), 0);
+    pid = fork();
+    assert_true(pid >= 0);
+    if (pid == 0) {
+        FILE *in = fopen(fifo, "r");
+        size_t n = in != NULL ? fread(got, 1, sizeof got - 1, in) : 0;
+        got[n] = '\0';
+        _exit(in != NULL && strcmp(got, "into the fifo") == 0 ? 0 : 1);
+    }
+    assert_int_equal(lt_tmp_begin(lf, tmp, &d), 0);
+    write_text(tmp, "into the fifo");
+    assert_int_equal(lt_tmp_commit(tmp, lf, &d), 0);
+    assert_int_equal(waitpid(pid, &status, 0), pid);
+    assert_true(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+    assert_int_equal(lstat(fifo, &st), 0);
+    assert_true(S_ISFIFO(st.st_mode));
+    assert_int_not_equal(access(tmp, F_OK), 0);
+    /* a regular file: renamed into place */
+    assert_int_equal(lt_tmp_begin(f, tmp, &d), 0);
+    assert_non_null(strstr(tmp, g_dir));
+    write_text(tmp, "renamed");
+    assert_int_equal(lt_tmp_commit(tmp, f, &d), 0);
+    assert_true(same_text(f, "renamed"));
+    assert_int_equal(lstat(l, &st), 0);
+    assert_true(S_ISLNK(st.st_mode));
+    assert_int_equal(count_tmp(), 0);
+    unlink(l);
+    unlink(lf);
+    unlink(fifo);
+    unlink(f);
+    printf("tmpfiles: commit through a link to a file and a link to a FIFO (read by a child): "
+           "links and FIFO kept, bytes delivered, temporaries in $TMPDIR removed; a regular file "
+           "renamed into place\n");
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -266,6 +328,7 @@ int main(void)
         cmocka_unit_test(test_writers_killed_midway),
         cmocka_unit_test(test_long_names_refused),
         cmocka_unit_test(test_outset_all_or_nothing),
+        cmocka_unit_test(test_commit_through_links),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }
