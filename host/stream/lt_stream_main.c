@@ -11,6 +11,7 @@
 #include "stream/usb/lt_rx_hid.h"
 
 #include <errno.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -71,6 +72,19 @@ static void live_line(const lt_rx_stats_t *s, double dt)
 /* --sessions: how many device sessions (HELLO .. END) one run accepts; a HELLO after END beyond
  * that is a restarted or replayed device, a fault */
 static int g_max_sessions = 1;
+
+/* Bytes after the last CRC-valid frame with no valid frame among them at which the receiver stops:
+ * a source that sends only noise (the wrong port, a wrong baud rate, /dev/zero) would otherwise
+ * keep it busy forever, since noise is not silence and --timeout never fires. */
+#define LT_RX_MAX_NOISE (64ull << 20)
+
+/* SIGINT / SIGTERM: stop reading and print the summary of what arrived (a second signal kills). */
+static volatile sig_atomic_t g_stop;
+static void on_stop(int sig)
+{
+    g_stop = 1;
+    (void)signal(sig, SIG_DFL);
+}
 
 static int clean(const lt_rx_stats_t *s)
 {
@@ -295,6 +309,7 @@ int main(int argc, char **argv)
     double t0, last_live = 0.0, last_byte;
     int nsrc = 0, status = 0, tty, rc;
     const lt_rx_stats_t *s;
+    uint64_t valid_seen = 0, bytes_at_valid = 0;
 
     memset(&o, 0, sizeof o);
     if ((rc = parse_args(&o, argc, argv, &nsrc)) != LT_OPT_OK)
@@ -335,12 +350,33 @@ int main(int argc, char **argv)
     }
     tty = !o.quiet && isatty(2);
     t0 = last_byte = lt_now_s();
+    (void)signal(SIGINT, on_stop);
+    (void)signal(SIGTERM, on_stop);
     for (;;) {
-        long n = lt_rx_src_read(src, buf, sizeof buf, tty ? 250 : 1000, &diag);
+        long n = g_stop ? 0 : lt_rx_src_read(src, buf, sizeof buf, tty ? 250 : 1000, &diag);
         double t = lt_now_s();
+        if (g_stop) {
+            fprintf(stderr, "%slt-stream: %s: interrupted, stopping\n", tty ? "\n" : "",
+                    lt_rx_src_name(src));
+            status = 1;
+            break;
+        }
         if (n > 0) {
+            const lt_rx_stats_t *st;
             lt_rx_feed(rx, buf, (size_t)n);
             last_byte = t;
+            st = lt_rx_stats(rx);
+            if (st->valid != valid_seen) {
+                valid_seen = st->valid;
+                bytes_at_valid = st->bytes;
+            } else if (st->bytes - bytes_at_valid > LT_RX_MAX_NOISE) {
+                fprintf(stderr, "%slt-stream: %s: no valid frame in the last %llu bytes "
+                        "(LT_RX_MAX_NOISE, 64 MiB): not a lanetrace stream, stopping\n",
+                        tty ? "\n" : "", lt_rx_src_name(src),
+                        (unsigned long long)(st->bytes - bytes_at_valid));
+                status = 1;
+                break;
+            }
         } else if (n == LT_RX_EOF) {
             break;
         } else if (n == LT_RX_ERROR) {

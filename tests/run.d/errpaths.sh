@@ -136,3 +136,22 @@ ep_expect "shadows: looking straight down the up vector" 1 "parallel to the up v
     "$SIMBIN/lanetrace" shadows --mesh scenes/teapot.obj --eye 0,100,0 --target 0,0,0 --res 8 --no-ref
 ep_expect "lt-stream: a TCP port above 65535" 1 "1..65535" \
     "$HOSTBIN/lt-stream" --tcp 127.0.0.1:70000 -q
+
+# lt-stream on a source that is not a lanetrace stream: noise stops it (it is not silence, so
+# --timeout never fired), and SIGINT ends it with the summary of what arrived.
+ep_expect "lt-stream: /dev/zero stops after 64 MiB without a valid frame" 1 "no valid frame in the last" \
+    timeout 120 "$HOSTBIN/lt-stream" --file /dev/zero -q
+rm -f "$E/idle.fifo"
+mkfifo "$E/idle.fifo"
+(sleep 20 >"$E/idle.fifo") &
+idle_writer=$!
+"$HOSTBIN/lt-stream" --file "$E/idle.fifo" -q >"$E/int.out" 2>&1 &
+lt_pid=$!
+sleep 1
+kill -INT "$lt_pid"
+wait "$lt_pid"
+int_rc=$?
+kill "$idle_writer" 2>/dev/null
+wait "$idle_writer" 2>/dev/null
+check "lt-stream: SIGINT on an idle FIFO ends it with exit 1 and the summary (rc $int_rc)" \
+    sh -c "test $int_rc -eq 1 && grep -q 'interrupted' '$E/int.out' && grep -q '^bytes' '$E/int.out'"
