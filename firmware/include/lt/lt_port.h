@@ -41,6 +41,19 @@ extern "C" {
 #define LT_STATIC_ASSERT(c, msg) typedef char LT__CAT(lt__static_assert_, __LINE__)[(c) ? 1 : -1]
 #endif
 
+/* A count-leading-zeros instruction the compiler's __builtin_clz / __builtin_ctz become (Arm's
+ * CLZ, with RBIT for ctz; x86 BSR/LZCNT, BSF/TZCNT; RISC-V Zbb), not a library call (rv32imac
+ * without Zbb would call libgcc's table-driven __clzsi2: the portable code stays there). On
+ * Cortex-M4 the portable lt__clz32 was ~15 instructions per mask bit-scan and per normalisation:
+ * with CLZ the reprojection stage runs 3.3% fewer instructions (docs/firmware.md). */
+#if (defined(__GNUC__) || defined(__clang__)) &&                                                   \
+    (defined(__ARM_FEATURE_CLZ) || defined(__x86_64__) || defined(__i386__) ||                     \
+     defined(__aarch64__) || defined(__riscv_zbb))
+#define LT__HW_CLZ 1
+#else
+#define LT__HW_CLZ 0
+#endif
+
 /* Arithmetic right shift of a signed 32-bit value by s (0..31), rounding toward minus infinity.
  * C99 leaves >> of a negative value implementation-defined, so it is built from unsigned ops:
  * complementing a negative value makes it non-negative, shifts it, and complements back. */
@@ -62,6 +75,9 @@ LT_INLINE int64_t lt__asr64(int64_t v, unsigned s)
 /* Count leading zeros of a 32-bit value; lt__clz32(0) = 32 (defined, unlike __builtin_clz). */
 LT_INLINE unsigned lt__clz32(uint32_t x)
 {
+#if LT__HW_CLZ
+    return x == 0 ? 32u : (unsigned)__builtin_clz(x);
+#else
     unsigned n = 0;
     if (x == 0)
         return 32;
@@ -71,6 +87,7 @@ LT_INLINE unsigned lt__clz32(uint32_t x)
     if ((x & 0xC0000000u) == 0) { n += 2;  x <<= 2; }
     if ((x & 0x80000000u) == 0) { n += 1; }
     return n;
+#endif
 }
 
 /* Count leading zeros of a 64-bit value; lt__clz64(0) = 64. */
@@ -83,9 +100,13 @@ LT_INLINE unsigned lt__clz64(uint64_t x)
 /* Count trailing zeros; lt__ctz32(0) = 32. Used by the mask bit-scan. */
 LT_INLINE unsigned lt__ctz32(uint32_t x)
 {
+#if LT__HW_CLZ
+    return x == 0 ? 32u : (unsigned)__builtin_ctz(x);
+#else
     if (x == 0)
         return 32;
     return 31u - lt__clz32(x & (0u - x));
+#endif
 }
 
 /* Population count of a 32-bit value (SWAR). */
