@@ -97,7 +97,8 @@ void lt_tmp_discard(const char *tmp)
     lt_tmp_end(tmp);
 }
 
-/* tmp's bytes written into path (opened as a shell redirection opens it), then tmp removed. */
+/* tmp's bytes written into path, opened as a shell redirection opens it (the caller removes
+ * tmp). */
 static int copy_into(const char *tmp, const char *path, lt_diag_t *diag)
 {
     char buf[65536];
@@ -163,8 +164,9 @@ int lt_outset_add(lt_outset_t *s, const char *path, const char **tmp, lt_diag_t 
         if (strcmp(s->path[i], path) == 0)
             return lt_diag_fail(diag, "%s: named twice in one output set (two outputs would "
                                 "overwrite each other)", path);
-    {
-        /* the directory must take the file: said now, with the output's own name */
+    if (!special_dest(path)) {
+        /* the directory must take the file: said now, with the output's own name (a link,
+           device or FIFO is written through: its directory is not written) */
         char dir[LT_TMP_PATH_MAX];
         const char *slash = strrchr(path, '/');
         struct stat st;
