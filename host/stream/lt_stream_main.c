@@ -355,12 +355,6 @@ int main(int argc, char **argv)
     for (;;) {
         long n = g_stop ? 0 : lt_rx_src_read(src, buf, sizeof buf, tty ? 250 : 1000, &diag);
         double t = lt_now_s();
-        if (g_stop) {
-            fprintf(stderr, "%slt-stream: %s: interrupted, stopping\n", tty ? "\n" : "",
-                    lt_rx_src_name(src));
-            status = 1;
-            break;
-        }
         if (n > 0) {
             const lt_rx_stats_t *st;
             lt_rx_feed(rx, buf, (size_t)n);
@@ -377,7 +371,14 @@ int main(int argc, char **argv)
                 status = 1;
                 break;
             }
-        } else if (n == LT_RX_EOF) {
+        }
+        if (g_stop) { /* after feeding what the read brought */
+            fprintf(stderr, "%slt-stream: %s: interrupted, stopping\n", tty ? "\n" : "",
+                    lt_rx_src_name(src));
+            status = 1;
+            break;
+        }
+        if (n == LT_RX_EOF) {
             break;
         } else if (n == LT_RX_ERROR) {
             fprintf(stderr, "%slt-stream: %s\n", tty ? "\n" : "", diag.msg);
