@@ -309,8 +309,18 @@ static int pack_trace(const pack_t *p, const char *name)
     lt_sblob_err_t e = lt_sblob_open(p->blob, p->bytes, &s);
     int single;
     if (e != LT_SBLOB_OK) {
-        fprintf(stderr, "%s: %s: not a usable scene blob: %s (at %u)\n", who_g, name,
-                lt_sblob_err_str(e), s.bad);
+        /* what lt_sblob_open's "bad" holds for this error (lt_sblob.h) */
+        char at[64] = "";
+        if (e == LT_SBLOB_E_MAGIC)
+            snprintf(at, sizeof at, " (its first word is 0x%08x)", s.bad);
+        else if (e == LT_SBLOB_E_VERSION)
+            snprintf(at, sizeof at, " (version %u)", s.bad);
+        else if (e == LT_SBLOB_E_SHORT)
+            snprintf(at, sizeof at, " (the file has %zu bytes)", p->bytes);
+        else if (e != LT_SBLOB_E_SUM && e != LT_SBLOB_E_IMAGE)
+            snprintf(at, sizeof at, " (item %u)", s.bad);
+        fprintf(stderr, "%s: %s: not a usable scene blob: %s%s\n", who_g, name,
+                lt_sblob_err_str(e), at);
         return EXIT_INPUT;
     }
     printf("sblob %u triangles, %u nodes, %ux%u pixels, %u tiles, %s, %zu bytes\n",

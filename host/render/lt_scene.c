@@ -117,7 +117,7 @@ int lt_scene_check_q16(const lt_scene_t *s, const char *name, lt_diag_t *diag)
                  "%s: cannot be represented in s15.16: %u of %u triangles with non-zero area "
                  "(%.3f%%) collapse to zero area (limit %.1f%%); the scene is scaled by %g to a "
                  "radius of %.0f units, its shortest edge is %.3g units against a resolution of "
-                 "2^-16 = 1.5e-05; use the float32 path (--num f32) or split the scene",
+                 "2^-16 = 1.5e-05; use the float32 path (run, render, shadows: --num f32) or split the scene",
                  name, s->collapsed_q16, s->nonzero, 100.0 * s->collapsed_q16 / (double)s->nonzero,
                  LT_SCENE_MAX_COLLAPSED_PPM / 1e4, s->scale, s->radius, s->min_edge);
     return -1;

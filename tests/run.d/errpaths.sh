@@ -155,3 +155,6 @@ kill "$idle_writer" 2>/dev/null
 wait "$idle_writer" 2>/dev/null
 check "lt-stream: SIGINT on an idle FIFO ends it with exit 1 and the summary (rc $int_rc)" \
     sh -c "test $int_rc -eq 1 && grep -q 'interrupted' '$E/int.out' && grep -q '^bytes' '$E/int.out'"
+printf 'this is not a blob, just text long enough to pass the size check of its header words: %0200d\n' 0 >"$E/text.ltsb"
+ep_expect "pack --in: a text file names its first word, not a bogus offset" 1 "its first word is 0x73696874" \
+    "$HOSTBIN/lanetrace-native" pack --in "$E/text.ltsb"
