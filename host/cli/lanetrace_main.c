@@ -1415,10 +1415,8 @@ static cJSON *load_json(const char *path, lt_diag_t *diag)
     char *buf;
     long n;
     cJSON *j;
-    struct stat st;
-    if (stat(path, &st) == 0 && !S_ISREG(st.st_mode)) {
-        lt_diag_fail(diag, "%s: %s, not a report file", path,
-                     S_ISDIR(st.st_mode) ? "a directory" : "a device, FIFO or socket");
+    if (lt_diag_not_regular(path) != NULL) {
+        lt_diag_fail(diag, "%s: %s, not a report file", path, lt_diag_not_regular(path));
         return NULL;
     }
     f = fopen(path, "rb");

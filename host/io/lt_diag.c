@@ -5,6 +5,7 @@
 
 #include <stdio.h>
 #include <string.h>
+#include <sys/stat.h>
 
 /* End a message that did not fit with LT_DIAG_CUT (msg holds LT_DIAG_MAX - 1 bytes then). */
 static void mark_cut(lt_diag_t *diag)
@@ -76,4 +77,12 @@ int lt_diag_prefix(lt_diag_t *diag, const char *fmt, ...)
     if (cut)
         mark_cut(diag);
     return -1;
+}
+
+const char *lt_diag_not_regular(const char *path)
+{
+    struct stat st;
+    if (stat(path, &st) != 0 || S_ISREG(st.st_mode))
+        return NULL;
+    return S_ISDIR(st.st_mode) ? "a directory" : "a device, FIFO or socket";
 }

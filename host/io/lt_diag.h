@@ -32,6 +32,11 @@ typedef struct lt_diag {
  * so a failing function can end with `return lt_diag_fail(diag, ...);`. diag may be NULL. */
 int lt_diag_fail(lt_diag_t *diag, const char *fmt, ...) LT_DIAG_PRINTF(2, 3);
 
+/* What a path that exists but is not a regular file is, for messages: "a directory" or "a
+ * device, FIFO or socket"; NULL for a regular file or a path stat cannot see. The readers refuse
+ * such inputs before opening them (a FIFO without a writer would block the open). */
+const char *lt_diag_not_regular(const char *path);
+
 /* The same with a va_list (for a module's own wrapper). Returns -1. */
 int lt_diag_vfail(lt_diag_t *diag, const char *fmt, va_list ap) LT_DIAG_PRINTF(2, 0);
 

@@ -43,10 +43,8 @@ int lt_mesh_read_file(const char *path, char **buf, size_t *len, lt_diag_t *diag
     size_t got;
     *buf = NULL;
     *len = 0;
-    /* before opening: a FIFO without a writer would block the open */
-    if (stat(path, &st) == 0 && !S_ISREG(st.st_mode)) {
-        lt_diag_fail(diag, "%s: %s, not a regular file", path,
-                     S_ISDIR(st.st_mode) ? "a directory" : "a device, FIFO or socket");
+    if (lt_diag_not_regular(path) != NULL) { /* before opening it (io/lt_diag.h) */
+        lt_diag_fail(diag, "%s: %s, not a regular file", path, lt_diag_not_regular(path));
         return -1;
     }
     f = fopen(path, "rb");

@@ -177,7 +177,7 @@ static int get_path(ctx_t *c, const cJSON *it, const char *key, char *out, size_
         return fail(c, "'%s': file '%s' not found (resolved to '%s')", key, raw, out);
     if (must_exist && !S_ISREG(st.st_mode))
         return fail(c, "'%s': '%s' (resolved to '%s') is %s, not a regular file", key, raw, out,
-                    S_ISDIR(st.st_mode) ? "a directory" : "a device, FIFO or socket");
+                    lt_diag_not_regular(out));
     return 0;
 }
 

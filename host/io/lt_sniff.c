@@ -94,7 +94,7 @@ int lt_sniff_file(const char *path, lt_sniff_t *s, lt_diag_t *diag)
     if (S_ISDIR(st.st_mode))
         return lt_diag_fail(diag, "%s: is a directory, not a file", path);
     if (!S_ISREG(st.st_mode)) /* a FIFO without a writer would block the open */
-        return lt_diag_fail(diag, "%s: a device, FIFO or socket, not a regular file", path);
+        return lt_diag_fail(diag, "%s: %s, not a regular file", path, lt_diag_not_regular(path));
     f = fopen(path, "rb");
     if (f == NULL)
         return lt_diag_fail(diag, "%s: cannot open: %s", path, strerror(errno));

@@ -135,10 +135,10 @@ static int copy_into(const char *tmp, const char *path, lt_diag_t *diag)
 int lt_tmp_commit(const char *tmp, const char *path, lt_diag_t *diag)
 {
     struct stat st;
-    int rc = 0, renamed = 0;
-    if (lstat(path, &st) == 0 && S_ISDIR(st.st_mode))
+    int rc = 0, renamed = 0, there = lstat(path, &st) == 0;
+    if (there && S_ISDIR(st.st_mode))
         rc = lt_diag_fail(diag, "%s: is a directory; the output was not written", path);
-    else if (special_dest(path))
+    else if (there && !S_ISREG(st.st_mode)) /* special_dest */
         rc = copy_into(tmp, path, diag); /* a link, device or FIFO stays what it is */
     else if (rename(tmp, path) != 0)
         rc = lt_diag_fail(diag, "%s: cannot move the finished output into place: %s", path,
