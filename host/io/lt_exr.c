@@ -343,6 +343,7 @@ int lt_exr_write(const char *path, const lt_exr_image_t *img, lt_diag_t *diag)
     uint16_t **halfs = NULL;
     char *tmp = NULL;
     const char *stage = "";
+    const char *name; /* the output in messages (lt_tmp_target) */
     size_t n, k;
     int i, part = -1, longnames = 0, ok = 0;
 
@@ -350,13 +351,14 @@ int lt_exr_write(const char *path, const lt_exr_image_t *img, lt_diag_t *diag)
         lt_diag_fail(diag, "lt_exr_write: NULL %s", path == NULL ? "path" : "image");
         return -1;
     }
-    if (check_image(path, img, diag) != 0)
+    name = lt_tmp_target(path);
+    if (check_image(name, img, diag) != 0)
         return -1;
 
     /* HALF channels are rounded here (ties to even, documented) rather than by the library. */
     halfs = (uint16_t **)calloc((size_t)img->nchannels, sizeof *halfs);
     if (halfs == NULL) {
-        lt_diag_fail(diag, "%s: out of memory", path);
+        lt_diag_fail(diag, "%s: out of memory", name);
         return -1;
     }
     n = (size_t)img->width * (size_t)img->height;
@@ -365,7 +367,7 @@ int lt_exr_write(const char *path, const lt_exr_image_t *img, lt_diag_t *diag)
             continue;
         halfs[i] = (uint16_t *)malloc(n * sizeof(uint16_t));
         if (halfs[i] == NULL) {
-            lt_diag_fail(diag, "%s: out of memory for channel '%s'", path, img->channels[i].name);
+            lt_diag_fail(diag, "%s: out of memory for channel '%s'", name, img->channels[i].name);
             goto done;
         }
         for (k = 0; k < n; k++)
@@ -374,7 +376,7 @@ int lt_exr_write(const char *path, const lt_exr_image_t *img, lt_diag_t *diag)
 
     tmp = (char *)malloc(LT_TMP_PATH_MAX);
     if (tmp == NULL) {
-        lt_diag_fail(diag, "%s: out of memory", path);
+        lt_diag_fail(diag, "%s: out of memory", name);
         goto done;
     }
     /* registered: a fatal signal removes it (io/lt_tmpfiles.h) */
@@ -386,7 +388,7 @@ int lt_exr_write(const char *path, const lt_exr_image_t *img, lt_diag_t *diag)
     memset(&io, 0, sizeof io);
     io.fd = open(tmp, O_WRONLY | O_CREAT | O_TRUNC, 0644);
     if (io.fd < 0) {
-        lt_diag_fail(diag, "%s: cannot create temporary file %s: %s", path, tmp, strerror(errno));
+        lt_diag_fail(diag, "%s: cannot create temporary file %s: %s", name, tmp, strerror(errno));
         goto done;
     }
 
@@ -438,11 +440,11 @@ int lt_exr_write(const char *path, const lt_exr_image_t *img, lt_diag_t *diag)
         ctx = NULL;
     }
     if (rv != EXR_ERR_SUCCESS) {
-        lt_diag_fail(diag, "%s: OpenEXR %s failed: %s", path, stage, lib_text(&io, rv));
+        lt_diag_fail(diag, "%s: OpenEXR %s failed: %s", name, stage, lib_text(&io, rv));
         goto done;
     }
     if (fsync(io.fd) != 0 || close(io.fd) != 0) {
-        lt_diag_fail(diag, "%s: writing %s failed: %s", path, tmp, strerror(errno));
+        lt_diag_fail(diag, "%s: writing %s failed: %s", name, tmp, strerror(errno));
         io.fd = -1;
         goto done;
     }

@@ -61,6 +61,8 @@ typedef struct lt_exr_image {
 /* Write img to path as a single-part scanline EXR, atomically: the data goes to
  * "<path>.tmp.<pid>" in the same directory, is fsync'ed, then renamed over path, so an interrupted
  * run leaves either the previous file or the complete new one (plus, at worst, the temp file).
+ * A path that is an output set's registered temporary (lt_outset_add) is written directly, and
+ * messages name the set's output instead (lt_tmp_target).
  * Format: float32 in memory -> HALF or FLOAT per channel in the file.
  * Range: any float, NaN and +-inf included. Rounding: HALF rounds to nearest, ties to even
  * (subnormal halves included). Overflow: HALF saturates to +-inf beyond +-65504 (+-65520 rounds

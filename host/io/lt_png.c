@@ -77,31 +77,33 @@ int lt_png_write(const char *path, const uint8_t *pix, int32_t w, int32_t h, int
     FILE *fp;
     char *tmp;
     int rc;
+    const char *name; /* the output in messages (lt_tmp_target) */
 
     if (path == NULL || pix == NULL) {
         lt_diag_fail(diag, "lt_png_write: NULL %s", path == NULL ? "path" : "pixels");
         return -1;
     }
+    name = lt_tmp_target(path);
     if (w < 1 || h < 1 || w > LT_PNG_MAX_DIM || h > LT_PNG_MAX_DIM) {
-        lt_diag_fail(diag, "%s: image %dx%d outside 1..LT_PNG_MAX_DIM %d", path, (int)w, (int)h,
+        lt_diag_fail(diag, "%s: image %dx%d outside 1..LT_PNG_MAX_DIM %d", name, (int)w, (int)h,
                      LT_PNG_MAX_DIM);
         return -1;
     }
     if (channels < 1 || channels > 4) {
         lt_diag_fail(diag, "%s: %d channels per pixel (need 1 gray, 2 gray+alpha, 3 RGB, 4 RGBA)",
-                     path, channels);
+                     name, channels);
         return -1;
     }
     if (stride == 0)
         stride = (size_t)w * (size_t)channels;
     if (stride < (size_t)w * (size_t)channels) {
-        lt_diag_fail(diag, "%s: row stride %zu < %d pixels x %d channels", path, stride, (int)w,
+        lt_diag_fail(diag, "%s: row stride %zu < %d pixels x %d channels", name, stride, (int)w,
                      channels);
         return -1;
     }
     tmp = (char *)malloc(LT_TMP_PATH_MAX);
     if (tmp == NULL) {
-        lt_diag_fail(diag, "%s: out of memory", path);
+        lt_diag_fail(diag, "%s: out of memory", name);
         return -1;
     }
     /* registered: a fatal signal removes it (io/lt_tmpfiles.h) */
@@ -111,7 +113,7 @@ int lt_png_write(const char *path, const uint8_t *pix, int32_t w, int32_t h, int
     }
     fp = fopen(tmp, "wb");
     if (fp == NULL) {
-        lt_diag_fail(diag, "%s: cannot create temporary file %s: %s", path, tmp, strerror(errno));
+        lt_diag_fail(diag, "%s: cannot create temporary file %s: %s", name, tmp, strerror(errno));
         lt_tmp_end(tmp);
         free(tmp);
         return -1;
@@ -119,14 +121,14 @@ int lt_png_write(const char *path, const uint8_t *pix, int32_t w, int32_t h, int
     memset(&pe, 0, sizeof pe);
     rc = encode(fp, pix, w, h, channels, stride, &pe);
     if (rc != 0) {
-        lt_diag_fail(diag, "%s: PNG encoding failed: %s", path, pe.msg);
+        lt_diag_fail(diag, "%s: PNG encoding failed: %s", name, pe.msg);
         (void)fclose(fp);
     } else if (fflush(fp) != 0 || fsync(fileno(fp)) != 0 || ferror(fp)) {
-        lt_diag_fail(diag, "%s: writing %s failed: %s", path, tmp, strerror(errno));
+        lt_diag_fail(diag, "%s: writing %s failed: %s", name, tmp, strerror(errno));
         (void)fclose(fp);
         rc = -1;
     } else if (fclose(fp) != 0) {
-        lt_diag_fail(diag, "%s: closing %s failed: %s", path, tmp, strerror(errno));
+        lt_diag_fail(diag, "%s: closing %s failed: %s", name, tmp, strerror(errno));
         rc = -1;
     } else {
         rc = lt_tmp_commit(tmp, path, diag); /* removes or forgets tmp */

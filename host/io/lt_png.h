@@ -19,7 +19,8 @@ extern "C" {
 /* Write a w x h image of `channels` interleaved 8-bit samples per pixel (1 gray, 2 gray+alpha,
  * 3 RGB, 4 RGBA; alpha not premultiplied), rows top first, `stride` bytes apart (0 = w *
  * channels). The data goes to "<path>.tmp.<pid>", is fsync'ed and renamed over path, so an
- * interrupted run leaves the previous file or the complete new one.
+ * interrupted run leaves the previous file or the complete new one. An output set's registered
+ * temporary (lt_outset_add) is written directly, and messages name the set's output.
  * Format: uint8 samples -> 8-bit PNG (zlib level 6, no filter heuristics beyond libpng's).
  * Range: 0..255. Rounding: none. Overflow: none. Cost: host only, not charged.
  * Returns: 0, or -1 with a message naming the path and the problem in diag. */

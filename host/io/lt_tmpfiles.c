@@ -14,6 +14,7 @@
 /* the registry: a slot is live while used[i] != 0; the handler reads it, so the flags are
  * sig_atomic_t and a slot's name is written before its flag is set */
 static char g_tmp[LT_TMP_MAX][LT_TMP_PATH_MAX];
+static char g_owner[LT_TMP_MAX][LT_TMP_PATH_MAX]; /* the output each temporary becomes */
 static volatile sig_atomic_t g_used[LT_TMP_MAX];
 static int g_installed;
 
@@ -51,10 +52,33 @@ static int special_dest(const char *path)
     return lstat(path, &st) == 0 && !S_ISREG(st.st_mode) && !S_ISDIR(st.st_mode);
 }
 
+/* The registry slot of the temporary tmp, or -1. */
+static int slot_of(const char *tmp)
+{
+    int i;
+    for (i = 0; i < LT_TMP_MAX; i++)
+        if (g_used[i] && strcmp(g_tmp[i], tmp) == 0)
+            return i;
+    return -1;
+}
+
+const char *lt_tmp_target(const char *path)
+{
+    int i = slot_of(path);
+    return i >= 0 ? g_owner[i] : path;
+}
+
 int lt_tmp_begin(const char *path, char out[LT_TMP_PATH_MAX], lt_diag_t *diag)
 {
     static unsigned serial;
     int i, k;
+    if (slot_of(path) >= 0) {
+        /* an output set's member (lt_outset_add): its temporary already stands between the
+           writer and the output, so the writer writes it directly; a temporary of the temporary
+           gained nothing and put "<path>.tmp.<pid>.tmp.<pid>" in the messages */
+        memcpy(out, path, strlen(path) + 1);
+        return 0;
+    }
     if (special_dest(path)) {
         /* not beside it: /dev/null's directory is /dev */
         const char *dir = getenv("TMPDIR");
@@ -74,6 +98,7 @@ int lt_tmp_begin(const char *path, char out[LT_TMP_PATH_MAX], lt_diag_t *diag)
     for (i = 0; i < LT_TMP_MAX; i++)
         if (!g_used[i]) {
             memcpy(g_tmp[i], out, (size_t)k + 1);
+            memcpy(g_owner[i], path, strlen(path) + 1);
             g_used[i] = 1;
             return 0;
         }
@@ -83,12 +108,9 @@ int lt_tmp_begin(const char *path, char out[LT_TMP_PATH_MAX], lt_diag_t *diag)
 
 void lt_tmp_end(const char *tmp)
 {
-    int i;
-    for (i = 0; i < LT_TMP_MAX; i++)
-        if (g_used[i] && strcmp(g_tmp[i], tmp) == 0) {
-            g_used[i] = 0;
-            return;
-        }
+    int i = slot_of(tmp);
+    if (i >= 0)
+        g_used[i] = 0;
 }
 
 void lt_tmp_discard(const char *tmp)
@@ -135,7 +157,10 @@ static int copy_into(const char *tmp, const char *path, lt_diag_t *diag)
 int lt_tmp_commit(const char *tmp, const char *path, lt_diag_t *diag)
 {
     struct stat st;
-    int rc = 0, renamed = 0, there = lstat(path, &st) == 0;
+    int rc = 0, renamed = 0, there;
+    if (strcmp(tmp, path) == 0)
+        return 0; /* an output set's member, written directly: lt_outset_commit moves it */
+    there = lstat(path, &st) == 0;
     if (there && S_ISDIR(st.st_mode))
         rc = lt_diag_fail(diag, "%s: is a directory; the output was not written", path);
     else if (there && !S_ISREG(st.st_mode)) /* special_dest */

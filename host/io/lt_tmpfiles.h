@@ -25,8 +25,10 @@ extern "C" {
 void lt_tmp_handle_signals(void);
 
 /* "<path>.tmp.<pid>" into out[LT_TMP_PATH_MAX] and registered ("$TMPDIR/lanetrace.<pid>.<n>.tmp"
- * when path is a link, device, FIFO or socket: see lt_tmp_commit). Returns 0, or -1 with a message
- * naming path when the name does not fit (nothing is cut) or the registry is full. */
+ * when path is a link, device, FIFO or socket: see lt_tmp_commit). When path is itself a
+ * registered temporary (an output set's member handed to a writer), out is path: the writer
+ * writes it directly and its lt_tmp_commit leaves it to lt_outset_commit. Returns 0, or -1 with a
+ * message naming path when the name does not fit (nothing is cut) or the registry is full. */
 int lt_tmp_begin(const char *path, char out[LT_TMP_PATH_MAX], lt_diag_t *diag);
 
 /* Make the finished temporary tmp the output path, and forget it: renamed into place when path
@@ -34,8 +36,14 @@ int lt_tmp_begin(const char *path, char out[LT_TMP_PATH_MAX], lt_diag_t *diag);
  * removed) when path is a symbolic link, a device, a FIFO or a socket, which stays what it is
  * (`--out /dev/null`, `--report /dev/stdout`, a link to a file elsewhere). For such a path
  * lt_tmp_begin puts the temporary in $TMPDIR (default /tmp). Returns 0, or -1 with a message
- * naming path (a directory there, a failed rename or write); tmp is removed either way. */
+ * naming path (a directory there, a failed rename or write); tmp is removed either way. When tmp
+ * is path (lt_tmp_begin on an output set's member) nothing is done: the set's commit moves it. */
 int lt_tmp_commit(const char *tmp, const char *path, lt_diag_t *diag);
+
+/* The output that the registered temporary path will become, for messages: a writer handed an
+ * output set's temporary names the user's file, not "<file>.tmp.<pid>". path itself when it is
+ * no registered temporary. */
+const char *lt_tmp_target(const char *path);
 
 /* Forget a temporary (after it was renamed into place or unlinked). */
 void lt_tmp_end(const char *tmp);

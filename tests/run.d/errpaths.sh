@@ -21,6 +21,19 @@ mkdir -p "$E"
 check "errpaths: a 2-layer depth EXR to reproject" test -s "$E/d.exr"
 ep_expect "render: unwritable output set" 1 "/nonexistent-ep/r.exr: cannot create" \
     "$HOSTBIN/lanetrace-native" render --res 8 --out /nonexistent-ep/r
+# A member of an output set that its writer cannot create (the directory passes the set's check,
+# the file cannot be made there: /proc as root, "not writable" otherwise): the message names the
+# output, and its temporary once; it used to name "x.exr.tmp.<pid>" and "x.exr.tmp.<pid>.tmp.<pid>".
+ep_once() { # name: the last ep_expect output names no temporary of a temporary
+    local name=$1
+    check "$name" sh -c "! grep -q '\\.tmp\\.[0-9]*\\.tmp\\.' '$tmp/ep.txt'"
+}
+ep_expect "render: an output its writer cannot create names the output once" 1 "/proc/lt-ep.exr: " \
+    "$HOSTBIN/lanetrace-native" render --res 8 --out /proc/lt-ep -q
+ep_once "render: no doubled temporary suffix in the message"
+ep_expect "reproject: the same" 1 "/proc/lt-ep.exr: " \
+    "$SIMBIN/lanetrace" reproject scenes/teapot.json --depth "$E/d.exr" --layers 2 --out /proc/lt-ep.exr -q
+ep_once "reproject: no doubled temporary suffix in the message"
 ep_expect "run: unwritable reports of both paths" 1 "/nonexistent-ep/r.f32.json: cannot create" \
     "$SIMBIN/lanetrace" run --res 8 --num both --report /nonexistent-ep/r.json -q
 ep_expect "run: unwritable depth EXR" 1 "/nonexistent-ep/x.exr: cannot create" \

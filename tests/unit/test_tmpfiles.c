@@ -2,7 +2,8 @@
  * SIGXFSZ, SIGPIPE) during a write leaves no temporary behind - registered ones directly, and
  * those of the EXR and PNG writers, killed in the middle of a large write - the process still dies
  * of the signal; over-long output names are refused, not cut; an output set replaces its files all
- * together or not at all (a failure before the commit, a directory in the way). Builds: host,
+ * together or not at all (a failure before the commit, a directory in the way), and its members
+ * are written by the writers directly, named as the outputs in messages. Builds: host,
  * sim, asan.
  */
 #include <stdarg.h>
@@ -259,6 +260,37 @@ static void test_outset_all_or_nothing(void **state)
     free(s);
 }
 
+/* A writer handed a set member's temporary writes it directly (no "<tmp>.tmp.<pid>" beside it)
+ * and names the member's output in its messages; the set's commit then moves it into place. */
+static void test_outset_member_written_directly(void **state)
+{
+    lt_outset_t *s = calloc(1, sizeof *s);
+    static const uint8_t px[3 * 4] = {0};
+    char a[300], tnest[LT_TMP_PATH_MAX];
+    const char *ta;
+    lt_diag_t d;
+    (void)state;
+    assert_non_null(s);
+    snprintf(a, sizeof a, "%s/member.png", g_dir);
+    assert_int_equal(lt_outset_add(s, a, &ta, &d), 0);
+    assert_string_equal(lt_tmp_target(ta), a);
+    assert_string_equal(lt_tmp_target(a), a); /* not a temporary: itself */
+    assert_int_equal(lt_tmp_begin(ta, tnest, &d), 0);
+    assert_string_equal(tnest, ta);
+    assert_int_equal(lt_png_write(ta, px, 2, 2, 3, 0, &d), 0);
+    assert_int_equal(count_tmp(), 1); /* the member's temporary only */
+    /* an invalid image: the message names the output, not its temporary */
+    assert_int_equal(lt_png_write(ta, px, 0, 2, 3, 0, &d), -1);
+    assert_true(strncmp(d.msg, a, strlen(a)) == 0 && d.msg[strlen(a)] == ':');
+    assert_int_equal(lt_outset_commit(s, &d), 0);
+    assert_int_equal(count_tmp(), 0);
+    assert_int_equal(access(a, F_OK), 0);
+    unlink(a);
+    printf("tmpfiles: a set member's temporary is written directly (1 temporary, not 2) and "
+           "messages name the output\n");
+    free(s);
+}
+
 /* lt_tmp_commit over a symbolic link (to a file here, and to a FIFO with a reader): the link
  * stays a link, its target gets the bytes, the temporary is in $TMPDIR and removed; over a
  * regular file it is renamed into place. */
@@ -328,6 +360,7 @@ int main(void)
         cmocka_unit_test(test_writers_killed_midway),
         cmocka_unit_test(test_long_names_refused),
         cmocka_unit_test(test_outset_all_or_nothing),
+        cmocka_unit_test(test_outset_member_written_directly),
         cmocka_unit_test(test_commit_through_links),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
