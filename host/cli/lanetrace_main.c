@@ -1121,10 +1121,11 @@ static int exr_probe_next(const char *path, int p, lt_exr_probe_t *pr)
 }
 
 /* info --json: the file, its views, part 0's header at the top level (as before parts were
- * listed), "part_list" with every part, "depth" (d NULL: "depth_error", why none). */
+ * listed), "part_list" with every part, "depth" (d NULL: "depth_error", why none),
+ * "limit_error" when reproject and fwblob refuse the depth image (limit). */
 static int info_exr_json(const char *path, const lt_sniff_t *sn, lt_exr_probe_t *pr,
                          const lt_exr_depth_t *d, const exr_stats_t *s, const char *why,
-                         const lt_rec_depth_facts_t *df, const lt_rec_t *rec)
+                         const char *limit, const lt_rec_depth_facts_t *df, const lt_rec_t *rec)
 {
     cJSON *j = cJSON_CreateObject(), *a;
     const int dw[4] = {pr->data_window.x0, pr->data_window.y0, pr->data_window.x1,
@@ -1169,6 +1170,8 @@ static int info_exr_json(const char *path, const lt_sniff_t *sn, lt_exr_probe_t 
         cJSON_AddNumberToObject(a, "jump_share", df->pairs ? (double)df->jumps / (double)df->pairs : 0.0);
         cJSON_AddNumberToObject(a, "planar_share",
                                 df->inner ? (double)df->planar / (double)df->inner : 0.0);
+        if (limit != NULL)
+            cJSON_AddStringToObject(j, "limit_error", limit);
         a = cJSON_AddObjectToObject(j, "recommend");
         cJSON_AddStringToObject(a, "machine", rec->machine);
         cJSON_AddNumberToObject(a, "depth_range_log2", rec->range_log2);
@@ -1191,7 +1194,7 @@ static int info_exr_json(const char *path, const lt_sniff_t *sn, lt_exr_probe_t 
 /* info: the file and its views, every part, the depth statistics (d NULL: why none). */
 static int info_exr_text(const char *path, const lt_sniff_t *sn, lt_exr_probe_t *pr,
                          const lt_exr_depth_t *d, const exr_stats_t *s, const char *why,
-                         const lt_rec_depth_facts_t *df, const lt_rec_t *rec)
+                         const char *limit, const lt_rec_depth_facts_t *df, const lt_rec_t *rec)
 {
     char views[1024];
     int p;
@@ -1218,6 +1221,8 @@ static int info_exr_text(const char *path, const lt_sniff_t *sn, lt_exr_probe_t 
                df->pairs ? 100.0 * (double)df->jumps / (double)df->pairs : 0.0,
                100.0 * LT_REC_JUMP_REL,
                df->inner ? 100.0 * (double)df->planar / (double)df->inner : 0.0, LT_REC_PLANAR_REL);
+        if (limit != NULL)
+            printf("limits    %s\n", limit);
         printf("recommend for %s, reproject (no sweep; lanetrace tune measures it)\n", rec->machine);
         for (p = 0; p < rec->n; p++)
             printf("  %-10s %-7s %s\n", rec->k[p].knob, rec->k[p].pick, rec->k[p].reason);
@@ -1234,8 +1239,10 @@ static int info_exr(const char *path, const lt_sniff_t *sn, int json, int part, 
     lt_exr_probe_t *pr = malloc(sizeof *pr);
     lt_exr_depth_t d;
     lt_exr_read_opts_t ro = LT_EXR_READ_OPTS_DEFAULT;
-    lt_diag_t diag;
+    lt_diag_t diag, ldiag;
     exr_stats_t s;
+    char lim[LT_DIAG_MAX + 80];
+    const char *limit = NULL; /* why reproject and fwblob refuse the depth image, or NULL */
     int have_depth, rc;
     if (pr == NULL || lt_exr_probe(path, pr, &diag) != 0) {
         fprintf(stderr, "%s\n", pr == NULL ? "lanetrace info: out of memory" : diag.msg);
@@ -1258,11 +1265,17 @@ static int info_exr(const char *path, const lt_sniff_t *sn, int json, int part, 
         lt_rec_depth_scan(d.z, (uint32_t)d.width, (uint32_t)d.height, &df);
         df.machine = machine;
         lt_recommend_depth(&df, &rec);
+        /* the header is described either way; the commands that take it are told here */
+        if (lt_exr_display_check(path, &d.display_window, &ldiag) != 0) {
+            snprintf(lim, sizeof lim, "%s; reproject (without --src-cam or a scene camera) and "
+                     "fwblob refuse it", ldiag.msg);
+            limit = lim;
+        }
     }
     if (json)
-        rc = info_exr_json(path, sn, pr, have_depth ? &d : NULL, &s, diag.msg, &df, &rec);
+        rc = info_exr_json(path, sn, pr, have_depth ? &d : NULL, &s, diag.msg, limit, &df, &rec);
     else
-        rc = info_exr_text(path, sn, pr, have_depth ? &d : NULL, &s, diag.msg, &df, &rec);
+        rc = info_exr_text(path, sn, pr, have_depth ? &d : NULL, &s, diag.msg, limit, &df, &rec);
     if (have_depth)
         lt_exr_depth_free(&d);
     free(pr);

@@ -89,6 +89,11 @@ int lt_fwblob_cli(int argc, char **argv, const char *prog)
         fprintf(stderr, "%s\n", diag.msg);
         return EXIT_INPUT;
     }
+    /* the source camera spans the display window (lt_rp_cam_default below) */
+    if (lt_exr_display_check(depth, &d.display_window, &diag) != 0) {
+        fprintf(stderr, "%s; fwblob's source camera spans it\n", diag.msg);
+        goto done;
+    }
     cx = (uint32_t)crop[0];
     cy = (uint32_t)crop[1];
     cw = (uint32_t)crop[2];

@@ -612,9 +612,17 @@ static int rp_source_camera(rp_t *r)
         lt_rp_cam_from_camera(&cam, W, H, &src->cam);
         r->cam_desc = "the scene's camera";
     } else {
+        /* the field of view spans the display window: one over LT_EXR_MAX_DIM (which the reader
+           does not check for a data-window read) would give a focal length of 2^30 pixels */
         const lt_exr_depth_t *d = &r->dl[0];
-        int32_t disp_w = d->display_window.x1 - d->display_window.x0 + 1;
-        int32_t disp_h = d->display_window.y1 - d->display_window.y0 + 1;
+        int32_t disp_w, disp_h;
+        if (lt_exr_display_check(r->depth, &d->display_window, &diag) != 0) {
+            fprintf(stderr, "%s; reproject's default source camera spans it (give --src-cam, or "
+                    "a scene file with a camera)\n", diag.msg);
+            return EXIT_INPUT;
+        }
+        disp_w = d->display_window.x1 - d->display_window.x0 + 1;
+        disp_h = d->display_window.y1 - d->display_window.y0 + 1;
         lt_rp_cam_default(W, H, disp_w, disp_h, d->x0 - d->display_window.x0,
                           d->y0 - d->display_window.y0, r->fov, &src->cam);
         r->cam_desc = "default";

@@ -1236,13 +1236,23 @@ static int64_t max_unpack_ratio(exr_compression_t c)
     }
 }
 
+int lt_exr_display_check(const char *path, const lt_exr_box_t *disp, lt_diag_t *diag)
+{
+    /* in 64 bits: x1 - x0 + 1 of a stored window can exceed INT32_MAX */
+    int64_t w = (int64_t)disp->x1 - disp->x0 + 1, h = (int64_t)disp->y1 - disp->y0 + 1;
+    if (w < 1 || h < 1 || w > LT_EXR_MAX_DIM || h > LT_EXR_MAX_DIM)
+        return lt_diag_fail(diag, "%s: display window %lldx%lld outside 1..LT_EXR_MAX_DIM %d",
+                            path, (long long)w, (long long)h, LT_EXR_MAX_DIM);
+    return 0;
+}
+
 /* The depth part's storage and windows, checked against what is read (rules in lt_exr.h).
  * 0, or -1 with the message in diag. */
 static int check_part(exr_context_t ctx, int part, const exr_attr_chlist_entry_t *ze,
                       const lt_exr_read_opts_t *o, exr_storage_t *st, exr_attr_box2i_t *dw,
                       exr_attr_box2i_t *disp, exr_io_t *io, const char *path, lt_diag_t *diag)
 {
-    int64_t W, H, dispW, dispH;
+    int64_t W, H;
     if (exr_get_storage(ctx, part, st) != EXR_ERR_SUCCESS ||
         exr_get_data_window(ctx, part, dw) != EXR_ERR_SUCCESS ||
         exr_get_display_window(ctx, part, disp) != EXR_ERR_SUCCESS)
@@ -1250,15 +1260,18 @@ static int check_part(exr_context_t ctx, int part, const exr_attr_chlist_entry_t
                             lib_text(io, EXR_ERR_MISSING_REQ_ATTR));
     W = (int64_t)dw->max.x - dw->min.x + 1;
     H = (int64_t)dw->max.y - dw->min.y + 1;
-    dispW = (int64_t)disp->max.x - disp->min.x + 1;
-    dispH = (int64_t)disp->max.y - disp->min.y + 1;
     if (W < 1 || H < 1 || W > LT_EXR_MAX_DIM || H > LT_EXR_MAX_DIM)
         return lt_diag_fail(diag, "%s: data window %lldx%lld outside 1..LT_EXR_MAX_DIM %d", path,
                             (long long)W, (long long)H, LT_EXR_MAX_DIM);
-    if (o->window == LT_EXR_WINDOW_DISPLAY &&
-        (dispW < 1 || dispH < 1 || dispW > LT_EXR_MAX_DIM || dispH > LT_EXR_MAX_DIM))
-        return lt_diag_fail(diag, "%s: display window %lldx%lld outside 1..LT_EXR_MAX_DIM %d",
-                            path, (long long)dispW, (long long)dispH, LT_EXR_MAX_DIM);
+    if (o->window == LT_EXR_WINDOW_DISPLAY) {
+        lt_exr_box_t b;
+        b.x0 = disp->min.x;
+        b.y0 = disp->min.y;
+        b.x1 = disp->max.x;
+        b.y1 = disp->max.y;
+        if (lt_exr_display_check(path, &b, diag) != 0)
+            return -1;
+    }
     if (ze->pixel_type != EXR_PIXEL_HALF && ze->pixel_type != EXR_PIXEL_FLOAT)
         return lt_diag_fail(diag, "%s: channel '%s' is UINT; a depth channel must be HALF or "
                             "FLOAT", path, ze->name.str);

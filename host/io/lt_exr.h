@@ -146,6 +146,15 @@ typedef struct lt_exr_depth {
 int lt_exr_read_depth(const char *path, const char *channel, const lt_exr_read_opts_t *opts,
                       lt_exr_depth_t *out, lt_diag_t *diag);
 
+/* Whether the display window disp (as stored in path) is one that may be read: 1..LT_EXR_MAX_DIM
+ * per side, the limit lt_exr_read_depth applies to it with LT_EXR_WINDOW_DISPLAY. A command that
+ * reads a data window and derives a camera from the display window around it (reproject's and
+ * fwblob's default source camera, lt_rp_cam_default) checks it with this first, so that a window
+ * of 20000 or 2^30 pixels is refused, not turned into a focal length. Cost: host only.
+ * Returns: 0, or -1 with a message naming path, the window's size and the limit, e.g.
+ * "d.exr: display window 20000x24 outside 1..LT_EXR_MAX_DIM 16384". */
+int lt_exr_display_check(const char *path, const lt_exr_box_t *disp, lt_diag_t *diag);
+
 /* Free what lt_exr_read_depth allocated (safe on a zeroed or already-freed struct).
  * Cost: host only. */
 void lt_exr_depth_free(lt_exr_depth_t *d);

@@ -171,3 +171,37 @@ check "lt-stream: SIGINT on an idle FIFO ends it with exit 1 and the summary (rc
 printf 'this is not a blob, just text long enough to pass the size check of its header words: %0200d\n' 0 >"$E/text.ltsb"
 ep_expect "pack --in: a text file names its first word, not a bogus offset" 1 "its first word is 0x73696874" \
     "$HOSTBIN/lanetrace-native" pack --in "$E/text.ltsb"
+
+# Depth EXRs whose display window is over LT_EXR_MAX_DIM (16384) per side (build/host/lt-exr-stereo:
+# 24x16 of depth in a 20000x24 and a (2^30 - 1)-square display window). The reader reads the data
+# window; reproject's and fwblob's default source camera spans the display window, and made a
+# focal length of 9.3e8 pixels of it, silently. Now refused, naming the file, the size and the
+# limit; info still describes the header and says so; --src-cam needs no display window.
+"$B/host/lt-exr-stereo" widedisp "$E/widedisp.exr" && "$B/host/lt-exr-stereo" fardisp "$E/fardisp.exr"
+check "errpaths: lt-exr-stereo writes the display-window test files" \
+    test -s "$E/widedisp.exr" -a -s "$E/fardisp.exr"
+ep_expect "reproject: a 20000-wide display window for the default camera" 1 \
+    "widedisp.exr: display window 20000x24 outside 1..LT_EXR_MAX_DIM 16384; reproject's default source camera" \
+    "$SIMBIN/lanetrace" reproject --depth "$E/widedisp.exr" --out "$E/wd.exr" -q
+check "reproject: nothing written for it" test ! -e "$E/wd.exr"
+ep_expect "reproject: a (2^30 - 1)-square display window" 1 \
+    "fardisp.exr: display window 1073741823x1073741823 outside 1..LT_EXR_MAX_DIM 16384" \
+    "$HOSTBIN/lanetrace-native" reproject --depth "$E/fardisp.exr" --out "$E/fd.exr" -q
+ep_expect "reproject: the same with --src-cam (the display window is not used)" 0 "" \
+    "$SIMBIN/lanetrace" reproject --depth "$E/fardisp.exr" --src-cam 20,20,12,8 --out "$E/fd.exr" -q
+ep_expect "fwblob: the 20000-wide display window" 1 \
+    "widedisp.exr: display window 20000x24 outside 1..LT_EXR_MAX_DIM 16384; fwblob" \
+    "$HOSTBIN/lanetrace-native" fwblob --depth "$E/widedisp.exr" --crop 0,0,8,8 --out "$E/wd.blob"
+ep_expect "info: the header described, the limit said (exit 0)" 0 \
+    "^limits    .*widedisp.exr: display window 20000x24 outside 1..LT_EXR_MAX_DIM 16384; reproject" \
+    "$HOSTBIN/lanetrace-native" info "$E/widedisp.exr"
+check "info: the display window listed" grep -q "display window (0,0)-(19999,23)" "$tmp/ep.txt"
+ep_expect "info --json: limit_error" 0 '"limit_error":".*fardisp.exr: display window 1073741823x' \
+    "$HOSTBIN/lanetrace-native" info --json "$E/fardisp.exr"
+# The smallest image the quadtree takes is 1x1 (LT_QT_MAX_DIM's range is 1..16384: lt_qt.h,
+# lt_reproject.c): a 1x1 render is reprojected, not refused.
+"$HOSTBIN/lanetrace-native" render --res 1 --out "$E/one" -q >/dev/null 2>&1
+ep_expect "reproject: a 1x1 depth image (the quadtree's minimum)" 0 "" \
+    "$SIMBIN/lanetrace" reproject scenes/teapot.json --depth "$E/one.exr" --out "$E/one_rp.exr" -q
+check "reproject: its 1x1 output written" test -s "$E/one_rp.exr"
+

@@ -253,7 +253,11 @@ static void ltx_eye(ltx_part_t *pt, int e, int color, int depth, const char *pfx
  *   "split"   colour in parts of its own: 0 "left.depth" Z, 1 "right.depth" Z, 2 "left.color",
  *             3 "right.color" R G B A; views as named; multiView right left
  *   "nomv"    "stereo" without multiView (the default view is part 0's: left)
- *   "single"  one part, multiView right left: R G B A Z (right) and left.R ... left.Z */
+ *   "single"  one part, multiView right left: R G B A Z (right) and left.R ... left.Z
+ *   "widedisp" one part, no views: R G B A Z (right) in a 20000 x 24 display window (wider than
+ *             LT_EXR_MAX_DIM: the data window is readable, the display window is not)
+ *   "fardisp" the same in the display window (-(2^29 - 1), -(2^29 - 1))-(2^29 - 1, 2^29 - 1),
+ *             2^30 - 1 pixels square (OpenEXR refuses a window reaching past about +-2^30) */
 static int ltx_write_kind(const char *path, const char *kind, lt_diag_t *diag)
 {
     static char names[4][2][5][16];
@@ -294,9 +298,18 @@ static int ltx_write_kind(const char *path, const char *kind, lt_diag_t *diag)
         f.nparts = 1;
         ltx_eye(&f.part[0], 1, 1, 1, "", names[0][0]);
         ltx_eye(&f.part[0], 0, 1, 1, "left.", names[0][1]);
+    } else if (strcmp(kind, "widedisp") == 0 || strcmp(kind, "fardisp") == 0) {
+        f.nparts = 1;
+        f.nviews = 0;
+        ltx_eye(&f.part[0], 1, 1, 1, "", names[0][0]);
+        f.disp.max.x = 19999;
+        if (strcmp(kind, "fardisp") == 0) {
+            f.disp.min.x = f.disp.min.y = -536870911; /* -(2^29 - 1) */
+            f.disp.max.x = f.disp.max.y = 536870911;
+        }
     } else {
-        return lt_diag_fail(diag, "unknown test file kind '%s' (stereo, split, nomv, single)",
-                            kind);
+        return lt_diag_fail(diag, "unknown test file kind '%s' (stereo, split, nomv, single, "
+                            "widedisp, fardisp)", kind);
     }
     return ltx_write(path, &f, diag);
 }

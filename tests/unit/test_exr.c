@@ -926,12 +926,29 @@ static void test_limits(void **state)
 
     write_wide(tpath("widedisp.exr"), 2, 20000);
     assert_int_equal(lt_exr_read_depth(tpath("widedisp.exr"), NULL, &o, &d, &diag), 0);
+    /* read by its data window: a command building a camera over the display window asks */
+    assert_int_equal(lt_exr_display_check(tpath("widedisp.exr"), &d.display_window, &diag), -1);
+    assert_non_null(strstr(diag.msg, "widedisp.exr: display window 20000x1 outside "
+                                     "1..LT_EXR_MAX_DIM 16384"));
+    {
+        /* the extremes: 2^32 wide (x1 - x0 + 1 past int32), 1x1 and 16384 accepted */
+        lt_exr_box_t b = {INT32_MIN, 0, INT32_MAX, 0};
+        assert_int_equal(lt_exr_display_check("x.exr", &b, &diag), -1);
+        assert_non_null(strstr(diag.msg, "display window 4294967296x1"));
+        b.x0 = b.x1 = 7;
+        assert_int_equal(lt_exr_display_check("x.exr", &b, &diag), 0);
+        b.x0 = -5;
+        b.x1 = -5 + LT_EXR_MAX_DIM - 1;
+        b.y1 = LT_EXR_MAX_DIM - 1;
+        assert_int_equal(lt_exr_display_check("x.exr", &b, &diag), 0);
+    }
     lt_exr_depth_free(&d);
     o.window = LT_EXR_WINDOW_DISPLAY;
     assert_int_equal(lt_exr_read_depth(tpath("widedisp.exr"), NULL, &o, &d, &diag), -1);
     assert_non_null(strstr(diag.msg, "display window 20000x1"));
     ltt_report("limits: width 16385 refused on write and read (data window), display window "
-               "20000 refused only when the display window is asked for: 4 cases, 0 wrong\n");
+               "20000 refused when the display window is asked for or checked "
+               "(lt_exr_display_check: 2^32 refused, 1x1 and 16384 taken): 8 cases, 0 wrong\n");
 }
 
 /* ---- bad input ------------------------------------------------------------------------------- */
