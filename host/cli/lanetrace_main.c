@@ -489,11 +489,12 @@ static auto_by_t auto_by(const lt_scenefile_t *sf, int seen_num, int seen_struct
     return by;
 }
 
-/* run: the recommendation for the knobs that neither a flag nor the scene file set. */
+/* run: the recommendation for the knobs that neither a flag nor the scene file set; its lines
+ * are not summary lines, so -q (and --json, which sets it) keeps them off stdout. */
 static void run_auto(run_t *r)
 {
     auto_by_t by = auto_by(&r->sf, r->seen_num, r->seen_structure);
-    auto_apply(&r->sf, &r->mesh, &r->sc, &by, 0, r->json, r->auto_json, sizeof r->auto_json);
+    auto_apply(&r->sf, &r->mesh, &r->sc, &by, 0, quiet, r->auto_json, sizeof r->auto_json);
 }
 
 /* The mesh, the prepared scene and the camera. Returns 0 or an exit code. */

@@ -205,3 +205,19 @@ ep_expect "reproject: a 1x1 depth image (the quadtree's minimum)" 0 "" \
     "$SIMBIN/lanetrace" reproject scenes/teapot.json --depth "$E/one.exr" --out "$E/one_rp.exr" -q
 check "reproject: its 1x1 output written" test -s "$E/one_rp.exr"
 
+# -q: "summary lines only". run -q printed the recommendation's three "auto" lines (render -q,
+# reproject -q and shadows -q did not); the picks still apply and go to --report.
+ep_expect "run -q: no auto lines, the result line" 0 "^result    f32" \
+    "$SIMBIN/lanetrace" run --res 8 --no-ref -q
+check "run -q (sim): no auto line" sh -c "! grep -q '^auto' '$tmp/ep.txt'"
+ep_expect "run -q (native): the same" 0 "^result    f32" \
+    "$HOSTBIN/lanetrace-native" run --res 8 --no-ref -q --report "$E/q.json"
+check "run -q (native): no auto line; the picks in the report" \
+    sh -c "! grep -q '^auto' '$tmp/ep.txt' && grep -q '\"auto\"' '$E/q.json'"
+ep_expect "render -q: silent" 0 "" "$HOSTBIN/lanetrace-native" render --res 8 --out "$E/rq" -q
+check "render -q: no auto line" sh -c "! grep -q '^auto' '$tmp/ep.txt'"
+ep_expect "shadows -q: the result line" 0 "^result" \
+    "$SIMBIN/lanetrace" shadows --mesh scenes/teapot.obj --res 8 --no-ref -q
+check "shadows -q: no auto line" sh -c "! grep -q '^auto' '$tmp/ep.txt'"
+ep_expect "run without -q: the auto lines (unchanged)" 0 "^auto      numeric" \
+    "$HOSTBIN/lanetrace-native" run --res 8 --no-ref
