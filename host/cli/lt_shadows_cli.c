@@ -190,7 +190,7 @@ static int shadows_parse(shadows_t *s, int argc, char **argv)
         {.name = "--mesh", .kind = LT_OPT_STRING, .dest = &s->mesh_path, .meta = "PATH",
          .help = "the mesh (required unless SCENE.json names one)"},
         {.name = "--res", .kind = LT_OPT_INT, .dest = &s->res, .seen = &s->seen_res, .meta = "N",
-         .lo = 4, .hi = 8192,
+         .lo = 1, .hi = LT_SF_MAX_RES,
          .help = "image N x N, {range} (default 128; multiples of 4 keep tiles full)"},
         {.name = "--num", .kind = LT_OPT_ENUM, .dest = &s->num, .seen = &s->seen_num,
          .names = s->num_names, .help = num_help},
@@ -308,7 +308,7 @@ static int shadows_scene(shadows_t *s)
         if (s->mesh_path == NULL && sf->mesh[0] != '\0')
             s->mesh_path = sf->mesh;
         if (!s->seen_res)
-            s->res = (int)(sf->width < 4 ? 4 : sf->width);
+            s->res = (int)sf->width;
         for (i = 0; !s->seen_num && sf->numeric != LT_SF_NUM_BOTH && s->num_names[i] != NULL; i++)
             if ((unsigned)lt_paths_find(s->num_names[i], LT_PATHS_FRUSTA)->sf_num == (unsigned)sf->numeric)
                 s->num = i;

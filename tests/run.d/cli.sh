@@ -309,6 +309,20 @@ expect "shadows --light with trailing text refused" 2 "shadows: --light 0,5,0,1x
     "$LT" shadows --mesh scenes/teapot.obj --res 8 --no-ref --light 0,5,0,1xyz
 expect "shadows --fov 60abc: trailing text refused" 2 "shadows: --fov 60abc: not a finite number" \
     "$LT" shadows --mesh scenes/teapot.obj --res 8 --no-ref --fov 60abc
+# shadows at N x N under 4 (1..LT_SF_MAX_RES like run and render): --res 3 was refused (4..8192),
+# and a scene file's "resolution" under 4 was raised to 4 without a word (a 4x4 image for 2)
+png_wh() { # a PNG's WxH from its IHDR
+    od -An -tu1 -j16 -N8 "$1" | awk '{ printf "%dx%d", $1 * 16777216 + $2 * 65536 + $3 * 256 + $4, $5 * 16777216 + $6 * 65536 + $7 * 256 + $8 }'
+}
+expect "shadows --res 3: a 3x3 image" 0 "^result" \
+    "$LT" shadows --mesh scenes/teapot.obj --res 3 --no-ref -q --png "$tmp/sh3.png"
+check "shadows --res 3: the PNG is 3x3 ($(png_wh "$tmp/sh3.png"))" test "$(png_wh "$tmp/sh3.png")" = 3x3
+sc '{"mesh": "'"$PWD"'/scenes/teapot.obj", "resolution": 2}'
+expect "shadows: a scene's resolution 2 gives 2x2, not 4x4" 0 "2x2, s15.16" \
+    "$HOSTBIN/lanetrace-native" shadows "$tmp/s.json" --no-ref --png "$tmp/sh2.png"
+check "shadows: its PNG is 2x2 ($(png_wh "$tmp/sh2.png"))" test "$(png_wh "$tmp/sh2.png")" = 2x2
+expect "shadows --res 0: out of range, names the limits" 2 "shadows: --res 0: out of range; expected 1..8192" \
+    "$LT" shadows --mesh scenes/teapot.obj --res 0 --no-ref
 # the same messages from every subcommand
 for c in run render reproject shadows info diff machines fwblob pack; do
     expect "$c --help is printed from the option table" 0 "usage: lanetrace $c" "$LT" $c --help

@@ -76,7 +76,7 @@ fr_expect "shadows: usage without --mesh" 2 "usage:" "$SH_NAT" shadows
 fr_expect "shadows: unknown option" 2 "unknown option" "$SH_NAT" shadows --mesh scenes/teapot.obj --frob
 fr_expect "shadows: --leaf 0 names the limit" 2 "LT_BVH_MAX_LEAF" "$SH_NAT" shadows --mesh scenes/teapot.obj --leaf 0
 fr_expect "shadows: --leaf 65 names the limit" 2 "1..64" "$SH_NAT" shadows --mesh scenes/teapot.obj --leaf 65
-fr_expect "shadows: --res 3" 2 "4..8192" "$SH_NAT" shadows --mesh scenes/teapot.obj --res 3
+fr_expect "shadows: --res 8193 names the range (1..8192; 3 is taken since N x N from 1)" 2 "out of range; expected 1..8192" "$SH_NAT" shadows --mesh scenes/teapot.obj --res 8193
 fr_expect "shadows: --cull letters" 2 "letters b, c, r, f, l, s, p" "$SH_NAT" shadows --mesh scenes/teapot.obj --cull x
 fr_expect "shadows: --pcull letters" 2 "pcull x: expected letters b, c, r, l, s" "$SH_NAT" shadows --mesh scenes/teapot.obj --pcull x
 fr_expect "shadows: --prim values" 2 "expected packet, frusta or both" "$SH_NAT" shadows --mesh scenes/teapot.obj --prim rays
