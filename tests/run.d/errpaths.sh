@@ -171,6 +171,16 @@ check "lt-stream: SIGINT on an idle FIFO ends it with exit 1 and the summary (rc
 printf 'this is not a blob, just text long enough to pass the size check of its header words: %0200d\n' 0 >"$E/text.ltsb"
 ep_expect "pack --in: a text file names its first word, not a bogus offset" 1 "its first word is 0x73696874" \
     "$HOSTBIN/lanetrace-native" pack --in "$E/text.ltsb"
+# A view wider than the scene blob's camera check takes (lt_sblob_open: every corner direction
+# within 90 degrees of the top-left one's): pack wrote the blob (exit 0) that --trace, pack --in
+# and the targets then refused. Now refused before writing, naming the view and the limit.
+rm -f "$E/wide.ltsb"
+ep_expect "pack --res 13x4: too wide for the blob's camera, the view and the limit named" 1 \
+    "the 13x4 view is too wide for a scene blob: .* up to 96.8 degrees .* at most 90" \
+    "$HOSTBIN/lanetrace-native" pack --res 13x4 --out "$E/wide.ltsb"
+check "pack --res 13x4: no blob written" test ! -e "$E/wide.ltsb"
+ep_expect "pack --res 9x4: within it, written and traced" 0 "^image" \
+    "$HOSTBIN/lanetrace-native" pack --res 9x4 --out "$E/wide.ltsb" --trace
 
 # Depth EXRs whose display window is over LT_EXR_MAX_DIM (16384) per side (build/host/lt-exr-stereo:
 # 24x16 of depth in a 20000x24 and a (2^30 - 1)-square display window). The reader reads the data
