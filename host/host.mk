@@ -59,6 +59,7 @@ $(B)/sim/lt-stream-dev: $(PROD_lt_stream_dev)
 ASAN_PRODUCTS := $(foreach v,$(PRODUCT_VARS),$(B)/asan/$(subst _,-,$(v)))
 define asan_product
 $(B)/asan/$(subst _,-,$(1)): $$(subst $(B)/sim/,$(B)/asansim/,$$(subst $(B)/host/,$(B)/asan/,$$(PROD_$(1))))
+	@mkdir -p $$(@D)
 	@echo "LD $$@"
 	@$$(CC) $$(LDFLAGS_asan) -o $$@ $$^ $$(LIBS_asan) $(if $(filter lt_stream,$(1)),$$(STREAM_HID_LIBS))
 endef
