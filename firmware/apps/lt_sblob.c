@@ -34,7 +34,9 @@ const char *lt_sblob_err_str(lt_sblob_err_t e)
     case LT_SBLOB_E_LAYOUT: return "a section lies outside the blob or is misaligned";
     case LT_SBLOB_E_SUM: return "checksum differs: the blob was damaged";
     case LT_SBLOB_E_IMAGE: return "image size, eps or flags out of range";
-    case LT_SBLOB_E_CAMERA: return "a corner pixel's direction overflows or is zero";
+    case LT_SBLOB_E_CAMERA:
+        return "a pixel direction overflows, or a corner's is 90 degrees or more from the centre "
+               "pixel's";
     case LT_SBLOB_E_GEOMETRY: return "a vertex, the eye or the light outside the geometry bound";
     case LT_SBLOB_E_TREE: return "a BVH node or index out of range";
     }
@@ -318,16 +320,29 @@ lt_sblob_err_t lt_sblob_open(const void *p, size_t bytes, lt_sblob_t *s)
             return fail(s, LT_SBLOB_E_CAMERA, LT_SB_D00 + a);
     }
     {
-        /* no pixel direction is zero: at the four corners, the direction's component along d00
-           keeps one sign (a plane through the origin cannot separate the corners of a convex
-           pixel rectangle from its interior), checked in 64 bits */
-        int64_t dot[4];
+        /* no pixel direction is zero: at the four corners, the direction's component along the
+           centre pixel's direction keeps one sign (a plane through the origin cannot separate
+           the corners of a convex pixel rectangle from its interior, and every pixel's direction
+           is an average of the corners'). Exact in 64 bits: with m2 = 2 d00 + (w - 1) dx +
+           (h - 1) dy (twice the centre direction, |.| <= 2^31 per axis, each part within 2^29)
+           and a corner's parts below 2^30.6, each product is below 2^62 and two of them sum
+           inside int64; the third is added only when its sign differs (no overflow), else the
+           sum's sign is already that sign. Along d00 instead, views whose corners are 90
+           degrees or more apart (the teapot's default view at 13x4) were refused although none
+           of their directions is zero. */
+        int64_t dot[4], m2[3];
         unsigned c;
+        for (a = 0; a < 3u; a++)
+            m2[a] = 2 * (int64_t)s->d00[a] + ((int64_t)s->width - 1) * s->dx[a] +
+                    ((int64_t)s->height - 1) * s->dy[a];
         for (c = 0; c < 4u; c++) {
             int64_t x = (c & 1u) ? (int64_t)s->width - 1 : 0, y = (c & 2u) ? (int64_t)s->height - 1 : 0;
-            dot[c] = 0;
+            int64_t pr[3];
             for (a = 0; a < 3u; a++)
-                dot[c] += ((int64_t)s->d00[a] + x * s->dx[a] + y * s->dy[a]) * (s->d00[a] / 256);
+                pr[a] = ((int64_t)s->d00[a] + x * s->dx[a] + y * s->dy[a]) * m2[a];
+            dot[c] = pr[0] + pr[1];
+            if ((dot[c] > 0) != (pr[2] > 0) || dot[c] == 0)
+                dot[c] += pr[2];
         }
         for (c = 0; c < 4u; c++)
             if (dot[c] <= 0)

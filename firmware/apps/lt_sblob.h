@@ -68,7 +68,8 @@ typedef enum lt_sblob_err {
     LT_SBLOB_E_LAYOUT,    /* a section outside the blob, misaligned or overlapping the header */
     LT_SBLOB_E_SUM,       /* the checksum differs: the bytes were damaged */
     LT_SBLOB_E_IMAGE,     /* width, height, eps or flags out of range */
-    LT_SBLOB_E_CAMERA,    /* a corner pixel's direction overflows, or is zero */
+    LT_SBLOB_E_CAMERA,    /* a pixel direction overflows, or a corner's is 90 degrees or more
+                             from the centre pixel's (so one may be zero) */
     LT_SBLOB_E_GEOMETRY,  /* a vertex or the eye or light outside the core's geometry bound */
     LT_SBLOB_E_TREE       /* a node or index out of range, a cycle, or a tree deeper than allowed */
 } lt_sblob_err_t;

@@ -76,33 +76,6 @@ static void camera_words(const lt_camera_t *c, int32_t d00[3], int32_t dx[3], in
     }
 }
 
-/* The widest angle, degrees, between the top-left pixel's direction and another corner pixel's
- * (the blob's words, as lt_sblob_open reads them). lt_sblob_open refuses a camera where it reaches
- * 90: its check that no direction is zero takes the top-left direction as the forward one, so a
- * wide view (a 13x4 default view of the teapot, a square one over 80 degrees) is refused though
- * none is zero. */
-static double corner_spread_deg(uint32_t w, uint32_t h, const int32_t d00[3],
-                                const int32_t dx[3], const int32_t dy[3])
-{
-    double n0 = 0.0, worst = 0.0;
-    unsigned c;
-    int a;
-    for (a = 0; a < 3; a++)
-        n0 += (double)d00[a] * (double)d00[a];
-    for (c = 1; c < 4u; c++) {
-        double x = (c & 1u) ? (double)w - 1.0 : 0.0, y = (c & 2u) ? (double)h - 1.0 : 0.0;
-        double dot = 0.0, n = 0.0, cosang;
-        for (a = 0; a < 3; a++) {
-            double d = (double)d00[a] + x * dx[a] + y * dy[a];
-            dot += d * (double)d00[a];
-            n += d * d;
-        }
-        cosang = n0 > 0.0 && n > 0.0 ? dot / sqrt(n0 * n) : -1.0;
-        worst = fmax(worst, acos(fmax(-1.0, fmin(1.0, cosang))) * 180.0 / 3.14159265358979323846);
-    }
-    return worst;
-}
-
 /* p before the options: nothing given, the defaults of a pack. */
 static void pack_defaults(pack_t *p)
 {
@@ -280,15 +253,10 @@ static int pack_build(pack_t *p)
            is not written (it was, and only --trace or the target said so) */
         lt_sblob_t s;
         lt_sblob_err_t e = lt_sblob_open(b, total, &s);
-        if (e == LT_SBLOB_E_CAMERA)
-            fprintf(stderr, "%s: the %ux%u view is too wide for a scene blob: its corner pixels' "
-                            "directions are up to %.1f degrees from the top-left one's, and "
-                            "lt_sblob_open takes at most 90 (give a squarer --res or a narrower "
-                            "camera)\n", who_g, v.width, v.height,
-                    corner_spread_deg(v.width, v.height, d00, dx, dy));
-        else if (e != LT_SBLOB_OK)
-            fprintf(stderr, "%s: %s: the blob made of it fails the target's check (item %u): "
-                            "%s\n", who_g, p->sf.mesh, s.bad, lt_sblob_err_str(e));
+        if (e != LT_SBLOB_OK)
+            fprintf(stderr, "%s: %s: the %ux%u blob made of it fails the target's check (item %u): "
+                            "%s\n", who_g, p->sf.mesh, v.width, v.height, s.bad,
+                    lt_sblob_err_str(e));
         if (e != LT_SBLOB_OK) {
             free(b);
             return EXIT_INPUT;

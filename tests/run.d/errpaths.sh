@@ -171,16 +171,24 @@ check "lt-stream: SIGINT on an idle FIFO ends it with exit 1 and the summary (rc
 printf 'this is not a blob, just text long enough to pass the size check of its header words: %0200d\n' 0 >"$E/text.ltsb"
 ep_expect "pack --in: a text file names its first word, not a bogus offset" 1 "its first word is 0x73696874" \
     "$HOSTBIN/lanetrace-native" pack --in "$E/text.ltsb"
-# A view wider than the scene blob's camera check takes (lt_sblob_open: every corner direction
-# within 90 degrees of the top-left one's): pack wrote the blob (exit 0) that --trace, pack --in
-# and the targets then refused. Now refused before writing, naming the view and the limit.
+# Wide views (corner directions 90 degrees or more apart, none of them zero): lt_sblob_open's
+# zero-direction check measured the corners along the top-left direction and refused them, after
+# pack had written the blob (exit 0); it measures along the centre direction now, and pack runs
+# the check before writing. Each is written and traced on the host, as the targets trace it.
+for wr in 13x4 64x16; do
+    rm -f "$E/wide.ltsb"
+    ep_expect "pack --res $wr (a view over 90 degrees corner to corner): written and traced" 0 "^image" \
+        "$HOSTBIN/lanetrace-native" pack --res $wr --out "$E/wide.ltsb" --trace
+    check "pack --res $wr: the blob is there and pack --in takes it" \
+        bash -c "[ -s '$E/wide.ltsb' ] && '$HOSTBIN/lanetrace-native' pack --in '$E/wide.ltsb' >/dev/null 2>&1"
+done
+# 4096x1: 180 degrees corner to corner less 0.03; the integer camera words' rounding puts the
+# corners behind the centre direction: refused before writing, the check and its reason named
 rm -f "$E/wide.ltsb"
-ep_expect "pack --res 13x4: too wide for the blob's camera, the view and the limit named" 1 \
-    "the 13x4 view is too wide for a scene blob: .* up to 96.8 degrees .* at most 90" \
-    "$HOSTBIN/lanetrace-native" pack --res 13x4 --out "$E/wide.ltsb"
-check "pack --res 13x4: no blob written" test ! -e "$E/wide.ltsb"
-ep_expect "pack --res 9x4: within it, written and traced" 0 "^image" \
-    "$HOSTBIN/lanetrace-native" pack --res 9x4 --out "$E/wide.ltsb" --trace
+ep_expect "pack --res 4096x1 (a 180-degree view): refused, the target's check named" 1 \
+    "4096x1 blob .* fails the target's check (item 0): .* 90 degrees or more from the centre" \
+    "$HOSTBIN/lanetrace-native" pack --res 4096x1 --out "$E/wide.ltsb"
+check "pack --res 4096x1: no blob written" test ! -e "$E/wide.ltsb"
 
 # Depth EXRs whose display window is over LT_EXR_MAX_DIM (16384) per side (build/host/lt-exr-stereo:
 # 24x16 of depth in a 20000x24 and a (2^30 - 1)-square display window). The reader reads the data

@@ -252,6 +252,7 @@ static void test_refusals(void **state)
     size_t on = word(h, 4u * LT_SB_OFF_NODES), oi = word(h, 4u * LT_SB_OFF_IDX);
     lt_sblob_t s;
     unsigned n = 0;
+    lt_sblob_err_t wide = LT_SBLOB_OK;
     struct {
         const char *what;
         long off;
@@ -299,14 +300,38 @@ static void test_refusals(void **state)
             put_word(b, w, 0);
         reseal(b, fx->bytes);
         n += lt_sblob_open(b, fx->bytes, &s) == LT_SBLOB_E_CAMERA;
+        /* a camera whose directions pass through zero inside the image (the words above are
+           zero): d00 = (-2^26, 0, 0), a column step of 2^26 / 19 and a row step along y, 39
+           columns: row 0's x part is -9 at column 19 and 3532036 at column 20 */
+        put_word(b, LT_SB_WIDTH, RES - 1u);
+        put_word(b, LT_SB_D00, (uint32_t)-(1 << 26));
+        put_word(b, LT_SB_DX, (1u << 26) / 19u);
+        put_word(b, LT_SB_DY + 1u, 1u << 20);
+        reseal(b, fx->bytes);
+        n += lt_sblob_open(b, fx->bytes, &s) == LT_SBLOB_E_CAMERA;
         n += lt_sblob_open(b, 100, &s) == LT_SBLOB_E_SHORT;
         n += lt_sblob_open(fx->blob, fx->bytes - 1, &s) == LT_SBLOB_E_SHORT;
+        /* a wide view with no zero direction is taken: corners about (-+2^27, +-2^26, 2^26),
+           the left and right ones 109 degrees apart, the diagonal ones 132 (measured along the
+           top-left direction, as the check did before stop 37, the right corners were behind
+           it and the view was refused) */
+        put_word(b, LT_SB_D00, (uint32_t)-(1 << 27));
+        put_word(b, LT_SB_D00 + 1u, 1u << 26);
+        put_word(b, LT_SB_D00 + 2u, 1u << 26);
+        put_word(b, LT_SB_DX, (1u << 28) / 38u);
+        put_word(b, LT_SB_DY + 1u, (uint32_t)-(int32_t)((1u << 27) / 39u));
+        reseal(b, fx->bytes);
+        wide = lt_sblob_open(b, fx->bytes, &s);
         free(b);
     }
     ltt_report("sblob: %u of %u crafted blobs refused with the expected reason (a zero camera, "
-               "short buffers, each header field out of range, a damaged byte, a bad node and "
-               "index)\n", n, (unsigned)(sizeof c / sizeof c[0]) + 3u);
-    assert_int_equal(n, sizeof c / sizeof c[0] + 3u);
+               "a camera whose directions pass through zero, short buffers, each header field out "
+               "of range, a damaged byte, a bad node and index)\n",
+               n, (unsigned)(sizeof c / sizeof c[0]) + 4u);
+    assert_int_equal(n, sizeof c / sizeof c[0] + 4u);
+    ltt_report("sblob: a 39x40 view 132 degrees wide (no zero direction) opens: %s\n",
+               lt_sblob_err_str(wide));
+    assert_int_equal(wide, LT_SBLOB_OK);
 }
 
 /* Random single-word mutations, resealed so they pass the checksum: open refuses or the trace
