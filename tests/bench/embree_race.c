@@ -525,6 +525,59 @@ static void build_isa(char *buf, size_t n)
 #endif
     if (buf[0] == '\0')
         snprintf(buf, n, "(no vector extension macros)");
+    /* the tuning (-mtune, GCC's __tune_*__ macro): on an AVX-512 Zen 4 the Makefile's choice
+       of it moves the float32 packets by 1.8-1.9x (docs/results.md) */
+    {
+        static const char *const tunes[] = {
+#if defined(__tune_znver1__)
+            "znver1",
+#endif
+#if defined(__tune_znver2__)
+            "znver2",
+#endif
+#if defined(__tune_znver3__)
+            "znver3",
+#endif
+#if defined(__tune_znver4__)
+            "znver4",
+#endif
+#if defined(__tune_znver5__)
+            "znver5",
+#endif
+#if defined(__tune_haswell__)
+            "haswell",
+#endif
+#if defined(__tune_skylake__)
+            "skylake",
+#endif
+#if defined(__tune_skylake_avx512__)
+            "skylake-avx512",
+#endif
+#if defined(__tune_cascadelake__)
+            "cascadelake",
+#endif
+#if defined(__tune_icelake_client__)
+            "icelake-client",
+#endif
+#if defined(__tune_icelake_server__)
+            "icelake-server",
+#endif
+#if defined(__tune_tigerlake__)
+            "tigerlake",
+#endif
+#if defined(__tune_rocketlake__)
+            "rocketlake",
+#endif
+#if defined(__tune_alderlake__)
+            "alderlake",
+#endif
+#if defined(__tune_sapphirerapids__)
+            "sapphirerapids",
+#endif
+            NULL};
+        size_t len = strlen(buf);
+        snprintf(buf + len, n - len, "; tuned for %s", tunes[0] != NULL ? tunes[0] : "generic");
+    }
 }
 
 /* ---- the race ---- */

@@ -13,9 +13,9 @@ for m in "${race_meshes[@]}"; do
     "$B/host/embree-race" --mesh "$m" --res 64 --runs 1 --kv >"$tmp/race.txt" 2>&1
     rc=$?
     check "embree-race $n --res 64 exits 0 (rc $rc)" test "$rc" -eq 0
-    check "embree-race $n: machine, CPU ISA, build ISA and Embree native widths printed" \
+    check "embree-race $n: machine, CPU ISA, build ISA and tuning, Embree native widths printed" \
         bash -c "grep -q '^machine: ' '$tmp/race.txt' && grep -q '^CPU ISA: .*(widest: ' '$tmp/race.txt' &&
-            grep -q '^lanetrace host build compiled for: ' '$tmp/race.txt' &&
+            grep -q '^lanetrace host build compiled for: .*; tuned for [a-z0-9-]*$' '$tmp/race.txt' &&
             grep -qE '^Embree [0-9]+\.[0-9]+\.[0-9]+: native ray4 (yes|no), ray8 (yes|no), ray16 (yes|no)' '$tmp/race.txt'"
     for md in rtcIntersect1 rtcIntersect4 rtcIntersect8 rtcIntersect16 rtcOccluded1 rtcOccluded4 \
         rtcOccluded8 rtcOccluded16; do
