@@ -253,11 +253,10 @@ static int pack_build(pack_t *p)
            is not written (it was, and only --trace or the target said so) */
         lt_sblob_t s;
         lt_sblob_err_t e = lt_sblob_open(b, total, &s);
-        if (e != LT_SBLOB_OK)
+        if (e != LT_SBLOB_OK) {
             fprintf(stderr, "%s: %s: the %ux%u blob made of it fails the target's check (item %u): "
                             "%s\n", who_g, p->sf.mesh, v.width, v.height, s.bad,
                     lt_sblob_err_str(e));
-        if (e != LT_SBLOB_OK) {
             free(b);
             return EXIT_INPUT;
         }
