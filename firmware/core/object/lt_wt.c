@@ -1019,6 +1019,12 @@ int32_t lt__wt_tris4_f32(const lt_wt1_f32_t *w, const lt_bvh8_tris4_f32_t *b, ui
         wt_block_terms(b, sizeof *b, nt);
         if (w->bad)
             continue;
+#if LT__X86_LANES && LT_COST_MODE != LT_COST_SIM
+        /* the two stages below in registers (lt_v16_x86.h) */
+        m = lt__x86_tris4_f32((const float(*)[LT_BVH8_LANES])b->v, b->id, k0, k1, k2, w->o, w->s,
+                              !F_EXACT_EDGES, x, y, zk, eu, ev, ew);
+        (void)ok;
+#else
         /* translate, permute and shear the lanes' vertices (lt_tri1_wt_f32's first stage) */
         for (v = 0; v < 3; v++)
             for (c = 0; c < LT_BVH8_LANES; c++) {
@@ -1043,6 +1049,7 @@ int32_t lt__wt_tris4_f32(const lt_wt1_f32_t *w, const lt_bvh8_tris4_f32_t *b, ui
         }
         for (c = 0; c < LT_BVH8_LANES; c++)
             m |= (unsigned)ok[c] << c;
+#endif
         /* the lanes that may meet the ray, in order: lt_tri1_wt_f32's tail */
         for (; m != 0; m &= m - 1u) {
             float xs[3], ys[3], zs[3];

@@ -588,6 +588,54 @@ LT__X86_WTEST16(float, __m256, _mm256_set1_ps, _mm256_min_ps, _mm256_max_ps,
 #undef LT__X86_WTEST16
 #endif
 
+/* The first two stages of the wide tree's float32 leaf block test (lt__wt_tris4_f32, lt_wt.c) in
+ * SSE registers, the same operations in the same order per lane as its C loops (so the same bits):
+ * v the block's v[9][4], k the ray's axis permutation, o its permuted origin, s its shear. Writes
+ * each vertex's sheared x, y and unsheared z (x, y, zk: the tail reads them per lane) and the
+ * edges eu, ev, ew; returns the lanes that may meet the ray: signs not mixed and det != 0, or
+ * (zero_edges) an edge that is zero, and the lane's id >= 0. Written out per vertex: the C loops,
+ * vectorised by the compiler, kept the vertices in stack arrays between the stages and ran at
+ * 0.67-0.76x of this (float32 single rays through the wide tree, docs/bvh.md). No events: the
+ * counting build keeps the C loops. */
+LT_INLINE unsigned lt__x86_tris4_f32(const float (*v)[4], const int32_t *id, unsigned k0,
+                                     unsigned k1, unsigned k2, const float o[3], const float s[2],
+                                     int zero_edges, float x[3][4], float y[3][4], float zk[3][4],
+                                     float eu[4], float ev[4], float ew[4])
+{
+    const __m128 o0 = _mm_set1_ps(o[0]), o1 = _mm_set1_ps(o[1]), o2 = _mm_set1_ps(o[2]);
+    const __m128 s0 = _mm_set1_ps(s[0]), s1 = _mm_set1_ps(s[1]), z = _mm_setzero_ps();
+    __m128 x0, x1, x2, y0, y1, y2, eu4, ev4, ew4, neg, pos, det, ok;
+#define LT__X86_TRIS4_VERT(j, xj, yj)                                                              \
+    do {                                                                                           \
+        __m128 zz = _mm_sub_ps(_mm_loadu_ps(v[3 * (j) + k2]), o2);                                 \
+        xj = _mm_sub_ps(_mm_sub_ps(_mm_loadu_ps(v[3 * (j) + k0]), o0), _mm_mul_ps(s0, zz));        \
+        yj = _mm_sub_ps(_mm_sub_ps(_mm_loadu_ps(v[3 * (j) + k1]), o1), _mm_mul_ps(s1, zz));        \
+        _mm_storeu_ps(x[j], xj);                                                                   \
+        _mm_storeu_ps(y[j], yj);                                                                   \
+        _mm_storeu_ps(zk[j], zz);                                                                  \
+    } while (0)
+    LT__X86_TRIS4_VERT(0, x0, y0);
+    LT__X86_TRIS4_VERT(1, x1, y1);
+    LT__X86_TRIS4_VERT(2, x2, y2);
+#undef LT__X86_TRIS4_VERT
+    eu4 = _mm_sub_ps(_mm_mul_ps(x2, y1), _mm_mul_ps(y2, x1));
+    ev4 = _mm_sub_ps(_mm_mul_ps(x0, y2), _mm_mul_ps(y0, x2));
+    ew4 = _mm_sub_ps(_mm_mul_ps(x1, y0), _mm_mul_ps(y1, x0));
+    _mm_storeu_ps(eu, eu4);
+    _mm_storeu_ps(ev, ev4);
+    _mm_storeu_ps(ew, ew4);
+    neg = _mm_or_ps(_mm_or_ps(_mm_cmplt_ps(eu4, z), _mm_cmplt_ps(ev4, z)), _mm_cmplt_ps(ew4, z));
+    pos = _mm_or_ps(_mm_or_ps(_mm_cmpgt_ps(eu4, z), _mm_cmpgt_ps(ev4, z)), _mm_cmpgt_ps(ew4, z));
+    det = _mm_add_ps(_mm_add_ps(eu4, ev4), ew4);
+    ok = _mm_andnot_ps(_mm_and_ps(neg, pos), _mm_or_ps(_mm_cmplt_ps(det, z), _mm_cmpgt_ps(det, z)));
+    if (zero_edges)
+        ok = _mm_or_ps(ok, _mm_or_ps(_mm_or_ps(_mm_cmpeq_ps(eu4, z), _mm_cmpeq_ps(ev4, z)),
+                                     _mm_cmpeq_ps(ew4, z)));
+    ok = _mm_and_ps(ok, _mm_castsi128_ps(_mm_cmpgt_epi32(
+                            _mm_loadu_si128((const __m128i *)(const void *)id), _mm_set1_epi32(-1))));
+    return (unsigned)_mm_movemask_ps(ok);
+}
+
 /* round(2^46 / d) half up for d != 0 (lt__div_round64(2^46, d)), exactly, without a 64-bit integer
  * divide: for d > 0 it is floor((2^47 + b) / 2b), for d < 0 -floor((2^47 + b - 1) / 2b) (b = |d|);
  * numerator < 2^48 and denominator <= 2^32 are exact doubles, the double quotient is within 2^-6
