@@ -157,6 +157,36 @@ static void f_slab_fix(lt_mask16_t par, lt_mask16_t rsat, lt_vf32_t o, lt_vf32_t
 }
 
 
+#if LT__X86_LANES == 512 && LT_COST_MODE != LT_COST_SIM
+/* lt_slab16_f32 where no lane of k needs the parallel fix-up, in AVX-512 registers: per axis
+ * (lo - o) x 1/d and (hi - o) x 1/d, their min and max into [tn, tf], as the lane ops compute
+ * them (vminps / vmaxps take a < b ? a : b and a > b ? a : b, lt__f32_min / max), so the same
+ * bits; the lane ops passed every intermediate vector through the stack. No events: the
+ * counting build keeps the lane ops. */
+static lt_mask16_t f_slab16_reg(const lt_ray16_f32_t *r, lt_mask16_t k, const lt_aabb_f32_t *b,
+                                lt_vf32_t *tnear)
+{
+    __m512 tn = _mm512_loadu_ps(r->tmin.l), tf = _mm512_loadu_ps(r->tmax.l);
+    __mmask16 hit;
+#define F_SLAB_AXIS(a, o, rd)                                                                      \
+    do {                                                                                           \
+        __m512 vo = _mm512_loadu_ps(r->o.l), vr = _mm512_loadu_ps(r->rd.l);                        \
+        __m512 t0 = _mm512_mul_ps(_mm512_sub_ps(_mm512_set1_ps(b->lo[a]), vo), vr);                \
+        __m512 t1 = _mm512_mul_ps(_mm512_sub_ps(_mm512_set1_ps(b->hi[a]), vo), vr);                \
+        tn = _mm512_max_ps(tn, _mm512_min_ps(t0, t1));                                             \
+        tf = _mm512_min_ps(tf, _mm512_max_ps(t0, t1));                                             \
+    } while (0)
+    F_SLAB_AXIS(0, ox, rx);
+    F_SLAB_AXIS(1, oy, ry);
+    F_SLAB_AXIS(2, oz, rz);
+#undef F_SLAB_AXIS
+    hit = _mm512_mask_cmp_ps_mask(k, tn, tf, _CMP_LE_OQ);
+    _mm512_storeu_ps(tnear->l, _mm512_mask_mov_ps(_mm512_loadu_ps(tnear->l), hit, tn));
+    return (lt_mask16_t)hit;
+}
+#define LTN_SLAB16_REG f_slab16_reg
+#endif
+
 #include "numerics/lt_traits_f32.h"
 #define LTN_QV lt_vf32_t
 #define LTN_W lt_vf32_t
@@ -176,5 +206,6 @@ static void f_slab_fix(lt_mask16_t par, lt_mask16_t rsat, lt_vf32_t o, lt_vf32_t
 #define LTN_TDIV_M(src, k, n, d) lt_vf32_div_m((src), (k), (n), (d))
 #define LTN_SLAB_FIX f_slab_fix
 #include "lt_isect.inc"
+#undef LTN_SLAB16_REG
 
 #endif /* LT_CFG_FLOAT32 */

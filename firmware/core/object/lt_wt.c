@@ -1069,6 +1069,93 @@ int32_t lt__wt_tris4_f32(const lt_wt1_f32_t *w, const lt_bvh8_tris4_f32_t *b, ui
     return res;
 }
 
+#if LT__X86_LANES == 512 && LT_COST_MODE != LT_COST_SIM
+/* lt__wt16_meet_f32's test (lt_wt.inc: the pick, translate, shear, edge, sign and t stages) in
+ * AVX-512 registers, the same operations in the same order per lane as the lane ops (so the same
+ * bits): the lane ops pass their 64-byte vectors through memory, and GCC kept this kernel's
+ * arrays of them on the stack between every two ops. Lanes with a zero float edge take
+ * f_edge_fix as the C body does. No events: the counting build keeps the lane ops. */
+static __m512 f_pick_reg(const lt_mask16_t m[3], lt_mask16_t k, float p0, float p1, float p2)
+{
+    if ((m[0] & k) == k)
+        return _mm512_set1_ps(p0);
+    if ((m[1] & k) == k)
+        return _mm512_set1_ps(p1);
+    if ((m[2] & k) == k)
+        return _mm512_set1_ps(p2);
+    return _mm512_mask_blend_ps(m[2], _mm512_mask_blend_ps(m[1], _mm512_set1_ps(p0),
+                                                            _mm512_set1_ps(p1)),
+                                _mm512_set1_ps(p2));
+}
+
+static lt_mask16_t f_meet_reg(const lt_wt16_f32_t *w, lt_mask16_t k, const float p[3][3],
+                              lt_vf32_t *t)
+{
+    const __m512 ox = _mm512_loadu_ps(w->ox.l), oy = _mm512_loadu_ps(w->oy.l);
+    const __m512 oz = _mm512_loadu_ps(w->oz.l), sx = _mm512_loadu_ps(w->sx.l);
+    const __m512 sy = _mm512_loadu_ps(w->sy.l), z = _mm512_setzero_ps();
+    __m512 x0, x1, x2, y0, y1, y2, k0, k1, k2, eu, ev, ew, det, tn, sz;
+    __mmask16 zero, neg, pos, valid;
+#define F_MEET_VERT(i, xi, yi, ki)                                                                 \
+    do {                                                                                           \
+        ki = _mm512_sub_ps(f_pick_reg(w->kz, k, p[i][0], p[i][1], p[i][2]), oz);                   \
+        xi = _mm512_sub_ps(_mm512_sub_ps(f_pick_reg(w->kx, k, p[i][0], p[i][1], p[i][2]), ox),     \
+                           _mm512_mul_ps(sx, ki));                                                 \
+        yi = _mm512_sub_ps(_mm512_sub_ps(f_pick_reg(w->ky, k, p[i][0], p[i][1], p[i][2]), oy),     \
+                           _mm512_mul_ps(sy, ki));                                                 \
+    } while (0)
+    F_MEET_VERT(0, x0, y0, k0);
+    F_MEET_VERT(1, x1, y1, k1);
+    F_MEET_VERT(2, x2, y2, k2);
+#undef F_MEET_VERT
+    eu = _mm512_sub_ps(_mm512_mul_ps(x2, y1), _mm512_mul_ps(y2, x1));
+    ev = _mm512_sub_ps(_mm512_mul_ps(x0, y2), _mm512_mul_ps(y0, x2));
+    ew = _mm512_sub_ps(_mm512_mul_ps(x1, y0), _mm512_mul_ps(y1, x0));
+#if !F_EXACT_EDGES
+    zero = (__mmask16)(_mm512_mask_cmp_ps_mask(k, eu, z, _CMP_EQ_OQ) |
+                       _mm512_mask_cmp_ps_mask(k, ev, z, _CMP_EQ_OQ) |
+                       _mm512_mask_cmp_ps_mask(k, ew, z, _CMP_EQ_OQ));
+    if (zero != 0) {
+        lt_vf32_t xs[3], ys[3], u, v, ww;
+        _mm512_storeu_ps(xs[0].l, x0);
+        _mm512_storeu_ps(xs[1].l, x1);
+        _mm512_storeu_ps(xs[2].l, x2);
+        _mm512_storeu_ps(ys[0].l, y0);
+        _mm512_storeu_ps(ys[1].l, y1);
+        _mm512_storeu_ps(ys[2].l, y2);
+        _mm512_storeu_ps(u.l, eu);
+        _mm512_storeu_ps(v.l, ev);
+        _mm512_storeu_ps(ww.l, ew);
+        f_edge_fix(zero, &u, &v, &ww, xs, ys);
+        eu = _mm512_loadu_ps(u.l);
+        ev = _mm512_loadu_ps(v.l);
+        ew = _mm512_loadu_ps(ww.l);
+    }
+#else
+    (void)zero;
+#endif
+    neg = (__mmask16)(_mm512_mask_cmp_ps_mask(k, eu, z, _CMP_LT_OQ) |
+                      _mm512_mask_cmp_ps_mask(k, ev, z, _CMP_LT_OQ) |
+                      _mm512_mask_cmp_ps_mask(k, ew, z, _CMP_LT_OQ));
+    pos = (__mmask16)(_mm512_mask_cmp_ps_mask(k, eu, z, _CMP_GT_OQ) |
+                      _mm512_mask_cmp_ps_mask(k, ev, z, _CMP_GT_OQ) |
+                      _mm512_mask_cmp_ps_mask(k, ew, z, _CMP_GT_OQ));
+    valid = (__mmask16)(k & ~(neg & pos));
+    det = _mm512_add_ps(_mm512_add_ps(eu, ev), ew);
+    valid = (__mmask16)(_mm512_mask_cmp_ps_mask(valid, det, z, _CMP_LT_OQ) |
+                        _mm512_mask_cmp_ps_mask(valid, det, z, _CMP_GT_OQ));
+    if (valid == 0)
+        return 0;
+    sz = _mm512_loadu_ps(w->sz.l);
+    tn = _mm512_add_ps(_mm512_add_ps(_mm512_mul_ps(eu, _mm512_mul_ps(sz, k0)),
+                                     _mm512_mul_ps(ev, _mm512_mul_ps(sz, k1))),
+                       _mm512_mul_ps(ew, _mm512_mul_ps(sz, k2)));
+    _mm512_storeu_ps(t->l, _mm512_mask_div_ps(_mm512_loadu_ps(t->l), valid, tn, det));
+    return (lt_mask16_t)valid;
+}
+#define LTN_WT_MEET_REG f_meet_reg
+#endif
+
 #include "numerics/lt_traits_f32.h"
 #define LTN_WT lt_wt16_f32_t
 #define LTN_DV lt_vf32_t
@@ -1102,5 +1189,6 @@ int32_t lt__wt_tris4_f32(const lt_wt1_f32_t *w, const lt_bvh8_tris4_f32_t *b, ui
 #define LTN_WT_ZERO_AREA16 WT_F_ZERO_AREA16
 #include "lt_wt.inc"
 #include "numerics/lt_traits_undef.h"
+#undef LTN_WT_MEET_REG
 
 #endif /* LT_CFG_FLOAT32 */
