@@ -158,7 +158,8 @@ static void f_slab_fix(lt_mask16_t par, lt_mask16_t rsat, lt_vf32_t o, lt_vf32_t
 
 
 #if LT__X86_LANES == 512 && LT_COST_MODE != LT_COST_SIM
-/* lt_slab16_f32 where no lane of k needs the parallel fix-up, in AVX-512 registers: per axis
+/* lt_slab16_f32 where no lane of k needs the parallel fix-up, in AVX-512 registers (AVX2: two
+ * 8-lane halves, below): per axis
  * (lo - o) x 1/d and (hi - o) x 1/d, their min and max into [tn, tf], as the lane ops compute
  * them (vminps / vmaxps take a < b ? a : b and a > b ? a : b, lt__f32_min / max), so the same
  * bits; the lane ops passed every intermediate vector through the stack. No events: the
@@ -183,6 +184,42 @@ static lt_mask16_t f_slab16_reg(const lt_ray16_f32_t *r, lt_mask16_t k, const lt
     hit = _mm512_mask_cmp_ps_mask(k, tn, tf, _CMP_LE_OQ);
     _mm512_storeu_ps(tnear->l, _mm512_mask_mov_ps(_mm512_loadu_ps(tnear->l), hit, tn));
     return (lt_mask16_t)hit;
+}
+#define LTN_SLAB16_REG f_slab16_reg
+#elif LT__X86_LANES == 256 && LT_COST_MODE != LT_COST_SIM
+/* The same on AVX2, one 8-lane half at a time. */
+static lt_mask16_t f_slab16_reg(const lt_ray16_f32_t *r, lt_mask16_t k, const lt_aabb_f32_t *b,
+                                lt_vf32_t *tnear)
+{
+    const __m256i bit = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
+    unsigned h, all = 0;
+    for (h = 0; h < LT_LANES; h += 8) {
+        const unsigned k8 = (unsigned)k >> h & 0xFFu;
+        __m256 tn = _mm256_loadu_ps(r->tmin.l + h), tf = _mm256_loadu_ps(r->tmax.l + h);
+        unsigned hit;
+        if (k8 == 0)
+            continue;
+#define F_SLAB_AXIS8(a, o, rd)                                                                     \
+    do {                                                                                           \
+        __m256 vo = _mm256_loadu_ps(r->o.l + h), vr = _mm256_loadu_ps(r->rd.l + h);                \
+        __m256 t0 = _mm256_mul_ps(_mm256_sub_ps(_mm256_set1_ps(b->lo[a]), vo), vr);                \
+        __m256 t1 = _mm256_mul_ps(_mm256_sub_ps(_mm256_set1_ps(b->hi[a]), vo), vr);                \
+        tn = _mm256_max_ps(tn, _mm256_min_ps(t0, t1));                                             \
+        tf = _mm256_min_ps(tf, _mm256_max_ps(t0, t1));                                             \
+    } while (0)
+        F_SLAB_AXIS8(0, ox, rx);
+        F_SLAB_AXIS8(1, oy, ry);
+        F_SLAB_AXIS8(2, oz, rz);
+#undef F_SLAB_AXIS8
+        hit = k8 & (unsigned)_mm256_movemask_ps(_mm256_cmp_ps(tn, tf, _CMP_LE_OQ));
+        _mm256_storeu_ps(tnear->l + h,
+                         _mm256_blendv_ps(_mm256_loadu_ps(tnear->l + h), tn,
+                                          _mm256_castsi256_ps(_mm256_cmpeq_epi32(
+                                              _mm256_and_si256(_mm256_set1_epi32((int)hit), bit),
+                                              bit))));
+        all |= hit << h;
+    }
+    return (lt_mask16_t)all;
 }
 #define LTN_SLAB16_REG f_slab16_reg
 #endif

@@ -1071,10 +1071,11 @@ int32_t lt__wt_tris4_f32(const lt_wt1_f32_t *w, const lt_bvh8_tris4_f32_t *b, ui
 
 #if LT__X86_LANES == 512 && LT_COST_MODE != LT_COST_SIM
 /* lt__wt16_meet_f32's test (lt_wt.inc: the pick, translate, shear, edge, sign and t stages) in
- * AVX-512 registers, the same operations in the same order per lane as the lane ops (so the same
- * bits): the lane ops pass their 64-byte vectors through memory, and GCC kept this kernel's
- * arrays of them on the stack between every two ops. Lanes with a zero float edge take
- * f_edge_fix as the C body does. No events: the counting build keeps the lane ops. */
+ * AVX-512 registers (AVX2: two 8-lane halves, below), the same operations in the same order per
+ * lane as the lane ops (so the same bits): the lane ops pass their 64-byte vectors through
+ * memory, and GCC kept this kernel's arrays of them on the stack between every two ops. Lanes
+ * with a zero float edge take f_edge_fix as the C body does. No events: the counting build keeps
+ * the lane ops. */
 static __m512 f_pick_reg(const lt_mask16_t m[3], lt_mask16_t k, float p0, float p1, float p2)
 {
     if ((m[0] & k) == k)
@@ -1152,6 +1153,107 @@ static lt_mask16_t f_meet_reg(const lt_wt16_f32_t *w, lt_mask16_t k, const float
                        _mm512_mul_ps(ew, _mm512_mul_ps(sz, k2)));
     _mm512_storeu_ps(t->l, _mm512_mask_div_ps(_mm512_loadu_ps(t->l), valid, tn, det));
     return (lt_mask16_t)valid;
+}
+#define LTN_WT_MEET_REG f_meet_reg
+#elif LT__X86_LANES == 256 && LT_COST_MODE != LT_COST_SIM
+/* The same on AVX2, one 8-lane half at a time (every op is per lane, so the same bits). */
+static __m256 f_lanes8(unsigned m)
+{
+    const __m256i bit = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
+    return _mm256_castsi256_ps(
+        _mm256_cmpeq_epi32(_mm256_and_si256(_mm256_set1_epi32((int)m), bit), bit));
+}
+
+static unsigned f_cmp8(__m256 a, __m256 b, unsigned k, int lt)
+{
+    return k & (unsigned)_mm256_movemask_ps(lt ? _mm256_cmp_ps(a, b, _CMP_LT_OQ)
+                                               : _mm256_cmp_ps(a, b, _CMP_GT_OQ));
+}
+
+static __m256 f_pick8(const lt_mask16_t m[3], unsigned h, unsigned k, float p0, float p1, float p2)
+{
+    unsigned m0 = (unsigned)m[0] >> h & 0xFFu, m1 = (unsigned)m[1] >> h & 0xFFu;
+    unsigned m2 = (unsigned)m[2] >> h & 0xFFu;
+    if ((m0 & k) == k)
+        return _mm256_set1_ps(p0);
+    if ((m1 & k) == k)
+        return _mm256_set1_ps(p1);
+    if ((m2 & k) == k)
+        return _mm256_set1_ps(p2);
+    return _mm256_blendv_ps(
+        _mm256_blendv_ps(_mm256_set1_ps(p0), _mm256_set1_ps(p1), f_lanes8(m1)),
+        _mm256_set1_ps(p2), f_lanes8(m2));
+}
+
+static lt_mask16_t f_meet_reg(const lt_wt16_f32_t *w, lt_mask16_t k, const float p[3][3],
+                              lt_vf32_t *t)
+{
+    unsigned h, all = 0;
+    for (h = 0; h < LT_LANES; h += 8) {
+        const unsigned k8 = (unsigned)k >> h & 0xFFu;
+        const __m256 ox = _mm256_loadu_ps(w->ox.l + h), oy = _mm256_loadu_ps(w->oy.l + h);
+        const __m256 oz = _mm256_loadu_ps(w->oz.l + h), sx = _mm256_loadu_ps(w->sx.l + h);
+        const __m256 sy = _mm256_loadu_ps(w->sy.l + h), z = _mm256_setzero_ps();
+        __m256 x0, x1, x2, y0, y1, y2, k0, k1, k2, eu, ev, ew, det, tn, sz;
+        unsigned zero, neg, pos, valid;
+        if (k8 == 0)
+            continue;
+#define F_MEET_VERT8(i, xi, yi, ki)                                                                \
+    do {                                                                                           \
+        ki = _mm256_sub_ps(f_pick8(w->kz, h, k8, p[i][0], p[i][1], p[i][2]), oz);                  \
+        xi = _mm256_sub_ps(_mm256_sub_ps(f_pick8(w->kx, h, k8, p[i][0], p[i][1], p[i][2]), ox),    \
+                           _mm256_mul_ps(sx, ki));                                                 \
+        yi = _mm256_sub_ps(_mm256_sub_ps(f_pick8(w->ky, h, k8, p[i][0], p[i][1], p[i][2]), oy),    \
+                           _mm256_mul_ps(sy, ki));                                                 \
+    } while (0)
+        F_MEET_VERT8(0, x0, y0, k0);
+        F_MEET_VERT8(1, x1, y1, k1);
+        F_MEET_VERT8(2, x2, y2, k2);
+#undef F_MEET_VERT8
+        eu = _mm256_sub_ps(_mm256_mul_ps(x2, y1), _mm256_mul_ps(y2, x1));
+        ev = _mm256_sub_ps(_mm256_mul_ps(x0, y2), _mm256_mul_ps(y0, x2));
+        ew = _mm256_sub_ps(_mm256_mul_ps(x1, y0), _mm256_mul_ps(y1, x0));
+#if !F_EXACT_EDGES
+        zero = k8 & (unsigned)_mm256_movemask_ps(
+                        _mm256_or_ps(_mm256_or_ps(_mm256_cmp_ps(eu, z, _CMP_EQ_OQ),
+                                                  _mm256_cmp_ps(ev, z, _CMP_EQ_OQ)),
+                                     _mm256_cmp_ps(ew, z, _CMP_EQ_OQ)));
+        if (zero != 0) {
+            /* this half's lanes in full vectors: f_edge_fix reads only the lanes of zero */
+            lt_vf32_t xs[3], ys[3], u, v, ww;
+            _mm256_storeu_ps(xs[0].l + h, x0);
+            _mm256_storeu_ps(xs[1].l + h, x1);
+            _mm256_storeu_ps(xs[2].l + h, x2);
+            _mm256_storeu_ps(ys[0].l + h, y0);
+            _mm256_storeu_ps(ys[1].l + h, y1);
+            _mm256_storeu_ps(ys[2].l + h, y2);
+            _mm256_storeu_ps(u.l + h, eu);
+            _mm256_storeu_ps(v.l + h, ev);
+            _mm256_storeu_ps(ww.l + h, ew);
+            f_edge_fix((lt_mask16_t)(zero << h), &u, &v, &ww, xs, ys);
+            eu = _mm256_loadu_ps(u.l + h);
+            ev = _mm256_loadu_ps(v.l + h);
+            ew = _mm256_loadu_ps(ww.l + h);
+        }
+#else
+        (void)zero;
+#endif
+        neg = f_cmp8(eu, z, k8, 1) | f_cmp8(ev, z, k8, 1) | f_cmp8(ew, z, k8, 1);
+        pos = f_cmp8(eu, z, k8, 0) | f_cmp8(ev, z, k8, 0) | f_cmp8(ew, z, k8, 0);
+        valid = k8 & ~(neg & pos);
+        det = _mm256_add_ps(_mm256_add_ps(eu, ev), ew);
+        valid = f_cmp8(det, z, valid, 1) | f_cmp8(det, z, valid, 0);
+        if (valid == 0)
+            continue;
+        sz = _mm256_loadu_ps(w->sz.l + h);
+        tn = _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(eu, _mm256_mul_ps(sz, k0)),
+                                         _mm256_mul_ps(ev, _mm256_mul_ps(sz, k1))),
+                           _mm256_mul_ps(ew, _mm256_mul_ps(sz, k2)));
+        _mm256_storeu_ps(t->l + h, _mm256_blendv_ps(_mm256_loadu_ps(t->l + h),
+                                                    _mm256_div_ps(tn, det), f_lanes8(valid)));
+        all |= valid << h;
+    }
+    return (lt_mask16_t)all;
 }
 #define LTN_WT_MEET_REG f_meet_reg
 #endif
