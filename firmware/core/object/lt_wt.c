@@ -457,6 +457,87 @@ static lt_mask16_t q_meet_lanes(const lt_wt16_q16_t *w, lt_mask16_t k, const lt_
 }
 #define LTN_WT_MEET_LANES q_meet_lanes
 
+#if LT__X86_LANES == 512 && LT_COST_MODE != LT_COST_SIM
+/* lt__wt16_meet_q16's test in AVX-512 registers up to the candidate lanes, the same per-lane
+ * arithmetic as the lane ops (so the same bits): the pick, the saturating translate
+ * (lt__x86_qsub), the s1.30 shear (lt__x86_mulr, half up), the exact s31.32 edges as int64 (each
+ * half of the lanes sign-extended, vpmuldq), their signs and det; then the candidates' t through
+ * q_tsum / q_tdiv_m as the C body. The lane ops passed their 64- and 128-byte vectors through
+ * the stack. No events: the counting build keeps the lane ops. */
+static __m512i q_pick_reg(const lt_mask16_t m[3], lt_mask16_t k, int32_t p0, int32_t p1,
+                          int32_t p2)
+{
+    if ((m[0] & k) == k)
+        return _mm512_set1_epi32(p0);
+    if ((m[1] & k) == k)
+        return _mm512_set1_epi32(p1);
+    if ((m[2] & k) == k)
+        return _mm512_set1_epi32(p2);
+    return _mm512_mask_blend_epi32(m[2], _mm512_mask_blend_epi32(m[1], _mm512_set1_epi32(p0),
+                                                                  _mm512_set1_epi32(p1)),
+                                   _mm512_set1_epi32(p2));
+}
+
+/* lanes 8h..8h+7 of v sign-extended to int64 */
+LT_INLINE __m512i q_half64(__m512i v, int h)
+{
+    return _mm512_cvtepi32_epi64(h ? _mm512_extracti64x4_epi64(v, 1) : _mm512_castsi512_si256(v));
+}
+
+static lt_mask16_t q_meet_reg(const lt_wt16_q16_t *w, lt_mask16_t k, const lt_q16_t p[3][3],
+                              lt_vq16_t *t)
+{
+    const __m512i ox = _mm512_loadu_si512(w->ox.l), oy = _mm512_loadu_si512(w->oy.l);
+    const __m512i oz = _mm512_loadu_si512(w->oz.l), sx = _mm512_loadu_si512(w->sx.l);
+    const __m512i sy = _mm512_loadu_si512(w->sy.l), z = _mm512_setzero_si512();
+    __m512i x[3], y[3], zk[3], eu[2], ev[2], ew[2], det[2];
+    unsigned neg = 0, pos = 0, nz = 0, valid;
+    int i, h;
+    for (i = 0; i < 3; i++) {
+        zk[i] = lt__x86_qsub(q_pick_reg(w->kz, k, p[i][0], p[i][1], p[i][2]), oz, 0);
+        x[i] = lt__x86_qsub(lt__x86_qsub(q_pick_reg(w->kx, k, p[i][0], p[i][1], p[i][2]), ox, 0),
+                            lt__x86_mulr(zk[i], sx, 30u, 0), 0);
+        y[i] = lt__x86_qsub(lt__x86_qsub(q_pick_reg(w->ky, k, p[i][0], p[i][1], p[i][2]), oy, 0),
+                            lt__x86_mulr(zk[i], sy, 30u, 0), 0);
+    }
+    for (h = 0; h < 2; h++) {
+        const __m512i x0 = q_half64(x[0], h), x1 = q_half64(x[1], h), x2 = q_half64(x[2], h);
+        const __m512i y0 = q_half64(y[0], h), y1 = q_half64(y[1], h), y2 = q_half64(y[2], h);
+        unsigned sh = 8u * (unsigned)h;
+        eu[h] = _mm512_sub_epi64(_mm512_mul_epi32(x2, y1), _mm512_mul_epi32(y2, x1));
+        ev[h] = _mm512_sub_epi64(_mm512_mul_epi32(x0, y2), _mm512_mul_epi32(y0, x2));
+        ew[h] = _mm512_sub_epi64(_mm512_mul_epi32(x1, y0), _mm512_mul_epi32(y1, x0));
+        det[h] = _mm512_add_epi64(_mm512_add_epi64(eu[h], ev[h]), ew[h]);
+        neg |= (unsigned)(_mm512_cmplt_epi64_mask(eu[h], z) | _mm512_cmplt_epi64_mask(ev[h], z) |
+                          _mm512_cmplt_epi64_mask(ew[h], z)) << sh;
+        pos |= (unsigned)(_mm512_cmpgt_epi64_mask(eu[h], z) | _mm512_cmpgt_epi64_mask(ev[h], z) |
+                          _mm512_cmpgt_epi64_mask(ew[h], z)) << sh;
+        nz |= (unsigned)_mm512_cmpneq_epi64_mask(det[h], z) << sh;
+    }
+    valid = (unsigned)k & ~(neg & pos) & nz;
+    if (valid == 0)
+        return 0;
+    {
+        const __m512i sz = _mm512_loadu_si512(w->sz.l);
+        lt_vql32_t u, v, ww, d;
+        lt_vq16_t za, zb, zc;
+        for (h = 0; h < 2; h++) {
+            _mm512_storeu_si512(u.l + 8 * h, eu[h]);
+            _mm512_storeu_si512(v.l + 8 * h, ev[h]);
+            _mm512_storeu_si512(ww.l + 8 * h, ew[h]);
+            _mm512_storeu_si512(d.l + 8 * h, det[h]);
+        }
+        _mm512_storeu_si512(za.l, lt__x86_mulr(zk[0], sz, 30u, 0));
+        _mm512_storeu_si512(zb.l, lt__x86_mulr(zk[1], sz, 30u, 0));
+        _mm512_storeu_si512(zc.l, lt__x86_mulr(zk[2], sz, 30u, 0));
+        *t = q_tdiv_m(*t, (lt_mask16_t)valid, q_tsum((lt_mask16_t)valid, u, v, ww, za, zb, zc), d,
+                      w);
+    }
+    return (lt_mask16_t)valid;
+}
+#define LTN_WT_MEET_REG q_meet_reg
+#endif
+
 #include "numerics/lt_traits_q16.h"
 #define LTN_WT lt_wt16_q16_t
 #define LTN_DV lt_vq30_t
@@ -517,6 +598,7 @@ static lt_mask16_t q_meet_lanes(const lt_wt16_q16_t *w, lt_mask16_t k, const lt_
 #undef LTN_WT_ZERO_AREA1
 #undef LTN_WT_ZERO_AREA16
 #undef LTN_WT_MEET_LANES
+#undef LTN_WT_MEET_REG
 
 /* ---- s15.16 on a grid: the watertight test with 32-bit edge functions (LT_ISECT_WT32) ---------- */
 
