@@ -40,6 +40,7 @@
 #include <string.h>
 
 #include "lt/lt_isect.h"
+#include "lt/lt_bvh.h"
 /* the core's internal triangle header (the per-lane body the kernels share) */
 #include "../../firmware/core/object/lt_tri.h"
 #include "io/lt_fx_float.h"
@@ -748,6 +749,86 @@ static void test_slab_parallel(void **state)
 
 /* Rays with a tiny nonzero direction component (|d| < 2^-15: the s15.16 reciprocal saturates).
  * The documented contract: "t saturates, which keeps the classification". */
+/* Far origins: plane - origin beyond s15.16 (boxes up to 30,000 units out, origins up to 32,000
+ * units out on any side), which the slab test clamps before the product. No double reference
+ * applies there (the clamp is the documented behaviour); each lane of lt_slab16_q16 must equal
+ * the single-ray test lt_slab1_q16 of the same ray bit for bit (hit and tnear), the arithmetic the
+ * wide tree's node test and every backend share. */
+static void test_slab_far_q16(void **state)
+{
+    ltt_rng_t r;
+    unsigned pk, cases = 0, hits = 0, far = 0, bad = 0;
+    int i, a;
+    (void)state;
+    ltt_rng_seed(&r, 1201);
+    for (pk = 0; pk < 400; pk++) {
+        lt_ray16_q16_t p;
+        lt_aabb_q16_t box;
+        lt_vq16_t tn;
+        lt_mask16_t hit;
+        double lo[3], hi[3];
+        memset(&p, 0, sizeof p);
+        for (a = 0; a < 3; a++) {
+            double c = ltt_rng_uniform(&r, -30000.0, 30000.0), h = ltt_rng_uniform(&r, 1.0, 2000.0);
+            lo[a] = c - h;
+            hi[a] = c + h;
+        }
+        for (i = 0; i < LT_LANES; i++) {
+            double o[3], d[3], tgt[3];
+            dray_t dr;
+            for (a = 0; a < 3; a++) {
+                o[a] = ltt_rng_uniform(&r, -32000.0, 32000.0);
+                /* aim at the box (a hit unless the clamp moves an end) or anywhere */
+                tgt[a] = i % 4 != 3 ? ltt_rng_uniform(&r, lo[a], hi[a])
+                                    : ltt_rng_uniform(&r, -32000.0, 32000.0);
+                d[a] = tgt[a] - o[a];
+            }
+            normalize(d);
+            for (a = 0; a < 3; a++)
+                if (fabs(d[a]) < 1e-4)
+                    d[a] = d[a] < 0 ? -1e-4 : 1e-4;
+            normalize(d);
+            q16_lane(&p, i, o, d, 30000.0, 0, &dr);
+        }
+        lt_ray16_q16_setup(&p);
+        {
+            dbox_t unused;
+            q16_box(lo, hi, &box, &unused);
+        }
+        tn = lt_vq16_set1(0x5A5A5A5A);
+        hit = lt_slab16_q16(&p, LT_MASK_ALL, &box, &tn);
+        for (i = 0; i < LT_LANES; i++) {
+            lt_ray1_q16_t r1;
+            lt_q16_t t1 = 0x5A5A5A5A;
+            int h1;
+            memset(&r1, 0, sizeof r1);
+            for (a = 0; a < 3; a++) {
+                int64_t df;
+                r1.o[a] = q16_o(&p, a)->l[i];
+                r1.d[a] = q16_d(&p, a)->l[i];
+                df = (int64_t)box.hi[a] - r1.o[a];
+                far += df > INT32_MAX || (int64_t)box.lo[a] - r1.o[a] < INT32_MIN;
+            }
+            r1.tmin = p.tmin.l[i];
+            r1.tmax = p.tmax.l[i];
+            lt_ray1_q16_setup(&r1);
+            h1 = lt_slab1_q16(&r1, &box, &t1);
+            cases++;
+            hits += (unsigned)h1;
+            if (h1 != LTT_ON(hit, i) || (h1 && t1 != tn.l[i])) {
+                if (bad++ < 5)
+                    ltt_report("  FAIL far slab: packet %u lane %d: hit %d/%d tnear %d/%d\n", pk, i,
+                               (int)LTT_ON(hit, i), h1, tn.l[i], t1);
+            }
+        }
+    }
+    ltt_report("lt_slab16_q16 far origins vs lt_slab1_q16 per lane: %u cases (%u axis ends with "
+               "plane - origin beyond s15.16), %u hits, %u differ (bound 0)\n", cases, far, hits,
+               bad);
+    assert_true(far > cases / 4);
+    assert_int_equal(bad, 0);
+}
+
 static void test_slab_near_parallel(void **state)
 {
     static const double lo3[3] = { 10, 0, 0 }, hi3[3] = { 20, 1, 1 };
@@ -1550,6 +1631,7 @@ int main(void)
 #endif
         cmocka_unit_test(test_slab_parallel),
         cmocka_unit_test(test_slab_near_parallel),
+        cmocka_unit_test(test_slab_far_q16),
         cmocka_unit_test(test_tri_random_q16),
         cmocka_unit_test(test_tri_lane_body_q16),
 #if LT_CFG_FLOAT32
