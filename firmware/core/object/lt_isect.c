@@ -148,6 +148,39 @@ static lt_mask16_t q_slab16_reg(const lt_ray16_q16_t *r, lt_mask16_t k, const lt
     return (lt_mask16_t)hit;
 }
 #define LTN_SLAB16_REG q_slab16_reg
+#elif LT__X86_LANES == 256 && LT_COST_MODE != LT_COST_SIM
+/* The same on AVX2, one 8-lane half at a time through the backend's register bodies of the lane
+ * ops (lt__x86_qsub8: saturating subtract; lt__x86_mulr8: the rounded, saturated product). */
+static lt_mask16_t q_slab16_reg(const lt_ray16_q16_t *r, lt_mask16_t k, const lt_aabb_q16_t *b,
+                                lt_vq16_t *tnear)
+{
+    unsigned h, all = 0;
+    for (h = 0; h < LT_LANES; h += 8) {
+        const unsigned k8 = (unsigned)k >> h & 0xFFu;
+        __m256i tn = lt__x86_load8(r->tmin.l + h), tf = lt__x86_load8(r->tmax.l + h);
+        unsigned hit;
+        if (k8 == 0)
+            continue;
+#define Q_SLAB_AXIS8(a, o, rd)                                                                     \
+    do {                                                                                           \
+        __m256i vo = lt__x86_load8(r->o.l + h), vr = lt__x86_load8(r->rd.l + h);                   \
+        __m256i t0 = lt__x86_mulr8(lt__x86_qsub8(_mm256_set1_epi32(b->lo[a]), vo, 0), vr, 16u, 0); \
+        __m256i t1 = lt__x86_mulr8(lt__x86_qsub8(_mm256_set1_epi32(b->hi[a]), vo, 0), vr, 16u, 0); \
+        tn = _mm256_max_epi32(tn, _mm256_min_epi32(t0, t1));                                       \
+        tf = _mm256_min_epi32(tf, _mm256_max_epi32(t0, t1));                                       \
+    } while (0)
+        Q_SLAB_AXIS8(0, ox, rx);
+        Q_SLAB_AXIS8(1, oy, ry);
+        Q_SLAB_AXIS8(2, oz, rz);
+#undef Q_SLAB_AXIS8
+        hit = k8 & ~lt__x86_bits8(_mm256_cmpgt_epi32(tn, tf));
+        _mm256_storeu_si256((__m256i *)(void *)(tnear->l + h),
+                            _mm256_blendv_epi8(lt__x86_load8(tnear->l + h), tn, lt__x86_mask8(hit)));
+        all |= hit << h;
+    }
+    return (lt_mask16_t)all;
+}
+#define LTN_SLAB16_REG q_slab16_reg
 #endif
 #include "lt_isect.inc"
 #include "numerics/lt_traits_undef.h"

@@ -536,6 +536,97 @@ static lt_mask16_t q_meet_reg(const lt_wt16_q16_t *w, lt_mask16_t k, const lt_q1
     return (lt_mask16_t)valid;
 }
 #define LTN_WT_MEET_REG q_meet_reg
+#elif LT__X86_LANES == 256 && LT_COST_MODE != LT_COST_SIM
+/* The same on AVX2, one 8-lane half at a time (lt__x86_qsub8, lt__x86_mulr8; the edges as four
+ * int64 lanes per quarter). */
+static __m256i q_pick8(const lt_mask16_t m[3], unsigned h, unsigned k, int32_t p0, int32_t p1,
+                       int32_t p2)
+{
+    unsigned m0 = (unsigned)m[0] >> h & 0xFFu, m1 = (unsigned)m[1] >> h & 0xFFu;
+    unsigned m2 = (unsigned)m[2] >> h & 0xFFu;
+    if ((m0 & k) == k)
+        return _mm256_set1_epi32(p0);
+    if ((m1 & k) == k)
+        return _mm256_set1_epi32(p1);
+    if ((m2 & k) == k)
+        return _mm256_set1_epi32(p2);
+    return _mm256_blendv_epi8(_mm256_blendv_epi8(_mm256_set1_epi32(p0), _mm256_set1_epi32(p1),
+                                                 lt__x86_mask8(m1)),
+                              _mm256_set1_epi32(p2), lt__x86_mask8(m2));
+}
+
+/* lanes 4q..4q+3 of an 8-lane half sign-extended to int64 */
+LT_INLINE __m256i q_quarter64(__m256i v, int q)
+{
+    return _mm256_cvtepi32_epi64(q ? _mm256_extracti128_si256(v, 1) : _mm256_castsi256_si128(v));
+}
+
+LT_INLINE unsigned q_bits4(__m256i m)
+{
+    return (unsigned)_mm256_movemask_pd(_mm256_castsi256_pd(m));
+}
+
+static lt_mask16_t q_meet_reg(const lt_wt16_q16_t *w, lt_mask16_t k, const lt_q16_t p[3][3],
+                              lt_vq16_t *t)
+{
+    lt_vql32_t u, v, ww, d;
+    lt_vq16_t za, zb, zc;
+    unsigned h, valid = 0;
+    for (h = 0; h < LT_LANES; h += 8) {
+        const unsigned k8 = (unsigned)k >> h & 0xFFu;
+        const __m256i ox = lt__x86_load8(w->ox.l + h), oy = lt__x86_load8(w->oy.l + h);
+        const __m256i oz = lt__x86_load8(w->oz.l + h), sx = lt__x86_load8(w->sx.l + h);
+        const __m256i sy = lt__x86_load8(w->sy.l + h), sz = lt__x86_load8(w->sz.l + h);
+        const __m256i z = _mm256_setzero_si256();
+        __m256i x[3], y[3], zk[3];
+        unsigned neg = 0, pos = 0, nz = 0, v8;
+        int i, q;
+        if (k8 == 0)
+            continue;
+        for (i = 0; i < 3; i++) {
+            zk[i] = lt__x86_qsub8(q_pick8(w->kz, h, k8, p[i][0], p[i][1], p[i][2]), oz, 0);
+            x[i] = lt__x86_qsub8(lt__x86_qsub8(q_pick8(w->kx, h, k8, p[i][0], p[i][1], p[i][2]),
+                                               ox, 0),
+                                 lt__x86_mulr8(zk[i], sx, 30u, 0), 0);
+            y[i] = lt__x86_qsub8(lt__x86_qsub8(q_pick8(w->ky, h, k8, p[i][0], p[i][1], p[i][2]),
+                                               oy, 0),
+                                 lt__x86_mulr8(zk[i], sy, 30u, 0), 0);
+        }
+        for (q = 0; q < 2; q++) {
+            const __m256i x0 = q_quarter64(x[0], q), x1 = q_quarter64(x[1], q);
+            const __m256i x2 = q_quarter64(x[2], q), y0 = q_quarter64(y[0], q);
+            const __m256i y1 = q_quarter64(y[1], q), y2 = q_quarter64(y[2], q);
+            const unsigned sh = 4u * (unsigned)q, at = h + sh;
+            __m256i eu = _mm256_sub_epi64(_mm256_mul_epi32(x2, y1), _mm256_mul_epi32(y2, x1));
+            __m256i ev = _mm256_sub_epi64(_mm256_mul_epi32(x0, y2), _mm256_mul_epi32(y0, x2));
+            __m256i ew = _mm256_sub_epi64(_mm256_mul_epi32(x1, y0), _mm256_mul_epi32(y1, x0));
+            __m256i dt = _mm256_add_epi64(_mm256_add_epi64(eu, ev), ew);
+            neg |= q_bits4(_mm256_or_si256(_mm256_or_si256(_mm256_cmpgt_epi64(z, eu),
+                                                           _mm256_cmpgt_epi64(z, ev)),
+                                           _mm256_cmpgt_epi64(z, ew))) << sh;
+            pos |= q_bits4(_mm256_or_si256(_mm256_or_si256(_mm256_cmpgt_epi64(eu, z),
+                                                           _mm256_cmpgt_epi64(ev, z)),
+                                           _mm256_cmpgt_epi64(ew, z))) << sh;
+            nz |= (~q_bits4(_mm256_cmpeq_epi64(dt, z)) & 0xFu) << sh;
+            _mm256_storeu_si256((__m256i *)(void *)(u.l + at), eu);
+            _mm256_storeu_si256((__m256i *)(void *)(v.l + at), ev);
+            _mm256_storeu_si256((__m256i *)(void *)(ww.l + at), ew);
+            _mm256_storeu_si256((__m256i *)(void *)(d.l + at), dt);
+        }
+        v8 = k8 & ~(neg & pos) & nz;
+        if (v8 == 0)
+            continue;
+        _mm256_storeu_si256((__m256i *)(void *)(za.l + h), lt__x86_mulr8(zk[0], sz, 30u, 0));
+        _mm256_storeu_si256((__m256i *)(void *)(zb.l + h), lt__x86_mulr8(zk[1], sz, 30u, 0));
+        _mm256_storeu_si256((__m256i *)(void *)(zc.l + h), lt__x86_mulr8(zk[2], sz, 30u, 0));
+        valid |= v8 << h;
+    }
+    if (valid == 0)
+        return 0;
+    *t = q_tdiv_m(*t, (lt_mask16_t)valid, q_tsum((lt_mask16_t)valid, u, v, ww, za, zb, zc), d, w);
+    return (lt_mask16_t)valid;
+}
+#define LTN_WT_MEET_REG q_meet_reg
 #endif
 
 #include "numerics/lt_traits_q16.h"
