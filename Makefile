@@ -211,7 +211,7 @@ test-build: $(TEST_BINS) firmware $(PLUGIN_SO) $(FW_SHARED_IMAGES)
 
 bench: deps
 	@$(MAKE) --no-print-directory all firmware opcal fw-cal $(PLUGIN_SO) $(B)/sim/lt-fwmodel \
-	    $(B)/host/embree-race $(B)/sim/ssbench
+	    $(B)/host/embree-race $(B)/host/frusta-race $(B)/sim/ssbench
 	@tests/bench/bench.sh
 
 # the rooms' rules: the core includes nothing of host, sim or tests; no shipped program from tests/

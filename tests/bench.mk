@@ -9,6 +9,10 @@
 #   make race-doc-avx2      the race as an AVX2-only host runs it: build/avx2/embree-race with Embree
 #                           limited to AVX2 (--embree-config isa=avx2), into docs/results.md between
 #                           its race-avx2 markers (needs a CPU with AVX2)
+#   make frusta-race-doc    the native soft-shadow race (build/host/frusta-race: S-Frusta and
+#                           S-Packet against Embree's best occlusion mode, both paths, 512x512, the
+#                           shared interiors, bunny and dragon; a few minutes, needs ../shared) into
+#                           docs/frusta.md between its frusta-race markers
 #   make speed-doc          the cost of counting (tests/bench/counting.sh) and the all-core scaling
 #                           (tests/bench/scaling.sh; the shared dragon, about a minute) into
 #                           docs/results.md between their counting and scaling markers
@@ -29,6 +33,11 @@ race-doc-avx2: deps
 	@$(MAKE) --no-print-directory $(B)/avx2/embree-race
 	@B=$(B) VARIANT=avx2 RACE_ARGS="--embree-config isa=avx2" tests/bench/race_doc.sh
 .PHONY: race-doc-avx2
+
+frusta-race-doc: deps
+	@$(MAKE) --no-print-directory $(B)/host/frusta-race $(B)/host/lt-vectors
+	@B=$(B) tests/bench/frusta_race_doc.sh
+.PHONY: frusta-race-doc
 
 speed-doc: deps
 	@$(MAKE) --no-print-directory all

@@ -18,6 +18,8 @@
 #  6. screen-space baselines: quadtree vs DDA vs Hi-Z on the same rays (build/sim/ssbench);
 #  7. the multi-frusta Table 1 (docs/frusta.md): P-Packet vs P-Frusta and S-Packet vs S-Frusta in
 #     the simulator on Sibenik at 1024x1024 (~20 s), the bundled teapot at 256x256 without ../shared;
+#     7b. the same shadow rays natively against Embree's best occlusion mode (build/host/frusta-race,
+#     Sibenik 512x512, both paths; make frusta-race-doc for every scene);
 #  8. view synthesis against ray-traced ground truth (tests/bench/rptruth.sh): depth error of the
 #     quadtree reprojection per numeric configuration on the teapot and the shared meshes (~15 s);
 #  9. lanetrace tune: how long each family's sweep takes and how many points it measures
@@ -93,6 +95,15 @@ if [ -f ../shared/scenes/sibenik.obj ]; then
 else
     echo "(../shared missing: the bundled teapot instead of Sibenik)"
     "$B/sim/lanetrace" shadows --mesh "$SCENE" --res "${FRUSTA_RES:-256}" --no-ref
+fi
+
+echo "== 7b. native soft shadows: S-Frusta and S-Packet against Embree's best occlusion mode (one thread, same rays; docs/frusta.md)"
+if [ -f ../shared/scenes/sibenik.obj ]; then
+    for p in q16 f32; do
+        "$B/host/frusta-race" --mesh ../shared/scenes/sibenik.obj --res 512 --runs 3 --num "$p"
+    done
+else
+    echo "(../shared missing: skipped, it races the shared interiors)"
 fi
 
 echo "== 8. view synthesis vs ray-traced ground truth: depth error per numeric configuration (lrb16 simulator; docs/reproject.md)"

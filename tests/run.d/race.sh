@@ -48,3 +48,27 @@ done
 "$B/host/embree-race" --runs 99 >/dev/null 2>&1
 rc=$?
 check "embree-race --runs 99: usage error, exit 2 (rc $rc)" test "$rc" -eq 2
+
+# the native soft-shadow race (tests/bench/frusta_race.c, docs/frusta.md, make frusta-race-doc):
+# a short run on the bundled teapot in both paths; every Embree mode (4 widths x 2 flags) printed
+# with the same occluded count, the best marked, lanetrace at the shipped defaults (leaf and
+# culling set as `lanetrace shadows` prints them), S-Frusta's occluded count within 0.1% of
+# Embree's (float vs s15.16 edge cases, back faces), the --kv line; a bad --cull letter exits 2
+for p in q16 f32; do
+    "$B/host/frusta-race" --mesh scenes/teapot.obj --res 32 --runs 1 --num "$p" --kv >"$tmp/frace.txt" 2>&1
+    rc=$?
+    def=$("$B/host/lanetrace-native" shadows --mesh scenes/teapot.obj --res 8 --no-ref 2>/dev/null |
+        sed -nE 's/.*frusta leaf ([0-9]+), culling ([a-z]+),.*/\1 \2/p' | head -1)
+    got=$(sed -nE 's/.*frusta leaf ([0-9]+), culling ([a-z]+),.*/\1 \2/p' "$tmp/frace.txt" | head -1)
+    eo=$(sed -nE 's/^Embree rtcOccluded16 incoherent .*\(([0-9]+) occluded\).*/\1/p' "$tmp/frace.txt")
+    lo=$(sed -nE 's/^lanetrace S-Frusta .*\(([0-9]+) occluded\).*/\1/p' "$tmp/frace.txt")
+    check "frusta-race teapot --res 32 --num $p: exit 0 (rc $rc), 8 Embree modes with one occluded count, the best marked, leaf and culling = lanetrace shadows' defaults ($got = $def), S-Frusta occluded $lo vs Embree $eo (within 0.1%), --kv line" \
+        bash -c "[ $rc -eq 0 ] && [ \$(grep -cE '^Embree rtcOccluded(1|4|8|16) +(incoherent|coherent) +[0-9.]+ Mrays/s \($eo occluded\)' '$tmp/frace.txt') -eq 8 ] &&
+            [ \$(grep -c '<- best' '$tmp/frace.txt') -eq 1 ] && [ -n '$def' ] && [ '$got' = '$def' ] &&
+            [ -n '$lo' ] && awk -v a='$lo' -v b='$eo' 'BEGIN { d = a - b; if (d < 0) d = -d; exit !(b > 0 && d <= 0.001 * b) }' &&
+            grep -qE '^frusta-race: scene scenes/teapot.obj path $p res 32 .* embree_best rtcOccluded[0-9]+_(in)?coherent ' '$tmp/frace.txt'"
+done
+"$B/host/frusta-race" --mesh scenes/teapot.obj --cull bx >"$tmp/frace.txt" 2>&1
+rc=$?
+check "frusta-race --cull bx: exit 2 naming the letter (rc $rc: $(head -c 90 "$tmp/frace.txt"))" \
+    bash -c "[ $rc -eq 2 ] && grep -q \"not 'x'\" '$tmp/frace.txt'"
