@@ -632,7 +632,14 @@ int lt_mesh_load(const char *path, lt_mesh_t *m, lt_diag_t *diag)
             (void)snprintf(hint, sizeof hint, "obj");
         }
     } else {
-        FILE *probe = fopen(path, "rb");
+        FILE *probe;
+        /* before opening it: a FIFO without a writer would block the open (and the importer's
+         * child) for ever, and a device such as /dev/zero reads as "empty" through ftell */
+        if (lt_diag_not_regular(path) != NULL) {
+            lt_diag_fail(diag, "%s: %s, not a regular file", path, lt_diag_not_regular(path));
+            return -1;
+        }
+        probe = fopen(path, "rb");
         if (probe == NULL) {
             lt_diag_fail(diag, "%s: cannot open the mesh file: %s", path, strerror(errno));
             return -1;

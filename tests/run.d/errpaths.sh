@@ -125,6 +125,20 @@ ep_expect "run: a FIFO as the mesh" 1 "FIFO" \
     timeout 20 "$HOSTBIN/lanetrace-native" run --mesh "$E/fifo.obj" -q
 ep_expect "diff: a directory" 1 "a directory, not a report file" \
     "$SIMBIN/lanetrace" diff "$E" "$E/target.json"
+# The same for a mesh whose name is not .obj/.obj.gz (the importer's formats): lt_mesh_load opened
+# it to measure its size, so a FIFO blocked run, render, shadows, pack and tune for ever and
+# /dev/zero was called "empty file (0 bytes)".
+rm -f "$E/fifo.ply" "$E/fifo-noext"
+mkfifo "$E/fifo.ply" "$E/fifo-noext"
+ep_expect "run: a FIFO named .ply as the mesh" 1 "fifo.ply: a device, FIFO or socket" \
+    timeout 20 "$HOSTBIN/lanetrace-native" run --mesh "$E/fifo.ply" --res 8 --no-ref -q
+ep_expect "shadows: a FIFO without an extension as the mesh" 1 "fifo-noext: a device, FIFO or socket" \
+    timeout 20 "$SIMBIN/lanetrace" shadows --mesh "$E/fifo-noext" --res 8 --no-ref -q
+ep_expect "tune: a FIFO as the input" 1 "fifo-noext: a device, FIFO or socket" \
+    timeout 20 "$SIMBIN/lanetrace" tune "$E/fifo-noext" --plan "$E/fifo-plan"
+ep_expect "render: /dev/zero as the mesh is a device, not an empty file" 1 \
+    "/dev/zero: a device, FIFO or socket" \
+    timeout 20 "$HOSTBIN/lanetrace-native" render --mesh /dev/zero --res 8 --out "$E/z" -q
 
 # OBJ polygons: assimp triangulates them in time quadratic in their size, in this process.
 awk 'BEGIN { print "v 0 0 0"; print "v 1 0 0"; print "v 0 1 0"; printf "f"; for (i = 0; i < 5000; i++) printf " 1 2 3"; print "" }' >"$E/longface.obj"
