@@ -43,7 +43,7 @@ int lt_fwblob_cli(int argc, char **argv, const char *prog)
     int e, rc = EXIT_INPUT, a;
     lt_status_t s;
     const lt_opt_t opts[] = {
-        LT_OPT_STR("--depth", "FILE.exr", &depth, "the depth EXR (its default view's Z)"),
+        LT_OPT_IN("--depth", "FILE.exr", &depth, "the depth EXR (its default view's Z)"),
         LT_OPT_OUT("--out", "FILE", &out, "", "the blob to write"),
         {.name = "--crop", .kind = LT_OPT_VEC, .dest = crop, .seen = &seen_crop,
          .meta = "X,Y,W,H", .lo = 0, .hi = LT_QT_MAX_DIM, .n = 4,

@@ -204,6 +204,13 @@ static int take_value(const lt_opt_cmd_t *cmd, const lt_opt_t *o, const char *sp
     case LT_OPT_STRING:
         if (o->ext != NULL && output_ext_bad(o->ext, v, why, sizeof why))
             break;
+        if ((o->flags & LT_OPT_NONEMPTY) && v[0] == '\0') {
+            /* "--mesh ''" used to trace the default teapot, "--l1 ''" to take the machine's
+             * cache: an empty value is never a path or a spec */
+            snprintf(why, sizeof why, "an empty value; expected %s", o->meta != NULL ? o->meta
+                                                                                    : "a value");
+            break;
+        }
         *(const char **)o->dest = v;
         return 0;
     case LT_OPT_INT: {
@@ -339,6 +346,12 @@ int lt_opt_parse(const lt_opt_cmd_t *cmd, int argc, char **argv, int first)
         if (strcmp(arg, "--help") == 0 || strcmp(arg, "-h") == 0) {
             lt_opt_help(cmd, stdout);
             return LT_OPT_HELP;
+        }
+        if (arg[0] == '\0') {
+            /* an empty file name: "lanetrace run ''" said ": cannot open the scene file" */
+            fprintf(stderr, "%s: an empty argument '' (usage: %s %s)\n", cmd->who, cmd->who,
+                    cmd->synopsis);
+            return LT_OPT_USAGE;
         }
         if (arg[0] != '-') {
             if (cmd->pos == NULL || npos >= cmd->pos_max) {

@@ -51,6 +51,7 @@ typedef enum lt_opt_kind {
 #define LT_OPT_DEPRECATED 4u /* alias is a deprecated spelling: a note on stderr when used */
 #define LT_OPT_REQUIRED 8u   /* a usage error (with the help) when not given */
 #define LT_OPT_HIDDEN 16u    /* not listed by the help */
+#define LT_OPT_NONEMPTY 32u  /* STRING: an empty value is a usage error (an input path, a spec) */
 
 /* Custom value parser: 0 when the text is valid (dest written), -1 when not (dest untouched is
  * not required). */
@@ -86,6 +87,9 @@ typedef struct lt_opt {
     {.name = (nm), .kind = LT_OPT_FLAG, .dest = (d), .help = (h), .value = (v)}
 #define LT_OPT_STR(nm, mt, d, h)                                                                   \
     {.name = (nm), .kind = LT_OPT_STRING, .dest = (d), .meta = (mt), .help = (h)}
+#define LT_OPT_IN(nm, mt, d, h)                                                                    \
+    {.name = (nm), .kind = LT_OPT_STRING, .dest = (d), .meta = (mt), .help = (h),                  \
+     .flags = LT_OPT_NONEMPTY}
 #define LT_OPT_OUT(nm, mt, d, x, h)                                                                \
     {.name = (nm), .kind = LT_OPT_STRING, .dest = (d), .meta = (mt), .help = (h), .ext = (x)}
 #define LT_OPT_INT(nm, mt, d, l, u, h)                                                             \

@@ -118,12 +118,12 @@ static int rp_options(rp_t *r, int *quiet, const char *prog, int argc, char **ar
     char who[64], src_help[256], num_help[256], machine_help[256], tol_help[256];
     const lt_opt_t opts[] = {
         LT_OPT_SECTION_("input:"),
-        LT_OPT_STR("--depth", "FILE.exr", &r->depth,
-                   "source depth (z along the optical axis unless --dist)"),
-        LT_OPT_STR("--mesh", "PATH", &r->mesh_over,
-                   "the mesh the depth was rendered from (lanetrace render --mesh PATH):\n"
-                   "its render camera is the source camera and --truth renders it\n"
-                   "(overrides the scene file's \"mesh\")"),
+        LT_OPT_IN("--depth", "FILE.exr", &r->depth,
+                  "source depth (z along the optical axis unless --dist)"),
+        LT_OPT_IN("--mesh", "PATH", &r->mesh_over,
+                  "the mesh the depth was rendered from (lanetrace render --mesh PATH):\n"
+                  "its render camera is the source camera and --truth renders it\n"
+                  "(overrides the scene file's \"mesh\")"),
         LT_OPT_FLAG_("--deep-front", &r->deep_front,
                      "a deep EXR (several samples per pixel): read the front-most\n"
                      "(least Z) sample of each pixel"),

@@ -188,6 +188,7 @@ static int shadows_parse(shadows_t *s, int argc, char **argv)
     char num_help[256], machine_help[256], paths[64];
     const lt_opt_t opts[] = {
         {.name = "--mesh", .kind = LT_OPT_STRING, .dest = &s->mesh_path, .meta = "PATH",
+         .flags = LT_OPT_NONEMPTY,
          .help = "the mesh (required unless SCENE.json names one)"},
         {.name = "--res", .kind = LT_OPT_INT, .dest = &s->res, .seen = &s->seen_res, .meta = "N",
          .lo = 1, .hi = LT_SF_MAX_RES,

@@ -25,6 +25,24 @@ expect "run: bad --res" 2 "expected WxH" "$LT" run --res 0
 expect "run: unknown machine" 2 "z80" "$LT" run --machine z80 --res 4
 expect "run: bad cache spec names it" 2 "63:8:64" "$LT" run --l1 63:8:64 --res 4
 expect "run: missing mesh names the file" 1 "/nonexistent.obj" "$LT" run --mesh /nonexistent.obj
+# Empty values: "--mesh ''" traced the default teapot (run, render, pack, reproject: exit 0),
+# "--l1 ''" took the machine's cache over the scene file's, and an empty positional name said
+# ": cannot open ..." naming nothing. Each is a usage error now.
+expect "run: --mesh '' is refused, not the teapot" 2 "run: --mesh : an empty value; expected PATH" \
+    "$LT" run --mesh '' --res 4 --no-ref
+expect "render: --mesh ''" 2 "render: --mesh : an empty value" \
+    "$HOSTBIN/lanetrace-native" render --mesh '' --res 4 --out "$tmp/em" -q
+check "render: nothing written for --mesh ''" test ! -e "$tmp/em.exr"
+expect "pack: --mesh ''" 2 "pack: --mesh : an empty value" \
+    "$HOSTBIN/lanetrace-native" pack --mesh '' --out "$tmp/em.ltsb"
+expect "shadows: --mesh ''" 2 "shadows: --mesh : an empty value" "$LT" shadows --mesh '' --res 4
+expect "reproject: --depth ''" 2 "reproject: --depth : an empty value; expected FILE.exr" \
+    "$LT" reproject --depth ''
+expect "run: --l1 ''" 2 "run: --l1 : an empty value; expected S:W:B" "$LT" run --l1 '' --res 4
+expect "run: --l2 ''" 2 "run: --l2 : an empty value" "$LT" run --l2 '' --res 4
+expect "run: an empty scene file name" 2 "run: an empty argument ''" "$LT" run ''
+expect "info: an empty file name" 2 "info: an empty argument ''" "$LT" info ''
+expect "tune: an empty input name" 2 "tune: an empty argument ''" "$LT" tune ''
 printf 'v 0 0 0\nv 1 0 0\nf 1 2 9\n' >"$tmp/bad.obj"
 expect "run: malformed OBJ names the file" 1 "bad.obj" "$LT" run --mesh "$tmp/bad.obj"
 expect "run: missing scene file" 1 "nope.json" "$LT" run "$tmp/nope.json"
