@@ -546,6 +546,29 @@ int lt_sf_parse(const char *text, const char *name, const char *base_dir, lt_sce
                 col++;
             }
         }
+        {
+            /* cJSON stops at CJSON_NESTING_LIMIT levels of arrays and objects: valid JSON, so
+             * say so rather than "not valid JSON" (no scene key nests deeper than 3) */
+            int depth = 0, in_str = 0;
+            for (p = text; end != NULL && p <= end && *p != '\0'; p++) {
+                if (in_str) {
+                    if (*p == '\\' && p[1] != '\0')
+                        p++;
+                    else if (*p == '"')
+                        in_str = 0;
+                } else if (*p == '"') {
+                    in_str = 1;
+                } else if (*p == '[' || *p == '{') {
+                    depth++;
+                } else if ((*p == ']' || *p == '}') && depth > 0) {
+                    depth--;
+                }
+            }
+            if (depth > CJSON_NESTING_LIMIT)
+                return fail(&c, "arrays and objects nested deeper than %d levels at line %d, "
+                            "column %d (CJSON_NESTING_LIMIT; a scene file nests at most 3)",
+                            CJSON_NESTING_LIMIT, line, col);
+        }
         return fail(&c, "not valid JSON at line %d, column %d", line, col);
     }
     r = parse_root(&c, root, sf);
@@ -598,6 +621,20 @@ int lt_sf_load(const char *path, lt_scenefile_t *sf, lt_diag_t *diag)
     }
     fclose(f);
     text[n] = '\0';
+    if (memchr(text, '\0', (size_t)n) != NULL) {
+        /* the parser would stop at it and ignore the rest of the file */
+        const char *z = memchr(text, '\0', (size_t)n), *q;
+        int line = 1, col = 1;
+        long at = (long)(z - text);
+        for (q = text; q < z; q++) {
+            col = *q == '\n' ? 1 : col + 1;
+            line += *q == '\n';
+        }
+        free(text);
+        lt_diag_fail(diag, "%s: a NUL byte at line %d, column %d (byte %ld of %ld); a scene file "
+                     "is JSON text", path, line, col, at, n);
+        return -1;
+    }
     slash = strrchr(path, '/');
     if (slash == NULL)
         base[0] = '\0';

@@ -55,6 +55,15 @@ sc '{"mesh": "'"$PWD"'/scenes/teapot.obj", "resolution": [8, 8], "resolution": [
 expect "scene: a duplicate key is an error (cJSON took the first silently)" 1 "s.json: key 'resolution' appears more than once" "$LT" run "$tmp/s.json"
 sc '{"mesh": "'"$PWD"'/scenes/teapot.obj", "camera": {"eye": [0,0,5], "target": [0,0,0], "eye": [1,1,1]}}'
 expect "scene: a duplicate nested key named with its path" 1 "key 'camera.eye' appears more than once" "$LT" run "$tmp/s.json"
+# A NUL byte ended the scene file for the parser: '{"mesh": ...}\0{"junk"' traced, exit 0.
+printf '{"mesh": "%s/scenes/teapot.obj", "resolution": 4}\0{"bogus": 1}' "$PWD" >"$tmp/nul.json"
+expect "scene: a raw NUL byte is refused with its place" 1 "nul.json: a NUL byte at line 1, column" \
+    "$LT" run "$tmp/nul.json" --no-ref
+# Nesting beyond cJSON's limit was called "not valid JSON"; it is valid, just deeper than 1000.
+awk 'BEGIN { printf "{\"x\": "; for (i = 0; i < 1100; i++) printf "["; for (i = 0; i < 1100; i++) printf "]"; print "}" }' >"$tmp/deep.json"
+expect "scene: nesting past CJSON_NESTING_LIMIT says so" 1 \
+    "deep.json: arrays and objects nested deeper than 1000 levels at line 1, column .*CJSON_NESTING_LIMIT" \
+    "$LT" run "$tmp/deep.json"
 sc '{"mesh": "'"$PWD"'/scenes/teapot.obj", "caches": {"l1": "63:8:64"}}'
 expect "scene: a bad cache geometry names the file and key (sim)" 1 "s.json: 'caches.l1': cache spec \"63:8:64\": sets 63 is not a power of two" "$LT" run "$tmp/s.json" --res 8 -q
 expect "scene: ... and the native build refuses it too (it ignored caches)" 1 "s.json: 'caches.l1'" "$HOSTBIN/lanetrace-native" run "$tmp/s.json" --res 8 -q
