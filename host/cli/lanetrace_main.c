@@ -101,7 +101,6 @@ static int scene_output_bad(const char *scene, const char *key, const char *path
 
 /* ---- atomic outputs: a temporary name renamed into place; Ctrl-C removes the temporary ---------- */
 
-static char csv_tmp[LT_TMP_PATH_MAX]; /* the CSV being written row by row */
 
 /* text into path through a registered temporary (a fatal signal removes it) */
 static int write_atomic(const char *path, const char *text, lt_diag_t *diag)
@@ -245,6 +244,7 @@ typedef struct run {
     cJSON *jout;
     FILE *csvf;
     int status, heat_warned;
+    lt_outset_t *set; /* every output file, renamed into place together at the end */
     /* a selected path dropped because it cannot represent the scene, and the reason */
     const lt_path_info_t *dropped;
     char drop_reason[LT_DIAG_MAX];
@@ -291,6 +291,19 @@ static void run_defaults(run_t *r)
     r->repeat = 1;
     r->do_ref = 1;
     r->autop = 1;
+}
+
+/* path as a member of the run's output set: *dst is where its writer writes. Returns 0, or -1
+ * after the message (r->status set). */
+static int run_out(run_t *r, const char *path, const char **dst)
+{
+    lt_diag_t diag;
+    if (lt_outset_add(r->set, path, dst, &diag) != 0) {
+        fprintf(stderr, "%s run: %s\n", prog, diag.msg);
+        r->status = EXIT_INPUT;
+        return -1;
+    }
+    return 0;
 }
 
 /* The options into r; LT_OPT_OK, LT_OPT_HELP or LT_OPT_USAGE. */
@@ -552,16 +565,13 @@ static int run_load(run_t *r)
 /* The CSV output, written under a temporary name row by row. */
 static int run_csv_open(run_t *r)
 {
-    lt_diag_t diag;
-    if (lt_tmp_begin(r->csv, csv_tmp, &diag) != 0) {
-        fprintf(stderr, "%s\n", diag.msg);
+    const char *dst;
+    if (run_out(r, r->csv, &dst) != 0)
         return -1;
-    }
-    r->csvf = fopen(csv_tmp, "w");
+    r->csvf = fopen(dst, "w");
     if (r->csvf == NULL) {
-        fprintf(stderr, "%s: cannot create the CSV output\n", r->csv);
-        lt_tmp_end(csv_tmp);
-        csv_tmp[0] = '\0';
+        fprintf(stderr, "%s: cannot create the CSV output (%s)\n", r->csv, strerror(errno));
+        r->status = EXIT_INPUT;
         return -1;
     }
     fprintf(r->csvf, "scene,structure,path,machine,width,height,rays,total_cycles,cycles_per_ray,"
@@ -608,29 +618,31 @@ static void run_heatmaps(run_t *r, const lt_path_info_t *p)
         r->heat_warned = 1;
         return;
     }
-    snprintf(hp, sizeof hp, "%s.%s.png", heat_out, pname);
-    if (lt_heatmap_write_png(hp, r->fr.cost, (int32_t)sf->width, (int32_t)sf->height, &ho, &diag) != 0) {
-        fprintf(stderr, "%s\n", diag.msg);
-        r->status = EXIT_INPUT;
-        return;
+    {
+        /* four files per path, each a member of the run's output set */
+        static const char *const sfx[4] = {"png", "exr", "steps.png", "steps.exr"};
+        int i;
+        for (i = 0; i < 4; i++) {
+            const char *dst;
+            const float *v = i < 2 ? r->fr.cost : r->fr.steps;
+            int e;
+            snprintf(hp, sizeof hp, "%s.%s.%s", heat_out, pname, sfx[i]);
+            if (run_out(r, hp, &dst) != 0)
+                return;
+            e = i % 2 == 0 ? lt_heatmap_write_png(dst, v, (int32_t)sf->width, (int32_t)sf->height,
+                                                  &ho, &diag)
+                           : lt_heatmap_write_exr(dst, v, (int32_t)sf->width,
+                                                  (int32_t)sf->height,
+                                                  i < 2 ? "cycles" : "steps", &diag);
+            if (e != 0) {
+                fprintf(stderr, "%s\n", diag.msg);
+                r->status = EXIT_INPUT;
+                return;
+            }
+        }
     }
-    if (!quiet)
-        printf("heatmap   %s (simulated cycles per pixel)\n", hp);
-    snprintf(hp, sizeof hp, "%s.%s.exr", heat_out, pname);
-    if (lt_heatmap_write_exr(hp, r->fr.cost, (int32_t)sf->width, (int32_t)sf->height,
-                             "cycles", &diag) != 0) {
-        fprintf(stderr, "%s\n", diag.msg);
-        r->status = EXIT_INPUT;
-    }
-    snprintf(hp, sizeof hp, "%s.%s.steps.png", heat_out, pname);
-    if (lt_heatmap_write_png(hp, r->fr.steps, (int32_t)sf->width, (int32_t)sf->height, &ho,
-                             &diag) != 0 ||
-        (snprintf(hp, sizeof hp, "%s.%s.steps.exr", heat_out, pname),
-         lt_heatmap_write_exr(hp, r->fr.steps, (int32_t)sf->width, (int32_t)sf->height,
-                              "steps", &diag)) != 0) {
-        fprintf(stderr, "%s\n", diag.msg);
-        r->status = EXIT_INPUT;
-    } else if (!quiet) {
+    if (!quiet) {
+        printf("heatmap   %s.%s.png (simulated cycles per pixel)\n", heat_out, pname);
         printf("heatmap   %s.%s.steps.png (traversal steps per pixel's packet)\n", heat_out,
                pname);
     }
@@ -680,6 +692,7 @@ static void run_facts(const run_t *r, const char *pname, double ms, size_t acc_b
 static void run_write_report(run_t *r, const char *pname, const char *text)
 {
     lt_diag_t diag;
+    const char *dst;
     char p[4096];
     int both = run_npaths(&r->sf) > 1;
     if (both ? lt_path_tagged(p, sizeof p, r->report, pname) != 0
@@ -689,7 +702,9 @@ static void run_write_report(run_t *r, const char *pname, const char *text)
         r->status = EXIT_INPUT;
         return;
     }
-    if (write_atomic(p, text, &diag) != 0) {
+    if (run_out(r, p, &dst) != 0)
+        return;
+    if (write_atomic(dst, text, &diag) != 0) {
         fprintf(stderr, "%s\n", diag.msg);
         r->status = EXIT_INPUT;
     } else if (!quiet) {
@@ -885,6 +900,7 @@ static int run_path(run_t *r, const lt_path_info_t *p)
 static void run_write_depth(run_t *r)
 {
     lt_diag_t diag;
+    const char *dst;
     lt_exr_channel_t ch[2 * LT_PATHS_MAX];
     lt_exr_image_t im;
     int nch = 0, path;
@@ -904,7 +920,9 @@ static void run_write_depth(run_t *r)
     im.nchannels = nch;
     im.channels = ch;
     im.compression = LT_EXR_COMP_ZIP;
-    if (lt_exr_write(r->depth_out, &im, &diag) != 0) {
+    if (run_out(r, r->depth_out, &dst) != 0)
+        return;
+    if (lt_exr_write(dst, &im, &diag) != 0) {
         fprintf(stderr, "%s\n", diag.msg);
         r->status = EXIT_INPUT;
     } else if (!quiet) {
@@ -912,21 +930,15 @@ static void run_write_depth(run_t *r)
     }
 }
 
-/* The CSV renamed into place. */
+/* The CSV finished (the output set renames it into place). */
 static void run_csv_close(run_t *r)
 {
-    lt_diag_t diag;
     if (fclose(r->csvf) != 0) {
         fprintf(stderr, "%s: cannot write the CSV output: %s\n", r->csv, strerror(errno));
-        lt_tmp_discard(csv_tmp);
-        r->status = EXIT_INPUT;
-    } else if (lt_tmp_commit(csv_tmp, r->csv, &diag) != 0) {
-        fprintf(stderr, "%s\n", diag.msg);
         r->status = EXIT_INPUT;
     } else if (!quiet) {
         printf("csv       %s\n", r->csv);
     }
-    csv_tmp[0] = '\0';
     r->csvf = NULL;
 }
 
@@ -951,8 +963,10 @@ static int run_trace(run_t *r)
         lt_render_reference(&r->sc, &r->cam, &r->ref, progress);
         progress_end();
     }
-    if (r->csv != NULL && run_csv_open(r) != 0)
+    if (r->csv != NULL && run_csv_open(r) != 0) {
+        lt_outset_abort(r->set);
         return EXIT_INPUT;
+    }
     for (p = lt_paths; p->name != NULL; p++)
         if (run_selects(sf, p) && run_path(r, p) != 0)
             break;
@@ -960,6 +974,17 @@ static int run_trace(run_t *r)
         run_write_depth(r);
     if (r->csvf != NULL)
         run_csv_close(r);
+    /* all outputs or none: the new files replace the old ones only when every one was written */
+    if (r->status == 0) {
+        if (lt_outset_commit(r->set, &diag) != 0) {
+            fprintf(stderr, "%s run: %s\n", prog, diag.msg);
+            r->status = EXIT_INPUT;
+        }
+    } else if (r->set->n > 0) {
+        fprintf(stderr, "%s run: none of the outputs written (%d prepared were removed; previous "
+                        "files are unchanged)\n", prog, r->set->n);
+        lt_outset_abort(r->set);
+    }
     if (r->json) {
         char *s = cJSON_Print(r->jout);
         if (s != NULL)
@@ -980,6 +1005,12 @@ static int cmd_run(int argc, char **argv)
     if (r.native && lt_meter_available())
         return exec_native(argc, argv);
     r.jout = cJSON_CreateArray();
+    r.set = calloc(1, sizeof *r.set);
+    if (r.set == NULL) {
+        fprintf(stderr, "%s run: out of memory\n", prog);
+        cJSON_Delete(r.jout);
+        return EXIT_INPUT;
+    }
     rc = run_settle(&r);
     if (rc == 0)
         rc = run_load(&r);
@@ -990,6 +1021,7 @@ static int cmd_run(int argc, char **argv)
         free(r.idbuf[path]);
     }
     cJSON_Delete(r.jout);
+    free(r.set);
     lt_frame_free(&r.fr);
     lt_frame_free(&r.ref);
     lt_scene_free(&r.sc);

@@ -140,6 +140,29 @@ ep_expect "render: /dev/zero as the mesh is a device, not an empty file" 1 \
     "/dev/zero: a device, FIFO or socket" \
     timeout 20 "$HOSTBIN/lanetrace-native" render --mesh /dev/zero --res 8 --out "$E/z" -q
 
+# run's outputs are one set (lt_outset), as render's and reproject's: a failing member leaves
+# every previous output as it was. The report used to be replaced before the CSV (an existing
+# directory) or a heatmap (a missing directory) failed.
+mkdir -p "$E/rs" "$E/rs/d.csv"
+echo OLDREPORT >"$E/rs/r.json"
+echo OLDCSV >"$E/rs/c.csv"
+ep_expect "run: --csv onto a directory, the report kept as it was" 1 "d.csv: is a directory" \
+    "$SIMBIN/lanetrace" run --res 8 --num f32 --no-ref --report "$E/rs/r.json" --csv "$E/rs/d.csv" -q
+check "run: after the failed --csv the previous report is unchanged ($(head -c 20 "$E/rs/r.json"))" \
+    grep -qx OLDREPORT "$E/rs/r.json"
+ep_expect "run: --heatmap into a missing directory, the report and CSV kept" 1 \
+    "none of the outputs written" \
+    "$SIMBIN/lanetrace" run --res 8 --num f32 --no-ref --report "$E/rs/r.json" --csv "$E/rs/c.csv" \
+    --heatmap /nonexistent-ep/h -q
+check "run: after the failed --heatmap the report and the CSV are unchanged, no temporary left ($(ls "$E/rs" | tr '\n' ' '))" \
+    bash -c "grep -qx OLDREPORT '$E/rs/r.json' && grep -qx OLDCSV '$E/rs/c.csv' && [ \$(ls -A '$E/rs' | wc -l) -eq 3 ]"
+"$SIMBIN/lanetrace" run --res 8 --num both --no-ref --report "$E/rs/r.json" --csv "$E/rs/c.csv" \
+    --depth "$E/rs/z.exr" --heatmap "$E/rs/h" -q >/dev/null 2>&1
+rc=$?
+check "run: every output written together when all succeed (rc $rc: two reports, CSV, depth, 8 heatmaps)" \
+    bash -c "[ $rc -eq 0 ] && [ -s '$E/rs/r.q16.json' ] && [ -s '$E/rs/r.f32.json' ] && [ \$(wc -l <'$E/rs/c.csv') -eq 3 ] &&
+        [ -s '$E/rs/z.exr' ] && [ \$(ls '$E/rs'/h.*.png '$E/rs'/h.*.exr | wc -l) -eq 8 ] && ! ls '$E/rs' | grep -q tmp"
+
 # OBJ polygons: assimp triangulates them in time quadratic in their size, in this process.
 awk 'BEGIN { print "v 0 0 0"; print "v 1 0 0"; print "v 0 1 0"; printf "f"; for (i = 0; i < 5000; i++) printf " 1 2 3"; print "" }' >"$E/longface.obj"
 ep_expect "info: a face of 15,000 vertices" 1 "LT_MESH_MAX_FACE_VERTS 4096" \
