@@ -958,6 +958,7 @@ static int run_trace(run_t *r)
         fprintf(stderr, "%s\n", diag.msg);
         return EXIT_INPUT;
     }
+    r->fr.heat = r->heat_out != NULL; /* the per-pixel cycles and steps only for --heatmap */
     if (r->do_ref) {
         progress_begin("reference");
         lt_render_reference(&r->sc, &r->cam, &r->ref, progress);

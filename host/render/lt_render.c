@@ -454,16 +454,23 @@ static void primary_row(void *ctx, unsigned w, uint32_t row)
     for (tx = 0; tx < c->width; tx += 4) {
         lt_hit16_t hit;
         lt_mask16_t k;
-        uint64_t c0 = cycles_now(), n0 = nodes_now();
-        float per, steps;
+        uint64_t c0 = 0, n0 = 0;
+        float per = 0.0f, steps = 0.0f;
         int i;
-        lt_phase_t prev = LT_PHASE_ENTER(SETUP);
+        lt_phase_t prev;
+        if (f->heat) {
+            c0 = cycles_now();
+            n0 = nodes_now();
+        }
+        prev = LT_PHASE_ENTER(SETUP);
         k = a->ops->camera_packet(c, j->tab, tx, ty, ray);
         LT_EVENT(RAYS, lt__popcount32(k));
         LT_PHASE_LEAVE(prev);
         trace16(a, ray, k, &hit);
-        per = (float)(cycles_now() - c0) / (float)lt__popcount32(k);
-        steps = (float)(nodes_now() - n0);
+        if (f->heat) {
+            per = (float)(cycles_now() - c0) / (float)lt__popcount32(k);
+            steps = (float)(nodes_now() - n0);
+        }
         for (i = 0; i < LT_LANES; i++) {
             uint32_t x = tx + (uint32_t)(i % 4), y = ty + (uint32_t)(i / 4);
             size_t p = (size_t)y * c->width + x;

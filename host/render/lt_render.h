@@ -19,6 +19,8 @@ typedef struct lt_frame {
                       non-sim builds */
     float *steps;  /* traversal steps per pixel: nodes (or chunks) its packet visited; 0 in
                       non-sim builds */
+    int heat;      /* 1: fill cost and steps (run --heatmap; each packet reads the simulator's
+                      counters twice); 0 (lt_frame_alloc's default): they stay 0 */
 } lt_frame_t;
 
 /* Allocate (0) or fail (-1, message). */

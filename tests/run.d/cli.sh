@@ -129,6 +129,13 @@ expect "run --depth writes an EXR with Z and id per path" 0 "" "$LT" run --res 1
 expect "info on the depth EXR lists its channels" 0 "q16.Z(FLOAT)" "$LT" info "$tmp/d.exr"
 expect "run --heatmap writes PNG and EXR per path" 0 "" "$LT" run --res 16 --num q16 --heatmap "$tmp/h" -q
 check "heatmap files exist (cycles and steps)" test -s "$tmp/h.q16.png" -a -s "$tmp/h.q16.exr" -a -s "$tmp/h.q16.steps.png"
+# the per-pixel cycles and steps are read only when --heatmap asks (lt_frame_t.heat): the maps
+# must still vary over the image (a map of zeros has one colour besides the legend's ~44)
+"$LT" run --res 32 --num q16 --no-ref --heatmap "$tmp/h32" -q >/dev/null 2>&1
+hc=$(python3 tools/png_colours.py "$tmp/h32.q16.png" 2>/dev/null)
+hs=$(python3 tools/png_colours.py "$tmp/h32.q16.steps.png" 2>/dev/null)
+check "run --heatmap at 32x32: the cycle and step maps vary ($hc and $hs distinct colours, legend included; >= 55)" \
+    bash -c "[ '${hc:-0}' -ge 55 ] && [ '${hs:-0}' -ge 55 ]"
 expect "info on the heatmap EXR" 0 "cycles(FLOAT)" "$LT" info "$tmp/h.q16.exr"
 # info decides EXR vs mesh by the first bytes, not the name, and says what it found
 cp "$tmp/d.exr" "$tmp/depth.bin"
