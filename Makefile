@@ -201,7 +201,7 @@ run-doc: deps
 TEST_BINS := $(foreach v,$(VARIANTS),$(UNIT_TESTS:%=$(B)/$(v)/test_%) $(B)/$(v)/lt-vectors) \
     $(B)/sim/test_cache $(B)/host/lanetrace-native $(B)/sim/lanetrace $(EXTRA_TEST_BINS) \
     $(B)/tsan/test_par $(B)/tsan/lanetrace-native $(B)/avx2/test_v16 $(B)/avx2/test_isect \
-    $(B)/avx2/test_bvh $(B)/avx2/lt-vectors
+    $(B)/avx2/test_bvh $(B)/avx2/test_wt $(B)/avx2/lt-vectors
 
 test: deps
 	@$(MAKE) --no-print-directory test-build

@@ -46,6 +46,7 @@ if grep -qw avx2 /proc/cpuinfo 2>/dev/null; then
     check "unit/avx2/test_v16 (every lane op against its scalar reference, AVX2 backend)" "$B/avx2/test_v16"
     check "unit/avx2/test_isect (packet kernels, AVX2 backend)" "$B/avx2/test_isect"
     check "unit/avx2/test_bvh (binary and wide BVH walks, AVX2 backend)" "$B/avx2/test_bvh"
+    check "unit/avx2/test_wt (watertight test: packet lanes vs the scalar test, AVX2 register forms)" "$B/avx2/test_wt"
 else
     echo "SKIP lane backend avx2: this CPU has no AVX2"
 fi
