@@ -7,6 +7,7 @@
 #include "stream/lt_rx.h"
 
 #include <errno.h>
+#include <stdarg.h>
 #include <fcntl.h>
 #include <netdb.h>
 #include <poll.h>
@@ -316,6 +317,11 @@ struct lt_rx {
     uint64_t damaged;       /* gap estimates summed; reported as at most lost (a frame of a gap
                                may still arrive late) */
     int finished;
+    /* record checks (check_record): the session's HELLO taken, and the (frame, tile) pairs of
+     * its TILE reports, an open-addressing set of frame << 16 | tile, stored + 1 (0 = empty) */
+    int hello_taken;
+    uint64_t *ft;
+    size_t ft_cap, ft_n;
 };
 
 lt_rx_t *lt_rx_new(lt_rx_frame_fn cb, void *ctx)
@@ -330,7 +336,12 @@ lt_rx_t *lt_rx_new(lt_rx_frame_fn cb, void *ctx)
     return rx;
 }
 
-void lt_rx_free(lt_rx_t *rx) { free(rx); }
+void lt_rx_free(lt_rx_t *rx)
+{
+    if (rx != NULL)
+        free(rx->ft);
+    free(rx);
+}
 
 const lt_rx_stats_t *lt_rx_stats(const lt_rx_t *rx) { return &rx->st; }
 
@@ -396,6 +407,69 @@ static void sess_close(lt_rx_t *rx)
     rx->sess_hello = 0;
     rx->sess_end = 0;
     rx->end_sent = 0;
+    rx->hello_taken = 0;
+    rx->ft_n = 0;
+    if (rx->ft != NULL)
+        memset(rx->ft, 0, rx->ft_cap * sizeof *rx->ft);
+}
+
+/* Add key to the session's (frame, tile) set: 1 new, 0 already there, -1 out of memory (the
+ * duplicate check is then skipped, never a crash). */
+static int ft_add(lt_rx_t *rx, uint64_t key)
+{
+    size_t i, mask;
+    if (2 * (rx->ft_n + 1) > rx->ft_cap) {
+        size_t cap = rx->ft_cap ? 2 * rx->ft_cap : 1024, j;
+        uint64_t *t = calloc(cap, sizeof *t);
+        if (t == NULL)
+            return -1;
+        for (j = 0; j < rx->ft_cap; j++)
+            if (rx->ft[j] != 0) {
+                for (i = (size_t)(rx->ft[j] * 0x9E3779B97F4A7C15ull >> 17) & (cap - 1); t[i] != 0;
+                     i = (i + 1) & (cap - 1))
+                    ;
+                t[i] = rx->ft[j];
+            }
+        free(rx->ft);
+        rx->ft = t;
+        rx->ft_cap = cap;
+    }
+    key += 1;
+    mask = rx->ft_cap - 1;
+    for (i = (size_t)(key * 0x9E3779B97F4A7C15ull >> 17) & mask; rx->ft[i] != 0; i = (i + 1) & mask)
+        if (rx->ft[i] == key)
+            return 0;
+    rx->ft[i] = key;
+    rx->ft_n++;
+    return 1;
+}
+
+/* A record the session's HELLO or its own fields make impossible: counted, the first one kept. */
+static void bad_record(lt_rx_t *rx, const lt_stream_frame_t *f, const char *fmt, ...)
+    LT_DIAG_PRINTF(3, 4);
+static void bad_record(lt_rx_t *rx, const lt_stream_frame_t *f, const char *fmt, ...)
+{
+    lt_rx_stats_t *st = &rx->st;
+    if (st->bad_record++ == 0) {
+        va_list ap;
+        int n = snprintf(st->bad_first, sizeof st->bad_first, "frame seq %u (%s): ",
+                         (unsigned)f->seq, lt_rx_type_name(f->type));
+        if (n > 0 && (size_t)n < sizeof st->bad_first) {
+            va_start(ap, fmt);
+            (void)vsnprintf(st->bad_first + n, sizeof st->bad_first - (size_t)n, fmt, ap);
+            va_end(ap);
+        }
+    }
+}
+
+/* Tiles of the session's image (0 without a usable HELLO). */
+static uint64_t hello_tiles(const lt_rx_t *rx)
+{
+    const lt_stream_hello_t *h = &rx->st.hello;
+    if (!rx->hello_taken || h->tile_w == 0 || h->tile_h == 0 || h->width == 0 || h->height == 0)
+        return 0;
+    return (uint64_t)((h->width + h->tile_w - 1) / h->tile_w) *
+           (uint64_t)((h->height + h->tile_h - 1) / h->tile_h);
 }
 
 /* The device's data from a first copy of a frame. */
@@ -411,13 +485,45 @@ static void take(lt_rx_t *rx, const lt_stream_frame_t *f)
     st->by_type[f->type]++;
     switch (f->type) {
     case LT_STREAM_HELLO:
+        if (rx->hello_taken)
+            bad_record(rx, f, "a second HELLO in session 0x%08x without an END before it",
+                       rx->sess_id);
         ok = lt_stream_unpack_hello(f, &st->hello);
-        if (ok == LT_OK)
+        if (ok == LT_OK) {
+            const lt_stream_hello_t *h = &st->hello;
             st->have_hello = 1;
+            rx->hello_taken = 1;
+            if (h->width == 0 || h->height == 0 || h->tile_w == 0 || h->tile_h == 0)
+                bad_record(rx, f, "image %ux%u in %ux%u tiles: sizes must be at least 1",
+                           h->width, h->height, h->tile_w, h->tile_h);
+            else if (hello_tiles(rx) > 65536u)
+                bad_record(rx, f, "image %ux%u in %ux%u tiles is %llu tiles, over the 65536 a "
+                           "16-bit tile index can name", h->width, h->height, h->tile_w,
+                           h->tile_h, (unsigned long long)hello_tiles(rx));
+        }
         break;
     case LT_STREAM_TILE:
         ok = lt_stream_unpack_tile(f, &t);
         if (ok == LT_OK) {
+            uint64_t nt = hello_tiles(rx);
+            const lt_stream_hello_t *h = &st->hello;
+            if (t.hits > t.rays)
+                bad_record(rx, f, "tile %u of frame %u: %u hits of %u rays", t.tile, t.frame,
+                           t.hits, t.rays);
+            if (nt != 0 && t.tile >= nt)
+                bad_record(rx, f, "tile index %u outside the image: %llu tiles (%ux%u in %ux%u "
+                           "tiles)", t.tile, (unsigned long long)nt, h->width, h->height,
+                           h->tile_w, h->tile_h);
+            else if (nt != 0 && t.rays > (uint32_t)h->tile_w * h->tile_h)
+                bad_record(rx, f, "tile %u of frame %u: %u rays, over the %u pixels of a %ux%u "
+                           "tile", t.tile, t.frame, t.rays, (unsigned)(h->tile_w * h->tile_h),
+                           h->tile_w, h->tile_h);
+            if (rx->hello_taken && h->frames != 0 && t.frame >= h->frames)
+                bad_record(rx, f, "tile %u of frame %u: the session traces frames 0..%u", t.tile,
+                           t.frame, h->frames - 1u);
+            if (ft_add(rx, (uint64_t)t.frame << 16 | t.tile) == 0)
+                bad_record(rx, f, "tile %u of frame %u reported a second time (another sequence "
+                           "number)", t.tile, t.frame);
             st->tiles++;
             st->rays += t.rays;
             st->hits += t.hits;
@@ -428,6 +534,20 @@ static void take(lt_rx_t *rx, const lt_stream_frame_t *f)
     case LT_STREAM_SUMMARY:
         ok = lt_stream_unpack_summary(f, &s);
         if (ok == LT_OK) {
+            uint64_t nt = hello_tiles(rx);
+            const lt_stream_hello_t *h = &st->hello;
+            if (s.hits > s.rays)
+                bad_record(rx, f, "frame %u: %u hits of %u rays", s.frame, s.hits, s.rays);
+            if (nt != 0 && s.tiles > nt)
+                bad_record(rx, f, "frame %u: %u tiles traced, over the image's %llu (%ux%u in "
+                           "%ux%u tiles)", s.frame, s.tiles, (unsigned long long)nt, h->width,
+                           h->height, h->tile_w, h->tile_h);
+            else if (nt != 0 && s.rays > (uint64_t)h->width * h->height)
+                bad_record(rx, f, "frame %u: %u rays, over the image's %llu pixels", s.frame,
+                           s.rays, (unsigned long long)h->width * h->height);
+            if (rx->hello_taken && h->frames != 0 && s.frame >= h->frames)
+                bad_record(rx, f, "frame %u: the session traces frames 0..%u", s.frame,
+                           h->frames - 1u);
             st->summaries++;
             st->sum_tiles += s.tiles;
             st->sum_rays += s.rays;

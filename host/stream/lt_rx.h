@@ -89,6 +89,12 @@ typedef struct lt_rx_stats {
     uint64_t bad_crc;        /* header valid, CRC (or padding) invalid */
     uint64_t tail_bytes;     /* bytes of a frame cut off by the end of the stream */
     uint64_t bad_payload;    /* CRC-valid frames whose payload length does not fit their type */
+    uint64_t bad_record;     /* CRC-valid records whose content contradicts the session's HELLO
+                                or itself (lt_rx_check_record): a tile outside the image, a
+                                (frame, tile) reported twice, more rays than pixels, more hits
+                                than rays, a frame past the session's count, an image or tile
+                                size of 0, a second HELLO without END */
+    char bad_first[192];     /* the first of them: "frame seq S (TYPE): what, the limit" */
     uint32_t sessions;       /* HELLO records that started a session (1 normally) */
     int have_hello;          /* a HELLO was received (the last session's is in hello) */
     int have_end;            /* the last session's END record was received */

@@ -89,7 +89,8 @@ static void on_stop(int sig)
 static int clean(const lt_rx_stats_t *s)
 {
     return s->have_end && s->lost == 0 && s->duplicates == 0 && s->reordered == 0 &&
-           s->stale == 0 && s->garbage_bytes == 0 && s->bad_payload == 0 && s->end.status == 0 &&
+           s->stale == 0 && s->garbage_bytes == 0 && s->bad_payload == 0 && s->bad_record == 0 &&
+           s->end.status == 0 &&
            s->sessions <= (uint32_t)g_max_sessions;
 }
 
@@ -135,6 +136,9 @@ static void print_text(const char *src, const lt_rx_stats_t *s, double dt)
            (unsigned long long)s->garbage_runs, (unsigned long long)s->bad_header,
            (unsigned long long)s->bad_crc, (unsigned long long)s->tail_bytes,
            (unsigned long long)s->bad_payload);
+    if (s->bad_record != 0)
+        printf("records   %llu inconsistent with the HELLO or themselves; first: %s\n",
+               (unsigned long long)s->bad_record, s->bad_first);
     printf("types     HELLO %llu TILE %llu SUMMARY %llu DROP %llu IMAGE %llu END %llu\n",
            (unsigned long long)s->by_type[1], (unsigned long long)s->by_type[2],
            (unsigned long long)s->by_type[3], (unsigned long long)s->by_type[4],
@@ -218,6 +222,7 @@ static void print_json(const char *src, const lt_rx_stats_t *s, double dt)
     printf("  \"bad_crc\": %llu,\n", (unsigned long long)s->bad_crc);
     printf("  \"tail_bytes\": %llu,\n", (unsigned long long)s->tail_bytes);
     printf("  \"bad_payload\": %llu,\n", (unsigned long long)s->bad_payload);
+    printf("  \"bad_records\": %llu,\n", (unsigned long long)s->bad_record);
     printf("  \"sessions\": %u,\n", s->sessions);
     printf("  \"have_hello\": %d,\n", s->have_hello);
     printf("  \"have_end\": %d,\n", s->have_end);
@@ -399,6 +404,9 @@ int main(int argc, char **argv)
     }
     lt_rx_finish(rx);
     s = lt_rx_stats(rx);
+    if (s->bad_record != 0)
+        fprintf(stderr, "%slt-stream: %s: %s%s\n", tty ? "\n" : "", lt_rx_src_name(src),
+                s->bad_first, s->bad_record > 1 ? " (and more: see the records line)" : "");
     if (tty) {
         live_line(s, lt_now_s() - t0);
         fputc('\n', stderr);
