@@ -33,19 +33,41 @@ static void shq(char *buf, size_t n, const char *s)
     buf[len] = '\0';
 }
 
+/* plan.json and run-K.json are a few KiB; anything past this is not one of them */
+#define LT_TUNE_TEXT_MAX (64 << 20)
+
 static char *read_text(const char *path, lt_diag_t *diag)
 {
-    FILE *f = fopen(path, "rb");
+    const char *kind = lt_diag_not_regular(path);
+    FILE *f;
     char *t;
+    const char *nul;
     long n;
+    /* refused before opening: a FIFO without a writer would block the open, a directory opens
+     * but its "size" is LONG_MAX on some file systems (a malloc of 2^63 bytes) */
+    if (kind != NULL) {
+        lt_diag_fail(diag, "%s: %s, not a regular file", path, kind);
+        return NULL;
+    }
+    f = fopen(path, "rb");
     if (f == NULL) {
         lt_diag_fail(diag, "%s: cannot open (%s)", path, strerror(errno));
         return NULL;
     }
-    if (fseek(f, 0, SEEK_END) != 0 || (n = ftell(f)) < 0 || fseek(f, 0, SEEK_SET) != 0 ||
-        (t = malloc((size_t)n + 1)) == NULL) {
+    if (fseek(f, 0, SEEK_END) != 0 || (n = ftell(f)) < 0 || fseek(f, 0, SEEK_SET) != 0) {
         fclose(f);
         lt_diag_fail(diag, "%s: cannot read", path);
+        return NULL;
+    }
+    if (n > LT_TUNE_TEXT_MAX) {
+        fclose(f);
+        lt_diag_fail(diag, "%s: %ld bytes, larger than a plan or result file can be (at most %d)",
+                     path, n, LT_TUNE_TEXT_MAX);
+        return NULL;
+    }
+    if ((t = malloc((size_t)n + 1)) == NULL) {
+        fclose(f);
+        lt_diag_fail(diag, "%s: out of memory (%ld bytes)", path, n);
         return NULL;
     }
     if (fread(t, 1, (size_t)n, f) != (size_t)n) {
@@ -56,6 +78,11 @@ static char *read_text(const char *path, lt_diag_t *diag)
     }
     t[n] = '\0';
     fclose(f);
+    if ((nul = memchr(t, '\0', (size_t)n)) != NULL) {
+        lt_diag_fail(diag, "%s: a NUL byte at offset %ld: not a JSON text", path, (long)(nul - t));
+        free(t);
+        return NULL;
+    }
     return t;
 }
 

@@ -136,6 +136,26 @@ ep_expect "shadows: a FIFO without an extension as the mesh" 1 "fifo-noext: a de
     timeout 20 "$SIMBIN/lanetrace" shadows --mesh "$E/fifo-noext" --res 8 --no-ref -q
 ep_expect "tune: a FIFO as the input" 1 "fifo-noext: a device, FIFO or socket" \
     timeout 20 "$SIMBIN/lanetrace" tune "$E/fifo-noext" --plan "$E/fifo-plan"
+# tune --merge reads DIR/plan.json and DIR/results/run-K.json: a plan.json that was a directory
+# was a malloc of its "size" (2^63: AddressSanitizer allocation-size-too-big), a FIFO blocked the
+# merge for ever, and a NUL byte was only "not a plan"
+"$SIMBIN/lanetrace" tune scenes/teapot.obj --family object --machine lrb16 --res 16 \
+    --plan "$E/tplan" -q >/dev/null 2>&1
+check "errpaths: tune --plan for the merge checks" test -s "$E/tplan/plan.json"
+for k in dir fifo nul; do rm -rf "$E/tplan-$k"; cp -r "$E/tplan" "$E/tplan-$k"; done
+rm "$E/tplan-dir/plan.json" "$E/tplan-fifo/plan.json"
+mkdir "$E/tplan-dir/plan.json"
+mkfifo "$E/tplan-fifo/plan.json"
+printf '{"tool":\0}' >"$E/tplan-nul/plan.json"
+ep_expect "tune --merge: plan.json a directory" 1 "tplan-dir/plan.json: a directory, not a regular file" \
+    timeout 20 "$SIMBIN/lanetrace" tune --merge "$E/tplan-dir"
+ep_expect "tune --merge: plan.json a FIFO" 1 "tplan-fifo/plan.json: a device, FIFO or socket" \
+    timeout 20 "$SIMBIN/lanetrace" tune --merge "$E/tplan-fifo"
+ep_expect "tune --merge: plan.json with a NUL byte" 1 "tplan-nul/plan.json: a NUL byte at offset 8" \
+    timeout 20 "$SIMBIN/lanetrace" tune --merge "$E/tplan-nul"
+mkdir -p "$E/tplan/results/run-0.json"
+ep_expect "tune --merge: a result that is a directory" 1 "run-0.json: a directory, not a regular file" \
+    timeout 20 "$SIMBIN/lanetrace" tune --merge "$E/tplan"
 ep_expect "render: /dev/zero as the mesh is a device, not an empty file" 1 \
     "/dev/zero: a device, FIFO or socket" \
     timeout 20 "$HOSTBIN/lanetrace-native" render --mesh /dev/zero --res 8 --out "$E/z" -q
