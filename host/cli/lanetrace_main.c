@@ -1302,7 +1302,7 @@ static int info_exr(const char *path, const lt_sniff_t *sn, int json, int part, 
         df.machine = machine;
         lt_recommend_depth(&df, &rec);
         /* the header is described either way; the commands that take it are told here */
-        if (lt_exr_display_check(path, &d.display_window, &ldiag) != 0) {
+        if (lt_exr_camera_check(path, &d.data_window, &d.display_window, &ldiag) != 0) {
             snprintf(lim, sizeof lim, "%s; reproject (without --src-cam or a scene camera) and "
                      "fwblob refuse it", ldiag.msg);
             limit = lim;

@@ -90,7 +90,7 @@ int lt_fwblob_cli(int argc, char **argv, const char *prog)
         return EXIT_INPUT;
     }
     /* the source camera spans the display window (lt_rp_cam_default below) */
-    if (lt_exr_display_check(depth, &d.display_window, &diag) != 0) {
+    if (lt_exr_camera_check(depth, &d.data_window, &d.display_window, &diag) != 0) {
         fprintf(stderr, "%s; fwblob's source camera spans it\n", diag.msg);
         goto done;
     }

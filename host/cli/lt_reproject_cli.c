@@ -616,7 +616,7 @@ static int rp_source_camera(rp_t *r)
            does not check for a data-window read) would give a focal length of 2^30 pixels */
         const lt_exr_depth_t *d = &r->dl[0];
         int32_t disp_w, disp_h;
-        if (lt_exr_display_check(r->depth, &d->display_window, &diag) != 0) {
+        if (lt_exr_camera_check(r->depth, &d->data_window, &d->display_window, &diag) != 0) {
             fprintf(stderr, "%s; reproject's default source camera spans it (give --src-cam, or "
                     "a scene file with a camera)\n", diag.msg);
             return EXIT_INPUT;

@@ -1246,6 +1246,19 @@ int lt_exr_display_check(const char *path, const lt_exr_box_t *disp, lt_diag_t *
     return 0;
 }
 
+int lt_exr_camera_check(const char *path, const lt_exr_box_t *data, const lt_exr_box_t *disp,
+                        lt_diag_t *diag)
+{
+    if (lt_exr_display_check(path, disp, diag) != 0)
+        return -1;
+    if (data->x1 < disp->x0 || data->x0 > disp->x1 || data->y1 < disp->y0 || data->y0 > disp->y1)
+        return lt_diag_fail(diag, "%s: data window (%ld,%ld)-(%ld,%ld) lies wholly outside the "
+                            "display window (%ld,%ld)-(%ld,%ld)", path, (long)data->x0,
+                            (long)data->y0, (long)data->x1, (long)data->y1, (long)disp->x0,
+                            (long)disp->y0, (long)disp->x1, (long)disp->y1);
+    return 0;
+}
+
 /* The depth part's storage and windows, checked against what is read (rules in lt_exr.h).
  * 0, or -1 with the message in diag. */
 static int check_part(exr_context_t ctx, int part, const exr_attr_chlist_entry_t *ze,

@@ -155,6 +155,16 @@ int lt_exr_read_depth(const char *path, const char *channel, const lt_exr_read_o
  * "d.exr: display window 20000x24 outside 1..LT_EXR_MAX_DIM 16384". */
 int lt_exr_display_check(const char *path, const lt_exr_box_t *disp, lt_diag_t *diag);
 
+/* lt_exr_display_check, and that the data window data overlaps the display window disp: the
+ * check of a command that builds its camera over the display window (reproject's and fwblob's
+ * default source camera). A data window wholly outside it (an offset of 10^6 pixels) would put
+ * the principal point 10^6 pixels off the image, every ray nearly parallel to the image plane,
+ * and give a view that looks valid but is not the file's. Cost: host only.
+ * Returns: 0, or -1 with a message naming path and both windows, e.g. "d.exr: data window
+ * (1000000,1000000)-(1000015,1000015) lies wholly outside the display window (0,0)-(15,15)". */
+int lt_exr_camera_check(const char *path, const lt_exr_box_t *data, const lt_exr_box_t *disp,
+                        lt_diag_t *diag);
+
 /* Free what lt_exr_read_depth allocated (safe on a zeroed or already-freed struct).
  * Cost: host only. */
 void lt_exr_depth_free(lt_exr_depth_t *d);

@@ -273,6 +273,25 @@ ep_expect "info: the header described, the limit said (exit 0)" 0 \
 check "info: the display window listed" grep -q "display window (0,0)-(19999,23)" "$tmp/ep.txt"
 ep_expect "info --json: limit_error" 0 '"limit_error":".*fardisp.exr: display window 1073741823x' \
     "$HOSTBIN/lanetrace-native" info --json "$E/fardisp.exr"
+# A data window wholly outside the display window (10^6 pixels off, lt-exr-stereo farwin): the
+# default source camera spans the display window, so its principal point sat 10^6 pixels off the
+# image and reproject (exit 0) and fwblob made a view of rays nearly parallel to the image plane,
+# silently. Now refused, naming both windows; --src-cam needs no display window.
+"$B/host/lt-exr-stereo" farwin "$E/farwin.exr"
+check "errpaths: lt-exr-stereo writes farwin.exr" test -s "$E/farwin.exr"
+ep_expect "reproject: a data window outside the display window" 1 \
+    "farwin.exr: data window (1000000,1000000)-(1000023,1000015) lies wholly outside the display window (0,0)-(31,23); reproject's default source camera" \
+    "$SIMBIN/lanetrace" reproject --depth "$E/farwin.exr" --out "$E/fw.exr" -q
+check "reproject: nothing written for it" test ! -e "$E/fw.exr"
+ep_expect "reproject: the same with --src-cam" 0 "" \
+    "$SIMBIN/lanetrace" reproject --depth "$E/farwin.exr" --src-cam 20,20,12,8 --out "$E/fw.exr" -q
+ep_expect "fwblob: a data window outside the display window" 1 \
+    "farwin.exr: data window (1000000,1000000)-(1000023,1000015) lies wholly outside the display window (0,0)-(31,23); fwblob" \
+    "$HOSTBIN/lanetrace-native" fwblob --depth "$E/farwin.exr" --crop 0,0,8,8 --out "$E/fw.blob"
+check "fwblob: nothing written for it" test ! -e "$E/fw.blob"
+ep_expect "info: the limit said for it (exit 0)" 0 \
+    "^limits    .*farwin.exr: data window (1000000,1000000)-(1000023,1000015) lies wholly outside" \
+    "$HOSTBIN/lanetrace-native" info "$E/farwin.exr"
 # The smallest image the quadtree takes is 1x1 (LT_QT_MAX_DIM's range is 1..16384: lt_qt.h,
 # lt_reproject.c): a 1x1 render is reprojected, not refused.
 "$HOSTBIN/lanetrace-native" render --res 1 --out "$E/one" -q >/dev/null 2>&1

@@ -257,7 +257,9 @@ static void ltx_eye(ltx_part_t *pt, int e, int color, int depth, const char *pfx
  *   "widedisp" one part, no views: R G B A Z (right) in a 20000 x 24 display window (wider than
  *             LT_EXR_MAX_DIM: the data window is readable, the display window is not)
  *   "fardisp" the same in the display window (-(2^29 - 1), -(2^29 - 1))-(2^29 - 1, 2^29 - 1),
- *             2^30 - 1 pixels square (OpenEXR refuses a window reaching past about +-2^30) */
+ *             2^30 - 1 pixels square (OpenEXR refuses a window reaching past about +-2^30)
+ *   "farwin"  one part, no views: R G B A Z (right), the 24x16 data window at (10^6, 10^6), wholly
+ *             outside the 32x24 display window */
 static int ltx_write_kind(const char *path, const char *kind, lt_diag_t *diag)
 {
     static char names[4][2][5][16];
@@ -307,9 +309,16 @@ static int ltx_write_kind(const char *path, const char *kind, lt_diag_t *diag)
             f.disp.min.x = f.disp.min.y = -536870911; /* -(2^29 - 1) */
             f.disp.max.x = f.disp.max.y = 536870911;
         }
+    } else if (strcmp(kind, "farwin") == 0) {
+        f.nparts = 1;
+        f.nviews = 0;
+        ltx_eye(&f.part[0], 1, 1, 1, "", names[0][0]);
+        f.dw.min.x = f.dw.min.y = 1000000;
+        f.dw.max.x = 1000000 + LTX_W - 1;
+        f.dw.max.y = 1000000 + LTX_H - 1;
     } else {
         return lt_diag_fail(diag, "unknown test file kind '%s' (stereo, split, nomv, single, "
-                            "widedisp, fardisp)", kind);
+                            "widedisp, fardisp, farwin)", kind);
     }
     return ltx_write(path, &f, diag);
 }
