@@ -1111,11 +1111,12 @@ static cJSON *exr_part_json(const lt_exr_probe_t *pr)
 static void exr_part_text(const lt_exr_probe_t *pr)
 {
     int c;
+    char t[256];
     printf("part %-5d", pr->part);
     if (pr->part_name[0] != '\0')
-        printf("name '%s', ", pr->part_name);
+        printf("name '%s', ", lt_shown(pr->part_name, t, sizeof t));
     if (pr->view[0] != '\0')
-        printf("view %s%s, ", pr->view,
+        printf("view %s%s, ", lt_shown(pr->view, t, sizeof t),
                strcmp(pr->view, pr->default_view) == 0 ? " (default)" : "");
     printf("%s, %s, data window (%d,%d)-(%d,%d), display window (%d,%d)-(%d,%d)\n",
            exr_storage_name[pr->storage & 3], lt_exr_compression_name(pr->compression),
@@ -1124,7 +1125,7 @@ static void exr_part_text(const lt_exr_probe_t *pr)
            pr->display_window.y1);
     printf("channels  %d:", pr->nchannels);
     for (c = 0; c < pr->nchannels && c < LT_EXR_PROBE_CHANNELS; c++)
-        printf(" %s(%s)", pr->name[c], exr_type_name[pr->type[c] & 3]);
+        printf(" %s(%s)", lt_shown(pr->name[c], t, sizeof t), exr_type_name[pr->type[c] & 3]);
     printf("%s\n", pr->nchannels > LT_EXR_PROBE_CHANNELS ? " ..." : "");
 }
 
@@ -1133,17 +1134,18 @@ static void exr_views_text(const lt_exr_probe_t *pr, char *buf, size_t cap)
 {
     size_t n = 0;
     int v;
+    char t[256];
     if (pr->nviews == 0) {
         snprintf(buf, cap, "no views");
         return;
     }
     n += (size_t)snprintf(buf, cap, "views");
     for (v = 0; v < pr->nviews && v < LT_EXR_PROBE_VIEWS && n < cap; v++)
-        n += (size_t)snprintf(buf + n, cap - n, " %s", pr->views[v]);
+        n += (size_t)snprintf(buf + n, cap - n, " %s", lt_shown(pr->views[v], t, sizeof t));
     if (pr->nviews > LT_EXR_PROBE_VIEWS && n < cap)
         n += (size_t)snprintf(buf + n, cap - n, " ... (%d)", pr->nviews);
     if (n < cap)
-        snprintf(buf + n, cap - n, " (default %s)", pr->default_view);
+        snprintf(buf + n, cap - n, " (default %s)", lt_shown(pr->default_view, t, sizeof t));
 }
 
 /* Probe part p into pr (part 0 is there already). 0, or -1 after a message on stderr. */
@@ -1232,7 +1234,7 @@ static int info_exr_text(const char *path, const lt_sniff_t *sn, lt_exr_probe_t 
                          const lt_exr_depth_t *d, const exr_stats_t *s, const char *why,
                          const char *limit, const lt_rec_depth_facts_t *df, const lt_rec_t *rec)
 {
-    char views[1024];
+    char views[1024], tv[256], tc[256];
     int p;
     exr_views_text(pr, views, sizeof views);
     printf("detected  %s by its content%s\n", sn->what,
@@ -1248,7 +1250,8 @@ static int info_exr_text(const char *path, const lt_sniff_t *sn, lt_exr_probe_t 
     if (d != NULL)
         printf("depth     part %d%s%s, channel %s%s: %zu pixels with depth, %zu holes (0, "
                "negative, NaN or inf), min %g max %g mean %g\n",
-               d->part, d->view[0] != '\0' ? ", view " : "", d->view, d->channel,
+               d->part, d->view[0] != '\0' ? ", view " : "", lt_shown(d->view, tv, sizeof tv),
+               lt_shown(d->channel, tc, sizeof tc),
                d->deep ? " (deep: front-most sample)" : "", s->n, s->holes, s->mn, s->mx,
                s->n ? s->sum / (double)s->n : 0.0);
     if (d != NULL) {

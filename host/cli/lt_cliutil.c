@@ -32,6 +32,17 @@ int lt_parse_wh(const char *s, uint32_t max, uint32_t *w, uint32_t *h)
     return 0;
 }
 
+const char *lt_shown(const char *s, char *out, size_t n)
+{
+    size_t i;
+    if (n == 0)
+        return out;
+    for (i = 0; s[i] != '\0' && i + 1 < n; i++)
+        out[i] = (unsigned char)s[i] < 0x20 || s[i] == 0x7F ? '?' : s[i];
+    out[i] = '\0';
+    return out;
+}
+
 uint8_t lt_gamma8(double v)
 {
     v = v < 0.0 || v != v ? 0.0 : (v > 1.0 ? 1.0 : v);

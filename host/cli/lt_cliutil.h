@@ -21,6 +21,12 @@ int lt_path_tagged(char *out, size_t n, const char *path, const char *tag);
 /* A linear value clamped to [0, 1] (NaN -> 0) encoded with gamma 2.2 to 0..255, rounded. */
 uint8_t lt_gamma8(double v);
 
+/* s for a text line: a copy into out[n] (cut at n - 1 bytes) with every control byte (< 0x20,
+ * 0x7F: a newline, an escape sequence) shown as '?', as lt_diag does for messages. Names read
+ * from a file (EXR part, view and channel names) go through it before they are printed as text;
+ * JSON output escapes them instead. Returns out. */
+const char *lt_shown(const char *s, char *out, size_t n);
+
 /* A progress bar on stderr ("label [#####     ]  40% ETA 1.5s"): drawn only when stderr is a
  * TTY, the run has taken more than a second and quiet is 0; lt_progress_end erases it. One bar
  * at a time; lt_progress is called from one thread (lt_par.h calls it on the caller's). */

@@ -7,6 +7,7 @@
  * s1.30 mapping here, in double, so the targets only run the integer path. Host only.
  */
 #include "cli/lt_fwblob_cli.h"
+#include "cli/lt_cliutil.h"
 #include "cli/lt_opt.h"
 #include "io/lt_exr.h"
 #include "io/lt_tmpfiles.h"
@@ -182,9 +183,11 @@ int lt_fwblob_cli(int argc, char **argv, const char *prog)
         goto done;
     }
     if (!quiet) {
+        char tc[256], tv[256];
         printf("%s: crop %u,%u %ux%u of %s (%dx%d, channel %s%s%s), %u layer%s", out, cx, cy, cw,
-               ch, depth, d.width, d.height, d.channel, d.view[0] != '\0' ? ", view " : "",
-               d.view, (unsigned)layers, layers > 1 ? "s" : "");
+               ch, depth, d.width, d.height, lt_shown(d.channel, tc, sizeof tc),
+               d.view[0] != '\0' ? ", view " : "", lt_shown(d.view, tv, sizeof tv),
+               (unsigned)layers, layers > 1 ? "s" : "");
         if (layers == 2)
             printf(" (layer 1 = layer 0 mirrored about z = %.6g)", (double)zmax);
         printf("\n  z_ref 2^%d, median depth %.6g; target moved %.6g,%.6g,%.6g, turned %g,%g,%g "

@@ -519,9 +519,11 @@ static int rp_load_depth(rp_t *r, const char *prog, int quiet)
             r->dl[0].rgba[1] = dc->rgba[1];
             r->dl[0].rgba[2] = dc->rgba[2];
         } else if (!quiet) {
+            char tc[256], tv[256];
             fprintf(stderr, "%s: no R G B channels next to %s (part %d%s%s): layer 0 shown as "
-                    "grey = w\n", r->depth, r->dl[0].channel, r->dl[0].part,
-                    r->dl[0].view[0] != '\0' ? ", view " : "", r->dl[0].view);
+                    "grey = w\n", r->depth, lt_shown(r->dl[0].channel, tc, sizeof tc),
+                    r->dl[0].part, r->dl[0].view[0] != '\0' ? ", view " : "",
+                    lt_shown(r->dl[0].view, tv, sizeof tv));
         }
     }
     r->zall = malloc(n * (size_t)r->layers * sizeof *r->zall);
@@ -1001,11 +1003,12 @@ static void rp_print_summary(const rp_t *r, const rp_figs_t *f)
     const lt_reproj_cam_t *sc = &r->src.cam, *dc = &r->dcam;
     const char *enc = r->path->name;
     double rays = f->rays, px = f->px;
-    char rt[LT_RATE_TEXT];
+    char rt[LT_RATE_TEXT], tc[256], tv[256];
     printf("source    %s: %ux%u, %d layer(s), channel %s%s (part %d%s%s), z_ref %g, median depth "
-           "%.4g\n", r->depth, r->W, r->H, r->layers, r->dl[0].channel,
+           "%.4g\n", r->depth, r->W, r->H, r->layers, lt_shown(r->dl[0].channel, tc, sizeof tc),
            r->dist == 1 ? " (distances)" : "", r->dl[0].part,
-           r->dl[0].view[0] != '\0' ? ", view " : "", r->dl[0].view, st->zref, r->median);
+           r->dl[0].view[0] != '\0' ? ", view " : "", lt_shown(r->dl[0].view, tv, sizeof tv),
+           st->zref, r->median);
     printf("cameras   source %s: f %.2f,%.2f c %.2f,%.2f; target moved %.4g,%.4g,%.4g "
            "rotated %.3g,%.3g,%.3g deg, %ux%u\n",
            r->cam_desc, sc->fx, sc->fy, sc->cx, sc->cy, dc->c[0] - sc->c[0], dc->c[1] - sc->c[1],

@@ -292,6 +292,22 @@ check "fwblob: nothing written for it" test ! -e "$E/fw.blob"
 ep_expect "info: the limit said for it (exit 0)" 0 \
     "^limits    .*farwin.exr: data window (1000000,1000000)-(1000023,1000015) lies wholly outside" \
     "$HOSTBIN/lanetrace-native" info "$E/farwin.exr"
+# Names read from an EXR (part, view, channel) printed as text: a view named "right\n\033[31m"
+# (lt-exr-stereo ctlview) broke info's lines and sent the escape sequence to the terminal (info,
+# reproject's source line, fwblob's summary); now shown with '?' for each control byte, as
+# messages are (info --json escapes them).
+"$B/host/lt-exr-stereo" ctlview "$E/ctlview.exr"
+check "errpaths: lt-exr-stereo writes ctlview.exr" test -s "$E/ctlview.exr"
+ep_expect "info: a view name with a newline and an escape sequence shown as '?'" 0 \
+    "^part 1    name 'right??\[31m', view right??\[31m (default), " \
+    "$HOSTBIN/lanetrace-native" info "$E/ctlview.exr"
+check "info: no escape byte and no line broken by the name" \
+    bash -c '! grep -q "$(printf "\033")" "$1" && ! grep -q "^\[31m" "$1"' _ "$tmp/ep.txt"
+ep_expect "reproject: the view's name in the source line shown as '?'" 0 \
+    "^source    .*(part 1, view right??\[31m)" \
+    "$SIMBIN/lanetrace" reproject --depth "$E/ctlview.exr" --out "$E/ctl.exr"
+ep_expect "fwblob: the view's name shown as '?'" 0 "view right??\[31m)" \
+    "$HOSTBIN/lanetrace-native" fwblob --depth "$E/ctlview.exr" --crop 0,0,8,8 --out "$E/ctl.blob"
 # The smallest image the quadtree takes is 1x1 (LT_QT_MAX_DIM's range is 1..16384: lt_qt.h,
 # lt_reproject.c): a 1x1 render is reprojected, not refused.
 "$HOSTBIN/lanetrace-native" render --res 1 --out "$E/one" -q >/dev/null 2>&1

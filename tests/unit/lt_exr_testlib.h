@@ -258,6 +258,8 @@ static void ltx_eye(ltx_part_t *pt, int e, int color, int depth, const char *pfx
  *             LT_EXR_MAX_DIM: the data window is readable, the display window is not)
  *   "fardisp" the same in the display window (-(2^29 - 1), -(2^29 - 1))-(2^29 - 1, 2^29 - 1),
  *             2^30 - 1 pixels square (OpenEXR refuses a window reaching past about +-2^30)
+ *   "ctlview" "stereo" with the right view (the default; and its part) named "right\n\033[31m":
+ *             a newline and an ANSI escape sequence in a name read from the file
  *   "farwin"  one part, no views: R G B A Z (right), the 24x16 data window at (10^6, 10^6), wholly
  *             outside the 32x24 display window */
 static int ltx_write_kind(const char *path, const char *kind, lt_diag_t *diag)
@@ -276,7 +278,7 @@ static int ltx_write_kind(const char *path, const char *kind, lt_diag_t *diag)
     f.nviews = 2;
     f.views[0] = "right";
     f.views[1] = "left";
-    if (strcmp(kind, "stereo") == 0 || strcmp(kind, "nomv") == 0) {
+    if (strcmp(kind, "stereo") == 0 || strcmp(kind, "nomv") == 0 || strcmp(kind, "ctlview") == 0) {
         f.nparts = 2;
         f.part[0].name = f.part[0].view = "left";
         f.part[1].name = f.part[1].view = "right";
@@ -284,6 +286,8 @@ static int ltx_write_kind(const char *path, const char *kind, lt_diag_t *diag)
         ltx_eye(&f.part[1], 1, 1, 1, "", names[1][0]);
         if (strcmp(kind, "nomv") == 0)
             f.nviews = 0;
+        if (strcmp(kind, "ctlview") == 0)
+            f.part[1].name = f.part[1].view = f.views[0] = "right\n\033[31m";
     } else if (strcmp(kind, "split") == 0) {
         f.nparts = 4;
         f.part[0].name = "left.depth";
@@ -318,7 +322,7 @@ static int ltx_write_kind(const char *path, const char *kind, lt_diag_t *diag)
         f.dw.max.y = 1000000 + LTX_H - 1;
     } else {
         return lt_diag_fail(diag, "unknown test file kind '%s' (stereo, split, nomv, single, "
-                            "widedisp, fardisp, farwin)", kind);
+                            "widedisp, fardisp, farwin, ctlview)", kind);
     }
     return ltx_write(path, &f, diag);
 }
