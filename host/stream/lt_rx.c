@@ -567,8 +567,22 @@ static void take(lt_rx_t *rx, const lt_stream_frame_t *f)
         break;
     case LT_STREAM_IMAGE:
         ok = lt_stream_unpack_image(f, &im);
-        if (ok == LT_OK)
+        if (ok == LT_OK) {
+            uint64_t nt = hello_tiles(rx);
+            const lt_stream_hello_t *h = &st->hello;
             st->images++;
+            if (nt != 0 && im.tile >= nt)
+                bad_record(rx, f, "tile index %u outside the image: %llu tiles (%ux%u in %ux%u "
+                           "tiles)", im.tile, (unsigned long long)nt, h->width, h->height,
+                           h->tile_w, h->tile_h);
+            else if (nt != 0 && (uint32_t)im.offset + im.count > (uint32_t)h->tile_w * h->tile_h)
+                bad_record(rx, f, "tile %u of frame %u: pixels %u..%u, past the %u of a %ux%u "
+                           "tile", im.tile, im.frame, im.offset, im.offset + im.count - 1u,
+                           (unsigned)(h->tile_w * h->tile_h), h->tile_w, h->tile_h);
+            if (rx->hello_taken && h->frames != 0 && im.frame >= h->frames)
+                bad_record(rx, f, "tile %u of frame %u: the session traces frames 0..%u", im.tile,
+                           im.frame, h->frames - 1u);
+        }
         break;
     case LT_STREAM_END:
         ok = lt_stream_unpack_end(f, &e);
@@ -582,8 +596,10 @@ static void take(lt_rx_t *rx, const lt_stream_frame_t *f)
     default:
         break;
     }
-    if (ok != LT_OK)
-        st->bad_payload++;
+    if (ok != LT_OK && st->bad_payload++ == 0)
+        (void)snprintf(st->bad_payload_first, sizeof st->bad_payload_first,
+                       "frame seq %u (%s): a payload of %u bytes that does not fit the type",
+                       (unsigned)f->seq, lt_rx_type_name(f->type), (unsigned)f->len);
 }
 
 static void on_frame(lt_rx_t *rx, const lt_stream_frame_t *f)
@@ -592,6 +608,7 @@ static void on_frame(lt_rx_t *rx, const lt_stream_frame_t *f)
     int64_t ext;
     uint64_t g, c;
     rx->st.valid++;
+    rx->st.last_seq = f->seq;
     /* A HELLO after END, or with another session id, starts a new session. */
     if (f->type == LT_STREAM_HELLO && rx->active) {
         lt_stream_hello_t h;

@@ -89,6 +89,8 @@ typedef struct lt_rx_stats {
     uint64_t bad_crc;        /* header valid, CRC (or padding) invalid */
     uint64_t tail_bytes;     /* bytes of a frame cut off by the end of the stream */
     uint64_t bad_payload;    /* CRC-valid frames whose payload length does not fit their type */
+    char bad_payload_first[128]; /* the first of them: "frame seq S (TYPE): payload of L bytes ..." */
+    uint32_t last_seq;       /* sequence number of the last CRC-valid frame (valid > 0) */
     uint64_t bad_record;     /* CRC-valid records whose content contradicts the session's HELLO
                                 or itself (lt_rx_check_record): a tile outside the image, a
                                 (frame, tile) reported twice, more rays than pixels, more hits

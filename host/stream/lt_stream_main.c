@@ -407,6 +407,17 @@ int main(int argc, char **argv)
     if (s->bad_record != 0)
         fprintf(stderr, "%slt-stream: %s: %s%s\n", tty ? "\n" : "", lt_rx_src_name(src),
                 s->bad_first, s->bad_record > 1 ? " (and more: see the records line)" : "");
+    if (s->bad_payload != 0)
+        fprintf(stderr, "%slt-stream: %s: %s%s\n", tty ? "\n" : "", lt_rx_src_name(src),
+                s->bad_payload_first, s->bad_payload > 1 ? " (and more: see bad payloads)" : "");
+    if (s->tail_bytes != 0) {
+        char after[48] = "before any valid frame";
+        if (s->valid != 0)
+            (void)snprintf(after, sizeof after, "after frame seq %u", (unsigned)s->last_seq);
+        fprintf(stderr, "%slt-stream: %s: the input ends %llu bytes into a %u-byte frame, %s\n",
+                tty ? "\n" : "", lt_rx_src_name(src), (unsigned long long)s->tail_bytes,
+                LT_STREAM_FRAME_BYTES, after);
+    }
     if (tty) {
         live_line(s, lt_now_s() - t0);
         fputc('\n', stderr);

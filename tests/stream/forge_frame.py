@@ -6,6 +6,9 @@ into a CRC-valid frame whose content contradicts the HELLO or itself, for tests/
   rays        the first TILE's rays -> 65535 (a 16x16 tile has 256 pixels)
   sum_tiles   the first SUMMARY's tiles -> 65535
   hello_zero  the HELLO's tile size -> 0x0
+  image_out   the first IMAGE's tile index -> 999
+  tile_len0   the first TILE with a payload of 0 bytes (a TILE is 40)
+  cut         the first 5 frames and 30 bytes of the 6th: the input ends inside a frame
 Prints the sequence number of the forged frame. Test tool, not shipped."""
 import struct
 import sys
@@ -49,6 +52,16 @@ def main():
         p[1] = p[2] = 0
         fr[0] = bytearray(reframe(fr[0], bytes(p)))
         off = None
+    elif kind == "image_out":
+        i, off, val = [k for k, f in enumerate(fr) if f[3] == 5][0], 2, 999
+    elif kind == "tile_len0":
+        i = tiles[0]
+        fr[i] = bytearray(reframe(fr[i], b""))
+        off = None
+    elif kind == "cut":
+        open(dst, "wb").write(b"".join(bytes(f) for f in fr[:5]) + bytes(fr[5][:30]))
+        print(struct.unpack("<H", bytes(fr[4][4:6]))[0])
+        return
     else:
         sys.exit("forge_frame.py: unknown kind " + kind)
     if off is not None:
