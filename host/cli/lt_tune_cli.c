@@ -328,11 +328,23 @@ static int settle_input(tune_t *t)
     return 0;
 }
 
+/* --out names a folder: a path that exists and is not one (a regular file, a FIFO) is refused
+ * before anything is measured, not after the sweep (mkdir's EEXIST let it through, and the
+ * first output file failed: "afile/front.csv: cannot create (Not a directory)"). */
+static int out_not_folder(const tune_t *t, lt_diag_t *diag)
+{
+    struct stat st;
+    if (stat(t->out, &st) == 0 && !S_ISDIR(st.st_mode))
+        return lt_diag_fail(diag, "--out %s: exists and is not a folder (%s)", t->out,
+                            S_ISREG(st.st_mode) ? "a regular file" : "a device, FIFO or socket");
+    return 0;
+}
+
 static int mkdir_out(const tune_t *t, lt_diag_t *diag)
 {
     if (mkdir(t->out, 0777) != 0 && errno != EEXIST)
         return lt_diag_fail(diag, "--out %s: cannot create the folder (%s)", t->out, strerror(errno));
-    return 0;
+    return out_not_folder(t, diag);
 }
 
 /* ---- the pick ---------------------------------------------------------------------------- */
@@ -749,6 +761,10 @@ int lt_tune_cli(int argc, char **argv, const char *prog)
         settle_opts(&t);
         if (t.plan != NULL || t.seen_job)
             t.o.probe_res = 0; /* a plan measures every configuration at full size */
+        if (t.plan == NULL && out_not_folder(&t, &d) != 0) {
+            fprintf(stderr, "%s: %s\n", t.who, d.msg);
+            return EXIT_INPUT;
+        }
         t.srv = lt_tune_server_start(&t.in, &t.o, t.r.q16_note, sizeof t.r.q16_note, &d);
         if (t.srv == NULL) {
             fprintf(stderr, "%s: %s\n", t.who, d.msg);

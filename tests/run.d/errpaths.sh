@@ -156,6 +156,15 @@ ep_expect "tune --merge: plan.json with a NUL byte" 1 "tplan-nul/plan.json: a NU
 mkdir -p "$E/tplan/results/run-0.json"
 ep_expect "tune --merge: a result that is a directory" 1 "run-0.json: a directory, not a regular file" \
     timeout 20 "$SIMBIN/lanetrace" tune --merge "$E/tplan"
+# tune --out naming a regular file: the whole sweep ran, then the first output failed
+# ("afile/front.csv: cannot create (Not a directory)"); now refused before anything is measured
+: >"$E/tout-file"
+ep_expect "tune --out a regular file: refused before measuring" 1 \
+    "tout-file: exists and is not a folder (a regular file)" \
+    timeout 60 "$SIMBIN/lanetrace" tune scenes/teapot.obj --family object --machine lrb16 --res 16 \
+    --probe-res 0 --out "$E/tout-file"
+check "tune --out a regular file: nothing measured (no search line)" \
+    bash -c '! grep -q "^search" "$1"' _ "$tmp/ep.txt"
 ep_expect "render: /dev/zero as the mesh is a device, not an empty file" 1 \
     "/dev/zero: a device, FIFO or socket" \
     timeout 20 "$HOSTBIN/lanetrace-native" render --mesh /dev/zero --res 8 --out "$E/z" -q
