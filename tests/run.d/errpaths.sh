@@ -172,6 +172,7 @@ ep_expect "render: /dev/zero as the mesh is a device, not an empty file" 1 \
 # run's outputs are one set (lt_outset), as render's and reproject's: a failing member leaves
 # every previous output as it was. The report used to be replaced before the CSV (an existing
 # directory) or a heatmap (a missing directory) failed.
+rm -rf "$E/rs" # make test sources this part twice (release and ASan builds) into one $tmp
 mkdir -p "$E/rs" "$E/rs/d.csv"
 echo OLDREPORT >"$E/rs/r.json"
 echo OLDCSV >"$E/rs/c.csv"
@@ -286,6 +287,7 @@ ep_expect "info --json: limit_error" 0 '"limit_error":".*fardisp.exr: display wi
 # default source camera spans the display window, so its principal point sat 10^6 pixels off the
 # image and reproject (exit 0) and fwblob made a view of rays nearly parallel to the image plane,
 # silently. Now refused, naming both windows; --src-cam needs no display window.
+rm -f "$E/fw.exr" "$E/fw.blob" # the part runs twice into one $tmp (release and ASan builds)
 "$B/host/lt-exr-stereo" farwin "$E/farwin.exr"
 check "errpaths: lt-exr-stereo writes farwin.exr" test -s "$E/farwin.exr"
 ep_expect "reproject: a data window outside the display window" 1 \
