@@ -101,32 +101,10 @@ static lt_mask16_t q_slab16_lanes(const lt_ray16_q16_t *r, lt_mask16_t k, const 
 }
 #define LTN_SLAB16_LANES q_slab16_lanes
 #if LT__X86_LANES == 512 && LT_COST_MODE != LT_COST_SIM
-/* One plane of lt_slab16_q16 for 16 lanes in AVX-512 registers: sat32(round((sat32(p - o) x rd)
- * / 2^16)), half up, per lane as lt__q16_mul_sat(lt__q16_sub_sat(p, o), rd) (the 64-bit
- * difference clamped, vpmuldq, + 2^15, vpsraq, the signed saturating narrow vpmovsqd). */
-LT_INLINE __m256i q_plane8_reg(__m512i p, __m256i o, __m256i rd)
-{
-    const __m512i hi = _mm512_set1_epi64(INT32_MAX), lo = _mm512_set1_epi64(INT32_MIN);
-    __m512i d = _mm512_sub_epi64(p, _mm512_cvtepi32_epi64(o));
-    d = _mm512_max_epi64(_mm512_min_epi64(d, hi), lo);
-    d = _mm512_mul_epi32(d, _mm512_cvtepi32_epi64(rd));
-    return _mm512_cvtsepi64_epi32(
-        _mm512_srai_epi64(_mm512_add_epi64(d, _mm512_set1_epi64((long long)1 << 15)), 16));
-}
-
-LT_INLINE __m512i q_plane16_reg(int32_t p, const lt_vq16_t *o, const lt_vq16_t *rd)
-{
-    const __m512i pv = _mm512_set1_epi64(p);
-    __m256i a = q_plane8_reg(pv, _mm256_loadu_si256((const __m256i *)(const void *)o->l),
-                             _mm256_loadu_si256((const __m256i *)(const void *)rd->l));
-    __m256i b = q_plane8_reg(pv, _mm256_loadu_si256((const __m256i *)(const void *)(o->l + 8)),
-                             _mm256_loadu_si256((const __m256i *)(const void *)(rd->l + 8)));
-    return _mm512_inserti64x4(_mm512_castsi256_si512(a), b, 1);
-}
-
-/* lt_slab16_q16 where no lane of k is parallel or has a saturated 1/d, in registers: the same
- * per-lane arithmetic (so the same bits); the lane ops passed their 64- and 128-byte vectors
- * through the stack. No events: the counting build keeps the lane ops. */
+/* lt_slab16_q16 where no lane of k is parallel or has a saturated 1/d, in registers: each plane
+ * through the backend's register bodies of the lane ops it uses (lt__x86_qsub: the saturating
+ * subtract; lt__x86_mulr: the rounded, saturated product), so the same bits; the lane ops passed
+ * their vectors through the stack between ops. No events: the counting build keeps the lane ops. */
 static lt_mask16_t q_slab16_reg(const lt_ray16_q16_t *r, lt_mask16_t k, const lt_aabb_q16_t *b,
                                 lt_vq16_t *tnear)
 {
@@ -134,8 +112,9 @@ static lt_mask16_t q_slab16_reg(const lt_ray16_q16_t *r, lt_mask16_t k, const lt
     __mmask16 hit;
 #define Q_SLAB_AXIS(a, o, rd)                                                                      \
     do {                                                                                           \
-        __m512i t0 = q_plane16_reg(b->lo[a], &r->o, &r->rd);                                       \
-        __m512i t1 = q_plane16_reg(b->hi[a], &r->o, &r->rd);                                       \
+        __m512i vo = _mm512_loadu_si512(r->o.l), vr = _mm512_loadu_si512(r->rd.l);                 \
+        __m512i t0 = lt__x86_mulr(lt__x86_qsub(_mm512_set1_epi32(b->lo[a]), vo, 0), vr, 16u, 0);   \
+        __m512i t1 = lt__x86_mulr(lt__x86_qsub(_mm512_set1_epi32(b->hi[a]), vo, 0), vr, 16u, 0);   \
         tn = _mm512_max_epi32(tn, _mm512_min_epi32(t0, t1));                                       \
         tf = _mm512_min_epi32(tf, _mm512_max_epi32(t0, t1));                                       \
     } while (0)
@@ -274,7 +253,6 @@ static lt_mask16_t f_slab16_reg(const lt_ray16_f32_t *r, lt_mask16_t k, const lt
 static lt_mask16_t f_slab16_reg(const lt_ray16_f32_t *r, lt_mask16_t k, const lt_aabb_f32_t *b,
                                 lt_vf32_t *tnear)
 {
-    const __m256i bit = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
     unsigned h, all = 0;
     for (h = 0; h < LT_LANES; h += 8) {
         const unsigned k8 = (unsigned)k >> h & 0xFFu;
@@ -297,9 +275,7 @@ static lt_mask16_t f_slab16_reg(const lt_ray16_f32_t *r, lt_mask16_t k, const lt
         hit = k8 & (unsigned)_mm256_movemask_ps(_mm256_cmp_ps(tn, tf, _CMP_LE_OQ));
         _mm256_storeu_ps(tnear->l + h,
                          _mm256_blendv_ps(_mm256_loadu_ps(tnear->l + h), tn,
-                                          _mm256_castsi256_ps(_mm256_cmpeq_epi32(
-                                              _mm256_and_si256(_mm256_set1_epi32((int)hit), bit),
-                                              bit))));
+                                          _mm256_castsi256_ps(lt__x86_mask8(hit))));
         all |= hit << h;
     }
     return (lt_mask16_t)all;

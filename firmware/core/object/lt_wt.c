@@ -1330,12 +1330,8 @@ static lt_mask16_t f_meet_reg(const lt_wt16_f32_t *w, lt_mask16_t k, const float
 #define LTN_WT_MEET_REG f_meet_reg
 #elif LT__X86_LANES == 256 && LT_COST_MODE != LT_COST_SIM
 /* The same on AVX2, one 8-lane half at a time (every op is per lane, so the same bits). */
-static __m256 f_lanes8(unsigned m)
-{
-    const __m256i bit = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
-    return _mm256_castsi256_ps(
-        _mm256_cmpeq_epi32(_mm256_and_si256(_mm256_set1_epi32((int)m), bit), bit));
-}
+/* the lanes of m as a float lane mask (the backend's lt__x86_mask8) */
+LT_INLINE __m256 f_lanes8(unsigned m) { return _mm256_castsi256_ps(lt__x86_mask8(m)); }
 
 static unsigned f_cmp8(__m256 a, __m256 b, unsigned k, int lt)
 {
