@@ -118,32 +118,7 @@ static const char *const filter_names[] = {"irradiance", "visibility", NULL};
  * paper's 256-ray packet walk); both also t (LT_FRUSTA_TRIPAR: triangle-parallel leaves) */
 static int parse_cull(const char *text, void *dest, const void *ctx)
 {
-    uint32_t f = 0;
-    const char *c;
-    (void)ctx;
-    if (strcmp(text, "none") != 0)
-        for (c = text; *c != '\0'; c++) {
-            if (*c == 'b')
-                f |= LT_FRUSTA_BACKFACE;
-            else if (*c == 'c')
-                f |= LT_FRUSTA_CORNER;
-            else if (*c == 'r')
-                f |= LT_FRUSTA_CR;
-            else if (*c == 'l')
-                f |= LT_FRUSTA_LEAFRAY;
-            else if (*c == 's')
-                f |= LT_FRUSTA_SPLIT;
-            else if (*c == 'f' && ctx != NULL)
-                f |= LT_FRUSTA_FS | LT_FRUSTA_CR;
-            else if (*c == 'p' && ctx != NULL)
-                f |= LT_FRUSTA_P256;
-            else if (*c == 't')
-                f |= LT_FRUSTA_TRIPAR;
-            else
-                return -1;
-        }
-    *(uint32_t *)dest = f;
-    return 0;
+    return lt_ss_parse_cull(text, ctx != NULL, (uint32_t *)dest, NULL);
 }
 
 /* --pcull: as --cull without p (the 256-ray packet walk is for shadow frusta) */

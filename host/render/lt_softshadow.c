@@ -53,6 +53,38 @@ int lt_ss_spp_log2(uint32_t spp)
     return spp == 4u ? 2 : spp == 8u ? 3 : spp == 16u ? 4 : spp == 32u ? 5 : -1;
 }
 
+int lt_ss_parse_cull(const char *text, int shadow, uint32_t *flags, char *bad)
+{
+    uint32_t f = 0;
+    const char *c;
+    if (strcmp(text, "none") != 0)
+        for (c = text; *c != '\0'; c++) {
+            if (*c == 'b')
+                f |= LT_FRUSTA_BACKFACE;
+            else if (*c == 'c')
+                f |= LT_FRUSTA_CORNER;
+            else if (*c == 'r')
+                f |= LT_FRUSTA_CR;
+            else if (*c == 'l')
+                f |= LT_FRUSTA_LEAFRAY;
+            else if (*c == 's')
+                f |= LT_FRUSTA_SPLIT;
+            else if (*c == 'f' && shadow)
+                f |= LT_FRUSTA_FS | LT_FRUSTA_CR;
+            else if (*c == 'p' && shadow)
+                f |= LT_FRUSTA_P256;
+            else if (*c == 't')
+                f |= LT_FRUSTA_TRIPAR;
+            else {
+                if (bad != NULL)
+                    *bad = *c;
+                return -1;
+            }
+        }
+    *flags = f;
+    return 0;
+}
+
 void lt_ss_opts_default(const lt_scene_t *s, lt_ss_opts_t *o)
 {
     int e;

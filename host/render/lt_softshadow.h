@@ -55,6 +55,14 @@ int lt_ss_spp_log2(uint32_t spp);
      LT_FRUSTA_TRIPAR)
 #define LT_SS_FLAGS_DEFAULT (LT_SS_PFLAGS_DEFAULT | LT_FRUSTA_FS)
 
+/* A culling set as `lanetrace shadows --cull` / `--pcull` spell it into *flags: any of the
+ * letters b (back-face), c (corner rays), r (CR), l (ray-AABB leaf culling), s (wide frusta split
+ * into packets), t (triangle-parallel leaves), or "none"; with shadow also f (FS: shrink the
+ * shadow frusta's direction intervals with their corner rays; implies r) and p (the paper's
+ * 256-ray packet walk). Returns 0, or -1 with the first letter not taken in *bad (*flags
+ * untouched). */
+int lt_ss_parse_cull(const char *text, int shadow, uint32_t *flags, char *bad);
+
 /* Defaults: q16, leaf 8, the default culling sets above, LP samples, no scramble, depth 5%, cos 0.9 (25.8 deg), eps = 2^-12 of the scene
  * radius (rounded to a power of two). */
 void lt_ss_opts_default(const lt_scene_t *s, lt_ss_opts_t *o);

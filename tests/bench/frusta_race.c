@@ -153,20 +153,12 @@ int main(int argc, char **argv)
             kv = 1;
         else if (strcmp(argv[a], "--cull") == 0 && a + 1 < argc) {
             /* the letters of `lanetrace shadows --cull` */
-            const char *c = argv[++a];
+            char bad = '?';
             seen_cull = 1;
-            for (; strcmp(c, "none") != 0 && *c != '\0'; c++) {
-                const char *letters = "bcrflstp";
-                static const uint32_t bits[] = {LT_FRUSTA_BACKFACE, LT_FRUSTA_CORNER, LT_FRUSTA_CR,
-                                                LT_FRUSTA_FS | LT_FRUSTA_CR, LT_FRUSTA_LEAFRAY,
-                                                LT_FRUSTA_SPLIT, LT_FRUSTA_TRIPAR, LT_FRUSTA_P256};
-                const char *at = strchr(letters, *c);
-                if (at == NULL) {
-                    fprintf(stderr, "frusta-race: --cull: letters b, c, r, f, l, s, t, p or none, "
-                                    "not '%c'\n", *c);
-                    return 2;
-                }
-                flags |= bits[at - letters];
+            if (lt_ss_parse_cull(argv[++a], 1, &flags, &bad) != 0) {
+                fprintf(stderr, "frusta-race: --cull: letters b, c, r, f, l, s, t, p or none, "
+                                "not '%c'\n", bad);
+                return 2;
             }
         } else {
             fprintf(stderr, "usage: frusta-race --mesh PATH [--res N] [--runs 1..15] [--num q16|f32] "
